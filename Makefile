@@ -1,0 +1,106 @@
+# shakebox - top-level Makefile. Knobs first; `make help` lists the targets.
+CC      ?= cc
+CFLAGS  ?= -O2 -g
+# No -ffast-math and no FMA contraction: a run must be bit-identical on every machine
+# that runs the same build (MODEL.md, issue 2 point 3).
+BASEFLAGS = -std=c11 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
+SAN     ?= 0
+V       ?= 0
+
+ifeq ($(SAN),1)
+  BUILD   := build/san
+  BIN     := build/san/bin
+  XFLAGS  := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else
+  BUILD   := build/rel
+  BIN     := bin
+  XFLAGS  :=
+endif
+
+PKGS     = hdf5-serial gsl inih sqlite3
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
+ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(XFLAGS) $(PKG_CFLAGS) -Icore
+LDFLAGS   += $(XFLAGS)
+
+ifeq ($(V),1)
+  Q :=
+else
+  Q := @
+endif
+
+CORE_SRC  = $(filter-out core/shake_main.c,$(wildcard core/*.c))
+CORE_OBJ  = $(CORE_SRC:%.c=$(BUILD)/%.o)
+LIB       = $(BUILD)/libshake.a
+TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
+TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
+SHAKE     = $(BIN)/shake
+
+.PHONY: all deps check check-fast bench bench-lammps demo help clean tests
+all: $(SHAKE)
+
+help:
+	@echo "make            build bin/shake"
+	@echo "make deps       install the Debian packages shakebox needs (apt-get)"
+	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build)"
+	@echo "make bench      speed: shakebox vs LAMMPS gran/hooke on the paper scene, ns/particle-step"
+	@echo "make demo       install what is missing, build, run a short paper scene, plot it"
+	@echo "make clean      remove build products (never runs/)"
+	@echo "knobs: CC, CFLAGS, V=1 (show commands), SAN=1 (sanitizer build in build/san)"
+
+# Installs what is missing; a no-op when everything is there.
+deps:
+	$(Q)bash scripts/deps.sh
+
+build/.deps-ok: scripts/deps.sh
+	$(Q)bash scripts/deps.sh
+	$(Q)mkdir -p build && touch $@
+
+$(BUILD)/%.o: %.c | build/.deps-ok
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $<")
+	$(Q)$(CC) $(ALLCFLAGS) -c $< -o $@
+
+# provenance.c gets the git hash and the compiler flags; version.h changes only when
+# they do, so an unchanged tree does not rebuild.
+$(BUILD)/core/provenance.o: $(BUILD)/version.h
+$(BUILD)/version.h: FORCE | build/.deps-ok
+	@mkdir -p $(dir $@)
+	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(XFLAGS)" > $@.new
+	$(Q)if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
+$(BUILD)/core/provenance.o: ALLCFLAGS += -I$(BUILD)
+FORCE:
+
+$(LIB): $(CORE_OBJ)
+	@$(if $(filter 0,$(V)),echo "  AR    $@")
+	$(Q)ar rcs $@ $^
+
+$(SHAKE): $(BUILD)/core/shake_main.o $(LIB)
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  LD    $@")
+	$(Q)$(CC) $(LDFLAGS) -o $@ $^ $(PKG_LIBS)
+
+$(BUILD)/tests/%: tests/%.c $(LIB) tests/testlib.h
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $<")
+	$(Q)$(CC) $(ALLCFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB) $(PKG_LIBS)
+
+tests: $(SHAKE) $(TEST_BIN)
+
+# The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
+# the integration scripts against the release bin/shake; it ends with "N passed, N failed".
+check: build/.deps-ok
+	$(Q)$(MAKE) --no-print-directory all tests
+	$(Q)$(MAKE) --no-print-directory SAN=1 tests
+	$(Q)bash tests/run.sh
+
+bench: build/.deps-ok all
+	$(Q)bash tests/bench/bench.sh
+
+demo: build/.deps-ok all
+	$(Q)bash scripts/demo.sh
+
+clean:
+	rm -rf build bin
+
+-include $(shell find build -name '*.d' 2>/dev/null)

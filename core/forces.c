@@ -1,0 +1,166 @@
+/* forces.c - contact law kernel. Conventions (MODEL.md): n = (r_i - r_j)/d,
+ * t = n rotated by +90 deg, overlap xi = R_i + R_j - d.
+ *   F_N = Y xi + gamma_N m_eff xidot,  xidot = -(v_i - v_j).n          (eq. 2, signed)
+ *   v_t = (v_i - v_j).t - (R_i w_i + R_j w_j)   (surface slip of i against j at the
+ *         contact point: the contact point is r_i - R_i n, and z x n = t)
+ *   F_S = -sign(v_t) min(gamma_S m_eff |v_t|, mu |F_N|)                  (eq. 3)
+ *   force on i: F_N n + F_S t, on j the opposite;
+ *   torque on i: (-R_i n) x (F_S t) = -R_i F_S, on j: (R_j n) x (-F_S t) = -R_j F_S.
+ * Both torques have the sign that reduces the slip; eq. (6) of the paper prints
+ * +/- because its orientation convention differs (tests/physics prove this one). */
+#include "forces.h"
+
+#include <math.h>
+#include <string.h>
+
+static inline __attribute__((always_inline)) void contact(
+	const double Y, const double gn, const double gs, const double mu, const int clip,
+	const double dx, const double dy, const double d2, const double ri, const double rj,
+	const double dvx, const double dvy, const double wi, const double wj, const double meff,
+	double *fx, double *fy, double *fs_out, double *xi_out)
+{
+	const double d = sqrt(d2);
+	const double inv = 1.0 / d;
+	const double nx = dx * inv, ny = dy * inv;
+	const double xi = ri + rj - d;
+	const double xidot = -(dvx * nx + dvy * ny);
+	double fn = Y * xi + gn * meff * xidot;
+	if (clip)
+		fn = fn > 0 ? fn : 0;
+	const double vt = -dvx * ny + dvy * nx - (ri * wi + rj * wj);
+	const double fs = copysign(fmin(gs * meff * fabs(vt), mu * fabs(fn)), -vt);
+	*fx = fn * nx - fs * ny;
+	*fy = fn * ny + fs * nx;
+	*fs_out = fs;
+	*xi_out = xi;
+}
+
+void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
+		 double dvx, double dvy, double wi, double wj, double meff,
+		 double *fx, double *fy, double *ti, double *tj)
+{
+	double d2 = dx * dx + dy * dy, rs = ri + rj;
+	if (d2 >= rs * rs) {
+		*fx = *fy = *ti = *tj = 0;
+		return;
+	}
+	double fs, xi;
+	contact(law->Y, law->gn, law->gs, law->mu, law->clip, dx, dy, d2, ri, rj, dvx, dvy, wi, wj,
+		meff, fx, fy, &fs, &xi);
+	*ti = -ri * fs;
+	*tj = -rj * fs;
+}
+
+/* The kernel is instantiated once per value of clip, so the choice is made at
+ * setup and costs nothing inside the loop. */
+static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
+							const sb_nlist *nl, double inv_dt,
+							const int clip)
+{
+	const double Y = law->Y, gn = law->gn, gs = law->gs, mu = law->mu, mo = law->max_overlap;
+	const double *restrict x = st->q[C_X][0], *restrict y = st->q[C_Y][0];
+	const double *restrict vx = st->q[C_X][1], *restrict vy = st->q[C_Y][1],
+		     *restrict w = st->q[C_TH][1];
+	const double *restrict r = st->r;
+	double *restrict fxa = st->f[C_X], *restrict fya = st->f[C_Y], *restrict ta = st->f[C_TH];
+	const int *restrict start = nl->start, *restrict nj = nl->j;
+	const double *restrict nmeff = nl->meff;
+	int bad = 0;
+
+	memset(fxa, 0, sizeof(double) * (size_t)st->n);
+	memset(fya, 0, sizeof(double) * (size_t)st->n);
+	memset(ta, 0, sizeof(double) * (size_t)st->n);
+
+	for (int i = 0; i < st->nm; i++) {
+		const int p0 = start[i], p1 = start[i + 1];
+		if (p0 == p1)
+			continue;
+		const double xi_ = x[i], yi = y[i], ri = r[i];
+		/* velocities stay scaled (dt * v) until needed: one multiply per contact */
+		const double vxi = vx[i], vyi = vy[i], wi = w[i];
+		double fxi = 0, fyi = 0, ti = 0;
+		for (int p = p0; p < p1; p++) {
+			const int j = nj[p];
+			const double dx = xi_ - x[j], dy = yi - y[j], rs = ri + r[j];
+			const double d2 = dx * dx + dy * dy;
+			if (d2 >= rs * rs)
+				continue;
+			double fx, fy, fs, xi;
+			contact(Y, gn, gs, mu, clip, dx, dy, d2, ri, r[j], (vxi - vx[j]) * inv_dt,
+				(vyi - vy[j]) * inv_dt, wi * inv_dt, w[j] * inv_dt, nmeff[p], &fx, &fy,
+				&fs, &xi);
+			bad |= xi > mo * fmin(ri, r[j]);
+			fxi += fx;
+			fyi += fy;
+			ti -= ri * fs;
+			fxa[j] -= fx;
+			fya[j] -= fy;
+			ta[j] -= r[j] * fs;
+		}
+		fxa[i] += fxi;
+		fya[i] += fyi;
+		ta[i] += ti;
+	}
+	for (int p = 0; p < nl->nbig; p++) {
+		const int i = nl->bi[p], j = nl->bj[p];
+		const double dx = x[i] - x[j], dy = y[i] - y[j], rs = r[i] + r[j];
+		const double d2 = dx * dx + dy * dy;
+		if (d2 >= rs * rs)
+			continue;
+		double fx, fy, fs, xi;
+		contact(Y, gn, gs, mu, clip, dx, dy, d2, r[i], r[j], (vx[i] - vx[j]) * inv_dt,
+			(vy[i] - vy[j]) * inv_dt, w[i] * inv_dt, w[j] * inv_dt, nl->bmeff[p], &fx, &fy,
+			&fs, &xi);
+		bad |= xi > mo * fmin(r[i], r[j]);
+		fxa[i] += fx;
+		fya[i] += fy;
+		ta[i] -= r[i] * fs;
+		fxa[j] -= fx;
+		fya[j] -= fy;
+		ta[j] -= r[j] * fs;
+	}
+	return bad;
+}
+
+static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
+{
+	return kernel(l, s, n, inv_dt, 0);
+}
+
+static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
+{
+	return kernel(l, s, n, inv_dt, 1);
+}
+
+int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt)
+{
+	return law->clip ? kernel_clip(law, st, nl, inv_dt) : kernel_plain(law, st, nl, inv_dt);
+}
+
+double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
+{
+	double worst = 0;
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
+	for (int i = 0; i < st->nm; i++)
+		for (int p = nl->start[i]; p < nl->start[i + 1]; p++) {
+			int j = nl->j[p];
+			double d = hypot(x[i] - x[j], y[i] - y[j]);
+			double f = (st->r[i] + st->r[j] - d) / fmin(st->r[i], st->r[j]);
+			if (f > worst) {
+				worst = f;
+				*wi = i;
+				*wj = j;
+			}
+		}
+	for (int p = 0; p < nl->nbig; p++) {
+		int i = nl->bi[p], j = nl->bj[p];
+		double d = hypot(x[i] - x[j], y[i] - y[j]);
+		double f = (st->r[i] + st->r[j] - d) / fmin(st->r[i], st->r[j]);
+		if (f > worst) {
+			worst = f;
+			*wi = i;
+			*wj = j;
+		}
+	}
+	return worst;
+}

@@ -1,0 +1,28 @@
+/* forces.h - Cundall-Strack contact forces of MODEL.md, eqs. (1)-(6), over the Verlet list. */
+#ifndef SB_FORCES_H
+#define SB_FORCES_H
+
+#include "nlist.h"
+#include "state.h"
+
+typedef struct sb_law {
+	double Y, gn, gs, mu;    /* stiffness, normal and shear damping, Coulomb */
+	double max_overlap;      /* fraction of the smaller radius that stops the run */
+	int clip;                /* clip_attractive */
+} sb_law;
+
+/* Contact forces and torques into st->f, evaluated at q[.][0] with velocities
+ * q[.][1] * inv_dt. Returns 1 if some overlap exceeded max_overlap, else 0. */
+int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt);
+
+/* The force on disk i from disk j for given relative geometry; the unit of every
+ * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
+void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
+		 double dvx, double dvy, double wi, double wj, double meff,
+		 double *fx, double *fy, double *ti, double *tj);
+
+/* Largest overlap / smaller radius over all current contacts, and where (slow; for
+ * the blow-up message). */
+double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);
+
+#endif

@@ -1,0 +1,336 @@
+/* h5out.c - the run's HDF5 file and its XDMF sidecar, assembled when the run ends:
+ *   /            attributes: every scene parameter (typed), status, preparation results
+ *   /provenance  attributes: git hash, dirty flag, compiler, flags, host, times
+ *   /particles   id, kind (0 grain, 1 intruder, 2 wall), radius, mass
+ *   /intruder/trajectory  [n x 6]: t, x, y, vx, vy, omega (lab frame)
+ *   /snapshots/time [K], x, y, theta [K x n_mobile] (lab frame, phase 0 of each period)
+ *   /final       x, y, vx, vy, omega, theta of every disk (lab frame)
+ * Object time stamps are switched off so that two runs of the same scene give
+ * identical files apart from /provenance. */
+#include <hdf5.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fsutil.h"
+#include "sim.h"
+
+typedef struct h5 {
+	hid_t file, gcpl, dcpl;
+	int bad;
+} h5;
+
+static void attr_double(h5 *h, hid_t obj, const char *name, double v)
+{
+	hid_t sp = H5Screate(H5S_SCALAR);
+	hid_t a = H5Acreate2(obj, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+	if (a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &v) < 0)
+		h->bad = 1;
+	H5Aclose(a);
+	H5Sclose(sp);
+}
+
+static void attr_long(h5 *h, hid_t obj, const char *name, long v)
+{
+	long long x = v;
+	hid_t sp = H5Screate(H5S_SCALAR);
+	hid_t a = H5Acreate2(obj, name, H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+	if (a < 0 || H5Awrite(a, H5T_NATIVE_LLONG, &x) < 0)
+		h->bad = 1;
+	H5Aclose(a);
+	H5Sclose(sp);
+}
+
+static void attr_str(h5 *h, hid_t obj, const char *name, const char *v)
+{
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, strlen(v) + 1);
+	H5Tset_strpad(t, H5T_STR_NULLTERM);
+	hid_t sp = H5Screate(H5S_SCALAR);
+	hid_t a = H5Acreate2(obj, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
+	if (a < 0 || H5Awrite(a, t, v) < 0)
+		h->bad = 1;
+	H5Aclose(a);
+	H5Sclose(sp);
+	H5Tclose(t);
+}
+
+static hid_t group(h5 *h, const char *name)
+{
+	hid_t g = H5Gcreate2(h->file, name, H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
+	if (g < 0)
+		h->bad = 1;
+	return g;
+}
+
+/* A 1-D or 2-D dataset written at once from memory. */
+static void dset(h5 *h, hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
+		 hsize_t d0, hsize_t d1, const void *data)
+{
+	hsize_t dims[2] = {d0, d1};
+	hid_t sp = H5Screate_simple(rank, dims, NULL);
+	hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
+	if (d < 0 || (d0 * (rank > 1 ? d1 : 1) > 0 && H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+		h->bad = 1;
+	H5Dclose(d);
+	H5Sclose(sp);
+}
+
+static void write_params(h5 *h, const sb_scene *sc)
+{
+	size_t n;
+	const sb_param *t = params_table(&n);
+	for (size_t i = 0; i < n; i++) {
+		const char *base = (const char *)sc + t[i].offset;
+		char buf[SB_STR_MAX + 32];
+		switch (t[i].type) {
+		case PT_INT: attr_long(h, h->file, t[i].name, *(const long *)base); break;
+		case PT_REAL: attr_double(h, h->file, t[i].name, *(const double *)base); break;
+		default:
+			params_format(sc, &t[i], buf, sizeof buf);
+			attr_str(h, h->file, t[i].name, buf);
+		}
+	}
+}
+
+/* Snapshots stream from the journal into [K x nm] datasets, one row at a time. */
+static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
+{
+	const int nm = s->st.nm;
+	const hsize_t K = (hsize_t)s->n_snap, T = (hsize_t)s->n_traj;
+	double *traj = malloc(sizeof(double) * JR_TRAJ_COLS * (T ? T : 1));
+	double *times = malloc(sizeof(double) * (K ? K : 1));
+	double *buf = malloc(sizeof(double) * 3 * (size_t)nm);
+	if (!traj || !times || !buf) {
+		free(traj);
+		free(times);
+		free(buf);
+		return sb_errf(e, SB_ENOMEM, "out of memory writing the output");
+	}
+	hid_t gs = group(h, "/snapshots");
+	hsize_t dims[2] = {K, (hsize_t)nm};
+	hid_t sp = H5Screate_simple(2, dims, NULL);
+	const char *names[3] = {"x", "y", "theta"};
+	hid_t ds[3];
+	for (int c = 0; c < 3; c++) {
+		ds[c] = H5Dcreate2(gs, names[c], H5T_IEEE_F64LE, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
+		if (ds[c] < 0)
+			h->bad = 1;
+	}
+	hsize_t row[2] = {1, (hsize_t)nm};
+	hid_t msp = H5Screate_simple(2, row, NULL);
+	sb_jreader r = {0};
+	long kt = 0, ks = 0;
+	/* a run that failed while preparing has no journal */
+	int rc = (s->jr.f || K || T) ? journal_reader_open(&r, s->journal_path, e) : 1;
+	while (!rc && !h->bad) {
+		double rowbuf[JR_TRAJ_COLS], t;
+		int k = journal_next(&r, rowbuf, &t, buf, e);
+		if (k <= 0) {
+			rc = k < 0 ? e->code : 0;
+			break;
+		}
+		if (k == JR_TRAJ && (hsize_t)kt < T)
+			memcpy(traj + JR_TRAJ_COLS * kt++, rowbuf, sizeof rowbuf);
+		else if (k == JR_SNAP && (hsize_t)ks < K) {
+			times[ks] = t;
+			hsize_t start[2] = {(hsize_t)ks, 0};
+			for (int c = 0; c < 3; c++) {
+				hid_t fsp = H5Dget_space(ds[c]);
+				H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, row, NULL);
+				if (H5Dwrite(ds[c], H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, buf + (size_t)c * nm) < 0)
+					h->bad = 1;
+				H5Sclose(fsp);
+			}
+			ks++;
+		}
+	}
+	journal_reader_close(&r);
+	if (rc == 1)
+		rc = 0;
+	if (!rc && (kt != (long)T || ks != (long)K))
+		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld trajectory rows and %ld snapshots, expected %ld and %ld",
+			     s->journal_path, kt, ks, s->n_traj, s->n_snap);
+	dset(h, gs, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, K, 0, times);
+	for (int c = 0; c < 3; c++)
+		H5Dclose(ds[c]);
+	H5Sclose(msp);
+	H5Sclose(sp);
+	H5Gclose(gs);
+	if (s->intruder >= 0) {
+		hid_t gi = group(h, "/intruder");
+		dset(h, gi, "trajectory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, T, JR_TRAJ_COLS, traj);
+		attr_str(h, gi, "columns", "t x y vx vy omega");
+		attr_long(h, gi, "index", s->intruder);
+		H5Gclose(gi);
+	}
+	free(traj);
+	free(times);
+	free(buf);
+	return rc;
+}
+
+static void write_final(h5 *h, const sb_sim *s, double t)
+{
+	const sb_state *st = &s->st;
+	size_t n = (size_t)st->n;
+	double *v = malloc(sizeof(double) * n * 6);
+	if (!v) {
+		h->bad = 1;
+		return;
+	}
+	double idt = 1.0 / s->sc.dt, yb = sim_box_y(s, t), vb = sim_box_v(s, t);
+	for (size_t i = 0; i < n; i++) {
+		v[i] = st->q[C_X][0][i];
+		v[n + i] = st->q[C_Y][0][i] + yb;
+		v[2 * n + i] = st->q[C_X][1][i] * idt;
+		v[3 * n + i] = st->q[C_Y][1][i] * idt + vb;
+		v[4 * n + i] = st->q[C_TH][1][i] * idt;
+		v[5 * n + i] = st->q[C_TH][0][i];
+	}
+	hid_t g = group(h, "/final");
+	const char *names[6] = {"x", "y", "vx", "vy", "omega", "theta"};
+	for (int c = 0; c < 6; c++)
+		dset(h, g, names[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, v + c * n);
+	attr_double(h, g, "time", t);
+	H5Gclose(g);
+
+	int *ki = malloc(sizeof(int) * n);
+	if (ki) {
+		g = group(h, "/particles");
+		dset(h, g, "id", H5T_STD_I32LE, H5T_NATIVE_INT, 1, n, 0, st->id);
+		for (size_t i = 0; i < n; i++)
+			ki[i] = st->kind[i];
+		dset(h, g, "kind", H5T_STD_I32LE, H5T_NATIVE_INT, 1, n, 0, ki);
+		dset(h, g, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, st->r);
+		dset(h, g, "mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, st->m);
+		attr_str(h, g, "kinds", "0 grain, 1 intruder, 2 wall");
+		attr_long(h, g, "n_mobile", st->nm);
+		H5Gclose(g);
+		free(ki);
+	} else
+		h->bad = 1;
+	free(v);
+}
+
+/* XDMF sidecar: ParaView reads the snapshots as a temporal collection of point sets. */
+static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
+{
+	char path[4200];
+	snprintf(path, sizeof path, "%.*s.xmf",
+		 (int)(strlen(h5path) > 3 && !strcmp(h5path + strlen(h5path) - 3, ".h5") ? strlen(h5path) - 3 : strlen(h5path)),
+		 h5path);
+	const char *base = strrchr(h5path, '/');
+	base = base ? base + 1 : h5path;
+	sb_file out;
+	if (fs_open_tmp(&out, path, e))
+		return e->code;
+	FILE *f = out.f;
+	int nm = s->st.nm;
+	fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+		   "<Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+	/* snapshot times are read back from the file so the sidecar matches it exactly */
+	hid_t fid = H5Fopen(h5path, H5F_ACC_RDONLY, H5P_DEFAULT);
+	double *times = malloc(sizeof(double) * (size_t)(s->n_snap ? s->n_snap : 1));
+	if (fid >= 0 && times) {
+		hid_t d = H5Dopen2(fid, "/snapshots/time", H5P_DEFAULT);
+		if (d >= 0 && s->n_snap)
+			H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times);
+		H5Dclose(d);
+	}
+	if (fid >= 0)
+		H5Fclose(fid);
+	for (long k = 0; k < s->n_snap && times; k++) {
+		fprintf(f, "  <Grid Name=\"t%ld\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", k, times[k]);
+		fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", nm);
+		fprintf(f, "    <Geometry GeometryType=\"X_Y\">\n");
+		for (int c = 0; c < 2; c++)
+			fprintf(f,
+				"      <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d\">\n"
+				"        <DataItem Dimensions=\"3 2\" Format=\"XML\">%ld 0 1 1 1 %d</DataItem>\n"
+				"        <DataItem Dimensions=\"%ld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshots/%s</DataItem>\n"
+				"      </DataItem>\n",
+				nm, k, nm, s->n_snap, nm, base, c ? "y" : "x");
+		fprintf(f, "    </Geometry>\n");
+		fprintf(f, "    <Attribute Name=\"radius\" Center=\"Node\">\n"
+			   "      <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\">\n"
+			   "        <DataItem Dimensions=\"3 1\" Format=\"XML\">0 1 %d</DataItem>\n"
+			   "        <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/radius</DataItem>\n"
+			   "      </DataItem>\n    </Attribute>\n  </Grid>\n",
+			nm, nm, s->st.n, base);
+	}
+	free(times);
+	fprintf(f, "</Grid>\n</Domain>\n</Xdmf>\n");
+	return fs_commit(&out, e);
+}
+
+int h5out_write(const sb_sim *s, const char *path, sb_err *e)
+{
+	char tmp[4200];
+	fs_tmp_name(path, tmp, sizeof tmp);
+	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through sb_err */
+	h5 h = {0};
+	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+	H5Pset_obj_track_times(fcpl, 0);
+	h.gcpl = H5Pcreate(H5P_GROUP_CREATE);
+	H5Pset_obj_track_times(h.gcpl, 0);
+	h.dcpl = H5Pcreate(H5P_DATASET_CREATE);
+	H5Pset_obj_track_times(h.dcpl, 0);
+	h.file = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+	H5Pclose(fcpl);
+	if (h.file < 0) {
+		H5Pclose(h.gcpl);
+		H5Pclose(h.dcpl);
+		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file", tmp);
+	}
+	const double t = s->step * s->sc.dt;
+	attr_str(&h, h.file, "format", "shakebox-run-1");
+	write_params(&h, &s->sc);
+	attr_str(&h, h.file, "status", sb_code_name(s->status));
+	attr_long(&h, h.file, "exit_code", s->status);
+	attr_str(&h, h.file, "status_message", s->status_msg);
+	attr_double(&h, h.file, "status_time", s->status ? s->status_time : t);
+	attr_long(&h, h.file, "status_step", s->status ? s->status_step : s->step);
+	attr_long(&h, h.file, "steps", s->step);
+	attr_long(&h, h.file, "settle_steps", s->settle_steps);
+	attr_double(&h, h.file, "settle_time", s->settle_time);
+	attr_double(&h, h.file, "surface_height", s->surface0);
+	attr_double(&h, h.file, "intruder_settled_y", s->intruder_y0);
+	attr_double(&h, h.file, "intruder_settled_depth",
+		    s->intruder >= 0 ? s->surface0 - s->intruder_y0 : NAN);
+	attr_long(&h, h.file, "n_mobile", s->st.nm);
+	attr_long(&h, h.file, "n_walls", s->st.n - s->st.nm);
+	attr_long(&h, h.file, "neighbour_builds", s->nl.builds);
+
+	hid_t g = group(&h, "/provenance");
+	sb_prov p = s->prov;
+	prov_now(p.end_time);
+	attr_str(&h, g, "git_hash", p.git_hash);
+	attr_long(&h, g, "git_dirty", p.git_dirty);
+	attr_str(&h, g, "compiler", p.compiler);
+	attr_str(&h, g, "cflags", p.cflags);
+	attr_str(&h, g, "host", p.host);
+	attr_str(&h, g, "start_time", p.start_time);
+	attr_str(&h, g, "end_time", p.end_time);
+	attr_double(&h, g, "loop_seconds", s->loop_seconds);
+	H5Gclose(g);
+
+	int rc = copy_journal(&h, s, e);
+	write_final(&h, s, t);
+	H5Pclose(h.gcpl);
+	H5Pclose(h.dcpl);
+	if (H5Fclose(h.file) < 0)
+		h.bad = 1;
+	if (!rc && h.bad)
+		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed", tmp);
+	if (!rc)
+		rc = fs_fsync_path(tmp, e);
+	if (!rc)
+		rc = fs_rename_durable(tmp, path, e);
+	if (rc) {
+		unlink(tmp);
+		return rc;
+	}
+	return write_xdmf(s, path, e);
+}

@@ -1,0 +1,119 @@
+/* journal.c - binary record stream: header "SBJRNL01" + int32 nm, then records of
+ * int32 tag, int32 count, count doubles. Native byte order: the journal never leaves
+ * the machine that writes it (the HDF5 output does). */
+#include "journal.h"
+
+#include <errno.h>
+#include <stdint.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char MAGIC[8] = {'S', 'B', 'J', 'R', 'N', 'L', '0', '1'};
+
+int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e)
+{
+	memset(j, 0, sizeof *j);
+	snprintf(j->path, sizeof j->path, "%s", path);
+	j->nm = nm;
+	if (offset < 0) {
+		j->f = fopen(path, "w+b");
+		if (!j->f)
+			return sb_errf(e, SB_EIO, "%s: cannot create journal: %s", path, strerror(errno));
+		int32_t n32 = nm;
+		if (fwrite(MAGIC, 1, 8, j->f) != 8 || fwrite(&n32, 4, 1, j->f) != 1)
+			return sb_errf(e, SB_EIO, "%s: write failed", path);
+		return 0;
+	}
+	j->f = fopen(path, "r+b");
+	if (!j->f)
+		return sb_errf(e, SB_EIO, "%s: cannot reopen journal for restart: %s", path, strerror(errno));
+	if (ftruncate(fileno(j->f), offset) || fseek(j->f, offset, SEEK_SET))
+		return sb_errf(e, SB_EIO, "%s: cannot truncate to the checkpoint: %s", path, strerror(errno));
+	return 0;
+}
+
+static int put(sb_journal *j, int32_t tag, int32_t count, sb_err *e)
+{
+	int32_t h[2] = {tag, count};
+	if (fwrite(h, 4, 2, j->f) != 2)
+		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
+	return 0;
+}
+
+int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e)
+{
+	if (put(j, JR_TRAJ, JR_TRAJ_COLS, e))
+		return e->code;
+	if (fwrite(row, sizeof(double), JR_TRAJ_COLS, j->f) != JR_TRAJ_COLS)
+		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
+	return 0;
+}
+
+int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
+		 sb_err *e)
+{
+	size_t n = (size_t)j->nm;
+	if (put(j, JR_SNAP, (int32_t)(1 + 3 * n), e))
+		return e->code;
+	if (fwrite(&t, sizeof t, 1, j->f) != 1 || fwrite(x, sizeof(double), n, j->f) != n ||
+	    fwrite(y, sizeof(double), n, j->f) != n || fwrite(th, sizeof(double), n, j->f) != n)
+		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
+	return 0;
+}
+
+int journal_sync(sb_journal *j, long *offset, sb_err *e)
+{
+	if (fflush(j->f) || fsync(fileno(j->f)))
+		return sb_errf(e, SB_EIO, "%s: sync failed: %s", j->path, strerror(errno));
+	*offset = ftell(j->f);
+	return 0;
+}
+
+void journal_close(sb_journal *j)
+{
+	if (j->f)
+		fclose(j->f);
+	j->f = NULL;
+}
+
+int journal_reader_open(sb_jreader *r, const char *path, sb_err *e)
+{
+	char m[8];
+	int32_t n32;
+	r->f = fopen(path, "rb");
+	if (!r->f)
+		return sb_errf(e, SB_EIO, "%s: cannot open journal: %s", path, strerror(errno));
+	if (fread(m, 1, 8, r->f) != 8 || memcmp(m, MAGIC, 8) || fread(&n32, 4, 1, r->f) != 1)
+		return sb_errf(e, SB_EIO, "%s: not a shakebox journal", path);
+	r->nm = n32;
+	return 0;
+}
+
+int journal_next(sb_jreader *r, double *row, double *t, double *buf, sb_err *e)
+{
+	int32_t h[2];
+	size_t got = fread(h, 4, 2, r->f);
+	if (got == 0 && feof(r->f))
+		return 0;
+	if (got != 2)
+		return -sb_errf(e, SB_EIO, "journal: truncated record header");
+	if (h[0] == JR_TRAJ && h[1] == JR_TRAJ_COLS) {
+		if (fread(row, sizeof(double), JR_TRAJ_COLS, r->f) != JR_TRAJ_COLS)
+			return -sb_errf(e, SB_EIO, "journal: truncated trajectory record");
+		return JR_TRAJ;
+	}
+	if (h[0] == JR_SNAP && h[1] == 1 + 3 * r->nm) {
+		if (fread(t, sizeof(double), 1, r->f) != 1 ||
+		    fread(buf, sizeof(double), 3 * (size_t)r->nm, r->f) != 3 * (size_t)r->nm)
+			return -sb_errf(e, SB_EIO, "journal: truncated snapshot record");
+		return JR_SNAP;
+	}
+	return -sb_errf(e, SB_EIO, "journal: corrupt record (tag %d, count %d)", h[0], h[1]);
+}
+
+void journal_reader_close(sb_jreader *r)
+{
+	if (r->f)
+		fclose(r->f);
+	r->f = NULL;
+}

@@ -1,0 +1,41 @@
+/* journal.h - the append-only record stream of a run (trajectory rows, snapshots).
+ * A checkpoint stores the journal's synced length; a restart truncates to it, so
+ * what was recorded after the checkpoint is recorded again, once. The HDF5 output is
+ * assembled from the journal when the run ends. */
+#ifndef SB_JOURNAL_H
+#define SB_JOURNAL_H
+
+#include <stdio.h>
+
+#include "err.h"
+
+enum { JR_TRAJ = 1, JR_SNAP = 2 };
+#define JR_TRAJ_COLS 6
+
+typedef struct sb_journal {
+	FILE *f;
+	char path[4200];
+	int nm;
+} sb_journal;
+
+/* offset < 0: create anew; else reopen and truncate to offset. */
+int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e);
+int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e);
+/* Snapshot: time, then x, y, theta of the nm mobile disks. */
+int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
+		 sb_err *e);
+/* Flush and fsync; returns the durable length through *offset. */
+int journal_sync(sb_journal *j, long *offset, sb_err *e);
+void journal_close(sb_journal *j);
+
+/* Reading back, record by record. */
+typedef struct sb_jreader {
+	FILE *f;
+	int nm;
+} sb_jreader;
+int journal_reader_open(sb_jreader *r, const char *path, sb_err *e);
+/* Returns JR_TRAJ (fills row), JR_SNAP (fills t and buf[3*nm]), 0 at the end, <0 on error. */
+int journal_next(sb_jreader *r, double *row, double *t, double *buf, sb_err *e);
+void journal_reader_close(sb_jreader *r);
+
+#endif

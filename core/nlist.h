@@ -1,0 +1,51 @@
+/* nlist.h - neighbour search linear in N: a growable cell grid sized for the ordinary
+ * disks and a Verlet list with a skin. Disks much larger than the rest (the intruder)
+ * stay out of the cells and search the cells their own reach covers, so one big disk
+ * never makes everybody's cells big. Wall-wall pairs are never formed. */
+#ifndef SB_NLIST_H
+#define SB_NLIST_H
+
+#include "err.h"
+#include "state.h"
+
+typedef struct sb_nlist {
+	double skin;
+	/* cell grid over the bounding box of all disks at the last build */
+	int ncx, ncy, ccap;
+	double x0, y0, cell, inv_cell;
+	int *cell_start, *cell_idx; /* counting sort: disks of cell c are cell_idx[cell_start[c]..] */
+	int *cell_of;
+	int *cell_pos;               /* scratch of the counting sort */
+	/* half list for ordinary mobile i: pairs (i, j) with j > i, CSR */
+	int *start;                 /* nm + 1 */
+	int *j;
+	double *meff;
+	int npairs, pcap;
+	/* pairs involving a large disk, any order */
+	int *bi, *bj;
+	double *bmeff;
+	int nbig, bcap;
+	/* which disks are large; fixed at setup */
+	unsigned char *large;
+	int *large_list, nlarge;
+	double r_small;             /* largest radius among ordinary disks */
+	/* positions at the last build: the rebuild rule and a checkpoint use them */
+	double *xref, *yref;
+	int cap;
+	long builds;
+} sb_nlist;
+
+/* Classify disks (large = radius above 1.5x the mean) and allocate. */
+int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e);
+void nlist_free(sb_nlist *nl);
+
+/* Build from the given reference positions (normally the current ones, copied into
+ * xref/yref first by nlist_build). */
+int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e);
+int nlist_build(sb_nlist *nl, const sb_state *st, sb_err *e);
+
+/* Brute-force O(N^2) list of pairs within r_i + r_j + skin, for tests: returns the
+ * number of pairs, fills (pi, pj) with pi < pj when they are non-NULL. */
+long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap);
+
+#endif

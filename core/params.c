@@ -1,0 +1,409 @@
+/* params.c - the parameter table and everything it drives (parse, check, help, echo). */
+#include "params.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define OFF(f) offsetof(sb_scene, f)
+#define BIG 1e300
+
+/* Defaults are the `paper` preset of shared/MODEL.md; every row names its unit. */
+static const sb_param TABLE[] = {
+	/* --- preparation --- */
+	{"n_grains", PT_INT, "", "950", 0, 10000000, NULL, PF_PREP, OFF(n_grains),
+	 "number of small grains"},
+	{"r_min", PT_REAL, "cm", "0.85", 0, 1000, NULL, PF_PREP | PF_MINX, OFF(r_min),
+	 "smallest grain radius (radii uniform in [r_min, r_max])"},
+	{"r_max", PT_REAL, "cm", "1.15", 0, 1000, NULL, PF_PREP | PF_MINX, OFF(r_max),
+	 "largest grain radius"},
+	{"radius_ratio", PT_REAL, "", "4", 0, 100, NULL, PF_PREP, OFF(radius_ratio),
+	 "intruder radius / mean grain radius (0 = no intruder)"},
+	{"depth", PT_INT, "", "1", 0, 100000, NULL, PF_PREP, OFF(depth),
+	 "rows of small grains placed beneath the intruder (0 = on the bottom wall)"},
+	{"width", PT_REAL, "cm", "60", 0, 1e7, NULL, PF_PREP | PF_MINX, OFF(width),
+	 "inner width of the box"},
+	{"wall_radius", PT_REAL, "cm", "1", 0, 1000, NULL, PF_PREP | PF_MINX, OFF(wall_radius),
+	 "radius of the disks the walls are made of"},
+	{"wall_spacing", PT_REAL, "cm", "2", 0, 2000, NULL, PF_PREP | PF_MINX, OFF(wall_spacing),
+	 "centre distance of neighbouring wall disks (at most 2 wall_radius)"},
+	{"wall_height", PT_REAL, "cm", "0", 0, 1e7, NULL, PF_PREP, OFF(wall_height),
+	 "height of the side walls above the bottom (0 = twice the loose bed height)"},
+	{"density", PT_REAL, "g/cm^3", "1", 0, 1e6, NULL, PF_PREP | PF_MINX, OFF(density),
+	 "material density rho"},
+	{"mass_factor", PT_REAL, "cm", "6.283185307179586", 0, 1e6, NULL, PF_PREP | PF_MINX,
+	 OFF(mass_factor), "m = mass_factor * rho * R^2 (the paper prints 2 pi)"},
+	{"seed", PT_INT, "", "1", 0, 9007199254740992.0, NULL, PF_PREP, OFF(seed),
+	 "random seed of the preparation (radii, placement)"},
+	{"particles", PT_STR, "", "", 0, 0, NULL, PF_PREP, OFF(particles),
+	 "start from this particle file (text 'x y r kind' or LAMMPS data) instead of placing"},
+	{"settle", PT_ENUM, "", "auto", 0, 0, "auto|yes|no", PF_PREP, OFF(settle),
+	 "settle without vibration before shaking (auto: yes unless particles is set)"},
+	{"settle_ke", PT_REAL, "erg", "0.01", 0, BIG, NULL, PF_PREP | PF_MINX, OFF(settle_ke),
+	 "settled when the mean kinetic energy per mobile disk falls below this"},
+	{"settle_min", PT_REAL, "s", "1", 0, 1e6, NULL, PF_PREP, OFF(settle_min),
+	 "settle at least this long; settle_drag acts during this time"},
+	{"settle_drag", PT_REAL, "1/s", "20", 0, 1e6, NULL, PF_PREP, OFF(settle_drag),
+	 "viscous drag -settle_drag m v during settle_min, so the loose packing collapses gently"},
+	{"settle_max", PT_REAL, "s", "30", 0, 1e6, NULL, PF_PREP | PF_MINX, OFF(settle_max),
+	 "give up (exit code 6) if not settled after this long"},
+	/* --- dynamics --- */
+	{"wall_mass", PT_ENUM, "", "disk", 0, 0, "disk|infinite", PF_PREP | PF_DYN, OFF(wall_mass),
+	 "mass of a wall disk in m_eff: its own (disk) or infinite (m_eff = m_grain)"},
+	{"amplitude", PT_REAL, "cm", "2", 0, 1e4, NULL, PF_DYN, OFF(amplitude),
+	 "A in y_box = A sin(2 pi f t)"},
+	{"frequency", PT_REAL, "Hz", "3.2", 0, 1000, NULL, PF_DYN, OFF(frequency),
+	 "f in y_box = A sin(2 pi f t)"},
+	{"gravity", PT_REAL, "cm/s^2", "981", 0, 1e7, NULL, PF_PREP | PF_DYN, OFF(gravity),
+	 "g, acting in -y"},
+	{"stiffness", PT_REAL, "g/s^2", "3e6", 0, 1e13, NULL, PF_PREP | PF_DYN | PF_MINX,
+	 OFF(stiffness), "normal spring constant Y"},
+	{"gamma_n", PT_REAL, "1/s", "100", 0, 1e8, NULL, PF_PREP | PF_DYN, OFF(gamma_n),
+	 "normal damping gamma_N"},
+	{"gamma_s", PT_REAL, "1/s", "1", 0, 1e8, NULL, PF_PREP | PF_DYN, OFF(gamma_s),
+	 "shear damping gamma_S"},
+	{"mu", PT_REAL, "", "0.5", 0, 100, NULL, PF_PREP | PF_DYN, OFF(mu),
+	 "Coulomb friction coefficient"},
+	{"clip_attractive", PT_BOOL, "", "no", 0, 0, NULL, PF_PREP | PF_DYN, OFF(clip_attractive),
+	 "clip the normal force at zero (no attraction at the end of a contact)"},
+	{"integrator", PT_ENUM, "", "gear5", 0, 0, "gear5|gear4|verlet", PF_PREP | PF_DYN,
+	 OFF(integrator), "gear5 (6-value, paper), gear4 (5-value) or velocity verlet"},
+	{"dt", PT_REAL, "s", "5e-05", 0, 0.01, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(dt),
+	 "time step"},
+	{"skin", PT_REAL, "cm", "0.15", 0, 100, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(skin),
+	 "Verlet-list skin (results do not depend on it, only speed)"},
+	{"max_overlap", PT_REAL, "", "0.3", 0, 1, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
+	 "stop (exit code 4) when an overlap exceeds this fraction of the smaller radius"},
+	/* --- run length --- */
+	{"duration", PT_REAL, "s", "10", 0, 1e8, NULL, PF_LEN, OFF(duration),
+	 "seconds of shaking after preparation"},
+	/* --- recording --- */
+	{"output", PT_STR, "", "run.h5", 0, 0, NULL, PF_OUT, OFF(output),
+	 "HDF5 output file (an XDMF sidecar .xmf is written beside it)"},
+	{"traj_rate", PT_REAL, "Hz", "100", 0, 1e6, NULL, PF_OUT, OFF(traj_rate),
+	 "samples per second of the intruder trajectory (0 = none)"},
+	{"snapshots", PT_BOOL, "", "yes", 0, 0, NULL, PF_OUT, OFF(snapshots),
+	 "record all disks once per period at phase 0"},
+	{"checkpoint_every", PT_REAL, "s", "0", 0, 1e8, NULL, PF_OUT, OFF(checkpoint_every),
+	 "write a checkpoint every this many simulated seconds (0 = never)"},
+	{"checkpoint", PT_STR, "", "", 0, 0, NULL, PF_OUT, OFF(checkpoint),
+	 "checkpoint file (default: OUTPUT.ckpt)"},
+	{"restart", PT_ENUM, "", "auto", 0, 0, "auto|yes|no", PF_OUT, OFF(restart),
+	 "continue from the checkpoint: auto = if it exists, yes = it must exist, no = never"},
+	{"write_particles", PT_STR, "", "", 0, 0, NULL, PF_OUT, OFF(write_particles),
+	 "after preparation, write the state as a text particle file"},
+	{"write_lammps", PT_STR, "", "", 0, 0, NULL, PF_OUT, OFF(write_lammps),
+	 "after preparation, write the state as a LAMMPS data file (atom_style sphere)"},
+	{"progress", PT_ENUM, "", "auto", 0, 0, "auto|yes|no", PF_OUT, OFF(progress),
+	 "progress on stderr (auto: when stderr is a terminal)"},
+};
+
+#define NTABLE (sizeof TABLE / sizeof TABLE[0])
+
+const sb_param *params_table(size_t *n)
+{
+	*n = NTABLE;
+	return TABLE;
+}
+
+const sb_param *params_find(const char *name)
+{
+	for (size_t i = 0; i < NTABLE; i++)
+		if (strcmp(TABLE[i].name, name) == 0)
+			return &TABLE[i];
+	return NULL;
+}
+
+static int enum_index(const char *choices, const char *v)
+{
+	int idx = 0;
+	size_t vl = strlen(v);
+	for (const char *c = choices; *c; idx++) {
+		const char *bar = strchr(c, '|');
+		size_t l = bar ? (size_t)(bar - c) : strlen(c);
+		if (l == vl && strncmp(c, v, l) == 0)
+			return idx;
+		if (!bar)
+			break;
+		c = bar + 1;
+	}
+	return -1;
+}
+
+static void range_text(const sb_param *p, char *buf, size_t len)
+{
+	const char *lo = (p->flags & PF_MINX) ? "(" : "[";
+	if (p->type == PT_INT)
+		snprintf(buf, len, "[%.0f, %.0f]", p->min, p->max);
+	else if (p->max >= BIG)
+		snprintf(buf, len, "%s%g, inf)", lo, p->min);
+	else
+		snprintf(buf, len, "%s%g, %g]", lo, p->min, p->max);
+}
+
+/* Trim leading/trailing blanks into a local copy. */
+static void trim(const char *in, char *out, size_t len)
+{
+	while (*in == ' ' || *in == '\t')
+		in++;
+	snprintf(out, len, "%s", in);
+	size_t l = strlen(out);
+	while (l && (out[l - 1] == ' ' || out[l - 1] == '\t' || out[l - 1] == '\r' || out[l - 1] == '\n'))
+		out[--l] = 0;
+}
+
+int params_set(sb_scene *s, const char *key, const char *value, const char *where, sb_err *e)
+{
+	const sb_param *p = params_find(key);
+	if (!p)
+		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' (shake --help lists the keys)", where, key);
+	if (strlen(value) >= SB_STR_MAX)
+		return sb_errf(e, SB_EUSAGE, "%s: %s: value longer than %d characters", where, key, SB_STR_MAX - 1);
+	char v[SB_STR_MAX];
+	trim(value, v, sizeof v);
+	char *base = (char *)s + p->offset;
+	char rng[96];
+	range_text(p, rng, sizeof rng);
+	switch (p->type) {
+	case PT_INT: {
+		char *end;
+		errno = 0;
+		long long x = strtoll(v, &end, 10);
+		if (!*v || *end || errno || (double)x < p->min || (double)x > p->max)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected an integer in %s, got '%s'",
+				       where, key, rng, v);
+		*(long *)base = (long)x;
+		return 0;
+	}
+	case PT_REAL: {
+		char *end;
+		errno = 0;
+		double x = strtod(v, &end);
+		int bad = !*v || *end || errno || !isfinite(x) || x > p->max ||
+			  ((p->flags & PF_MINX) ? x <= p->min : x < p->min);
+		if (bad)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s, got '%s'",
+				       where, key, rng, v);
+		*(double *)base = x;
+		return 0;
+	}
+	case PT_BOOL: {
+		int b = -1;
+		if (!strcasecmp(v, "yes") || !strcasecmp(v, "true") || !strcasecmp(v, "on") || !strcmp(v, "1"))
+			b = 1;
+		if (!strcasecmp(v, "no") || !strcasecmp(v, "false") || !strcasecmp(v, "off") || !strcmp(v, "0"))
+			b = 0;
+		if (b < 0)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected yes or no, got '%s'", where, key, v);
+		*(int *)base = b;
+		return 0;
+	}
+	case PT_ENUM: {
+		int k = enum_index(p->choices, v);
+		if (k < 0)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected one of %s, got '%s'",
+				       where, key, p->choices, v);
+		*(int *)base = k;
+		return 0;
+	}
+	case PT_STR:
+		if (strpbrk(v, "\n\r"))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: value must be one line", where, key);
+		memcpy(base, v, strlen(v) + 1);
+		return 0;
+	}
+	return sb_errf(e, SB_EUSAGE, "%s: %s: bad parameter type", where, key);
+}
+
+void params_defaults(sb_scene *s)
+{
+	memset(s, 0, sizeof *s);
+	sb_err e = {0};
+	for (size_t i = 0; i < NTABLE; i++)
+		params_set(s, TABLE[i].name, TABLE[i].def, "default", &e);
+	/* A bad default is a programming error: the table test checks e stays clear. */
+}
+
+struct ini_ctx {
+	sb_scene *s;
+	sb_err *e;
+	const char *path;
+	FILE *f;
+	int line;      /* lines read so far: the handler runs right after its line is read */
+	int err_line;  /* line of the first error the handler found */
+};
+
+/* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader. */
+static char *scene_reader(char *str, int num, void *stream)
+{
+	struct ini_ctx *c = stream;
+	char *r = fgets(str, num, c->f);
+	if (r)
+		c->line++;
+	return r;
+}
+
+static int scene_handler(void *user, const char *section, const char *name, const char *value)
+{
+	struct ini_ctx *c = user;
+	if (c->err_line)
+		return 1; /* keep only the first error */
+	char where[SB_STR_MAX + 32];
+	snprintf(where, sizeof where, "%s:%d", c->path, c->line);
+	sb_err tmp = {0};
+	if (section[0] && strcmp(section, "scene") != 0)
+		sb_errf(&tmp, SB_EUSAGE, "%s: unknown section [%s] (a scene file has keys at the top or in [scene])",
+			where, section);
+	else
+		params_set(c->s, name, value, where, &tmp);
+	if (tmp.code) {
+		c->err_line = c->line;
+		c->e->code = 0;
+		c->e->msg[0] = 0;
+		sb_errf(c->e, tmp.code, "%s", tmp.msg);
+		return 0;
+	}
+	return 1;
+}
+
+int params_load_file(sb_scene *s, const char *path, sb_err *e)
+{
+	if (e->code)
+		return e->code;
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return sb_errf(e, SB_EUSAGE, "%s: cannot open scene file: %s", path, strerror(errno));
+	struct ini_ctx c = {s, e, path, f, 0, 0};
+	int rc = ini_parse_stream(scene_reader, &c, scene_handler, &c);
+	fclose(f);
+	if (rc > 0 && (!c.err_line || rc < c.err_line)) {
+		/* a syntax error inih found before any value error */
+		e->code = 0;
+		return sb_errf(e, SB_EUSAGE, "%s:%d: malformed line (expected key = value or [section])", path, rc);
+	}
+	if (rc < 0)
+		return sb_errf(e, SB_EIO, "%s: cannot read scene file", path);
+	return e->code;
+}
+
+int params_override(sb_scene *s, const char *arg, sb_err *e)
+{
+	const char *eq = strchr(arg, '=');
+	if (!eq || eq == arg)
+		return sb_errf(e, SB_EUSAGE, "command line: expected key=value, got '%s'", arg);
+	char key[128];
+	size_t kl = (size_t)(eq - arg);
+	if (kl >= sizeof key)
+		return sb_errf(e, SB_EUSAGE, "command line: key too long in '%s'", arg);
+	memcpy(key, arg, kl);
+	key[kl] = 0;
+	char k2[128];
+	trim(key, k2, sizeof k2);
+	return params_set(s, k2, eq + 1, "command line", e);
+}
+
+int params_validate(const sb_scene *s, sb_err *e)
+{
+	if (s->r_min > s->r_max)
+		return sb_errf(e, SB_EUSAGE, "r_min (%g) must not exceed r_max (%g)", s->r_min, s->r_max);
+	if (s->wall_spacing > 2 * s->wall_radius)
+		return sb_errf(e, SB_EUSAGE, "wall_spacing (%g) must be at most 2 wall_radius (%g): grains would fall through",
+			       s->wall_spacing, 2 * s->wall_radius);
+	if (!s->particles[0] && s->width < 4 * s->r_max)
+		return sb_errf(e, SB_EUSAGE, "width (%g) must hold at least two grains (4 r_max = %g)",
+			       s->width, 4 * s->r_max);
+	double ri = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
+	if (!s->particles[0] && 2 * ri > s->width - 2 * s->r_max)
+		return sb_errf(e, SB_EUSAGE, "radius_ratio %g gives an intruder of diameter %g cm that does not fit width %g",
+			       s->radius_ratio, 2 * ri, s->width);
+	if (!s->output[0])
+		return sb_errf(e, SB_EUSAGE, "output: must not be empty");
+	if (s->settle_min > s->settle_max)
+		return sb_errf(e, SB_EUSAGE, "settle_min (%g) must not exceed settle_max (%g)", s->settle_min, s->settle_max);
+	if (s->restart == TRI_YES && s->checkpoint_every <= 0 && !s->checkpoint[0])
+		return sb_errf(e, SB_EUSAGE, "restart = yes needs a checkpoint file (checkpoint or checkpoint_every)");
+	return 0;
+}
+
+void params_format(const sb_scene *s, const sb_param *p, char *buf, size_t len)
+{
+	const char *base = (const char *)s + p->offset;
+	switch (p->type) {
+	case PT_INT: snprintf(buf, len, "%ld", *(const long *)base); break;
+	case PT_REAL: snprintf(buf, len, "%.17g", *(const double *)base); break;
+	case PT_BOOL: snprintf(buf, len, "%s", *(const int *)base ? "yes" : "no"); break;
+	case PT_ENUM: {
+		int k = *(const int *)base;
+		const char *c = p->choices;
+		for (int i = 0; i < k && c; i++) {
+			c = strchr(c, '|');
+			if (c)
+				c++;
+		}
+		const char *bar = c ? strchr(c, '|') : NULL;
+		snprintf(buf, len, "%.*s", c ? (bar ? (int)(bar - c) : (int)strlen(c)) : 0, c ? c : "");
+		break;
+	}
+	case PT_STR: snprintf(buf, len, "%s", base); break;
+	}
+}
+
+unsigned long long params_hash(const sb_scene *s, unsigned mask)
+{
+	unsigned long long h = 1469598103934665603ULL;
+	char buf[SB_STR_MAX + 64];
+	for (size_t i = 0; i < NTABLE; i++) {
+		if (!(TABLE[i].flags & mask))
+			continue;
+		char v[SB_STR_MAX + 8];
+		params_format(s, &TABLE[i], v, sizeof v);
+		int l = snprintf(buf, sizeof buf, "%s=%s\n", TABLE[i].name, v);
+		for (int k = 0; k < l; k++) {
+			h ^= (unsigned char)buf[k];
+			h *= 1099511628211ULL;
+		}
+	}
+	return h;
+}
+
+static const char *type_name(const sb_param *p)
+{
+	switch (p->type) {
+	case PT_INT: return "int";
+	case PT_REAL: return "real";
+	case PT_BOOL: return "bool";
+	case PT_ENUM: return "enum";
+	case PT_STR: return "string";
+	}
+	return "?";
+}
+
+void params_print_help(FILE *f)
+{
+	fprintf(f, "Scene keys (units cgs; defaults are the paper preset of MODEL.md):\n");
+	for (size_t i = 0; i < NTABLE; i++) {
+		const sb_param *p = &TABLE[i];
+		char rng[96] = "";
+		if (p->type == PT_INT || p->type == PT_REAL)
+			range_text(p, rng, sizeof rng);
+		else if (p->type == PT_ENUM)
+			snprintf(rng, sizeof rng, "%s", p->choices);
+		else if (p->type == PT_BOOL)
+			snprintf(rng, sizeof rng, "yes|no");
+		fprintf(f, "  %-16s %-7s %-8s default %-10s %s\n      %s\n", p->name, type_name(p),
+			p->unit[0] ? p->unit : "-", p->def[0] ? p->def : "''", rng, p->help);
+	}
+}
+
+void params_print_table(FILE *f)
+{
+	fprintf(f, "name\ttype\tunit\tdefault\tmin\tmax\tchoices\tflags\thelp\n");
+	for (size_t i = 0; i < NTABLE; i++) {
+		const sb_param *p = &TABLE[i];
+		fprintf(f, "%s\t%s\t%s\t%s\t%.17g\t%.17g\t%s\t%u\t%s\n", p->name, type_name(p), p->unit,
+			p->def, p->min, p->max, p->choices ? p->choices : "", p->flags, p->help);
+	}
+}

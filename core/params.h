@@ -1,0 +1,107 @@
+/* params.h - the scene contract: one parameter table drives the scene-file parser,
+ * key=value overrides, range checks, --help and the echo into every output file. */
+#ifndef SB_PARAMS_H
+#define SB_PARAMS_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "err.h"
+
+#define SB_STR_MAX 512
+
+enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
+enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
+enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
+
+/* The full parameter set of one run. Field names equal the keys of the table. */
+typedef struct sb_scene {
+	/* preparation */
+	long n_grains;
+	double r_min, r_max;
+	double radius_ratio;
+	long depth;
+	double width;
+	double wall_radius, wall_spacing, wall_height;
+	double density, mass_factor;
+	long seed;
+	char particles[SB_STR_MAX];
+	int settle;          /* enum sb_tristate */
+	double settle_ke, settle_min, settle_max, settle_drag;
+	/* dynamics */
+	int wall_mass;       /* enum sb_wall_mass */
+	double amplitude, frequency, gravity;
+	double stiffness, gamma_n, gamma_s, mu;
+	int clip_attractive;
+	int integrator;      /* enum sb_integrator */
+	double dt;
+	double skin;
+	double max_overlap;
+	/* run length */
+	double duration;
+	/* recording and files */
+	char output[SB_STR_MAX];
+	double traj_rate;
+	int snapshots;
+	double checkpoint_every;
+	char checkpoint[SB_STR_MAX];
+	int restart;         /* enum sb_tristate: auto = continue from the checkpoint if present */
+	char write_particles[SB_STR_MAX];
+	char write_lammps[SB_STR_MAX];
+	int progress;        /* enum sb_tristate */
+} sb_scene;
+
+enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
+
+/* What a parameter influences. The study driver hashes PREP keys for the packing
+ * cache and PREP|DYN|LEN for the run identity; a checkpoint is only resumed when
+ * every PREP|DYN key equals the scene's. */
+enum sb_pflag {
+	PF_PREP = 1,   /* changes the prepared (settled) state */
+	PF_DYN = 2,    /* changes the dynamics after preparation */
+	PF_LEN = 4,    /* changes how long the run is */
+	PF_OUT = 8,    /* only where and what is written */
+	PF_MINX = 16,  /* the minimum is exclusive */
+};
+
+typedef struct sb_param {
+	const char *name;
+	enum sb_ptype type;
+	const char *unit;     /* "" for dimensionless */
+	const char *def;      /* default, as text (parsed like any input) */
+	double min, max;      /* range for INT/REAL */
+	const char *choices;  /* "a|b|c" for ENUM */
+	unsigned flags;
+	size_t offset;
+	const char *help;
+} sb_param;
+
+const sb_param *params_table(size_t *n);
+const sb_param *params_find(const char *name);
+
+void params_defaults(sb_scene *s);
+
+/* Parse and range-check one value; `where` prefixes the message ("file:12", "command line"). */
+int params_set(sb_scene *s, const char *key, const char *value, const char *where, sb_err *e);
+
+/* Load an INI scene file: keys at top level or in [scene]. */
+int params_load_file(sb_scene *s, const char *path, sb_err *e);
+
+/* One "key=value" command-line override. */
+int params_override(sb_scene *s, const char *arg, sb_err *e);
+
+/* Checks that involve more than one key (r_min <= r_max, ...). */
+int params_validate(const sb_scene *s, sb_err *e);
+
+/* Canonical text of a value: what --help shows, what goes into HDF5 and hashes.
+ * Reals use %.17g so that the text round-trips exactly. */
+void params_format(const sb_scene *s, const sb_param *p, char *buf, size_t len);
+
+/* 64-bit FNV-1a hash of "key=value\n" over all keys whose flags intersect mask. */
+unsigned long long params_hash(const sb_scene *s, unsigned mask);
+
+void params_print_help(FILE *f);
+/* Machine-readable table: name, type, unit, default, min, max, choices, flags, help (TSV). */
+void params_print_table(FILE *f);
+
+#endif

@@ -1,0 +1,23 @@
+/* pfile.h - particle files: plain text (x y r kind [vx vy omega]) and LAMMPS data
+ * files (atom_style sphere; types 1 grain, 2 intruder, 3 wall), read and written so
+ * that the same state runs here and in LAMMPS. */
+#ifndef SB_PFILE_H
+#define SB_PFILE_H
+
+#include "params.h"
+#include "state.h"
+
+/* Read either format (a LAMMPS file is recognised by its "N atoms" header line).
+ * Disks get the scene's mass model; velocities (if present) are lab-frame and are
+ * stored as given. Errors name file and line. */
+int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e);
+
+/* Write the state at the start of shaking, lab frame: positions plus (0, yshift),
+ * mobile velocities q1 * inv_dt, wall velocities (0, vshift) (the box's). Written
+ * via a temporary file and rename. */
+int pfile_write_text(const sb_state *st, const char *path, double inv_dt, double yshift,
+		     double vshift, sb_err *e);
+int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, double yshift,
+		       double vshift, sb_err *e);
+
+#endif

@@ -1,0 +1,483 @@
+/* sim.c - the run: preparation, settling and the shaking loop. The step reads as a
+ * recipe: predict -> check -> neighbours -> forces -> correct -> record. */
+#include "sim.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "pfile.h"
+#include "prepare.h"
+#include "units.h"
+
+static double now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double sim_box_y(const sb_sim *s, double t) { return s->sc.amplitude * sin(s->omega * t); }
+double sim_box_v(const sb_sim *s, double t) { return s->sc.amplitude * s->omega * cos(s->omega * t); }
+double sim_box_a(const sb_sim *s, double t)
+{
+	return -s->sc.amplitude * s->omega * s->omega * sin(s->omega * t);
+}
+
+int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
+{
+	memset(s, 0, sizeof *s);
+	s->sc = *sc;
+	s->law = (sb_law){sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
+			  sc->clip_attractive};
+	integ_init(&s->in, sc->integrator, sc->dt);
+	s->omega = SB_TWO_PI * sc->frequency;
+	s->intruder = -1;
+	s->nsteps = llround(sc->duration / sc->dt);
+	snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);
+	if (sc->checkpoint[0])
+		snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s", sc->checkpoint);
+	else
+		snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s.ckpt", sc->output);
+	prov_init(&s->prov);
+	(void)e;
+	return 0;
+}
+
+void sim_free(sb_sim *s)
+{
+	journal_close(&s->jr);
+	nlist_free(&s->nl);
+	state_free(&s->st);
+}
+
+double sim_kinetic(const sb_sim *s)
+{
+	const sb_state *st = &s->st;
+	double ke = 0, idt2 = 1.0 / (s->sc.dt * s->sc.dt);
+	for (int i = 0; i < st->nm; i++) {
+		double vx = st->q[C_X][1][i], vy = st->q[C_Y][1][i], w = st->q[C_TH][1][i];
+		ke += 0.5 * st->m[i] * (vx * vx + vy * vy) + 0.5 * (1.0 / st->inv_i[i]) * w * w;
+	}
+	return ke * idt2;
+}
+
+/* Where the walls are, a grain must stay: the box is the hull of the wall disks in x
+ * and above their lowest centre. Without walls there is no box to leave. */
+static void set_bounds(sb_sim *s)
+{
+	const sb_state *st = &s->st;
+	s->xlo = -INFINITY;
+	s->xhi = INFINITY;
+	s->ylo = -INFINITY;
+	if (st->n == st->nm)
+		return;
+	s->xlo = INFINITY;
+	s->xhi = -INFINITY;
+	s->ylo = INFINITY;
+	for (int i = st->nm; i < st->n; i++) {
+		s->xlo = fmin(s->xlo, st->q[C_X][0][i]);
+		s->xhi = fmax(s->xhi, st->q[C_X][0][i]);
+		s->ylo = fmin(s->ylo, st->q[C_Y][0][i]);
+	}
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* Free-surface height: the median over columns one mean diameter wide of the highest
+ * grain top in each column (robust to a few loose grains on top). */
+static double surface_height(const sb_sim *s)
+{
+	const sb_state *st = &s->st;
+	double xmin = INFINITY, xmax = -INFINITY;
+	for (int i = 0; i < st->nm; i++)
+		if (st->kind[i] == KIND_GRAIN) {
+			xmin = fmin(xmin, st->q[C_X][0][i]);
+			xmax = fmax(xmax, st->q[C_X][0][i]);
+		}
+	if (!(xmin <= xmax))
+		return 0;
+	int nc = (int)floor((xmax - xmin) / (2 * s->rmean));
+	if (nc < 1)
+		nc = 1;
+	double *top = malloc(sizeof(double) * (size_t)nc);
+	if (!top)
+		return NAN;
+	for (int c = 0; c < nc; c++)
+		top[c] = -INFINITY;
+	for (int i = 0; i < st->nm; i++) {
+		if (st->kind[i] != KIND_GRAIN)
+			continue;
+		int c = (int)floor((st->q[C_X][0][i] - xmin) / (xmax - xmin + 1e-12) * nc);
+		c = c < 0 ? 0 : c >= nc ? nc - 1 : c;
+		top[c] = fmax(top[c], st->q[C_Y][0][i] + st->r[i]);
+	}
+	int k = 0;
+	for (int c = 0; c < nc; c++)
+		if (isfinite(top[c]))
+			top[k++] = top[c];
+	qsort(top, (size_t)k, sizeof(double), cmp_double);
+	double h = k ? top[k / 2] : 0;
+	free(top);
+	return h;
+}
+
+/* ---- the step ---- */
+
+typedef struct scan {
+	double d2max;
+	int bad_num, out;
+	int where;
+} scan;
+
+/* One pass over the mobile disks after the predictor: largest displacement since the
+ * last neighbour build, non-finite numbers, disks outside the box. */
+static scan check_state(const sb_sim *s)
+{
+	const sb_state *st = &s->st;
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *th = st->q[C_TH][0];
+	const double *xr = s->nl.xref, *yr = s->nl.yref;
+	const double xlo = s->xlo, xhi = s->xhi, ylo = s->ylo;
+	double d2max = 0, sum = 0;
+	int out = 0;
+	for (int i = 0; i < st->nm; i++) {
+		const double dx = x[i] - xr[i], dy = y[i] - yr[i];
+		const double d2 = dx * dx + dy * dy;
+		d2max = d2 > d2max ? d2 : d2max;
+		sum += d2 + th[i];
+		out |= (x[i] < xlo) | (x[i] > xhi) | (y[i] < ylo);
+	}
+	scan r = {d2max, !isfinite(sum), out, -1};
+	if (r.bad_num || r.out)
+		for (int i = 0; i < st->nm; i++) {
+			double v = x[i] + y[i] + th[i] + st->q[C_X][1][i] + st->q[C_Y][1][i];
+			if (!isfinite(v) || x[i] < xlo || x[i] > xhi || y[i] < ylo) {
+				r.where = i;
+				break;
+			}
+		}
+	return r;
+}
+
+static int fail(sb_sim *s, sb_err *e, int code, double t, long step, const char *fmt, const char *what)
+{
+	s->status = code;
+	s->status_time = t;
+	s->status_step = step;
+	snprintf(s->status_msg, sizeof s->status_msg, fmt, what, t, step);
+	return sb_errf(e, code, "%s", s->status_msg);
+}
+
+#define TIC(ph) double t0_##ph = s->profile ? now() : 0
+#define TOC(ph) if (s->profile) s->tphase[ph] += now() - t0_##ph
+
+/* One step of length dt; gy is the uniform acceleration in y at the new time.
+ * t and step name the new time in messages. */
+static void add_drag(sb_state *st, double gamma, double inv_dt)
+{
+	const double k = gamma * inv_dt;
+	for (int i = 0; i < st->nm; i++) {
+		st->f[C_X][i] -= k * st->m[i] * st->q[C_X][1][i];
+		st->f[C_Y][i] -= k * st->m[i] * st->q[C_Y][1][i];
+	}
+}
+
+static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, sb_err *e)
+{
+	sb_state *st = &s->st;
+	TIC(PH_PREDICT);
+	integ_predict(&s->in, st);
+	TOC(PH_PREDICT);
+
+	TIC(PH_CHECK);
+	scan c = check_state(s);
+	TOC(PH_CHECK);
+	if (c.bad_num || c.out) {
+		char what[256];
+		int i = c.where < 0 ? 0 : c.where;
+		if (c.bad_num) {
+			snprintf(what, sizeof what, "%s: non-finite position or velocity of disk %d", stage,
+				 st->id[i]);
+			return fail(s, e, SB_ENAN, t, step, "%s at t = %.6f s, step %ld (time step too large?)", what);
+		}
+		snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", stage, st->id[i],
+			 st->q[C_X][0][i], st->q[C_Y][0][i]);
+		return fail(s, e, SB_ELEFT, t, step, "%s at t = %.6f s, step %ld", what);
+	}
+	const double half = 0.5 * s->sc.skin;
+	if (c.d2max > half * half) {
+		TIC(PH_NEIGH);
+		if (nlist_build(&s->nl, st, e))
+			return e->code;
+		TOC(PH_NEIGH);
+	}
+
+	TIC(PH_FORCE);
+	int bad = forces_compute(&s->law, st, &s->nl, 1.0 / s->sc.dt);
+	if (drag > 0) /* settling only */
+		add_drag(st, drag, 1.0 / s->sc.dt);
+	TOC(PH_FORCE);
+
+	TIC(PH_CORRECT);
+	integ_correct(&s->in, st, gy);
+	TOC(PH_CORRECT);
+
+	if (bad) {
+		int a = 0, b = 0;
+		double f = forces_max_overlap(st, &s->nl, &a, &b);
+		char what[256];
+		snprintf(what, sizeof what, "%s: overlap of disks %d and %d is %.3f of the smaller radius (max_overlap %g)",
+			 stage, st->id[a], st->id[b], f, s->sc.max_overlap);
+		return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
+	}
+	return 0;
+}
+
+/* Forces at the current state and the integrator's acceleration term from them. */
+static int start_integrator(sb_sim *s, double gy, sb_err *e)
+{
+	if (nlist_build(&s->nl, &s->st, e))
+		return e->code;
+	forces_compute(&s->law, &s->st, &s->nl, 1.0 / s->sc.dt);
+	integ_start(&s->in, &s->st, gy);
+	return 0;
+}
+
+static int settle(sb_sim *s, sb_err *e)
+{
+	const sb_scene *sc = &s->sc;
+	const double gy = -sc->gravity;
+	const long every = lround(fmax(1.0, 0.01 / sc->dt)); /* test the energy every 10 ms */
+	const long nmin = llround(sc->settle_min / sc->dt), nmax = llround(sc->settle_max / sc->dt);
+	if (start_integrator(s, gy, e))
+		return e->code;
+	for (long k = 1;; k++) {
+		double t = k * sc->dt;
+		/* Drag during the first settle_min seconds lets the loose lattice collapse at
+		 * a terminal speed g / settle_drag instead of slamming down. */
+		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", e))
+			return e->code;
+		if (k % every == 0 && k >= nmin) {
+			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
+			if (ke < sc->settle_ke) {
+				s->settle_steps = k;
+				s->settle_time = t;
+				return 0;
+			}
+		}
+		if (k >= nmax) {
+			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
+			s->status = SB_ESETTLE;
+			s->status_time = t;
+			s->status_step = k;
+			snprintf(s->status_msg, sizeof s->status_msg,
+				 "settling: mean kinetic energy %.3g erg per disk still above settle_ke = %g after settle_max = %g s",
+				 ke, sc->settle_ke, sc->settle_max);
+			return sb_errf(e, SB_ESETTLE, "%s", s->status_msg);
+		}
+		if (s->stop && *s->stop)
+			return sb_errf(e, SB_EINTR, "interrupted while settling");
+	}
+}
+
+int sim_derive(sb_sim *s, sb_err *e)
+{
+	if (s->st.nm == 0)
+		return sb_errf(e, SB_EUSAGE, "the scene has no mobile disks");
+	double rs = 0;
+	int ng = 0;
+	for (int i = 0; i < s->st.nm; i++)
+		if (s->st.kind[i] == KIND_GRAIN) {
+			rs += s->st.r[i];
+			ng++;
+		}
+	s->rmean = ng ? rs / ng : 0.5 * (s->sc.r_min + s->sc.r_max);
+	s->intruder = state_find_intruder(&s->st);
+	set_bounds(s);
+	return nlist_init(&s->nl, &s->st, s->sc.skin, e);
+}
+
+int sim_prepare(sb_sim *s, sb_err *e)
+{
+	const sb_scene *sc = &s->sc;
+	int err = sc->particles[0] ? pfile_read(sc, sc->particles, &s->st, e) : prepare_place(sc, &s->st, e);
+	if (err)
+		return err;
+	if (sim_derive(s, e))
+		return e->code;
+
+	int do_settle = sc->settle == TRI_YES || (sc->settle == TRI_AUTO && !sc->particles[0]);
+	if (do_settle) {
+		/* settling runs in the lab frame with the box at rest */
+		if (settle(s, e))
+			return e->code;
+	}
+	s->surface0 = surface_height(s);
+	s->intruder_y0 = s->intruder >= 0 ? s->st.q[C_Y][0][s->intruder] : NAN;
+
+	/* t = 0 of shaking: the lab-frame state is the prepared one (y_box(0) = 0), the
+	 * box starts moving with v_box(0) = A omega. */
+	const double vbox0 = sim_box_v(s, 0);
+	if (sc->write_particles[0] &&
+	    pfile_write_text(&s->st, sc->write_particles, 1.0 / sc->dt, 0, vbox0, e))
+		return e->code;
+	if (sc->write_lammps[0] && pfile_write_lammps(&s->st, sc->write_lammps, 1.0 / sc->dt, 0, vbox0, e))
+		return e->code;
+
+	/* Into the box frame: every mobile disk gets -v_box(0) in y. */
+	const double vb = sim_box_v(s, 0) * sc->dt;
+	for (int i = 0; i < s->st.nm; i++)
+		s->st.q[C_Y][1][i] -= vb;
+	if (!do_settle) {
+		if (start_integrator(s, -sc->gravity - sim_box_a(s, 0), e))
+			return e->code;
+	}
+	return 0;
+}
+
+/* ---- recording ---- */
+
+/* First step at or after time k * interval: integer schedule, no drift. */
+static long due_step(long k, double interval, double dt)
+{
+	return (long)ceil(k * interval / dt - 1e-6);
+}
+
+static int record_traj(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	int i = s->intruder;
+	double idt = 1.0 / s->sc.dt;
+	double row[JR_TRAJ_COLS] = {t,
+				    st->q[C_X][0][i],
+				    st->q[C_Y][0][i] + sim_box_y(s, t),
+				    st->q[C_X][1][i] * idt,
+				    st->q[C_Y][1][i] * idt + sim_box_v(s, t),
+				    st->q[C_TH][1][i] * idt};
+	if (journal_traj(&s->jr, row, e))
+		return e->code;
+	s->n_traj++;
+	return 0;
+}
+
+static int record_snap(sb_sim *s, double t, sb_err *e)
+{
+	sb_state *st = &s->st;
+	/* lab frame: shift y by y_box(t); f[C_Y] is free scratch between steps */
+	double yb = sim_box_y(s, t);
+	double *ylab = st->f[C_Y];
+	for (int i = 0; i < st->nm; i++)
+		ylab[i] = st->q[C_Y][0][i] + yb;
+	if (journal_snap(&s->jr, t, st->q[C_X][0], ylab, st->q[C_TH][0], e))
+		return e->code;
+	s->n_snap++;
+	return 0;
+}
+
+static int record(sb_sim *s, sb_err *e)
+{
+	const sb_scene *sc = &s->sc;
+	const double t = s->step * sc->dt;
+	if (s->intruder >= 0 && sc->traj_rate > 0 && s->step >= s->next_traj_step) {
+		if (record_traj(s, t, e))
+			return e->code;
+		s->next_traj_step = due_step(s->n_traj, 1.0 / sc->traj_rate, sc->dt);
+	}
+	if (sc->snapshots && sc->frequency > 0 && s->step >= s->next_snap_step) {
+		if (record_snap(s, t, e))
+			return e->code;
+		s->next_snap_step = due_step(s->n_snap, 1.0 / sc->frequency, sc->dt);
+	}
+	return 0;
+}
+
+static void progress(sb_sim *s, double t0, long step0, double *last)
+{
+	double w = now();
+	if (w - *last < 1.0 && s->step < s->nsteps)
+		return;
+	*last = w;
+	double rate = (s->step - step0) / fmax(w - t0, 1e-9);
+	double eta = rate > 0 ? (s->nsteps - s->step) / rate : 0;
+	fprintf(stderr, "\rshake: t = %.2f / %.2f s  %.0f steps/s  ETA %02d:%02d:%02d ", s->step * s->sc.dt,
+		s->sc.duration, rate, (int)(eta / 3600), (int)fmod(eta / 60, 60), (int)fmod(eta, 60));
+	fflush(stderr);
+}
+
+int sim_run(sb_sim *s, sb_err *e)
+{
+	const sb_scene *sc = &s->sc;
+	const double dt = sc->dt;
+	const int resumed = s->step > 0 || s->n_traj > 0 || s->n_snap > 0;
+	if (!s->jr.f && journal_open(&s->jr, s->journal_path, s->st.nm, -1, e))
+		return e->code;
+	if (!resumed) {
+		s->n_ckpt = 0;
+		s->next_ckpt_step = sc->checkpoint_every > 0 ? due_step(1, sc->checkpoint_every, dt) : -1;
+		if (record(s, e))
+			return e->code;
+	}
+	double w0 = now(), wlast = w0;
+	long step0 = s->step;
+	while (s->step < s->nsteps) {
+		if (s->stop && *s->stop) {
+			s->status = SB_EINTR;
+			s->status_time = s->step * dt;
+			s->status_step = s->step;
+			snprintf(s->status_msg, sizeof s->status_msg, "interrupted at t = %.6f s, step %ld",
+				 s->status_time, s->step);
+			break;
+		}
+		const long n1 = s->step + 1;
+		const double t1 = n1 * dt;
+		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", e))
+			break;
+		s->step = n1;
+		TIC(PH_RECORD);
+		if (record(s, e))
+			break;
+		TOC(PH_RECORD);
+		if (s->step == s->next_ckpt_step) {
+			if (ckpt_write(s, e))
+				break;
+			s->n_ckpt++;
+			s->next_ckpt_step = due_step(s->n_ckpt + 1, sc->checkpoint_every, dt);
+		}
+		if (s->progress && (s->step & 1023) == 0)
+			progress(s, w0, step0, &wlast);
+	}
+	s->loop_seconds += now() - w0;
+	if (s->progress) {
+		progress(s, w0, step0, &wlast);
+		fputc('\n', stderr);
+	}
+	if (e->code && !s->status) {
+		s->status = e->code;
+		snprintf(s->status_msg, sizeof s->status_msg, "%s", e->msg);
+		s->status_time = s->step * dt;
+		s->status_step = s->step;
+	}
+	return s->status;
+}
+
+int sim_write_output(sb_sim *s, sb_err *e)
+{
+	long off;
+	if (s->jr.f && journal_sync(&s->jr, &off, e))
+		return e->code;
+	return h5out_write(s, s->sc.output, e);
+}
+
+void sim_cleanup_files(sb_sim *s)
+{
+	journal_close(&s->jr);
+	unlink(s->journal_path);
+	unlink(s->ckpt_path);
+}

@@ -1,0 +1,87 @@
+/* sim.h - one run: preparation, the shaking loop (a recipe of phases), recording,
+ * safety checks, checkpoints. */
+#ifndef SB_SIM_H
+#define SB_SIM_H
+
+#include <signal.h>
+
+#include "forces.h"
+#include "integrate.h"
+#include "journal.h"
+#include "nlist.h"
+#include "params.h"
+#include "provenance.h"
+#include "state.h"
+
+enum sb_phase { PH_PREDICT, PH_CHECK, PH_NEIGH, PH_FORCE, PH_CORRECT, PH_RECORD, PH_N };
+
+typedef struct sb_sim {
+	sb_scene sc;
+	sb_state st;
+	sb_nlist nl;
+	sb_law law;
+	sb_integ in;
+	sb_prov prov;
+	double omega;            /* 2 pi f */
+	int intruder;            /* index of the recorded intruder, -1 if none */
+	double xlo, xhi, ylo;    /* a mobile centre outside these has left the box */
+	double rmean;            /* mean grain radius (surface columns) */
+
+	/* preparation results (recorded in the output) */
+	long settle_steps;
+	double settle_time, surface0, intruder_y0;
+
+	/* shaking */
+	long step, nsteps;
+	long n_traj, n_snap;     /* records written so far */
+	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;
+	sb_journal jr;
+	char journal_path[4200];
+	char ckpt_path[4200];
+
+	/* how it ended */
+	int status;
+	char status_msg[1024];
+	double status_time;
+	long status_step;
+
+	/* diagnostics */
+	int profile;
+	double tphase[PH_N];
+	double loop_seconds;
+	volatile sig_atomic_t *stop;
+	int progress;
+} sb_sim;
+
+int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e);
+void sim_free(sb_sim *s);
+
+/* Place or read the disks, settle, write particle files if asked, enter the box frame. */
+int sim_prepare(sb_sim *s, sb_err *e);
+/* Derived quantities of a state in place (intruder, box bounds, neighbour setup);
+ * used by sim_prepare and by a restart. */
+int sim_derive(sb_sim *s, sb_err *e);
+/* Shake until duration; returns SB_OK or the code that stopped the run (also in s->status). */
+int sim_run(sb_sim *s, sb_err *e);
+/* Assemble the HDF5 output (and its XDMF sidecar) from the journal and final state. */
+int sim_write_output(sb_sim *s, sb_err *e);
+/* Remove journal and checkpoint after the output is in place. */
+void sim_cleanup_files(sb_sim *s);
+
+/* Box motion y_box = A sin(omega t) and its derivatives. */
+double sim_box_y(const sb_sim *s, double t);
+double sim_box_v(const sb_sim *s, double t);
+double sim_box_a(const sb_sim *s, double t);
+
+/* Kinetic energy (translation + rotation) of the mobile disks in the box frame. */
+double sim_kinetic(const sb_sim *s);
+
+/* checkpoint.c */
+int ckpt_write(sb_sim *s, sb_err *e);
+/* Returns 1 if a checkpoint was loaded, 0 if none exists (and restart allows that). */
+int ckpt_load(sb_sim *s, sb_err *e);
+
+/* h5out.c */
+int h5out_write(const sb_sim *s, const char *path, sb_err *e);
+
+#endif

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# version.sh CC FLAGS - the provenance compiled into bin/shake (git hash, dirty flag,
+# compiler and flags). Prints a C header.
+cc="$1"; flags="$2"
+hash=$(git rev-parse --verify -q HEAD 2>/dev/null || echo unknown)
+dirty=0
+if git rev-parse --verify -q HEAD >/dev/null 2>&1; then
+	git diff --quiet HEAD -- 2>/dev/null || dirty=1
+fi
+ccv=$($cc --version 2>/dev/null | head -n1)
+esc() { printf '%s' "$1" | sed 's/\\/\\\\/g; s/"/\\"/g'; }
+echo "#define SB_GIT_HASH \"$(esc "$hash")\""
+echo "#define SB_GIT_DIRTY $dirty"
+echo "#define SB_COMPILER \"$(esc "$ccv")\""
+echo "#define SB_CFLAGS \"$(esc "$flags")\""
