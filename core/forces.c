@@ -28,7 +28,8 @@ static inline __attribute__((always_inline)) void contact(
 	if (clip)
 		fn = fn > 0 ? fn : 0;
 	const double vt = -dvx * ny + dvy * nx - (ri * wi + rj * wj);
-	const double fs = copysign(fmin(gs * meff * fabs(vt), mu * fabs(fn)), -vt);
+	const double fv = gs * meff * fabs(vt), fc = mu * fabs(fn);
+	const double fs = copysign(fv < fc ? fv : fc, -vt);
 	*fx = fn * nx - fs * ny;
 	*fy = fn * ny + fs * nx;
 	*fs_out = fs;
@@ -51,73 +52,57 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 	*tj = -rj * fs;
 }
 
-/* The kernel is instantiated once per value of clip, so the choice is made at
- * setup and costs nothing inside the loop. */
+/* Two passes over the flat pair list. The first only asks "in contact?" and appends
+ * the answer branch-free to a list, so the 10-40 % of pairs that are near but not
+ * touching cost no mispredicted branch; the second evaluates the contacts in a loop
+ * without data-dependent branches. The kernel is instantiated once per value of
+ * clip, so that choice is made at setup and costs nothing inside the loop. */
 static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
 							const sb_nlist *nl, double inv_dt,
 							const int clip)
 {
-	const double Y = law->Y, gn = law->gn, gs = law->gs, mu = law->mu, mo = law->max_overlap;
+	/* Velocities stay scaled (q1 = v dt): the 1/dt goes into the damping constants,
+	 * which saves four multiplications per contact. */
+	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
+		     mo = law->max_overlap;
 	const double *restrict x = st->q[C_X][0], *restrict y = st->q[C_Y][0];
 	const double *restrict vx = st->q[C_X][1], *restrict vy = st->q[C_Y][1],
 		     *restrict w = st->q[C_TH][1];
 	const double *restrict r = st->r;
 	double *restrict fxa = st->f[C_X], *restrict fya = st->f[C_Y], *restrict ta = st->f[C_TH];
-	const int *restrict start = nl->start, *restrict nj = nl->j;
-	const double *restrict nmeff = nl->meff;
+	const int *restrict pi = nl->pi, *restrict pj = nl->pj;
+	const double *restrict pmeff = nl->pmeff;
+	int *restrict contact_list = nl->contact;
+	const int np = nl->nflat;
 	int bad = 0;
 
 	memset(fxa, 0, sizeof(double) * (size_t)st->n);
 	memset(fya, 0, sizeof(double) * (size_t)st->n);
 	memset(ta, 0, sizeof(double) * (size_t)st->n);
 
-	for (int i = 0; i < st->nm; i++) {
-		const int p0 = start[i], p1 = start[i + 1];
-		if (p0 == p1)
-			continue;
-		const double xi_ = x[i], yi = y[i], ri = r[i];
-		/* velocities stay scaled (dt * v) until needed: one multiply per contact */
-		const double vxi = vx[i], vyi = vy[i], wi = w[i];
-		double fxi = 0, fyi = 0, ti = 0;
-		for (int p = p0; p < p1; p++) {
-			const int j = nj[p];
-			const double dx = xi_ - x[j], dy = yi - y[j], rs = ri + r[j];
-			const double d2 = dx * dx + dy * dy;
-			if (d2 >= rs * rs)
-				continue;
-			double fx, fy, fs, xi;
-			contact(Y, gn, gs, mu, clip, dx, dy, d2, ri, r[j], (vxi - vx[j]) * inv_dt,
-				(vyi - vy[j]) * inv_dt, wi * inv_dt, w[j] * inv_dt, nmeff[p], &fx, &fy,
-				&fs, &xi);
-			bad |= xi > mo * fmin(ri, r[j]);
-			fxi += fx;
-			fyi += fy;
-			ti -= ri * fs;
-			fxa[j] -= fx;
-			fya[j] -= fy;
-			ta[j] -= r[j] * fs;
-		}
-		fxa[i] += fxi;
-		fya[i] += fyi;
-		ta[i] += ti;
-	}
-	for (int p = 0; p < nl->nbig; p++) {
-		const int i = nl->bi[p], j = nl->bj[p];
+	int nc = 0;
+	for (int p = 0; p < np; p++) {
+		const int i = pi[p], j = pj[p];
 		const double dx = x[i] - x[j], dy = y[i] - y[j], rs = r[i] + r[j];
-		const double d2 = dx * dx + dy * dy;
-		if (d2 >= rs * rs)
-			continue;
+		contact_list[nc] = p;
+		nc += dx * dx + dy * dy < rs * rs;
+	}
+
+	for (int k = 0; k < nc; k++) {
+		const int p = contact_list[k];
+		const int i = pi[p], j = pj[p];
+		const double ri = r[i], rj = r[j];
+		const double dx = x[i] - x[j], dy = y[i] - y[j];
 		double fx, fy, fs, xi;
-		contact(Y, gn, gs, mu, clip, dx, dy, d2, r[i], r[j], (vx[i] - vx[j]) * inv_dt,
-			(vy[i] - vy[j]) * inv_dt, w[i] * inv_dt, w[j] * inv_dt, nl->bmeff[p], &fx, &fy,
-			&fs, &xi);
-		bad |= xi > mo * fmin(r[i], r[j]);
+		contact(Y, gn, gs, mu, clip, dx, dy, dx * dx + dy * dy, ri, rj, vx[i] - vx[j],
+			vy[i] - vy[j], w[i], w[j], pmeff[p], &fx, &fy, &fs, &xi);
+		bad |= xi > mo * (ri < rj ? ri : rj);
 		fxa[i] += fx;
 		fya[i] += fy;
-		ta[i] -= r[i] * fs;
+		ta[i] -= ri * fs;
 		fxa[j] -= fx;
 		fya[j] -= fy;
-		ta[j] -= r[j] * fs;
+		ta[j] -= rj * fs;
 	}
 	return bad;
 }

@@ -90,6 +90,10 @@ void nlist_free(sb_nlist *nl)
 	free(nl->bi);
 	free(nl->bj);
 	free(nl->bmeff);
+	free(nl->pi);
+	free(nl->pj);
+	free(nl->pmeff);
+	free(nl->contact);
 	free(nl->large);
 	free(nl->large_list);
 	free(nl->xref);
@@ -269,6 +273,39 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		}
 	}
 	nl->nbig = nb;
+
+	/* Flatten: one loop over pairs without an inner loop per disk, whose varying
+	 * trip count costs a mispredicted branch per disk. */
+	const int nf = np + nb;
+	if (nf > nl->fcap) {
+		int cap = nl->fcap ? nl->fcap : 4096;
+		while (cap < nf)
+			cap *= 2;
+		int *a = realloc(nl->pi, sizeof(int) * (size_t)cap);
+		if (a)
+			nl->pi = a;
+		int *b = realloc(nl->pj, sizeof(int) * (size_t)cap);
+		if (b)
+			nl->pj = b;
+		double *c = realloc(nl->pmeff, sizeof(double) * (size_t)cap);
+		if (c)
+			nl->pmeff = c;
+		int *d = realloc(nl->contact, sizeof(int) * (size_t)cap);
+		if (d)
+			nl->contact = d;
+		if (!a || !b || !c || !d)
+			return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
+		nl->fcap = cap;
+	}
+	for (int i = 0; i < nm; i++)
+		for (int p = nl->start[i]; p < nl->start[i + 1]; p++)
+			nl->pi[p] = i;
+	memcpy(nl->pj, nl->j, sizeof(int) * (size_t)np);
+	memcpy(nl->pmeff, nl->meff, sizeof(double) * (size_t)np);
+	memcpy(nl->pi + np, nl->bi, sizeof(int) * (size_t)nb);
+	memcpy(nl->pj + np, nl->bj, sizeof(int) * (size_t)nb);
+	memcpy(nl->pmeff + np, nl->bmeff, sizeof(double) * (size_t)nb);
+	nl->nflat = nf;
 	return 0;
 }
 

@@ -25,6 +25,11 @@ typedef struct sb_nlist {
 	int *bi, *bj;
 	double *bmeff;
 	int nbig, bcap;
+	/* the flat list the force kernel walks: all pairs above, ordinary first */
+	int *pi, *pj;
+	double *pmeff;
+	int *contact;               /* scratch: indices of the pairs in contact this step */
+	int nflat, fcap;
 	/* which disks are large; fixed at setup */
 	unsigned char *large;
 	int *large_list, nlarge;

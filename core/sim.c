@@ -240,8 +240,14 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	return 0;
 }
 
+int sim_step(sb_sim *s, double gy, sb_err *e)
+{
+	s->step++;
+	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", e);
+}
+
 /* Forces at the current state and the integrator's acceleration term from them. */
-static int start_integrator(sb_sim *s, double gy, sb_err *e)
+int sim_start(sb_sim *s, double gy, sb_err *e)
 {
 	if (nlist_build(&s->nl, &s->st, e))
 		return e->code;
@@ -256,7 +262,7 @@ static int settle(sb_sim *s, sb_err *e)
 	const double gy = -sc->gravity;
 	const long every = lround(fmax(1.0, 0.01 / sc->dt)); /* test the energy every 10 ms */
 	const long nmin = llround(sc->settle_min / sc->dt), nmax = llround(sc->settle_max / sc->dt);
-	if (start_integrator(s, gy, e))
+	if (sim_start(s, gy, e))
 		return e->code;
 	for (long k = 1;; k++) {
 		double t = k * sc->dt;
@@ -336,7 +342,7 @@ int sim_prepare(sb_sim *s, sb_err *e)
 	for (int i = 0; i < s->st.nm; i++)
 		s->st.q[C_Y][1][i] -= vb;
 	if (!do_settle) {
-		if (start_integrator(s, -sc->gravity - sim_box_a(s, 0), e))
+		if (sim_start(s, -sc->gravity - sim_box_a(s, 0), e))
 			return e->code;
 	}
 	return 0;

@@ -61,6 +61,12 @@ int sim_prepare(sb_sim *s, sb_err *e);
 /* Derived quantities of a state in place (intruder, box bounds, neighbour setup);
  * used by sim_prepare and by a restart. */
 int sim_derive(sb_sim *s, sb_err *e);
+/* Low-level stepping for tests and tools: sim_start builds the neighbour list and
+ * sets the integrator's acceleration from the current forces (call it after placing
+ * disks and setting velocities q[c][1] = v dt); sim_step advances one step with the
+ * uniform extra acceleration gy in y (e.g. -gravity), no drive, and counts s->step. */
+int sim_start(sb_sim *s, double gy, sb_err *e);
+int sim_step(sb_sim *s, double gy, sb_err *e);
 /* Shake until duration; returns SB_OK or the code that stopped the run (also in s->status). */
 int sim_run(sb_sim *s, sb_err *e);
 /* Assemble the HDF5 output (and its XDMF sidecar) from the journal and final state. */

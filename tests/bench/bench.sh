@@ -1,0 +1,338 @@
+#!/usr/bin/env bash
+# bench.sh - speed benchmark of shakebox (run by `make bench`, after bin/shake is built).
+#
+#  1. paper scene (950 grains, radius ratio 4, 60 cm box, f = 3.2 Hz): settle once, then time
+#     1 simulated second (20000 steps) of shakebox and of LAMMPS gran/hooke (lammps_time.sh) on
+#     the same settled state, BENCH_REPS times each, interleaved (shake, lammps, shake, ...).
+#     Target: LAMMPS / shakebox >= 5 on one core.
+#  2. scaling: N = 1e3, 1e4, 1e5 grains, box width 60 cm * N/950 (same bed height), settled once
+#     each, then a short run timed BENCH_SCALE_REPS times.  Target: ns per particle-step within
+#     1.5x of the N = 1e3 figure.
+#  3. peak memory (maximum RSS from /usr/bin/time -v of the timed runs) per N.  Target: marginal
+#     memory < 1 KiB per particle.
+#
+# stdout: the report (also saved as build/bench/report.txt); stderr: progress lines;
+# build/bench/bench.tsv: the numbers (section, N, metric, value, unit);
+# build/bench/runs.tsv: every single timed run.
+# Exit status: 0 when every command worked (targets missed or not), 1 when one failed.
+#
+# Environment knobs:
+#   BENCH_REPS=5         interleaved repetitions of the paper-scene comparison
+#   BENCH_SCALE_REPS=3   repetitions of each scaling run
+#   BENCH_QUICK=1        skip N = 1e5 (the marginal memory figure then uses 1e4 - 1e3)
+#   BENCH_NO_LAMMPS=1    skip LAMMPS (no speed-up figure)
+#   BENCH_REUSE=1        reuse the settled states already in build/bench/ (skip preparation)
+#   BENCH_TASKSET=CPU    pin every timed run to this CPU with taskset (default: no pinning)
+#   SHAKE=path           binary to time (default bin/shake; copied to build/bench/ first so a
+#                        rebuild during the benchmark cannot mix two engines)
+#   LMP=path             LAMMPS binary (passed to lammps_time.sh; default lmp)
+set -uo pipefail
+
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+cd "$root" || exit 1
+
+REPS=${BENCH_REPS:-5}
+SREPS=${BENCH_SCALE_REPS:-3}
+QUICK=${BENCH_QUICK:-0}
+NO_LAMMPS=${BENCH_NO_LAMMPS:-0}
+REUSE=${BENCH_REUSE:-0}
+PIN=${BENCH_TASKSET:-}
+SHAKE_SRC=${SHAKE:-bin/shake}
+W=build/bench
+REPORT=$W/report.txt
+TSV=$W/bench.tsv
+RUNS=$W/runs.tsv
+T0=$(date +%s)
+
+# --- scene parameters ---------------------------------------------------------------
+FREQ=3.2
+PAPER_STEPS=20000            # duration=1 at dt = 5e-5
+SCALE_NS=(1000 10000 100000)
+# duration of the timed scaling runs (dt = 5e-5 s -> 0.1 s = 2000 steps)
+declare -A SCALE_DUR=([1000]=0.1 [10000]=0.1 [100000]=0.1)
+# settling the 1e5 bed: defaults (settle_ke 0.01 erg, settle_min 1 s) work but take minutes;
+# override here if it ever needs a looser criterion (printed in the report).
+declare -A SCALE_SETTLE=([1000]="" [10000]="" [100000]="")
+RUN_FLAGS=(settle=no progress=no max_overlap=0.9 snapshots=no --profile)
+
+# --- helpers ------------------------------------------------------------------------
+elapsed() { echo $(( $(date +%s) - T0 )); }
+log() { printf '[bench %4ss] %s\n' "$(elapsed)" "$*" >&2; }
+die() {
+	printf '[bench %4ss] ERROR: %s\n' "$(elapsed)" "$*" >&2
+	printf 'bench: FAILED: %s\n' "$*"
+	exit 1
+}
+rep() { printf '%s\n' "$*" >>"$REPORT"; }
+repf() { # printf-style
+	local fmt=$1; shift
+	# shellcheck disable=SC2059
+	printf "$fmt" "$@" >>"$REPORT"
+}
+tsv() { printf '%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" "$5" >>"$TSV"; }
+is_uint() { [[ $1 =~ ^[1-9][0-9]*$ ]]; }
+# stats V1 V2 ... -> "median min max"
+stats() {
+	printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 }
+		END { if (NR == 0) { print "nan nan nan"; exit }
+		      m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
+		      printf "%.6g %.6g %.6g\n", m, v[1], v[NR] }'
+}
+calc() { awk "BEGIN { printf \"%.6g\", $1 }"; }
+verdict() { # verdict CONDITION-AS-AWK-EXPR -> "target met" / "target missed"
+	awk "BEGIN { exit !($1) }" && echo "target met" || echo "target missed"
+}
+pin() { if [ -n "$PIN" ]; then taskset -c "$PIN" "$@"; else "$@"; fi; }
+
+# run_shake TAG ARGS... : run the engine under /usr/bin/time -v; on success sets
+#   R_LOOP R_STEPS R_MOBILE R_WALLS R_RSS (KiB); on failure stops the benchmark.
+run_shake() {
+	local tag=$1; shift
+	local err=$W/log/$tag.err tim=$W/log/$tag.time rc
+	pin "$TIMEBIN" -v -o "$tim" "$SHAKE" "$@" >"$W/log/$tag.out" 2>"$err"
+	rc=$?
+	if [ $rc -ne 0 ]; then
+		local why=""
+		case $rc in
+		1) why=" (bad input)" ;; 2) why=" (I/O error)" ;; 3) why=" (NaN/Inf)" ;;
+		4) why=" (overlap beyond max_overlap)" ;; 6) why=" (settling did not converge)" ;;
+		esac
+		{
+			echo "---- last lines of $err:"
+			tail -n 15 "$err"
+		} >&2
+		die "$tag: '$SHAKE $*' exited with status $rc$why"
+	fi
+	local line
+	line=$(grep '^profile loop_seconds=' "$err" | tail -n 1)
+	[ -n "$line" ] || die "$tag: no 'profile loop_seconds=' line on stderr of '$SHAKE $*' (see $err)"
+	read -r R_LOOP R_STEPS R_MOBILE R_WALLS < <(echo "$line" |
+		sed -E 's/.*loop_seconds=([^ ]+) steps=([^ ]+) mobile=([^ ]+) walls=([^ ]+).*/\1 \2 \3 \4/')
+	R_RSS=$(awk -F': ' '/Maximum resident set size/ { print $2 }' "$tim")
+	[[ $R_LOOP =~ ^[0-9.eE+-]+$ && $R_STEPS =~ ^[0-9]+$ && $R_MOBILE =~ ^[0-9]+$ && $R_WALLS =~ ^[0-9]+$ ]] ||
+		die "$tag: cannot parse '$line'"
+	[ "$R_STEPS" -gt 0 ] || die "$tag: the run made 0 steps ('$line')"
+	[[ $R_RSS =~ ^[0-9]+$ ]] || die "$tag: no maximum RSS in $tim"
+	printf '%s\tshake\t%s\t%s\t%s\t%s\t%s\n' "$tag" "$R_LOOP" "$R_STEPS" "$R_MOBILE" "$R_WALLS" "$R_RSS" >>"$RUNS"
+}
+
+# run_lammps TAG DATA STEPS : sets L_LOOP L_STEPS L_ATOMS
+run_lammps() {
+	local tag=$1 data=$2 steps=$3 out rc
+	out=$(pin bash "$here/lammps_time.sh" "$data" "$steps" "$FREQ" 2>"$W/log/$tag.err")
+	rc=$?
+	if [ $rc -ne 0 ]; then
+		cat "$W/log/$tag.err" >&2
+		die "$tag: lammps_time.sh exited with status $rc (BENCH_NO_LAMMPS=1 skips LAMMPS)"
+	fi
+	read -r L_LOOP L_STEPS L_ATOMS < <(echo "$out" |
+		sed -E 's/.*lammps_loop_seconds=([^ ]+) steps=([^ ]+) atoms=([^ ]+).*/\1 \2 \3/')
+	[[ ${L_LOOP:-} =~ ^[0-9.eE+-]+$ && ${L_STEPS:-} =~ ^[0-9]+$ ]] || die "$tag: cannot parse lammps_time.sh output '$out'"
+	[ "$L_STEPS" -eq "$steps" ] || die "$tag: LAMMPS ran $L_STEPS steps, expected $steps"
+	printf '%s\tlammps\t%s\t%s\t%s\t\t\n' "$tag" "$L_LOOP" "$L_STEPS" "$L_ATOMS" >>"$RUNS"
+}
+
+# prepare TAG DATAFILE ARGS... : settle a scene once and write it as a LAMMPS data file.
+prepare() {
+	local tag=$1 data=$2; shift 2
+	if [ "$REUSE" = 1 ] && [ -s "$data" ]; then
+		log "$tag: reusing $data (BENCH_REUSE=1)"
+		P_SECS=reused
+		return
+	fi
+	rm -f "$data"
+	local t rc err=$W/log/$tag.err
+	t=$(date +%s.%N)
+	"$SHAKE" "$@" duration=0 write_lammps="$data" output="$W/$tag.h5" progress=no \
+		>"$W/log/$tag.out" 2>"$err"
+	rc=$?
+	if [ $rc -ne 0 ]; then
+		{
+			echo "---- last lines of $err:"
+			tail -n 15 "$err"
+		} >&2
+		local why=""
+		[ $rc -eq 6 ] && why=" (settling did not converge: raise settle_max or settle_ke in SCALE_SETTLE)"
+		die "$tag: preparation '$SHAKE $* duration=0 ...' exited with status $rc$why"
+	fi
+	[ -s "$data" ] || die "$tag: preparation did not write $data"
+	P_SECS=$(awk -v a="$t" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+	rm -f "$W/$tag.h5" "$W/$tag.xmf"
+}
+
+# --- checks -------------------------------------------------------------------------
+is_uint "$REPS" || die "BENCH_REPS must be a positive integer (got '$REPS')"
+is_uint "$SREPS" || die "BENCH_SCALE_REPS must be a positive integer (got '$SREPS')"
+[ -x "$SHAKE_SRC" ] || die "$SHAKE_SRC not found or not executable (run 'make' first, or 'make bench')"
+TIMEBIN=/usr/bin/time
+[ -x "$TIMEBIN" ] || die "$TIMEBIN not found (GNU time; apt-get install time) - needed for peak memory"
+if [ "$NO_LAMMPS" != 1 ]; then
+	command -v "${LMP:-lmp}" >/dev/null 2>&1 ||
+		die "LAMMPS '${LMP:-lmp}' not found (make deps, or BENCH_NO_LAMMPS=1 to skip the comparison)"
+fi
+if [ -n "$PIN" ]; then
+	command -v taskset >/dev/null 2>&1 || die "BENCH_TASKSET set but taskset not found"
+	taskset -c "$PIN" true 2>/dev/null || die "BENCH_TASKSET=$PIN: taskset cannot pin to that CPU"
+fi
+[ "$QUICK" = 1 ] && SCALE_NS=(1000 10000)
+
+mkdir -p "$W/log" || die "cannot create $W"
+SHAKE=$W/shake
+cp "$SHAKE_SRC" "$SHAKE" || die "cannot copy $SHAKE_SRC to $SHAKE"
+: >"$REPORT"
+printf 'section\tN\tmetric\tvalue\tunit\n' >"$TSV"
+printf 'tag\tengine\tloop_seconds\tsteps\tmobile_or_atoms\twalls\tmax_rss_kib\n' >"$RUNS"
+
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+dirty=$(git status --porcelain --untracked-files=no -- core Makefile 2>/dev/null | wc -l)
+[ "$dirty" -gt 0 ] && commit="$commit+dirty($dirty files in core/ Makefile)"
+cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)
+lmpver=skipped
+[ "$NO_LAMMPS" = 1 ] || lmpver=$("${LMP:-lmp}" -h 2>/dev/null | awk '/^Large-scale|LAMMPS \(/ { print; exit }')
+
+rep "shakebox speed benchmark  $(date '+%Y-%m-%d %H:%M:%S')"
+rep "  engine   $SHAKE_SRC  (commit $commit, md5 $(md5sum "$SHAKE" | cut -c1-12))"
+rep "  machine  ${cpu:-unknown CPU}, $(nproc) cores; load average at start $(cut -d' ' -f1-3 /proc/loadavg)"
+rep "  lammps   ${lmpver:-unknown}"
+rep "  settings BENCH_REPS=$REPS BENCH_SCALE_REPS=$SREPS BENCH_QUICK=$QUICK${PIN:+ BENCH_TASKSET=$PIN}$([ "$NO_LAMMPS" = 1 ] && echo " BENCH_NO_LAMMPS=1")"
+rep "  ns/particle-step = loop_seconds / (steps * particles) * 1e9; 'mobile' = grains + intruder,"
+rep "  'all' also counts the wall disks. Every timed run: max_overlap=0.9 snapshots=no settle=no."
+rep ""
+
+# --- 1. paper scene: shakebox vs LAMMPS ---------------------------------------------
+log "paper scene: settling (950 grains, radius_ratio 4, 60 cm, takes a few seconds)"
+PAPER=$W/paper.data
+prepare paper_prep "$PAPER"
+log "paper scene: settled in ${P_SECS}s -> $PAPER"
+
+shake_t=() lmp_t=() ratios=()
+for ((i = 1; i <= REPS; i++)); do
+	run_shake "paper_shake_$i" particles="$PAPER" duration=1 output="$W/run.h5" "${RUN_FLAGS[@]}"
+	[ "$R_STEPS" -eq "$PAPER_STEPS" ] || die "paper_shake_$i: $R_STEPS steps, expected $PAPER_STEPS"
+	shake_t+=("$R_LOOP")
+	P_MOBILE=$R_MOBILE P_WALLS=$R_WALLS P_RSS=$R_RSS
+	msg="paper rep $i/$REPS: shakebox ${R_LOOP}s"
+	if [ "$NO_LAMMPS" != 1 ]; then
+		run_lammps "paper_lammps_$i" "$PAPER" "$PAPER_STEPS"
+		[ "$L_ATOMS" -eq $((P_MOBILE + P_WALLS)) ] ||
+			die "LAMMPS has $L_ATOMS atoms, shakebox $P_MOBILE mobile + $P_WALLS walls"
+		lmp_t+=("$L_LOOP")
+		ratios+=("$(calc "$L_LOOP / $R_LOOP")")
+		msg="$msg, LAMMPS ${L_LOOP}s"
+	fi
+	log "$msg"
+done
+rm -f "$W/run.h5" "$W/run.xmf"
+
+read -r s_med s_min s_max < <(stats "${shake_t[@]}")
+ns_m=$(calc "$s_med / ($PAPER_STEPS * $P_MOBILE) * 1e9")
+ns_a=$(calc "$s_med / ($PAPER_STEPS * ($P_MOBILE + $P_WALLS)) * 1e9")
+rep "1. Paper scene: $P_MOBILE mobile disks + $P_WALLS wall disks, f = $FREQ Hz, 1 simulated s = $PAPER_STEPS steps,"
+rep "   $REPS runs each, interleaved; loop wall time in seconds (median [min .. max])"
+repf '   %-10s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile), %6.1f (all)\n' \
+	shakebox "$s_med" "$s_min" "$s_max" "$ns_m" "$ns_a"
+tsv paper "$P_MOBILE" shake_loop_median "$s_med" s
+tsv paper "$P_MOBILE" shake_loop_min "$s_min" s
+tsv paper "$P_MOBILE" shake_loop_max "$s_max" s
+tsv paper "$P_MOBILE" shake_ns_per_mobile_step "$ns_m" ns
+tsv paper "$P_MOBILE" shake_ns_per_all_step "$ns_a" ns
+tsv paper "$P_MOBILE" shake_max_rss "$P_RSS" KiB
+if [ "$NO_LAMMPS" != 1 ]; then
+	read -r l_med l_min l_max < <(stats "${lmp_t[@]}")
+	read -r _ r_min r_max < <(stats "${ratios[@]}")
+	lns_m=$(calc "$l_med / ($PAPER_STEPS * $P_MOBILE) * 1e9")
+	lns_a=$(calc "$l_med / ($PAPER_STEPS * ($P_MOBILE + $P_WALLS)) * 1e9")
+	speedup=$(calc "$l_med / $s_med")
+	repf '   %-10s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile), %6.1f (all)\n' \
+		LAMMPS "$l_med" "$l_min" "$l_max" "$lns_m" "$lns_a"
+	repf '   speed-up LAMMPS/shakebox = %.2fx (ratio of medians; per-pair ratios %.2f .. %.2f)   target >= 5x: %s\n' \
+		"$speedup" "$r_min" "$r_max" "$(verdict "$speedup >= 5")"
+	tsv paper "$P_MOBILE" lammps_loop_median "$l_med" s
+	tsv paper "$P_MOBILE" lammps_loop_min "$l_min" s
+	tsv paper "$P_MOBILE" lammps_loop_max "$l_max" s
+	tsv paper "$P_MOBILE" lammps_ns_per_mobile_step "$lns_m" ns
+	tsv paper "$P_MOBILE" speedup "$speedup" x
+	tsv paper "$P_MOBILE" speedup_pair_min "$r_min" x
+	tsv paper "$P_MOBILE" speedup_pair_max "$r_max" x
+else
+	rep "   LAMMPS skipped (BENCH_NO_LAMMPS=1): no speed-up figure"
+fi
+rep ""
+
+# --- 2. scaling + 3. memory ---------------------------------------------------------
+declare -A S_STEPS S_MED S_NSM S_NSA S_RSS S_MOB S_WALLS S_PREP
+for N in "${SCALE_NS[@]}"; do
+	width=$(calc "60 * $N / 950")
+	data=$W/scale_$N.data
+	log "scaling N=$N: settling (width ${width} cm${SCALE_SETTLE[$N]:+, ${SCALE_SETTLE[$N]}})$([ "$N" -ge 100000 ] && echo ' - takes minutes')"
+	# shellcheck disable=SC2086
+	prepare "scale_prep_$N" "$data" n_grains="$N" width="$width" radius_ratio=4 frequency="$FREQ" ${SCALE_SETTLE[$N]}
+	S_PREP[$N]=$P_SECS
+	log "scaling N=$N: settled in ${P_SECS}s"
+	ts=() rss=0
+	for ((i = 1; i <= SREPS; i++)); do
+		run_shake "scale_${N}_$i" particles="$data" duration="${SCALE_DUR[$N]}" frequency="$FREQ" \
+			output="$W/run_$N.h5" "${RUN_FLAGS[@]}"
+		ts+=("$R_LOOP")
+		[ "$R_RSS" -gt "$rss" ] && rss=$R_RSS
+		log "scaling N=$N rep $i/$SREPS: ${R_LOOP}s for $R_STEPS steps, max RSS $R_RSS KiB"
+	done
+	rm -f "$W/run_$N.h5" "$W/run_$N.xmf"
+	read -r med _ _ < <(stats "${ts[@]}")
+	S_STEPS[$N]=$R_STEPS S_MED[$N]=$med S_RSS[$N]=$rss S_MOB[$N]=$R_MOBILE S_WALLS[$N]=$R_WALLS
+	S_NSM[$N]=$(calc "$med / ($R_STEPS * $R_MOBILE) * 1e9")
+	S_NSA[$N]=$(calc "$med / ($R_STEPS * ($R_MOBILE + $R_WALLS)) * 1e9")
+done
+
+N0=${SCALE_NS[0]}
+rep "2. Scaling: box width 60 cm * N/950, radius_ratio 4, f = $FREQ Hz; median of $SREPS runs"
+repf '   %7s %7s %6s %6s %10s %9s %9s %8s  %s\n' N mobile walls steps "loop [s]" "ns/p-st" "ns/p-st" "ratio" "target <= 1.5x"
+repf '   %7s %7s %6s %6s %10s %9s %9s %8s\n' "" "" "" "" "" "(mobile)" "(all)" "to 1e3"
+for N in "${SCALE_NS[@]}"; do
+	ratio=$(calc "${S_NSM[$N]} / ${S_NSM[$N0]}")
+	if [ "$N" = "$N0" ]; then v="(reference)"; else v=$(verdict "$ratio <= 1.5"); fi
+	repf '   %7d %7d %6d %6d %10.4f %9.1f %9.1f %8.2f  %s\n' "$N" "${S_MOB[$N]}" "${S_WALLS[$N]}" \
+		"${S_STEPS[$N]}" "${S_MED[$N]}" "${S_NSM[$N]}" "${S_NSA[$N]}" "$ratio" "$v"
+	tsv scaling "$N" steps "${S_STEPS[$N]}" steps
+	tsv scaling "$N" mobile "${S_MOB[$N]}" disks
+	tsv scaling "$N" walls "${S_WALLS[$N]}" disks
+	tsv scaling "$N" loop_median "${S_MED[$N]}" s
+	tsv scaling "$N" ns_per_mobile_step "${S_NSM[$N]}" ns
+	tsv scaling "$N" ns_per_all_step "${S_NSA[$N]}" ns
+	tsv scaling "$N" ratio_to_1e3 "$ratio" x
+	tsv scaling "$N" settle_seconds "${S_PREP[$N]}" s
+done
+prep_line="   settling (wall time, once each):"
+for N in "${SCALE_NS[@]}"; do
+	prep_line="$prep_line N=$N ${S_PREP[$N]}s${SCALE_SETTLE[$N]:+ (${SCALE_SETTLE[$N]})};"
+done
+rep "${prep_line%;}"
+[ "$QUICK" = 1 ] && rep "   (BENCH_QUICK=1: N = 1e5 skipped)"
+rep ""
+
+NL=${SCALE_NS[-1]}
+rep "3. Peak memory (maximum resident set size of the timed runs, /usr/bin/time -v)"
+repf '   %7s %12s %14s %14s\n' N "RSS [KiB]" "KiB/particle" "KiB/particle"
+repf '   %7s %12s %14s %14s\n' "" "" "(total/all)" "(total/mobile)"
+for N in "${SCALE_NS[@]}"; do
+	tot=$((S_MOB[$N] + S_WALLS[$N]))
+	repf '   %7d %12d %14.3f %14.3f\n' "$N" "${S_RSS[$N]}" "$(calc "${S_RSS[$N]} / $tot")" \
+		"$(calc "${S_RSS[$N]} / ${S_MOB[$N]}")"
+	tsv memory "$N" max_rss "${S_RSS[$N]}" KiB
+	tsv memory "$N" kib_per_particle_total "$(calc "${S_RSS[$N]} / $tot")" KiB
+done
+# marginal cost per added grain (the wall disks that come with the wider box are charged to
+# the grains, so this is slightly pessimistic)
+dparts=$((S_MOB[$NL] - S_MOB[$N0]))
+marg=$(calc "(${S_RSS[$NL]} - ${S_RSS[$N0]}) / $dparts")
+repf '   marginal (RSS(N=%d) - RSS(N=%d)) / %d more grains = %.3f KiB/particle (%.0f bytes)   target < 1 KiB: %s\n' \
+	"$NL" "$N0" "$dparts" "$marg" "$(calc "$marg * 1024")" "$(verdict "$marg < 1")"
+tsv memory "$N0-$NL" kib_per_particle_marginal "$marg" KiB
+rep ""
+rep "load average at end $(cut -d' ' -f1-3 /proc/loadavg); whole benchmark $(elapsed) s"
+rep "numbers: $TSV   every run: $RUNS   logs: $W/log/"
+tsv total - wall_seconds "$(elapsed)" s
+
+log "done in $(elapsed)s"
+cat "$REPORT"

@@ -1,0 +1,97 @@
+# lib.sh - shared helpers of the integration scripts (sourced, not run).
+# Each script prints "ok ID" or "FAIL ID: why" per check and ends with `finish`,
+# which exits non-zero when any check failed.
+set -u
+SHAKE="${SHAKE:-$PWD/bin/shake}"
+case "$SHAKE" in /*) ;; *) SHAKE="$PWD/$SHAKE" ;; esac
+REPO="$PWD"
+NFAIL=0
+NOK=0
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/shake-it.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+
+ok() { echo "ok $1"; NOK=$((NOK + 1)); }
+fail() { echo "FAIL $1: $2"; NFAIL=$((NFAIL + 1)); }
+# check ID WHY COMMAND... : ok when the command succeeds
+check() {
+	local id=$1 why=$2
+	shift 2
+	if "$@"; then ok "$id"; else fail "$id" "$why"; fi
+}
+finish() {
+	[ "$NFAIL" -eq 0 ] || exit 1
+	exit 0
+}
+
+if [ ! -x "$SHAKE" ]; then
+	fail setup "SHAKE=$SHAKE is not an executable (run make)"
+	finish
+fi
+
+# A tiny, fast scene: 60 grains, a 2x intruder, preparation takes ~0.1 s.
+FAST=(n_grains=60 width=20 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2
+	duration=0.2 snapshots=yes traj_rate=200 progress=no)
+# Gentle shaking (Gamma = A (2 pi f)^2 / g = 0.64) that an exact number of periods
+# fits into (1/f = 0.25 s).
+GENTLE=(frequency=4 amplitude=1)
+
+# shake_run LOG args... : runs $SHAKE with stdout+stderr into LOG; returns its exit code
+shake_run() { # stderr-file args...
+	local errf=$1
+	shift
+	"$SHAKE" "$@" >"$errf" 2>&1
+}
+
+# attr FILE PATH : value of a scalar attribute (strings without quotes), %.17g for reals;
+# empty when it does not exist.
+attr() {
+	h5dump -m %.17g -a "$2" "$1" 2>/dev/null | awk '
+		/^ *\(0\): / { sub(/^ *\(0\): /, ""); if ($0 ~ /^".*"$/) $0 = substr($0, 2, length($0) - 2); print; exit }'
+}
+
+# dims FILE DATASET : "d0 d1" (or "d0") of a dataset; empty when it does not exist.
+dims() {
+	h5dump -H -d "$2" "$1" 2>/dev/null | awk '/DATASPACE/ {
+		s = $0; sub(/.*SIMPLE \{ \( */, "", s); sub(/ *\).*/, "", s); gsub(/,/, "", s); print s; exit }'
+}
+
+# dump_noprov FILE [ATTR...] : the whole file as text (%.17g, exact for doubles), without the first
+# line (it names the file), without the /provenance group and without the named root
+# attributes (e.g. output, whose value is the path the run was given).
+dump_noprov() {
+	local f=$1
+	shift
+	h5dump -m %.17g "$f" | awk -v skipattrs=" $* " 'NR == 1 { next }
+		/^   GROUP "provenance" \{/ { skip = 1; next }
+		/^   ATTRIBUTE "/ { a = $2; gsub(/"/, "", a); if (index(skipattrs, " " a " ")) { skip = 1; next } }
+		skip && /^   \}$/ { skip = 0; next }
+		!skip { print }'
+}
+
+# same_output A B [ATTR...] : the two run files are identical apart from /provenance (prints the
+# first differing lines on stderr when they differ); ATTRs are root attributes to ignore
+same_output() {
+	local a=$1 b=$2
+	shift 2
+	local da="$TMP/.da.$$" db="$TMP/.db.$$"
+	dump_noprov "$a" "$@" >"$da" || return 1
+	dump_noprov "$b" "$@" >"$db" || return 1
+	[ -s "$da" ] || return 1
+	if ! cmp -s "$da" "$db"; then
+		diff "$da" "$db" | head -n 6 >&2
+		return 1
+	fi
+	# and h5diff agrees (every dataset and attribute, bar the ignored root attributes)
+	local out rc n
+	out=$(h5diff --exclude-path /provenance "$a" "$b" 2>&1)
+	rc=$?
+	[ "$rc" -le 1 ] || { echo "h5diff failed: $out" >&2; return 1; }
+	for n in "$@"; do
+		out=$(printf "%s\n" "$out" | grep -vF "attribute: <$n of </>> and <$n of </>>")
+	done
+	out=$(printf "%s\n" "$out" | grep -vE "^([0-9]+ differences? found)?\$")
+	[ -z "$out" ] || { printf "%s\n" "$out" | head -n 6 >&2; return 1; }
+}
+
+# contains FILE STRING : fixed-string grep
+contains() { grep -qF -- "$2" "$1"; }

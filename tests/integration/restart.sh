@@ -1,0 +1,157 @@
+#!/usr/bin/env bash
+# restart.sh - checkpoint/restart identity. A run killed with SIGKILL at some moment
+# after its first checkpoint, then started again with the same command, gives the same
+# file as an uninterrupted run (apart from /provenance and the output path): for two
+# kill moments with gear5 and one with verlet. SIGTERM exits with code 7, leaves a
+# checkpoint, and the rerun resumes to the same file. A checkpoint of other physics is
+# refused (code 1) unless restart = no; restart = yes without a checkpoint is refused.
+. "$(dirname "$0")/lib.sh"
+cd "$TMP" || exit 1
+
+# 150 grains, 5 s of shaking (~1 s of wall time here), a checkpoint every 0.25 s
+SCENE=(n_grains=150 width=24 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 duration=5
+	"${GENTLE[@]}" traj_rate=200 snapshots=yes progress=no checkpoint_every=0.25)
+
+# reference ID args... : uninterrupted run into ID.h5; sets REF_WALL (ms)
+reference() {
+	local id=$1
+	shift
+	local t0 t1
+	t0=$(date +%s%N)
+	"$SHAKE" "${SCENE[@]}" "$@" output="$TMP/$id.h5" >"$TMP/$id.log" 2>&1
+	local rc=$?
+	t1=$(date +%s%N)
+	REF_WALL=$(((t1 - t0) / 1000000))
+	if [ "$rc" -ne 0 ]; then
+		fail "$id.run" "exit $rc: $(head -c 300 "$TMP/$id.log")"
+		return 1
+	fi
+	[ ! -e "$TMP/$id.h5.ckpt" ] && [ ! -e "$TMP/$id.h5.journal" ] && ok "$id.run" ||
+		fail "$id.run" "checkpoint or journal left after a finished run"
+}
+
+# wait_for FILE PID : until FILE exists (or PID ended); returns 1 when PID ended first
+wait_for() {
+	local i
+	for ((i = 0; i < 3000; i++)); do
+		[ -e "$1" ] && return 0
+		kill -0 "$2" 2>/dev/null || { [ -e "$1" ]; return; }
+		sleep 0.005
+	done
+	return 1
+}
+
+# killed_and_resumed ID REF SIGNAL EXTRA_DELAY_MS args... :
+# starts the run, waits for its first checkpoint plus EXTRA_DELAY_MS, sends SIGNAL,
+# checks the process really was interrupted, reruns the same command and compares with REF
+killed_and_resumed() {
+	local id=$1 ref=$2 sig=$3 delay=$4
+	shift 4
+	local out="$TMP/$id.h5"
+	"$SHAKE" "${SCENE[@]}" "$@" output="$out" >"$TMP/$id.1.log" 2>&1 &
+	local pid=$!
+	if ! wait_for "$out.ckpt" $pid; then
+		wait $pid
+		fail "$id.killed" "no checkpoint appeared before the run ended (exit $?)"
+		return
+	fi
+	sleep "$(awk -v d="$delay" 'BEGIN { printf "%.3f", d / 1000 }')"
+	kill -s "$sig" $pid 2>/dev/null
+	{ wait $pid; } 2>/dev/null
+	local rc=$?
+	if [ -e "$out" ]; then
+		fail "$id.killed" "the run finished before $sig arrived (${delay} ms after the first checkpoint); test did not interrupt it"
+		return
+	fi
+	case $sig in
+	KILL) [ "$rc" -eq 137 ] && ok "$id.killed" || fail "$id.killed" "exit $rc after SIGKILL" ;;
+	TERM)
+		[ "$rc" -eq 7 ] && ok "$id.sigterm_code7" || fail "$id.sigterm_code7" "exit $rc after SIGTERM, expected 7"
+		contains "$TMP/$id.1.log" "checkpoint" && ok "$id.sigterm_message" ||
+			fail "$id.sigterm_message" "no message about the checkpoint: $(head -c 200 "$TMP/$id.1.log")"
+		;;
+	esac
+	[ -s "$out.ckpt" ] && ok "$id.checkpoint_exists" || fail "$id.checkpoint_exists" "no $out.ckpt after the interruption"
+	echo "# $id: $sig ${delay} ms after the first checkpoint" >&2
+	[ -n "${ON_INTERRUPTED:-}" ] && $ON_INTERRUPTED "$id" "$out"
+	"$SHAKE" "${SCENE[@]}" "$@" output="$out" >"$TMP/$id.2.log" 2>&1
+	rc=$?
+	if [ "$rc" -ne 0 ]; then
+		fail "$id.resumed" "rerun exit $rc: $(head -c 300 "$TMP/$id.2.log")"
+		return
+	fi
+	ok "$id.resumed"
+	check "$id.same_as_uninterrupted" "resumed run differs from the uninterrupted one" \
+		same_output "$TMP/$ref.h5" "$out" output
+	[ ! -e "$out.ckpt" ] && [ ! -e "$out.journal" ] && ok "$id.cleanup" ||
+		fail "$id.cleanup" "checkpoint or journal left after the resumed run finished"
+}
+
+# a random-ish moment: between 0 and ~60 % of the remaining wall time of the run
+moment() { echo $(((RANDOM % 60 + 1) * REF_WALL / 100)); }
+
+# --- gear5 ---
+reference gear5_ref || finish
+killed_and_resumed gear5_kill_early gear5_ref KILL 0
+killed_and_resumed gear5_kill_late gear5_ref KILL "$(moment)"
+
+# --- SIGTERM, and what a checkpoint of other physics does ---
+physics_checks() { # ID OUT : called while the interrupted run's checkpoint exists
+	local out=$2
+	cp "$out.ckpt" "$TMP/saved.ckpt"
+	"$SHAKE" "${SCENE[@]}" frequency=4.1 output="$out" >"$TMP/chg.log" 2>&1
+	local rc=$?
+	[ "$rc" -eq 1 ] && ok changed_physics.refused || fail changed_physics.refused "exit $rc with frequency changed, expected 1"
+	contains "$TMP/chg.log" "$out.ckpt" && contains "$TMP/chg.log" "restart" && ok changed_physics.message ||
+		fail changed_physics.message "message does not name the checkpoint and the restart key: $(head -c 300 "$TMP/chg.log")"
+	[ ! -e "$out" ] && cmp -s "$out.ckpt" "$TMP/saved.ckpt" && ok changed_physics.untouched ||
+		fail changed_physics.untouched "the refused run wrote output or changed the checkpoint"
+	# the same with other physics in a dynamics-only key and a preparation key
+	"$SHAKE" "${SCENE[@]}" n_grains=151 output="$out" >"$TMP/chg2.log" 2>&1
+	rc=$?
+	[ "$rc" -eq 1 ] && ok changed_prep.refused || fail changed_prep.refused "exit $rc with n_grains changed, expected 1"
+	# restart = no ignores the checkpoint: a fresh run with the new frequency
+	"$SHAKE" "${SCENE[@]}" frequency=4.1 restart=no duration=0.5 output="$TMP/fresh.h5" \
+		checkpoint="$out.ckpt" >"$TMP/fresh.log" 2>&1
+	rc=$?
+	[ "$rc" -eq 0 ] && [ "$(attr "$TMP/fresh.h5" /status)" = ok ] && [ "$(attr "$TMP/fresh.h5" /frequency)" = 4.0999999999999996 ] &&
+		[ "$(attr "$TMP/fresh.h5" /steps)" = 10000 ] && ok restart_no.ignores_checkpoint ||
+		fail restart_no.ignores_checkpoint "exit $rc, status $(attr "$TMP/fresh.h5" /status), steps $(attr "$TMP/fresh.h5" /steps): $(head -c 300 "$TMP/fresh.log")"
+	# (that run removes the checkpoint it was pointed at when it ends: put it back)
+	cp "$TMP/saved.ckpt" "$out.ckpt"
+}
+ON_INTERRUPTED=physics_checks killed_and_resumed gear5_term gear5_ref TERM "$(moment)"
+
+# restart = yes needs a checkpoint
+"$SHAKE" "${SCENE[@]}" restart=yes output="$TMP/none.h5" >"$TMP/yes.log" 2>&1
+rc=$?
+[ "$rc" -eq 1 ] && contains "$TMP/yes.log" "none.h5.ckpt" && ok restart_yes.needs_checkpoint ||
+	fail restart_yes.needs_checkpoint "exit $rc: $(head -c 200 "$TMP/yes.log")"
+
+# SIGTERM without checkpoints: code 7 and a file that says so
+"$SHAKE" "${SCENE[@]}" checkpoint_every=0 output="$TMP/nock.h5" >"$TMP/nock.log" 2>&1 &
+pid=$!
+sleep 0.5
+kill -TERM $pid 2>/dev/null
+wait $pid
+rc=$?
+if [ "$rc" -eq 7 ]; then
+	ok sigterm_nockpt.code7
+	s=$(attr "$TMP/nock.h5" /status)
+	[ -n "$s" ] && [ "$s" != ok ] && [ "$(attr "$TMP/nock.h5" /exit_code)" = 7 ] && ok sigterm_nockpt.recorded ||
+		fail sigterm_nockpt.recorded "status '$s', exit_code '$(attr "$TMP/nock.h5" /exit_code)' in the output"
+else
+	fail sigterm_nockpt.code7 "exit $rc after SIGTERM 0.5 s into a ~1 s run"
+fi
+
+# --- verlet ---
+SCENE+=(integrator=verlet)
+reference verlet_ref || finish
+killed_and_resumed verlet_kill verlet_ref KILL "$(moment)"
+# gear5 and verlet differ (the comparison can fail)
+if same_output "$TMP/gear5_ref.h5" "$TMP/verlet_ref.h5" output integrator 2>/dev/null; then
+	fail integrators_differ "verlet gave the same file as gear5"
+else
+	ok integrators_differ
+fi
+finish
