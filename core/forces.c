@@ -125,22 +125,10 @@ int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double i
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
 {
 	double worst = 0;
-	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
-	for (int i = 0; i < st->nm; i++)
-		for (int p = nl->start[i]; p < nl->start[i + 1]; p++) {
-			int j = nl->j[p];
-			double d = hypot(x[i] - x[j], y[i] - y[j]);
-			double f = (st->r[i] + st->r[j] - d) / fmin(st->r[i], st->r[j]);
-			if (f > worst) {
-				worst = f;
-				*wi = i;
-				*wj = j;
-			}
-		}
-	for (int p = 0; p < nl->nbig; p++) {
-		int i = nl->bi[p], j = nl->bj[p];
-		double d = hypot(x[i] - x[j], y[i] - y[j]);
-		double f = (st->r[i] + st->r[j] - d) / fmin(st->r[i], st->r[j]);
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
+	for (int p = 0; p < nl->nflat; p++) {
+		const int i = nl->pi[p], j = nl->pj[p];
+		const double f = (r[i] + r[j] - hypot(x[i] - x[j], y[i] - y[j])) / fmin(r[i], r[j]);
 		if (f > worst) {
 			worst = f;
 			*wi = i;

@@ -300,11 +300,15 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 	for (int i = 0; i < nm; i++)
 		for (int p = nl->start[i]; p < nl->start[i + 1]; p++)
 			nl->pi[p] = i;
-	memcpy(nl->pj, nl->j, sizeof(int) * (size_t)np);
-	memcpy(nl->pmeff, nl->meff, sizeof(double) * (size_t)np);
-	memcpy(nl->pi + np, nl->bi, sizeof(int) * (size_t)nb);
-	memcpy(nl->pj + np, nl->bj, sizeof(int) * (size_t)nb);
-	memcpy(nl->pmeff + np, nl->bmeff, sizeof(double) * (size_t)nb);
+	if (np) {
+		memcpy(nl->pj, nl->j, sizeof(int) * (size_t)np);
+		memcpy(nl->pmeff, nl->meff, sizeof(double) * (size_t)np);
+	}
+	if (nb) {
+		memcpy(nl->pi + np, nl->bi, sizeof(int) * (size_t)nb);
+		memcpy(nl->pj + np, nl->bj, sizeof(int) * (size_t)nb);
+		memcpy(nl->pmeff + np, nl->bmeff, sizeof(double) * (size_t)nb);
+	}
 	nl->nflat = nf;
 	return 0;
 }

@@ -75,7 +75,7 @@ static const sb_param TABLE[] = {
 	 "time step"},
 	{"skin", PT_REAL, "cm", "0.15", 0, 100, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(skin),
 	 "Verlet-list skin (results do not depend on it, only speed)"},
-	{"max_overlap", PT_REAL, "", "0.3", 0, 1, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
+	{"max_overlap", PT_REAL, "", "0.6", 0, 1, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
 	 "stop (exit code 4) when an overlap exceeds this fraction of the smaller radius"},
 	/* --- run length --- */
 	{"duration", PT_REAL, "s", "10", 0, 1e8, NULL, PF_LEN, OFF(duration),
@@ -236,13 +236,42 @@ struct ini_ctx {
 	int err_line;  /* line of the first error the handler found */
 };
 
-/* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader. */
+/* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader.
+ * The reader also checks section headers (inih tells the handler nothing about a
+ * section without keys), strips "#" comments after a value (inih keeps them), and
+ * strips indentation: inih would take an indented line as the continuation of the
+ * previous value, so "  mu = 0.3" after "output = a.h5" would vanish into output. */
 static char *scene_reader(char *str, int num, void *stream)
 {
 	struct ini_ctx *c = stream;
+	if (c->err_line)
+		return NULL; /* stop at the first error */
 	char *r = fgets(str, num, c->f);
-	if (r)
-		c->line++;
+	if (!r)
+		return NULL;
+	c->line++;
+	size_t lead = strspn(str, " \t");
+	if (lead)
+		memmove(str, str + lead, strlen(str + lead) + 1);
+	for (char *h = strchr(str, '#'); h; h = strchr(h + 1, '#'))
+		if (h > str && (h[-1] == ' ' || h[-1] == '\t')) {
+			h[0] = '\n';
+			h[1] = 0;
+			break;
+		}
+	const char *p = str;
+	while (*p == ' ' || *p == '\t')
+		p++;
+	if (*p == '[') {
+		const char *q = strchr(p, ']');
+		size_t l = q ? (size_t)(q - p - 1) : 0;
+		if (q && !(l == 0 || (l == 5 && !strncmp(p + 1, "scene", 5)))) {
+			c->err_line = c->line;
+			sb_errf(c->e, SB_EUSAGE, "%s:%d: unknown section [%.*s] (a scene file has keys at the top or in [scene])",
+				c->path, c->line, (int)l, p + 1);
+			return NULL;
+		}
+	}
 	return r;
 }
 
@@ -254,11 +283,8 @@ static int scene_handler(void *user, const char *section, const char *name, cons
 	char where[SB_STR_MAX + 32];
 	snprintf(where, sizeof where, "%s:%d", c->path, c->line);
 	sb_err tmp = {0};
-	if (section[0] && strcmp(section, "scene") != 0)
-		sb_errf(&tmp, SB_EUSAGE, "%s: unknown section [%s] (a scene file has keys at the top or in [scene])",
-			where, section);
-	else
-		params_set(c->s, name, value, where, &tmp);
+	(void)section; /* checked by scene_reader */
+	params_set(c->s, name, value, where, &tmp);
 	if (tmp.code) {
 		c->err_line = c->line;
 		c->e->code = 0;

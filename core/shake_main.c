@@ -1,4 +1,5 @@
 /* shake_main.c - bin/shake: run one scene. Only this file prints and exits. */
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,6 +75,18 @@ int main(int argc, char **argv)
 	if (params_validate(&sc, &e)) {
 		fprintf(stderr, "shake: %s\n", e.msg);
 		return SB_EUSAGE;
+	}
+
+	/* A run must not find out at its end that it cannot write its output. */
+	char dir[SB_STR_MAX];
+	snprintf(dir, sizeof dir, "%s", sc.output);
+	char *slash = strrchr(dir, '/');
+	if (slash)
+		*slash = 0;
+	if (access(slash ? (dir[0] ? dir : "/") : ".", W_OK) != 0) {
+		fprintf(stderr, "shake: output: cannot write in directory '%s': %s\n", slash ? dir : ".",
+			strerror(errno));
+		return SB_EIO;
 	}
 
 	struct sigaction sa;

@@ -225,11 +225,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 		add_drag(st, drag, 1.0 / s->sc.dt);
 	TOC(PH_FORCE);
 
-	TIC(PH_CORRECT);
-	integ_correct(&s->in, st, gy);
-	TOC(PH_CORRECT);
-
-	if (bad) {
+	if (bad) { /* measured on the positions the kernel saw, before the correction */
 		int a = 0, b = 0;
 		double f = forces_max_overlap(st, &s->nl, &a, &b);
 		char what[256];
@@ -237,6 +233,10 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 			 stage, st->id[a], st->id[b], f, s->sc.max_overlap);
 		return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
 	}
+
+	TIC(PH_CORRECT);
+	integ_correct(&s->in, st, gy);
+	TOC(PH_CORRECT);
 	return 0;
 }
 

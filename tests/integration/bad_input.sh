@@ -38,7 +38,7 @@ printf 'n_grains = 60\nthis line has no equals sign\nwidth = 20\n' >s_malformed.
 expect_bad scene.malformed "s_malformed.ini:2:" s_malformed.ini "${FAST[@]}"
 
 printf 'n_grains = 60\n[physics]\nmu = 0.4\n' >s_section.ini
-expect_bad scene.unknown_section "s_section.ini:3:|physics" s_section.ini "${FAST[@]}"
+expect_bad scene.unknown_section "s_section.ini:2:|physics" s_section.ini "${FAST[@]}"
 
 # an unknown section header followed by nothing is still a mistake in the file
 printf 'n_grains = 60\n[physics]\n' >s_section_empty.ini

@@ -131,7 +131,8 @@ rc=$?
 # SIGTERM without checkpoints: code 7 and a file that says so
 "$SHAKE" "${SCENE[@]}" checkpoint_every=0 output="$TMP/nock.h5" >"$TMP/nock.log" 2>&1 &
 pid=$!
-sleep 0.5
+# once shaking has begun (the journal exists), plus a little
+wait_for "$TMP/nock.h5.journal" $pid && sleep 0.1
 kill -TERM $pid 2>/dev/null
 wait $pid
 rc=$?
@@ -141,7 +142,7 @@ if [ "$rc" -eq 7 ]; then
 	[ -n "$s" ] && [ "$s" != ok ] && [ "$(attr "$TMP/nock.h5" /exit_code)" = 7 ] && ok sigterm_nockpt.recorded ||
 		fail sigterm_nockpt.recorded "status '$s', exit_code '$(attr "$TMP/nock.h5" /exit_code)' in the output"
 else
-	fail sigterm_nockpt.code7 "exit $rc after SIGTERM 0.5 s into a ~1 s run"
+	fail sigterm_nockpt.code7 "exit $rc after SIGTERM 0.1 s into the shaking of a ~1 s run"
 fi
 
 # --- verlet ---
