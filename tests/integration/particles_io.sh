@@ -99,4 +99,18 @@ else
 		  if ($4 != "wall" && (rel($5, $12) > 1e-12 || rel($6, $13) > 1e-12 || rel($7, $14) > 1e-12)) { print "row " NR ": velocities " $5 " " $6 " " $7 " vs " $12 " " $13 " " $14; exit 1 } }
 		END { if (NR != '"$n"') { print NR " rows"; exit 1 } }' >rt.err && ok roundtrip || fail roundtrip "$(cat rt.err)"
 fi
+# --- a run from its own prepared state equals the run that settled itself: the
+#     packing cache of the study driver relies on this (datasets bit-identical; only
+#     the parameters naming the source and the settling record differ) ---
+shake_run self.log "${FAST[@]}" "${GENTLE[@]}" write_particles="$TMP/self.txt" output="$TMP/self.h5"
+rc1=$?
+shake_run cached.log "${FAST[@]}" "${GENTLE[@]}" particles="$TMP/self.txt" settle=no output="$TMP/cached.h5"
+rc2=$?
+if [ "$rc1" -ne 0 ] || [ "$rc2" -ne 0 ]; then
+	fail cache_identity "exit $rc1/$rc2: $(head -c 200 self.log cached.log)"
+elif same_output "$TMP/self.h5" "$TMP/cached.h5" output particles settle settle_steps settle_time write_particles; then
+	ok cache_identity
+else
+	fail cache_identity "the run from its own particle file differs from the one that settled"
+fi
 finish
