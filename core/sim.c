@@ -328,20 +328,6 @@ int sim_prepare(sb_sim *s, sb_err *e)
 	s->surface0 = surface_height(s);
 	s->intruder_y0 = s->intruder >= 0 ? s->st.q[C_Y][0][s->intruder] : NAN;
 
-	/* Canonical state at t = 0: exactly what a particle file of this state holds, so
-	 * that a run started from the file (e.g. the study driver's packing cache) is
-	 * bit-identical to one that settled itself. Velocities take the same round trip
-	 * a file does (v = q1/dt, then q1 = v dt), angles restart at zero, and below the
-	 * integrator restarts from forces (higher derivatives zero). */
-	{
-		const double idt = 1.0 / sc->dt;
-		for (int c = 0; c < SB_NCOORD; c++)
-			for (int i = 0; i < s->st.nm; i++)
-				s->st.q[c][1][i] = (s->st.q[c][1][i] * idt) * sc->dt;
-		for (int i = 0; i < s->st.nm; i++)
-			s->st.q[C_TH][0][i] = 0;
-	}
-
 	/* t = 0 of shaking: the lab-frame state is the prepared one (y_box(0) = 0), the
 	 * box starts moving with v_box(0) = A omega. */
 	const double vbox0 = sim_box_v(s, 0);
@@ -350,6 +336,21 @@ int sim_prepare(sb_sim *s, sb_err *e)
 		return e->code;
 	if (sc->write_lammps[0] && pfile_write_lammps(&s->st, sc->write_lammps, 1.0 / sc->dt, 0, vbox0, e))
 		return e->code;
+
+	/* Canonical state at t = 0: exactly what a particle file of this state holds, so
+	 * that a run started from the file just written (e.g. the study driver's packing cache) is
+	 * bit-identical to one that settled itself. Velocities take the same round trip
+	 * a file does (v = q1/dt, then q1 = v dt), angles restart at zero, and below the
+	 * integrator restarts from forces (higher derivatives zero). A state just read
+	 * from a file is canonical already (applying the round trip twice is not exact). */
+	if (do_settle) {
+		const double idt = 1.0 / sc->dt;
+		for (int c = 0; c < SB_NCOORD; c++)
+			for (int i = 0; i < s->st.nm; i++)
+				s->st.q[c][1][i] = (s->st.q[c][1][i] * idt) * sc->dt;
+		for (int i = 0; i < s->st.nm; i++)
+			s->st.q[C_TH][0][i] = 0;
+	}
 
 	/* Into the box frame: every mobile disk gets -v_box(0) in y. */
 	const double vb = sim_box_v(s, 0) * sc->dt;
