@@ -114,4 +114,8 @@ demo: build/.deps-ok all
 clean:
 	rm -rf build bin
 
+# The campaign driver and the analysis tools bring their own rules.
+-include study/study.mk
+-include analysis/analysis.mk
+
 -include $(shell find build -name '*.d' 2>/dev/null)
