@@ -22,6 +22,10 @@ void integ_predict(const sb_integ *in, sb_state *st);
  * (gravity and, in the box frame, minus the box acceleration). */
 void integ_correct(const sb_integ *in, sb_state *st, double gy);
 
+/* integ_correct followed by integ_predict, bit-identical to the two calls but with
+ * one pass over the arrays; for steps after which nobody reads the corrected state. */
+void integ_correct_predict(const sb_integ *in, sb_state *st, double gy);
+
 /* Start from positions and velocities: set the acceleration term from st->f and
  * clear the higher derivatives. */
 void integ_start(const sb_integ *in, sb_state *st, double gy);

@@ -94,6 +94,8 @@ void nlist_free(sb_nlist *nl)
 	free(nl->pj);
 	free(nl->pmeff);
 	free(nl->contact);
+	free(nl->cd);
+	free(nl->cinv);
 	free(nl->large);
 	free(nl->large_list);
 	free(nl->xref);
@@ -293,7 +295,13 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		int *d = realloc(nl->contact, sizeof(int) * (size_t)cap);
 		if (d)
 			nl->contact = d;
-		if (!a || !b || !c || !d)
+		double *f = realloc(nl->cd, sizeof(double) * (size_t)cap);
+		if (f)
+			nl->cd = f;
+		double *g = realloc(nl->cinv, sizeof(double) * (size_t)cap);
+		if (g)
+			nl->cinv = g;
+		if (!a || !b || !c || !d || !f || !g)
 			return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 		nl->fcap = cap;
 	}

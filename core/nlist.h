@@ -29,6 +29,7 @@ typedef struct sb_nlist {
 	int *pi, *pj;
 	double *pmeff;
 	int *contact;               /* scratch: indices of the pairs in contact this step */
+	double *cd, *cinv;          /* scratch: their distance and its inverse */
 	int nflat, fcap;
 	/* which disks are large; fixed at setup */
 	unsigned char *large;

@@ -189,12 +189,18 @@ static void add_drag(sb_state *st, double gamma, double inv_dt)
 	}
 }
 
-static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, sb_err *e)
+/* fuse: nobody reads the corrected state after this step, so the next step's
+ * predictor runs inside this step's corrector (s->predicted remembers it). */
+static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
+		     int fuse, sb_err *e)
 {
 	sb_state *st = &s->st;
-	TIC(PH_PREDICT);
-	integ_predict(&s->in, st);
-	TOC(PH_PREDICT);
+	if (!s->predicted) {
+		TIC(PH_PREDICT);
+		integ_predict(&s->in, st);
+		TOC(PH_PREDICT);
+	}
+	s->predicted = 0;
 
 	TIC(PH_CHECK);
 	scan c = check_state(s);
@@ -235,7 +241,11 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	}
 
 	TIC(PH_CORRECT);
-	integ_correct(&s->in, st, gy);
+	if (fuse)
+		integ_correct_predict(&s->in, st, gy);
+	else
+		integ_correct(&s->in, st, gy);
+	s->predicted = fuse;
 	TOC(PH_CORRECT);
 	return 0;
 }
@@ -243,7 +253,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 int sim_step(sb_sim *s, double gy, sb_err *e)
 {
 	s->step++;
-	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", e);
+	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", 0, e);
 }
 
 /* Forces at the current state and the integrator's acceleration term from them. */
@@ -268,7 +278,8 @@ static int settle(sb_sim *s, sb_err *e)
 		double t = k * sc->dt;
 		/* Drag during the first settle_min seconds lets the loose lattice collapse at
 		 * a terminal speed g / settle_drag instead of slamming down. */
-		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", e))
+		const int look = (k % every == 0 && k >= nmin) || k >= nmax;
+		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", !look, e))
 			return e->code;
 		if (k % every == 0 && k >= nmin) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
@@ -445,7 +456,8 @@ int sim_run(sb_sim *s, sb_err *e)
 	double w0 = now(), wlast = w0;
 	long step0 = s->step;
 	while (s->step < s->nsteps) {
-		if (s->stop && *s->stop) {
+		/* a stop waits until the state is corrected (not yet predicted) */
+		if (s->stop && *s->stop && !s->predicted) {
 			s->status = SB_EINTR;
 			s->status_time = s->step * dt;
 			s->status_step = s->step;
@@ -455,7 +467,11 @@ int sim_run(sb_sim *s, sb_err *e)
 		}
 		const long n1 = s->step + 1;
 		const double t1 = n1 * dt;
-		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", e))
+		/* fuse unless this step's corrected state is recorded, checkpointed or final */
+		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) ||
+				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
+				 (sc->snapshots && sc->frequency > 0 && n1 >= s->next_snap_step);
+		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look, e))
 			break;
 		s->step = n1;
 		TIC(PH_RECORD);

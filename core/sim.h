@@ -33,6 +33,7 @@ typedef struct sb_sim {
 
 	/* shaking */
 	long step, nsteps;
+	int predicted;           /* the next step's predictor already ran (fused) */
 	long n_traj, n_snap;     /* records written so far */
 	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;
 	sb_journal jr;

@@ -89,6 +89,7 @@ calc() { awk "BEGIN { printf \"%.6g\", $1 }"; }
 verdict() { # verdict CONDITION-AS-AWK-EXPR -> "target met" / "target missed"
 	awk "BEGIN { exit !($1) }" && echo "target met" || echo "target missed"
 }
+secs() { if [ "$1" = reused ]; then echo "(reused, BENCH_REUSE=1)"; else echo "$1 s"; fi; }
 why() { # the engine's exit codes (shake --help)
 	case $1 in
 	1) echo " (bad input)" ;; 2) echo " (I/O error)" ;; 3) echo " (NaN/Inf)" ;;
@@ -211,7 +212,8 @@ rep ""
 log "paper scene: settling (950 grains, radius_ratio 4, 60 cm, takes a few seconds)"
 PAPER=$W/paper.data
 prepare paper_prep "$PAPER"
-log "paper scene: settled in ${P_SECS}s -> $PAPER"
+log "paper scene: settled in $(secs "$P_SECS") -> $PAPER"
+PAPER_PREP=$P_SECS
 
 shake_t=() lmp_t=() ratios=()
 for ((i = 1; i <= REPS; i++)); do
@@ -236,6 +238,7 @@ read -r s_med s_min s_max < <(stats "${shake_t[@]}")
 ns_m=$(calc "$s_med / ($PAPER_STEPS * $P_MOBILE) * 1e9")
 ns_a=$(calc "$s_med / ($PAPER_STEPS * ($P_MOBILE + $P_WALLS)) * 1e9")
 rep "1. Paper scene: $P_MOBILE mobile disks + $P_WALLS wall disks, f = $FREQ Hz, 1 simulated s = $PAPER_STEPS steps,"
+rep "   settled once with the default criterion (settle_ke 0.01 erg) in $(secs "$PAPER_PREP") wall time;"
 rep "   $REPS runs each, interleaved; loop wall time in seconds (median [min .. max])"
 repf '   %-10s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile), %6.1f (all)\n' \
 	shakebox "$s_med" "$s_min" "$s_max" "$ns_m" "$ns_a"
@@ -276,7 +279,7 @@ for N in "${SCALE_NS[@]}"; do
 	# shellcheck disable=SC2086
 	prepare "scale_prep_$N" "$data" n_grains="$N" width="$width" radius_ratio=4 frequency="$FREQ" ${SCALE_SETTLE[$N]}
 	S_PREP[$N]=$P_SECS
-	log "scaling N=$N: settled in ${P_SECS}s"
+	log "scaling N=$N: settled in $(secs "$P_SECS")"
 	ts=() rss=0
 	for ((i = 1; i <= SREPS; i++)); do
 		run_shake "scale_${N}_$i" particles="$data" duration="${SCALE_DUR[$N]}" frequency="$FREQ" \
@@ -308,11 +311,11 @@ for N in "${SCALE_NS[@]}"; do
 	tsv scaling "$N" ns_per_mobile_step "${S_NSM[$N]}" ns
 	tsv scaling "$N" ns_per_all_step "${S_NSA[$N]}" ns
 	tsv scaling "$N" ratio_to_1e3 "$ratio" x
-	tsv scaling "$N" settle_seconds "${S_PREP[$N]}" s
+	tsv scaling "$N" settle_seconds "${S_PREP[$N]/reused/NA}" s
 done
 prep_line="   settling (wall time, once each):"
 for N in "${SCALE_NS[@]}"; do
-	prep_line="$prep_line N=$N ${S_PREP[$N]}s${SCALE_SETTLE[$N]:+ (${SCALE_SETTLE[$N]})};"
+	prep_line="$prep_line N=$N $(secs "${S_PREP[$N]}")${SCALE_SETTLE[$N]:+ (${SCALE_SETTLE[$N]})};"
 done
 rep "${prep_line%;}"
 [ "$QUICK" = 1 ] && rep "   (BENCH_QUICK=1: N = 1e5 skipped)"
