@@ -67,6 +67,9 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 	io(w, &s->next_snap_step, sizeof s->next_snap_step);
 	io(w, &s->next_ckpt_step, sizeof s->next_ckpt_step);
 	io(w, &s->n_ckpt, sizeof s->n_ckpt);
+	io(w, &s->n_flux, sizeof s->n_flux);
+	io(w, &s->n_field, sizeof s->n_field);
+	io(w, &s->n_strobe, sizeof s->n_strobe);
 	io(w, &x->builds, sizeof x->builds);
 	io(w, &x->joff, sizeof x->joff);
 	io(w, s->prov.start_time, sizeof s->prov.start_time);
@@ -84,6 +87,15 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 }
 
 static void put_v(hw *w, void *p, size_t n) { hw_put(w, p, n); }
+static void put_obs(void *w, void *p, size_t n) { hw_put(w, p, n); }
+static void get_obs(void *w, void *p, size_t n) { hw_get(w, p, n); }
+
+/* Checkpoints resume only under the same physics; with a frequency ramp the run
+ * length sets the ramp rate, so it counts too. */
+static unsigned long long ckpt_hash(const sb_scene *sc)
+{
+	return params_hash(sc, PF_PREP | PF_DYN | (sc->ramp != RAMP_NONE ? PF_LEN : 0));
+}
 
 int ckpt_write(sb_sim *s, sb_err *e)
 {
@@ -94,13 +106,14 @@ int ckpt_write(sb_sim *s, sb_err *e)
 	if (fs_open_tmp(&out, s->ckpt_path, e))
 		return e->code;
 	hw w = {out.f, 1469598103934665603ULL, 0};
-	uint64_t ph = params_hash(&s->sc, PF_PREP | PF_DYN);
+	uint64_t ph = ckpt_hash(&s->sc);
 	int32_t hdr[3] = {s->st.n, s->st.nm, s->in.nval};
 	hw_put(&w, MAGIC, 8);
 	hw_put(&w, &ph, sizeof ph);
 	hw_put(&w, hdr, sizeof hdr);
 	extra x = {joff, s->nl.builds, s->nl.xref, s->nl.yref};
 	fields(&w, s, s->in.nval, &x, put_v);
+	obs_fields(&s->obs, &w, put_obs);
 	uint64_t sum = w.h;
 	if (fwrite(&sum, sizeof sum, 1, out.f) != 1)
 		w.bad = 1;
@@ -132,7 +145,7 @@ int ckpt_load(sb_sim *s, sb_err *e)
 	int err = 0;
 	if (r.bad || memcmp(m, MAGIC, 8))
 		err = sb_errf(e, SB_EIO, "%s: not a shakebox checkpoint", path);
-	else if (ph != params_hash(&s->sc, PF_PREP | PF_DYN))
+	else if (ph != ckpt_hash(&s->sc))
 		err = sb_errf(e, SB_EUSAGE,
 			      "%s: written by a run with other parameters; remove it or set restart = no", path);
 	else if (hdr[2] != s->in.nval || hdr[0] < hdr[1] || hdr[1] < 1)
@@ -148,21 +161,25 @@ int ckpt_load(sb_sim *s, sb_err *e)
 		if (!x.xref || !x.yref)
 			err = sb_errf(e, SB_ENOMEM, "out of memory loading the checkpoint");
 	}
-	if (!err) {
+	if (!err)
 		fields(&r, s, s->in.nval, &x, hw_get);
-		uint64_t want = r.h, got = 0;
-		if (r.bad || fread(&got, sizeof got, 1, f) != 1 || got != want)
-			err = sb_errf(e, SB_EIO, "%s: checkpoint damaged (checksum mismatch)", path);
-	}
 	/* Rebuild the neighbour list from the stored reference positions: the same list,
-	 * in the same order, as the interrupted run had. */
-	if (!err && !sim_derive(s, e)) {
+	 * in the same order, as the interrupted run had. Then the observables, whose
+	 * accumulators follow in the file. */
+	if (!err && !r.bad && !sim_derive(s, e)) {
 		memcpy(s->nl.xref, x.xref, sizeof(double) * (size_t)s->st.n);
 		memcpy(s->nl.yref, x.yref, sizeof(double) * (size_t)s->st.n);
 		if (!nlist_build_from_ref(&s->nl, &s->st, e))
 			s->nl.builds = x.builds;
+		if (!e->code && !sim_obs_init(s, e))
+			obs_fields(&s->obs, &r, get_obs);
 	}
 	err = err ? err : e->code;
+	if (!err) {
+		uint64_t want = r.h, got = 0;
+		if (r.bad || fread(&got, sizeof got, 1, f) != 1 || got != want)
+			err = sb_errf(e, SB_EIO, "%s: checkpoint damaged (checksum mismatch)", path);
+	}
 	if (!err)
 		err = journal_open(&s->jr, s->journal_path, s->st.nm, x.joff, e);
 	free(x.xref);

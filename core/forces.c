@@ -61,7 +61,7 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
  * and costs nothing inside the loops. */
 static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
 							const sb_nlist *nl, double inv_dt,
-							const int clip)
+							const int clip, double *restrict fsum)
 {
 	/* Velocities stay scaled (q1 = v dt): the 1/dt goes into the damping constants,
 	 * which saves four multiplications per contact. */
@@ -107,6 +107,11 @@ static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_st
 		contact(Y, gn, gs, mu, clip, x[i] - x[j], y[i] - y[j], cd[k], cinv[k], ri, rj,
 			vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], pmeff[p], &fx, &fy, &fs, &xi);
 		bad |= xi > mo * (ri < rj ? ri : rj);
+		if (fsum) { /* constant per instantiation: compiled away when NULL */
+			const double fa = sqrt(fx * fx + fy * fy);
+			fsum[i] += fa;
+			fsum[j] += fa;
+		}
 		fxa[i] += fx;
 		fya[i] += fy;
 		ta[i] -= ri * fs;
@@ -119,17 +124,29 @@ static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_st
 
 static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
 {
-	return kernel(l, s, n, inv_dt, 0);
+	return kernel(l, s, n, inv_dt, 0, NULL);
 }
 
 static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
 {
-	return kernel(l, s, n, inv_dt, 1);
+	return kernel(l, s, n, inv_dt, 1, NULL);
 }
 
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt)
 {
 	return law->clip ? kernel_clip(law, st, nl, inv_dt) : kernel_plain(law, st, nl, inv_dt);
+}
+
+static __attribute__((noinline)) int kernel_track(const sb_law *l, sb_state *s, const sb_nlist *n,
+						  double inv_dt, double *fsum)
+{
+	return l->clip ? kernel(l, s, n, inv_dt, 1, fsum) : kernel(l, s, n, inv_dt, 0, fsum);
+}
+
+int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
+			 double *fabs_sum)
+{
+	return kernel_track(law, st, nl, inv_dt, fabs_sum);
 }
 
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)

@@ -15,6 +15,11 @@ typedef struct sb_law {
  * q[.][1] * inv_dt. Returns 1 if some overlap exceeded max_overlap, else 0. */
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt);
 
+/* The same, adding to fabs_sum[i] and fabs_sum[j] the magnitude of each contact force
+ * (the ring observable; a separately compiled kernel, so this costs nothing when off). */
+int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
+			 double *fabs_sum);
+
 /* The force on disk i from disk j for given relative geometry; the unit of every
  * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
 void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,

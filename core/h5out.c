@@ -94,16 +94,162 @@ static void write_params(h5 *h, const sb_scene *sc)
 	}
 }
 
-/* Snapshots stream from the journal into [K x nm] datasets, one row at a time. */
+/* A growable block of doubles for the small record types. */
+typedef struct dbuf {
+	double *d;
+	size_t n, cap;
+} dbuf;
+
+static int dbuf_add(dbuf *b, const double *v, size_t n)
+{
+	if (b->n + n > b->cap) {
+		size_t c = b->cap ? b->cap : 1024;
+		while (c < b->n + n)
+			c *= 2;
+		double *p = realloc(b->d, sizeof(double) * c);
+		if (!p)
+			return -1;
+		b->d = p;
+		b->cap = c;
+	}
+	memcpy(b->d + b->n, v, sizeof(double) * n);
+	b->n += n;
+	return 0;
+}
+
+static void write_flux(h5 *h, const sb_sim *s, const dbuf *fl)
+{
+	const sb_obs *o = &s->obs;
+	const int nl = o->nlines, len = obs_flux_len(o);
+	const hsize_t P = (hsize_t)s->n_flux;
+	double *t = malloc(sizeof(double) * (P ? P : 1)), *f = malloc(sizeof(double) * (P ? P : 1));
+	double *jt = malloc(sizeof(double) * (P ? P : 1) * nl), *jb = malloc(sizeof(double) * (P ? P : 1) * nl);
+	double *phi = malloc(sizeof(double) * (P ? P : 1) * nl);
+	if (!t || !f || !jt || !jb || !phi) {
+		h->bad = 1;
+	} else {
+		for (hsize_t k = 0; k < P; k++) {
+			const double *r = fl->d + k * len;
+			t[k] = r[0];
+			f[k] = r[1];
+			for (int l = 0; l < nl; l++) {
+				jt[k * nl + l] = r[2 + l];
+				jb[k * nl + l] = r[2 + nl + l];
+				phi[k * nl + l] = r[2 + l] - r[2 + nl + l];
+			}
+		}
+		hid_t g = group(h, "/flux");
+		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, P, 0, t);
+		dset(h, g, "frequency", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, P, 0, f);
+		dset(h, g, "j_top", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, jt);
+		dset(h, g, "j_bot", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, jb);
+		dset(h, g, "phi", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, phi);
+		dset(h, g, "heights", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)nl, 0, o->hline);
+		attr_str(h, g, "definition",
+			 "per period (between successive phase-0 samples): j_top = upward - downward crossings of "
+			 "each height line by disks whose mean x lies within W/4 of the box centre, j_bot the same "
+			 "outside; phi = j_top - j_bot (particles per period); heights in cm above the bottom");
+		attr_double(h, g, "surface_height", o->surface);
+		H5Gclose(g);
+	}
+	free(t);
+	free(f);
+	free(jt);
+	free(jb);
+	free(phi);
+}
+
+static void write_field(h5 *h, const sb_sim *s, const dbuf *fd)
+{
+	const sb_obs *o = &s->obs;
+	const size_t nc = (size_t)o->nx * o->ny;
+	const int len = obs_field_len(o);
+	const hsize_t B = (hsize_t)s->n_field;
+	double *t = malloc(sizeof(double) * (B ? B : 1));
+	double *ux = malloc(sizeof(double) * (B ? B : 1) * nc), *uy = malloc(sizeof(double) * (B ? B : 1) * nc);
+	double *cnt = malloc(sizeof(double) * (B ? B : 1) * nc);
+	if (!t || !ux || !uy || !cnt) {
+		h->bad = 1;
+	} else {
+		for (hsize_t k = 0; k < B; k++) {
+			const double *r = fd->d + k * len;
+			t[k] = r[0];
+			for (size_t c = 0; c < nc; c++) {
+				double n = r[2 + 2 * nc + c];
+				/* mean displacement per period of the disks that passed the cell */
+				ux[k * nc + c] = n > 0 ? r[2 + c] / n : 0;
+				uy[k * nc + c] = n > 0 ? r[2 + nc + c] / n : 0;
+				cnt[k * nc + c] = n;
+			}
+		}
+		hid_t g = group(h, "/field");
+		hsize_t dims[3] = {B, (hsize_t)o->ny, (hsize_t)o->nx};
+		const char *names[3] = {"ux", "uy", "count"};
+		double *data[3] = {ux, uy, cnt};
+		for (int q = 0; q < 3; q++) {
+			hid_t sp = H5Screate_simple(3, dims, NULL);
+			hid_t d = H5Dcreate2(g, names[q], H5T_IEEE_F64LE, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
+			if (d < 0 || (B && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data[q]) < 0))
+				h->bad = 1;
+			H5Dclose(d);
+			H5Sclose(sp);
+		}
+		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, B, 0, t);
+		attr_double(h, g, "cell", o->cell);
+		attr_double(h, g, "x0", o->x0);
+		attr_long(h, g, "periods_per_block", o->K);
+		attr_str(h, g, "definition",
+			 "[block, row, column]: cell (c, r) spans x0 + c*cell .. x0 + (c+1)*cell and r*cell .. (r+1)*cell "
+			 "above the bottom; ux, uy = mean displacement per period of the disks whose midpoint between "
+			 "successive phase-0 samples lies in the cell, over periods_per_block periods (cm); count = samples");
+		H5Gclose(g);
+	}
+	free(t);
+	free(ux);
+	free(uy);
+	free(cnt);
+}
+
+static void write_ring(h5 *h, const sb_sim *s)
+{
+	const sb_obs *o = &s->obs;
+	hid_t g = group(h, "/ring");
+	double n = o->ring_samples ? (double)o->ring_samples : 1; /* no samples: zeros, never NaN */
+	attr_double(h, g, "inner", o->rin);
+	attr_double(h, g, "outer", o->rout);
+	attr_long(h, g, "samples", o->ring_samples);
+	attr_double(h, g, "mean_force", o->acc[0] / n);
+	attr_double(h, g, "mean_force_lower", o->acc[1] / n);
+	attr_double(h, g, "sum_force", o->acc[2] / n);
+	attr_double(h, g, "sum_force_lower", o->acc[3] / n);
+	attr_double(h, g, "temperature", o->acc[4] / n);
+	attr_double(h, g, "temperature_lower", o->acc[5] / n);
+	attr_double(h, g, "grains", o->acc[6] / n);
+	attr_double(h, g, "grains_lower", o->acc[7] / n);
+	attr_str(h, g, "definition",
+		 "time averages over samples every ring_every steps of grains whose centres lie inner..outer cm "
+		 "from the intruder centre (or ring_x, ring_y): mean_force = mean over grains of the sum of the "
+		 "magnitudes of their contact forces (dyn), sum_force = its sum over the ring, temperature = half "
+		 "the mean squared velocity fluctuation about the ring's mean velocity (cm^2/s^2); _lower: grains "
+		 "below the centre");
+	H5Gclose(g);
+}
+
+/* Snapshots stream from the journal into [K x nm] datasets, one row at a time; the
+ * other record types are small and gathered in memory first. */
 static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 {
 	const int nm = s->st.nm;
 	const hsize_t K = (hsize_t)s->n_snap, T = (hsize_t)s->n_traj;
-	double *traj = malloc(sizeof(double) * JR_TRAJ_COLS * (T ? T : 1));
+	long cap = 3L * nm + 1;
+	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
+		cap = obs_flux_len(&s->obs);
+	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
+		cap = obs_field_len(&s->obs);
+	dbuf traj = {0}, flux = {0}, field = {0};
 	double *times = malloc(sizeof(double) * (K ? K : 1));
-	double *buf = malloc(sizeof(double) * 3 * (size_t)nm);
-	if (!traj || !times || !buf) {
-		free(traj);
+	double *buf = malloc(sizeof(double) * (size_t)cap);
+	if (!times || !buf) {
 		free(times);
 		free(buf);
 		return sb_errf(e, SB_ENOMEM, "out of memory writing the output");
@@ -121,37 +267,46 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	hsize_t row[2] = {1, (hsize_t)nm};
 	hid_t msp = H5Screate_simple(2, row, NULL);
 	sb_jreader r = {0};
-	long kt = 0, ks = 0;
+	long ks = 0;
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T) ? journal_reader_open(&r, s->journal_path, e) : 1;
+	int rc = (s->jr.f || K || T || s->n_flux || s->n_field) ? journal_reader_open(&r, s->journal_path, e) : 1;
 	while (!rc && !h->bad) {
-		double rowbuf[JR_TRAJ_COLS], t;
-		int k = journal_next(&r, rowbuf, &t, buf, e);
-		if (k <= 0) {
-			rc = k < 0 ? e->code : 0;
+		int count = 0;
+		int tag = journal_next(&r, buf, cap, &count, e);
+		if (tag <= 0) {
+			rc = tag < 0 ? e->code : 0;
 			break;
 		}
-		if (k == JR_TRAJ && (hsize_t)kt < T)
-			memcpy(traj + JR_TRAJ_COLS * kt++, rowbuf, sizeof rowbuf);
-		else if (k == JR_SNAP && (hsize_t)ks < K) {
-			times[ks] = t;
+		if (tag == JR_TRAJ)
+			rc = dbuf_add(&traj, buf, JR_TRAJ_COLS) ? SB_ENOMEM : 0;
+		else if (tag == JR_FLUX)
+			rc = dbuf_add(&flux, buf, (size_t)count) ? SB_ENOMEM : 0;
+		else if (tag == JR_FIELD)
+			rc = dbuf_add(&field, buf, (size_t)count) ? SB_ENOMEM : 0;
+		else if (tag == JR_SNAP && (hsize_t)ks < K) {
+			times[ks] = buf[0];
 			hsize_t start[2] = {(hsize_t)ks, 0};
 			for (int c = 0; c < 3; c++) {
 				hid_t fsp = H5Dget_space(ds[c]);
 				H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, row, NULL);
-				if (H5Dwrite(ds[c], H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, buf + (size_t)c * nm) < 0)
+				if (H5Dwrite(ds[c], H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, buf + 1 + (size_t)c * nm) < 0)
 					h->bad = 1;
 				H5Sclose(fsp);
 			}
 			ks++;
 		}
+		if (rc == SB_ENOMEM)
+			rc = sb_errf(e, SB_ENOMEM, "out of memory reading the journal");
 	}
 	journal_reader_close(&r);
 	if (rc == 1)
 		rc = 0;
-	if (!rc && (kt != (long)T || ks != (long)K))
-		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld trajectory rows and %ld snapshots, expected %ld and %ld",
-			     s->journal_path, kt, ks, s->n_traj, s->n_snap);
+	long kt = (long)(traj.n / JR_TRAJ_COLS);
+	long kf = s->obs.flux_on ? (long)(flux.n / obs_flux_len(&s->obs)) : 0;
+	long kd = s->obs.field_on ? (long)(field.n / obs_field_len(&s->obs)) : 0;
+	if (!rc && (kt != (long)T || ks != (long)K || kf != s->n_flux || kd != s->n_field))
+		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld/%ld/%ld/%ld trajectory/snapshot/flux/field records, expected %ld/%ld/%ld/%ld",
+			     s->journal_path, kt, ks, kf, kd, s->n_traj, s->n_snap, s->n_flux, s->n_field);
 	dset(h, gs, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, K, 0, times);
 	for (int c = 0; c < 3; c++)
 		H5Dclose(ds[c]);
@@ -160,12 +315,20 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	H5Gclose(gs);
 	if (s->intruder >= 0) {
 		hid_t gi = group(h, "/intruder");
-		dset(h, gi, "trajectory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, T, JR_TRAJ_COLS, traj);
+		dset(h, gi, "trajectory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, T, JR_TRAJ_COLS, traj.d);
 		attr_str(h, gi, "columns", "t x y vx vy omega");
 		attr_long(h, gi, "index", s->intruder);
 		H5Gclose(gi);
 	}
-	free(traj);
+	if (!rc && s->obs.flux_on)
+		write_flux(h, s, &flux);
+	if (!rc && s->obs.field_on)
+		write_field(h, s, &field);
+	if (!rc && s->obs.ring_on)
+		write_ring(h, s);
+	free(traj.d);
+	free(flux.d);
+	free(field.d);
 	free(times);
 	free(buf);
 	return rc;
@@ -296,12 +459,20 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	attr_long(&h, h.file, "settle_steps", s->settle_steps);
 	attr_double(&h, h.file, "settle_time", s->settle_time);
 	attr_double(&h, h.file, "surface_height", s->surface0);
-	attr_double(&h, h.file, "intruder_settled_y", s->intruder_y0);
-	attr_double(&h, h.file, "intruder_settled_depth",
-		    s->intruder >= 0 ? s->surface0 - s->intruder_y0 : NAN);
+	if (s->intruder >= 0) { /* no NaN placeholders: absent when there is no intruder */
+		attr_double(&h, h.file, "intruder_settled_y", s->intruder_y0);
+		attr_double(&h, h.file, "intruder_settled_depth", s->surface0 - s->intruder_y0);
+	}
 	attr_long(&h, h.file, "n_mobile", s->st.nm);
 	attr_long(&h, h.file, "n_walls", s->st.n - s->st.nm);
 	attr_long(&h, h.file, "neighbour_builds", s->nl.builds);
+	/* MODEL.md: the waiting time is the first time the intruder's centre is one
+	 * diameter above its settled height. A run that ends first is right-censored:
+	 * risen = 0 and waiting_time = the time observed (the survival-analysis pair). */
+	if (s->intruder >= 0) {
+		attr_long(&h, h.file, "risen", s->obs.risen);
+		attr_double(&h, h.file, "waiting_time", s->obs.risen ? s->obs.wait_time : t);
+	}
 
 	hid_t g = group(&h, "/provenance");
 	sb_prov p = s->prov;

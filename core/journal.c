@@ -40,6 +40,15 @@ static int put(sb_journal *j, int32_t tag, int32_t count, sb_err *e)
 	return 0;
 }
 
+int journal_record(sb_journal *j, int tag, const double *data, int count, sb_err *e)
+{
+	if (put(j, tag, count, e))
+		return e->code;
+	if (fwrite(data, sizeof(double), (size_t)count, j->f) != (size_t)count)
+		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
+	return 0;
+}
+
 int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e)
 {
 	if (put(j, JR_TRAJ, JR_TRAJ_COLS, e))
@@ -89,7 +98,7 @@ int journal_reader_open(sb_jreader *r, const char *path, sb_err *e)
 	return 0;
 }
 
-int journal_next(sb_jreader *r, double *row, double *t, double *buf, sb_err *e)
+int journal_next(sb_jreader *r, double *buf, long cap, int *count, sb_err *e)
 {
 	int32_t h[2];
 	size_t got = fread(h, 4, 2, r->f);
@@ -97,18 +106,12 @@ int journal_next(sb_jreader *r, double *row, double *t, double *buf, sb_err *e)
 		return 0;
 	if (got != 2)
 		return -sb_errf(e, SB_EIO, "journal: truncated record header");
-	if (h[0] == JR_TRAJ && h[1] == JR_TRAJ_COLS) {
-		if (fread(row, sizeof(double), JR_TRAJ_COLS, r->f) != JR_TRAJ_COLS)
-			return -sb_errf(e, SB_EIO, "journal: truncated trajectory record");
-		return JR_TRAJ;
-	}
-	if (h[0] == JR_SNAP && h[1] == 1 + 3 * r->nm) {
-		if (fread(t, sizeof(double), 1, r->f) != 1 ||
-		    fread(buf, sizeof(double), 3 * (size_t)r->nm, r->f) != 3 * (size_t)r->nm)
-			return -sb_errf(e, SB_EIO, "journal: truncated snapshot record");
-		return JR_SNAP;
-	}
-	return -sb_errf(e, SB_EIO, "journal: corrupt record (tag %d, count %d)", h[0], h[1]);
+	if (h[0] < JR_TRAJ || h[0] > JR_FIELD || h[1] < 0 || h[1] > cap)
+		return -sb_errf(e, SB_EIO, "journal: corrupt record (tag %d, count %d)", h[0], h[1]);
+	if (fread(buf, sizeof(double), (size_t)h[1], r->f) != (size_t)h[1])
+		return -sb_errf(e, SB_EIO, "journal: truncated record");
+	*count = h[1];
+	return h[0];
 }
 
 void journal_reader_close(sb_jreader *r)

@@ -9,7 +9,7 @@
 
 #include "err.h"
 
-enum { JR_TRAJ = 1, JR_SNAP = 2 };
+enum { JR_TRAJ = 1, JR_SNAP = 2, JR_FLUX = 3, JR_FIELD = 4 };
 #define JR_TRAJ_COLS 6
 
 typedef struct sb_journal {
@@ -20,6 +20,8 @@ typedef struct sb_journal {
 
 /* offset < 0: create anew; else reopen and truncate to offset. */
 int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e);
+/* Any record: a tag and count doubles. */
+int journal_record(sb_journal *j, int tag, const double *data, int count, sb_err *e);
 int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e);
 /* Snapshot: time, then x, y, theta of the nm mobile disks. */
 int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
@@ -34,8 +36,9 @@ typedef struct sb_jreader {
 	int nm;
 } sb_jreader;
 int journal_reader_open(sb_jreader *r, const char *path, sb_err *e);
-/* Returns JR_TRAJ (fills row), JR_SNAP (fills t and buf[3*nm]), 0 at the end, <0 on error. */
-int journal_next(sb_jreader *r, double *row, double *t, double *buf, sb_err *e);
+/* Next record into buf (capacity cap doubles): returns its tag and sets *count;
+ * 0 at the end, < 0 on error. */
+int journal_next(sb_jreader *r, double *buf, long cap, int *count, sb_err *e);
 void journal_reader_close(sb_jreader *r);
 
 #endif

@@ -57,6 +57,12 @@ static const sb_param TABLE[] = {
 	 "A in y_box = A sin(2 pi f t)"},
 	{"frequency", PT_REAL, "Hz", "3.2", 0, 1000, NULL, PF_DYN, OFF(frequency),
 	 "f in y_box = A sin(2 pi f t)"},
+	{"ramp", PT_ENUM, "", "none", 0, 0, "none|linear|updown", PF_DYN, OFF(ramp),
+	 "frequency ramp over the run (continuous phase): linear ramp_from -> ramp_to, updown ramp_from -> ramp_to -> ramp_from; none uses frequency"},
+	{"ramp_from", PT_REAL, "Hz", "2.5", 0, 1000, NULL, PF_DYN | PF_MINX, OFF(ramp_from),
+	 "frequency at the start of a ramp"},
+	{"ramp_to", PT_REAL, "Hz", "3.2", 0, 1000, NULL, PF_DYN | PF_MINX, OFF(ramp_to),
+	 "frequency at the end (linear) or the turning point (updown) of a ramp"},
 	{"gravity", PT_REAL, "cm/s^2", "981", 0, 1e7, NULL, PF_PREP | PF_DYN, OFF(gravity),
 	 "g, acting in -y"},
 	{"stiffness", PT_REAL, "g/s^2", "3e6", 0, 1e13, NULL, PF_PREP | PF_DYN | PF_MINX,
@@ -73,7 +79,7 @@ static const sb_param TABLE[] = {
 	 OFF(integrator), "gear5 (6-value, paper), gear4 (5-value) or velocity verlet"},
 	{"dt", PT_REAL, "s", "5e-05", 0, 0.01, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(dt),
 	 "time step"},
-	{"skin", PT_REAL, "cm", "0.15", 0, 100, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(skin),
+	{"skin", PT_REAL, "cm", "0.5", 0, 100, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(skin),
 	 "Verlet-list skin (results do not depend on it, only speed)"},
 	{"max_overlap", PT_REAL, "", "0.6", 0, 1, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
 	 "stop (exit code 4) when an overlap exceeds this fraction of the smaller radius"},
@@ -97,6 +103,27 @@ static const sb_param TABLE[] = {
 	 "after preparation, write the state as a text particle file"},
 	{"write_lammps", PT_STR, "", "", 0, 0, NULL, PF_OUT, OFF(write_lammps),
 	 "after preparation, write the state as a LAMMPS data file (atom_style sphere)"},
+	/* --- observables: off unless asked for; they never change the dynamics --- */
+	{"flux", PT_BOOL, "", "no", 0, 0, NULL, PF_OUT, OFF(flux),
+	 "record the convective flux per period through flux_lines height lines (Fig. 3)"},
+	{"flux_lines", PT_INT, "", "80", 1, 100000, NULL, PF_OUT, OFF(flux_lines),
+	 "number of height lines between the bottom and the settled free surface"},
+	{"field", PT_BOOL, "", "no", 0, 0, NULL, PF_OUT, OFF(field),
+	 "record the displacement field between stroboscopic samples on a grid (Fig. 1)"},
+	{"field_periods", PT_INT, "", "50", 1, 10000000, NULL, PF_OUT, OFF(field_periods),
+	 "periods averaged into one displacement field"},
+	{"ring", PT_BOOL, "", "no", 0, 0, NULL, PF_OUT, OFF(ring),
+	 "record the time-averaged contact force and granular temperature of grains in a ring"},
+	{"ring_inner", PT_REAL, "cm", "4.5", 0, 1e6, NULL, PF_OUT, OFF(ring_inner),
+	 "inner radius of the ring around the intruder centre (or ring_x, ring_y)"},
+	{"ring_outer", PT_REAL, "cm", "8", 0, 1e6, NULL, PF_OUT | PF_MINX, OFF(ring_outer),
+	 "outer radius of the ring"},
+	{"ring_x", PT_REAL, "cm", "-1", -1, 1e7, NULL, PF_OUT, OFF(ring_x),
+	 "ring centre x for a fixed centre (-1 = box centre)"},
+	{"ring_y", PT_REAL, "cm", "-1", -1, 1e7, NULL, PF_OUT, OFF(ring_y),
+	 "ring centre height for a fixed centre (-1 = follow the intruder; required without one)"},
+	{"ring_every", PT_INT, "", "10", 1, 100000000, NULL, PF_OUT, OFF(ring_every),
+	 "sample the ring every this many steps"},
 	{"progress", PT_ENUM, "", "auto", 0, 0, "auto|yes|no", PF_OUT, OFF(progress),
 	 "progress on stderr (auto: when stderr is a terminal)"},
 };
@@ -347,6 +374,14 @@ int params_validate(const sb_scene *s, sb_err *e)
 			       s->radius_ratio, 2 * ri, s->width);
 	if (!s->output[0])
 		return sb_errf(e, SB_EUSAGE, "output: must not be empty");
+	if (s->ramp != 0 && !(s->duration > 0))
+		return sb_errf(e, SB_EUSAGE, "ramp = %s needs duration > 0 (the ramp spans the run)",
+			       s->ramp == 1 ? "linear" : "updown");
+	if (s->ring && s->ring_inner >= s->ring_outer)
+		return sb_errf(e, SB_EUSAGE, "ring_inner (%g) must be smaller than ring_outer (%g)", s->ring_inner,
+			       s->ring_outer);
+	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_y < 0)
+		return sb_errf(e, SB_EUSAGE, "ring: without an intruder (radius_ratio = 0) set the ring centre height ring_y");
 	if (s->settle_min > s->settle_max)
 		return sb_errf(e, SB_EUSAGE, "settle_min (%g) must not exceed settle_max (%g)", s->settle_min, s->settle_max);
 	if (s->restart == TRI_YES && s->checkpoint_every <= 0 && !s->checkpoint[0])

@@ -31,6 +31,8 @@ typedef struct sb_scene {
 	/* dynamics */
 	int wall_mass;       /* enum sb_wall_mass */
 	double amplitude, frequency, gravity;
+	int ramp;            /* enum sb_ramp (drive.h) */
+	double ramp_from, ramp_to;
 	double stiffness, gamma_n, gamma_s, mu;
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
@@ -49,6 +51,14 @@ typedef struct sb_scene {
 	char write_particles[SB_STR_MAX];
 	char write_lammps[SB_STR_MAX];
 	int progress;        /* enum sb_tristate */
+	/* observables (observe.h) */
+	int flux;
+	long flux_lines;
+	int field;
+	long field_periods;
+	int ring;
+	double ring_inner, ring_outer, ring_x, ring_y;
+	long ring_every;
 } sb_scene;
 
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };

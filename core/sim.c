@@ -20,12 +20,9 @@ static double now(void)
 	return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-double sim_box_y(const sb_sim *s, double t) { return s->sc.amplitude * sin(s->omega * t); }
-double sim_box_v(const sb_sim *s, double t) { return s->sc.amplitude * s->omega * cos(s->omega * t); }
-double sim_box_a(const sb_sim *s, double t)
-{
-	return -s->sc.amplitude * s->omega * s->omega * sin(s->omega * t);
-}
+double sim_box_y(const sb_sim *s, double t) { return drive_y(&s->drive, t); }
+double sim_box_v(const sb_sim *s, double t) { return drive_v(&s->drive, t); }
+double sim_box_a(const sb_sim *s, double t) { return drive_a(&s->drive, t); }
 
 int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 {
@@ -34,7 +31,8 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 	s->law = (sb_law){sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
 			  sc->clip_attractive};
 	integ_init(&s->in, sc->integrator, sc->dt);
-	s->omega = SB_TWO_PI * sc->frequency;
+	s->drive = (sb_drive){sc->ramp, sc->amplitude, sc->frequency, sc->ramp_from, sc->ramp_to,
+			      sc->duration};
 	s->intruder = -1;
 	s->nsteps = llround(sc->duration / sc->dt);
 	snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);
@@ -49,6 +47,7 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 
 void sim_free(sb_sim *s)
 {
+	obs_free(&s->obs);
 	journal_close(&s->jr);
 	nlist_free(&s->nl);
 	state_free(&s->st);
@@ -192,7 +191,7 @@ static void add_drag(sb_state *st, double gamma, double inv_dt)
 /* fuse: nobody reads the corrected state after this step, so the next step's
  * predictor runs inside this step's corrector (s->predicted remembers it). */
 static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
-		     int fuse, sb_err *e)
+		     int fuse, double *track, sb_err *e)
 {
 	sb_state *st = &s->st;
 	if (!s->predicted) {
@@ -217,6 +216,14 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 			 st->q[C_X][0][i], st->q[C_Y][0][i]);
 		return fail(s, e, SB_ELEFT, t, step, "%s at t = %.6f s, step %ld", what);
 	}
+	/* waiting time (MODEL.md): the first time the intruder's centre is one diameter
+	 * above its settled height, on the positions the forces are evaluated at */
+	if (s->intruder >= 0 && !s->obs.risen &&
+	    st->q[C_Y][0][s->intruder] - s->intruder_y0 > s->obs.rise_height && step > 0 &&
+	    s->obs.rise_height > 0) {
+		s->obs.risen = 1;
+		s->obs.wait_time = t;
+	}
 	const double half = 0.5 * s->sc.skin;
 	if (c.d2max > half * half) {
 		TIC(PH_NEIGH);
@@ -226,7 +233,8 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	}
 
 	TIC(PH_FORCE);
-	int bad = forces_compute(&s->law, st, &s->nl, 1.0 / s->sc.dt);
+	int bad = track ? forces_compute_track(&s->law, st, &s->nl, 1.0 / s->sc.dt, track)
+			: forces_compute(&s->law, st, &s->nl, 1.0 / s->sc.dt);
 	if (drag > 0) /* settling only */
 		add_drag(st, drag, 1.0 / s->sc.dt);
 	TOC(PH_FORCE);
@@ -253,7 +261,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 int sim_step(sb_sim *s, double gy, sb_err *e)
 {
 	s->step++;
-	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", 0, e);
+	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", 0, NULL, e);
 }
 
 /* Forces at the current state and the integrator's acceleration term from them. */
@@ -279,7 +287,7 @@ static int settle(sb_sim *s, sb_err *e)
 		/* Drag during the first settle_min seconds lets the loose lattice collapse at
 		 * a terminal speed g / settle_drag instead of slamming down. */
 		const int look = (k % every == 0 && k >= nmin) || k >= nmax;
-		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", !look, e))
+		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", !look, NULL, e))
 			return e->code;
 		if (k % every == 0 && k >= nmin) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
@@ -319,6 +327,27 @@ int sim_derive(sb_sim *s, sb_err *e)
 	s->intruder = state_find_intruder(&s->st);
 	set_bounds(s);
 	return nlist_init(&s->nl, &s->st, s->sc.skin, e);
+}
+
+/* The inner faces of the side walls: the hull of the wall disks less their radii
+ * (x = 0 and width for a generated scene). */
+int sim_obs_init(sb_sim *s, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	double x0 = INFINITY, x1 = -INFINITY;
+	for (int i = st->nm; i < st->n; i++) {
+		x0 = fmin(x0, st->q[C_X][0][i] + st->r[i]);
+		x1 = fmax(x1, st->q[C_X][0][i] - st->r[i]);
+	}
+	if (!(x0 < x1)) { /* no walls: the extent of the disks */
+		x0 = INFINITY;
+		x1 = -INFINITY;
+		for (int i = 0; i < st->nm; i++) {
+			x0 = fmin(x0, st->q[C_X][0][i] - st->r[i]);
+			x1 = fmax(x1, st->q[C_X][0][i] + st->r[i]);
+		}
+	}
+	return obs_init(&s->obs, &s->sc, st, s->intruder, s->surface0, x0, x1, e);
 }
 
 int sim_prepare(sb_sim *s, sb_err *e)
@@ -368,7 +397,9 @@ int sim_prepare(sb_sim *s, sb_err *e)
 	for (int i = 0; i < s->st.nm; i++)
 		s->st.q[C_Y][1][i] -= vb;
 	s->nl.builds = 0; /* count the shaking phase only */
-	return sim_start(s, -sc->gravity - sim_box_a(s, 0), e);
+	if (sim_start(s, -sc->gravity - sim_box_a(s, 0), e))
+		return e->code;
+	return sim_obs_init(s, e);
 }
 
 /* ---- recording ---- */
@@ -410,6 +441,25 @@ static int record_snap(sb_sim *s, double t, sb_err *e)
 	return 0;
 }
 
+/* Stroboscopic samples (phase 0 of each period) feed the snapshots, the flux and
+ * the displacement field; without any of them there are none. */
+static int strobe_on(const sb_sim *s)
+{
+	return (s->sc.snapshots || s->obs.flux_on || s->obs.field_on) &&
+	       (s->sc.ramp != RAMP_NONE || s->sc.frequency > 0);
+}
+
+/* Is sample number n_strobe due at step n? Constant frequency: an integer schedule
+ * (no drift); a ramp: the phase has passed 2 pi n_strobe. */
+static int strobe_due(const sb_sim *s, long n)
+{
+	if (!strobe_on(s))
+		return 0;
+	if (s->sc.ramp == RAMP_NONE)
+		return n >= s->next_snap_step;
+	return drive_cycles(&s->drive, n * s->sc.dt) >= s->n_strobe - 1e-9;
+}
+
 static int record(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
@@ -419,10 +469,14 @@ static int record(sb_sim *s, sb_err *e)
 			return e->code;
 		s->next_traj_step = due_step(s->n_traj, 1.0 / sc->traj_rate, sc->dt);
 	}
-	if (sc->snapshots && sc->frequency > 0 && s->step >= s->next_snap_step) {
-		if (record_snap(s, t, e))
+	if (strobe_due(s, s->step)) {
+		if (sc->snapshots && record_snap(s, t, e))
 			return e->code;
-		s->next_snap_step = due_step(s->n_snap, 1.0 / sc->frequency, sc->dt);
+		if (obs_sample(&s->obs, &s->st, t, drive_freq(&s->drive, t), &s->jr, &s->n_flux, &s->n_field, e))
+			return e->code;
+		s->n_strobe++;
+		if (sc->ramp == RAMP_NONE)
+			s->next_snap_step = due_step(s->n_strobe, 1.0 / sc->frequency, sc->dt);
 	}
 	return 0;
 }
@@ -444,7 +498,7 @@ int sim_run(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
 	const double dt = sc->dt;
-	const int resumed = s->step > 0 || s->n_traj > 0 || s->n_snap > 0;
+	const int resumed = s->step > 0 || s->n_traj > 0 || s->n_strobe > 0;
 	if (!s->jr.f && journal_open(&s->jr, s->journal_path, s->st.nm, -1, e))
 		return e->code;
 	if (!resumed) {
@@ -467,13 +521,17 @@ int sim_run(sb_sim *s, sb_err *e)
 		}
 		const long n1 = s->step + 1;
 		const double t1 = n1 * dt;
+		const int ring = s->obs.ring_on && n1 % s->obs.ring_every == 0;
 		/* fuse unless this step's corrected state is recorded, checkpointed or final */
-		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) ||
+		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) || ring ||
 				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
-				 (sc->snapshots && sc->frequency > 0 && n1 >= s->next_snap_step);
-		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look, e))
+				 strobe_due(s, n1);
+		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look,
+			      ring ? s->obs.fabs_sum : NULL, e))
 			break;
 		s->step = n1;
+		if (ring)
+			obs_ring(&s->obs, &s->st, s->intruder, 1.0 / dt);
 		TIC(PH_RECORD);
 		if (record(s, e))
 			break;

@@ -5,10 +5,12 @@
 
 #include <signal.h>
 
+#include "drive.h"
 #include "forces.h"
 #include "integrate.h"
 #include "journal.h"
 #include "nlist.h"
+#include "observe.h"
 #include "params.h"
 #include "provenance.h"
 #include "state.h"
@@ -22,7 +24,7 @@ typedef struct sb_sim {
 	sb_law law;
 	sb_integ in;
 	sb_prov prov;
-	double omega;            /* 2 pi f */
+	sb_drive drive;
 	int intruder;            /* index of the recorded intruder, -1 if none */
 	double xlo, xhi, ylo;    /* a mobile centre outside these has left the box */
 	double rmean;            /* mean grain radius (surface columns) */
@@ -35,7 +37,9 @@ typedef struct sb_sim {
 	long step, nsteps;
 	int predicted;           /* the next step's predictor already ran (fused) */
 	long n_traj, n_snap;     /* records written so far */
+	long n_flux, n_field, n_strobe;
 	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;
+	sb_obs obs;
 	sb_journal jr;
 	char journal_path[4200];
 	char ckpt_path[4200];
@@ -62,6 +66,8 @@ int sim_prepare(sb_sim *s, sb_err *e);
 /* Derived quantities of a state in place (intruder, box bounds, neighbour setup);
  * used by sim_prepare and by a restart. */
 int sim_derive(sb_sim *s, sb_err *e);
+/* Set up the observables for the state at t = 0 (also after a restart). */
+int sim_obs_init(sb_sim *s, sb_err *e);
 /* Low-level stepping for tests and tools: sim_start builds the neighbour list and
  * sets the integrator's acceleration from the current forces (call it after placing
  * disks and setting velocities q[c][1] = v dt); sim_step advances one step with the

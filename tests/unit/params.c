@@ -161,7 +161,13 @@ int main(void)
 			const char *v = T[i].type == PT_BOOL ? (d.clip_attractive ? "no" : "yes") : NULL;
 			char tmp[64];
 			switch (T[i].type) {
-			case PT_INT: snprintf(tmp, sizeof tmp, "%ld", *(long *)((char *)&d + T[i].offset) == 0 ? 1L : 0L); v = tmp; break;
+			case PT_INT: {
+				/* the default plus one, or minus one at the top of the range */
+				long x = *(long *)((char *)&d + T[i].offset);
+				snprintf(tmp, sizeof tmp, "%ld", (double)(x + 1) <= T[i].max ? x + 1 : x - 1);
+				v = tmp;
+				break;
+			}
 			case PT_REAL: {
 				double x = *(double *)((char *)&d + T[i].offset);
 				snprintf(tmp, sizeof tmp, "%.17g", x < T[i].max ? (x + T[i].max) / 2 : (x + T[i].min) / 2);

@@ -1,0 +1,23 @@
+/* drive.h - the box motion y_box = A sin(phi(t)): constant frequency, or a slow
+ * linear frequency ramp with a continuous phase phi = 2 pi int f dt (MODEL.md). */
+#ifndef SB_DRIVE_H
+#define SB_DRIVE_H
+
+enum sb_ramp { RAMP_NONE, RAMP_LINEAR, RAMP_UPDOWN };
+
+typedef struct sb_drive {
+	int ramp;
+	double A;        /* amplitude, cm */
+	double f;        /* constant frequency (RAMP_NONE), Hz */
+	double f0, f1;   /* ramp: from f0 to f1 (RAMP_LINEAR), f0 -> f1 -> f0 (RAMP_UPDOWN) */
+	double T;        /* ramp duration, s */
+} sb_drive;
+
+/* Number of periods completed at time t (the phase in units of 2 pi). */
+double drive_cycles(const sb_drive *d, double t);
+double drive_freq(const sb_drive *d, double t);
+double drive_y(const sb_drive *d, double t);
+double drive_v(const sb_drive *d, double t);
+double drive_a(const sb_drive *d, double t);
+
+#endif

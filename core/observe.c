@@ -1,0 +1,255 @@
+/* observe.c - flux, displacement field, ring force and waiting time. */
+#include "observe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double *zalloc(size_t n, int *bad)
+{
+	double *p = calloc(n ? n : 1, sizeof(double));
+	if (!p)
+		*bad = 1;
+	return p;
+}
+
+int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, double surface,
+	     double x0, double x1, sb_err *e)
+{
+	memset(o, 0, sizeof *o);
+	o->flux_on = sc->flux;
+	o->field_on = sc->field;
+	o->ring_on = sc->ring;
+	o->x0 = x0;
+	o->x1 = x1;
+	o->surface = surface;
+	o->nm = st->nm;
+	o->wait_time = NAN;
+	o->rise_height = intruder >= 0 ? 2 * st->r[intruder] : NAN;
+	int bad = 0;
+	if (o->flux_on || o->field_on) {
+		o->xp = zalloc((size_t)st->nm, &bad);
+		o->yp = zalloc((size_t)st->nm, &bad);
+	}
+	if (o->flux_on) {
+		/* nlines lines at the midpoints of nlines equal slices of [0, surface] */
+		o->nlines = (int)sc->flux_lines;
+		o->hline = zalloc((size_t)o->nlines, &bad);
+		o->jtop = zalloc((size_t)o->nlines, &bad);
+		o->jbot = zalloc((size_t)o->nlines, &bad);
+		for (int l = 0; l < o->nlines && !bad; l++)
+			o->hline[l] = surface * (l + 0.5) / o->nlines;
+	}
+	if (o->field_on) {
+		double rs = 0;
+		int ng = 0;
+		for (int i = 0; i < st->nm; i++)
+			if (st->kind[i] == KIND_GRAIN) {
+				rs += st->r[i];
+				ng++;
+			}
+		o->cell = 2 * (ng ? rs / ng : 1); /* one mean diameter */
+		o->nx = (int)ceil((x1 - x0) / o->cell);
+		o->ny = (int)ceil(1.25 * surface / o->cell); /* room for the surface to breathe */
+		if (o->nx < 1)
+			o->nx = 1;
+		if (o->ny < 1)
+			o->ny = 1;
+		o->K = (int)sc->field_periods;
+		size_t nc = (size_t)o->nx * (size_t)o->ny;
+		o->sx = zalloc(nc, &bad);
+		o->sy = zalloc(nc, &bad);
+		o->cnt = zalloc(nc, &bad);
+	}
+	if (o->ring_on) {
+		o->rin = sc->ring_inner;
+		o->rout = sc->ring_outer;
+		o->ring_every = (int)sc->ring_every;
+		o->ring_x = sc->ring_x >= 0 ? sc->ring_x : 0.5 * (x0 + x1);
+		o->ring_y = sc->ring_y;
+		if (o->ring_y < 0 && intruder < 0)
+			return sb_errf(e, SB_EUSAGE, "ring: without an intruder the ring needs a centre (ring_y >= 0)");
+		o->fabs_sum = zalloc((size_t)st->n, &bad);
+	}
+	if (bad)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the observables");
+	return 0;
+}
+
+void obs_free(sb_obs *o)
+{
+	free(o->xp);
+	free(o->yp);
+	free(o->hline);
+	free(o->jtop);
+	free(o->jbot);
+	free(o->sx);
+	free(o->sy);
+	free(o->cnt);
+	free(o->fabs_sum);
+	memset(o, 0, sizeof *o);
+}
+
+int obs_flux_len(const sb_obs *o) { return 2 + 2 * o->nlines; }
+int obs_field_len(const sb_obs *o) { return 2 + 3 * o->nx * o->ny; }
+
+/* Crossings between the previous and this sample: a disk crosses line h upwards
+ * when yp < h <= y, downwards when y < h <= yp. It counts for the centre when the
+ * midpoint of its two sample positions lies within W/4 of the box centre. */
+static void flux_count(sb_obs *o, const double *x, const double *y)
+{
+	const double xc = 0.5 * (o->x0 + o->x1), quarter = 0.25 * (o->x1 - o->x0);
+	const double dh = o->surface / o->nlines;
+	for (int i = 0; i < o->nm; i++) {
+		double y0 = o->yp[i], y1 = y[i];
+		if (y0 == y1)
+			continue;
+		int up = y1 > y0;
+		double lo = up ? y0 : y1, hi = up ? y1 : y0;
+		/* lines l with lo < h_l <= hi (for up) or lo < h_l <= hi with roles swapped */
+		int l0 = (int)ceil(lo / dh - 0.5), l1 = (int)floor(hi / dh - 0.5);
+		if (l0 < 0)
+			l0 = 0;
+		if (l1 > o->nlines - 1)
+			l1 = o->nlines - 1;
+		double *j = fabs(0.5 * (o->xp[i] + x[i]) - xc) < quarter ? o->jtop : o->jbot;
+		for (int l = l0; l <= l1; l++) {
+			const double h = o->hline[l];
+			if (up ? (y0 < h && h <= y1) : (y1 < h && h <= y0))
+				j[l] += up ? 1 : -1;
+		}
+	}
+}
+
+static void field_add(sb_obs *o, const double *x, const double *y)
+{
+	for (int i = 0; i < o->nm; i++) {
+		double mx = 0.5 * (o->xp[i] + x[i]) - o->x0, my = 0.5 * (o->yp[i] + y[i]);
+		int cx = (int)floor(mx / o->cell), cy = (int)floor(my / o->cell);
+		if (cx < 0 || cx >= o->nx || cy < 0 || cy >= o->ny)
+			continue;
+		size_t c = (size_t)cy * o->nx + cx;
+		o->sx[c] += x[i] - o->xp[i];
+		o->sy[c] += y[i] - o->yp[i];
+		o->cnt[c] += 1;
+	}
+}
+
+int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
+	       long *nfield, sb_err *e)
+{
+	if (!o->flux_on && !o->field_on)
+		return 0;
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
+	if (o->have_prev) {
+		if (o->flux_on) {
+			flux_count(o, x, y);
+			const int n = o->nlines;
+			double *rec = malloc(sizeof(double) * (size_t)obs_flux_len(o));
+			if (!rec)
+				return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
+			rec[0] = t;
+			rec[1] = f;
+			memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
+			memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
+			int rc = journal_record(jr, JR_FLUX, rec, obs_flux_len(o), e);
+			free(rec);
+			if (rc)
+				return rc;
+			(*nflux)++;
+			memset(o->jtop, 0, sizeof(double) * (size_t)n);
+			memset(o->jbot, 0, sizeof(double) * (size_t)n);
+		}
+		if (o->field_on) {
+			field_add(o, x, y);
+			if (++o->kdone == o->K) {
+				size_t nc = (size_t)o->nx * o->ny;
+				double *rec = malloc(sizeof(double) * (size_t)obs_field_len(o));
+				if (!rec)
+					return sb_errf(e, SB_ENOMEM, "out of memory for the field record");
+				rec[0] = t;
+				rec[1] = o->K;
+				memcpy(rec + 2, o->sx, sizeof(double) * nc);
+				memcpy(rec + 2 + nc, o->sy, sizeof(double) * nc);
+				memcpy(rec + 2 + 2 * nc, o->cnt, sizeof(double) * nc);
+				int rc = journal_record(jr, JR_FIELD, rec, obs_field_len(o), e);
+				free(rec);
+				if (rc)
+					return rc;
+				(*nfield)++;
+				o->kdone = 0;
+				memset(o->sx, 0, sizeof(double) * nc);
+				memset(o->sy, 0, sizeof(double) * nc);
+				memset(o->cnt, 0, sizeof(double) * nc);
+			}
+		}
+	}
+	memcpy(o->xp, x, sizeof(double) * (size_t)o->nm);
+	memcpy(o->yp, y, sizeof(double) * (size_t)o->nm);
+	o->have_prev = 1;
+	return 0;
+}
+
+void obs_ring(sb_obs *o, const sb_state *st, int intruder, double inv_dt)
+{
+	const double cx = o->ring_y >= 0 ? o->ring_x : st->q[C_X][0][intruder];
+	const double cy = o->ring_y >= 0 ? o->ring_y : st->q[C_Y][0][intruder];
+	const double r2in = o->rin * o->rin, r2out = o->rout * o->rout;
+	double sf[2] = {0, 0}, n[2] = {0, 0}, vx[2] = {0, 0}, vy[2] = {0, 0}, v2[2] = {0, 0};
+	for (int i = 0; i < st->nm; i++) {
+		if (st->kind[i] != KIND_GRAIN)
+			continue;
+		double dx = st->q[C_X][0][i] - cx, dy = st->q[C_Y][0][i] - cy, d2 = dx * dx + dy * dy;
+		if (d2 < r2in || d2 > r2out)
+			continue;
+		double ux = st->q[C_X][1][i] * inv_dt, uy = st->q[C_Y][1][i] * inv_dt;
+		for (int h = 0; h < 2; h++) { /* h = 0: whole ring, 1: lower half */
+			if (h == 1 && dy >= 0)
+				break;
+			sf[h] += o->fabs_sum[i];
+			n[h] += 1;
+			vx[h] += ux;
+			vy[h] += uy;
+			v2[h] += ux * ux + uy * uy;
+		}
+	}
+	for (int h = 0; h < 2; h++) {
+		if (n[h] > 0) {
+			/* granular temperature: half the mean squared velocity fluctuation
+			 * about the ring's mean velocity (2D, per degree of freedom) */
+			double mx = vx[h] / n[h], my = vy[h] / n[h];
+			o->acc[h] += sf[h] / n[h];
+			o->acc[4 + h] += 0.5 * (v2[h] / n[h] - mx * mx - my * my);
+		}
+		o->acc[2 + h] += sf[h];
+		o->acc[6 + h] += n[h];
+	}
+	o->ring_samples++;
+	memset(o->fabs_sum, 0, sizeof(double) * (size_t)st->n);
+}
+
+void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
+{
+	io(ctx, &o->have_prev, sizeof o->have_prev);
+	io(ctx, &o->risen, sizeof o->risen);
+	io(ctx, &o->wait_time, sizeof o->wait_time);
+	if (o->flux_on || o->field_on) {
+		io(ctx, o->xp, sizeof(double) * (size_t)o->nm);
+		io(ctx, o->yp, sizeof(double) * (size_t)o->nm);
+	}
+	if (o->flux_on) {
+		io(ctx, o->jtop, sizeof(double) * (size_t)o->nlines);
+		io(ctx, o->jbot, sizeof(double) * (size_t)o->nlines);
+	}
+	if (o->field_on) {
+		size_t nc = (size_t)o->nx * o->ny;
+		io(ctx, &o->kdone, sizeof o->kdone);
+		io(ctx, o->sx, sizeof(double) * nc);
+		io(ctx, o->sy, sizeof(double) * nc);
+		io(ctx, o->cnt, sizeof(double) * nc);
+	}
+	if (o->ring_on) {
+		io(ctx, o->acc, sizeof o->acc);
+		io(ctx, &o->ring_samples, sizeof o->ring_samples);
+	}
+}
