@@ -155,4 +155,10 @@ if same_output "$TMP/gear5_ref.h5" "$TMP/verlet_ref.h5" output integrator 2>/dev
 else
 	ok integrators_differ
 fi
+# --- observables and a frequency ramp survive a kill: their accumulators live in
+#     the checkpoint and their records in the journal ---
+OBS=(flux=yes field=yes field_periods=3 ring=yes ring_every=7 ramp=updown ramp_from=3.5 ramp_to=4.5)
+if reference obs_ref "${OBS[@]}"; then
+	killed_and_resumed obs_kill obs_ref KILL "$(moment)" "${OBS[@]}"
+fi
 finish

@@ -1,0 +1,237 @@
+/* observe.c - the observables on synthetic motions with known answers: flux
+ * crossings, the displacement field of a uniform motion, the ring selection and
+ * its averages, and the continuity of the frequency ramps' phase. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "drive.h"
+#include "observe.h"
+#include "prepare.h"
+#include "testlib.h"
+
+static char jpath[] = "/tmp/sb_obs_test_XXXXXX";
+
+/* Read the records of one tag back from the journal into out (count doubles each). */
+static int read_back(int want, double *out, int cap)
+{
+	sb_jreader r;
+	sb_err e = {0};
+	if (journal_reader_open(&r, jpath, &e))
+		return -1;
+	static double buf[100000];
+	int n = 0, count;
+	for (int tag; (tag = journal_next(&r, buf, 100000, &count, &e)) > 0;)
+		if (tag == want && n + count <= cap) {
+			memcpy(out + n, buf, sizeof(double) * (size_t)count);
+			n += count;
+		}
+	journal_reader_close(&r);
+	return n;
+}
+
+static void set_pos(sb_state *st, const double *x, const double *y)
+{
+	for (int i = 0; i < st->nm; i++) {
+		st->q[C_X][0][i] = x[i];
+		st->q[C_Y][0][i] = y[i];
+	}
+}
+
+static void test_flux(void)
+{
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.flux = 1;
+	sc.flux_lines = 10; /* lines at 0.5, 1.5, ..., 9.5 for a surface at 10 */
+	sb_state st = {0};
+	sb_err e = {0};
+	/* box [0, 40]: centre region |x - 20| < 10 */
+	double x0[4] = {20, 22, 5, 35}, y0[4] = {1.0, 8.0, 2.0, 6.0};
+	double x1[4] = {20, 22, 5, 36}, y1[4] = {4.2, 3.0, 2.4, 9.9};
+	for (int i = 0; i < 4; i++)
+		prepare_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
+	sb_obs o;
+	int rc = obs_init(&o, &sc, &st, -1, 10.0, 0, 40, &e);
+	CHECK("observe.flux.init", rc == 0 && o.nlines == 10 && fabs(o.hline[0] - 0.5) < 1e-15 &&
+					   fabs(o.hline[9] - 9.5) < 1e-15, "rc %d %s", rc, e.msg);
+	sb_journal jr;
+	journal_open(&jr, jpath, st.nm, -1, &e);
+	long nf = 0, nd = 0;
+	set_pos(&st, x0, y0);
+	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	CHECK("observe.flux.first_sample_no_record", nf == 0, "nf %ld", nf);
+	set_pos(&st, x1, y1);
+	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	long off;
+	journal_sync(&jr, &off, &e);
+	journal_close(&jr);
+	double rec[22];
+	int n = read_back(JR_FLUX, rec, 22);
+	CHECK("observe.flux.one_record", nf == 1 && n == 22, "nf %ld n %d", nf, n);
+	/* disk 0 (centre) rises 1.0 -> 4.2: crosses 1.5, 2.5, 3.5 upwards (+1 each)
+	 * disk 1 (centre) sinks 8.0 -> 3.0: crosses 7.5 .. 3.5 downwards (-1 each)
+	 * disk 2 (outer) 2.0 -> 2.4: crosses nothing
+	 * disk 3 (outer) 6.0 -> 9.9: crosses 6.5, 7.5, 8.5, 9.5 upwards */
+	double want_top[10] = {0, 1, 1, 0, -1, -1, -1, -1, 0, 0};
+	double want_bot[10] = {0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
+	int good = n == 22 && rec[0] == 0.3 && rec[1] == 3;
+	for (int l = 0; l < 10 && good; l++)
+		good = rec[2 + l] == want_top[l] && rec[12 + l] == want_bot[l];
+	CHECK("observe.flux.crossings", good, "record differs from the hand count (t %g f %g top[1] %g top[4] %g bot[6] %g)",
+	      rec[0], rec[1], rec[2 + 1], rec[2 + 4], rec[12 + 6]);
+	/* a disk exactly on a line counts once, when it leaves from below to it */
+	obs_free(&o);
+	state_free(&st);
+}
+
+static void test_field(void)
+{
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.field = 1;
+	sc.field_periods = 3;
+	sb_state st = {0};
+	sb_err e = {0};
+	enum { N = 50 };
+	double x[N], y[N];
+	unsigned s = 7;
+	for (int i = 0; i < N; i++) {
+		s = s * 1103515245u + 12345u;
+		x[i] = 2 + 30.0 * (s >> 8) / (1u << 24);
+		s = s * 1103515245u + 12345u;
+		y[i] = 1 + 15.0 * (s >> 8) / (1u << 24);
+		prepare_push(&sc, &st, x[i], y[i], 1, KIND_GRAIN, &e);
+	}
+	sb_obs o;
+	obs_init(&o, &sc, &st, -1, 20.0, 0, 40, &e);
+	CHECK("observe.field.grid", o.cell == 2.0 && o.nx == 20 && o.ny == 13, "cell %g nx %d ny %d", o.cell,
+	      o.nx, o.ny);
+	sb_journal jr;
+	journal_open(&jr, jpath, st.nm, -1, &e);
+	long nf = 0, nd = 0;
+	/* uniform motion by (0.3, -0.1) per period: every occupied cell's mean is that */
+	for (int k = 0; k <= 3; k++) {
+		for (int i = 0; i < N; i++) {
+			st.q[C_X][0][i] = x[i] + 0.3 * k;
+			st.q[C_Y][0][i] = y[i] - 0.1 * k;
+		}
+		obs_sample(&o, &st, k * 0.25, 4, &jr, &nf, &nd, &e);
+	}
+	long off;
+	journal_sync(&jr, &off, &e);
+	journal_close(&jr);
+	int len = obs_field_len(&o);
+	double *rec = malloc(sizeof(double) * (size_t)len);
+	int n = read_back(JR_FIELD, rec, len);
+	CHECK("observe.field.one_block", nd == 1 && n == len && rec[1] == 3, "nd %ld n %d", nd, n);
+	size_t nc = (size_t)o.nx * o.ny;
+	double total = 0, worst = 0;
+	for (size_t c = 0; c < nc && n == len; c++) {
+		double cnt = rec[2 + 2 * nc + c];
+		total += cnt;
+		if (cnt > 0) {
+			worst = fmax(worst, fabs(rec[2 + c] / cnt - 0.3));
+			worst = fmax(worst, fabs(rec[2 + nc + c] / cnt + 0.1));
+		}
+	}
+	/* three periods of 50 disks, all inside the grid */
+	CHECK("observe.field.count", total == 3 * N, "total count %g", total);
+	CHECK("observe.field.uniform_motion", worst < 1e-12, "worst deviation %g", worst);
+	free(rec);
+	obs_free(&o);
+	state_free(&st);
+}
+
+static void test_ring(void)
+{
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.ring = 1;
+	sb_state st = {0};
+	sb_err e = {0};
+	/* intruder at (30, 10); grains at distances 3 (out), 5 (in, below), 6 (in, above),
+	 * 7.9 (in, below), 9 (out) */
+	prepare_push(&sc, &st, 30, 10, 4, KIND_INTRUDER, &e);
+	double gx[5] = {33, 30, 36, 30, 39}, gy[5] = {10, 5, 10, 2.1, 10};
+	for (int i = 0; i < 5; i++)
+		prepare_push(&sc, &st, gx[i], gy[i], 1, KIND_GRAIN, &e);
+	sb_obs o;
+	obs_init(&o, &sc, &st, 0, 20, 0, 60, &e);
+	double fa[6] = {100, 1, 10, 20, 30, 2};
+	memcpy(o.fabs_sum, fa, sizeof fa);
+	/* velocities (v dt with inv_dt = 1): two of the ring grains move, one rests */
+	st.q[C_X][1][2] = 2;
+	st.q[C_Y][1][3] = -2;
+	obs_ring(&o, &st, 0, 1.0);
+	/* ring grains: 2 (|F| 10, v (2,0), lower), 3 (20, (0,0), upper), 4 (30, (0,-2), lower) */
+	CHECK_REL("observe.ring.mean_force", o.acc[0], 20.0, 1e-15);
+	CHECK_REL("observe.ring.mean_force_lower", o.acc[1], 20.0, 1e-15);
+	CHECK_REL("observe.ring.sum_force", o.acc[2], 60.0, 1e-15);
+	CHECK_REL("observe.ring.sum_force_lower", o.acc[3], 40.0, 1e-15);
+	CHECK("observe.ring.grains", o.acc[6] == 3 && o.acc[7] == 2, "grains %g lower %g", o.acc[6], o.acc[7]);
+	/* T = 0.5 (<v^2> - <v>^2): v = (2,0), (0,0), (0,-2): <v^2> = 8/3, <v> = (2/3, -2/3) */
+	CHECK_REL("observe.ring.temperature", o.acc[4], 0.5 * (8.0 / 3 - 8.0 / 9), 1e-14);
+	CHECK("observe.ring.cleared", o.fabs_sum[0] == 0 && o.fabs_sum[5] == 0, "fabs_sum not cleared");
+	obs_free(&o);
+	state_free(&st);
+}
+
+static void test_ramp(void)
+{
+	/* the phase of every drive is continuous with derivative f(t), also at the turn */
+	sb_drive d[3] = {{RAMP_NONE, 2, 3.0, 0, 0, 10},
+			 {RAMP_LINEAR, 2, 0, 2.5, 3.2, 10},
+			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10}};
+	const char *names[3] = {"none", "linear", "updown"};
+	for (int k = 0; k < 3; k++) {
+		double worst_c = 0, worst_f = 0, worst_y = 0;
+		const double h = 1e-6;
+		for (double t = 0.01; t < 12; t += 0.0173) {
+			/* derivative of cycles is f (central difference, O(h^2) ~ 1e-12) */
+			double dc = (drive_cycles(&d[k], t + h) - drive_cycles(&d[k], t - h)) / (2 * h);
+			worst_f = fmax(worst_f, fabs(dc - drive_freq(&d[k], t)));
+			/* velocity is the derivative of the position */
+			double dy = (drive_y(&d[k], t + h) - drive_y(&d[k], t - h)) / (2 * h);
+			worst_y = fmax(worst_y, fabs(dy - drive_v(&d[k], t)) / (2 * 2 * 3.14159 * 3.2));
+		}
+		/* continuity at the turning point and at the end of the ramp */
+		double ts[2] = {5, 10};
+		for (int q = 0; q < 2; q++)
+			worst_c = fmax(worst_c, fabs(drive_cycles(&d[k], ts[q] + 1e-9) - drive_cycles(&d[k], ts[q] - 1e-9)));
+		char id[64];
+		snprintf(id, sizeof id, "drive.%s.phase_rate_is_frequency", names[k]);
+		CHECK(id, worst_f < 1e-6, "max |dcycles/dt - f| = %g", worst_f);
+		snprintf(id, sizeof id, "drive.%s.velocity_is_derivative", names[k]);
+		CHECK(id, worst_y < 1e-6, "max relative |dy/dt - v| = %g", worst_y);
+		snprintf(id, sizeof id, "drive.%s.phase_continuous", names[k]);
+		CHECK(id, worst_c < 1e-7, "jump %g", worst_c);
+	}
+	/* updown returns to the start frequency and covers the mean frequency's cycles */
+	CHECK_REL("drive.updown.ends_at_start", drive_freq(&d[2], 10), 2.5, 1e-15);
+	CHECK_REL("drive.updown.turns_at_top", drive_freq(&d[2], 5), 3.2, 1e-15);
+	CHECK_REL("drive.updown.cycles", drive_cycles(&d[2], 10), 0.5 * (2.5 + 3.2) * 10, 1e-14);
+	CHECK_REL("drive.linear.cycles", drive_cycles(&d[1], 10), 0.5 * (2.5 + 3.2) * 10, 1e-14);
+	/* the acceleration is the derivative of the velocity */
+	double worst_a = 0;
+	for (double t = 0.01; t < 10; t += 0.031) {
+		double h = 1e-6;
+		double da = (drive_v(&d[2], t + h) - drive_v(&d[2], t - h)) / (2 * h);
+		worst_a = fmax(worst_a, fabs(da - drive_a(&d[2], t)) / (2 * pow(2 * 3.14159 * 3.2, 2)));
+	}
+	CHECK("drive.updown.acceleration_is_derivative", worst_a < 1e-5, "max relative %g", worst_a);
+}
+
+int main(void)
+{
+	int fd = mkstemp(jpath);
+	if (fd >= 0)
+		close(fd);
+	test_flux();
+	test_field();
+	test_ring();
+	test_ramp();
+	unlink(jpath);
+	return tl_done();
+}
