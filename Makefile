@@ -43,7 +43,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check check-fast bench bench-lammps demo help clean tests
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests
 all: $(SHAKE)
 
 help:
@@ -51,6 +51,8 @@ help:
 	@echo "make deps       install the Debian packages shakebox needs (apt-get)"
 	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build)"
 	@echo "make bench      speed: shakebox vs LAMMPS gran/hooke on the paper scene, ns/particle-step"
+	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
+	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a short paper scene, plot it"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, V=1 (show commands), SAN=1 (sanitizer build in build/san)"
@@ -118,5 +120,6 @@ clean:
 # The campaign driver and the analysis tools bring their own rules.
 -include study/study.mk
 -include analysis/analysis.mk
+-include tests/bench/bench.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)

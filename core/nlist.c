@@ -192,7 +192,11 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		if (nl->cell_of[i] >= 0)
 			nl->cell_idx[pos[nl->cell_of[i]]++] = i;
 
-	/* ordinary mobile disks: 3x3 cells, j > i (walls sit above nm so they pass) */
+	/* Ordinary mobile disks: the three cells of a row of the 3x3 stencil are adjacent
+	 * in the counting sort, so each row is one contiguous run of candidates. A
+	 * candidate is appended branch-free (written, then kept or not): whether a near
+	 * disk is within reach is a coin toss that a branch would mispredict. j > i
+	 * keeps each pair once; walls sit above nm, so they always pass. */
 	int np = 0;
 	const int ncx = nl->ncx, ncy = nl->ncy;
 	for (int i = 0; i < nm; i++) {
@@ -201,34 +205,27 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			continue;
 		const double xi = x[i], yi = y[i], ri = r[i] + skin;
 		const int c = nl->cell_of[i], cx = c % ncx, cy = c / ncx;
-		for (int dy = -1; dy <= 1; dy++) {
-			int yy = cy + dy;
-			if (yy < 0 || yy >= ncy)
-				continue;
-			for (int dx = -1; dx <= 1; dx++) {
-				int xx = cx + dx;
-				if (xx < 0 || xx >= ncx)
-					continue;
-				int cc = yy * ncx + xx;
-				for (int k = nl->cell_start[cc]; k < nl->cell_start[cc + 1]; k++) {
-					int j = nl->cell_idx[k];
-					if (j <= i)
-						continue;
-					double ddx = xi - x[j], ddy = yi - y[j], rc = ri + r[j];
-					if (ddx * ddx + ddy * ddy < rc * rc) {
-						if (np == nl->pcap &&
-						    grow_pairs(&nl->j, &nl->meff, NULL, &nl->pcap, np + 1, e))
-							return e->code;
-						nl->j[np] = j;
-						nl->meff[np] = pair_meff(st, i, j);
-						np++;
-					}
-				}
+		const int xa = cx > 0 ? cx - 1 : 0, xb = cx < ncx - 1 ? cx + 1 : ncx - 1;
+		const int ya = cy > 0 ? cy - 1 : 0, yb = cy < ncy - 1 ? cy + 1 : ncy - 1;
+		for (int yy = ya; yy <= yb; yy++) {
+			const int k0 = nl->cell_start[yy * ncx + xa], k1 = nl->cell_start[yy * ncx + xb + 1];
+			if (np + (k1 - k0) > nl->pcap &&
+			    grow_pairs(&nl->j, &nl->meff, NULL, &nl->pcap, np + (k1 - k0), e))
+				return e->code;
+			int *restrict out = nl->j;
+			for (int k = k0; k < k1; k++) {
+				const int j = nl->cell_idx[k];
+				const double ddx = xi - x[j], ddy = yi - y[j], rc = ri + r[j];
+				out[np] = j;
+				np += (j > i) & (ddx * ddx + ddy * ddy < rc * rc);
 			}
 		}
 	}
 	nl->start[nm] = np;
 	nl->npairs = np;
+	for (int i = 0; i < nm; i++)
+		for (int p = nl->start[i]; p < nl->start[i + 1]; p++)
+			nl->meff[p] = pair_meff(st, i, nl->j[p]);
 
 	/* large disks: scan the cells within their reach, then each other */
 	int nb = 0;
