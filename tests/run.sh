@@ -32,7 +32,7 @@ run_one() { # name, command...
 	printf '%-48s %3d ok %3d failed  (%ds)\n' "$name" "$p" "$f" $((SECONDS - t0))
 }
 
-for t in build/san/tests/unit/* build/san/tests/physics/*; do
+for t in build/san/tests/*/*; do
 	[ -x "$t" ] && [ -f "$t" ] || continue
 	case "$t" in *.d) continue ;; esac
 	run_one "${t#build/san/}" "$t"
