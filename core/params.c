@@ -430,6 +430,32 @@ unsigned long long params_hash(const sb_scene *s, unsigned mask)
 	return h;
 }
 
+unsigned long long params_hash_nondefault(const sb_scene *s, unsigned mask)
+{
+	/* Like params_hash, but a key at its default value contributes nothing, so that
+	 * adding a key to the table later (with a default that keeps the old behaviour)
+	 * leaves every existing run identity unchanged. */
+	sb_scene def;
+	params_defaults(&def);
+	unsigned long long h = 1469598103934665603ULL;
+	char buf[2 * SB_STR_MAX + 64];
+	for (size_t i = 0; i < NTABLE; i++) {
+		if (!(TABLE[i].flags & mask))
+			continue;
+		char v[SB_STR_MAX + 8], d[SB_STR_MAX + 8];
+		params_format(s, &TABLE[i], v, sizeof v);
+		params_format(&def, &TABLE[i], d, sizeof d);
+		if (!strcmp(v, d))
+			continue;
+		int l = snprintf(buf, sizeof buf, "%s=%s\n", TABLE[i].name, v);
+		for (int k = 0; k < l; k++) {
+			h ^= (unsigned char)buf[k];
+			h *= 1099511628211ULL;
+		}
+	}
+	return h;
+}
+
 static const char *type_name(const sb_param *p)
 {
 	switch (p->type) {

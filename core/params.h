@@ -110,6 +110,10 @@ void params_format(const sb_scene *s, const sb_param *p, char *buf, size_t len);
 /* 64-bit FNV-1a hash of "key=value\n" over all keys whose flags intersect mask. */
 unsigned long long params_hash(const sb_scene *s, unsigned mask);
 
+/* The same over the keys whose value differs from the default: stable identities
+ * (the study driver's run ids and packing keys) when keys are added to the table. */
+unsigned long long params_hash_nondefault(const sb_scene *s, unsigned mask);
+
 void params_print_help(FILE *f);
 /* Machine-readable table: name, type, unit, default, min, max, choices, flags, help (TSV). */
 void params_print_table(FILE *f);

@@ -1,23 +1,34 @@
 #!/usr/bin/env bash
-# demo.sh - one short paper scene end to end: settle, shake 10 s at 3.2 Hz, plot the
-# intruder's height. (Becomes a small campaign once study/ exists.)
+# demo.sh - `make demo`: a small campaign end to end (campaigns/demo.campaign: 4
+# frequencies x 2 replicates), a query of its results with sqlite3, and the intruder's
+# height in one run plotted. Run it again: nothing is recomputed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=runs/demo
-mkdir -p "$out"
-echo "demo: settling 950 grains and shaking them for 10 s (paper scene, f = 3.2 Hz) ..."
 t0=$SECONDS
-bin/shake scenes/paper.scene duration=10 output="$out/paper.h5" progress=yes
-echo "demo: simulated in $((SECONDS - t0)) s"
-bash scripts/traj.sh "$out/paper.h5" > "$out/intruder.tsv"
+bin/study run campaigns/demo.campaign
+echo "demo: campaign done in $((SECONDS - t0)) s; results (runs/study.db):"
+echo
+sqlite3 -header -column runs/study.db "
+SELECT frequency, replicate, status, from_cache,
+       round(intruder_settled_y, 2) AS y_settled, round(intruder_final_y, 2) AS y_final,
+       round(intruder_max_y, 2) AS y_max, round(wall_seconds, 2) AS seconds
+FROM runs WHERE campaign = 'demo' ORDER BY frequency, replicate;"
+echo
+sqlite3 -header -column runs/study.db "
+SELECT frequency, COUNT(*) AS runs, round(AVG(intruder_final_y - intruder_settled_y), 3) AS mean_rise_cm
+FROM runs WHERE campaign = 'demo' AND status = 'ok' GROUP BY frequency ORDER BY frequency;"
+run=$(sqlite3 runs/study.db "SELECT id FROM runs WHERE campaign = 'demo' AND status = 'ok' ORDER BY frequency DESC, replicate LIMIT 1")
+out=runs/demo
+bash scripts/traj.sh "$out/$run.h5" >"$out/intruder.tsv"
 gnuplot <<GP
 set terminal pngcairo size 900,500
 set output "$out/intruder_height.png"
 set xlabel "t (s)"; set ylabel "intruder height y (cm)"
-set title "Intruder (R = 4 cm) in 950 grains, A = 2 cm, f = 3.2 Hz"
+set title "Intruder (R = 2) in 150 grains, A = 1 cm, run $run"
 set grid
 plot "$out/intruder.tsv" using 1:3 with lines title "centre height (lab frame)"
 GP
-echo "demo: output        $out/paper.h5 (open $out/paper.xmf in ParaView)"
-echo "demo: trajectory    $out/intruder.tsv (t x y vx vy omega)"
+echo "demo: status        bin/study status demo"
+echo "demo: every run     bin/study export demo > demo.csv"
+echo "demo: one run       $out/$run.h5 (open $out/$run.xmf in ParaView)"
 echo "demo: plot          $out/intruder_height.png"

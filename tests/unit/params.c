@@ -28,6 +28,28 @@ static int load(const char *name, const char *text, sb_scene *sc, sb_err *e, cha
 
 static int starts_with(const char *s, const char *p) { return strncmp(s, p, strlen(p)) == 0; }
 
+/* params_hash_nondefault: the identity of a scene is that of its non-default
+ * values, so defaults contribute nothing and a value put back restores the hash. */
+static void test_hash_nondefault(void)
+{
+	sb_scene a, b;
+	params_defaults(&a);
+	sb_err e = {0};
+	unsigned long long h0 = params_hash_nondefault(&a, PF_PREP | PF_DYN | PF_LEN);
+	CHECK("params.hash_nondefault.defaults_are_empty", h0 == 1469598103934665603ULL,
+	      "hash of the defaults %llx is not the empty FNV-1a hash", h0);
+	b = a;
+	params_set(&b, "frequency", "2.8", "x", &e);
+	unsigned long long h1 = params_hash_nondefault(&b, PF_PREP | PF_DYN | PF_LEN);
+	CHECK("params.hash_nondefault.changes", h1 != h0, "frequency 2.8 did not change the hash");
+	params_set(&b, "frequency", "3.2", "x", &e);
+	CHECK("params.hash_nondefault.restored", params_hash_nondefault(&b, PF_PREP | PF_DYN | PF_LEN) == h0,
+	      "putting the default back did not restore the hash");
+	params_set(&b, "output", "elsewhere.h5", "x", &e);
+	CHECK("params.hash_nondefault.ignores_out", params_hash_nondefault(&b, PF_PREP | PF_DYN | PF_LEN) == h0,
+	      "an output key changed the run hash");
+}
+
 int main(void)
 {
 	char id[200], buf[SB_STR_MAX + 64];
@@ -268,5 +290,6 @@ int main(void)
 		unlink(path);
 	}
 	rmdir(tmpdir);
+	test_hash_nondefault();
 	return tl_done();
 }

@@ -1,0 +1,327 @@
+/* db.c - SQLite schema, views and the few writes the driver makes. */
+#include "db.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char SCHEMA[] =
+	"CREATE TABLE IF NOT EXISTS campaign(\n"
+	"  name TEXT PRIMARY KEY, description TEXT, file TEXT, scene_file TEXT,\n"
+	"  seed TEXT, seeds TEXT, axes TEXT, created TEXT, updated TEXT);\n"
+	"CREATE TABLE IF NOT EXISTS run(\n"
+	"  campaign TEXT NOT NULL, id TEXT NOT NULL, replicate INTEGER, seed INTEGER,\n"
+	"  cache_key TEXT, state TEXT NOT NULL DEFAULT 'pending'\n"
+	"    CHECK (state IN ('pending', 'running', 'done', 'failed')),\n"
+	"  attempts INTEGER NOT NULL DEFAULT 0, from_cache INTEGER NOT NULL DEFAULT 0,\n"
+	"  host TEXT, added TEXT, started TEXT, finished TEXT,\n"
+	"  PRIMARY KEY (campaign, id));\n"
+	"CREATE TABLE IF NOT EXISTS param(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, key TEXT NOT NULL, value,\n"
+	"  PRIMARY KEY (campaign, run, key)) WITHOUT ROWID;\n"
+	"CREATE TABLE IF NOT EXISTS attempt(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, n INTEGER NOT NULL, host TEXT,\n"
+	"  exit_code INTEGER, status TEXT, message TEXT, finished TEXT, wall_seconds REAL,\n"
+	"  PRIMARY KEY (campaign, run, n));\n"
+	"CREATE TABLE IF NOT EXISTS result(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, status TEXT, exit_code INTEGER, message TEXT,\n"
+	"  status_time REAL, steps INTEGER, settle_time REAL, settle_steps INTEGER,\n"
+	"  surface_height REAL, intruder_settled_y REAL, intruder_settled_depth REAL,\n"
+	"  intruder_radius REAL, n_mobile INTEGER, neighbour_builds INTEGER, wall_seconds REAL,\n"
+	"  host TEXT, git_hash TEXT, git_dirty INTEGER, start_time TEXT, end_time TEXT,\n"
+	"  traj_rows INTEGER, intruder_final_y REAL, intruder_max_y REAL, intruder_min_y REAL,\n"
+	"  intruder_mean_y REAL, rise_time REAL,\n"
+	"  PRIMARY KEY (campaign, run));\n"
+	"CREATE TABLE IF NOT EXISTS cache(\n"
+	"  campaign TEXT NOT NULL, key TEXT NOT NULL, state TEXT, settle_time REAL,\n"
+	"  settle_steps INTEGER, wall_seconds REAL, host TEXT, message TEXT, built TEXT,\n"
+	"  PRIMARY KEY (campaign, key));\n"
+	"CREATE INDEX IF NOT EXISTS run_state ON run(campaign, state);\n"
+	"DROP VIEW IF EXISTS progress;\n"
+	"CREATE VIEW progress AS SELECT campaign, state, COUNT(*) AS runs FROM run GROUP BY campaign, state;\n"
+	"DROP VIEW IF EXISTS failures;\n"
+	"CREATE VIEW failures AS SELECT a.campaign, a.run, a.n AS attempt, a.exit_code, a.status,\n"
+	"  a.message, a.host, a.finished, r.state FROM attempt a JOIN run r\n"
+	"  ON r.campaign = a.campaign AND r.id = a.run WHERE a.status <> 'ok';\n"
+	"DROP VIEW IF EXISTS caches;\n"
+	"CREATE VIEW caches AS SELECT c.*, (SELECT COUNT(*) FROM run r WHERE r.campaign = c.campaign\n"
+	"  AND r.cache_key = c.key AND r.from_cache) AS hits FROM cache c;\n";
+
+int db_exec(st_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...)
+{
+	sqlite3_stmt *st = NULL;
+	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
+		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+	va_list ap;
+	va_start(ap, fmt);
+	int k = 1;
+	for (const char *f = fmt; *f; f++, k++) {
+		switch (*f) {
+		case 't': {
+			const char *s = va_arg(ap, const char *);
+			if (s)
+				sqlite3_bind_text(st, k, s, -1, SQLITE_TRANSIENT);
+			else
+				sqlite3_bind_null(st, k);
+			break;
+		}
+		case 'l': sqlite3_bind_int64(st, k, va_arg(ap, long)); break;
+		case 'd': sqlite3_bind_double(st, k, va_arg(ap, double)); break;
+		case 'D': {
+			int okv = va_arg(ap, int);
+			double v = va_arg(ap, double);
+			if (okv)
+				sqlite3_bind_double(st, k, v);
+			else
+				sqlite3_bind_null(st, k);
+			break;
+		}
+		default: sqlite3_bind_null(st, k); break;
+		}
+	}
+	va_end(ap);
+	if (out) {
+		*out = st;
+		return 0;
+	}
+	int rc;
+	while ((rc = sqlite3_step(st)) == SQLITE_ROW)
+		;
+	sqlite3_finalize(st);
+	if (rc != SQLITE_DONE)
+		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+	return 0;
+}
+
+static int exec_script(st_db *d, const char *sql, sb_err *e)
+{
+	char *msg = NULL;
+	if (sqlite3_exec(d->h, sql, NULL, NULL, &msg) != SQLITE_OK) {
+		sb_errf(e, SB_EIO, "%s: %s", d->path, msg ? msg : sqlite3_errmsg(d->h));
+		sqlite3_free(msg);
+		return e->code;
+	}
+	return 0;
+}
+
+/* The `runs` view: one row per run with every engine parameter as a column (generated
+ * from the engine's table, so a new key shows up without a schema change), its state
+ * and its key results. */
+static int make_runs_view(st_db *d, sb_err *e)
+{
+	size_t n;
+	const sb_param *t = params_table(&n);
+	size_t cap = 4096 + n * 256;
+	char *sql = malloc(cap);
+	if (!sql)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	size_t l = 0;
+	l += (size_t)snprintf(sql + l, cap - l,
+			      "CREATE VIEW runs AS SELECT r.campaign, r.id, r.state, r.attempts, r.replicate");
+	for (size_t i = 0; i < n; i++) {
+		if (t[i].flags & PF_OUT)
+			continue; /* paths and recording switches: in the param table */
+		l += (size_t)snprintf(sql + l, cap - l,
+				      ",\n  (SELECT value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id"
+				      " AND p.key = '%s') AS %s", t[i].name, t[i].name);
+	}
+	l += (size_t)snprintf(sql + l, cap - l,
+			      ",\n  s.status, s.exit_code, s.message, r.from_cache, r.cache_key, s.settle_time,"
+			      " s.surface_height, s.intruder_settled_y, s.intruder_settled_depth, s.intruder_radius,"
+			      " s.intruder_final_y, s.intruder_max_y, s.intruder_min_y, s.intruder_mean_y,"
+			      " s.intruder_final_y - s.intruder_settled_y AS intruder_rise, s.rise_time, s.steps,"
+			      " s.wall_seconds, r.host, s.git_hash, s.git_dirty, r.started, r.finished\n"
+			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id");
+	sqlite3_stmt *st;
+	int same = 0;
+	if (!db_exec(d, e, &st, "SELECT sql FROM sqlite_master WHERE type = 'view' AND name = 'runs'", "")) {
+		if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_text(st, 0))
+			same = !strcmp((const char *)sqlite3_column_text(st, 0), sql);
+		sqlite3_finalize(st);
+	}
+	int rc = 0;
+	if (!same && !e->code) {
+		rc = exec_script(d, "DROP VIEW IF EXISTS runs", e);
+		if (!rc)
+			rc = exec_script(d, sql, e);
+	}
+	free(sql);
+	return e->code;
+}
+
+int db_open(st_db *d, const char *path, int writable, sb_err *e)
+{
+	memset(d, 0, sizeof *d);
+	snprintf(d->path, sizeof d->path, "%s", path);
+	int flags = writable ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
+	if (sqlite3_open_v2(path, &d->h, flags, NULL) != SQLITE_OK) {
+		sb_errf(e, SB_EIO, "%s: cannot open database: %s", path, d->h ? sqlite3_errmsg(d->h) : "out of memory");
+		sqlite3_close(d->h);
+		d->h = NULL;
+		return e->code;
+	}
+	/* readers wait for the driver's short write transactions instead of failing */
+	sqlite3_busy_timeout(d->h, 60000);
+	if (!writable)
+		return 0;
+	if (exec_script(d, "PRAGMA journal_mode = WAL; PRAGMA synchronous = NORMAL;", e))
+		return e->code;
+	if (db_begin(d, e))
+		return e->code;
+	if (exec_script(d, SCHEMA, e) || make_runs_view(d, e)) {
+		db_rollback(d);
+		return e->code;
+	}
+	return db_commit(d, e);
+}
+
+void db_close(st_db *d)
+{
+	if (d->h)
+		sqlite3_close(d->h);
+	d->h = NULL;
+}
+
+int db_begin(st_db *d, sb_err *e)
+{
+	return exec_script(d, "BEGIN IMMEDIATE", e);
+}
+
+int db_commit(st_db *d, sb_err *e)
+{
+	return exec_script(d, "COMMIT", e);
+}
+
+void db_rollback(st_db *d)
+{
+	sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
+}
+
+void db_now(char *buf, size_t len)
+{
+	time_t t = time(NULL);
+	struct tm tm;
+	gmtime_r(&t, &tm);
+	strftime(buf, len, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
+{
+	char axes[2048] = "", seed[32];
+	size_t l = 0;
+	for (int i = 0; i < c->naxes && l < sizeof axes; i++)
+		l += (size_t)snprintf(axes + l, sizeof axes - l, "%s%s", i ? " " : "", c->axes[i].key);
+	snprintf(seed, sizeof seed, "%llu", c->seed);
+	return db_exec(d, e, NULL,
+		       "INSERT INTO campaign(name, description, file, scene_file, seed, seeds, axes, created, updated)"
+		       " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?8) ON CONFLICT(name) DO UPDATE SET"
+		       " description = ?2, file = ?3, scene_file = ?4, seed = ?5, seeds = ?6, axes = ?7, updated = ?8",
+		       "tttttttt", c->name, c->description, c->path, c->scene_file, seed,
+		       c->seeds == CP_SEEDS_LITERAL ? "literal" : "derived", axes, now);
+}
+
+int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s, const char *now, sb_err *e)
+{
+	if (db_exec(d, e, NULL,
+		    "INSERT OR IGNORE INTO run(campaign, id, replicate, seed, cache_key, added)"
+		    " VALUES (?, ?, ?, ?, ?, ?)",
+		    "ttllt" "t", c->name, r->id, r->replicate, r->seed, r->cache_key, now))
+		return e->code;
+	if (sqlite3_changes(d->h) == 0)
+		return 0; /* known run: its parameters are already recorded */
+	size_t n;
+	const sb_param *t = params_table(&n);
+	sqlite3_stmt *st;
+	if (db_exec(d, e, &st, "INSERT OR REPLACE INTO param(campaign, run, key, value) VALUES (?, ?, ?, ?)", "tt",
+		    c->name, r->id))
+		return e->code;
+	for (size_t i = 0; i < n; i++) {
+		if (!strcmp(t[i].name, "output") || !strcmp(t[i].name, "progress"))
+			continue;
+		const char *base = (const char *)s + t[i].offset;
+		char v[SB_STR_MAX + 8];
+		params_format(s, &t[i], v, sizeof v);
+		sqlite3_bind_text(st, 3, t[i].name, -1, SQLITE_STATIC);
+		/* typed, so that WHERE frequency = 2.8 and ORDER BY work without casts */
+		if (t[i].type == PT_INT)
+			sqlite3_bind_int64(st, 4, *(const long *)base);
+		else if (t[i].type == PT_REAL)
+			sqlite3_bind_double(st, 4, *(const double *)base);
+		else
+			sqlite3_bind_text(st, 4, v, -1, SQLITE_TRANSIENT);
+		if (sqlite3_step(st) != SQLITE_DONE) {
+			sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+			break;
+		}
+		sqlite3_reset(st);
+	}
+	sqlite3_finalize(st);
+	return e->code;
+}
+
+int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t len, long *attempts,
+		 sb_err *e)
+{
+	sqlite3_stmt *st;
+	state[0] = 0;
+	*attempts = 0;
+	if (db_exec(d, e, &st, "SELECT state, attempts FROM run WHERE campaign = ? AND id = ?", "tt", camp, id))
+		return e->code;
+	if (sqlite3_step(st) == SQLITE_ROW) {
+		snprintf(state, len, "%s", (const char *)sqlite3_column_text(st, 0));
+		*attempts = (long)sqlite3_column_int64(st, 1);
+	}
+	sqlite3_finalize(st);
+	return 0;
+}
+
+static int attempt_row(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
+		       const char *message, const char *host, const char *now, int has_wall, double wall,
+		       const char *state, sb_err *e)
+{
+	if (db_exec(d, e, NULL,
+		    "INSERT INTO attempt(campaign, run, n, host, exit_code, status, message, finished, wall_seconds)"
+		    " VALUES (?1, ?2, (SELECT attempts + 1 FROM run WHERE campaign = ?1 AND id = ?2), ?3, ?4, ?5, ?6, ?7, ?8)",
+		    "tttlttt" "D", camp, id, host, exit_code, status, message, now, has_wall, wall))
+		return e->code;
+	return db_exec(d, e, NULL,
+		       "UPDATE run SET attempts = attempts + 1, state = ?3, host = ?4, finished = ?5"
+		       " WHERE campaign = ?1 AND id = ?2",
+		       "ttttt", camp, id, state, host, now);
+}
+
+int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
+	       const char *message, const char *host, const char *now, const char *state, sb_err *e)
+{
+	return attempt_row(d, camp, id, exit_code, status, message, host, now, 0, 0, state, e);
+}
+
+int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e)
+{
+	int okrun = !strcmp(s->status, "ok");
+	if (attempt_row(d, camp, id, s->exit_code, s->status, s->message, s->host, now, 1, s->loop_seconds,
+			okrun ? "done" : "failed", e))
+		return e->code;
+	/* a run from the packing cache did not settle itself: its settling is the cache's */
+	return db_exec(d, e, NULL,
+		       "INSERT OR REPLACE INTO result(campaign, run, status, exit_code, message, status_time, steps,"
+		       " settle_time, settle_steps, surface_height, intruder_settled_y, intruder_settled_depth,"
+		       " intruder_radius, n_mobile, neighbour_builds, wall_seconds, host, git_hash, git_dirty,"
+		       " start_time, end_time, traj_rows, intruder_final_y, intruder_max_y, intruder_min_y,"
+		       " intruder_mean_y, rise_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7,"
+		       " CASE WHEN (SELECT from_cache FROM run WHERE campaign = ?1 AND id = ?2) THEN"
+		       " (SELECT c.settle_time FROM cache c JOIN run r ON c.campaign = r.campaign AND c.key = r.cache_key"
+		       "  WHERE r.campaign = ?1 AND r.id = ?2) ELSE ?8 END,"
+		       " CASE WHEN (SELECT from_cache FROM run WHERE campaign = ?1 AND id = ?2) THEN"
+		       " (SELECT c.settle_steps FROM cache c JOIN run r ON c.campaign = r.campaign AND c.key = r.cache_key"
+		       "  WHERE r.campaign = ?1 AND r.id = ?2) ELSE ?9 END,"
+		       " ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27)",
+		       "tttltdldlddddlldttlttlDDDDD", camp, id, s->status, s->exit_code, s->message, s->status_time,
+		       s->steps, s->settle_time, s->settle_steps, s->surface_height, s->intruder_settled_y,
+		       s->intruder_settled_depth, s->intruder_radius, s->n_mobile, s->neighbour_builds,
+		       s->loop_seconds, s->host, s->git_hash, s->git_dirty, s->start_time, s->end_time,
+		       s->traj_rows, s->has_traj, s->final_y, s->has_traj, s->max_y, s->has_traj, s->min_y,
+		       s->has_traj, s->mean_y, s->rise_time >= 0, s->rise_time);
+}

@@ -1,0 +1,187 @@
+/* report.c - status, list and export: readers of the database, never writers. */
+#include "report.h"
+
+#include <string.h>
+#include <unistd.h>
+
+#include "db.h"
+
+static int open_ro(st_db *d, const char *path, sb_err *e)
+{
+	if (access(path, R_OK) != 0)
+		return sb_errf(e, SB_EUSAGE, "%s: no study database (run a campaign first)", path);
+	return db_open(d, path, 0, e);
+}
+
+static int campaign_known(st_db *d, const char *name, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q, "SELECT 1 FROM campaign WHERE name = ?", "t", name))
+		return e->code;
+	int found = sqlite3_step(q) == SQLITE_ROW;
+	sqlite3_finalize(q);
+	if (!found)
+		return sb_errf(e, SB_EUSAGE, "campaign '%s' is not in %s (study list shows the campaigns)", name, d->path);
+	return 0;
+}
+
+static const char *col(sqlite3_stmt *q, int i)
+{
+	const unsigned char *t = sqlite3_column_text(q, i);
+	return t ? (const char *)t : "";
+}
+
+static void fmt_dur(double s, char *buf, size_t len)
+{
+	if (s < 120)
+		snprintf(buf, len, "%.0f s", s);
+	else if (s < 7200)
+		snprintf(buf, len, "%.1f min", s / 60);
+	else
+		snprintf(buf, len, "%.1f h", s / 3600);
+}
+
+static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q,
+		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
+		    " SUM(state = 'running'), SUM(from_cache AND state = 'done'),"
+		    " (SELECT AVG(wall_seconds) FROM result s WHERE s.campaign = ?1 AND s.status = 'ok'),"
+		    " (SELECT description FROM campaign WHERE name = ?1)"
+		    " FROM run WHERE campaign = ?1",
+		    "t", name))
+		return e->code;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		long n = sqlite3_column_int64(q, 0), done = sqlite3_column_int64(q, 1),
+		     failed = sqlite3_column_int64(q, 2), pending = sqlite3_column_int64(q, 3),
+		     running = sqlite3_column_int64(q, 4), hits = sqlite3_column_int64(q, 5);
+		double mean = sqlite3_column_double(q, 6);
+		fprintf(out, "campaign %s: %s\n", name, col(q, 7));
+		fprintf(out, "  runs %ld: done %ld, failed %ld, pending %ld, running %ld\n", n, done, failed, pending,
+			running);
+		fprintf(out, "  packing cache: %ld finished runs started from a shared packing\n", hits);
+		if (pending + running > 0) {
+			char eta[32];
+			if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
+				/* mean engine time of the finished runs, spread over the workers */
+				fmt_dur(mean * (double)(pending + running) / (jobs > 0 ? jobs : 1), eta, sizeof eta);
+				fprintf(out, "  ETA: about %s with %d job%s (mean run %.1f s)\n", eta, jobs, jobs > 1 ? "s" : "",
+					mean);
+			} else {
+				fprintf(out, "  ETA: unknown until a run has finished\n");
+			}
+		}
+	}
+	sqlite3_finalize(q);
+	if (db_exec(d, e, &q,
+		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
+		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",
+		    "t", name))
+		return e->code;
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		if (first)
+			fprintf(out, "  unsuccessful attempts (run, attempt, exit code, status: message):\n");
+		first = 0;
+		fprintf(out, "    %s #%s exit %s %s: %s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3), col(q, 4),
+			!strcmp(col(q, 5), "failed") ? "" : "  [resumable]");
+	}
+	sqlite3_finalize(q);
+	return 0;
+}
+
+int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	if (name) {
+		if (!campaign_known(&d, name, e))
+			status_one(&d, name, jobs, out, e);
+	} else {
+		sqlite3_stmt *q;
+		if (!db_exec(&d, e, &q, "SELECT name FROM campaign ORDER BY name", "")) {
+			while (!e->code && sqlite3_step(q) == SQLITE_ROW) {
+				char n[128];
+				snprintf(n, sizeof n, "%s", col(q, 0));
+				status_one(&d, n, jobs, out, e);
+			}
+			sqlite3_finalize(q);
+		}
+	}
+	db_close(&d);
+	return e->code;
+}
+
+int report_list(const char *db_path, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	sqlite3_stmt *q;
+	if (!db_exec(&d, e, &q,
+		     "SELECT c.name, COUNT(r.id), SUM(r.state = 'done'), SUM(r.state = 'failed'),"
+		     " SUM(r.state IN ('pending', 'running')), c.updated, c.axes, c.file"
+		     " FROM campaign c LEFT JOIN run r ON r.campaign = c.name GROUP BY c.name ORDER BY c.name",
+		     "")) {
+		fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s\n", "campaign", "runs", "done", "failed", "pending",
+			"updated", "axes (file)");
+		while (sqlite3_step(q) == SQLITE_ROW)
+			fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s (%s)\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3),
+				col(q, 4), col(q, 5), col(q, 6), col(q, 7));
+		sqlite3_finalize(q);
+	}
+	db_close(&d);
+	return e->code;
+}
+
+/* RFC 4180: quote fields that hold a comma, quote or line break; double the quotes. */
+static void csv_field(FILE *out, const char *s)
+{
+	if (!strpbrk(s, ",\"\r\n")) {
+		fputs(s, out);
+		return;
+	}
+	fputc('"', out);
+	for (; *s; s++) {
+		if (*s == '"')
+			fputc('"', out);
+		fputc(*s, out);
+	}
+	fputc('"', out);
+}
+
+int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	sqlite3_stmt *q;
+	if (!campaign_known(&d, name, e) &&
+	    !db_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
+		int nc = sqlite3_column_count(q);
+		for (int i = 0; i < nc; i++) {
+			if (i)
+				fputc(',', out);
+			csv_field(out, sqlite3_column_name(q, i));
+		}
+		fputc('\n', out);
+		while (sqlite3_step(q) == SQLITE_ROW) {
+			for (int i = 0; i < nc; i++) {
+				if (i)
+					fputc(',', out);
+				if (sqlite3_column_type(q, i) == SQLITE_FLOAT) {
+					/* exact: a result read back from CSV is the stored double */
+					fprintf(out, "%.17g", sqlite3_column_double(q, i));
+				} else {
+					csv_field(out, col(q, i));
+				}
+			}
+			fputc('\n', out);
+		}
+		sqlite3_finalize(q);
+	}
+	db_close(&d);
+	return e->code;
+}

@@ -1,0 +1,17 @@
+/* report.h - read-only views of the study database: status, list, export. */
+#ifndef ST_REPORT_H
+#define ST_REPORT_H
+
+#include <stdio.h>
+
+#include "err.h"
+
+/* Counts per state, cache hits, failures with their reasons and an ETA; all
+ * campaigns when name is NULL. */
+int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e);
+/* One line per campaign. */
+int report_list(const char *db_path, FILE *out, sb_err *e);
+/* CSV of the `runs` view (parameters + results), one row per run. */
+int report_export(const char *db_path, const char *name, FILE *out, sb_err *e);
+
+#endif

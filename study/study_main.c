@@ -1,0 +1,279 @@
+/* study_main.c - bin/study: campaigns of bin/shake runs. Only this file prints and exits. */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "campaign.h"
+#include "driver.h"
+#include "grid.h"
+#include "report.h"
+#include "worker.h"
+
+static const char *USAGE =
+	"usage: study COMMAND [options] ...\n\n"
+	"Runs a campaign (a grid of bin/shake runs) with GNU parallel and records it in SQLite.\n\n"
+	"  study run CAMPAIGN       run what is not complete (resumable, extendable)\n"
+	"  study status [NAME]      counts per state, failures with reasons, ETA\n"
+	"  study list               the campaigns in the database\n"
+	"  study export NAME        CSV of every run: parameters and results\n"
+	"  study expand CAMPAIGN    check a campaign and print its grid (id, seed, values)\n\n"
+	"Common options: --runs DIR (outputs; default runs), --db FILE (default DIR/study.db).\n"
+	"`study COMMAND --help` describes each command; study/README.md the schema.\n";
+
+static const char *HELP_RUN =
+	"usage: study run CAMPAIGN [--jobs N] [--sshloginfile FILE] [--retry-failed] [--no-cache]\n"
+	"                 [--progress | --no-progress] [--runs DIR] [--db FILE]\n\n"
+	"Expands the campaign, checks every value, records the runs in the database and runs\n"
+	"each one that has no complete output yet (RUNS/NAME/RUN-ID.h5) with GNU parallel,\n"
+	"ingesting each as it finishes. Kill it at any moment and run it again: finished runs\n"
+	"are kept, half-way runs continue from their checkpoint. Add axis values and run again:\n"
+	"only the new grid points run.\n\n"
+	"  --jobs N            parallel jobs (per host with --sshloginfile; default: cores)\n"
+	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
+	"                      ~/.shakebox/NAME on each host, outputs copied back\n"
+	"  --retry-failed      run failed runs again (their attempts stay recorded)\n"
+	"  --no-cache          every run settles its own packing\n"
+	"  --progress          progress bar (default: when stderr is a terminal)\n\n"
+	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O, 3 some runs failed\n"
+	"(recorded; see study status), 7 interrupted (run again to resume).\n";
+
+static const char *HELP_STATUS =
+	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--runs DIR] [--db FILE]\n\n"
+	"Counts per state (pending, running, done, failed), packing-cache hits, every\n"
+	"unsuccessful attempt with its exit code and message, and an ETA from the mean\n"
+	"time of the finished runs spread over N jobs (default: cores). Without NAME: all.\n";
+
+static const char *HELP_LIST =
+	"usage: study list [--runs DIR] [--db FILE]\n\n"
+	"One line per campaign: runs, done, failed, pending, last update, swept axes.\n";
+
+static const char *HELP_EXPORT =
+	"usage: study export NAME|CAMPAIGN-FILE [--runs DIR] [--db FILE] [-o FILE]\n\n"
+	"Writes the `runs` view of the campaign as CSV (RFC 4180): one row per run with\n"
+	"every parameter, its state and its results; reals with 17 significant digits.\n";
+
+static const char *HELP_EXPAND =
+	"usage: study expand CAMPAIGN\n\n"
+	"Checks the campaign file against the engine's parameter table and prints one line\n"
+	"per run: id, cache key, replicate, engine seed and the swept values (TSV).\n"
+	"Nothing is run or recorded.\n";
+
+static const char *HELP_EXEC =
+	"usage: study exec DIR run|cache NAME\n\n"
+	"Internal: what GNU parallel runs for one job (see study/README.md).\n";
+
+struct opts {
+	const char *runs, *db, *ssh, *outfile;
+	const char *pos[4];
+	int npos, jobs, retry, nocache, progress;
+};
+
+static int parse(int argc, char **argv, struct opts *o, const char *help, int maxpos)
+{
+	memset(o, 0, sizeof *o);
+	o->progress = -1;
+	for (int i = 2; i < argc; i++) {
+		const char *a = argv[i];
+		const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+#define VAL(opt, dst) if (!strcmp(a, opt)) { if (!next) { fprintf(stderr, "study: %s needs a value\n", opt); return 1; } dst = next; i++; continue; }
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			fputs(help, stdout);
+			return -1;
+		}
+		VAL("--runs", o->runs)
+		VAL("--db", o->db)
+		VAL("--sshloginfile", o->ssh)
+		VAL("-o", o->outfile)
+		if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
+			char *end;
+			long j = next ? strtol(next, &end, 10) : 0;
+			if (!next || *end || j < 1 || j > 4096) {
+				fprintf(stderr, "study: --jobs: expected an integer in [1, 4096]\n");
+				return 1;
+			}
+			o->jobs = (int)j;
+			i++;
+			continue;
+		}
+		if (!strcmp(a, "--retry-failed")) { o->retry = 1; continue; }
+		if (!strcmp(a, "--no-cache")) { o->nocache = 1; continue; }
+		if (!strcmp(a, "--progress")) { o->progress = 1; continue; }
+		if (!strcmp(a, "--no-progress")) { o->progress = 0; continue; }
+#undef VAL
+		if (a[0] == '-' && a[1]) {
+			fprintf(stderr, "study: %s: unknown option '%s' (study %s --help)\n", argv[1], a, argv[1]);
+			return 1;
+		}
+		if (o->npos >= maxpos) {
+			fprintf(stderr, "study: %s: unexpected argument '%s' (study %s --help)\n", argv[1], a, argv[1]);
+			return 1;
+		}
+		o->pos[o->npos++] = a;
+	}
+	return 0;
+}
+
+/* NAME or a campaign file (then its [campaign] name). */
+static int campaign_name(const char *arg, char *name, size_t len, sb_err *e)
+{
+	if (strchr(arg, '/') || (strlen(arg) > 9 && !strcmp(arg + strlen(arg) - 9, ".campaign"))) {
+		campaign *c = malloc(sizeof *c);
+		if (!c)
+			return sb_errf(e, SB_ENOMEM, "out of memory");
+		if (!campaign_load(c, arg, e))
+			snprintf(name, len, "%s", c->name);
+		campaign_free(c);
+		free(c);
+		return e->code;
+	}
+	snprintf(name, len, "%s", arg);
+	return 0;
+}
+
+static int cmd_expand(const char *path, sb_err *e)
+{
+	campaign *c = malloc(sizeof *c);
+	grid g;
+	if (!c)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	if (!campaign_load(c, path, e) && !grid_expand(&g, c, e)) {
+		printf("id\tcache_key\treplicate\tseed");
+		for (int a = 0; a < c->naxes; a++)
+			if (strcmp(c->axes[a].key, "seed"))
+				printf("\t%s", c->axes[a].key);
+		printf("\n");
+		for (long i = 0; i < g.n; i++) {
+			const grid_run *r = &g.runs[i];
+			sb_scene s;
+			grid_scene(&g, r, &s);
+			printf("%s\t%s\t%ld\t%ld", r->id, r->cache_key, r->replicate, r->seed);
+			for (int a = 0; a < c->naxes; a++) {
+				if (!strcmp(c->axes[a].key, "seed"))
+					continue;
+				char v[SB_STR_MAX + 8];
+				params_format(&s, params_find(c->axes[a].key), v, sizeof v);
+				printf("\t%s", v);
+			}
+			printf("\n");
+		}
+		grid_free(&g);
+	}
+	campaign_free(c);
+	free(c);
+	return e->code;
+}
+
+int main(int argc, char **argv)
+{
+	if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+		fputs(USAGE, argc < 2 ? stderr : stdout);
+		return argc < 2 ? 1 : 0;
+	}
+	const char *cmd = argv[1];
+	struct opts o;
+	sb_err e = {0};
+	char dbp[PATH_MAX + 32];
+	int rc;
+	if (!strcmp(cmd, "exec")) {
+		if (argc == 3 && !strcmp(argv[2], "--help")) {
+			fputs(HELP_EXEC, stdout);
+			return 0;
+		}
+		if (argc != 5) {
+			fputs(HELP_EXEC, stderr);
+			return 1;
+		}
+		char self[PATH_MAX];
+		ssize_t l = readlink("/proc/self/exe", self, sizeof self - 1);
+		if (l <= 0) {
+			fprintf(stderr, "study: cannot find my own executable\n");
+			return 2;
+		}
+		self[l] = 0;
+		return worker_exec(argv[2], argv[3], argv[4], self);
+	}
+	if (!strcmp(cmd, "run")) {
+		if ((rc = parse(argc, argv, &o, HELP_RUN, 1)))
+			return rc < 0 ? 0 : 1;
+		if (o.npos != 1) {
+			fputs(HELP_RUN, stderr);
+			return 1;
+		}
+		char self[PATH_MAX];
+		ssize_t l = readlink("/proc/self/exe", self, sizeof self - 1);
+		if (l <= 0) {
+			fprintf(stderr, "study: cannot find my own executable\n");
+			return 2;
+		}
+		self[l] = 0;
+		if (o.ssh && access(o.ssh, R_OK)) {
+			fprintf(stderr, "study: --sshloginfile: %s: %s\n", o.ssh, strerror(errno));
+			return 1;
+		}
+		driver_opts d = {.campaign_file = o.pos[0], .runs_dir = o.runs, .db_path = o.db,
+				 .sshloginfile = o.ssh, .self = self, .jobs = o.jobs, .retry_failed = o.retry,
+				 .use_cache = !o.nocache, .progress = o.progress};
+		if (driver_run(&d, &e)) {
+			fprintf(stderr, "study: %s\n", e.msg);
+			return e.code == DRV_FAILED || e.code == DRV_INTERRUPTED ? e.code
+			       : e.code == SB_EUSAGE                             ? DRV_USAGE
+										 : DRV_IO;
+		}
+		return 0;
+	}
+	if (!strcmp(cmd, "expand")) {
+		if ((rc = parse(argc, argv, &o, HELP_EXPAND, 1)))
+			return rc < 0 ? 0 : 1;
+		if (o.npos != 1) {
+			fputs(HELP_EXPAND, stderr);
+			return 1;
+		}
+		if (cmd_expand(o.pos[0], &e)) {
+			fprintf(stderr, "study: %s\n", e.msg);
+			return e.code == SB_EUSAGE ? 1 : 2;
+		}
+		return 0;
+	}
+	const char *help = !strcmp(cmd, "status") ? HELP_STATUS : !strcmp(cmd, "list") ? HELP_LIST
+			   : !strcmp(cmd, "export")                                    ? HELP_EXPORT
+										       : NULL;
+	if (!help) {
+		fprintf(stderr, "study: unknown command '%s'\n%s", cmd, USAGE);
+		return 1;
+	}
+	if ((rc = parse(argc, argv, &o, help, !strcmp(cmd, "list") ? 0 : 1)))
+		return rc < 0 ? 0 : 1;
+	driver_db_path(o.runs, o.db, dbp, sizeof dbp);
+	char name[128] = "";
+	if (o.npos && campaign_name(o.pos[0], name, sizeof name, &e)) {
+		fprintf(stderr, "study: %s\n", e.msg);
+		return 1;
+	}
+	if (!strcmp(cmd, "status")) {
+		int jobs = o.jobs ? o.jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
+		report_status(dbp, o.npos ? name : NULL, jobs, stdout, &e);
+	} else if (!strcmp(cmd, "list")) {
+		report_list(dbp, stdout, &e);
+	} else {
+		if (o.npos != 1) {
+			fputs(HELP_EXPORT, stderr);
+			return 1;
+		}
+		FILE *out = o.outfile ? fopen(o.outfile, "w") : stdout;
+		if (!out) {
+			fprintf(stderr, "study: %s: %s\n", o.outfile, strerror(errno));
+			return 2;
+		}
+		report_export(dbp, name, out, &e);
+		if (o.outfile && fclose(out) && !e.code)
+			sb_errf(&e, SB_EIO, "%s: cannot write", o.outfile);
+	}
+	if (e.code) {
+		fprintf(stderr, "study: %s\n", e.msg);
+		return e.code == SB_EUSAGE ? 1 : 2;
+	}
+	return 0;
+}

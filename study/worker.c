@@ -1,0 +1,167 @@
+/* worker.c - one job: lock, run bin/shake from an argument file, report. */
+#include "worker.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "params.h"
+#include "safe.h"
+
+static volatile sig_atomic_t g_child;
+
+/* Forward SIGINT/SIGTERM to the engine: it writes a checkpoint and exits 7. */
+static void forward(int sig)
+{
+	if (g_child > 0)
+		kill((pid_t)g_child, sig == SIGINT ? SIGTERM : sig);
+}
+
+/* Copy with truncation (messages are cut, never overflow). */
+static void scopy(char *out, size_t len, const char *s)
+{
+	size_t l = strlen(s);
+	if (l >= len)
+		l = len - 1;
+	memcpy(out, s, l);
+	out[l] = 0;
+}
+
+static void clean(char *s)
+{
+	for (; *s; s++)
+		if (*s == '\t' || *s == '\n' || *s == '\r')
+			*s = ' ';
+}
+
+/* The last non-empty line the engine wrote in this attempt: its error message. */
+static void last_line(const char *log, long from, char *out, size_t len)
+{
+	out[0] = 0;
+	FILE *f = fopen(log, "r");
+	if (!f)
+		return;
+	fseek(f, from, SEEK_SET);
+	char line[2048];
+	while (fgets(line, sizeof line, f)) {
+		line[strcspn(line, "\r\n")] = 0;
+		if (line[0])
+			scopy(out, len, line);
+	}
+	fclose(f);
+}
+
+static void report_done(const char *name, int code, const char *host, double secs, const char *msg)
+{
+	char m[1024];
+	snprintf(m, sizeof m, "%s", msg);
+	clean(m);
+	printf("%s\t%s\t%d\t%s\t%.3f\t%s\n", WORKER_DONE, name, code, host, secs, m);
+	fflush(stdout);
+}
+
+int worker_exec(const char *dir, const char *kind, const char *name, const char *self)
+{
+	char host[256] = "";
+	gethostname(host, sizeof host - 1);
+	clean(host);
+	int is_cache = !strcmp(kind, "cache");
+	if ((!is_cache && strcmp(kind, "run")) || !safe_name(name) || chdir(dir) != 0) {
+		report_done(name, 2, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
+		return 2;
+	}
+	char args[600], log[600], out[600], lockp[600];
+	snprintf(args, sizeof args, "%s/%s.args", is_cache ? "cache" : "jobs", name);
+	snprintf(log, sizeof log, "%s/%s.log", is_cache ? "cache" : "logs", name);
+	snprintf(out, sizeof out, "%s%s.h5", is_cache ? "cache/" : "", name);
+	snprintf(lockp, sizeof lockp, "%s/%s.lock", is_cache ? "cache" : "jobs", name);
+	mkdir("logs", 0777);
+	printf("%s\t%s\t%s\n", WORKER_START, name, host);
+	fflush(stdout);
+
+	/* One engine per run, ever: a run orphaned by a killed driver still holds this
+	 * lock (the engine inherits it), and a new worker waits for it instead of writing
+	 * the same checkpoint and output concurrently. */
+	int lk = open(lockp, O_RDWR | O_CREAT, 0666);
+	if (lk < 0 || flock(lk, LOCK_EX) != 0) {
+		report_done(name, 2, host, 0, "exec: cannot lock the run");
+		return 2;
+	}
+	if (access(out, F_OK) == 0) {
+		report_done(name, 0, host, 0, "already complete");
+		return 0;
+	}
+
+	FILE *f = fopen(args, "r");
+	if (!f) {
+		report_done(name, 2, host, 0, "exec: missing argument file");
+		return 2;
+	}
+	char *argv[128];
+	int argc = 0;
+	char shake[1200];
+	/* the engine sits next to this binary (locally: bin/, remotely: the work dir) */
+	snprintf(shake, sizeof shake, "%s", self);
+	char *sl = strrchr(shake, '/');
+	snprintf(sl ? sl + 1 : shake, sizeof shake - (size_t)(sl ? sl + 1 - shake : 0), "shake");
+	argv[argc++] = shake;
+	char line[1100];
+	while (argc < 126 && fgets(line, sizeof line, f)) {
+		line[strcspn(line, "\r\n")] = 0;
+		if (line[0])
+			argv[argc++] = strdup(line);
+	}
+	fclose(f);
+	argv[argc] = NULL;
+
+	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND, 0666);
+	long from = lf >= 0 ? (long)lseek(lf, 0, SEEK_END) : 0;
+	struct timeval t0, t1;
+	gettimeofday(&t0, NULL);
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = forward;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	pid_t pid = fork();
+	if (pid == 0) {
+		int dn = open("/dev/null", O_RDWR);
+		if (dn >= 0)
+			dup2(dn, 0), dup2(dn, 1);
+		if (lf >= 0)
+			dup2(lf, 2);
+		execv(shake, argv);
+		fprintf(stderr, "exec: cannot run %s: %s\n", shake, strerror(errno));
+		_exit(2);
+	}
+	g_child = pid;
+	int st = 0, code;
+	while (pid > 0 && waitpid(pid, &st, 0) < 0 && errno == EINTR)
+		;
+	if (pid < 0)
+		code = 2;
+	else if (WIFEXITED(st))
+		code = WEXITSTATUS(st);
+	else
+		code = 128 + WTERMSIG(st);
+	gettimeofday(&t1, NULL);
+	for (int i = 1; i < argc; i++)
+		free(argv[i]);
+	if (lf >= 0)
+		close(lf);
+	char msg[1024];
+	last_line(log, from, msg, sizeof msg);
+	if (!msg[0] && code >= 128)
+		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
+	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
+	close(lk);
+	return code;
+}

@@ -1,0 +1,15 @@
+/* worker.h - `study exec`: one job on whichever host GNU parallel chose. Runs
+ * bin/shake with the argument file the driver wrote (no shell involved) and reports
+ * one START and one DONE line on stdout for the driver to ingest. */
+#ifndef ST_WORKER_H
+#define ST_WORKER_H
+
+/* kind "run": args jobs/NAME.args, log logs/NAME.log, output NAME.h5;
+ * kind "cache": args cache/NAME.args, log cache/NAME.log, output cache/NAME.h5.
+ * Paths are relative to dir. Returns the engine's exit code (128 + signal if killed). */
+int worker_exec(const char *dir, const char *kind, const char *name, const char *self);
+
+#define WORKER_START "STUDY-START"
+#define WORKER_DONE "STUDY-DONE"
+
+#endif

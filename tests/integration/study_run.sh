@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# study_run.sh - `study run` end to end on a tiny campaign: every run recorded and
+# ingested, the packing cache shared and bit-identical to settling per run, a second
+# run does nothing, an extension runs only the new points, a failing run keeps its
+# reason and is retried only with --retry-failed; status, list and export.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+cd "$TMP" || exit 1
+
+SCENE='[scene]
+n_grains = 50
+width = 20
+radius_ratio = 2
+settle_ke = 1
+settle_min = 0.2
+amplitude = 1
+duration = 0.25
+traj_rate = 200'
+mk() { # FILE NAME GRID-LINES...
+	local f=$1 n=$2
+	shift 2
+	{ printf '[campaign]\nname = %s\nseed = 11\nreplicates = 2\n%s\n[grid]\n' "$n" "$SCENE"; printf '%s\n' "$@"; } >"$f"
+}
+q() { sqlite3 -batch -noheader "$1" "$2"; }
+
+mk t.campaign t 'frequency = 3, 4'
+t0=$(date +%s%N)
+"$STUDY" run t.campaign --runs "$TMP/R" --jobs 2 >run1.log 2>&1
+rc=$?
+echo "# first run: $((($(date +%s%N) - t0) / 1000000)) ms"
+DB=R/study.db
+[ "$rc" -eq 0 ] && ok run.exit || fail run.exit "exit $rc: $(tail -c 400 run1.log)"
+[ "$(ls R/t/*.h5 2>/dev/null | wc -l)" = 4 ] && ok run.outputs || fail run.outputs "$(ls R/t)"
+[ "$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 't' AND state = 'done' AND status = 'ok' AND attempts = 1
+	AND intruder_final_y IS NOT NULL AND wall_seconds > 0 AND host <> '' AND steps = 5000")" = 4 ] &&
+	ok run.db_rows || fail run.db_rows "$(q $DB "SELECT id, state, status, attempts, steps FROM runs")"
+# the ids in the database are the ids `study expand` gives, and the files are named by them
+"$STUDY" expand t.campaign | tail -n +2 | cut -f1 | sort >ids.expand
+q $DB "SELECT id FROM run WHERE campaign = 't' ORDER BY id" >ids.db
+(cd R/t && ls *.h5 | sed 's/\.h5$//' | sort) >ids.files
+cmp -s ids.expand ids.db && cmp -s ids.db ids.files && ok run.ids || fail run.ids "expand, database and files disagree"
+# parameters recorded per run, typed
+[ "$(q $DB "SELECT COUNT(DISTINCT frequency) || ' ' || MIN(frequency) || ' ' || typeof(MIN(frequency)) || ' ' || MIN(n_grains) FROM runs")" = "2 3.0 real 50" ] &&
+	ok run.params || fail run.params "$(q $DB "SELECT frequency, n_grains FROM runs")"
+# the output's own attributes agree with the recorded parameters
+id=$(head -n 1 ids.db)
+[ "$(attr R/t/$id.h5 /frequency)" = "$(q $DB "SELECT printf('%.17g', frequency) FROM runs WHERE id = '$id'")" ] &&
+	[ "$(attr R/t/$id.h5 /seed)" = "$(q $DB "SELECT seed FROM run WHERE id = '$id'")" ] &&
+	ok run.params_match_output || fail run.params_match_output "frequency/seed differ between $id.h5 and the database"
+
+# --- packing cache: one settle per replicate, shared by both frequencies ---
+[ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(hits) FROM caches WHERE campaign = 't' AND state = 'ok'")" = "2 4" ] &&
+	ok cache.hits || fail cache.hits "$(q $DB "SELECT * FROM caches")"
+[ "$(q $DB "SELECT COUNT(*) FROM runs r JOIN cache c ON c.key = r.cache_key WHERE r.from_cache AND r.settle_time = c.settle_time AND c.settle_time > 0")" = 4 ] &&
+	ok cache.settle_time_recorded || fail cache.settle_time_recorded "runs from the cache lack the cache's settle_time"
+# the same campaign without the cache: every dataset identical, only the attributes
+# that say how the packing was obtained differ
+"$STUDY" run t.campaign --runs "$TMP/N" --no-cache --jobs 2 >nocache.log 2>&1 || fail cache.nocache_run "$(tail -c 300 nocache.log)"
+[ "$(q N/study.db "SELECT COUNT(*) FROM run WHERE from_cache")" = 0 ] && ok cache.off || fail cache.off "from_cache set with --no-cache"
+same=0
+for f in R/t/*.h5; do
+	b=$(basename "$f")
+	same_output "$f" "N/t/$b" particles settle settle_steps settle_time && same=$((same + 1))
+done
+[ "$same" = 4 ] && ok cache.bit_identical || fail cache.bit_identical "only $same of 4 runs identical with and without the cache"
+[ "$(q N/study.db "SELECT group_concat(printf('%.17g', intruder_final_y)) FROM (SELECT intruder_final_y FROM result ORDER BY run)")" = \
+	"$(q $DB "SELECT group_concat(printf('%.17g', intruder_final_y)) FROM (SELECT intruder_final_y FROM result ORDER BY run)")" ] &&
+	ok cache.same_results || fail cache.same_results "results differ with and without the cache"
+
+# --- a second run does nothing ---
+stamp=$(stat -c %Y.%s R/t/*.h5 | md5sum)
+"$STUDY" run t.campaign --runs "$TMP/R" >run2.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && grep -q "4 runs, 0 to run" run2.log && [ "$stamp" = "$(stat -c %Y.%s R/t/*.h5 | md5sum)" ] &&
+	[ "$(q $DB "SELECT SUM(attempts) FROM run")" = 4 ] && ok rerun.nothing_to_do || fail rerun.nothing_to_do "exit $rc: $(cat run2.log)"
+
+# --- extend: a new frequency and a third replicate: only the 4 new points run ---
+sed 's/frequency = 3, 4/frequency = 3, 4, 5/; s/replicates = 2/replicates = 3/' t.campaign >t3.campaign
+"$STUDY" run t3.campaign --runs "$TMP/R" >ext.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && grep -q "9 runs, 5 to run" ext.log && ok extend.only_new || fail extend.only_new "exit $rc: $(cat ext.log)"
+[ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(attempts) || ' ' || SUM(state = 'done') FROM run")" = "9 9 9" ] &&
+	[ "$stamp" = "$(stat -c %Y.%s $(sed 's|^|R/t/|; s|$|.h5|' ids.db) | md5sum)" ] &&
+	ok extend.old_untouched || fail extend.old_untouched "$(q $DB "SELECT id, attempts, state FROM run")"
+# the new replicate's packing is settled once for its 3 frequencies; replicates 1, 2
+# reuse theirs for the new frequency
+[ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(hits) FROM caches")" = "3 9" ] && ok extend.cache_reused ||
+	fail extend.cache_reused "$(q $DB "SELECT key, hits FROM caches")"
+
+# --- a failing run: its reason recorded, retried only on request ---
+{ printf '[campaign]\nname = f\nseed = 1\n%s\n[grid]\ndt = 5e-5, 0.002\n' "$SCENE"; } >f.campaign
+"$STUDY" run f.campaign --runs "$TMP/R" >fail1.log 2>&1
+rc=$?
+[ "$rc" -eq 3 ] && ok fail.exit_code || fail fail.exit_code "exit $rc, expected 3: $(tail -c 300 fail1.log)"
+row=$(q $DB "SELECT state || '|' || status || '|' || exit_code || '|' || attempts FROM runs WHERE campaign = 'f' AND dt = 0.002")
+[ "$row" = "failed|overlap|4|1" ] && ok fail.recorded || fail fail.recorded "got '$row'"
+q $DB "SELECT message FROM failures WHERE campaign = 'f'" | grep -q "overlap of disks" && ok fail.reason ||
+	fail fail.reason "$(q $DB "SELECT * FROM failures")"
+[ "$(q $DB "SELECT state FROM runs WHERE campaign = 'f' AND dt = 5e-5")" = done ] && ok fail.others_done || fail fail.others_done "the good run did not finish"
+"$STUDY" status f --runs "$TMP/R" >status.out 2>&1
+grep -q "failed 1" status.out && grep -q "overlap of disks" status.out && ok status.failures ||
+	fail status.failures "$(cat status.out)"
+"$STUDY" run f.campaign --runs "$TMP/R" >fail2.log 2>&1
+rc=$?
+[ "$rc" -eq 3 ] && grep -q "0 to run" fail2.log && [ "$(q $DB "SELECT attempts FROM run WHERE campaign = 'f' AND state = 'failed'")" = 1 ] &&
+	ok fail.not_retried || fail fail.not_retried "exit $rc: $(cat fail2.log)"
+"$STUDY" run f.campaign --runs "$TMP/R" --retry-failed >fail3.log 2>&1
+fid=$(q $DB "SELECT id FROM run WHERE campaign = 'f' AND state = 'failed'")
+[ "$(q $DB "SELECT COUNT(*) || ' ' || COUNT(DISTINCT message) FROM attempt WHERE campaign = 'f' AND run = '$fid'")" = "2 1" ] &&
+	[ -e "R/f/failed/$fid.attempt1.h5" ] && [ -e "R/f/$fid.h5" ] && ok fail.retry_keeps_attempts ||
+	fail fail.retry_keeps_attempts "$(q $DB "SELECT * FROM attempt WHERE campaign = 'f'")"
+
+# --- list and export ---
+"$STUDY" list --runs "$TMP/R" >list.out 2>&1
+grep -Eq '^t +9 +9 +0 +0 ' list.out && grep -Eq '^f +2 +1 +1 +0 ' list.out && ok list || fail list "$(cat list.out)"
+"$STUDY" export t --runs "$TMP/R" -o t.csv 2>export.err
+head -n 1 t.csv | grep -q '^campaign,id,state,attempts,replicate,.*frequency.*,intruder_final_y' &&
+	[ "$(wc -l <t.csv)" = 10 ] && ok export.csv || fail export.csv "$(head -c 300 t.csv) $(cat export.err)"
+"$STUDY" export nosuch --runs "$TMP/R" >/dev/null 2>&1 && fail export.unknown "exit 0" || ok export.unknown
+# the database answers while a driver holds it (WAL): a reader during a run
+"$STUDY" run t3.campaign --runs "$TMP/R" --retry-failed >/dev/null 2>&1 &
+pid=$!
+q $DB "SELECT COUNT(*) FROM runs" >/dev/null 2>reader.err && ok db.concurrent_reader || fail db.concurrent_reader "$(cat reader.err)"
+wait $pid
+# a second driver on the same campaign is refused while the first holds it
+mk slow.campaign slow 'frequency = 3, 4, 5, 6'
+sed -i 's/duration = 0.25/duration = 3/' slow.campaign
+"$STUDY" run slow.campaign --runs "$TMP/R" --jobs 1 >slow1.log 2>&1 &
+pid=$!
+for i in $(seq 100); do [ -e R/slow/jobs ] && break; sleep 0.05; done
+sleep 0.3
+"$STUDY" run slow.campaign --runs "$TMP/R" >slow2.log 2>&1
+rc=$?
+kill -TERM $pid 2>/dev/null
+wait $pid
+[ "$rc" -eq 1 ] && grep -q "another study driver" slow2.log && ok driver.exclusive || fail driver.exclusive "exit $rc: $(cat slow2.log)"
+finish
