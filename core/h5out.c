@@ -462,6 +462,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	if (s->intruder >= 0) { /* no NaN placeholders: absent when there is no intruder */
 		attr_double(&h, h.file, "intruder_settled_y", s->intruder_y0);
 		attr_double(&h, h.file, "intruder_settled_depth", s->surface0 - s->intruder_y0);
+		attr_double(&h, h.file, "intruder_radius", s->st.r[s->intruder]);
 	}
 	attr_long(&h, h.file, "n_mobile", s->st.nm);
 	attr_long(&h, h.file, "n_walls", s->st.n - s->st.nm);
