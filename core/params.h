@@ -15,7 +15,7 @@ enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
-typedef struct sb_scene {
+struct sb_scene {
 	/* preparation */
 	long n_grains;
 	double r_min, r_max;
@@ -37,6 +37,8 @@ typedef struct sb_scene {
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;
+	int dt_guard;        /* 0 refuse, 1 warn, 2 off */
+	int preset;          /* 0 paper, 1 fast */
 	double skin;
 	double max_overlap;
 	/* run length */
@@ -59,7 +61,8 @@ typedef struct sb_scene {
 	int ring;
 	double ring_inner, ring_outer, ring_x, ring_y;
 	long ring_every;
-} sb_scene;
+};
+typedef struct sb_scene sb_scene;
 
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
 

@@ -117,7 +117,10 @@ int main(int argc, char **argv)
 	if (!loaded) {
 		if (s->progress)
 			fprintf(stderr, "shake: preparing %s\n", sc.particles[0] ? sc.particles : "the scene");
-		if (sim_prepare(s, &e) && !s->status) {
+		int prc = sim_prepare(s, &e);
+		if (s->warning[0])
+			fprintf(stderr, "shake: warning: %s\n", s->warning);
+		if (prc && !s->status) {
 			/* bad particle file, out of memory, I/O: nothing ran, nothing to record */
 			fprintf(stderr, "shake: %s\n", e.msg);
 			int code = e.code;

@@ -358,6 +358,11 @@ int sim_prepare(sb_sim *s, sb_err *e)
 		return err;
 	if (sim_derive(s, e))
 		return e->code;
+	double m_min = INFINITY;
+	for (int i = 0; i < s->st.nm; i++)
+		m_min = fmin(m_min, s->st.m[i]);
+	if (integ_dt_check(sc, m_min, s->warning, sizeof s->warning, e))
+		return e->code;
 
 	int do_settle = sc->settle == TRI_YES || (sc->settle == TRI_AUTO && !sc->particles[0]);
 	if (do_settle) {

@@ -44,6 +44,7 @@ typedef struct sb_sim {
 	char journal_path[4200];
 	char ckpt_path[4200];
 
+	char warning[512];       /* for main to print, e.g. a dt close to its limit */
 	/* how it ended */
 	int status;
 	char status_msg[1024];

@@ -84,4 +84,16 @@ log="$TMP/good.log"
 shake_run "$log" s_ok.ini "${FAST[@]}" output="$OUT"
 rc=$?
 if [ "$rc" -eq 0 ] && [ -s "$OUT" ]; then ok control.good_input_runs; else fail control.good_input_runs "exit $rc: $(head -c 300 "$log")"; fi
+# --- the dt guard: beyond the measured stability limit is refused before anything runs,
+#     with the limit named; dt_guard = warn runs with a warning; a particle file's
+#     lightest disk counts too ---
+expect_bad dt_guard.refuse "dt|stability limit|gear5|dt_guard" "${FAST[@]}" dt=1e-3
+expect_bad dt_guard.refuse_verlet "dt|stability limit|verlet" "${FAST[@]}" integrator=verlet dt=5e-3
+shake_run warn.log "${FAST[@]}" dt=5e-4 dt_guard=warn duration=0.05 output="$TMP/warn.h5"
+rc=$?
+# (whether such a run survives is its own business: it is not refused, and it is warned)
+[ "$rc" -ne 1 ] && contains warn.log "warning" && ok dt_guard.warn ||
+	fail dt_guard.warn "exit $rc: $(head -c 300 warn.log)"
+printf '0 1.5 0.1 grain\n5 1.5 1 grain\n' >light.txt
+expect_bad dt_guard.particle_file "dt|stability limit" particles=light.txt settle=no dt=2e-4 duration=0.01
 finish

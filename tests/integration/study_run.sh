@@ -89,7 +89,7 @@ rc=$?
 	fail extend.cache_reused "$(q $DB "SELECT key, hits FROM caches")"
 
 # --- a failing run: its reason recorded, retried only on request ---
-{ printf '[campaign]\nname = f\nseed = 1\n%s\n[grid]\ndt = 5e-5, 0.002\n' "$SCENE"; } >f.campaign
+{ printf '[campaign]\nname = f\nseed = 1\n%s\ndt_guard = off\n[grid]\ndt = 5e-5, 0.002\n' "$SCENE"; } >f.campaign
 "$STUDY" run f.campaign --runs "$TMP/R" >fail1.log 2>&1
 rc=$?
 [ "$rc" -eq 3 ] && ok fail.exit_code || fail fail.exit_code "exit $rc, expected 3: $(tail -c 300 fail1.log)"
