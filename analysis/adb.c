@@ -1,0 +1,343 @@
+/* adb.c - campaign runs, parameter grouping and the `analysis` results table. */
+#include "adb.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char TABLE[] =
+	"CREATE TABLE IF NOT EXISTS analysis(\n"
+	"  campaign TEXT NOT NULL, tool TEXT NOT NULL, version TEXT, grp TEXT NOT NULL,\n"
+	"  key TEXT NOT NULL, value REAL, lo REAL, hi REAL, n INTEGER, created TEXT,\n"
+	"  PRIMARY KEY (campaign, tool, grp, key))";
+
+static int dberr(adb *d, sb_err *e)
+{
+	return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+}
+
+int adb_open(adb *d, const char *path, int writable, sb_err *e)
+{
+	memset(d, 0, sizeof *d);
+	snprintf(d->path, sizeof d->path, "%s", path);
+	int fl = writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY;
+	if (sqlite3_open_v2(path, &d->h, fl, NULL) != SQLITE_OK) {
+		sb_errf(e, SB_EIO, "%s: cannot open database: %s", path, d->h ? sqlite3_errmsg(d->h) : "out of memory");
+		sqlite3_close(d->h);
+		d->h = NULL;
+		return e->code;
+	}
+	/* the driver may be writing: wait for its short transactions */
+	sqlite3_busy_timeout(d->h, 60000);
+	return 0;
+}
+
+void adb_close(adb *d)
+{
+	if (d->ins)
+		sqlite3_finalize(d->ins);
+	if (d->h)
+		sqlite3_close(d->h);
+	d->h = NULL;
+	d->ins = NULL;
+}
+
+static char *dup_text(const unsigned char *s)
+{
+	const char *t = s ? (const char *)s : "";
+	size_t l = strlen(t) + 1;
+	char *p = malloc(l);
+	if (p)
+		memcpy(p, t, l);
+	return p;
+}
+
+int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e)
+{
+	*out = NULL;
+	*n = 0;
+	sqlite3_stmt *st = NULL, *ps = NULL;
+	if (sqlite3_prepare_v2(d->h,
+			       "SELECT id, replicate, seed FROM run WHERE campaign = ? AND state = 'done' ORDER BY id",
+			       -1, &st, NULL) != SQLITE_OK)
+		return dberr(d, e);
+	if (sqlite3_prepare_v2(d->h, "SELECT key, value FROM param WHERE campaign = ? AND run = ? ORDER BY key", -1,
+			       &ps, NULL) != SQLITE_OK) {
+		sqlite3_finalize(st);
+		return dberr(d, e);
+	}
+	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
+	an_run *r = NULL;
+	int cap = 0, k = 0, rc;
+	while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+		if (k == cap) {
+			cap = cap ? 2 * cap : 64;
+			an_run *q = realloc(r, sizeof *r * (size_t)cap);
+			if (!q) {
+				sb_errf(e, SB_ENOMEM, "out of memory");
+				break;
+			}
+			r = q;
+		}
+		an_run *x = &r[k++];
+		memset(x, 0, sizeof *x);
+		snprintf(x->id, sizeof x->id, "%s", (const char *)sqlite3_column_text(st, 0));
+		x->replicate = (long)sqlite3_column_int64(st, 1);
+		x->seed = (long)sqlite3_column_int64(st, 2);
+		snprintf(x->path, sizeof x->path, "%s/%s/%s.h5", runs_dir, campaign, x->id);
+		sqlite3_bind_text(ps, 1, campaign, -1, SQLITE_TRANSIENT);
+		sqlite3_bind_text(ps, 2, x->id, -1, SQLITE_TRANSIENT);
+		int pc = 0;
+		while (sqlite3_step(ps) == SQLITE_ROW) {
+			if (x->nparam == pc) {
+				pc = pc ? 2 * pc : 64;
+				char **a = realloc(x->key, sizeof *a * (size_t)pc), **b = a ? realloc(x->val, sizeof *b * (size_t)pc) : NULL;
+				if (a)
+					x->key = a;
+				if (!a || !b) {
+					sb_errf(e, SB_ENOMEM, "out of memory");
+					break;
+				}
+				x->val = b;
+			}
+			x->key[x->nparam] = dup_text(sqlite3_column_text(ps, 0));
+			x->val[x->nparam] = dup_text(sqlite3_column_text(ps, 1));
+			x->nparam++;
+		}
+		sqlite3_reset(ps);
+		if (e->code)
+			break;
+	}
+	if (!e->code && rc != SQLITE_DONE && rc != SQLITE_ROW)
+		dberr(d, e);
+	sqlite3_finalize(st);
+	sqlite3_finalize(ps);
+	if (e->code) {
+		adb_runs_free(r, k);
+		return e->code;
+	}
+	*out = r;
+	*n = k;
+	return 0;
+}
+
+void adb_runs_free(an_run *r, int n)
+{
+	for (int i = 0; r && i < n; i++) {
+		for (int j = 0; j < r[i].nparam; j++) {
+			free(r[i].key[j]);
+			free(r[i].val[j]);
+		}
+		free(r[i].key);
+		free(r[i].val);
+	}
+	free(r);
+}
+
+int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_err *e)
+{
+	*n = 0;
+	sqlite3_stmt *st;
+	if (sqlite3_prepare_v2(d->h, "SELECT axes FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
+		return dberr(d, e);
+	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
+	if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_text(st, 0)) {
+		char buf[2048];
+		snprintf(buf, sizeof buf, "%s", (const char *)sqlite3_column_text(st, 0));
+		for (char *sv, *tok = strtok_r(buf, " ,", &sv); tok && *n < max; tok = strtok_r(NULL, " ,", &sv))
+			snprintf(axes[(*n)++], 48, "%s", tok);
+	}
+	sqlite3_finalize(st);
+	return 0;
+}
+
+const char *an_str(const an_run *r, const char *key)
+{
+	for (int i = 0; i < r->nparam; i++)
+		if (!strcmp(r->key[i], key))
+			return r->val[i];
+	return NULL;
+}
+
+double an_num(const an_run *r, const char *key, double dflt)
+{
+	const char *s = an_str(r, key);
+	if (!s || !*s)
+		return dflt;
+	char *end;
+	double v = strtod(s, &end);
+	return *end ? dflt : v;
+}
+
+/* ---- grouping ---- */
+
+static char (*g_keys)[48];
+static int g_nk;
+
+static int cmp_runs(const an_run *a, const an_run *b)
+{
+	for (int k = 0; k < g_nk; k++) {
+		const char *sa = an_str(a, g_keys[k]), *sb = an_str(b, g_keys[k]);
+		double va = an_num(a, g_keys[k], NAN), vb = an_num(b, g_keys[k], NAN);
+		if (!isnan(va) && !isnan(vb)) {
+			if (va != vb)
+				return va < vb ? -1 : 1;
+			continue;
+		}
+		int c = strcmp(sa ? sa : "", sb ? sb : "");
+		if (c)
+			return c;
+	}
+	return 0;
+}
+
+static int cmp_ptr(const void *a, const void *b)
+{
+	const an_run *x = *(an_run *const *)a, *y = *(an_run *const *)b;
+	int c = cmp_runs(x, y);
+	return c ? c : strcmp(x->id, y->id);
+}
+
+int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels)
+{
+	*labels = NULL;
+	if (n <= 0)
+		return 0;
+	an_run **p = malloc(sizeof *p * (size_t)n);
+	char **lab = malloc(sizeof *lab * (size_t)n);
+	if (!p || !lab) {
+		free(p);
+		free(lab);
+		return -1;
+	}
+	for (int i = 0; i < n; i++)
+		p[i] = &r[i];
+	g_keys = keys;
+	g_nk = nk;
+	qsort(p, (size_t)n, sizeof *p, cmp_ptr);
+	int ng = 0;
+	for (int i = 0; i < n; i++) {
+		if (i == 0 || cmp_runs(p[i - 1], p[i])) {
+			char buf[1024] = "";
+			size_t l = 0;
+			for (int k = 0; k < nk && l < sizeof buf; k++) {
+				const char *v = an_str(p[i], keys[k]);
+				double x = an_num(p[i], keys[k], NAN);
+				if (!isnan(x))
+					l += (size_t)snprintf(buf + l, sizeof buf - l, "%s%s=%g", k ? " " : "", keys[k], x);
+				else
+					l += (size_t)snprintf(buf + l, sizeof buf - l, "%s%s=%s", k ? " " : "", keys[k], v ? v : "");
+			}
+			if (!nk)
+				snprintf(buf, sizeof buf, "all");
+			lab[ng] = malloc(strlen(buf) + 1);
+			if (lab[ng])
+				strcpy(lab[ng], buf);
+			ng++;
+		}
+		p[i]->group = ng - 1;
+	}
+	free(p);
+	*labels = lab;
+	return ng;
+}
+
+void an_labels_free(char **labels, int ng)
+{
+	for (int i = 0; labels && i < ng; i++)
+		free(labels[i]);
+	free(labels);
+}
+
+/* ---- results ---- */
+
+static int exec1(adb *d, const char *sql, sb_err *e)
+{
+	char *msg = NULL;
+	if (sqlite3_exec(d->h, sql, NULL, NULL, &msg) != SQLITE_OK) {
+		sb_errf(e, SB_EIO, "%s: %s", d->path, msg ? msg : sqlite3_errmsg(d->h));
+		sqlite3_free(msg);
+		return e->code;
+	}
+	return 0;
+}
+
+int adb_store_begin(adb *d, const char *campaign, const char *tool, sb_err *e)
+{
+	if (exec1(d, "BEGIN IMMEDIATE", e))
+		return e->code;
+	sqlite3_stmt *st = NULL;
+	if (exec1(d, TABLE, e))
+		goto fail;
+	if (sqlite3_prepare_v2(d->h, "DELETE FROM analysis WHERE campaign = ? AND tool = ?", -1, &st, NULL) != SQLITE_OK) {
+		dberr(d, e);
+		goto fail;
+	}
+	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 2, tool, -1, SQLITE_TRANSIENT);
+	if (sqlite3_step(st) != SQLITE_DONE) {
+		dberr(d, e);
+		goto fail;
+	}
+	sqlite3_finalize(st);
+	st = NULL;
+	if (sqlite3_prepare_v2(d->h,
+			       "INSERT OR REPLACE INTO analysis(campaign, tool, version, grp, key, value, lo, hi, n, created)"
+			       " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+			       -1, &d->ins, NULL) != SQLITE_OK) {
+		dberr(d, e);
+		goto fail;
+	}
+	return 0;
+fail:
+	sqlite3_finalize(st);
+	sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
+	return e->code;
+}
+
+static void bind_real(sqlite3_stmt *st, int k, double v)
+{
+	if (isfinite(v))
+		sqlite3_bind_double(st, k, v);
+	else
+		sqlite3_bind_null(st, k);
+}
+
+int adb_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
+	      const char *key, double value, double lo, double hi, long n, sb_err *e)
+{
+	char now[32];
+	time_t t = time(NULL);
+	struct tm tm;
+	gmtime_r(&t, &tm);
+	strftime(now, sizeof now, "%Y-%m-%dT%H:%M:%SZ", &tm);
+	sqlite3_stmt *st = d->ins;
+	sqlite3_reset(st);
+	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 2, tool, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 3, version, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 4, grp, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 5, key, -1, SQLITE_TRANSIENT);
+	bind_real(st, 6, value);
+	bind_real(st, 7, lo);
+	bind_real(st, 8, hi);
+	sqlite3_bind_int64(st, 9, n);
+	sqlite3_bind_text(st, 10, now, -1, SQLITE_TRANSIENT);
+	if (sqlite3_step(st) != SQLITE_DONE)
+		return dberr(d, e);
+	return 0;
+}
+
+int adb_store_end(adb *d, int ok, sb_err *e)
+{
+	if (d->ins)
+		sqlite3_finalize(d->ins);
+	d->ins = NULL;
+	if (!ok) {
+		sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
+		return 0;
+	}
+	return exec1(d, "COMMIT", e);
+}

@@ -1,0 +1,59 @@
+/* adb.h - the analysis side of a campaign database: the finished runs of a campaign
+ * with their parameters and output paths, grouping by parameters, and the `analysis`
+ * table where the tools store their derived numbers (prepared statements only). */
+#ifndef AN_ADB_H
+#define AN_ADB_H
+
+#include <sqlite3.h>
+#include <stddef.h>
+
+#include "err.h"
+
+typedef struct an_run {
+	char id[128];
+	long replicate;     /* run.replicate: the bootstrap unit ("seed") */
+	long seed;          /* engine seed (run.seed) */
+	char path[1400];    /* RUNS/CAMPAIGN/ID.h5 */
+	int nparam;
+	char **key, **val;  /* param table rows, values as text */
+	int group;          /* index into an_groups.label, set by an_group_runs */
+} an_run;
+
+typedef struct adb {
+	sqlite3 *h;
+	char path[1024];
+	sqlite3_stmt *ins;  /* INSERT into analysis, prepared by adb_store_begin */
+} adb;
+
+int adb_open(adb *d, const char *path, int writable, sb_err *e);
+void adb_close(adb *d);
+
+/* Runs of campaign in state 'done' (ordered by id), their parameters from the param
+ * table and output path runs_dir/campaign/id.h5. Returns 0 or an error code; *n may
+ * be 0 (no finished runs). */
+int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e);
+void adb_runs_free(an_run *r, int n);
+
+/* The campaign's swept axes (campaign.axes, space separated); *n = 0 when unknown. */
+int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_err *e);
+
+/* A parameter as a number (dflt when missing or not numeric) or as text (NULL). */
+double an_num(const an_run *r, const char *key, double dflt);
+const char *an_str(const an_run *r, const char *key);
+
+/* Group runs by the values of keys[0..nk): sets r[i].group, returns the number of
+ * groups and their labels ("radius_ratio=2 depth=1"; "all" for nk = 0), ordered by
+ * the key values (numerically when they are numbers). labels: free with an_labels_free. */
+int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels);
+void an_labels_free(char **labels, int ng);
+
+/* Storing results: BEGIN, create the table if missing, delete this tool's earlier
+ * rows for the campaign; adb_store inserts one row (NaN value/lo/hi become NULL);
+ * adb_store_end commits (ok != 0) or rolls back. Table:
+ *   analysis(campaign, tool, version, grp, key, value, lo, hi, n, created) */
+int adb_store_begin(adb *d, const char *campaign, const char *tool, sb_err *e);
+int adb_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
+	      const char *key, double value, double lo, double hi, long n, sb_err *e);
+int adb_store_end(adb *d, int ok, sb_err *e);
+
+#endif

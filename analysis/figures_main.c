@@ -1,0 +1,381 @@
+/* figures_main.c - bin/figures: the paper's Fig. 1 (arrow field of the averaged
+ * displacement), Fig. 3 (Phi versus height D with and without intruder) and Fig. 4
+ * (intruder height versus time) from a campaign. Only this file prints and exits. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "adb.h"
+#include "cli.h"
+#include "flux.h"
+#include "h5read.h"
+
+#define VERSION "1"
+#define MAXROWS 6
+
+static const char *HELP =
+	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
+	"               [--ratio R] [--skip FRAC] [--no-plot] [--no-store]\n\n"
+	"The paper's figures from the finished fixed-frequency runs (ramp = none) of a\n"
+	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
+	"at most 6) and two systems: without intruder (radius_ratio = 0) and with one of\n"
+	"radius ratio R (--ratio, default the largest in the campaign). Every replicate of a\n"
+	"panel is averaged in.\n"
+	"  fig1.png  Fig. 1: the displacement field (/field, field = yes): per cell the mean\n"
+	"            displacement per period, weighted by the samples (count) of every block\n"
+	"            and run; arrows on a common scale (the longest = 0.9 cell) in all panels;\n"
+	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line after the first FRAC\n"
+	"            of the periods (--skip, default 0.2), against the line height D above\n"
+	"            the bottom (/flux, flux = yes), both systems in one panel per frequency;\n"
+	"  fig4.png  Fig. 4: the intruder's height y(t) (/intruder/trajectory, lab frame) at\n"
+	"            the highest selected frequency, one panel per radius ratio > 0 (the\n"
+	"            run with the lowest replicate), with its settled height and the surface.\n"
+	"A figure without data is skipped with a note.\n\n"
+	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
+	"  --no-plot, --no-store\n\n"
+	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the PNGs; stores per\n"
+	"panel of Fig. 3 in `analysis` (tool 'figures', grp 'fig3 f=F radius_ratio=R'):\n"
+	"phi_max (largest |Phi(D)|), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
+	"deep the rolls reach), runs. Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+
+static int cmpd(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+static int near(double a, double b)
+{
+	return fabs(a - b) <= 1e-9 * fmax(1, fabs(b));
+}
+
+int main(int argc, char **argv)
+{
+	an_opts o = {.tool = "figures", .version = VERSION};
+	int pr = cli_parse(&o, argc, argv, HELP, " freq ratio skip ");
+	if (pr)
+		return pr < 0 ? 0 : 1;
+	flux_opts fo = {0.4, 0.6, o.skip};
+	sb_err e = {0};
+	adb d;
+	an_run *runs = NULL;
+	int nr = 0, k = 0, made = 0, stored = 0;
+	FILE *f = NULL;
+	char path[1400], script[1400], png[1400];
+	double freqs[64], ratios[64];
+	int nf = 0, nra = 0;
+	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
+		goto out;
+	for (int i = 0; i < nr; i++) {
+		const char *ramp = an_str(&runs[i], "ramp");
+		if (ramp && strcmp(ramp, "none"))
+			continue;
+		an_run t = runs[k];
+		runs[k] = runs[i];
+		runs[i] = t;
+		double fr = an_num(&runs[k], "frequency", NAN), ra = an_num(&runs[k], "radius_ratio", 0);
+		int seen = 0;
+		for (int j = 0; j < nf; j++)
+			seen |= near(freqs[j], fr);
+		if (!seen && nf < 64 && isfinite(fr))
+			freqs[nf++] = fr;
+		seen = 0;
+		for (int j = 0; j < nra; j++)
+			seen |= near(ratios[j], ra);
+		if (!seen && nra < 64 && ra > 0)
+			ratios[nra++] = ra;
+		k++;
+	}
+	if (!k) {
+		sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s", o.campaign, o.db);
+		goto out;
+	}
+	qsort(freqs, (size_t)nf, sizeof *freqs, cmpd);
+	qsort(ratios, (size_t)nra, sizeof *ratios, cmpd);
+	if (o.nfreq) {
+		nf = o.nfreq;
+		memcpy(freqs, o.freqs, sizeof(double) * (size_t)nf);
+	}
+	if (nf > MAXROWS)
+		nf = MAXROWS;
+	double R = isnan(o.ratio) ? (nra ? ratios[nra - 1] : 0) : o.ratio;
+	if (cli_outdir(&o, &e))
+		goto out;
+	if (!o.no_store && adb_store_begin(&d, o.campaign, "figures", &e))
+		goto out;
+
+	/* ---- Fig. 1: displacement field ---- */
+	{
+		if (!(f = cli_fopen(&o, "fig1_field.csv", path, sizeof path, &e)))
+			goto out;
+		fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
+		double umax = 0, cell = 1, xlo = INFINITY, xhi = -INFINITY, yhi = 0;
+		int panels = 0;
+		/* two passes: the first finds the common arrow scale */
+		for (int pass = 0; pass < 2; pass++)
+			for (int r = 0; r < nf; r++)
+				for (int sys = 0; sys < 2; sys++) {
+					double ra = sys ? R : 0, *sx = NULL, *sy = NULL, *sc = NULL, x0 = 0;
+					size_t dims0[3] = {0, 0, 0};
+					int used = 0;
+					for (int i = 0; i < k; i++) {
+						if (!near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
+						    !near(an_num(&runs[i], "radius_ratio", 0), ra))
+							continue;
+						hid_t h;
+						sb_err he = {0};
+						if (h5r_open(runs[i].path, &h, &he) || !h5r_exists(h, "/field")) {
+							if (!he.code)
+								h5r_close(h);
+							continue;
+						}
+						double *ux = NULL, *uy = NULL, *cn = NULL;
+						size_t d1[3], d2[3], d3[3];
+						int rk;
+						if (!h5r_read(h, "/field/ux", &ux, &rk, d1, &he) && !h5r_read(h, "/field/uy", &uy, &rk, d2, &he) &&
+						    !h5r_read(h, "/field/count", &cn, &rk, d3, &he) && rk == 3 &&
+						    (!used || (d1[1] == dims0[1] && d1[2] == dims0[2]))) {
+							if (!used) {
+								memcpy(dims0, d1, sizeof dims0);
+								size_t nc = d1[1] * d1[2];
+								sx = calloc(nc, sizeof *sx);
+								sy = calloc(nc, sizeof *sy);
+								sc = calloc(nc, sizeof *sc);
+								h5r_attr_num(h, "/field", "cell", &cell);
+								h5r_attr_num(h, "/field", "x0", &x0);
+							}
+							size_t nc = d1[1] * d1[2];
+							for (size_t b = 0; sx && sy && sc && b < d1[0]; b++)
+								for (size_t c = 0; c < nc; c++) {
+									double n = cn[b * nc + c];
+									sx[c] += n * ux[b * nc + c];
+									sy[c] += n * uy[b * nc + c];
+									sc[c] += n;
+								}
+							used++;
+						}
+						free(ux);
+						free(uy);
+						free(cn);
+						h5r_close(h);
+					}
+					if (used && sx && sy && sc) {
+						size_t ny = dims0[1], nx = dims0[2];
+						double scale = umax > 0 ? 0.9 * cell / umax : 1;
+						for (size_t rr = 0; rr < ny; rr++)
+							for (size_t c = 0; c < nx; c++) {
+								size_t q = rr * nx + c;
+								if (sc[q] <= 0)
+									continue;
+								double ux = sx[q] / sc[q], uy = sy[q] / sc[q];
+								double x = x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
+								if (pass == 0) {
+									umax = fmax(umax, hypot(ux, uy));
+									xlo = fmin(xlo, x0);
+									xhi = fmax(xhi, x0 + nx * cell);
+									yhi = fmax(yhi, ny * cell);
+									continue;
+								}
+								fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", 2 * r + sys,
+									freqs[r], ra, x - 0.5 * ux * scale, y - 0.5 * uy * scale, ux, uy, sc[q],
+									ux * scale, uy * scale);
+							}
+						panels += pass;
+					}
+					free(sx);
+					free(sy);
+					free(sc);
+				}
+		fclose(f);
+		f = NULL;
+		if (!panels)
+			printf("# fig1: no run with field = yes; skipped\n");
+		else if (!o.no_plot) {
+			if (!(f = gp_open(&o, "fig1", 900, 330 * nf + 60, script, png, sizeof script, &e)))
+				goto out;
+			fprintf(f, "set multiplot layout %d,2 title 'Fig. 1: mean displacement per period (longest arrow %.3g cm)'\n"
+				   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n",
+				nf, umax, xlo, xhi, yhi);
+			for (int r = 0; r < nf; r++)
+				for (int sys = 0; sys < 2; sys++) {
+					fprintf(f, "set title '%s, f = %g Hz'\n", sys ? "with intruder" : "without intruder", freqs[r]);
+					if (sys)
+						fprintf(f, "set label 1 'R = %g' at graph 0.02, graph 0.93\n", R);
+					else
+						fprintf(f, "unset label 1\n");
+					fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
+						2 * r + sys, 0.25 * cell);
+				}
+			fprintf(f, "unset multiplot\n");
+			fclose(f);
+			f = NULL;
+			if (gp_run(script, png, &e))
+				goto out;
+			made++;
+			printf("# fig1: %s (%d panels)\n", png, panels);
+		}
+	}
+
+	/* ---- Fig. 3: Phi(D) ---- */
+	{
+		if (!(f = cli_fopen(&o, "fig3_profile.csv", path, sizeof path, &e)))
+			goto out;
+		fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
+		int panels = 0;
+		printf("%-10s %-6s %5s %10s %12s\n", "frequency", "R", "runs", "phi_max", "half_height");
+		for (int r = 0; r < nf; r++)
+			for (int sys = 0; sys < 2; sys++) {
+				double ra = sys ? R : 0, *sp = NULL, *sh = NULL;
+				size_t L = 0;
+				int used = 0;
+				for (int i = 0; i < k; i++) {
+					if (!near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
+					    !near(an_num(&runs[i], "radius_ratio", 0), ra))
+						continue;
+					flux_data fd;
+					sb_err fe = {0};
+					if (flux_read(runs[i].path, &fd, &fe))
+						continue;
+					if (!used) {
+						L = fd.L;
+						sp = calloc(L ? L : 1, sizeof *sp);
+						sh = calloc(L ? L : 1, sizeof *sh);
+					}
+					double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
+					if (sp && sh && prof && fd.L == L && fd.P) {
+						flux_profile(&fd, &fo, prof);
+						for (size_t l = 0; l < L; l++) {
+							sp[l] += prof[l];
+							sh[l] += fd.h[l];
+						}
+						used++;
+					}
+					free(prof);
+					flux_free(&fd);
+				}
+				if (used) {
+					double pm = 0, half = NAN;
+					for (size_t l = 0; l < L; l++) {
+						fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, freqs[r], ra, l, sh[l] / used,
+							sp[l] / used, used);
+						pm = fmax(pm, fabs(sp[l] / used));
+					}
+					for (size_t l = 0; l < L && isnan(half); l++)
+						if (pm > 0 && fabs(sp[l] / used) >= 0.5 * pm)
+							half = sh[l] / used;
+					printf("%-10g %-6g %5d %10.4g %12.4g\n", freqs[r], ra, used, pm, half);
+					if (!o.no_store) {
+						char g[128];
+						snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", freqs[r], ra);
+						adb_store(&d, o.campaign, "figures", VERSION, g, "phi_max", pm, NAN, NAN, used, &e);
+						adb_store(&d, o.campaign, "figures", VERSION, g, "half_height", half, NAN, NAN, used, &e);
+						adb_store(&d, o.campaign, "figures", VERSION, g, "runs", used, NAN, NAN, used, &e);
+						stored++;
+					}
+					panels++;
+				}
+				free(sp);
+				free(sh);
+			}
+		fclose(f);
+		f = NULL;
+		if (e.code)
+			goto out;
+		if (!panels)
+			printf("# fig3: no run with flux = yes; skipped\n");
+		else if (!o.no_plot) {
+			if (!(f = gp_open(&o, "fig3", 800, 260 * nf + 60, script, png, sizeof script, &e)))
+				goto out;
+			fprintf(f, "set multiplot layout %d,1 title 'Fig. 3: convective flux Phi through planes at height D'\n"
+				   "set xlabel 'D (cm above the bottom)'\nset ylabel 'Phi (particles/period)'\n", nf);
+			for (int r = 0; r < nf; r++) {
+				fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n"
+					   "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', 0 with lines lc 'gray' notitle\n",
+					freqs[r], r, r, R);
+			}
+			fprintf(f, "unset multiplot\n");
+			fclose(f);
+			f = NULL;
+			if (gp_run(script, png, &e))
+				goto out;
+			made++;
+			printf("# fig3: %s (%d curves)\n", png, panels);
+		}
+	}
+
+	/* ---- Fig. 4: intruder height ---- */
+	{
+		if (!(f = cli_fopen(&o, "fig4_traj.csv", path, sizeof path, &e)))
+			goto out;
+		fprintf(f, "panel,radius_ratio,run,t,y\n");
+		double f4 = nf ? freqs[nf - 1] : NAN, meta[8][3];
+		int panels = 0;
+		for (int q = 0; q < nra && panels < 8; q++) {
+			int best = -1;
+			for (int i = 0; i < k; i++)
+				if (near(an_num(&runs[i], "frequency", NAN), f4) && near(an_num(&runs[i], "radius_ratio", 0), ratios[q]) &&
+				    (best < 0 || runs[i].replicate < runs[best].replicate))
+					best = i;
+			if (best < 0)
+				continue;
+			hid_t h;
+			sb_err he = {0};
+			if (h5r_open(runs[best].path, &h, &he))
+				continue;
+			double *tr = NULL;
+			size_t dm[3];
+			int rk;
+			if (!h5r_read(h, "/intruder/trajectory", &tr, &rk, dm, &he) && rk == 2 && dm[1] >= 3 && dm[0] > 0) {
+				for (size_t j = 0; j < dm[0]; j++)
+					fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", panels, ratios[q], runs[best].id, tr[j * dm[1]],
+						tr[j * dm[1] + 2]);
+				meta[panels][0] = ratios[q];
+				meta[panels][1] = meta[panels][2] = NAN;
+				h5r_attr_num(h, "/", "intruder_settled_y", &meta[panels][1]);
+				h5r_attr_num(h, "/", "surface_height", &meta[panels][2]);
+				panels++;
+			}
+			free(tr);
+			h5r_close(h);
+		}
+		fclose(f);
+		f = NULL;
+		if (!panels)
+			printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
+		else if (!o.no_plot) {
+			if (!(f = gp_open(&o, "fig4", 800, 260 * panels + 60, script, png, sizeof script, &e)))
+				goto out;
+			fprintf(f, "set multiplot layout %d,1 title 'Fig. 4: height of the intruder, f = %g Hz'\n"
+				   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", panels, f4);
+			for (int p = 0; p < panels; p++)
+				fprintf(f, "set title 'R = %g'\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lc 1 title 'intruder centre', \\\n"
+					   "  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' title 'free surface (t = 0)'\n",
+					meta[p][0], p, meta[p][1], meta[p][2]);
+			fprintf(f, "unset multiplot\n");
+			fclose(f);
+			f = NULL;
+			if (gp_run(script, png, &e))
+				goto out;
+			made++;
+			printf("# fig4: %s (%d panels)\n", png, panels);
+		}
+	}
+	if (!o.no_store && adb_store_end(&d, !e.code, &e))
+		goto out;
+	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv\n", o.out);
+out:
+	if (f)
+		fclose(f);
+	if (e.code && !o.no_store && d.ins)
+		adb_store_end(&d, 0, &e);
+	adb_runs_free(runs, nr);
+	adb_close(&d);
+	(void)made;
+	(void)stored;
+	if (e.code) {
+		fprintf(stderr, "figures: %s\n", e.msg);
+		return e.code == SB_EUSAGE ? 1 : 2;
+	}
+	return 0;
+}

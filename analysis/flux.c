@@ -1,0 +1,116 @@
+/* flux.c - plane flux and profiles from a run's /flux group. */
+#include "flux.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "h5read.h"
+
+int flux_read(const char *path, flux_data *d, sb_err *e)
+{
+	memset(d, 0, sizeof *d);
+	hid_t f;
+	if (h5r_open(path, &f, e))
+		return e->code;
+	int r;
+	size_t dt[3], df[3], dp[3], dh[3];
+	if (!h5r_exists(f, "/flux")) {
+		h5r_close(f);
+		return sb_errf(e, SB_EIO, "%s: no /flux group (run with flux = yes)", path);
+	}
+	sb_err re = {0};
+	if (h5r_read(f, "/flux/time", &d->t, &r, dt, &re) || h5r_read(f, "/flux/frequency", &d->f, &r, df, &re) ||
+	    h5r_read(f, "/flux/phi", &d->phi, &r, dp, &re) || h5r_read(f, "/flux/heights", &d->h, &r, dh, &re)) {
+		h5r_close(f);
+		flux_free(d);
+		return sb_errf(e, re.code, "%.500s: %.500s", path, re.msg);
+	}
+	d->P = dt[0];
+	d->L = dh[0];
+	if (df[0] != d->P || (d->P && (dp[0] != d->P || dp[1] != d->L))) {
+		h5r_close(f);
+		flux_free(d);
+		return sb_errf(e, SB_EIO, "%s: /flux datasets have inconsistent sizes", path);
+	}
+	d->surface = NAN;
+	if (h5r_attr_num(f, "/flux", "surface_height", &d->surface))
+		h5r_attr_num(f, "/", "surface_height", &d->surface);
+	if (!isfinite(d->surface) && d->L)
+		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */
+	h5r_close(f);
+	return 0;
+}
+
+void flux_free(flux_data *d)
+{
+	free(d->t);
+	free(d->f);
+	free(d->phi);
+	free(d->h);
+	memset(d, 0, sizeof *d);
+}
+
+void flux_band(const flux_data *d, const flux_opts *o, size_t *l0, size_t *l1)
+{
+	double lo = o->band_lo * d->surface, hi = o->band_hi * d->surface;
+	size_t a = d->L, b = 0;
+	for (size_t l = 0; l < d->L; l++)
+		if (d->h[l] >= lo && d->h[l] <= hi) {
+			if (a == d->L)
+				a = l;
+			b = l + 1;
+		}
+	if (a == d->L) { /* band thinner than the line spacing: the line nearest its middle */
+		double mid = 0.5 * (lo + hi), best = INFINITY;
+		a = 0;
+		for (size_t l = 0; l < d->L; l++)
+			if (fabs(d->h[l] - mid) < best) {
+				best = fabs(d->h[l] - mid);
+				a = l;
+			}
+		b = d->L ? a + 1 : 0;
+	}
+	*l0 = a;
+	*l1 = b;
+}
+
+double flux_plane(const flux_data *d, size_t p, size_t l0, size_t l1)
+{
+	if (l1 <= l0)
+		return NAN;
+	double s = 0;
+	for (size_t l = l0; l < l1; l++)
+		s += d->phi[p * d->L + l];
+	return s / (double)(l1 - l0);
+}
+
+size_t flux_first(const flux_data *d, const flux_opts *o)
+{
+	size_t k = (size_t)floor(o->skip * (double)d->P);
+	return d->P && k >= d->P ? d->P - 1 : k;
+}
+
+double flux_summary(const flux_data *d, const flux_opts *o)
+{
+	size_t l0, l1;
+	flux_band(d, o, &l0, &l1);
+	size_t p0 = flux_first(d, o);
+	if (d->P == 0 || l1 <= l0)
+		return NAN;
+	double s = 0;
+	for (size_t p = p0; p < d->P; p++)
+		s += flux_plane(d, p, l0, l1);
+	return s / (double)(d->P - p0);
+}
+
+void flux_profile(const flux_data *d, const flux_opts *o, double *prof)
+{
+	size_t p0 = flux_first(d, o);
+	for (size_t l = 0; l < d->L; l++) {
+		double s = 0;
+		for (size_t p = p0; p < d->P; p++)
+			s += d->phi[p * d->L + l];
+		prof[l] = d->P > p0 ? s / (double)(d->P - p0) : NAN;
+	}
+}

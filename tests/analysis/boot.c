@@ -1,0 +1,63 @@
+/* boot.c - the bootstrap is reproducible (same seed, same replicates, bit for bit),
+ * depends on the seed, draws in range, and its percentile interval is right on known
+ * data and ignores failed replicates. */
+#include <math.h>
+#include <string.h>
+
+#include "boot.h"
+#include "testlib.h"
+
+static void mean_stat(void *ctx, const size_t *idx, size_t n, double *out)
+{
+	const double *x = ctx;
+	double s = 0;
+	for (size_t i = 0; i < n; i++)
+		s += x[idx[i]];
+	out[0] = s / (double)n;
+	out[1] = idx[0] % 3 == 0 ? NAN : x[idx[0]]; /* fails a third of the time */
+}
+
+int main(void)
+{
+	double x[20];
+	for (int i = 0; i < 20; i++)
+		x[i] = (i * 7919) % 23;
+	enum { B = 500 };
+	static double a[2 * B], b[2 * B], c[2 * B];
+	CHECK("boot.run.ok", boot_run(42, 20, B, 2, mean_stat, x, a) == 0, "boot_run failed");
+	boot_run(42, 20, B, 2, mean_stat, x, b);
+	boot_run(43, 20, B, 2, mean_stat, x, c);
+	CHECK("boot.reproducible.same_seed", memcmp(a, b, sizeof a) == 0, "same seed gave different replicates");
+	CHECK("boot.seed_matters", memcmp(a, c, sizeof(double) * B) != 0, "seeds 42 and 43 gave the same replicates");
+	gsl_rng *r = boot_rng(7);
+	size_t idx[1000];
+	boot_draw(r, 1000, idx);
+	size_t mx = 0, hits0 = 0;
+	for (int i = 0; i < 1000; i++) {
+		mx = idx[i] > mx ? idx[i] : mx;
+		hits0 += idx[i] == 0;
+	}
+	gsl_rng_free(r);
+	CHECK("boot.draw.range", mx < 1000 && hits0 < 10, "max %zu, index 0 drawn %zu times", mx, hits0);
+	/* the mean of the resampled means is close to the mean (sd of a mean ~ 6.6/sqrt(20)) */
+	double m = 0, xm = 0;
+	for (int i = 0; i < B; i++)
+		m += a[i] / B;
+	for (int i = 0; i < 20; i++)
+		xm += x[i] / 20;
+	CHECK("boot.mean_of_means", fabs(m - xm) < 0.3, "mean of bootstrap means %g, sample mean %g", m, xm);
+
+	double v[101], lo, hi;
+	for (int i = 0; i <= 100; i++)
+		v[i] = 100 - i; /* 100 .. 0, unsorted */
+	size_t n = boot_percentile(v, 101, 0.9, &lo, &hi);
+	CHECK("boot.percentile.known", n == 101 && fabs(lo - 5) < 1e-12 && fabs(hi - 95) < 1e-12, "n %zu [%g, %g], want [5, 95]",
+	      n, lo, hi);
+	n = boot_percentile(a + B, B, 0.95, &lo, &hi);
+	CHECK("boot.percentile.ignores_nan", n > B / 2 && n < B && isfinite(lo) && isfinite(hi) && lo <= hi,
+	      "%zu finite of %d, [%g, %g]", n, B, lo, hi);
+	double one[2] = {NAN, 3};
+	n = boot_percentile(one, 2, 0.95, &lo, &hi);
+	CHECK("boot.percentile.too_few", n == 1 && isnan(lo) && isnan(hi), "n %zu [%g, %g]", n, lo, hi);
+	return tl_done();
+}
