@@ -9,7 +9,7 @@
 /* Linear leg: f(t) = f0 + k t, cycles = f0 t + k t^2 / 2. */
 static double leg_cycles(double f0, double k, double t) { return f0 * t + 0.5 * k * t * t; }
 
-double drive_freq(const sb_drive *d, double t)
+static double ramp_freq(const sb_drive *d, double t)
 {
 	if (d->ramp == RAMP_NONE)
 		return d->f;
@@ -24,7 +24,7 @@ double drive_freq(const sb_drive *d, double t)
 	return d->f1 - k * u;
 }
 
-double drive_cycles(const sb_drive *d, double t)
+static double ramp_cycles(const sb_drive *d, double t)
 {
 	if (d->ramp == RAMP_NONE)
 		return d->f * t;
@@ -43,9 +43,30 @@ double drive_cycles(const sb_drive *d, double t)
 	return c + leg_cycles(d->f1, -k, h) + d->f0 * (t - d->T);
 }
 
+/* A ramp may first hold f0 for d->hold seconds (so that the start of shaking does not
+ * fall on the ramp's first frequencies); the ramp functions see time from its start. */
+double drive_freq(const sb_drive *d, double t)
+{
+	if (d->ramp != RAMP_NONE && t < d->hold)
+		return d->f0;
+	return ramp_freq(d, t - (d->ramp != RAMP_NONE ? d->hold : 0));
+}
+
+double drive_cycles(const sb_drive *d, double t)
+{
+	if (d->ramp == RAMP_NONE)
+		return d->f * t;
+	if (t < d->hold)
+		return d->f0 * t;
+	return d->f0 * d->hold + ramp_cycles(d, t - d->hold);
+}
+
 /* df/dt, for the box acceleration of a ramp */
 static double drive_dfdt(const sb_drive *d, double t)
 {
+	if (t < d->hold)
+		return 0;
+	t -= d->hold;
 	if (d->ramp == RAMP_LINEAR)
 		return t <= d->T ? (d->f1 - d->f0) / d->T : 0;
 	double h = 0.5 * d->T, k = (d->f1 - d->f0) / h;

@@ -11,6 +11,7 @@ typedef struct sb_drive {
 	double f;        /* constant frequency (RAMP_NONE), Hz */
 	double f0, f1;   /* ramp: from f0 to f1 (RAMP_LINEAR), f0 -> f1 -> f0 (RAMP_UPDOWN) */
 	double T;        /* ramp duration, s */
+	double hold;     /* ramp: seconds at f0 before the ramp starts */
 } sb_drive;
 
 /* Number of periods completed at time t (the phase in units of 2 pi). */

@@ -65,6 +65,8 @@ static const sb_param TABLE[] = {
 	 "frequency at the start of a ramp"},
 	{"ramp_to", PT_REAL, "Hz", "3.2", 0, 1000, NULL, PF_DYN | PF_MINX, OFF(ramp_to),
 	 "frequency at the end (linear) or the turning point (updown) of a ramp"},
+	{"ramp_hold", PT_REAL, "s", "0", 0, 1e8, NULL, PF_DYN, OFF(ramp_hold),
+	 "hold ramp_from this long before the ramp starts (the ramp spans the rest of the run)"},
 	{"gravity", PT_REAL, "cm/s^2", "981", 0, 1e7, NULL, PF_PREP | PF_DYN, OFF(gravity),
 	 "g, acting in -y"},
 	{"stiffness", PT_REAL, "g/s^2", "3e6", 0, 1e13, NULL, PF_PREP | PF_DYN | PF_MINX,
@@ -388,9 +390,9 @@ int params_validate(const sb_scene *s, sb_err *e)
 			       s->radius_ratio, 2 * ri, s->width);
 	if (!s->output[0])
 		return sb_errf(e, SB_EUSAGE, "output: must not be empty");
-	if (s->ramp != 0 && !(s->duration > 0))
-		return sb_errf(e, SB_EUSAGE, "ramp = %s needs duration > 0 (the ramp spans the run)",
-			       s->ramp == 1 ? "linear" : "updown");
+	if (s->ramp != 0 && !(s->duration > s->ramp_hold))
+		return sb_errf(e, SB_EUSAGE, "ramp = %s needs duration (%g s) > ramp_hold (%g s): the ramp spans the rest of the run",
+			       s->ramp == 1 ? "linear" : "updown", s->duration, s->ramp_hold);
 	if (s->ring && s->ring_inner >= s->ring_outer)
 		return sb_errf(e, SB_EUSAGE, "ring_inner (%g) must be smaller than ring_outer (%g)", s->ring_inner,
 			       s->ring_outer);

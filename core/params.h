@@ -32,7 +32,7 @@ struct sb_scene {
 	int wall_mass;       /* enum sb_wall_mass */
 	double amplitude, frequency, gravity;
 	int ramp;            /* enum sb_ramp (drive.h) */
-	double ramp_from, ramp_to;
+	double ramp_from, ramp_to, ramp_hold;
 	double stiffness, gamma_n, gamma_s, mu;
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */

@@ -32,7 +32,7 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 			  sc->clip_attractive};
 	integ_init(&s->in, sc->integrator, sc->dt);
 	s->drive = (sb_drive){sc->ramp, sc->amplitude, sc->frequency, sc->ramp_from, sc->ramp_to,
-			      sc->duration};
+			      sc->duration - sc->ramp_hold, sc->ramp_hold};
 	s->intruder = -1;
 	s->nsteps = llround(sc->duration / sc->dt);
 	snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);

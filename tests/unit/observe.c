@@ -181,11 +181,12 @@ static void test_ring(void)
 static void test_ramp(void)
 {
 	/* the phase of every drive is continuous with derivative f(t), also at the turn */
-	sb_drive d[3] = {{RAMP_NONE, 2, 3.0, 0, 0, 10},
-			 {RAMP_LINEAR, 2, 0, 2.5, 3.2, 10},
-			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10}};
-	const char *names[3] = {"none", "linear", "updown"};
-	for (int k = 0; k < 3; k++) {
+	sb_drive d[4] = {{RAMP_NONE, 2, 3.0, 0, 0, 10, 0},
+			 {RAMP_LINEAR, 2, 0, 2.5, 3.2, 10, 0},
+			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10, 0},
+			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10, 1.5}};
+	const char *names[4] = {"none", "linear", "updown", "updown_hold"};
+	for (int k = 0; k < 4; k++) {
 		double worst_c = 0, worst_f = 0, worst_y = 0;
 		const double h = 1e-6;
 		for (double t = 0.01; t < 12; t += 0.0173) {
@@ -197,8 +198,8 @@ static void test_ramp(void)
 			worst_y = fmax(worst_y, fabs(dy - drive_v(&d[k], t)) / (2 * 2 * 3.14159 * 3.2));
 		}
 		/* continuity at the turning point and at the end of the ramp */
-		double ts[2] = {5, 10};
-		for (int q = 0; q < 2; q++)
+		double ts[3] = {5 + d[k].hold, 10 + d[k].hold, d[k].hold > 0 ? d[k].hold : 5};
+		for (int q = 0; q < 3; q++)
 			worst_c = fmax(worst_c, fabs(drive_cycles(&d[k], ts[q] + 1e-9) - drive_cycles(&d[k], ts[q] - 1e-9)));
 		char id[64];
 		snprintf(id, sizeof id, "drive.%s.phase_rate_is_frequency", names[k]);
@@ -221,6 +222,10 @@ static void test_ramp(void)
 		worst_a = fmax(worst_a, fabs(da - drive_a(&d[2], t)) / (2 * pow(2 * 3.14159 * 3.2, 2)));
 	}
 	CHECK("drive.updown.acceleration_is_derivative", worst_a < 1e-5, "max relative %g", worst_a);
+	/* a hold keeps f0, then the same ramp shifted in time */
+	CHECK_REL("drive.hold.holds", drive_freq(&d[3], 1.0), 2.5, 1e-15);
+	CHECK_REL("drive.hold.turns_later", drive_freq(&d[3], 6.5), 3.2, 1e-15);
+	CHECK_REL("drive.hold.cycles", drive_cycles(&d[3], 11.5), 2.5 * 1.5 + 0.5 * (2.5 + 3.2) * 10, 1e-14);
 }
 
 int main(void)
