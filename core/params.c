@@ -47,9 +47,9 @@ static const sb_param TABLE[] = {
 	{"settle_ke", PT_REAL, "erg", "0.01", 0, BIG, NULL, PF_PREP | PF_MINX, OFF(settle_ke),
 	 "settled when the mean kinetic energy per mobile disk falls below this"},
 	{"settle_min", PT_REAL, "s", "1", 0, 1e6, NULL, PF_PREP, OFF(settle_min),
-	 "settle at least this long; settle_drag acts during this time"},
+	 "settle at least this long"},
 	{"settle_drag", PT_REAL, "1/s", "20", 0, 1e6, NULL, PF_PREP, OFF(settle_drag),
-	 "viscous drag -settle_drag m v during settle_min, so the loose packing collapses gently"},
+	 "viscous drag -settle_drag m v while settling: the loose packing collapses gently and rattlers come to rest (0 = none)"},
 	{"settle_max", PT_REAL, "s", "30", 0, 1e6, NULL, PF_PREP | PF_MINX, OFF(settle_max),
 	 "give up (exit code 6) if not settled after this long"},
 	/* --- dynamics --- */

@@ -284,10 +284,12 @@ static int settle(sb_sim *s, sb_err *e)
 		return e->code;
 	for (long k = 1;; k++) {
 		double t = k * sc->dt;
-		/* Drag during the first settle_min seconds lets the loose lattice collapse at
-		 * a terminal speed g / settle_drag instead of slamming down. */
+		/* A viscous drag lets the loose lattice collapse at a terminal speed
+		 * g / settle_drag instead of slamming down, and brings the bouncing grains of
+		 * the surface to rest in a time 1 / settle_drag instead of a long series of
+		 * bounces; it does not change what a static packing is. */
 		const int look = (k % every == 0 && k >= nmin) || k >= nmax;
-		if (step_once(s, gy, k <= nmin ? sc->settle_drag : 0, t, k, "settling", !look, NULL, e))
+		if (step_once(s, gy, sc->settle_drag, t, k, "settling", !look, NULL, e))
 			return e->code;
 		if (k % every == 0 && k >= nmin) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
