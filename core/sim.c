@@ -131,8 +131,7 @@ static double surface_height(const sb_sim *s)
 /* ---- the step ---- */
 
 typedef struct scan {
-	double d2max;
-	int bad_num, out;
+	int rebuild, bad_num, out;
 	int where;
 } scan;
 
@@ -144,16 +143,18 @@ static scan check_state(const sb_sim *s)
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *th = st->q[C_TH][0];
 	const double *xr = s->nl.xref, *yr = s->nl.yref;
 	const double xlo = s->xlo, xhi = s->xhi, ylo = s->ylo;
-	double d2max = 0, sum = 0;
-	int out = 0;
+	const double half = 0.5 * s->sc.skin, lim = half * half;
+	int rebuild = 0, out = 0, bad = 0;
+	/* only comparisons and integer ors, so the loop vectorises: a NaN or Inf fails
+	 * "< INFINITY", and so does the sum of a NaN angle with d2 */
 	for (int i = 0; i < st->nm; i++) {
 		const double dx = x[i] - xr[i], dy = y[i] - yr[i];
 		const double d2 = dx * dx + dy * dy;
-		d2max = d2 > d2max ? d2 : d2max;
-		sum += d2 + th[i];
+		rebuild |= d2 > lim;
+		bad |= !(d2 + fabs(th[i]) < INFINITY);
 		out |= (x[i] < xlo) | (x[i] > xhi) | (y[i] < ylo);
 	}
-	scan r = {d2max, !isfinite(sum), out, -1};
+	scan r = {rebuild, bad, out, -1};
 	if (r.bad_num || r.out)
 		for (int i = 0; i < st->nm; i++) {
 			double v = x[i] + y[i] + th[i] + st->q[C_X][1][i] + st->q[C_Y][1][i];
@@ -224,8 +225,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 		s->obs.risen = 1;
 		s->obs.wait_time = t;
 	}
-	const double half = 0.5 * s->sc.skin;
-	if (c.d2max > half * half) {
+	if (c.rebuild) {
 		TIC(PH_NEIGH);
 		if (nlist_build(&s->nl, st, e))
 			return e->code;
