@@ -14,6 +14,37 @@
 #define VERSION "1"
 #define MAXROWS 6
 
+static int cmp_dbl(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* q-quantile of v[0..n) (sorts v); 0 when empty */
+static double percentile(double *v, size_t n, double q)
+{
+	if (!n)
+		return 0;
+	qsort(v, n, sizeof *v, cmp_dbl);
+	size_t k = (size_t)(q * (double)(n - 1) + 0.5);
+	return v[k < n ? k : n - 1];
+}
+
+/* median of the positive entries of v[0..n), without changing v */
+static double median_positive(const double *v, size_t n)
+{
+	double *t = malloc((n ? n : 1) * sizeof *t);
+	size_t m = 0;
+	if (!t)
+		return 0;
+	for (size_t i = 0; i < n; i++)
+		if (v[i] > 0)
+			t[m++] = v[i];
+	double med = percentile(t, m, 0.5);
+	free(t);
+	return med;
+}
+
 static const char *HELP =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
 	"               [--ratio R] [--skip FRAC] [--no-plot] [--no-store]\n\n"
@@ -24,7 +55,8 @@ static const char *HELP =
 	"panel is averaged in.\n"
 	"  fig1.png  Fig. 1: the displacement field (/field, field = yes): per cell the mean\n"
 	"            displacement per period, weighted by the samples (count) of every block\n"
-	"            and run; arrows on a common scale (the longest = 0.9 cell) in all panels;\n"
+	"            and run; arrows on a common scale (the 95th percentile = 0.9 cell, longer\n"
+	"            ones clipped; cells sampled < 1/5 of the median left out) in all panels;\n"
 	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line after the first FRAC\n"
 	"            of the periods (--skip, default 0.2), against the line height D above\n"
 	"            the bottom (/flux, flux = yes), both systems in one panel per frequency;\n"
@@ -112,6 +144,13 @@ int main(int argc, char **argv)
 		fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
 		double umax = 0, cell = 1, xlo = INFINITY, xhi = -INFINITY, yhi = 0;
 		int panels = 0;
+		/* The arrow scale is the 95th percentile of the arrow lengths, not the longest:
+		 * a grain thrown off the surface in a thinly sampled cell would otherwise
+		 * shrink every arrow of the bulk to a dot. Longer arrows are drawn at that
+		 * length (their direction kept), and cells sampled less than a fifth as often
+		 * as the panel's median cell are left out. */
+		double *lens = NULL;
+		size_t nlens = 0, caplens = 0;
 		/* two passes: the first finds the common arrow scale */
 		for (int pass = 0; pass < 2; pass++)
 			for (int r = 0; r < nf; r++)
@@ -163,15 +202,28 @@ int main(int argc, char **argv)
 					if (used && sx && sy && sc) {
 						size_t ny = dims0[1], nx = dims0[2];
 						double scale = umax > 0 ? 0.9 * cell / umax : 1;
+						double cmin = 0.2 * median_positive(sc, ny * nx);
 						for (size_t rr = 0; rr < ny; rr++)
 							for (size_t c = 0; c < nx; c++) {
 								size_t q = rr * nx + c;
-								if (sc[q] <= 0)
+								if (sc[q] <= 0 || sc[q] < cmin)
 									continue;
 								double ux = sx[q] / sc[q], uy = sy[q] / sc[q];
 								double x = x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
+								if (pass == 1 && umax > 0 && hypot(ux, uy) > umax) {
+									double k = umax / hypot(ux, uy); /* clipped */
+									ux *= k;
+									uy *= k;
+								}
 								if (pass == 0) {
-									umax = fmax(umax, hypot(ux, uy));
+									if (nlens == caplens) {
+										caplens = caplens ? 2 * caplens : 1024;
+										double *p = realloc(lens, caplens * sizeof *lens);
+										if (!p)
+											continue;
+										lens = p;
+									}
+									lens[nlens++] = hypot(ux, uy);
 									xlo = fmin(xlo, x0);
 									xhi = fmax(xhi, x0 + nx * cell);
 									yhi = fmax(yhi, ny * cell);
@@ -186,7 +238,10 @@ int main(int argc, char **argv)
 					free(sx);
 					free(sy);
 					free(sc);
+					if (pass == 0 && r == nf - 1 && sys == 1)
+						umax = percentile(lens, nlens, 0.95);
 				}
+		free(lens);
 		fclose(f);
 		f = NULL;
 		if (!panels)
@@ -194,7 +249,7 @@ int main(int argc, char **argv)
 		else if (!o.no_plot) {
 			if (!(f = gp_open(&o, "fig1", 900, 330 * nf + 60, script, png, sizeof script, &e)))
 				goto out;
-			fprintf(f, "set multiplot layout %d,2 title 'Fig. 1: mean displacement per period (longest arrow %.3g cm)'\n"
+			fprintf(f, "set multiplot layout %d,2 title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
 				   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n",
 				nf, umax, xlo, xhi, yhi);
 			for (int r = 0; r < nf; r++)

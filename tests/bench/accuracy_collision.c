@@ -23,6 +23,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "collision_analytic.h"
 #include "prepare.h"
 #include "sim.h"
 #include "units.h"
@@ -50,22 +51,6 @@ static double now(void)
 	return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* Root in [0, h] of the cubic Hermite through (0, a, da) and (h, b, db), a > 0 >= b. */
-static double hermite_root(double a, double da, double b, double db, double h)
-{
-	double lo = 0, hi = h;
-	for (int it = 0; it < 200; it++) {
-		double mid = 0.5 * (lo + hi), s = mid / h;
-		double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s;
-		double h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
-		double p = h00 * a + h10 * h * da + h01 * b + h11 * h * db;
-		if (p > 0)
-			lo = mid;
-		else
-			hi = mid;
-	}
-	return 0.5 * (lo + hi);
-}
 
 /* xi, xi' and the unit normal n = (r_i - r_j)/d; relative velocity of surfaces along t */
 typedef struct kin {
@@ -136,11 +121,7 @@ static cres run_once(const ccase *c, int integ, double dt, int timed)
 		w02 = sc.stiffness / mi;
 		beta = 0.5 * sc.gamma_n * meff / mi;
 	}
-	{
-		double w = sqrt(w02 - beta * beta);
-		res.tc0 = SB_PI / w;
-		res.e0 = exp(-beta * SB_PI / w);
-	}
+	collision_analytic(w02, beta, 0, V0, &res.tc0, &res.e0);
 	if (sim_start(s, 0, &e))
 		goto out;
 	kin k0 = measure(st, rs, wall, dt);

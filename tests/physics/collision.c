@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "collision_analytic.h"
 #include "prepare.h"
 #include "sim.h"
 #include "testlib.h"
@@ -49,35 +50,9 @@ static const double V0 = 50.0; /* cm/s, approach speed */
 
 static void analytic(double w02, double beta, int clip, double *tc, double *e)
 {
-	double w = sqrt(w02 - beta * beta);
-	if (!clip) {
-		*tc = SB_PI / w;
-		*e = exp(-beta * SB_PI / w);
-		return;
-	}
-	double ts = (SB_PI - atan(2 * beta * w / (w02 - 2 * beta * beta))) / w;
-	double xi = V0 / w * exp(-beta * ts) * sin(w * ts);
-	double xid = V0 * exp(-beta * ts) * (cos(w * ts) - beta / w * sin(w * ts));
-	*e = fabs(xid) / V0;
-	*tc = ts + xi / fabs(xid);
+	collision_analytic(w02, beta, clip, V0, tc, e);
 }
 
-/* Root in [0, h] of the cubic Hermite through (0, a, da) and (h, b, db), a > 0 >= b. */
-static double hermite_root(double a, double da, double b, double db, double h)
-{
-	double lo = 0, hi = h;
-	for (int it = 0; it < 200; it++) {
-		double mid = 0.5 * (lo + hi), s = mid / h;
-		double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s;
-		double h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
-		double p = h00 * a + h10 * h * da + h01 * b + h11 * h * db;
-		if (p > 0)
-			lo = mid;
-		else
-			hi = mid;
-	}
-	return 0.5 * (lo + hi);
-}
 
 static cres run(const ccase *c, int clip, double dt, double *beta_out)
 {
