@@ -282,6 +282,7 @@ static int settle(sb_sim *s, sb_err *e)
 	const long nmin = llround(sc->settle_min / sc->dt), nmax = llround(sc->settle_max / sc->dt);
 	if (sim_start(s, gy, e))
 		return e->code;
+	double wlast = now();
 	for (long k = 1;; k++) {
 		double t = k * sc->dt;
 		/* A viscous drag lets the loose lattice collapse at a terminal speed
@@ -293,7 +294,15 @@ static int settle(sb_sim *s, sb_err *e)
 			return e->code;
 		if (k % every == 0 && k >= nmin) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
+			if (s->progress && now() - wlast >= 1.0) { /* a 10^5-grain bed takes minutes */
+				wlast = now();
+				fprintf(stderr, "\rshake: settling, t = %.2f s, kinetic energy %.3g erg per disk (settled below %g) ",
+					t, ke, sc->settle_ke);
+				fflush(stderr);
+			}
 			if (ke < sc->settle_ke) {
+				if (s->progress)
+					fprintf(stderr, "\rshake: settled after %.2f s%60s\n", t, "");
 				s->settle_steps = k;
 				s->settle_time = t;
 				return 0;
@@ -553,7 +562,7 @@ int sim_run(sb_sim *s, sb_err *e)
 			progress(s, w0, step0, &wlast);
 	}
 	s->loop_seconds += now() - w0;
-	if (s->progress) {
+	if (s->progress && s->nsteps > 0) {
 		progress(s, w0, step0, &wlast);
 		fputc('\n', stderr);
 	}
