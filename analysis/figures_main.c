@@ -11,7 +11,7 @@
 #include "flux.h"
 #include "h5read.h"
 
-#define VERSION "1"
+#define VERSION "2"
 #define MAXROWS 6
 
 static int cmp_dbl(const void *a, const void *b)
@@ -51,11 +51,13 @@ static const char *HELP =
 	"The paper's figures from the finished fixed-frequency runs (ramp = none) of a\n"
 	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
 	"at most 6) and two systems: without intruder (radius_ratio = 0) and with one of\n"
-	"radius ratio R (--ratio, default the largest in the campaign). Every replicate of a\n"
-	"panel is averaged in.\n"
+	"radius ratio R (--ratio, default the largest in the campaign; --ratio 0: without\n"
+	"intruder only). Every replicate of a panel is averaged in.\n"
 	"  fig1.png  Fig. 1: the displacement field (/field, field = yes): per cell the mean\n"
 	"            displacement per period, weighted by the samples (count) of every block\n"
-	"            and run; arrows on a common scale (the 95th percentile = 0.9 cell, longer\n"
+	"            and run (the grid of the panel's first run; the cells of the other\n"
+	"            replicates, whose grids differ slightly, join it by their centres);\n"
+	"            arrows on a common scale (the 95th percentile = 0.9 cell, longer\n"
 	"            ones clipped; cells sampled < 1/5 of the median left out) in all panels;\n"
 	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line after the first FRAC\n"
 	"            of the periods (--skip, default 0.2), against the line height D above\n"
@@ -132,6 +134,8 @@ int main(int argc, char **argv)
 	if (nf > MAXROWS)
 		nf = MAXROWS;
 	double R = isnan(o.ratio) ? (nra ? ratios[nra - 1] : 0) : o.ratio;
+	/* the second system is the one with an intruder: none when R = 0 */
+	const int nsys = R > 0 ? 2 : 1;
 	if (cli_outdir(&o, &e))
 		goto out;
 	if (!o.no_store && adb_store_begin(&d, o.campaign, "figures", &e))
@@ -154,7 +158,7 @@ int main(int argc, char **argv)
 		/* two passes: the first finds the common arrow scale */
 		for (int pass = 0; pass < 2; pass++)
 			for (int r = 0; r < nf; r++)
-				for (int sys = 0; sys < 2; sys++) {
+				for (int sys = 0; sys < nsys; sys++) {
 					double ra = sys ? R : 0, *sx = NULL, *sy = NULL, *sc = NULL, x0 = 0;
 					size_t dims0[3] = {0, 0, 0};
 					int used = 0;
@@ -174,25 +178,39 @@ int main(int argc, char **argv)
 						int rk;
 						if (!h5r_read(h, "/field/ux", &ux, &rk, d1, &he) && !h5r_read(h, "/field/uy", &uy, &rk, d2, &he) &&
 						    !h5r_read(h, "/field/count", &cn, &rk, d3, &he) && rk == 3 &&
-						    (!used || (d1[1] == dims0[1] && d1[2] == dims0[2]))) {
-							if (!used) {
+						    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1)) {
+							/* The grid is one mean diameter of the run's own grains, so
+							 * replicates differ slightly: the panel takes the grid of
+							 * its first run, and every run's cells go, by their centres,
+							 * into the cell of that grid that holds them. */
+							double ci = 0, xi = 0;
+							h5r_attr_num(h, "/field", "cell", &ci);
+							h5r_attr_num(h, "/field", "x0", &xi);
+							if (!used && ci > 0) {
 								memcpy(dims0, d1, sizeof dims0);
 								size_t nc = d1[1] * d1[2];
 								sx = calloc(nc, sizeof *sx);
 								sy = calloc(nc, sizeof *sy);
 								sc = calloc(nc, sizeof *sc);
-								h5r_attr_num(h, "/field", "cell", &cell);
-								h5r_attr_num(h, "/field", "x0", &x0);
+								cell = ci;
+								x0 = xi;
 							}
-							size_t nc = d1[1] * d1[2];
-							for (size_t b = 0; sx && sy && sc && b < d1[0]; b++)
-								for (size_t c = 0; c < nc; c++) {
-									double n = cn[b * nc + c];
-									sx[c] += n * ux[b * nc + c];
-									sy[c] += n * uy[b * nc + c];
-									sc[c] += n;
-								}
-							used++;
+							for (size_t b = 0; sx && sy && sc && ci > 0 && b < d1[0]; b++)
+								for (size_t rr = 0; rr < d1[1]; rr++)
+									for (size_t c = 0; c < d1[2]; c++) {
+										size_t q = (b * d1[1] + rr) * d1[2] + c;
+										double n = cn[q];
+										double gx = floor((xi + ((double)c + 0.5) * ci - x0) / cell);
+										double gy = floor(((double)rr + 0.5) * ci / cell);
+										if (!(n > 0) || gx < 0 || gy < 0 || gx >= (double)dims0[2] ||
+										    gy >= (double)dims0[1])
+											continue;
+										size_t t = (size_t)gy * dims0[2] + (size_t)gx;
+										sx[t] += n * ux[q];
+										sy[t] += n * uy[q];
+										sc[t] += n;
+									}
+							used += sx && ci > 0;
 						}
 						free(ux);
 						free(uy);
@@ -211,9 +229,9 @@ int main(int argc, char **argv)
 								double ux = sx[q] / sc[q], uy = sy[q] / sc[q];
 								double x = x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
 								if (pass == 1 && umax > 0 && hypot(ux, uy) > umax) {
-									double k = umax / hypot(ux, uy); /* clipped */
-									ux *= k;
-									uy *= k;
+									double shrink = umax / hypot(ux, uy); /* clipped */
+									ux *= shrink;
+									uy *= shrink;
 								}
 								if (pass == 0) {
 									if (nlens == caplens) {
@@ -238,7 +256,7 @@ int main(int argc, char **argv)
 					free(sx);
 					free(sy);
 					free(sc);
-					if (pass == 0 && r == nf - 1 && sys == 1)
+					if (pass == 0 && r == nf - 1 && sys == nsys - 1)
 						umax = percentile(lens, nlens, 0.95);
 				}
 		free(lens);
@@ -249,16 +267,16 @@ int main(int argc, char **argv)
 		else if (!o.no_plot) {
 			if (!(f = gp_open(&o, "fig1", 900, 330 * nf + 60, script, png, sizeof script, &e)))
 				goto out;
-			fprintf(f, "set multiplot layout %d,2 title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
-				   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n",
-				nf, umax, xlo, xhi, yhi);
+			fprintf(f, "set multiplot layout %d,%d title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
+				   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n"
+				   "set xlabel 'x (cm)'\nset ylabel 'height above the bottom (cm)'\n",
+				nf, nsys, umax, xlo, xhi, yhi);
 			for (int r = 0; r < nf; r++)
-				for (int sys = 0; sys < 2; sys++) {
-					fprintf(f, "set title '%s, f = %g Hz'\n", sys ? "with intruder" : "without intruder", freqs[r]);
+				for (int sys = 0; sys < nsys; sys++) {
 					if (sys)
-						fprintf(f, "set label 1 'R = %g' at graph 0.02, graph 0.93\n", R);
+						fprintf(f, "set title 'with intruder R = %g, f = %g Hz'\n", R, freqs[r]);
 					else
-						fprintf(f, "unset label 1\n");
+						fprintf(f, "set title 'without intruder, f = %g Hz'\n", freqs[r]);
 					fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
 						2 * r + sys, 0.25 * cell);
 				}
@@ -280,7 +298,7 @@ int main(int argc, char **argv)
 		int panels = 0;
 		printf("%-10s %-6s %5s %10s %12s\n", "frequency", "R", "runs", "phi_max", "half_height");
 		for (int r = 0; r < nf; r++)
-			for (int sys = 0; sys < 2; sys++) {
+			for (int sys = 0; sys < nsys; sys++) {
 				double ra = sys ? R : 0, *sp = NULL, *sh = NULL;
 				size_t L = 0;
 				int used = 0;
@@ -345,9 +363,12 @@ int main(int argc, char **argv)
 			fprintf(f, "set multiplot layout %d,1 title 'Fig. 3: convective flux Phi through planes at height D'\n"
 				   "set xlabel 'D (cm above the bottom)'\nset ylabel 'Phi (particles/period)'\n", nf);
 			for (int r = 0; r < nf; r++) {
-				fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n"
-					   "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', 0 with lines lc 'gray' notitle\n",
-					freqs[r], r, r, R);
+				fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n",
+					freqs[r], r);
+				if (nsys > 1)
+					fprintf(f, "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', \\\n",
+						r, R);
+				fprintf(f, "  0 with lines lc 'gray' notitle\n");
 			}
 			fprintf(f, "unset multiplot\n");
 			fclose(f);

@@ -287,9 +287,9 @@ int main(int argc, char **argv)
 		if (!(f = gp_open(&o, "waiting_hist", 900, 520, script, png, sizeof script, &e)))
 			goto out;
 		fprintf(f, "set title 'Intruder waiting time: histogram of the risen runs'\n"
-			   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\n"
+			   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\nset xrange [0:%.17g]\n"
 			   "set style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
-			bw / ng);
+			bw * (double)o.bins, bw / ng);
 		for (int j = 0; j < ng; j++) {
 			fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lc %d title ",
 				j ? ", \\\n  " : "", bw / ng * (j + 0.5), j, j + 1);
