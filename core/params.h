@@ -67,8 +67,9 @@ typedef struct sb_scene sb_scene;
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
 
 /* What a parameter influences. The study driver hashes PREP keys for the packing
- * cache and PREP|DYN|LEN for the run identity; a checkpoint is only resumed when
- * every PREP|DYN key equals the scene's. */
+ * cache and every key but its own (paths, restart, progress, checkpoint_every) for
+ * the run identity (study/grid.c: what is recorded changes a run's output too); a
+ * checkpoint is only resumed when every PREP|DYN key equals the scene's. */
 enum sb_pflag {
 	PF_PREP = 1,   /* changes the prepared (settled) state */
 	PF_DYN = 2,    /* changes the dynamics after preparation */

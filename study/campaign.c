@@ -184,6 +184,8 @@ struct rd {
 	int line, err_line, section;
 	int seen_name, seen_seed;
 	int sec_line[4];
+	char ckey[8][16];     /* [campaign] keys seen, with their lines */
+	int ckey_line[8], nckey;
 };
 
 /* inih's Debian build has no INI_HANDLER_LINENO: the reader counts lines (the handler
@@ -257,6 +259,14 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 {
 	campaign *c = r->c;
 	sb_err *e = r->e;
+	/* like a scene key, each [campaign] key once: a second name = would silently win */
+	for (int i = 0; i < r->nckey; i++)
+		if (!strcmp(r->ckey[i], name))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: given twice (first on line %d)", where, name, r->ckey_line[i]);
+	if (r->nckey < 8 && strlen(name) < sizeof r->ckey[0]) {
+		snprintf(r->ckey[r->nckey], sizeof r->ckey[0], "%s", name);
+		r->ckey_line[r->nckey++] = r->line;
+	}
 	if (!strcmp(name, "name")) {
 		if (!safe_name(value))
 			return sb_errf(e, SB_EUSAGE, "%s: name: '%s' is not a valid campaign name "
@@ -397,10 +407,20 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 		return e->code;
 	if (rc < 0 || ioerr)
 		return sb_errf(e, SB_EIO, "%s: cannot read campaign file", path);
+	/* the [campaign] header, or line 1 of a file that has none */
+	int cl = r.sec_line[SEC_CAMPAIGN] ? r.sec_line[SEC_CAMPAIGN] : 1;
 	if (!r.seen_name)
-		return sb_errf(e, SB_EUSAGE, "%s:%d: [campaign] has no name", path, r.sec_line[SEC_CAMPAIGN]);
+		return sb_errf(e, SB_EUSAGE, "%s:%d: [campaign] has no name", path, cl);
 	if (!r.seen_seed)
-		return sb_errf(e, SB_EUSAGE, "%s:%d: [campaign] has no seed", path, r.sec_line[SEC_CAMPAIGN]);
+		return sb_errf(e, SB_EUSAGE, "%s:%d: [campaign] has no seed", path, cl);
+	/* [scene] overrides the base scene wherever the two appear in the file: a
+	 * [scene] section above `scene = FILE` must not be undone by loading FILE */
+	for (int i = 0; i < c->nfixed; i++) {
+		char where[SB_STR_MAX + 32];
+		snprintf(where, sizeof where, "%s:%d", path, c->fixed[i].line);
+		if (params_set(&c->base, c->fixed[i].key, c->fixed[i].value, where, e))
+			return e->code;
+	}
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: both replicates and seed given; "

@@ -35,6 +35,7 @@ typedef struct drv {
 	char dir[PATHLEN + 128];    /* root/name */
 	char *cache_ok;       /* per grid run: start from the packing cache */
 	char *started;        /* per grid run: 1 START seen, 2 DONE seen (this driver) */
+	long *logfrom;        /* per grid run: size of its log when START was seen */
 	long n_ingested, n_failed_now;
 	int jobs;
 } drv;
@@ -195,6 +196,11 @@ static int on_start(drv *d, char *line, sb_err *e)
 	if (!r)
 		return 0;
 	d->started[r - d->g.runs] = 1;
+	/* where this attempt's lines begin in the run's log (earlier attempts precede) */
+	char lp[PATHX];
+	struct stat sb;
+	snprintf(lp, sizeof lp, "%s/logs/%s.log", d->dir, r->id);
+	d->logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
 	char now[32];
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
@@ -219,19 +225,15 @@ static void unreported(drv *d, sb_err *e)
 			continue;
 		d->started[i] = 2;
 		const char *id = d->g.runs[i].id;
-		char path[PATHX], msg[1024] = "", line[1024], now[32];
+		char path[PATHX], msg[1024] = "", now[32];
 		snprintf(path, sizeof path, "%s/%s.h5", d->dir, id);
 		if (exists(path))
 			continue; /* finished after all: the sweep ingests it */
 		snprintf(path, sizeof path, "%s/logs/%s.log", d->dir, id);
-		FILE *f = fopen(path, "r");
-		while (f && fgets(line, sizeof line, f))
-			if (line[strspn(line, " \t\r\n")])
-				memcpy(msg, line, sizeof msg);
-		if (f)
-			fclose(f);
-		msg[strcspn(msg, "\r\n")] = 0;
-		int intr = strstr(msg, "checkpoint") != NULL;
+		worker_last_message(path, d->logfrom[i], msg, sizeof msg);
+		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
+		 * no checkpoint yet, and it says so) */
+		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
 		db_now(now, sizeof now);
 		if (db_begin(&d->db, e))
 			return;
@@ -717,7 +719,8 @@ int driver_run(const driver_opts *o, sb_err *e)
 	names = calloc((size_t)d->g.n + 1, sizeof *names);
 	d->cache_ok = calloc((size_t)d->g.n + 1, 1);
 	d->started = calloc((size_t)d->g.n + 1, 1);
-	if (!pend || !names || !d->cache_ok || !d->started) {
+	d->logfrom = calloc((size_t)d->g.n + 1, sizeof *d->logfrom);
+	if (!pend || !names || !d->cache_ok || !d->started || !d->logfrom) {
 		sb_errf(e, SB_ENOMEM, "out of memory");
 		goto out;
 	}
@@ -757,6 +760,7 @@ out:
 	free(names);
 	free(d->cache_ok);
 	free(d->started);
+	free(d->logfrom);
 	db_close(&d->db);
 	grid_free(&d->g);
 	campaign_free(&d->c);

@@ -33,6 +33,29 @@ long grid_seed(const campaign *c, const sb_scene *s, long replicate)
 	return (long)(1 + h % 4294967295ULL);
 }
 
+/* The run id hashes every key that can change what a run's output holds: the
+ * preparation, the dynamics, the length and what is recorded (traj_rate, flux,
+ * ring_inner, ...), so that two grid points are never taken for one run and turning
+ * an observable on computes the runs again. Left out, by resetting them to their
+ * defaults: what the driver sets for every run (paths, restart, progress) and
+ * checkpoint_every (when the state is saved, not what a run computes). */
+unsigned long long grid_run_hash(const sb_scene *s)
+{
+	sb_scene t = *s, def;
+	params_defaults(&def);
+	size_t n;
+	const sb_param *tab = params_table(&n);
+	for (size_t i = 0; i < n; i++) {
+		if (!campaign_key_reserved(tab[i].name) && strcmp(tab[i].name, "checkpoint_every"))
+			continue;
+		char v[SB_STR_MAX + 8];
+		sb_err e = {0};
+		params_format(&def, &tab[i], v, sizeof v);
+		params_set(&t, tab[i].name, v, "default", &e);
+	}
+	return params_hash_nondefault(&t, ~0u);
+}
+
 static void scene_point(const campaign *c, long point, sb_scene *s)
 {
 	*s = c->base;
@@ -94,7 +117,7 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 		s.seed = r->seed;
 		/* hashes over non-default values only: a key added to the engine later
 		 * leaves the identities of existing campaigns as they were */
-		snprintf(r->id, sizeof r->id, "%016llx", params_hash_nondefault(&s, GRID_ID_MASK));
+		snprintf(r->id, sizeof r->id, "%016llx", grid_run_hash(&s));
 		snprintf(r->cache_key, sizeof r->cache_key, "%016llx", params_hash_nondefault(&s, PF_PREP));
 		g->n++;
 	}

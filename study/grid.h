@@ -5,11 +5,8 @@
 
 #include "campaign.h"
 
-/* Run identity hashes these keys (everything that changes a result), never paths. */
-#define GRID_ID_MASK (PF_PREP | PF_DYN | PF_LEN)
-
 typedef struct grid_run {
-	char id[17];          /* params_hash_nondefault(scene, GRID_ID_MASK), hex */
+	char id[17];          /* grid_run_hash(scene), hex */
 	char cache_key[17];   /* params_hash_nondefault(scene, PF_PREP), hex */
 	long replicate;       /* the campaign's seed value (replicate label) */
 	long seed;            /* the engine seed */
@@ -32,6 +29,10 @@ void grid_scene(const grid *g, const grid_run *r, sb_scene *s);
 /* The engine seed for a replicate: derived from (campaign seed, replicate, the
  * preparation parameters) with seeds = derived, the replicate itself with literal. */
 long grid_seed(const campaign *c, const sb_scene *s, long replicate);
+
+/* The run id: params_hash_nondefault over every key but the driver-owned ones
+ * (output, checkpoint, restart, write_*, progress) and checkpoint_every. */
+unsigned long long grid_run_hash(const sb_scene *s);
 
 const grid_run *grid_find(const grid *g, const char *id);
 

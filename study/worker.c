@@ -42,19 +42,27 @@ static void clean(char *s)
 			*s = ' ';
 }
 
-/* The last non-empty line the engine wrote in this attempt: its error message. */
-static void last_line(const char *log, long from, char *out, size_t len)
+/* The engine's own last word in this attempt (from byte `from` of its log): the last
+ * line it prefixed with "shake: " (its error or interruption message), else the last
+ * non-empty line. Anything printed after the message (a diagnostic at exit, a
+ * sanitizer report) does not replace it. */
+void worker_last_message(const char *log, long from, char *out, size_t len)
 {
 	out[0] = 0;
 	FILE *f = fopen(log, "r");
 	if (!f)
 		return;
-	fseek(f, from, SEEK_SET);
+	if (from > 0)
+		fseek(f, from, SEEK_SET);
 	char line[2048];
+	int engine = 0;
 	while (fgets(line, sizeof line, f)) {
 		line[strcspn(line, "\r\n")] = 0;
-		if (line[0])
+		int mine = !strncmp(line, "shake: ", 7);
+		if (line[strspn(line, " \t")] && (mine || !engine)) {
 			scopy(out, len, line);
+			engine |= mine;
+		}
 	}
 	fclose(f);
 }
@@ -114,13 +122,26 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	snprintf(sl ? sl + 1 : shake, sizeof shake - (size_t)(sl ? sl + 1 - shake : 0), "shake");
 	argv[argc++] = shake;
 	char line[1100];
-	while (argc < 126 && fgets(line, sizeof line, f)) {
+	int toomany = 0;
+	while (fgets(line, sizeof line, f)) {
 		line[strcspn(line, "\r\n")] = 0;
-		if (line[0])
-			argv[argc++] = strdup(line);
+		if (!line[0])
+			continue;
+		/* never run the engine with some of its parameters silently dropped */
+		if (argc >= 127) {
+			toomany = 1;
+			break;
+		}
+		argv[argc++] = strdup(line);
 	}
 	fclose(f);
 	argv[argc] = NULL;
+	if (toomany) {
+		for (int i = 1; i < argc; i++)
+			free(argv[i]);
+		report_done(name, 2, host, 0, "exec: argument file has more than 126 parameters");
+		return 2;
+	}
 
 	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND, 0666);
 	long from = lf >= 0 ? (long)lseek(lf, 0, SEEK_END) : 0;
@@ -158,8 +179,8 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	if (lf >= 0)
 		close(lf);
 	char msg[1024];
-	last_line(log, from, msg, sizeof msg);
-	if (!msg[0] && code >= 128)
+	worker_last_message(log, from, msg, sizeof msg);
+	if (code >= 128) /* whatever it said last (e.g. "resuming from ...") is not why it stopped */
 		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
 	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
 	close(lk);

@@ -4,10 +4,16 @@
 #ifndef ST_WORKER_H
 #define ST_WORKER_H
 
+#include <stddef.h>
+
 /* kind "run": args jobs/NAME.args, log logs/NAME.log, output NAME.h5;
  * kind "cache": args cache/NAME.args, log cache/NAME.log, output cache/NAME.h5.
  * Paths are relative to dir. Returns the engine's exit code (128 + signal if killed). */
 int worker_exec(const char *dir, const char *kind, const char *name, const char *self);
+
+/* The engine's message in its log from byte `from` on: the last "shake: " line,
+ * else the last non-empty line; "" when there is none. */
+void worker_last_message(const char *log, long from, char *out, size_t len);
 
 #define WORKER_START "STUDY-START"
 #define WORKER_DONE "STUDY-DONE"

@@ -50,6 +50,12 @@ camp e.campaign 'frequency = 2.6, 2.8, 3.0, 3.2' 'radius_ratio = 2:3:0.5' 'depth
 expand e.campaign >e.tsv
 [ "$(($(wc -l <e.tsv) - 1))" = 108 ] && [ -z "$(comm -23 a.ids <(tail -n +2 e.tsv | cut -f1-4 | sort))" ] &&
 	ok grid.extend_keeps_ids || fail grid.extend_keeps_ids "the extended grid lost some of the original ids"
+# a new axis whose values include the one the runs had (here gamma_s's default) keeps
+# their ids: 54 known runs among 108
+camp n.campaign 'frequency = 2.6, 2.8, 3.0' 'radius_ratio = 2:3:0.5' 'depth = 1..3' 'seed = 1..2' 'gamma_s = 1, 2'
+expand n.campaign >n.tsv
+[ "$(($(wc -l <n.tsv) - 1))" = 108 ] && [ -z "$(comm -23 a.ids <(tail -n +2 n.tsv | cut -f1-4 | sort))" ] &&
+	ok grid.new_axis_keeps_ids || fail grid.new_axis_keeps_ids "adding the axis gamma_s = 1, 2 lost some of the original ids"
 # the seed of a replicate depends on the preparation, not on the frequency: runs that
 # differ only in frequency share the seed (and the packing-cache key)
 awk 'NR > 1 { k = $3 " " $6 " " $7; s[k] = s[k] " " $4; c[k] = c[k] " " $2 }
@@ -66,6 +72,26 @@ printf '[campaign]\nname = g\nseed = 7\nseeds = literal\n[scene]\nn_grains = 40\
 sed 's/seed = 7/seed = 8/' a.campaign >a8.campaign
 [ -z "$(comm -12 a.ids <(expand a8.campaign | tail -n +2 | cut -f1-4 | sort))" ] && ok grid.campaign_seed_changes_runs ||
 	fail grid.campaign_seed_changes_runs "another campaign seed gave some of the same runs"
+# every key that changes what a run's file holds is part of its id: an axis over a
+# recording key (traj_rate) or an observable's setting (ring_inner) gives distinct runs,
+# not one run standing for several grid points
+camp o.campaign 'traj_rate = 100, 200' 'ring_inner = 4, 5'
+[ "$(expand o.campaign | tail -n +2 | cut -f1 | sort -u | wc -l)" = 4 ] && ok grid.output_keys_in_id ||
+	fail grid.output_keys_in_id "4 grid points over traj_rate x ring_inner gave $(expand o.campaign | tail -n +2 | cut -f1 | sort -u | wc -l) run ids"
+# ... but when checkpoints are written is not: the same runs with checkpoint_every set
+printf '[campaign]\nname = g\nseed = 7\n[scene]\nn_grains = 40\nwidth = 20\ncheckpoint_every = 0.5\n[grid]\nfrequency = 2.6, 2.8, 3.0\nradius_ratio = 2:3:0.5\ndepth = 1..3\nseed = 1..2\n' >ck.campaign
+cmp -s a.ids <(expand ck.campaign | tail -n +2 | cut -f1-4 | sort) && ok grid.id_ignores_checkpoint_every ||
+	fail grid.id_ignores_checkpoint_every "checkpoint_every changed the run ids"
+# [scene] overrides the base scene wherever the sections are: a [scene] above
+# `scene = FILE` is not undone by FILE (width 20 from [scene], not 30 from the file)
+printf 'width = 30\nn_grains = 40\n' >base.scene
+printf '[campaign]\nname = g\nseed = 7\n[scene]\nn_grains = 40\nwidth = 20\n[grid]\nfrequency = 2.6, 2.8\n' >plain.campaign
+printf '[campaign]\nname = g\nseed = 7\nscene = base.scene\n[scene]\nwidth = 20\n[grid]\nfrequency = 2.6, 2.8\n' >after.campaign
+printf '[scene]\nwidth = 20\n[campaign]\nname = g\nseed = 7\nscene = base.scene\n[grid]\nfrequency = 2.6, 2.8\n' >before.campaign
+expand plain.campaign >plain.tsv
+[ -s plain.tsv ] && cmp -s plain.tsv <(expand after.campaign) && cmp -s plain.tsv <(expand before.campaign) &&
+	ok grid.scene_overrides_base_in_any_order ||
+	fail grid.scene_overrides_base_in_any_order "[scene] before [campaign] scene = FILE gave other runs: $(expand before.campaign | tail -n 1)"
 
 # --- malformed files: non-zero exit and FILE:LINE: in the message ---
 # bad ID LINE CONTENT... : the campaign made of CONTENT lines must fail at LINE
@@ -99,6 +125,10 @@ bad replicates_and_seed 6 "${H[@]}" 'replicates = 2' '[grid]' 'seed = 1..3'
 bad empty_axis 5 "${H[@]}" '[grid]' 'frequency = ,'
 bad missing_scene_file 4 "${H[@]}" 'scene = nowhere.scene'
 bad grid_point 5 "${H[@]}" '[grid]' 'radius_ratio = 2, 40' 'width = 20'
+bad campaign_key_twice 3 '[campaign]' 'name = m' 'name = n' 'seed = 1'
+bad seed_twice 4 "${H[@]}" 'seed = 2'
+bad empty_file 1
+bad no_campaign_section 1 '[scene]' 'width = 20'
 "$STUDY" expand "$TMP/none.campaign" >/dev/null 2>none.err && fail malformed.missing_file "exit 0" ||
 	{ grep -q "none.campaign: cannot open" none.err && ok malformed.missing_file || fail malformed.missing_file "$(cat none.err)"; }
 
@@ -134,6 +164,15 @@ printf '[campaign]\nname = w\nseed = 1\n[scene]\nn_grains = 40\nwidth = 20\nradi
 rc=$?
 if [ "$rc" -eq 0 ] && [ ! -e "$MARK" ] && [ ! -e pwned ] && ls "$weird/w/"*.h5 >/dev/null 2>&1; then ok injection.quoted_paths; else
 	fail injection.quoted_paths "exit $rc, marker $(ls "$MARK" 2>/dev/null): $(tail -c 300 weird.out)"; fi
+# output paths come from the driver only: a base scene that names its own output,
+# checkpoint and particle files outside the campaign's directory writes none of them
+mkdir -p esc/a/b
+printf 'output = ../../escaped.h5\nwrite_particles = ../../escaped.txt\nwrite_lammps = ../../escaped.data\ncheckpoint = ../../escaped.ckpt\ncheckpoint_every = 0.05\nn_grains = 40\nwidth = 20\nradius_ratio = 2\nsettle_ke = 1\nsettle_min = 0.2\nduration = 0.1\n' >esc/esc.scene
+printf '[campaign]\nname = esc\nseed = 1\nscene = esc.scene\n' >esc/esc.campaign
+"$STUDY" run esc/esc.campaign --runs "$TMP/esc/a/b" --no-progress >esc.out 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && [ -z "$(find "$TMP" -name 'escaped*')" ] && [ "$(ls esc/a/b/esc/*.h5 2>/dev/null | wc -l)" = 1 ] &&
+	ok injection.base_scene_paths_ignored || fail injection.base_scene_paths_ignored "exit $rc: $(find "$TMP" -name 'escaped*') $(tail -c 200 esc.out)"
 [ ! -e "$MARK" ] && ok injection.no_marker || fail injection.no_marker "$MARK exists"
 rm -f "$MARK"
 

@@ -80,9 +80,64 @@ rc=$?
 pend=$(sqlite3 T/study.db "SELECT COUNT(*) FROM run WHERE state = 'pending'")
 intr=$(sqlite3 T/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'interrupted'")
 [ "$pend" -gt 0 ] && [ "$intr" -gt 0 ] && ok term.recorded_interrupted || fail term.recorded_interrupted "pending $pend, interrupted attempts $intr"
+# with the engine's own words and exit code ("interrupted at t = ...; checkpoint ...
+# written" or "interrupted while settling"), not a line printed after them
+[ "$(sqlite3 T/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'interrupted' AND exit_code = 7
+	AND message LIKE 'shake: interrupted %'")" = "$intr" ] && ok term.interrupted_message ||
+	fail term.interrupted_message "$(sqlite3 T/study.db "SELECT exit_code, message FROM attempt WHERE status = 'interrupted'")"
 "$STUDY" run k.campaign --runs "$TMP/T" --jobs 2 --no-cache >term2.log 2>&1
 rc=$?
 same=0
 for f in REF/k/*.h5; do same_output "$f" "T/k/$(basename "$f")" particles settle settle_steps settle_time && same=$((same + 1)); done
 [ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok term.resumed_identical || fail term.resumed_identical "exit $rc, $same of 6 identical"
+
+# Ctrl-C reaches the whole process group (driver, parallel, workers, engines): exit 7,
+# every stopped run recorded as interrupted with its engine's message, then resumed
+setsid "$STUDY" run k.campaign --runs "$TMP/C" --jobs 2 >int1.log 2>&1 &
+pid=$!
+for i in $(seq 200); do [ -n "$(ls C/k/*.ckpt 2>/dev/null)" ] && break; sleep 0.02; done
+kill -INT -- -$pid
+wait $pid
+rc=$?
+intr=$(sqlite3 C/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'interrupted' AND exit_code = 7 AND message LIKE 'shake: interrupted%'")
+[ "$rc" -eq 7 ] && [ "$intr" -gt 0 ] && ok ctrl_c.recorded_interrupted ||
+	fail ctrl_c.recorded_interrupted "exit $rc: $(sqlite3 C/study.db "SELECT run, exit_code, status, message FROM attempt")"
+"$STUDY" run k.campaign --runs "$TMP/C" --jobs 2 >int2.log 2>&1
+rc=$?
+same=0
+for f in REF/k/*.h5; do same_output "$f" "C/k/$(basename "$f")" && same=$((same + 1)); done
+[ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok ctrl_c.resumed_identical || fail ctrl_c.resumed_identical "exit $rc, $same of 6 identical"
+
+# a worker's engine killed (OOM killer, a node's admin) while the driver runs on: the
+# attempt is recorded as killed, the run stays pending (exit 7), and the next
+# `study run` continues it from its checkpoint to the same file
+"$STUDY" run k.campaign --runs "$TMP/W" --jobs 2 >w1.log 2>&1 &
+pid=$!
+victim=
+for i in $(seq 300); do
+	for w in $(pgrep -f "exec $TMP/W/k run" 2>/dev/null); do
+		id=$(tr '\0' '\n' <"/proc/$w/cmdline" 2>/dev/null | tail -n 1)
+		e=$(pgrep -P "$w" 2>/dev/null | head -n 1)
+		if [ -n "$e" ] && [ -e "W/k/$id.h5.ckpt" ]; then victim=$id; kill -KILL "$e"; break 2; fi
+	done
+	sleep 0.02
+done
+wait $pid
+rc=$?
+row=$(sqlite3 W/study.db "SELECT state || '|' || a.exit_code || '|' || a.status || '|' || a.message FROM attempt a JOIN run r
+	ON r.campaign = a.campaign AND r.id = a.run WHERE a.run = '$victim'")
+[ -n "$victim" ] && [ "$rc" -eq 7 ] && [ "$row" = "pending|137|killed|killed by signal 9" ] && ok worker_killed.recorded ||
+	fail worker_killed.recorded "victim '$victim', exit $rc, attempt '$row'"
+# its checkpoint is still there, and its argument file (reused as it is) lets the
+# engine resume from it (restart = auto; the engine's restart.sh checks the resume)
+[ -s "W/k/$victim.h5.ckpt" ] && grep -qx "restart=auto" "W/k/jobs/$victim.args" && ok worker_killed.checkpoint_kept ||
+	fail worker_killed.checkpoint_kept "$(ls W/k) $(grep restart "W/k/jobs/$victim.args" 2>&1)"
+"$STUDY" run k.campaign --runs "$TMP/W" --jobs 2 >w2.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && grep -q "6 runs, 1 to run" w2.log && ok worker_killed.only_it_reruns ||
+	fail worker_killed.only_it_reruns "exit $rc: $(cat w2.log)"
+same=0
+for f in REF/k/*.h5; do same_output "$f" "W/k/$(basename "$f")" && same=$((same + 1)); done
+[ "$same" = 6 ] && [ "$(sqlite3 W/study.db "SELECT COUNT(*) FROM run WHERE state = 'done' AND attempts = 1 + (id = '$victim')")" = 6 ] &&
+	ok worker_killed.identical || fail worker_killed.identical "$same of 6 identical: $(sqlite3 W/study.db "SELECT id, state, attempts FROM run")"
 finish

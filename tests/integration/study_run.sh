@@ -31,6 +31,9 @@ rc=$?
 echo "# first run: $((($(date +%s%N) - t0) / 1000000)) ms"
 DB=R/study.db
 [ "$rc" -eq 0 ] && ok run.exit || fail run.exit "exit $rc: $(tail -c 400 run1.log)"
+# GNU parallel ran one job per run and kept its joblog (exit value in column 7)
+[ "$(awk -F'\t' '$7 == 0 && $9 ~ / run [0-9a-f]+$/' R/t/joblog.txt 2>/dev/null | wc -l)" = 4 ] &&
+	ok run.joblog || fail run.joblog "$(cat R/t/joblog.txt 2>&1 | head -n 8)"
 [ "$(ls R/t/*.h5 2>/dev/null | wc -l)" = 4 ] && ok run.outputs || fail run.outputs "$(ls R/t)"
 [ "$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 't' AND state = 'done' AND status = 'ok' AND attempts = 1
 	AND intruder_final_y IS NOT NULL AND wall_seconds > 0 AND host <> '' AND steps = 5000")" = 4 ] &&
@@ -74,6 +77,8 @@ stamp=$(stat -c %Y.%s R/t/*.h5 | md5sum)
 rc=$?
 [ "$rc" -eq 0 ] && grep -q "4 runs, 0 to run" run2.log && [ "$stamp" = "$(stat -c %Y.%s R/t/*.h5 | md5sum)" ] &&
 	[ "$(q $DB "SELECT SUM(attempts) FROM run")" = 4 ] && ok rerun.nothing_to_do || fail rerun.nothing_to_do "exit $rc: $(cat run2.log)"
+n=$(getconf _NPROCESSORS_ONLN)
+grep -Eq "0 to run, $n jobs?\$" run2.log && ok run.jobs_default_cores || fail run.jobs_default_cores "expected $n jobs: $(cat run2.log)"
 
 # --- extend: a new frequency and a third replicate: only the 4 new points run ---
 sed 's/frequency = 3, 4/frequency = 3, 4, 5/; s/replicates = 2/replicates = 3/' t.campaign >t3.campaign
@@ -87,6 +92,20 @@ rc=$?
 # reuse theirs for the new frequency
 [ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(hits) FROM caches")" = "3 9" ] && ok extend.cache_reused ||
 	fail extend.cache_reused "$(q $DB "SELECT key, hits FROM caches")"
+
+# --- the example queries of study/README.md, pasted as a user would (on campaign t) ---
+sed -n '/^```sql$/,/^```$/p' "$REPO/study/README.md" | grep -v '^```' |
+	sed "s/'demo'/'t'/g; s/'claim4_waiting_time'/'t'/g" >examples.sql
+nq=0 nbad=0
+while IFS= read -r -d ';' stmt; do
+	[ -n "$(printf '%s' "$stmt" | grep -v '^ *--' | tr -d ' \n')" ] || continue
+	nq=$((nq + 1))
+	out=$(printf '%s;\n' "$stmt" | sqlite3 -batch -bail "$DB" 2>&1) && case "$out" in *rror*) false ;; esac ||
+		{ nbad=$((nbad + 1)); echo "# query failed: $stmt -> $out"; }
+done <examples.sql
+[ "$nq" -ge 7 ] && [ "$nbad" = 0 ] && ok readme.example_queries || fail readme.example_queries "$nbad of $nq queries failed"
+[ "$(q $DB "$(awk '/mean rise of the intruder per frequency/ { on = 1; next } on && /;/ { print; exit } on' examples.sql)" | wc -l)" = 3 ] &&
+	ok readme.rise_per_frequency || fail readme.rise_per_frequency "expected one row per frequency (3)"
 
 # --- a failing run: its reason recorded, retried only on request ---
 { printf '[campaign]\nname = f\nseed = 1\n%s\ndt_guard = off\n[grid]\ndt = 5e-5, 0.002\n' "$SCENE"; } >f.campaign
@@ -132,7 +151,25 @@ for i in $(seq 100); do [ -e R/slow/jobs ] && break; sleep 0.05; done
 sleep 0.3
 "$STUDY" run slow.campaign --runs "$TMP/R" >slow2.log 2>&1
 rc=$?
+[ "$rc" -eq 1 ] && grep -q "another study driver" slow2.log && ok driver.exclusive || fail driver.exclusive "exit $rc: $(cat slow2.log)"
+# each run is in the database as soon as it has finished, and sqlite3 reads it while
+# the driver is still running the others (8 runs, one job at a time)
+live=
+for i in $(seq 400); do
+	kill -0 $pid 2>/dev/null || break
+	n=$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 'slow' AND state = 'done' AND status = 'ok'" 2>/dev/null)
+	if [ "${n:-0}" -ge 1 ] && kill -0 $pid 2>/dev/null; then live=$n; break; fi
+	sleep 0.05
+done
+[ -n "$live" ] && [ "$live" -lt 8 ] && ok db.ingested_while_running ||
+	fail db.ingested_while_running "no finished run in the database while the driver ran: $(tail -c 300 slow1.log)"
 kill -TERM $pid 2>/dev/null
 wait $pid
-[ "$rc" -eq 1 ] && grep -q "another study driver" slow2.log && ok driver.exclusive || fail driver.exclusive "exit $rc: $(cat slow2.log)"
+# status of a half-done campaign: counts and an ETA from the finished runs
+"$STUDY" status slow --runs "$TMP/R" >slow_status.out 2>&1
+grep -Eq "runs 8: done [1-7], failed 0, pending [1-7]" slow_status.out && grep -q "ETA: about" slow_status.out &&
+	ok status.eta || fail status.eta "$(cat slow_status.out)"
+# --progress shows GNU parallel's bar (on stderr); without a terminal there is none by default
+"$STUDY" run t.campaign --runs "$TMP/P" --jobs 2 --progress >bar.log 2>&1
+grep -q "100%" bar.log && ! grep -q "100%" run1.log && ok run.progress_bar || fail run.progress_bar "$(tail -c 300 bar.log)"
 finish
