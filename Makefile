@@ -1,23 +1,34 @@
 # shakebox - top-level Makefile. Knobs first; `make help` lists the targets.
 CC      ?= cc
 CFLAGS  ?= -O3 -g
-# AVX2 when the build machine has it (the vector loops of the integrator gain 2x);
-# set MARCH= to build for any x86-64. Results are bit-identical either way: there is
-# no FMA contraction and no reassociation.
+# The widest vectors the build machine has: AVX-512 (x86-64-v4: the AVX-512 force
+# kernel, core/forces.c) or AVX2 (the vector loops of the integrator gain 2x); set
+# MARCH= to build for any x86-64. Results are bit-identical either way: there is no
+# FMA contraction and no reassociation (tests/integration/regression.sh compares the
+# builds with one reference).
 ifeq ($(origin MARCH),undefined)
-  MARCH := $(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && echo -march=x86-64-v3)
+  MARCH := $(shell if grep -qw avx512vl /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v4; \
+		   elif grep -qw avx2 /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v3; fi)
 endif
 # No -ffast-math and no FMA contraction: a run must be bit-identical on every machine
 # that runs the same build (MODEL.md, issue 2 point 3). -fno-math-errno only drops the
 # errno side effect of sqrt (which nobody reads), so that it compiles to one instruction.
 BASEFLAGS = -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 SAN     ?= 0
+PORTABLE ?= 0
 V       ?= 0
 
 ifeq ($(SAN),1)
   BUILD   := build/san
   BIN     := build/san/bin
   XFLAGS  := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else ifeq ($(PORTABLE),1)
+  # baseline x86-64 (SSE2 only): the scalar force kernel, checked against the same
+  # reference outputs as the build for this machine
+  BUILD   := build/port
+  BIN     := build/port/bin
+  MARCH   :=
+  XFLAGS  :=
 else
   BUILD   := build/rel
   BIN     := bin
@@ -55,7 +66,8 @@ help:
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a short paper scene, plot it"
 	@echo "make clean      remove build products (never runs/)"
-	@echo "knobs: CC, CFLAGS, V=1 (show commands), SAN=1 (sanitizer build in build/san)"
+	@echo "knobs: CC, CFLAGS, MARCH, V=1 (show commands), SAN=1 (sanitizer build in build/san),"
+	@echo "       PORTABLE=1 (baseline x86-64 build in build/port)"
 
 # Installs what is missing; a no-op when everything is there.
 deps:
@@ -102,10 +114,12 @@ $(BUILD)/tests/%: tests/%.c $(LIB) tests/testlib.h $(BUILD)/flags
 tests: $(SHAKE) $(TEST_BIN)
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
-# the integration scripts against the release bin/shake; it ends with "N passed, N failed".
+# the integration scripts; the release and the portable bin/shake run the regression
+# test too. It ends with "N passed, N failed".
 check: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory all tests
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
+	$(Q)$(MAKE) --no-print-directory PORTABLE=1 build/port/bin/shake
 	$(Q)bash tests/run.sh
 
 bench: build/.deps-ok all

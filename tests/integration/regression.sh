@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # regression.sh - a shaken bed with an intruder, run by every integrator, must end exactly
 # (%.17g) as the committed reference in tests/reference/ (written by
-# `bash tests/reference/regress.sh write`). Both builds are compared: the sanitizer build
-# (-O1) and the release build (-O3, vectorised), so an optimisation that reorders a sum
-# or a compiler flag that contracts a multiply-add is caught. A perturbed run (mu) must
+# `bash tests/reference/regress.sh write`). Every build is compared: the sanitizer build
+# (-O1), the release build (-O3, vectorised, the AVX-512 force kernel where the machine
+# has it) and the portable build (baseline x86-64, the scalar force kernel), so an
+# optimisation that reorders a sum, a SIMD kernel that differs from the scalar one, or a
+# compiler flag that contracts a multiply-add is caught. A perturbed run (mu) must
 # differ, so the comparison can fail.
 . "$(dirname "$0")/lib.sh"
 . "$REPO/tests/reference/regress.sh"
 REL="$REPO/bin/shake"
+PORT="$REPO/build/port/bin/shake"
 
 # compare ID SHAKE CASE : run and compare with the reference
 compare() {
@@ -29,6 +32,9 @@ for c in "${REGRESS_CASES[@]}"; do
 	compare "regression.$c.sanitizer_build" "$SHAKE" "$c"
 	if [ -x "$REL" ] && [ "$REL" != "$SHAKE" ]; then
 		compare "regression.$c.release_build" "$REL" "$c"
+	fi
+	if [ -x "$PORT" ] && [ "$PORT" != "$SHAKE" ]; then
+		compare "regression.$c.portable_build" "$PORT" "$c"
 	fi
 done
 
