@@ -20,31 +20,79 @@ static int grow_int(int **p, int *cap, int need, sb_err *e)
 	return 0;
 }
 
-static int grow_pairs(int **pj, double **pm, int **pi, int *cap, int need, sb_err *e)
+/* The flat list and the scalar kernel's per-pair scratch grow together. */
+static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 {
-	if (need <= *cap)
-		return 0;
-	int nc = *cap ? *cap : 4096;
-	while (nc < need)
-		nc *= 2;
-	int *a = realloc(*pj, sizeof(int) * (size_t)nc);
-	if (a)
-		*pj = a;
-	double *b = realloc(*pm, sizeof(double) * (size_t)nc);
-	if (b)
-		*pm = b;
-	int ok = a && b;
-	if (pi) {
-		int *c = realloc(*pi, sizeof(int) * (size_t)nc);
-		if (c)
-			*pi = c;
-		ok = ok && c;
+	int cap = nl->fcap ? nl->fcap : 4096;
+	while (cap < need)
+		cap *= 2;
+	int ok = 1;
+#if SB_KERNEL_AVX512
+	int **ints[] = {&nl->pi, &nl->pj};
+	double **dbls[] = {&nl->pmeff};
+#else
+	int **ints[] = {&nl->pi, &nl->pj, &nl->contact};
+	double **dbls[] = {&nl->pmeff, &nl->cd, &nl->cinv};
+#endif
+	for (size_t k = 0; k < sizeof ints / sizeof *ints; k++) {
+		int *q = realloc(*ints[k], sizeof(int) * (size_t)cap);
+		ok = ok && q;
+		if (q)
+			*ints[k] = q;
+	}
+	for (size_t k = 0; k < sizeof dbls / sizeof *dbls; k++) {
+		double *q = realloc(*dbls[k], sizeof(double) * (size_t)cap);
+		ok = ok && q;
+		if (q)
+			*dbls[k] = q;
 	}
 	if (!ok)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
-	*cap = nc;
+	nl->fcap = cap;
 	return 0;
 }
+
+#if SB_KERNEL_AVX512
+#include <immintrin.h>
+/* Appends to the list the candidates k0..k1 (cell order) of disk i within reach ri:
+ * eight at a time, the kept ones compressed out of the lanes in order. */
+static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1,
+			   int np)
+{
+	const __m512d X = _mm512_set1_pd(xi), Yv = _mm512_set1_pd(yi), R = _mm512_set1_pd(ri);
+	const __m256i I = _mm256_set1_epi32(i);
+	for (int k = k0; k < k1; k += 8) {
+		const __mmask8 live = k1 - k >= 8 ? 0xff : (__mmask8)((1u << (k1 - k)) - 1);
+		const __m256i j = _mm256_maskz_loadu_epi32(live, nl->cell_idx + k);
+		const __m512d dx = _mm512_sub_pd(X, _mm512_maskz_loadu_pd(live, nl->xs + k));
+		const __m512d dy = _mm512_sub_pd(Yv, _mm512_maskz_loadu_pd(live, nl->ys + k));
+		const __m512d rc = _mm512_add_pd(R, _mm512_maskz_loadu_pd(live, nl->rs + k));
+		const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+		const __mmask8 m = _mm512_mask_cmp_pd_mask(_mm256_mask_cmpgt_epi32_mask(live, j, I), d2,
+							   _mm512_mul_pd(rc, rc), _CMP_LT_OQ);
+		_mm256_storeu_si256((__m256i *)(nl->pj + np), _mm256_maskz_compress_epi32(m, j));
+		_mm256_storeu_si256((__m256i *)(nl->pi + np), I);
+		np += __builtin_popcount(m);
+	}
+	return np;
+}
+#else
+static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1,
+			   int np)
+{
+	int *restrict pj = nl->pj, *restrict pi = nl->pi;
+	const int *restrict idx = nl->cell_idx;
+	const double *restrict xs = nl->xs, *restrict ys = nl->ys, *restrict rs = nl->rs;
+	for (int k = k0; k < k1; k++) {
+		const int j = idx[k];
+		const double ddx = xi - xs[k], ddy = yi - ys[k], rc = ri + rs[k];
+		pj[np] = j;
+		pi[np] = i;
+		np += (j > i) & (ddx * ddx + ddy * ddy < rc * rc);
+	}
+	return np;
+}
+#endif
 
 int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 {
@@ -55,10 +103,20 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_of = malloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_idx = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->start = malloc(sizeof(int) * ((size_t)st->nm + 1));
+	nl->xs = malloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->ys = malloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->rs = malloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->xref = malloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->yref = malloc(sizeof(double) * ((size_t)st->n + 1));
-	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_idx || !nl->start ||
+#if SB_KERNEL_AVX512
+	/* whole 64-byte lines, so that a record is one aligned vector load */
+	nl->rec = aligned_alloc(64, sizeof(double) * 8 * ((size_t)st->n + 8));
+	nl->kbuf = aligned_alloc(64, sizeof(sb_kbuf));
+	if (!nl->rec || !nl->kbuf)
+		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
+	nl->kbuf->walls_packed = -1;
+#endif
+	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_idx || !nl->xs || !nl->ys || !nl->rs ||
 	    !nl->xref || !nl->yref)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	double mean = 0;
@@ -84,29 +142,25 @@ void nlist_free(sb_nlist *nl)
 	free(nl->cell_pos);
 	free(nl->cell_idx);
 	free(nl->cell_of);
-	free(nl->start);
-	free(nl->j);
-	free(nl->meff);
-	free(nl->bi);
-	free(nl->bj);
-	free(nl->bmeff);
+	free(nl->xs);
+	free(nl->ys);
+	free(nl->rs);
 	free(nl->pi);
 	free(nl->pj);
 	free(nl->pmeff);
+#if SB_KERNEL_AVX512
+	free(nl->rec);
+	free(nl->kbuf);
+#else
 	free(nl->contact);
 	free(nl->cd);
 	free(nl->cinv);
+#endif
 	free(nl->large);
 	free(nl->large_list);
 	free(nl->xref);
 	free(nl->yref);
 	memset(nl, 0, sizeof *nl);
-}
-
-static inline double pair_meff(const sb_state *st, int i, int j)
-{
-	/* A wall of infinite mass has inv_m = 0, so m_eff becomes the grain's mass. */
-	return 1.0 / (st->inv_m[i] + st->inv_m[j]);
 }
 
 static inline int cell_coord(double v, double v0, double inv, int n)
@@ -193,14 +247,23 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			nl->cell_idx[pos[nl->cell_of[i]]++] = i;
 
 	/* Ordinary mobile disks: the three cells of a row of the 3x3 stencil are adjacent
-	 * in the counting sort, so each row is one contiguous run of candidates. A
-	 * candidate is appended branch-free (written, then kept or not): whether a near
-	 * disk is within reach is a coin toss that a branch would mispredict. j > i
-	 * keeps each pair once; walls sit above nm, so they always pass. */
+	 * in the counting sort, so each row is one contiguous run of candidates, whose
+	 * coordinates are copied in that order (xs, ys, rs) so that a run is read
+	 * contiguously. A candidate is appended branch-free (written, then kept or not):
+	 * whether a near disk is within reach is a coin toss that a branch would
+	 * mispredict. j > i keeps each pair once; walls sit above nm, so they always pass.
+	 * The pairs go straight into the flat list the force kernel walks: rows of
+	 * ascending i, each in cell order, then the pairs of the large disks. */
+	const int nsorted = nl->cell_start[nc];
+	for (int k = 0; k < nsorted; k++) {
+		const int j = nl->cell_idx[k];
+		nl->xs[k] = x[j];
+		nl->ys[k] = y[j];
+		nl->rs[k] = r[j];
+	}
 	int np = 0;
 	const int ncx = nl->ncx, ncy = nl->ncy;
 	for (int i = 0; i < nm; i++) {
-		nl->start[i] = np;
 		if (nl->large[i])
 			continue;
 		const double xi = x[i], yi = y[i], ri = r[i] + skin;
@@ -209,26 +272,15 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		const int ya = cy > 0 ? cy - 1 : 0, yb = cy < ncy - 1 ? cy + 1 : ncy - 1;
 		for (int yy = ya; yy <= yb; yy++) {
 			const int k0 = nl->cell_start[yy * ncx + xa], k1 = nl->cell_start[yy * ncx + xb + 1];
-			if (np + (k1 - k0) > nl->pcap &&
-			    grow_pairs(&nl->j, &nl->meff, NULL, &nl->pcap, np + (k1 - k0), e))
+			if (np + (k1 - k0) + 16 > nl->fcap && grow_flat(nl, np + (k1 - k0) + 16, e))
 				return e->code;
-			int *restrict out = nl->j;
-			for (int k = k0; k < k1; k++) {
-				const int j = nl->cell_idx[k];
-				const double ddx = xi - x[j], ddy = yi - y[j], rc = ri + r[j];
-				out[np] = j;
-				np += (j > i) & (ddx * ddx + ddy * ddy < rc * rc);
-			}
+			np = scan_run(nl, i, xi, yi, ri, k0, k1, np);
 		}
 	}
-	nl->start[nm] = np;
 	nl->npairs = np;
-	for (int i = 0; i < nm; i++)
-		for (int p = nl->start[i]; p < nl->start[i + 1]; p++)
-			nl->meff[p] = pair_meff(st, i, nl->j[p]);
 
 	/* large disks: scan the cells within their reach, then each other */
-	int nb = 0;
+	int nb = np;
 	for (int a = 0; a < nl->nlarge; a++) {
 		int L = nl->large_list[a];
 		const double reach = r[L] + nl->r_small + skin;
@@ -246,13 +298,10 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 						continue;
 					double ddx = x[L] - x[j], ddy = y[L] - y[j], rc = r[L] + r[j] + skin;
 					if (ddx * ddx + ddy * ddy < rc * rc) {
-						if (nb == nl->bcap &&
-						    grow_pairs(&nl->bj, &nl->bmeff, &nl->bi, &nl->bcap, nb + 1, e))
+						if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 							return e->code;
-						nl->bi[nb] = L;
-						nl->bj[nb] = j;
-						nl->bmeff[nb] = pair_meff(st, L, j);
-						nb++;
+						nl->pi[nb] = L;
+						nl->pj[nb++] = j;
 					}
 				}
 			}
@@ -262,58 +311,27 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 				continue;
 			double ddx = x[L] - x[M], ddy = y[L] - y[M], rc = r[L] + r[M] + skin;
 			if (ddx * ddx + ddy * ddy < rc * rc) {
-				if (nb == nl->bcap && grow_pairs(&nl->bj, &nl->bmeff, &nl->bi, &nl->bcap, nb + 1, e))
+				if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 					return e->code;
-				nl->bi[nb] = L;
-				nl->bj[nb] = M;
-				nl->bmeff[nb] = pair_meff(st, L, M);
-				nb++;
+				nl->pi[nb] = L;
+				nl->pj[nb++] = M;
 			}
 		}
 	}
-	nl->nbig = nb;
-
-	/* Flatten: one loop over pairs without an inner loop per disk, whose varying
-	 * trip count costs a mispredicted branch per disk. */
-	const int nf = np + nb;
-	if (nf > nl->fcap) {
-		int cap = nl->fcap ? nl->fcap : 4096;
-		while (cap < nf)
-			cap *= 2;
-		int *a = realloc(nl->pi, sizeof(int) * (size_t)cap);
-		if (a)
-			nl->pi = a;
-		int *b = realloc(nl->pj, sizeof(int) * (size_t)cap);
-		if (b)
-			nl->pj = b;
-		double *c = realloc(nl->pmeff, sizeof(double) * (size_t)cap);
-		if (c)
-			nl->pmeff = c;
-		int *d = realloc(nl->contact, sizeof(int) * (size_t)cap);
-		if (d)
-			nl->contact = d;
-		double *f = realloc(nl->cd, sizeof(double) * (size_t)cap);
-		if (f)
-			nl->cd = f;
-		double *g = realloc(nl->cinv, sizeof(double) * (size_t)cap);
-		if (g)
-			nl->cinv = g;
-		if (!a || !b || !c || !d || !f || !g)
-			return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
-		nl->fcap = cap;
-	}
-	for (int i = 0; i < nm; i++)
-		for (int p = nl->start[i]; p < nl->start[i + 1]; p++)
-			nl->pi[p] = i;
-	if (np) {
-		memcpy(nl->pj, nl->j, sizeof(int) * (size_t)np);
-		memcpy(nl->pmeff, nl->meff, sizeof(double) * (size_t)np);
-	}
-	if (nb) {
-		memcpy(nl->pi + np, nl->bi, sizeof(int) * (size_t)nb);
-		memcpy(nl->pj + np, nl->bj, sizeof(int) * (size_t)nb);
-		memcpy(nl->pmeff + np, nl->bmeff, sizeof(double) * (size_t)nb);
-	}
+	nl->nbig = nb - np;
+	const int nf = nb;
+	if (nf + 8 > nl->fcap && grow_flat(nl, nf + 8, e))
+		return e->code;
+	/* pad to whole vectors of 8 (the SIMD kernel masks these lanes out) */
+	for (int p = nf; p < ((nf + 7) & ~7); p++)
+		nl->pi[p] = nl->pj[p] = 0;
+	/* m_eff in one pass over the list (it vectorises: a division per pair) */
+	const double *restrict im = st->inv_m;
+	const int *restrict pi = nl->pi, *restrict pj = nl->pj;
+	double *restrict pm = nl->pmeff;
+	const int nfp = (nf + 7) & ~7;
+	for (int p = 0; p < nfp; p++)
+		pm[p] = 1.0 / (im[pi[p]] + im[pj[p]]); /* a wall of infinite mass: the grain's */
 	nl->nflat = nf;
 	return 0;
 }

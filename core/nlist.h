@@ -8,6 +8,27 @@
 #include "err.h"
 #include "state.h"
 
+/* The force kernel's variant is chosen at compile time: AVX-512 where the build
+ * targets it (make picks -march=x86-64-v4 on such machines), scalar elsewhere. Both
+ * give the same forces to the bit. */
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#define SB_KERNEL_AVX512 1
+#else
+#define SB_KERNEL_AVX512 0
+#endif
+
+#if SB_KERNEL_AVX512
+enum { SB_KCHUNK = 256 };
+
+/* one chunk of the list's contacts: disks i, j, the force on i and the torques
+ * R_i F_S, R_j F_S (8 spare slots: the kernel stores whole vectors) */
+typedef struct sb_kbuf {
+	_Alignas(64) double fx[SB_KCHUNK + 8], fy[SB_KCHUNK + 8], ti[SB_KCHUNK + 8], tj[SB_KCHUNK + 8];
+	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
+	long walls_packed;          /* the build whose wall records rec holds */
+} sb_kbuf;
+#endif
+
 typedef struct sb_nlist {
 	double skin;
 	/* cell grid over the bounding box of all disks at the last build */
@@ -16,21 +37,25 @@ typedef struct sb_nlist {
 	int *cell_start, *cell_idx; /* counting sort: disks of cell c are cell_idx[cell_start[c]..] */
 	int *cell_of;
 	int *cell_pos;               /* scratch of the counting sort */
-	/* half list for ordinary mobile i: pairs (i, j) with j > i, CSR */
-	int *start;                 /* nm + 1 */
-	int *j;
-	double *meff;
-	int npairs, pcap;
-	/* pairs involving a large disk, any order */
-	int *bi, *bj;
-	double *bmeff;
-	int nbig, bcap;
-	/* the flat list the force kernel walks: all pairs above, ordinary first */
+	double *xs, *ys, *rs;       /* x, y, R of the disks in cell order (cell_idx) */
+	/* The flat list the force kernel walks: the npairs pairs (i, j > i) of ordinary
+	 * mobile i, in rows of ascending i (walls are j: they come after the mobile
+	 * disks), then the nbig pairs of the large disks, any order; m_eff of each */
 	int *pi, *pj;
 	double *pmeff;
-	int *contact;               /* scratch: indices of the pairs in contact this step */
-	double *cd, *cinv;          /* scratch: their distance and its inverse */
-	int nflat, fcap;
+	int npairs, nbig;
+	int nflat, fcap;            /* npairs + nbig; padded with pairs (0, 0) to a multiple of 8 */
+#if SB_KERNEL_AVX512
+	/* scratch of the AVX-512 force kernel (forces.c): per disk a 64-byte record (x, y,
+	 * vx, vy, R w, R, R, R); one chunk's contacts */
+	double *rec;
+	sb_kbuf *kbuf;
+#else
+	/* scratch of the scalar force kernel: the pairs in contact this step, their
+	 * distance and its inverse */
+	int *contact;
+	double *cd, *cinv;
+#endif
 	/* which disks are large; fixed at setup */
 	unsigned char *large;
 	int *large_list, nlarge;

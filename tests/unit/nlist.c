@@ -3,9 +3,9 @@
  * random polydisperse packings with an intruder (radius ratio 2..8) and walls, after
  * moving the disks and rebuilding, over several seeds, and in degenerate layouts (a
  * tight cluster plus a disk far away, which makes the grid clamp and grow cells).
- * Pair SETS are compared: CSR pairs (i, j) of ordinary mobile i with j > i plus the
- * (bi, bj) pairs involving large disks, each pair normalised to (min, max); every
- * pair must appear exactly once. */
+ * Pair SETS are compared: the flat list's ordinary pairs (i, j > i, rows of ascending
+ * i) plus its pairs involving large disks, each normalised to (min, max); every pair
+ * must appear exactly once, and every m_eff must be 1 / (1/m_i + 1/m_j). */
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -27,28 +27,41 @@ static int compare(const sb_state *st, const sb_nlist *nl, double skin, char *wh
 	long nb = nlist_brute(st, skin, NULL, NULL, 0);
 	int *bi = malloc(sizeof(int) * (size_t)(nb + 1)), *bj = malloc(sizeof(int) * (size_t)(nb + 1));
 	nlist_brute(st, skin, bi, bj, nb);
-	long nl_n = nl->start[st->nm] + nl->nbig;
+	long nl_n = nl->nflat;
 	long *a = malloc(sizeof(long) * (size_t)(nl_n + 1)), *b = malloc(sizeof(long) * (size_t)(nb + 1));
 	long k = 0;
 	int ok = 1;
 	why[0] = 0;
-	for (int i = 0; i < st->nm; i++)
-		for (int p = nl->start[i]; p < nl->start[i + 1]; p++) {
-			int j = nl->j[p];
-			if (j <= i || j >= st->n) {
-				snprintf(why, len, "CSR pair (%d, %d) is not j > i within range", i, j);
-				ok = 0;
-			}
-			a[k++] = (long)i * st->n + j;
+	if (nl->npairs + nl->nbig != nl->nflat) {
+		snprintf(why, len, "npairs %d + nbig %d != nflat %d", nl->npairs, nl->nbig, nl->nflat);
+		ok = 0;
+	}
+	/* the ordinary pairs: rows of ascending i, j > i, no large disk */
+	for (int p = 0; p < nl->npairs; p++) {
+		int i = nl->pi[p], j = nl->pj[p];
+		if (j <= i || j >= st->n || i >= st->nm || nl->large[i] || nl->large[j] ||
+		    (p > 0 && i < nl->pi[p - 1])) {
+			snprintf(why, len, "ordinary pair %d = (%d, %d) is not j > i, in rows of ascending i", p, i, j);
+			ok = 0;
 		}
-	for (int p = 0; p < nl->nbig; p++) {
-		int i = nl->bi[p], j = nl->bj[p];
+		a[k++] = (long)i * st->n + j;
+	}
+	for (int p = nl->npairs; p < nl->nflat; p++) {
+		int i = nl->pi[p], j = nl->pj[p];
 		if (!nl->large[i] && !nl->large[j] && ok) {
 			snprintf(why, len, "big pair (%d, %d) involves no large disk", i, j);
 			ok = 0;
 		}
 		int lo = i < j ? i : j, hi = i < j ? j : i;
 		a[k++] = (long)lo * st->n + hi;
+	}
+	/* m_eff of every pair */
+	for (int p = 0; p < nl->nflat && ok; p++) {
+		double want = 1.0 / (st->inv_m[nl->pi[p]] + st->inv_m[nl->pj[p]]);
+		if (nl->pmeff[p] != want) {
+			snprintf(why, len, "m_eff of pair %d is %.17g, want %.17g", p, nl->pmeff[p], want);
+			ok = 0;
+		}
 	}
 	for (long q = 0; q < nb; q++)
 		b[q] = (long)bi[q] * st->n + bj[q];
