@@ -58,9 +58,11 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
  * combined lane-wise (differences, sums, R_i, R_j), and eight pairs are transposed
  * into lanes. Each lane then performs the scalar code's operations in its order
  * (there is no FMA; min, max and the sign copy are exact), the contacts are
- * compressed out of the lanes, and a scalar pass per chunk of the list adds their
- * forces to the disks in list order - so the forces are bit-identical to the scalar
- * kernel's (tests/integration/regression.sh runs both builds against one reference).
+ * compressed out of the lanes, and a pass per chunk of the list adds their forces to
+ * per-disk accumulators (Fx, Fy, torque, 0) in list order, one 4-double vector per
+ * disk and contact (a third of the stores of three scalar sums, which bound that
+ * pass) - so the forces are bit-identical to the scalar kernel's
+ * (tests/integration/regression.sh runs both builds against one reference).
  * The walls' records are packed only when the list is rebuilt: they never move. */
 #include <immintrin.h>
 
@@ -81,6 +83,32 @@ static inline __attribute__((always_inline)) void transpose8(__m512d r[8])
 	for (int k = 0; k < 4; k++) {
 		r[k] = _mm512_shuffle_f64x2(u[k], u[k + 4], 0x88);
 		r[k + 4] = _mm512_shuffle_f64x2(u[k], u[k + 4], 0xDD);
+	}
+}
+
+/* the per-disk accumulators (Fx, Fy, torque, 0) -> st->f[C_X], f[C_Y], f[C_TH] */
+static void unpack_forces(sb_state *st, const double *restrict facc)
+{
+	double *restrict fx = st->f[C_X], *restrict fy = st->f[C_Y], *restrict t = st->f[C_TH];
+	const __m512i ix = _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0),
+		      it = _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2);
+	const int n = st->n;
+	int i = 0;
+	for (; i + 8 <= n; i += 8) {
+		const double *q = facc + 4 * i;
+		const __m512d z0 = _mm512_load_pd(q), z1 = _mm512_load_pd(q + 8),
+			      z2 = _mm512_load_pd(q + 16), z3 = _mm512_load_pd(q + 24);
+		/* lo = (x0 x1 x2 x3 y0 y1 y2 y3), hi the same for disks 4..7 */
+		const __m512d lo = _mm512_permutex2var_pd(z0, ix, z1), hi = _mm512_permutex2var_pd(z2, ix, z3);
+		_mm512_storeu_pd(fx + i, _mm512_shuffle_f64x2(lo, hi, 0x44));
+		_mm512_storeu_pd(fy + i, _mm512_shuffle_f64x2(lo, hi, 0xEE));
+		const __m512d tlo = _mm512_permutex2var_pd(z0, it, z1), thi = _mm512_permutex2var_pd(z2, it, z3);
+		_mm512_storeu_pd(t + i, _mm512_shuffle_f64x2(tlo, thi, 0x44));
+	}
+	for (; i < n; i++) {
+		fx[i] = facc[4 * i];
+		fy[i] = facc[4 * i + 1];
+		t[i] = facc[4 * i + 2];
 	}
 }
 
@@ -113,7 +141,6 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 							       const sb_nlist *nl, double inv_dt,
 							       const int clip, double *restrict fsum)
 {
-	double *restrict fxa = st->f[C_X], *restrict fya = st->f[C_Y], *restrict ta = st->f[C_TH];
 	const double *rec = nl->rec;
 	const int *pi = nl->pi, *pj = nl->pj;
 	const double *pmeff = nl->pmeff;
@@ -127,9 +154,8 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 #define NEG(a) _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a), sign))
 #define ABS(a) _mm512_castsi512_pd(_mm512_andnot_si512(sign, _mm512_castpd_si512(a)))
 
-	memset(fxa, 0, sizeof(double) * (size_t)st->n);
-	memset(fya, 0, sizeof(double) * (size_t)st->n);
-	memset(ta, 0, sizeof(double) * (size_t)st->n);
+	double *restrict facc = nl->facc;
+	memset(facc, 0, sizeof(double) * 4 * (size_t)st->n);
 	/* the walls' records change only when the list is rebuilt from a new state */
 	pack_records(st, nl->rec, 0, st->nm);
 	if (kb->walls_packed != nl->builds) {
@@ -194,7 +220,11 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 			_mm512_storeu_pd(kb->tj + nc, _mm512_maskz_compress_pd(in, _mm512_mul_pd(rj, fs)));
 			nc += __builtin_popcount(in);
 		}
-		/* the chunk's forces added to the disks in list order */
+		/* the chunk's forces added to the disks in list order, as 4-double vectors
+		 * (Fx, Fy, -R_i F_S, 0) to i and (-Fx, -Fy, -R_j F_S, 0) to j: a - b and
+		 * a + (-b) are the same number */
+		const __m256d sgn = _mm256_set_pd(0.0, -0.0, 0.0, 0.0),
+			      sgnj = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
 		for (int k = 0; k < nc; k++) {
 			const int i = kb->i[k], j = kb->j[k];
 			const double fx = kb->fx[k], fy = kb->fy[k];
@@ -203,14 +233,14 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 				fsum[i] += fa;
 				fsum[j] += fa;
 			}
-			fxa[i] += fx;
-			fya[i] += fy;
-			ta[i] -= kb->ti[k];
-			fxa[j] -= fx;
-			fya[j] -= fy;
-			ta[j] -= kb->tj[k];
+			const __m128d xy = _mm_loadh_pd(_mm_load_sd(kb->fx + k), kb->fy + k);
+			const __m256d vi = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->ti + k), 1);
+			const __m256d vj = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->tj + k), 1);
+			_mm256_store_pd(facc + 4 * i, _mm256_add_pd(_mm256_load_pd(facc + 4 * i), _mm256_xor_pd(vi, sgn)));
+			_mm256_store_pd(facc + 4 * j, _mm256_add_pd(_mm256_load_pd(facc + 4 * j), _mm256_xor_pd(vj, sgnj)));
 		}
 	}
+	unpack_forces(st, facc);
 	return bad != 0;
 #undef NEG
 #undef ABS

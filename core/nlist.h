@@ -47,8 +47,9 @@ typedef struct sb_nlist {
 	int nflat, fcap;            /* npairs + nbig; padded with pairs (0, 0) to a multiple of 8 */
 #if SB_KERNEL_AVX512
 	/* scratch of the AVX-512 force kernel (forces.c): per disk a 64-byte record (x, y,
-	 * vx, vy, R w, R, R, R); one chunk's contacts */
-	double *rec;
+	 * vx, vy, R w, R, R, R) and a force accumulator (Fx, Fy, torque, 0); one chunk's
+	 * contacts */
+	double *rec, *facc;
 	sb_kbuf *kbuf;
 #else
 	/* scratch of the scalar force kernel: the pairs in contact this step, their

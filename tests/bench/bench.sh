@@ -215,19 +215,24 @@ prepare paper_prep "$PAPER"
 log "paper scene: settled in $(secs "$P_SECS") -> $PAPER"
 PAPER_PREP=$P_SECS
 
-shake_t=() lmp_t=() ratios=()
+shake_t=() verlet_t=() lmp_t=() ratios=()
 for ((i = 1; i <= REPS; i++)); do
 	run_shake "paper_shake_$i" particles="$PAPER" duration=1 output="$W/run.h5" "${RUN_FLAGS[@]}"
 	[ "$R_STEPS" -eq "$PAPER_STEPS" ] || die "paper_shake_$i: $R_STEPS steps, expected $PAPER_STEPS"
 	shake_t+=("$R_LOOP")
-	P_MOBILE=$R_MOBILE P_WALLS=$R_WALLS P_RSS=$R_RSS
+	P_MOBILE=$R_MOBILE P_WALLS=$R_WALLS P_RSS=$R_RSS P_LOOP=$R_LOOP
 	msg="paper rep $i/$REPS: shakebox ${R_LOOP}s"
+	# the same scene with LAMMPS's own integrator (velocity Verlet) at the same dt
+	run_shake "paper_verlet_$i" particles="$PAPER" duration=1 integrator=verlet dt=5e-5 \
+		output="$W/run.h5" "${RUN_FLAGS[@]}"
+	verlet_t+=("$R_LOOP")
+	msg="$msg (verlet ${R_LOOP}s)"
 	if [ "$NO_LAMMPS" != 1 ]; then
 		run_lammps "paper_lammps_$i" "$PAPER" "$PAPER_STEPS"
 		[ "$L_ATOMS" -eq $((P_MOBILE + P_WALLS)) ] ||
 			die "LAMMPS has $L_ATOMS atoms, shakebox $P_MOBILE mobile + $P_WALLS walls"
 		lmp_t+=("$L_LOOP")
-		ratios+=("$(calc "$L_LOOP / $R_LOOP")")
+		ratios+=("$(calc "$L_LOOP / $P_LOOP")")
 		msg="$msg, LAMMPS ${L_LOOP}s"
 	fi
 	log "$msg"
@@ -258,6 +263,14 @@ if [ "$NO_LAMMPS" != 1 ]; then
 		LAMMPS "$l_med" "$l_min" "$l_max" "$lns_m" "$lns_a"
 	repf '   speed-up LAMMPS/shakebox = %.2fx (ratio of medians; per-pair ratios %.2f .. %.2f)   target >= 5x: %s\n' \
 		"$speedup" "$r_min" "$r_max" "$(verdict "$speedup >= 5")"
+	read -r v_med v_min v_max < <(stats "${verlet_t[@]}")
+	vspeed=$(calc "$l_med / $v_med")
+	repf '   shakebox with LAMMPS'"'"'s integrator (integrator=verlet, same dt 5e-5; the paper'"'"'s gear5\n'
+	repf '   integrates 6 instead of 3 values per coordinate):\n'
+	repf '   %-10s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile); LAMMPS/this = %.2fx\n' \
+		verlet "$v_med" "$v_min" "$v_max" "$(calc "$v_med / ($PAPER_STEPS * $P_MOBILE) * 1e9")" "$vspeed"
+	tsv paper "$P_MOBILE" verlet_loop_median "$v_med" s
+	tsv paper "$P_MOBILE" speedup_verlet "$vspeed" x
 	tsv paper "$P_MOBILE" lammps_loop_median "$l_med" s
 	tsv paper "$P_MOBILE" lammps_loop_min "$l_min" s
 	tsv paper "$P_MOBILE" lammps_loop_max "$l_max" s
