@@ -112,7 +112,8 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	/* whole 64-byte lines, so that a record is one aligned vector load */
 	nl->rec = aligned_alloc(64, sizeof(double) * 8 * ((size_t)st->n + 8));
 	nl->kbuf = aligned_alloc(64, sizeof(sb_kbuf));
-	nl->facc = aligned_alloc(64, sizeof(double) * 4 * ((size_t)st->n + 8));
+	/* aligned_alloc wants a whole number of alignments: whole 64-byte lines */
+	nl->facc = aligned_alloc(64, 64 * (((size_t)st->n + 9) / 2));
 	if (!nl->rec || !nl->kbuf || !nl->facc)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	nl->kbuf->walls_packed = -1;
