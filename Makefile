@@ -64,7 +64,7 @@ help:
 	@echo "make bench      speed: shakebox vs LAMMPS gran/hooke on the paper scene, ns/particle-step"
 	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
-	@echo "make demo       install what is missing, build, run a short paper scene, plot it"
+	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH, V=1 (show commands), SAN=1 (sanitizer build in build/san),"
 	@echo "       PORTABLE=1 (baseline x86-64 build in build/port)"

@@ -277,6 +277,7 @@ struct ini_ctx {
 	FILE *f;
 	int line;      /* lines read so far: the handler runs right after its line is read */
 	int err_line;  /* line of the first error the handler found */
+	int seen[NTABLE]; /* line where each key of the table was set, 0 if not yet */
 };
 
 /* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader.
@@ -327,7 +328,15 @@ static int scene_handler(void *user, const char *section, const char *name, cons
 	snprintf(where, sizeof where, "%s:%d", c->path, c->line);
 	sb_err tmp = {0};
 	(void)section; /* checked by scene_reader */
-	params_set(c->s, name, value, where, &tmp);
+	/* a key given twice is a mistake that "last one wins" would hide */
+	const sb_param *p = params_find(name);
+	const size_t k = p ? (size_t)(p - TABLE) : 0;
+	if (p && c->seen[k])
+		sb_errf(&tmp, SB_EUSAGE, "%s: %s: set twice (first on line %d)", where, name, c->seen[k]);
+	else
+		params_set(c->s, name, value, where, &tmp);
+	if (p && !c->seen[k])
+		c->seen[k] = c->line;
 	if (tmp.code) {
 		c->err_line = c->line;
 		c->e->code = 0;
@@ -345,7 +354,7 @@ int params_load_file(sb_scene *s, const char *path, sb_err *e)
 	FILE *f = fopen(path, "r");
 	if (!f)
 		return sb_errf(e, SB_EUSAGE, "%s: cannot open scene file: %s", path, strerror(errno));
-	struct ini_ctx c = {s, e, path, f, 0, 0};
+	struct ini_ctx c = {s, e, path, f, 0, 0, {0}};
 	int rc = ini_parse_stream(scene_reader, &c, scene_handler, &c);
 	fclose(f);
 	if (rc > 0 && (!c.err_line || rc < c.err_line)) {

@@ -3,7 +3,7 @@
 # Called by `make deps`, and by `make check`/`make demo` on a fresh machine.
 set -euo pipefail
 PKGS=(build-essential pkg-config libgsl-dev libhdf5-dev hdf5-tools libsqlite3-dev sqlite3
-      libinih-dev parallel gnuplot-nox lammps openssh-server openssh-client rsync)
+      libinih-dev parallel gnuplot-nox lammps openssh-server openssh-client rsync time)
 missing=()
 for p in "${PKGS[@]}"; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -42,7 +42,7 @@ if [ "$QUICK" = 1 ]; then
 else
 	SEEDS=${ACC_SEEDS:-6}
 	DUR_W=20 DUR_F=15 SKIP_F=5
-	CSET="gear5:5e-5 gear5:1e-4 gear5:2e-4 gear4:1e-4 verlet:1e-4 verlet:1.5e-4 verlet:2e-4"
+	CSET="gear5:5e-5 gear5:1e-4 gear5:2e-4 gear4:1e-4 gear4:2e-4 verlet:1e-4 verlet:1.5e-4 verlet:2e-4 verlet:3e-4"
 	BDTS="1e-5 2e-5 5e-5 1e-4 1.5e-4 2e-4 3e-4 5e-4 7e-4 1e-3"
 	COLL_ARG=
 fi

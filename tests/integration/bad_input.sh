@@ -52,6 +52,12 @@ expect_bad scene.bad_int "s_int.ini:1:|n_grains" s_int.ini "${FAST[@]}"
 
 expect_bad scene.missing "no_such_scene.ini" no_such_scene.ini "${FAST[@]}"
 
+# a key given twice in a file (the command line may still override it)
+printf 'frequency = 3\nseed = 2\nfrequency = 4\n' >s_twice.ini
+expect_bad scene.key_twice "s_twice.ini:3:|frequency|twice|line 1" s_twice.ini "${FAST[@]}"
+printf 'frequency = 3\n[scene]\nfrequency = 4\n' >s_twice_section.ini
+expect_bad scene.key_twice_across_sections "s_twice_section.ini:3:|frequency|twice" s_twice_section.ini "${FAST[@]}"
+
 # the scene file must come first; a second bare word is an error
 printf 'n_grains = 60\n' >s_ok.ini
 expect_bad cmdline.stray_word "stray" s_ok.ini stray "${FAST[@]}"
