@@ -203,8 +203,9 @@ export -f deep_run
 {
 	echo "(iii) Largest overlap / smaller radius (maxoverlap over the recorded states: settled = the state at"
 	echo "      the start of shaking; shaken = /final and 4 stroboscopic snapshots of 1.25 s at 3.2 Hz, A = 2 cm)."
-	echo "      Runs with max_overlap = 0.9 (the engine would stop at 0.6 by default)."
-	printf "      %-12s %8s %8s %6s %9s %9s %9s %s\n" bed N width exit settled shaken_fin shaken_snap settle_wall_s
+	echo "      Runs with max_overlap = 0.9 (the engine would stop at 0.6 by default). hydrostatic = the"
+	echo "      overlap of a bottom contact carrying its column's weight, W / (2 cos 30 Y), / r_min."
+	printf "      %-12s %8s %8s %6s %9s %9s %9s %11s %s\n" bed N width exit settled shaken_fin shaken_snap hydrostatic settle_wall_s
 } >>"$REPORT"
 for tag in $(for n in $DEEP_N; do echo "wide$n"; done) $(for n in $COLUMN_N; do echo "column$n"; done); do
 	rc0=$(cat "deep_$tag.rc0") rc1=$(cat "deep_$tag.rc1")
@@ -212,11 +213,26 @@ for tag in $(for n in $DEEP_N; do echo "wide$n"; done) $(for n in $COLUMN_N; do 
 	[ "$rc0" = 0 ] && s0=$("$OVL" "deep_${tag}_settled.h5" | awk '{ print $2 }')
 	[ -s "deep_${tag}_shaken.h5" ] && read -r f1 s1 <<<"$("$OVL" "deep_${tag}_shaken.h5" | awk '{ print $2, $4 }')"
 	n=$(attr_val "deep_${tag}_settled.h5" n_grains) w=$(attr_val "deep_${tag}_settled.h5" width)
-	printf "      %-12s %8s %8s %6s %9s %9s %9s %s\n" "$tag" "$n" "$w" "$rc0/$rc1" "$s0" "$f1" "$s1" "$(cat "deep_$tag.settle_time" 2>/dev/null)" >>"$REPORT"
+	# The load decides how far soft disks overlap: the bottom contacts of a column of
+	# height h carry its weight, W = (2 phi h / (pi R)) m g per column one diameter wide
+	# (area fraction phi = 0.82, mean radius R), on two contacts at 30 deg from the
+	# vertical: xi = W / (2 cos 30 Y). Force chains carry up to about five times the
+	# mean load (the exponential tail of the contact-force distribution; measured here
+	# 3.2 - 4.8 times), so the settled bed's largest overlap must stay below
+	# max(0.3, 5 xi / r_min); shaken, below the engine's default stop (0.6).
+	hyd=$(awk -v h="$(attr_val "deep_${tag}_settled.h5" surface_height)" \
+		-v Y="$(attr_val "deep_${tag}_settled.h5" stiffness)" -v g="$(attr_val "deep_${tag}_settled.h5" gravity)" \
+		-v a="$(attr_val "deep_${tag}_settled.h5" r_min)" -v b="$(attr_val "deep_${tag}_settled.h5" r_max)" \
+		-v mf="$(attr_val "deep_${tag}_settled.h5" mass_factor)" -v rho="$(attr_val "deep_${tag}_settled.h5" density)" \
+		'BEGIN { R = (a + b) / 2; m = mf * rho * (a * a + a * b + b * b) / 3
+			 W = 2 * 0.82 * h / (3.141592653589793 * R) * m * g
+			 printf "%.4f", W / (2 * cos(3.141592653589793 / 6) * Y) / a }')
+	printf "      %-12s %8s %8s %6s %9s %9s %9s %11s %s\n" "$tag" "$n" "$w" "$rc0/$rc1" "$s0" "$f1" "$s1" "$hyd" "$(cat "deep_$tag.settle_time" 2>/dev/null)" >>"$REPORT"
 	[ "$rc0" = 0 ] && [ "$rc1" = 0 ] && ok "stress.deep.$tag.runs" || fail "stress.deep.$tag.runs" "exit $rc0 (settle) / $rc1 (shake)"
-	awk -v a="$s0" -v b="$f1" -v c="$s1" 'BEGIN { exit !(a + 0 < 0.3 && b + 0 < 0.6 && c + 0 < 0.6 && a != "-") }' &&
+	awk -v a="$s0" -v b="$f1" -v c="$s1" -v hy="$hyd" 'BEGIN { lim = 5 * hy > 0.3 ? 5 * hy : 0.3
+		exit !(a + 0 < lim && b + 0 < 0.6 && c + 0 < 0.6 && a != "-") }' &&
 		ok "stress.deep.$tag.overlap_small" ||
-		fail "stress.deep.$tag.overlap_small" "largest overlap settled $s0, shaken $f1 / $s1 of the radius"
+		fail "stress.deep.$tag.overlap_small" "largest overlap settled $s0 (limit max(0.3, 5 x hydrostatic $hyd)), shaken $f1 / $s1 of the radius"
 done
 echo >>"$REPORT"
 
