@@ -6,11 +6,7 @@
 # legs of an up-down ramp with a hold (the hold's periods left out, the running mean
 # kept within a leg); Fig. 1 and 3 of a campaign read without an intruder system.
 . "$(dirname "$0")/lib.sh"
-BINDIR=$(dirname "$SHAKE")
-STUDY="${STUDY:-$BINDIR/study}"
-for t in "$STUDY" "$BINDIR/onset" "$BINDIR/waiting" "$BINDIR/figures" "$BINDIR/hysteresis"; do
-	[ -x "$t" ] || { fail setup "$t is not an executable (run make)"; finish; }
-done
+analysis_tools_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 # vals FILE DATASET : every value of a dataset, one per line (row-major, %.17g)

@@ -5,11 +5,7 @@
 # exit codes, tables, CSV and PNG files, the rows stored in the `analysis` table,
 # reproducible bootstrap intervals on a second run, and the error paths.
 . "$(dirname "$0")/lib.sh"
-BINDIR=$(dirname "$SHAKE")
-STUDY="${STUDY:-$BINDIR/study}"
-for t in "$STUDY" "$BINDIR/onset" "$BINDIR/waiting" "$BINDIR/figures" "$BINDIR/hysteresis"; do
-	[ -x "$t" ] || { fail setup "$t is not an executable (run make)"; finish; }
-done
+analysis_tools_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }

@@ -93,5 +93,16 @@ same_output() {
 	[ -z "$out" ] || { printf "%s\n" "$out" | head -n 6 >&2; return 1; }
 }
 
+# analysis_tools_setup : BINDIR (the directory of $SHAKE) and STUDY, with the analysis
+# tools beside them, or a failed setup
+analysis_tools_setup() {
+	BINDIR=$(dirname "$SHAKE")
+	STUDY="${STUDY:-$BINDIR/study}"
+	local t
+	for t in "$STUDY" "$BINDIR/onset" "$BINDIR/waiting" "$BINDIR/figures" "$BINDIR/hysteresis"; do
+		[ -x "$t" ] || { fail setup "$t is not an executable (run make)"; finish; }
+	done
+}
+
 # contains FILE STRING : fixed-string grep
 contains() { grep -qF -- "$2" "$1"; }
