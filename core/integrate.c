@@ -238,9 +238,10 @@ int integ_dt_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_
 	double tc, lim = integ_dt_limit(sc->integrator, sc->stiffness, sc->gamma_n, m_min, &tc);
 	if (sc->dt > lim && sc->dt_guard == 0)
 		return sb_errf(e, SB_EUSAGE,
-			       "dt: %g s is beyond the stability limit %.3g s of %s at this stiffness "
+			       "%s: dt: %g s is beyond the stability limit %.3g s of %s at this stiffness "
 			       "(contact time %.3g s; make stress measures the limits); a smaller dt, or "
-			       "dt_guard = warn to run anyway", sc->dt, lim, names[sc->integrator], tc);
+			       "dt_guard = warn to run anyway", params_where(sc, "dt"), sc->dt, lim,
+			       names[sc->integrator], tc);
 	if (sc->dt > 0.5 * lim)
 		snprintf(warn, len, "dt = %g s is %s the stability limit %.3g s of %s at this stiffness "
 				    "(contact time %.3g s)", sc->dt, sc->dt > lim ? "beyond" : "close to", lim,

@@ -9,6 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
+#define SB_NKEYS 80  /* at least the number of keys (checked in params.c) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
@@ -61,8 +62,14 @@ struct sb_scene {
 	int ring;
 	double ring_inner, ring_outer, ring_x, ring_y;
 	long ring_every;
+	/* where each key was last set ("FILE:LINE", "command line"; empty: its default),
+	 * for the errors that only a combination of keys shows (params_validate) */
+	char src[SB_NKEYS][64];
 };
 typedef struct sb_scene sb_scene;
+
+/* Where key was last set (FILE:LINE, "command line"), or "default". */
+const char *params_where(const sb_scene *s, const char *key);
 
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
 

@@ -64,7 +64,9 @@ static void scene_point(const campaign *c, long point, sb_scene *s)
 	for (int a = 0; a < c->naxes; a++) {
 		long k = point % c->axes[a].n;
 		point /= c->axes[a].n;
-		params_set(s, c->axes[a].key, c->axes[a].values[k], "grid", &e);
+		char where[SB_STR_MAX + 32];
+		snprintf(where, sizeof where, "%s:%d", c->path, c->axes[a].line);
+		params_set(s, c->axes[a].key, c->axes[a].values[k], where, &e);
 	}
 }
 
@@ -105,8 +107,13 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 				params_format(&s, params_find(c->axes[a].key), v, sizeof v);
 				l += (size_t)snprintf(pt + l, sizeof pt - l, "%s%s=%s", a ? " " : "", c->axes[a].key, v);
 			}
+			/* the message names where the key at fault was set when it was set in
+			 * this file; otherwise the grid's first line stands for it */
 			int line = c->naxes ? c->axes[0].line : 0;
-			sb_errf(e, SB_EUSAGE, "%s:%d: grid point %s: %s", c->path, line, pt, ve.msg);
+			if (!strncmp(ve.msg, c->path, strlen(c->path)))
+				sb_errf(e, SB_EUSAGE, "%s (grid point %s)", ve.msg, pt);
+			else
+				sb_errf(e, SB_EUSAGE, "%s:%d: grid point %s: %s", c->path, line, pt, ve.msg);
 			grid_free(g);
 			return e->code;
 		}

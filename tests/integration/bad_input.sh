@@ -52,6 +52,13 @@ expect_bad scene.bad_int "s_int.ini:1:|n_grains" s_int.ini "${FAST[@]}"
 
 expect_bad scene.missing "no_such_scene.ini" no_such_scene.ini "${FAST[@]}"
 
+# errors that only a combination of keys shows name where the key at fault was set
+printf 'n_grains = 60\nwidth = 20\nr_min = 1.2\n' >s_cross.ini
+expect_bad scene.cross_key_names_line "s_cross.ini:3:|r_min|r_max|default" s_cross.ini "${FAST[@]}"
+printf 'n_grains = 60\nwidth = 20\ndt = 0.01\n' >s_dt.ini
+expect_bad scene.dt_guard_names_line "s_dt.ini:3:|dt|stability limit" s_dt.ini "${FAST[@]}"
+expect_bad cmdline.cross_key_names_source "command line|settle_min|settle_max" "${FAST[@]}" settle_min=50 settle_max=40
+
 # a key given twice in a file (the command line may still override it)
 printf 'frequency = 3\nseed = 2\nfrequency = 4\n' >s_twice.ini
 expect_bad scene.key_twice "s_twice.ini:3:|frequency|twice|line 1" s_twice.ini "${FAST[@]}"
