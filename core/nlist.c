@@ -102,6 +102,8 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	nl->large = calloc((size_t)st->n + 1, 1);
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_of = malloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->cell_x = malloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->cell_y = malloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_idx = malloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->xs = malloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->ys = malloc(sizeof(double) * ((size_t)st->n + 1));
@@ -118,7 +120,8 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	nl->kbuf->walls_packed = -1;
 #endif
-	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_idx || !nl->xs || !nl->ys || !nl->rs ||
+	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_x || !nl->cell_y ||
+	    !nl->cell_idx || !nl->xs || !nl->ys || !nl->rs ||
 	    !nl->xref || !nl->yref)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	double mean = 0;
@@ -144,6 +147,8 @@ void nlist_free(sb_nlist *nl)
 	free(nl->cell_pos);
 	free(nl->cell_idx);
 	free(nl->cell_of);
+	free(nl->cell_x);
+	free(nl->cell_y);
 	free(nl->xs);
 	free(nl->ys);
 	free(nl->rs);
@@ -194,13 +199,15 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 
 	/* grid over the bounding box of the ordinary disks */
 	double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+	/* comparisons, not fmin/fmax (library calls here); a NaN never wins either way */
+	const unsigned char *restrict large = nl->large;
 	for (int i = 0; i < n; i++) {
-		if (nl->large[i])
-			continue;
-		xmin = fmin(xmin, x[i]);
-		xmax = fmax(xmax, x[i]);
-		ymin = fmin(ymin, y[i]);
-		ymax = fmax(ymax, y[i]);
+		const double xi = large[i] ? xmin : x[i], yi = large[i] ? ymin : y[i];
+		xmin = xi < xmin ? xi : xmin;
+		ymin = yi < ymin ? yi : ymin;
+		const double xa = large[i] ? xmax : x[i], ya = large[i] ? ymax : y[i];
+		xmax = xa > xmax ? xa : xmax;
+		ymax = ya > ymax ? ya : ymax;
 	}
 	if (!(xmin <= xmax)) { /* no ordinary disks (or NaN): one cell */
 		xmin = ymin = 0;
@@ -235,9 +242,12 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			nl->cell_of[i] = -1;
 			continue;
 		}
-		int c = cell_coord(y[i], nl->y0, nl->inv_cell, nl->ncy) * nl->ncx +
-			cell_coord(x[i], nl->x0, nl->inv_cell, nl->ncx);
+		const int cx = cell_coord(x[i], nl->x0, nl->inv_cell, nl->ncx),
+			  cy = cell_coord(y[i], nl->y0, nl->inv_cell, nl->ncy);
+		const int c = cy * nl->ncx + cx;
 		nl->cell_of[i] = c;
+		nl->cell_x[i] = cx; /* spares the candidate loop two divisions */
+		nl->cell_y[i] = cy;
 		nl->cell_start[c + 1]++;
 	}
 	for (int c = 0; c < nc; c++)
@@ -270,7 +280,7 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		if (nl->large[i])
 			continue;
 		const double xi = x[i], yi = y[i], ri = r[i] + skin;
-		const int c = nl->cell_of[i], cx = c % ncx, cy = c / ncx;
+		const int cx = nl->cell_x[i], cy = nl->cell_y[i];
 		const int xa = cx > 0 ? cx - 1 : 0, xb = cx < ncx - 1 ? cx + 1 : ncx - 1;
 		const int ya = cy > 0 ? cy - 1 : 0, yb = cy < ncy - 1 ? cy + 1 : ncy - 1;
 		for (int yy = ya; yy <= yb; yy++) {

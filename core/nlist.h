@@ -36,6 +36,7 @@ typedef struct sb_nlist {
 	double x0, y0, cell, inv_cell;
 	int *cell_start, *cell_idx; /* counting sort: disks of cell c are cell_idx[cell_start[c]..] */
 	int *cell_of;
+	int *cell_x, *cell_y;        /* the cell's column and row */
 	int *cell_pos;               /* scratch of the counting sort */
 	double *xs, *ys, *rs;       /* x, y, R of the disks in cell order (cell_idx) */
 	/* The flat list the force kernel walks: the npairs pairs (i, j > i) of ordinary
