@@ -120,6 +120,20 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *a
 			if (num(tool, name, v, 1, 100000, &x))
 				return 1;
 			o->smooth = (long)x;
+		} else if (!strcmp(name, "where")) {
+			const char *eq = strchr(v, '=');
+			if (!eq || eq == v || (size_t)(eq - v) >= sizeof o->where_key[0] ||
+			    strlen(eq + 1) >= sizeof o->where_val[0] || !eq[1]) {
+				fprintf(stderr, "%s: --where: expected KEY=VALUE, got '%s'\n", tool, v);
+				return 1;
+			}
+			if (o->nwhere == 8) {
+				fprintf(stderr, "%s: --where: at most 8 selections\n", tool);
+				return 1;
+			}
+			snprintf(o->where_key[o->nwhere], sizeof o->where_key[0], "%.*s", (int)(eq - v), v);
+			snprintf(o->where_val[o->nwhere], sizeof o->where_val[0], "%s", eq + 1);
+			o->nwhere++;
 		} else if (!strcmp(name, "ratio")) {
 			if (num(tool, name, v, 0, 1e6, &o->ratio))
 				return 1;

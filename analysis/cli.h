@@ -25,6 +25,8 @@ typedef struct an_opts {
 	double freqs[16];
 	int nfreq;
 	double ratio;         /* figures: intruder radius ratio (NaN: largest) */
+	char where_key[8][48], where_val[8][64]; /* figures: --where KEY=VALUE selections */
+	int nwhere;
 	int no_plot, no_store;
 } an_opts;
 

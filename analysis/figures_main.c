@@ -47,12 +47,15 @@ static double median_positive(const double *v, size_t n)
 
 static const char *HELP =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
-	"               [--ratio R] [--skip FRAC] [--no-plot] [--no-store]\n\n"
+	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--no-plot] [--no-store]\n\n"
 	"The paper's figures from the finished fixed-frequency runs (ramp = none) of a\n"
 	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
 	"at most 6) and two systems: without intruder (radius_ratio = 0) and with one of\n"
 	"radius ratio R (--ratio, default the largest in the campaign; --ratio 0: without\n"
-	"intruder only). Every replicate of a panel is averaged in.\n"
+	"intruder only). Every replicate of a panel is averaged in. A campaign that sweeps\n"
+	"other keys too (depth, width, ...) must say which runs to draw: --where KEY=VALUE\n"
+	"(repeatable) keeps the runs whose KEY is VALUE; runs that still differ in a swept\n"
+	"key other than frequency, radius_ratio and seed are an error, not an average.\n"
 	"  fig1.png  Fig. 1: the displacement field (/field, field = yes): per cell the mean\n"
 	"            displacement per period, weighted by the samples (count) of every block\n"
 	"            and run (the grid of the panel's first run; the cells of the other\n"
@@ -84,10 +87,49 @@ static int near(double a, double b)
 	return fabs(a - b) <= 1e-9 * fmax(1, fabs(b));
 }
 
+/* the run's KEY equals VALUE for every --where (as numbers when both are numbers) */
+static int where_ok(const an_opts *o, const an_run *r)
+{
+	for (int w = 0; w < o->nwhere; w++) {
+		const char *v = an_str(r, o->where_key[w]);
+		if (!v)
+			return 0;
+		char *e1, *e2;
+		const double a = strtod(v, &e1), b = strtod(o->where_val[w], &e2);
+		const int numeric = e1 != v && !*e1 && e2 != o->where_val[w] && !*e2;
+		if (numeric ? !near(a, b) : strcmp(v, o->where_val[w]) != 0)
+			return 0;
+	}
+	return 1;
+}
+
+/* A panel averages its runs: runs that differ in another swept key (depth, width...)
+ * would be averaged silently, so that is an error naming the key and two values. */
+static int pooled_axis(adb *d, const an_opts *o, an_run *runs, int k, sb_err *e)
+{
+	char axes[AN_MAXKEYS][48];
+	int na = 0;
+	if (adb_axes(d, o->campaign, axes, AN_MAXKEYS, &na, e))
+		return e->code;
+	for (int a = 0; a < na; a++) {
+		if (!strcmp(axes[a], "frequency") || !strcmp(axes[a], "radius_ratio") || !strcmp(axes[a], "seed"))
+			continue;
+		const char *first = an_str(&runs[0], axes[a]);
+		for (int i = 1; i < k; i++) {
+			const char *v = an_str(&runs[i], axes[a]);
+			if (first && v && strcmp(first, v))
+				return sb_errf(e, SB_EUSAGE,
+					       "campaign '%s' sweeps %s (%s, %s, ...): a panel would average over it; "
+					       "choose with --where %s=VALUE", o->campaign, axes[a], first, v, axes[a]);
+		}
+	}
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "figures", .version = VERSION};
-	int pr = cli_parse(&o, argc, argv, HELP, " freq ratio skip ");
+	int pr = cli_parse(&o, argc, argv, HELP, " freq ratio skip where ");
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	flux_opts fo = {0.4, 0.6, o.skip};
@@ -101,9 +143,20 @@ int main(int argc, char **argv)
 	int nf = 0, nra = 0;
 	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
 		goto out;
+	for (int w = 0; w < o.nwhere; w++) {
+		int known = 0;
+		for (int i = 0; i < nr && !known; i++)
+			known = an_str(&runs[i], o.where_key[w]) != NULL;
+		if (nr && !known) {
+			sb_errf(&e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o.where_key[w], o.campaign);
+			goto out;
+		}
+	}
 	for (int i = 0; i < nr; i++) {
 		const char *ramp = an_str(&runs[i], "ramp");
 		if (ramp && strcmp(ramp, "none"))
+			continue;
+		if (!where_ok(&o, &runs[i]))
 			continue;
 		an_run t = runs[k];
 		runs[k] = runs[i];
@@ -122,9 +175,12 @@ int main(int argc, char **argv)
 		k++;
 	}
 	if (!k) {
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s", o.campaign, o.db);
+		sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s%s", o.campaign, o.db,
+			o.nwhere ? " that matches --where" : "");
 		goto out;
 	}
+	if (pooled_axis(&d, &o, runs, k, &e))
+		goto out;
 	qsort(freqs, (size_t)nf, sizeof *freqs, cmpd);
 	qsort(ratios, (size_t)nra, sizeof *ratios, cmpd);
 	if (o.nfreq) {
