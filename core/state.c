@@ -4,59 +4,63 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bigmem.h"
+
 static void *xrealloc(void *p, size_t n) { return realloc(p, n ? n : 1); }
+
+/* the double arrays of the state, in the order of its slab */
+enum { NDBL = SB_NCOORD * SB_MAXORDER + SB_NCOORD + 4 };
+
+static void dbl_arrays(sb_state *s, double ***d)
+{
+	int k = 0;
+	for (int c = 0; c < SB_NCOORD; c++)
+		for (int o = 0; o < SB_MAXORDER; o++)
+			d[k++] = &s->q[c][o];
+	for (int c = 0; c < SB_NCOORD; c++)
+		d[k++] = &s->f[c];
+	d[k++] = &s->r;
+	d[k++] = &s->m;
+	d[k++] = &s->inv_m;
+	d[k++] = &s->inv_i;
+}
 
 int state_alloc(sb_state *s, int cap, sb_err *e)
 {
 	if (cap < s->cap)
 		return 0;
-	int old = s->cap;
-	int ok = 1;
-	for (int c = 0; c < SB_NCOORD; c++) {
-		for (int k = 0; k < SB_MAXORDER; k++) {
-			double *p = xrealloc(s->q[c][k], sizeof(double) * (size_t)cap);
-			ok &= p != NULL;
-			if (p) {
-				memset(p + old, 0, sizeof(double) * (size_t)(cap - old));
-				s->q[c][k] = p;
-			}
-		}
-		double *p = xrealloc(s->f[c], sizeof(double) * (size_t)cap);
-		ok &= p != NULL;
-		if (p)
-			s->f[c] = p;
-	}
-	double **d[] = {&s->r, &s->m, &s->inv_m, &s->inv_i};
-	for (size_t i = 0; i < sizeof d / sizeof d[0]; i++) {
-		double *p = xrealloc(*d[i], sizeof(double) * (size_t)cap);
-		ok &= p != NULL;
-		if (p)
-			*d[i] = p;
-	}
+	/* one slab for all double arrays (bigmem.h: aligned, huge pages when large) */
+	void *slab, *arr[NDBL];
+	if (bigmem_slab(&slab, arr, NDBL, (size_t)cap, sizeof(double)))
+		return sb_errf(e, SB_ENOMEM, "out of memory for %d particles", cap);
 	int *pid = xrealloc(s->id, sizeof(int) * (size_t)cap);
-	unsigned char *pk = xrealloc(s->kind, (size_t)cap);
-	ok &= pid && pk;
 	if (pid)
 		s->id = pid;
+	unsigned char *pk = xrealloc(s->kind, (size_t)cap);
 	if (pk)
 		s->kind = pk;
-	if (!ok)
+	if (!pid || !pk) {
+		free(slab);
 		return sb_errf(e, SB_ENOMEM, "out of memory for %d particles", cap);
+	}
+	double **d[NDBL];
+	dbl_arrays(s, d);
+	for (int k = 0; k < NDBL; k++) {
+		double *p = arr[k];
+		if (s->cap)
+			memcpy(p, *d[k], sizeof(double) * (size_t)s->cap);
+		memset(p + s->cap, 0, sizeof(double) * (size_t)(cap - s->cap));
+		*d[k] = p;
+	}
+	free(s->slab);
+	s->slab = slab;
 	s->cap = cap;
 	return 0;
 }
 
 void state_free(sb_state *s)
 {
-	for (int c = 0; c < SB_NCOORD; c++) {
-		for (int k = 0; k < SB_MAXORDER; k++)
-			free(s->q[c][k]);
-		free(s->f[c]);
-	}
-	free(s->r);
-	free(s->m);
-	free(s->inv_m);
-	free(s->inv_i);
+	free(s->slab);
 	free(s->id);
 	free(s->kind);
 	memset(s, 0, sizeof *s);

@@ -16,6 +16,7 @@ typedef struct sb_state {
 	double *q[SB_NCOORD][SB_MAXORDER];
 	double *f[SB_NCOORD];    /* force x, y and torque from contacts */
 	double *r, *m, *inv_m, *inv_i;
+	void *slab;              /* one block holds all the double arrays (state.c) */
 	int *id;
 	unsigned char *kind;
 } sb_state;

@@ -1,0 +1,38 @@
+/* bigmem.c - aligned blocks on transparent huge pages (see bigmem.h). */
+#include "bigmem.h"
+
+#include <stdlib.h>
+#include <sys/mman.h>
+
+enum { LINE = 64, HUGE = 2 << 20, HUGE_FROM = 4 << 20, PAGE = 4096 };
+
+void *bigmem_alloc(size_t bytes)
+{
+	size_t n = (bytes + LINE - 1) / LINE * LINE;
+	if (n == 0)
+		n = LINE;
+	if (n < HUGE_FROM)
+		return aligned_alloc(LINE, n);
+	/* a huge page backs only a 2 MiB-aligned 2 MiB range of the block */
+	n = (n + HUGE - 1) / HUGE * HUGE;
+	void *p = aligned_alloc(HUGE, n);
+#ifdef MADV_HUGEPAGE
+	if (p)
+		(void)madvise(p, n, MADV_HUGEPAGE); /* advice: without THP it is ignored */
+#endif
+	return p;
+}
+
+int bigmem_slab(void **base, void **arr, int k, size_t n, size_t elem)
+{
+	/* lines per array rounded up to whole pages, plus 5 lines: array a then starts
+	 * at 5a mod 64 lines into a page, distinct for a < 64 */
+	size_t stride = (n * elem + PAGE - 1) / PAGE * PAGE + 5 * LINE;
+	char *p = bigmem_alloc(stride * (size_t)k);
+	if (!p)
+		return -1;
+	*base = p;
+	for (int a = 0; a < k; a++)
+		arr[a] = p + stride * (size_t)a;
+	return 0;
+}
