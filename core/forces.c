@@ -54,9 +54,11 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 /* The force kernel in AVX-512, eight candidate pairs a vector, for CPUs where gathers
  * are slow (they cost more than the scalar loads they replace on the AMD cores this
  * was tuned on). Instead: every disk's contact data is packed once a step into one
- * 64-byte record (x, y, vx, vy, R w, R, R, R), a pair's data are two aligned loads
- * combined lane-wise (differences, sums, R_i, R_j), and eight pairs are transposed
- * into lanes. Each lane then performs the scalar code's operations in its order
+ * 64-byte record (x, y, vx, vy, R w, 1/m, R, R; krec.h), a pair's data are two
+ * aligned loads combined lane-wise (differences, sums, R_i, R_j), eight pairs are
+ * transposed into lanes, and m_eff = 1 / (1/m_i + 1/m_j) is formed there (the
+ * formula of the scalar build's per-pair array, which this kernel need not stream).
+ * Each lane then performs the scalar code's operations in its order
  * (there is no FMA; min, max and the sign copy are exact), the contacts are
  * compressed out of the lanes, and a pass per chunk of the list adds their forces to
  * per-disk accumulators (Fx, Fy, torque, 0) in list order, one 4-double vector per
@@ -64,46 +66,20 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
  * pass) - so the forces are bit-identical to the scalar kernel's
  * (tests/integration/regression.sh runs both builds against one reference).
  * The walls' records are packed only when the list is rebuilt: they never move. */
-#include <immintrin.h>
-
-/* rows r[0..7] -> columns, in place: 24 shuffles */
-static inline __attribute__((always_inline)) void transpose8(__m512d r[8])
-{
-	__m512d t[8], u[8];
-	for (int k = 0; k < 8; k += 2) {
-		t[k] = _mm512_unpacklo_pd(r[k], r[k + 1]);
-		t[k + 1] = _mm512_unpackhi_pd(r[k], r[k + 1]);
-	}
-	for (int k = 0; k < 8; k += 4) {
-		u[k] = _mm512_shuffle_f64x2(t[k], t[k + 2], 0x88);
-		u[k + 1] = _mm512_shuffle_f64x2(t[k + 1], t[k + 3], 0x88);
-		u[k + 2] = _mm512_shuffle_f64x2(t[k], t[k + 2], 0xDD);
-		u[k + 3] = _mm512_shuffle_f64x2(t[k + 1], t[k + 3], 0xDD);
-	}
-	for (int k = 0; k < 4; k++) {
-		r[k] = _mm512_shuffle_f64x2(u[k], u[k + 4], 0x88);
-		r[k + 4] = _mm512_shuffle_f64x2(u[k], u[k + 4], 0xDD);
-	}
-}
+#include "krec.h"
 
 /* the per-disk accumulators (Fx, Fy, torque, 0) -> st->f[C_X], f[C_Y], f[C_TH] */
 static void unpack_forces(sb_state *st, const double *restrict facc)
 {
 	double *restrict fx = st->f[C_X], *restrict fy = st->f[C_Y], *restrict t = st->f[C_TH];
-	const __m512i ix = _mm512_set_epi64(13, 9, 5, 1, 12, 8, 4, 0),
-		      it = _mm512_set_epi64(15, 11, 7, 3, 14, 10, 6, 2);
 	const int n = st->n;
 	int i = 0;
 	for (; i + 8 <= n; i += 8) {
-		const double *q = facc + 4 * i;
-		const __m512d z0 = _mm512_load_pd(q), z1 = _mm512_load_pd(q + 8),
-			      z2 = _mm512_load_pd(q + 16), z3 = _mm512_load_pd(q + 24);
-		/* lo = (x0 x1 x2 x3 y0 y1 y2 y3), hi the same for disks 4..7 */
-		const __m512d lo = _mm512_permutex2var_pd(z0, ix, z1), hi = _mm512_permutex2var_pd(z2, ix, z3);
-		_mm512_storeu_pd(fx + i, _mm512_shuffle_f64x2(lo, hi, 0x44));
-		_mm512_storeu_pd(fy + i, _mm512_shuffle_f64x2(lo, hi, 0xEE));
-		const __m512d tlo = _mm512_permutex2var_pd(z0, it, z1), thi = _mm512_permutex2var_pd(z2, it, z3);
-		_mm512_storeu_pd(t + i, _mm512_shuffle_f64x2(tlo, thi, 0x44));
+		__m512d vx, vy, vt;
+		krec_load_acc8(facc + 4 * i, &vx, &vy, &vt);
+		_mm512_storeu_pd(fx + i, vx);
+		_mm512_storeu_pd(fy + i, vy);
+		_mm512_storeu_pd(t + i, vt);
 	}
 	for (; i < n; i++) {
 		fx[i] = facc[4 * i];
@@ -116,15 +92,12 @@ static void unpack_forces(sb_state *st, const double *restrict facc)
 static void pack_records(const sb_state *st, double *restrict rec, int i0, int n)
 {
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *vx = st->q[C_X][1],
-		     *vy = st->q[C_Y][1], *w = st->q[C_TH][1], *r = st->r;
+		     *vy = st->q[C_Y][1], *w = st->q[C_TH][1], *r = st->r, *im = st->inv_m;
 	int i = i0;
 	for (; i + 8 <= n; i += 8) {
-		const __m512d R = _mm512_loadu_pd(r + i);
-		__m512d row[8] = {_mm512_loadu_pd(x + i), _mm512_loadu_pd(y + i), _mm512_loadu_pd(vx + i),
-				  _mm512_loadu_pd(vy + i), _mm512_mul_pd(R, _mm512_loadu_pd(w + i)), R, R, R};
-		transpose8(row);
-		for (int k = 0; k < 8; k++)
-			_mm512_store_pd(rec + 8 * (i + k), row[k]);
+		krec_store8(rec + 8 * i, _mm512_loadu_pd(x + i), _mm512_loadu_pd(y + i), _mm512_loadu_pd(vx + i),
+			    _mm512_loadu_pd(vy + i), _mm512_loadu_pd(w + i), _mm512_loadu_pd(r + i),
+			    _mm512_loadu_pd(im + i), 8);
 	}
 	for (; i < n; i++) {
 		double *q = rec + 8 * i;
@@ -133,17 +106,18 @@ static void pack_records(const sb_state *st, double *restrict rec, int i0, int n
 		q[2] = vx[i];
 		q[3] = vy[i];
 		q[4] = r[i] * w[i];
-		q[5] = q[6] = q[7] = r[i];
+		q[5] = im[i];
+		q[6] = q[7] = r[i];
 	}
 }
 
 static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law, sb_state *st,
 							       const sb_nlist *nl, double inv_dt,
-							       const int clip, double *restrict fsum)
+							       const int clip, double *restrict fsum,
+							       const int packed, const int keep)
 {
 	const double *rec = nl->rec;
 	const int *pi = nl->pi, *pj = nl->pj;
-	const double *pmeff = nl->pmeff;
 	sb_kbuf *restrict kb = nl->kbuf;
 	const int np = nl->nflat;
 	const __m512d Y = _mm512_set1_pd(law->Y), gn = _mm512_set1_pd(law->gn * inv_dt),
@@ -155,9 +129,14 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 #define ABS(a) _mm512_castsi512_pd(_mm512_andnot_si512(sign, _mm512_castpd_si512(a)))
 
 	double *restrict facc = nl->facc;
-	memset(facc, 0, sizeof(double) * 4 * (size_t)st->n);
+	/* packed: the fused corrector (integ_correct_predict_acc) of the last step wrote
+	 * the mobile disks' records and cleared their accumulators */
+	if (!packed) {
+		memset(facc, 0, sizeof(double) * 4 * (size_t)st->nm);
+		pack_records(st, nl->rec, 0, st->nm);
+	}
+	memset(facc + 4 * (size_t)st->nm, 0, sizeof(double) * 4 * (size_t)(st->n - st->nm));
 	/* the walls' records change only when the list is rebuilt from a new state */
-	pack_records(st, nl->rec, 0, st->nm);
 	if (kb->walls_packed != nl->builds) {
 		pack_records(st, nl->rec, st->nm, st->n);
 		kb->walls_packed = nl->builds;
@@ -170,17 +149,17 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 		for (int p = p0; p < p1; p += 8) {
 			const __mmask8 live = p1 - p >= 8 ? 0xff : (__mmask8)((1u << (p1 - p)) - 1);
 			/* per pair, lane-wise from the two records: x, y, vx, vy of i minus j;
-			 * R w and R of i plus j; R_i; R_j. Then pairs -> lanes. */
+			 * R w and 1/m of i plus j; R_i; R_j. Then pairs -> lanes. */
 			__m512d c[8];
 			for (int l = 0; l < 8; l++) {
-				const __m512d a = _mm512_load_pd(rec + 8 * pi[p + l]);
-				const __m512d b = _mm512_load_pd(rec + 8 * pj[p + l]);
+				const __m512d a = _mm512_load_pd(rec + pi[p + l]); /* 8 i: nlist.h */
+				const __m512d b = _mm512_load_pd(rec + pj[p + l]);
 				const __m512d t = _mm512_mask_sub_pd(_mm512_mask_blend_pd(0x80, a, b), 0x0f, a, b);
 				c[l] = _mm512_mask_add_pd(t, 0x30, a, b);
 			}
-			transpose8(c);
-			const __m512d dx = c[0], dy = c[1], dvx = c[2], dvy = c[3], rw = c[4], rs = c[5],
-				      ri = c[6], rj = c[7];
+			krec_transpose8(c);
+			const __m512d dx = c[0], dy = c[1], dvx = c[2], dvy = c[3], rw = c[4], ims = c[5],
+				      ri = c[6], rj = c[7], rs = _mm512_add_pd(ri, rj);
 			const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
 			const __mmask8 in = _mm512_mask_cmp_pd_mask(live, d2, _mm512_mul_pd(rs, rs), _CMP_LT_OQ);
 			if (!in)
@@ -192,7 +171,7 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 			const __m512d nx = _mm512_mul_pd(dx, inv), ny = _mm512_mul_pd(dy, inv);
 			const __m512d xi = _mm512_sub_pd(rs, d);
 			const __m512d xidot = NEG(_mm512_add_pd(_mm512_mul_pd(dvx, nx), _mm512_mul_pd(dvy, ny)));
-			const __m512d meff = _mm512_loadu_pd(pmeff + p);
+			const __m512d meff = _mm512_div_pd(one, ims); /* 1 / (1/m_i + 1/m_j) */
 			__m512d fn = _mm512_add_pd(_mm512_mul_pd(Y, xi), _mm512_mul_pd(_mm512_mul_pd(gn, meff), xidot));
 			if (clip) /* fn > 0 ? fn : 0 (max returns its second operand for NaN, -0) */
 				fn = _mm512_max_pd(fn, zero);
@@ -225,22 +204,26 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 		 * a + (-b) are the same number */
 		const __m256d sgn = _mm256_set_pd(0.0, -0.0, 0.0, 0.0),
 			      sgnj = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
+		char *const acc = (char *)facc;
 		for (int k = 0; k < nc; k++) {
-			const int i = kb->i[k], j = kb->j[k];
+			/* 8 i, 8 j (nlist.h): disk i's accumulator is 32 i = 4 (8 i) bytes in */
+			const ptrdiff_t i8 = kb->i[k], j8 = kb->j[k];
+			double *const ai = (double *)(acc + 4 * i8), *const aj = (double *)(acc + 4 * j8);
 			const double fx = kb->fx[k], fy = kb->fy[k];
 			if (fsum) { /* constant per instantiation: compiled away when NULL */
 				const double fa = sqrt(fx * fx + fy * fy);
-				fsum[i] += fa;
-				fsum[j] += fa;
+				fsum[i8 / SB_PSCALE] += fa;
+				fsum[j8 / SB_PSCALE] += fa;
 			}
 			const __m128d xy = _mm_loadh_pd(_mm_load_sd(kb->fx + k), kb->fy + k);
 			const __m256d vi = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->ti + k), 1);
 			const __m256d vj = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->tj + k), 1);
-			_mm256_store_pd(facc + 4 * i, _mm256_add_pd(_mm256_load_pd(facc + 4 * i), _mm256_xor_pd(vi, sgn)));
-			_mm256_store_pd(facc + 4 * j, _mm256_add_pd(_mm256_load_pd(facc + 4 * j), _mm256_xor_pd(vj, sgnj)));
+			_mm256_store_pd(ai, _mm256_add_pd(_mm256_load_pd(ai), _mm256_xor_pd(vi, sgn)));
+			_mm256_store_pd(aj, _mm256_add_pd(_mm256_load_pd(aj), _mm256_xor_pd(vj, sgnj)));
 		}
 	}
-	unpack_forces(st, facc);
+	if (!keep) /* else the fused corrector reads the accumulators */
+		unpack_forces(st, facc);
 	return bad != 0;
 #undef NEG
 #undef ABS
@@ -257,8 +240,11 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
  * and costs nothing inside the loops. */
 static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
 							const sb_nlist *nl, double inv_dt,
-							const int clip, double *restrict fsum)
+							const int clip, double *restrict fsum,
+							const int packed, const int keep)
 {
+	(void)packed; /* there are no records or accumulators: forces go to st->f */
+	(void)keep;
 	/* Velocities stay scaled (q1 = v dt): the 1/dt goes into the damping constants,
 	 * which saves four multiplications per contact. */
 	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
@@ -326,25 +312,33 @@ static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_st
 #define KERNEL kernel
 #endif
 
-static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
+static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt, int packed,
+			int keep)
 {
-	return KERNEL(l, s, n, inv_dt, 0, NULL);
+	return KERNEL(l, s, n, inv_dt, 0, NULL, packed, keep);
 }
 
-static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt)
+static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt, int packed,
+		       int keep)
 {
-	return KERNEL(l, s, n, inv_dt, 1, NULL);
+	return KERNEL(l, s, n, inv_dt, 1, NULL, packed, keep);
 }
 
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt)
 {
-	return law->clip ? kernel_clip(law, st, nl, inv_dt) : kernel_plain(law, st, nl, inv_dt);
+	return law->clip ? kernel_clip(law, st, nl, inv_dt, 0, 0) : kernel_plain(law, st, nl, inv_dt, 0, 0);
+}
+
+int forces_compute_acc(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed)
+{
+	return law->clip ? kernel_clip(law, st, nl, inv_dt, packed, 1)
+			 : kernel_plain(law, st, nl, inv_dt, packed, 1);
 }
 
 static __attribute__((noinline)) int kernel_track(const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
-	return l->clip ? KERNEL(l, s, n, inv_dt, 1, fsum) : KERNEL(l, s, n, inv_dt, 0, fsum);
+	return l->clip ? KERNEL(l, s, n, inv_dt, 1, fsum, 0, 0) : KERNEL(l, s, n, inv_dt, 0, fsum, 0, 0);
 }
 
 int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
@@ -358,7 +352,7 @@ double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *
 	double worst = 0;
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
 	for (int p = 0; p < nl->nflat; p++) {
-		const int i = nl->pi[p], j = nl->pj[p];
+		const int i = nl->pi[p] / SB_PSCALE, j = nl->pj[p] / SB_PSCALE;
 		const double f = (r[i] + r[j] - hypot(x[i] - x[j], y[i] - y[j])) / fmin(r[i], r[j]);
 		if (f > worst) {
 			worst = f;

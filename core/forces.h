@@ -15,6 +15,13 @@ typedef struct sb_law {
  * q[.][1] * inv_dt. Returns 1 if some overlap exceeded max_overlap, else 0. */
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt);
 
+/* The same for a step whose corrector is integ_correct_predict_acc: in the AVX-512
+ * build the forces stay in nl's per-disk accumulators (st->f is not written), which
+ * that corrector reads; packed = 1 says the previous such corrector already wrote
+ * the records this kernel reads and cleared the accumulators (so the state must not
+ * have changed since). In the scalar build this is forces_compute. */
+int forces_compute_acc(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed);
+
 /* The same, adding to fabs_sum[i] and fabs_sum[j] the magnitude of each contact force
  * (the ring observable; a separately compiled kernel, so this costs nothing when off). */
 int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,

@@ -29,6 +29,26 @@ void integ_correct(const sb_integ *in, sb_state *st, double gy);
  * one pass over the arrays; for steps after which nobody reads the corrected state. */
 void integ_correct_predict(const sb_integ *in, sb_state *st, double gy);
 
+/* integ_correct_predict for a step whose forces came from forces_compute_acc: in the
+ * AVX-512 build the forces are read from nl's accumulators, which are cleared, and the
+ * next step's force-kernel records are written in the same pass (the next
+ * forces_compute_acc is then called with packed = 1). Bit-identical to
+ * forces_compute + integ_correct_predict; in the scalar build it is the latter. */
+struct sb_nlist;
+
+/* The screening of the predicted state that the step does before its forces, done
+ * by integ_correct_predict_acc in the same pass (AVX-512 build): a disk moved more
+ * than half the skin since the last neighbour build (d^2 > lim), a non-finite
+ * position or angle, a disk outside the box (x < xlo, x > xhi, y < ylo). */
+typedef struct sb_screen {
+	double lim, xlo, xhi, ylo;
+	int done;                 /* 0: not screened (scalar build), check it yourself */
+	int rebuild, bad, out;
+} sb_screen;
+
+void integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, struct sb_nlist *nl,
+			       sb_screen *scr);
+
 /* Start from positions and velocities: set the acceleration term from st->f and
  * clear the higher derivatives. */
 void integ_start(const sb_integ *in, sb_state *st, double gy);

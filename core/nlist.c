@@ -1,6 +1,9 @@
 /* nlist.c - cell grid + Verlet list construction. */
 #include "nlist.h"
 
+#include "bigmem.h"
+
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,22 +32,33 @@ static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 	int ok = 1;
 #if SB_KERNEL_AVX512
 	int **ints[] = {&nl->pi, &nl->pj};
-	double **dbls[] = {&nl->pmeff};
+	double **dbls[] = {NULL}; /* m_eff comes from the kernel's records (krec.h) */
+	const size_t ndbl = 0;
 #else
 	int **ints[] = {&nl->pi, &nl->pj, &nl->contact};
 	double **dbls[] = {&nl->pmeff, &nl->cd, &nl->cinv};
+	const size_t ndbl = 3;
 #endif
+	/* bigmem: the kernel streams these every step (huge pages at 10^5 disks) */
 	for (size_t k = 0; k < sizeof ints / sizeof *ints; k++) {
-		int *q = realloc(*ints[k], sizeof(int) * (size_t)cap);
+		int *q = bigmem_alloc(sizeof(int) * (size_t)cap);
 		ok = ok && q;
-		if (q)
+		if (q) {
+			if (nl->fcap)
+				memcpy(q, *ints[k], sizeof(int) * (size_t)nl->fcap);
+			free(*ints[k]);
 			*ints[k] = q;
+		}
 	}
-	for (size_t k = 0; k < sizeof dbls / sizeof *dbls; k++) {
-		double *q = realloc(*dbls[k], sizeof(double) * (size_t)cap);
+	for (size_t k = 0; k < ndbl; k++) {
+		double *q = bigmem_alloc(sizeof(double) * (size_t)cap);
 		ok = ok && q;
-		if (q)
+		if (q) {
+			if (nl->fcap)
+				memcpy(q, *dbls[k], sizeof(double) * (size_t)nl->fcap);
+			free(*dbls[k]);
 			*dbls[k] = q;
+		}
 	}
 	if (!ok)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
@@ -60,7 +74,7 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 			   int np)
 {
 	const __m512d X = _mm512_set1_pd(xi), Yv = _mm512_set1_pd(yi), R = _mm512_set1_pd(ri);
-	const __m256i I = _mm256_set1_epi32(i);
+	const __m256i I = _mm256_set1_epi32(i), I8 = _mm256_set1_epi32(SB_PSCALE * i);
 	for (int k = k0; k < k1; k += 8) {
 		const __mmask8 live = k1 - k >= 8 ? 0xff : (__mmask8)((1u << (k1 - k)) - 1);
 		const __m256i j = _mm256_maskz_loadu_epi32(live, nl->cell_idx + k);
@@ -70,8 +84,9 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 		const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
 		const __mmask8 m = _mm512_mask_cmp_pd_mask(_mm256_mask_cmpgt_epi32_mask(live, j, I), d2,
 							   _mm512_mul_pd(rc, rc), _CMP_LT_OQ);
-		_mm256_storeu_si256((__m256i *)(nl->pj + np), _mm256_maskz_compress_epi32(m, j));
-		_mm256_storeu_si256((__m256i *)(nl->pi + np), I);
+		_mm256_storeu_si256((__m256i *)(nl->pj + np),
+				    _mm256_maskz_compress_epi32(m, _mm256_slli_epi32(j, 3))); /* 8 j */
+		_mm256_storeu_si256((__m256i *)(nl->pi + np), I8);
 		np += __builtin_popcount(m);
 	}
 	return np;
@@ -97,6 +112,9 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 {
 	memset(nl, 0, sizeof *nl);
+	if (st->n > (INT_MAX - 64) / 8) /* the list holds 8 i in an int (SB_PSCALE) */
+		return sb_errf(e, SB_EUSAGE, "%d disks: the neighbour list holds at most %d", st->n,
+			       (INT_MAX - 64) / 8);
 	nl->skin = skin;
 	nl->cap = st->n;
 	nl->large = calloc((size_t)st->n + 1, 1);
@@ -112,10 +130,9 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	nl->yref = malloc(sizeof(double) * ((size_t)st->n + 1));
 #if SB_KERNEL_AVX512
 	/* whole 64-byte lines, so that a record is one aligned vector load */
-	nl->rec = aligned_alloc(64, sizeof(double) * 8 * ((size_t)st->n + 8));
+	nl->rec = bigmem_alloc(sizeof(double) * 8 * ((size_t)st->n + 8));
 	nl->kbuf = aligned_alloc(64, sizeof(sb_kbuf));
-	/* aligned_alloc wants a whole number of alignments: whole 64-byte lines */
-	nl->facc = aligned_alloc(64, 64 * (((size_t)st->n + 9) / 2));
+	nl->facc = bigmem_alloc(sizeof(double) * 4 * ((size_t)st->n + 9));
 	if (!nl->rec || !nl->kbuf || !nl->facc)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	nl->kbuf->walls_packed = -1;
@@ -154,12 +171,12 @@ void nlist_free(sb_nlist *nl)
 	free(nl->rs);
 	free(nl->pi);
 	free(nl->pj);
-	free(nl->pmeff);
 #if SB_KERNEL_AVX512
 	free(nl->rec);
 	free(nl->facc);
 	free(nl->kbuf);
 #else
+	free(nl->pmeff);
 	free(nl->contact);
 	free(nl->cd);
 	free(nl->cinv);
@@ -313,8 +330,8 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 					if (ddx * ddx + ddy * ddy < rc * rc) {
 						if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 							return e->code;
-						nl->pi[nb] = L;
-						nl->pj[nb++] = j;
+						nl->pi[nb] = SB_PSCALE * L;
+						nl->pj[nb++] = SB_PSCALE * j;
 					}
 				}
 			}
@@ -326,8 +343,8 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			if (ddx * ddx + ddy * ddy < rc * rc) {
 				if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 					return e->code;
-				nl->pi[nb] = L;
-				nl->pj[nb++] = M;
+				nl->pi[nb] = SB_PSCALE * L;
+				nl->pj[nb++] = SB_PSCALE * M;
 			}
 		}
 	}
@@ -338,13 +355,14 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 	/* pad to whole vectors of 8 (the SIMD kernel masks these lanes out) */
 	for (int p = nf; p < ((nf + 7) & ~7); p++)
 		nl->pi[p] = nl->pj[p] = 0;
+#if !SB_KERNEL_AVX512
 	/* m_eff in one pass over the list (it vectorises: a division per pair) */
 	const double *restrict im = st->inv_m;
 	const int *restrict pi = nl->pi, *restrict pj = nl->pj;
 	double *restrict pm = nl->pmeff;
-	const int nfp = (nf + 7) & ~7;
-	for (int p = 0; p < nfp; p++)
+	for (int p = 0; p < nf; p++)
 		pm[p] = 1.0 / (im[pi[p]] + im[pj[p]]); /* a wall of infinite mass: the grain's */
+#endif
 	nl->nflat = nf;
 	return 0;
 }

@@ -155,7 +155,8 @@ int main(int argc, char **argv)
 	}
 	if (profile) {
 		static const char *names[PH_N] = {"predict", "check", "neighbour", "force", "correct", "record"};
-		fprintf(stderr, "profile: %ld steps, %ld neighbour builds\n", s->step, s->nl.builds);
+		fprintf(stderr, "profile: %ld steps, %ld neighbour builds, %d pairs in the last list (%d of large disks)\n",
+			s->step, s->nl.builds, s->nl.npairs + s->nl.nbig, s->nl.nbig);
 		for (int k = 0; k < PH_N; k++)
 			fprintf(stderr, "profile: %-10s %8.3f s\n", names[k], s->tphase[k]);
 		fprintf(stderr, "profile loop_seconds=%.6f steps=%ld mobile=%d walls=%d\n", s->loop_seconds,

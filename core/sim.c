@@ -201,9 +201,15 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 		TOC(PH_PREDICT);
 	}
 	s->predicted = 0;
+	/* packed: the last step's fused corrector (integ_correct_predict_acc) already
+	 * wrote this state's force-kernel records and screened it */
+	const int packed = s->packed;
+	s->packed = 0;
 
 	TIC(PH_CHECK);
-	scan c = check_state(s);
+	scan c = {s->screen.rebuild, s->screen.bad, s->screen.out, -1};
+	if (!packed || !s->screen.done || c.bad_num || c.out) /* the scan also finds where */
+		c = check_state(s);
 	TOC(PH_CHECK);
 	if (c.bad_num || c.out) {
 		char what[256];
@@ -232,8 +238,12 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 		TOC(PH_NEIGH);
 	}
 
+	/* acc: the fused corrector takes the forces straight from the kernel's
+	 * accumulators (not with the settling drag, which acts on st->f) */
+	const int acc = fuse && drag == 0 && !track;
 	TIC(PH_FORCE);
 	int bad = track ? forces_compute_track(&s->law, st, &s->nl, 1.0 / s->sc.dt, track)
+		: acc	? forces_compute_acc(&s->law, st, &s->nl, 1.0 / s->sc.dt, packed)
 			: forces_compute(&s->law, st, &s->nl, 1.0 / s->sc.dt);
 	if (drag > 0) /* settling only */
 		add_drag(st, drag, 1.0 / s->sc.dt);
@@ -249,11 +259,19 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	}
 
 	TIC(PH_CORRECT);
-	if (fuse)
+	if (acc) {
+		const double half = 0.5 * s->sc.skin;
+		s->screen.lim = half * half;
+		s->screen.xlo = s->xlo;
+		s->screen.xhi = s->xhi;
+		s->screen.ylo = s->ylo;
+		integ_correct_predict_acc(&s->in, st, gy, &s->nl, &s->screen);
+	} else if (fuse)
 		integ_correct_predict(&s->in, st, gy);
 	else
 		integ_correct(&s->in, st, gy);
 	s->predicted = fuse;
+	s->packed = acc;
 	TOC(PH_CORRECT);
 	return 0;
 }

@@ -36,6 +36,8 @@ typedef struct sb_sim {
 	/* shaking */
 	long step, nsteps;
 	int predicted;           /* the next step's predictor already ran (fused) */
+	int packed;              /* ... and wrote the force kernel's records (forces_compute_acc) */
+	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
 	long n_traj, n_snap;     /* records written so far */
 	long n_flux, n_field, n_strobe;
 	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;

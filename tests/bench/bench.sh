@@ -24,7 +24,10 @@
 #   BENCH_REUSE=1        reuse the settled states already in build/bench/ (skip preparation)
 #   BENCH_SETTLE_KE=1    settle_ke (erg) for preparing the scaling beds (the paper scene
 #                        always uses the default 0.01)
-#   BENCH_TASKSET=CPU    pin every timed run to this CPU with taskset (default: no pinning)
+#   BENCH_TASKSET=CPU    pin every timed run to this CPU with taskset (default: the last CPU,
+#                        so that no run migrates between cores - on the 2-core CI machines CPU 0
+#                        also takes the interrupts and its times spread twice as far; "none":
+#                        no pinning)
 #   SHAKE=path           binary to time (default bin/shake; copied to build/bench/ first so a
 #                        rebuild during the benchmark cannot mix two engines)
 #   LMP=path             LAMMPS binary (passed to lammps_time.sh; default lmp)
@@ -39,7 +42,12 @@ SREPS=${BENCH_SCALE_REPS:-3}
 QUICK=${BENCH_QUICK:-0}
 NO_LAMMPS=${BENCH_NO_LAMMPS:-0}
 REUSE=${BENCH_REUSE:-0}
-PIN=${BENCH_TASKSET:-}
+if [ -z "${BENCH_TASKSET:-}" ] && command -v taskset >/dev/null 2>&1; then
+	PIN=$(( $(nproc) - 1 ))
+else
+	PIN=${BENCH_TASKSET:-}
+fi
+[ "$PIN" = none ] && PIN=
 SHAKE_SRC=${SHAKE:-bin/shake}
 W=build/bench
 REPORT=$W/report.txt
