@@ -1,6 +1,7 @@
 /* bigmem.c - aligned blocks on transparent huge pages (see bigmem.h). */
 #include "bigmem.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <sys/mman.h>
 
@@ -35,4 +36,33 @@ int bigmem_slab(void **base, void **arr, int k, size_t n, size_t elem)
 	for (int a = 0; a < k; a++)
 		arr[a] = p + stride * (size_t)a;
 	return 0;
+}
+
+size_t bigmem_llc_bytes(void)
+{
+	size_t best = 0;
+	int best_level = 0;
+	for (int k = 0; k < 8; k++) {
+		char path[96], buf[32];
+		int level = 0;
+		snprintf(path, sizeof path, "/sys/devices/system/cpu/cpu0/cache/index%d/level", k);
+		FILE *f = fopen(path, "r");
+		if (!f)
+			break;
+		if (fscanf(f, "%d", &level) != 1)
+			level = 0;
+		fclose(f);
+		snprintf(path, sizeof path, "/sys/devices/system/cpu/cpu0/cache/index%d/size", k);
+		f = fopen(path, "r");
+		if (!f)
+			continue;
+		unsigned long v = 0;
+		char unit = 0;
+		if (fgets(buf, sizeof buf, f) && sscanf(buf, "%lu%c", &v, &unit) >= 1 && level > best_level) {
+			best_level = level;
+			best = v * (unit == 'K' ? 1024UL : unit == 'M' ? 1024UL * 1024 : 1);
+		}
+		fclose(f);
+	}
+	return best ? best : (size_t)32 << 20;
 }

@@ -17,4 +17,8 @@ void *bigmem_alloc(size_t bytes);
  * aliasing"). Returns 0, or -1 when out of memory (nothing changed). */
 int bigmem_slab(void **base, void **arr, int k, size_t n, size_t elem);
 
+/* The size of CPU 0's last-level cache from sysfs (sysconf's figure is the host's in
+ * some virtual machines: 384 MiB where the guest has 32), or 32 MiB if unknown. */
+size_t bigmem_llc_bytes(void);
+
 #endif

@@ -114,7 +114,7 @@ static void pack_records(const sb_state *st, double *restrict rec, int i0, int n
 static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law, sb_state *st,
 							       const sb_nlist *nl, double inv_dt,
 							       const int clip, double *restrict fsum,
-							       const int packed, const int keep)
+							       const int packed, const int keep, const int pf)
 {
 	const double *rec = nl->rec;
 	const int *pi = nl->pi, *pj = nl->pj;
@@ -147,6 +147,13 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 		const int p1 = p0 + SB_KCHUNK < np ? p0 + SB_KCHUNK : np;
 		int nc = 0;
 		for (int p = p0; p < p1; p += 8) {
+			if (pf) /* constant per instantiation */
+				for (int l = 0; l < 8; l++) {
+					/* the far ends of the pairs 8 blocks ahead: beyond the cache,
+					 * their records are the kernel's latency-bound loads */
+					const int q = p + 64 + l < np ? p + 64 + l : p;
+					_mm_prefetch((const char *)(rec + pj[q]), _MM_HINT_T0);
+				}
 			const __mmask8 live = p1 - p >= 8 ? 0xff : (__mmask8)((1u << (p1 - p)) - 1);
 			/* per pair, lane-wise from the two records: x, y, vx, vy of i minus j;
 			 * R w and 1/m of i plus j; R_i; R_j. Then pairs -> lanes. */
@@ -241,10 +248,11 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
 							const sb_nlist *nl, double inv_dt,
 							const int clip, double *restrict fsum,
-							const int packed, const int keep)
+							const int packed, const int keep, const int pf)
 {
 	(void)packed; /* there are no records or accumulators: forces go to st->f */
 	(void)keep;
+	(void)pf;
 	/* Velocities stay scaled (q1 = v dt): the 1/dt goes into the damping constants,
 	 * which saves four multiplications per contact. */
 	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
@@ -312,33 +320,47 @@ static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_st
 #define KERNEL kernel
 #endif
 
-static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt, int packed,
-			int keep)
-{
-	return KERNEL(l, s, n, inv_dt, 0, NULL, packed, keep);
-}
+/* one instantiation per clip_attractive and prefetching (nlist.h: prefetch) */
+#define INSTANCE(name, clip, pf)                                                                   \
+	static int name(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt, int packed, \
+			int keep)                                                                   \
+	{                                                                                           \
+		return KERNEL(l, s, n, inv_dt, clip, NULL, packed, keep, pf);                       \
+	}
+INSTANCE(kernel_plain, 0, 0)
+INSTANCE(kernel_clip, 1, 0)
+#if SB_KERNEL_AVX512
+INSTANCE(kernel_plain_pf, 0, 1)
+INSTANCE(kernel_clip_pf, 1, 1)
+#else
+#define kernel_plain_pf kernel_plain
+#define kernel_clip_pf kernel_clip
+#endif
 
-static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt, int packed,
-		       int keep)
+static int dispatch(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed,
+		    int keep)
 {
-	return KERNEL(l, s, n, inv_dt, 1, NULL, packed, keep);
+	if (nl->prefetch)
+		return law->clip ? kernel_clip_pf(law, st, nl, inv_dt, packed, keep)
+				 : kernel_plain_pf(law, st, nl, inv_dt, packed, keep);
+	return law->clip ? kernel_clip(law, st, nl, inv_dt, packed, keep)
+			 : kernel_plain(law, st, nl, inv_dt, packed, keep);
 }
 
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt)
 {
-	return law->clip ? kernel_clip(law, st, nl, inv_dt, 0, 0) : kernel_plain(law, st, nl, inv_dt, 0, 0);
+	return dispatch(law, st, nl, inv_dt, 0, 0);
 }
 
 int forces_compute_acc(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed)
 {
-	return law->clip ? kernel_clip(law, st, nl, inv_dt, packed, 1)
-			 : kernel_plain(law, st, nl, inv_dt, packed, 1);
+	return dispatch(law, st, nl, inv_dt, packed, 1);
 }
 
 static __attribute__((noinline)) int kernel_track(const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
-	return l->clip ? KERNEL(l, s, n, inv_dt, 1, fsum, 0, 0) : KERNEL(l, s, n, inv_dt, 0, fsum, 0, 0);
+	return l->clip ? KERNEL(l, s, n, inv_dt, 1, fsum, 0, 0, 0) : KERNEL(l, s, n, inv_dt, 0, fsum, 0, 0, 0);
 }
 
 int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,

@@ -116,6 +116,9 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 		return sb_errf(e, SB_EUSAGE, "%d disks: the neighbour list holds at most %d", st->n,
 			       (INT_MAX - 64) / 8);
 	nl->skin = skin;
+	/* ~300 bytes a disk are swept every step (the state's arrays, record, accumulator,
+	 * pairs) */
+	nl->prefetch = 300.0 * st->n > 0.5 * (double)bigmem_llc_bytes();
 	nl->cap = st->n;
 	nl->large = calloc((size_t)st->n + 1, 1);
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));

@@ -78,6 +78,11 @@ typedef struct sb_nlist {
 	double *xref, *yref;
 	int cap;
 	long builds;
+	/* the force kernel prefetches the far ends of its pairs: set by nlist_init when the
+	 * per-disk data a step sweeps outgrow half the last-level cache (5x10^4 disks on a
+	 * 32 MiB L3), where those loads come from memory; below, the prefetches only cost
+	 * (measured: -6 % at 10^5 disks, +2 % at 10^4, +4.5 % at 10^3) */
+	int prefetch;
 } sb_nlist;
 
 /* Classify disks (large = radius above 1.5x the mean) and allocate. */
