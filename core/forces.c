@@ -369,6 +369,34 @@ int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, do
 	return kernel_track(law, st, nl, inv_dt, fabs_sum);
 }
 
+void forces_records_to_state(const sb_nlist *nl, sb_state *st)
+{
+#if SB_KERNEL_AVX512
+	double *restrict x = st->q[C_X][0], *restrict y = st->q[C_Y][0], *restrict vx = st->q[C_X][1],
+		       *restrict vy = st->q[C_Y][1];
+	const double *rec = nl->rec;
+	const int n = st->nm;
+	int i = 0;
+	for (; i + 8 <= n; i += 8) {
+		__m512d a, b, c, d;
+		krec_load8(rec + 8 * i, &a, &b, &c, &d);
+		_mm512_storeu_pd(x + i, a);
+		_mm512_storeu_pd(y + i, b);
+		_mm512_storeu_pd(vx + i, c);
+		_mm512_storeu_pd(vy + i, d);
+	}
+	for (; i < n; i++) {
+		x[i] = rec[8 * i];
+		y[i] = rec[8 * i + 1];
+		vx[i] = rec[8 * i + 2];
+		vy[i] = rec[8 * i + 3];
+	}
+#else
+	(void)nl;
+	(void)st;
+#endif
+}
+
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
 {
 	double worst = 0;

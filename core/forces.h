@@ -22,6 +22,10 @@ int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double i
  * have changed since). In the scalar build this is forces_compute. */
 int forces_compute_acc(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed);
 
+/* After integ_correct_predict_acc (AVX-512 build) the mobile disks' x, y, vx, vy
+ * are only in the kernel's records: copy them into st. */
+void forces_records_to_state(const sb_nlist *nl, sb_state *st);
+
 /* The same, adding to fabs_sum[i] and fabs_sum[j] the magnitude of each contact force
  * (the ring observable; a separately compiled kernel, so this costs nothing when off). */
 int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,

@@ -221,43 +221,45 @@ static inline __attribute__((always_inline)) qarr qarr_of(const sb_state *st, in
 	return (qarr){st->q[c][0], st->q[c][1], st->q[c][2], st->q[c][3], st->q[c][4], st->q[c][5]};
 }
 
-/* one coordinate of eight disks from i; returns the predicted q0 and q1 */
+/* One coordinate of eight disks from i. soa01: q0 and q1 are read from and written to
+ * the arrays, and *q0, *q1 get the predicted ones; else *q0, *q1 are the current ones
+ * in and the predicted ones out, the arrays untouched (x and y: the records hold
+ * them, see cpa_block). */
 static inline __attribute__((always_inline)) void cp_block(const int nval, const double *c, double h,
 							   v8 f, v8 inv, double extra, qarr q, int i,
-							   int full, __mmask8 m, v8 *p0, v8 *p1)
+							   int full, __mmask8 m, const int soa01, v8 *q0,
+							   v8 *q1)
 {
 	const v8 a2 = (f * inv + extra) * h;
+	const v8 c0 = soa01 ? vload(q.q0 + i, full, m) : *q0, c1 = soa01 ? vload(q.q1 + i, full, m) : *q1;
 	if (nval == 6) {
 		const v8 d = a2 - vload(q.q2 + i, full, m);
-		const v8 b0 = vload(q.q0 + i, full, m) + c[0] * d, a1 = vload(q.q1 + i, full, m) + c[1] * d,
-			 a3 = vload(q.q3 + i, full, m) + c[3] * d, a4 = vload(q.q4 + i, full, m) + c[4] * d,
-			 a5 = vload(q.q5 + i, full, m) + c[5] * d;
-		*p0 = b0 + (a1 + a2 + a3 + a4 + a5);
-		*p1 = a1 + 2 * a2 + 3 * a3 + 4 * a4 + 5 * a5;
-		vstore(q.q0 + i, *p0, full, m);
-		vstore(q.q1 + i, *p1, full, m);
+		const v8 b0 = c0 + c[0] * d, a1 = c1 + c[1] * d, a3 = vload(q.q3 + i, full, m) + c[3] * d,
+			 a4 = vload(q.q4 + i, full, m) + c[4] * d, a5 = vload(q.q5 + i, full, m) + c[5] * d;
+		*q0 = b0 + (a1 + a2 + a3 + a4 + a5);
+		*q1 = a1 + 2 * a2 + 3 * a3 + 4 * a4 + 5 * a5;
 		vstore(q.q2 + i, a2 + 3 * a3 + 6 * a4 + 10 * a5, full, m);
 		vstore(q.q3 + i, a3 + 4 * a4 + 10 * a5, full, m);
 		vstore(q.q4 + i, a4 + 5 * a5, full, m);
 		vstore(q.q5 + i, a5, full, m);
 	} else if (nval == 5) {
 		const v8 d = a2 - vload(q.q2 + i, full, m);
-		const v8 b0 = vload(q.q0 + i, full, m) + c[0] * d, a1 = vload(q.q1 + i, full, m) + c[1] * d,
-			 a3 = vload(q.q3 + i, full, m) + c[3] * d, a4 = vload(q.q4 + i, full, m) + c[4] * d;
-		*p0 = b0 + (a1 + a2 + a3 + a4);
-		*p1 = a1 + 2 * a2 + 3 * a3 + 4 * a4;
-		vstore(q.q0 + i, *p0, full, m);
-		vstore(q.q1 + i, *p1, full, m);
+		const v8 b0 = c0 + c[0] * d, a1 = c1 + c[1] * d, a3 = vload(q.q3 + i, full, m) + c[3] * d,
+			 a4 = vload(q.q4 + i, full, m) + c[4] * d;
+		*q0 = b0 + (a1 + a2 + a3 + a4);
+		*q1 = a1 + 2 * a2 + 3 * a3 + 4 * a4;
 		vstore(q.q2 + i, a2 + 3 * a3 + 6 * a4, full, m);
 		vstore(q.q3 + i, a3 + 4 * a4, full, m);
 		vstore(q.q4 + i, a4, full, m);
 	} else {
-		const v8 v = vload(q.q1 + i, full, m) + a2;
-		*p1 = v + a2;
-		*p0 = vload(q.q0 + i, full, m) + (v + a2);
+		const v8 v = c1 + a2;
+		*q1 = v + a2;
+		*q0 = c0 + (v + a2);
 		vstore(q.q2 + i, a2, full, m);
-		vstore(q.q1 + i, *p1, full, m);
-		vstore(q.q0 + i, *p0, full, m);
+	}
+	if (soa01) {
+		vstore(q.q0 + i, *q0, full, m);
+		vstore(q.q1 + i, *q1, full, m);
 	}
 }
 
@@ -283,10 +285,16 @@ static inline __attribute__((always_inline)) void cpa_block(const int nval, cons
 	krec_load_acc8(a->facc + 4 * i, &fx, &fy, &ft);
 	for (int k = 0; k < 4; k++) /* the next kernel adds into them: beyond count are walls, */
 		_mm512_store_pd(a->facc + 4 * i + 8 * k, _mm512_setzero_pd()); /* which it clears */
+	/* x, y and their velocities live in the records between fused passes: the kernel
+	 * of this step read them there (forces_compute_acc packs them if the last step
+	 * was not fused), and this pass writes them only there - four arrays fewer to
+	 * stream, where the pass is bound by moving lines between L1 and L2 (or L3).
+	 * forces_records_to_state() brings st up to date for everyone else. */
+	krec_load8(a->rec + 8 * i, &x0, &y0, &x1, &y1);
 	const v8 im = vload(a->inv_m + i, full, m);
-	cp_block(nval, a->c, a->h, fx, im, 0, a->x, i, full, m, &x0, &x1);
-	cp_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, full, m, &y0, &y1);
-	cp_block(nval, a->c, a->h, ft, vload(a->inv_i + i, full, m), 0, a->t, i, full, m, &t0, &t1);
+	cp_block(nval, a->c, a->h, fx, im, 0, a->x, i, full, m, 0, &x0, &x1);
+	cp_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, full, m, 0, &y0, &y1);
+	cp_block(nval, a->c, a->h, ft, vload(a->inv_i + i, full, m), 0, a->t, i, full, m, 1, &t0, &t1);
 	krec_store8(a->rec + 8 * i, x0, y0, x1, y1, t1, vload(a->r + i, full, m), im, count);
 	/* sim.c's check_state, operation by operation */
 	const v8 dx = x0 - vload(a->xref + i, full, m), dy = y0 - vload(a->yref + i, full, m);
@@ -321,8 +329,8 @@ static inline __attribute__((always_inline)) void cpa(const int nval, const sb_i
 	scr->out = fl.out != 0;
 }
 
-void integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
-			       sb_screen *scr)
+int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
+			      sb_screen *scr)
 {
 	if (in->nval == 6)
 		cpa(6, in, st, gy, nl, scr);
@@ -330,14 +338,16 @@ void integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_n
 		cpa(5, in, st, gy, nl, scr);
 	else
 		cpa(3, in, st, gy, nl, scr);
+	return 1;
 }
 #else
-void integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
-			       sb_screen *scr)
+int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
+			      sb_screen *scr)
 {
 	(void)nl;
 	scr->done = 0;
 	integ_correct_predict(in, st, gy);
+	return 0;
 }
 #endif
 

@@ -52,6 +52,26 @@ static inline __attribute__((always_inline)) void krec_store8(double *rec, __m51
 			_mm512_store_pd(rec + 8 * k, row[k]);
 }
 
+/* x, y, vx, vy of eight consecutive disks from their records: the low halves of the
+ * records paired (disk k with k + 4) and transposed, 12 shuffles */
+static inline __attribute__((always_inline)) void krec_load8(const double *rec, __m512d *x,
+							     __m512d *y, __m512d *vx, __m512d *vy)
+{
+	__m512d z[4];
+	for (int k = 0; k < 4; k++) /* (x y vx vy) of disk k | of disk k + 4 */
+		z[k] = _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_load_pd(rec + 8 * k)),
+					  _mm256_load_pd(rec + 8 * (k + 4)), 1);
+	/* t0 = (x0 x1 vx0 vx1 | x4 x5 vx4 vx5), t1 the same of y, t2 and t3 of disks 2, 3 | 6, 7 */
+	const __m512d t0 = _mm512_unpacklo_pd(z[0], z[1]), t1 = _mm512_unpackhi_pd(z[0], z[1]),
+		      t2 = _mm512_unpacklo_pd(z[2], z[3]), t3 = _mm512_unpackhi_pd(z[2], z[3]);
+	const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0),
+		      hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+	*x = _mm512_permutex2var_pd(t0, lo, t2);
+	*vx = _mm512_permutex2var_pd(t0, hi, t2);
+	*y = _mm512_permutex2var_pd(t1, lo, t3);
+	*vy = _mm512_permutex2var_pd(t1, hi, t3);
+}
+
 /* Fx, Fy and the torque of eight consecutive disks from their accumulators */
 static inline __attribute__((always_inline)) void krec_load_acc8(const double *acc, __m512d *fx,
 								 __m512d *fy, __m512d *t)

@@ -189,6 +189,26 @@ static void add_drag(sb_state *st, double gamma, double inv_dt)
 	}
 }
 
+/* After a fused corrector of the AVX-512 build, the mobile disks' x, y, vx and vy
+ * are in the force kernel's records only (integrate.h); anything that reads them
+ * from st calls this first. */
+static void sync_state(sb_sim *s)
+{
+	if (s->stale) {
+		forces_records_to_state(&s->nl, &s->st);
+		s->stale = 0;
+	}
+}
+
+static double intruder_y(const sb_sim *s)
+{
+#if SB_KERNEL_AVX512
+	if (s->stale)
+		return s->nl.rec[8 * (size_t)s->intruder + 1];
+#endif
+	return s->st.q[C_Y][0][s->intruder];
+}
+
 /* fuse: nobody reads the corrected state after this step, so the next step's
  * predictor runs inside this step's corrector (s->predicted remembers it). */
 static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
@@ -208,8 +228,10 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 
 	TIC(PH_CHECK);
 	scan c = {s->screen.rebuild, s->screen.bad, s->screen.out, -1};
-	if (!packed || !s->screen.done || c.bad_num || c.out) /* the scan also finds where */
+	if (!packed || !s->screen.done || c.bad_num || c.out) { /* the scan also finds where */
+		sync_state(s);
 		c = check_state(s);
+	}
 	TOC(PH_CHECK);
 	if (c.bad_num || c.out) {
 		char what[256];
@@ -226,12 +248,13 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	/* waiting time (MODEL.md): the first time the intruder's centre is one diameter
 	 * above its settled height, on the positions the forces are evaluated at */
 	if (s->intruder >= 0 && !s->obs.risen &&
-	    st->q[C_Y][0][s->intruder] - s->intruder_y0 > s->obs.rise_height && step > 0 &&
+	    intruder_y(s) - s->intruder_y0 > s->obs.rise_height && step > 0 &&
 	    s->obs.rise_height > 0) {
 		s->obs.risen = 1;
 		s->obs.wait_time = t;
 	}
 	if (c.rebuild) {
+		sync_state(s);
 		TIC(PH_NEIGH);
 		if (nlist_build(&s->nl, st, e))
 			return e->code;
@@ -241,6 +264,8 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	/* acc: the fused corrector takes the forces straight from the kernel's
 	 * accumulators (not with the settling drag, which acts on st->f) */
 	const int acc = fuse && drag == 0 && !track;
+	if (!acc) /* the other correctors work on st */
+		sync_state(s);
 	TIC(PH_FORCE);
 	int bad = track ? forces_compute_track(&s->law, st, &s->nl, 1.0 / s->sc.dt, track)
 		: acc	? forces_compute_acc(&s->law, st, &s->nl, 1.0 / s->sc.dt, packed)
@@ -250,6 +275,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	TOC(PH_FORCE);
 
 	if (bad) { /* measured on the positions the kernel saw, before the correction */
+		sync_state(s);
 		int a = 0, b = 0;
 		double f = forces_max_overlap(st, &s->nl, &a, &b);
 		char what[256];
@@ -265,7 +291,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 		s->screen.xlo = s->xlo;
 		s->screen.xhi = s->xhi;
 		s->screen.ylo = s->ylo;
-		integ_correct_predict_acc(&s->in, st, gy, &s->nl, &s->screen);
+		s->stale = integ_correct_predict_acc(&s->in, st, gy, &s->nl, &s->screen);
 	} else if (fuse)
 		integ_correct_predict(&s->in, st, gy);
 	else

@@ -38,6 +38,7 @@ typedef struct sb_sim {
 	int predicted;           /* the next step's predictor already ran (fused) */
 	int packed;              /* ... and wrote the force kernel's records (forces_compute_acc) */
 	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
+	int stale;               /* ... and left x, y, vx, vy in nl's records only (sim.c) */
 	long n_traj, n_snap;     /* records written so far */
 	long n_flux, n_field, n_strobe;
 	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;
