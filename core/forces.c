@@ -202,15 +202,13 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 				in, _mm256_loadu_si256((const __m256i *)(pj + p))));
 			_mm512_storeu_pd(kb->fx + nc, _mm512_maskz_compress_pd(in, fx));
 			_mm512_storeu_pd(kb->fy + nc, _mm512_maskz_compress_pd(in, fy));
-			_mm512_storeu_pd(kb->ti + nc, _mm512_maskz_compress_pd(in, _mm512_mul_pd(ri, fs)));
+			_mm512_storeu_pd(kb->ti + nc, _mm512_maskz_compress_pd(in, NEG(_mm512_mul_pd(ri, fs))));
 			_mm512_storeu_pd(kb->tj + nc, _mm512_maskz_compress_pd(in, _mm512_mul_pd(rj, fs)));
 			nc += __builtin_popcount(in);
 		}
-		/* the chunk's forces added to the disks in list order, as 4-double vectors
-		 * (Fx, Fy, -R_i F_S, 0) to i and (-Fx, -Fy, -R_j F_S, 0) to j: a - b and
-		 * a + (-b) are the same number */
-		const __m256d sgn = _mm256_set_pd(0.0, -0.0, 0.0, 0.0),
-			      sgnj = _mm256_set_pd(0.0, -0.0, -0.0, -0.0);
+		/* the chunk's forces added to the disks in list order, as 4-double vectors:
+		 * (Fx, Fy, -R_i F_S, 0) added to i's, (Fx, Fy, R_j F_S, 0) subtracted from j's
+		 * (a - b and a + (-b) are the same number) */
 		char *const acc = (char *)facc;
 		for (int k = 0; k < nc; k++) {
 			/* 8 i, 8 j (nlist.h): disk i's accumulator is 32 i = 4 (8 i) bytes in */
@@ -225,8 +223,8 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 			const __m128d xy = _mm_loadh_pd(_mm_load_sd(kb->fx + k), kb->fy + k);
 			const __m256d vi = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->ti + k), 1);
 			const __m256d vj = _mm256_insertf128_pd(_mm256_castpd128_pd256(xy), _mm_load_sd(kb->tj + k), 1);
-			_mm256_store_pd(ai, _mm256_add_pd(_mm256_load_pd(ai), _mm256_xor_pd(vi, sgn)));
-			_mm256_store_pd(aj, _mm256_add_pd(_mm256_load_pd(aj), _mm256_xor_pd(vj, sgnj)));
+			_mm256_store_pd(ai, _mm256_add_pd(_mm256_load_pd(ai), vi));
+			_mm256_store_pd(aj, _mm256_sub_pd(_mm256_load_pd(aj), vj));
 		}
 	}
 	if (!keep) /* else the fused corrector reads the accumulators */

@@ -32,7 +32,7 @@ enum { SB_PSCALE = 1 };
 enum { SB_KCHUNK = 256 };
 
 /* one chunk of the list's contacts: disks 8i, 8j, the force on i and the torques
- * R_i F_S, R_j F_S (8 spare slots: the kernel stores whole vectors) */
+ * -R_i F_S, R_j F_S (8 spare slots: the kernel stores whole vectors) */
 typedef struct sb_kbuf {
 	_Alignas(64) double fx[SB_KCHUNK + 8], fy[SB_KCHUNK + 8], ti[SB_KCHUNK + 8], tj[SB_KCHUNK + 8];
 	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
