@@ -17,8 +17,8 @@
 # Exit status: 0 when every command worked (targets missed or not), 1 when one failed.
 #
 # Environment knobs:
-#   BENCH_REPS=5         interleaved repetitions of the paper-scene comparison
-#   BENCH_SCALE_REPS=3   repetitions of each scaling run
+#   BENCH_REPS=9         interleaved repetitions of the paper-scene comparison
+#   BENCH_SCALE_REPS=5   repetitions of each scaling run
 #   BENCH_QUICK=1        skip N = 1e5 (the marginal memory figure then uses 1e4 - 1e3)
 #   BENCH_NO_LAMMPS=1    skip LAMMPS (no speed-up figure)
 #   BENCH_REUSE=1        reuse the settled states already in build/bench/ (skip preparation)
@@ -37,8 +37,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 cd "$root" || exit 1
 
-REPS=${BENCH_REPS:-5}
-SREPS=${BENCH_SCALE_REPS:-3}
+REPS=${BENCH_REPS:-9}
+SREPS=${BENCH_SCALE_REPS:-5}
 QUICK=${BENCH_QUICK:-0}
 NO_LAMMPS=${BENCH_NO_LAMMPS:-0}
 REUSE=${BENCH_REUSE:-0}
