@@ -291,11 +291,11 @@ static inline __attribute__((always_inline)) void cpa_block(const int nval, cons
 	 * stream, where the pass is bound by moving lines between L1 and L2 (or L3).
 	 * forces_records_to_state() brings st up to date for everyone else. */
 	krec_load8(a->rec + 8 * i, &x0, &y0, &x1, &y1);
-	const v8 im = vload(a->inv_m + i, full, m);
+	const v8 im = vload(a->inv_m + i, full, m), R = vload(a->r + i, full, m);
 	cp_block(nval, a->c, a->h, fx, im, 0, a->x, i, full, m, 0, &x0, &x1);
 	cp_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, full, m, 0, &y0, &y1);
 	cp_block(nval, a->c, a->h, ft, vload(a->inv_i + i, full, m), 0, a->t, i, full, m, 1, &t0, &t1);
-	krec_store8(a->rec + 8 * i, x0, y0, x1, y1, t1, vload(a->r + i, full, m), im, count);
+	krec_store8(a->rec + 8 * i, x0, y0, x1, y1, t1, R, im, count);
 	/* sim.c's check_state, operation by operation */
 	const v8 dx = x0 - vload(a->xref + i, full, m), dy = y0 - vload(a->yref + i, full, m);
 	const v8 d2 = dx * dx + dy * dy;
