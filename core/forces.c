@@ -59,7 +59,7 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
  * transposed into lanes, and m_eff = 1 / (1/m_i + 1/m_j) is formed there (the
  * formula of the scalar build's per-pair array, which this kernel need not stream).
  * Each lane then performs the scalar code's operations in its order
- * (there is no FMA; min, max and the sign copy are exact), the contacts are
+ * (no FMA in the law; min, max and the sign copy are exact), the contacts are
  * compressed out of the lanes, and a pass per chunk of the list adds their forces to
  * per-disk accumulators (Fx, Fy, torque, 0) in list order, one 4-double vector per
  * disk and contact (a third of the stores of three scalar sums, which bound that
@@ -125,6 +125,12 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 		      mo = _mm512_set1_pd(law->max_overlap), one = _mm512_set1_pd(1.0),
 		      zero = _mm512_setzero_pd();
 	const __m512i sign = _mm512_set1_epi64((long long)0x8000000000000000ULL);
+	/* the lane-wise combination of a pair's records a (of i) and b (of j) as
+	 * b wb + a wa, one multiply and one fused multiply-add (two dependent operations
+	 * where a blend and two masked ones took three): every product is exact (x 1,
+	 * -1, 0), so the single rounding of the FMA is that of a - b or a + b, and lanes
+	 * 6 and 7 are R_i + 0 and R_j + 0 - the scalar kernel's numbers to the bit */
+	const __m512d wa = _mm512_set_pd(0, 1, 1, 1, 1, 1, 1, 1), wb = _mm512_set_pd(1, 0, 1, 1, -1, -1, -1, -1);
 #define NEG(a) _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a), sign))
 #define ABS(a) _mm512_castsi512_pd(_mm512_andnot_si512(sign, _mm512_castpd_si512(a)))
 
@@ -161,8 +167,7 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 			for (int l = 0; l < 8; l++) {
 				const __m512d a = _mm512_load_pd(rec + pi[p + l]); /* 8 i: nlist.h */
 				const __m512d b = _mm512_load_pd(rec + pj[p + l]);
-				const __m512d t = _mm512_mask_sub_pd(_mm512_mask_blend_pd(0x80, a, b), 0x0f, a, b);
-				c[l] = _mm512_mask_add_pd(t, 0x30, a, b);
+				c[l] = _mm512_fmadd_pd(b, wb, _mm512_mul_pd(a, wa));
 			}
 			krec_transpose8(c);
 			const __m512d dx = c[0], dy = c[1], dvx = c[2], dvy = c[3], rw = c[4], ims = c[5],
