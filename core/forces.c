@@ -182,13 +182,14 @@ static inline __attribute__((always_inline)) int kernel_avx512(const sb_law *law
 			const __m512d inv = _mm512_div_pd(one, d);
 			const __m512d nx = _mm512_mul_pd(dx, inv), ny = _mm512_mul_pd(dy, inv);
 			const __m512d xi = _mm512_sub_pd(rs, d);
-			const __m512d xidot = NEG(_mm512_add_pd(_mm512_mul_pd(dvx, nx), _mm512_mul_pd(dvy, ny)));
+			/* -xidot; a + k (-s) is a - k s to the bit, and so is (-a) b + c = c - a b */
+			const __m512d mxidot = _mm512_add_pd(_mm512_mul_pd(dvx, nx), _mm512_mul_pd(dvy, ny));
 			const __m512d meff = _mm512_div_pd(one, ims); /* 1 / (1/m_i + 1/m_j) */
-			__m512d fn = _mm512_add_pd(_mm512_mul_pd(Y, xi), _mm512_mul_pd(_mm512_mul_pd(gn, meff), xidot));
+			__m512d fn = _mm512_sub_pd(_mm512_mul_pd(Y, xi), _mm512_mul_pd(_mm512_mul_pd(gn, meff), mxidot));
 			if (clip) /* fn > 0 ? fn : 0 (max returns its second operand for NaN, -0) */
 				fn = _mm512_max_pd(fn, zero);
 			const __m512d vt = _mm512_sub_pd(
-				_mm512_add_pd(_mm512_mul_pd(NEG(dvx), ny), _mm512_mul_pd(dvy, nx)), rw);
+				_mm512_sub_pd(_mm512_mul_pd(dvy, nx), _mm512_mul_pd(dvx, ny)), rw);
 			const __m512d fv = _mm512_mul_pd(_mm512_mul_pd(gs, meff), ABS(vt));
 			const __m512d fc = _mm512_mul_pd(mu, ABS(fn));
 			/* copysign(fv < fc ? fv : fc, -vt); min returns its second operand
