@@ -122,15 +122,16 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	nl->cap = st->n;
 	nl->large = calloc((size_t)st->n + 1, 1);
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->cell_of = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->cell_x = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->cell_y = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->cell_idx = malloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->xs = malloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->ys = malloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->rs = malloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->xref = malloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->yref = malloc(sizeof(double) * ((size_t)st->n + 1));
+	/* bigmem: the build sweeps these, and the step xref and yref (huge pages at 10^5) */
+	nl->cell_of = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->cell_x = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->cell_y = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->cell_idx = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
+	nl->xs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->ys = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->rs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->xref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->yref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
 #if SB_KERNEL_AVX512
 	/* whole 64-byte lines, so that a record is one aligned vector load */
 	nl->rec = bigmem_alloc(sizeof(double) * 8 * ((size_t)st->n + 8));
