@@ -6,8 +6,8 @@
 #     the same settled state, BENCH_REPS times each, interleaved (shake, lammps, shake, ...).
 #     Target: LAMMPS / shakebox >= 5 on one core.
 #  2. scaling: N = 1e3, 1e4, 1e5 grains, box width 60 cm * N/950 (same bed height), settled once
-#     each, then a short run timed BENCH_SCALE_REPS times.  Target: ns per particle-step within
-#     1.5x of the N = 1e3 figure.
+#     each, then a short run timed BENCH_SCALE_REPS times, the sizes taking turns.  Target: ns
+#     per particle-step within 1.5x of the N = 1e3 figure.
 #  3. peak memory (maximum RSS from /usr/bin/time -v of the timed runs) per N.  Target: marginal
 #     memory < 1 KiB per particle.
 #
@@ -297,28 +297,34 @@ fi
 rep ""
 
 # --- 2. scaling + 3. memory ---------------------------------------------------------
-declare -A S_STEPS S_MED S_NSM S_NSA S_RSS S_MOB S_WALLS S_PREP
+declare -A S_STEPS S_MED S_NSM S_NSA S_RSS S_MOB S_WALLS S_PREP S_TS
 for N in "${SCALE_NS[@]}"; do
 	width=$(calc "60 * $N / 950")
-	data=$W/scale_$N.data
 	log "scaling N=$N: settling (width ${width} cm${SCALE_SETTLE[$N]:+, ${SCALE_SETTLE[$N]}})$([ "$N" -ge 100000 ] && echo ' - takes minutes')"
 	# shellcheck disable=SC2086
-	prepare "scale_prep_$N" "$data" n_grains="$N" width="$width" radius_ratio=4 frequency="$FREQ" ${SCALE_SETTLE[$N]}
-	S_PREP[$N]=$P_SECS
+	prepare "scale_prep_$N" "$W/scale_$N.data" n_grains="$N" width="$width" radius_ratio=4 frequency="$FREQ" ${SCALE_SETTLE[$N]}
+	S_PREP[$N]=$P_SECS S_RSS[$N]=0
 	log "scaling N=$N: settled in $(secs "$P_SECS")"
-	ts=() rss=0
-	for ((i = 1; i <= SREPS; i++)); do
-		run_shake "scale_${N}_$i" particles="$data" duration="${SCALE_DUR[$N]}" frequency="$FREQ" \
+done
+# The sizes take turns (1e3, 1e4, 1e5, 1e3, ...), as the two codes do above: a phase of
+# the machine in which everything runs slower then shows in every size, not in one.
+for ((i = 1; i <= SREPS; i++)); do
+	for N in "${SCALE_NS[@]}"; do
+		run_shake "scale_${N}_$i" particles="$W/scale_$N.data" duration="${SCALE_DUR[$N]}" frequency="$FREQ" \
 			output="$W/run_$N.h5" "${RUN_FLAGS[@]}"
-		ts+=("$R_LOOP")
-		[ "$R_RSS" -gt "$rss" ] && rss=$R_RSS
+		S_TS[$N]="${S_TS[$N]:-} $R_LOOP"
+		[ "$R_RSS" -gt "${S_RSS[$N]}" ] && S_RSS[$N]=$R_RSS
+		S_STEPS[$N]=$R_STEPS S_MOB[$N]=$R_MOBILE S_WALLS[$N]=$R_WALLS
 		log "scaling N=$N rep $i/$SREPS: ${R_LOOP}s for $R_STEPS steps, max RSS $R_RSS KiB"
 	done
+done
+for N in "${SCALE_NS[@]}"; do
 	rm -f "$W/run_$N.h5" "$W/run_$N.xmf"
-	read -r med _ _ < <(stats "${ts[@]}")
-	S_STEPS[$N]=$R_STEPS S_MED[$N]=$med S_RSS[$N]=$rss S_MOB[$N]=$R_MOBILE S_WALLS[$N]=$R_WALLS
-	S_NSM[$N]=$(calc "$med / ($R_STEPS * $R_MOBILE) * 1e9")
-	S_NSA[$N]=$(calc "$med / ($R_STEPS * ($R_MOBILE + $R_WALLS)) * 1e9")
+	# shellcheck disable=SC2086
+	read -r med _ _ < <(stats ${S_TS[$N]})
+	S_MED[$N]=$med
+	S_NSM[$N]=$(calc "$med / (${S_STEPS[$N]} * ${S_MOB[$N]}) * 1e9")
+	S_NSA[$N]=$(calc "$med / (${S_STEPS[$N]} * (${S_MOB[$N]} + ${S_WALLS[$N]})) * 1e9")
 done
 
 N0=${SCALE_NS[0]}
