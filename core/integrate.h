@@ -29,13 +29,6 @@ void integ_correct(const sb_integ *in, sb_state *st, double gy);
  * one pass over the arrays; for steps after which nobody reads the corrected state. */
 void integ_correct_predict(const sb_integ *in, sb_state *st, double gy);
 
-/* integ_correct_predict for a step whose forces came from forces_compute_acc: in the
- * AVX-512 build the forces are read from nl's accumulators, which are cleared, x, y
- * and their velocities are read from and written to the force-kernel records only
- * (st's arrays of them are stale until forces_records_to_state), and the next step's
- * forces_compute_acc is called with packed = 1. Bit-identical to forces_compute +
- * integ_correct_predict; in the scalar build it is the latter. Returns 1 when st's
- * x, y, vx, vy are left stale, else 0. */
 struct sb_nlist;
 
 /* The screening of the predicted state that the step does before its forces, done
@@ -48,6 +41,13 @@ typedef struct sb_screen {
 	int rebuild, bad, out;
 } sb_screen;
 
+/* integ_correct_predict for a step whose forces came from forces_compute_acc: in the
+ * AVX-512 build the forces are read from nl's accumulators, which are cleared, x, y
+ * and their velocities are read from and written to the force-kernel records only
+ * (st's arrays of them are stale until forces_records_to_state), and the next step's
+ * forces_compute_acc is called with packed = 1. Bit-identical to forces_compute +
+ * integ_correct_predict; in the scalar build it is the latter. Returns 1 when st's
+ * x, y, vx, vy are left stale, else 0. */
 int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, struct sb_nlist *nl,
 			      sb_screen *scr);
 
