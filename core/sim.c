@@ -264,7 +264,7 @@ static int step_once(sb_sim *s, double gy, double drag, double t, long step, con
 	/* acc: the fused corrector takes the forces straight from the kernel's
 	 * accumulators (not with the settling drag, which acts on st->f) */
 	const int acc = fuse && drag == 0 && !track;
-	if (!acc) /* the other correctors work on st */
+	if (!acc || !packed) /* the other correctors, and the packing of records, read st */
 		sync_state(s);
 	TIC(PH_FORCE);
 	int bad = track ? forces_compute_track(&s->law, st, &s->nl, 1.0 / s->sc.dt, track)
