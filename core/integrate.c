@@ -191,10 +191,12 @@ void integ_correct_predict(const sb_integ *in, sb_state *st, double gy)
 /* The fused pass of the AVX-512 build: per block of eight disks, the forces from the
  * kernel's accumulators, the three coordinates' correct_predict (the same operations
  * element by element, written with vector operators; no FMA is formed, as
- * -ffp-contract=off holds for them too), and the records of the predicted state for
- * the next force evaluation. The Nordsieck arrays, the accumulators and the records
- * are then each touched once a step, where the separate passes swept the state three
- * more times. A partial last block masks its loads and stores. */
+ * -ffp-contract=off holds for them too), sim.c's screening of the predicted state,
+ * and the records of that state for the next force evaluation - which are also where
+ * x, y and their velocities are kept between such passes. The Nordsieck arrays, the
+ * accumulators and the records are then each touched once a step, where separate
+ * passes swept the state four more times. A partial last block masks its loads and
+ * stores. */
 typedef __m512d v8;
 
 static inline __attribute__((always_inline)) v8 vload(const double *p, int full, __mmask8 m)
