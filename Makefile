@@ -2,10 +2,12 @@
 CC      ?= cc
 CFLAGS  ?= -O3 -g
 # The widest vectors the build machine has: AVX-512 (x86-64-v4: the AVX-512 force
-# kernel, core/forces.c) or AVX2 (the vector loops of the integrator gain 2x); set
-# MARCH= to build for any x86-64. Results are bit-identical either way: there is no
-# FMA contraction and no reassociation (tests/integration/regression.sh compares the
-# builds with one reference).
+# kernel and fused step, core/forces.c, core/integrate.c) or AVX2 (the vector loops of
+# the integrator gain 2x); set MARCH= to build for any x86-64. Results are
+# bit-identical either way: there is no FMA contraction (the AVX-512 kernel's one
+# explicit FMA multiplies by 1, -1 and 0, exactly, so it rounds as the plain sum) and
+# no reassociation (tests/integration/regression.sh compares the builds with one
+# reference).
 ifeq ($(origin MARCH),undefined)
   MARCH := $(shell if grep -qw avx512vl /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v4; \
 		   elif grep -qw avx2 /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v3; fi)
