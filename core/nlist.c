@@ -23,6 +23,19 @@ static int grow_int(int **p, int *cap, int need, sb_err *e)
 	return 0;
 }
 
+/* p grown to cap elements of size elem, its first old kept and p freed; NULL (p kept)
+ * when out of memory. bigmem: the kernel streams these every step (huge pages at 10^5
+ * disks). */
+static void *regrow(void *p, int old, int cap, size_t elem)
+{
+	void *q = bigmem_alloc(elem * (size_t)cap);
+	if (q && old)
+		memcpy(q, p, elem * (size_t)old);
+	if (q)
+		free(p);
+	return q;
+}
+
 /* The flat list and the scalar kernel's per-pair scratch grow together. */
 static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 {
@@ -30,36 +43,23 @@ static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 	while (cap < need)
 		cap *= 2;
 	int ok = 1;
-#if SB_KERNEL_AVX512
-	int **ints[] = {&nl->pi, &nl->pj};
-	double **dbls[] = {NULL}; /* m_eff comes from the kernel's records (krec.h) */
-	const size_t ndbl = 0;
-#else
-	int **ints[] = {&nl->pi, &nl->pj, &nl->contact};
-	double **dbls[] = {&nl->pmeff, &nl->cd, &nl->cinv};
-	const size_t ndbl = 3;
+#define GROW(field)                                                                        \
+	do {                                                                               \
+		void *q_ = regrow(nl->field, nl->fcap, cap, sizeof *nl->field);            \
+		if (q_)                                                                    \
+			nl->field = q_;                                                    \
+		else                                                                       \
+			ok = 0;                                                            \
+	} while (0)
+	GROW(pi);
+	GROW(pj);
+#if !SB_KERNEL_AVX512 /* the AVX-512 kernel forms m_eff from its records (krec.h) */
+	GROW(pmeff);
+	GROW(contact);
+	GROW(cd);
+	GROW(cinv);
 #endif
-	/* bigmem: the kernel streams these every step (huge pages at 10^5 disks) */
-	for (size_t k = 0; k < sizeof ints / sizeof *ints; k++) {
-		int *q = bigmem_alloc(sizeof(int) * (size_t)cap);
-		ok = ok && q;
-		if (q) {
-			if (nl->fcap)
-				memcpy(q, *ints[k], sizeof(int) * (size_t)nl->fcap);
-			free(*ints[k]);
-			*ints[k] = q;
-		}
-	}
-	for (size_t k = 0; k < ndbl; k++) {
-		double *q = bigmem_alloc(sizeof(double) * (size_t)cap);
-		ok = ok && q;
-		if (q) {
-			if (nl->fcap)
-				memcpy(q, *dbls[k], sizeof(double) * (size_t)nl->fcap);
-			free(*dbls[k]);
-			*dbls[k] = q;
-		}
-	}
+#undef GROW
 	if (!ok)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
 	nl->fcap = cap;
