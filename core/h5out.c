@@ -237,11 +237,32 @@ static void write_ring(h5 *h, const sb_sim *s)
 
 /* Snapshots stream from the journal into [K x nm] datasets, one row at a time; the
  * other record types are small and gathered in memory first. */
+/* The intruder's height over the recorded trajectory rows in the box frame (the
+ * trajectory holds lab-frame y; the box frame is the one its settled height and the
+ * waiting time are measured in, so a rise never counts the box's own motion). */
+static void intruder_summary(h5 *h, const sb_sim *s, const double *traj, long T)
+{
+	double ymax = -INFINITY, ymin = INFINITY, sum = 0, y = 0;
+	for (long k = 0; k < T; k++) {
+		const double *row = traj + k * JR_TRAJ_COLS;
+		y = row[2] - sim_box_y(s, row[0]);
+		ymax = y > ymax ? y : ymax;
+		ymin = y < ymin ? y : ymin;
+		sum += y;
+	}
+	attr_double(h, h->file, "intruder_final_y_box", y);
+	attr_double(h, h->file, "intruder_max_y_box", ymax);
+	attr_double(h, h->file, "intruder_min_y_box", ymin);
+	attr_double(h, h->file, "intruder_mean_y_box", sum / (double)T);
+}
+
 static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 {
 	const int nm = s->st.nm;
 	const hsize_t K = (hsize_t)s->n_snap, T = (hsize_t)s->n_traj;
 	long cap = 3L * nm + 1;
+	if (cap < JR_TRAJ_COLS) /* an intruder and no grains: a trajectory row is longer */
+		cap = JR_TRAJ_COLS;
 	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
 		cap = obs_flux_len(&s->obs);
 	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
@@ -319,6 +340,8 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 		attr_str(h, gi, "columns", "t x y vx vy omega");
 		attr_long(h, gi, "index", s->intruder);
 		H5Gclose(gi);
+		if (!rc && T > 0)
+			intruder_summary(h, s, traj.d, (long)T);
 	}
 	if (!rc && s->obs.flux_on)
 		write_flux(h, s, &flux);
@@ -470,6 +493,15 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	/* MODEL.md: the waiting time is the first time the intruder's centre is one
 	 * diameter above its settled height. A run that ends first is right-censored:
 	 * risen = 0 and waiting_time = the time observed (the survival-analysis pair). */
+	/* the largest overlap of the shaking, and where (0 when nothing touched) */
+	attr_double(&h, h.file, "overlap_max", s->obs.ov_max);
+	if (s->obs.ov_max > 0) {
+		attr_double(&h, h.file, "overlap_max_time", s->obs.ov_t);
+		attr_long(&h, h.file, "overlap_max_disk_a", s->obs.ov_i);
+		attr_long(&h, h.file, "overlap_max_disk_b", s->obs.ov_j);
+		attr_double(&h, h.file, "overlap_max_x", s->obs.ov_x);
+		attr_double(&h, h.file, "overlap_max_y_box", s->obs.ov_y);
+	}
 	if (s->intruder >= 0) {
 		attr_long(&h, h.file, "risen", s->obs.risen);
 		attr_double(&h, h.file, "waiting_time", s->obs.risen ? s->obs.wait_time : t);

@@ -233,6 +233,12 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 	io(ctx, &o->have_prev, sizeof o->have_prev);
 	io(ctx, &o->risen, sizeof o->risen);
 	io(ctx, &o->wait_time, sizeof o->wait_time);
+	io(ctx, &o->ov_max, sizeof o->ov_max);
+	io(ctx, &o->ov_t, sizeof o->ov_t);
+	io(ctx, &o->ov_x, sizeof o->ov_x);
+	io(ctx, &o->ov_y, sizeof o->ov_y);
+	io(ctx, &o->ov_i, sizeof o->ov_i);
+	io(ctx, &o->ov_j, sizeof o->ov_j);
 	if (o->flux_on || o->field_on) {
 		io(ctx, o->xp, sizeof(double) * (size_t)o->nm);
 		io(ctx, o->yp, sizeof(double) * (size_t)o->nm);

@@ -39,6 +39,11 @@ typedef struct sb_obs {
 	/* waiting time */
 	int risen;
 	double wait_time, rise_height;
+	/* the largest overlap of the shaking, a result of every run: the fraction of the
+	 * smaller radius, when, which disks (ids), and where (midpoint of the centres,
+	 * box frame); ov_max = 0 while no two disks have touched */
+	double ov_max, ov_t, ov_x, ov_y;
+	int ov_i, ov_j;
 } sb_obs;
 
 /* Set up from the scene and the prepared state (t = 0). intruder: index or -1. */

@@ -90,8 +90,10 @@ static const sb_param TABLE[] = {
 	 "a dt beyond the integrator's measured stability limit for this stiffness: refuse, warn or allow"},
 	{"skin", PT_REAL, "cm", "0.5", 0, 100, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(skin),
 	 "Verlet-list skin (results do not depend on it, only speed)"},
-	{"max_overlap", PT_REAL, "", "0.6", 0, 1, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
-	 "stop (exit code 4) when an overlap exceeds this fraction of the smaller radius"},
+	{"max_overlap", PT_REAL, "", "1", 0, 2, NULL, PF_PREP | PF_DYN | PF_MINX, OFF(max_overlap),
+	 "safety net against a blow-up, not a physics criterion: stop (exit code 4) when an overlap "
+	 "exceeds this fraction of the smaller radius (at 1 a disk's centre reaches the other's surface, "
+	 "where the contact law stops making sense; the largest overlap of every run is recorded)"},
 	/* --- run length --- */
 	{"duration", PT_REAL, "s", "10", 0, 1e8, NULL, PF_LEN, OFF(duration),
 	 "seconds of shaking after preparation"},

@@ -39,6 +39,8 @@ typedef struct sb_sim {
 	int packed;              /* ... and wrote the force kernel's records (forces_compute_acc) */
 	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
 	int stale;               /* ... and left x, y, vx, vy in nl's records only (sim.c) */
+	int ov_track;            /* shaking: the kernel's overlap threshold is the record so
+				  * far (obs.ov_max), not the stop (sim.c) */
 	long n_traj, n_snap;     /* records written so far */
 	long n_flux, n_field, n_strobe;
 	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt;
