@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <ini.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,13 +30,10 @@ static void trim(char *s)
 		s[--l] = 0;
 }
 
-static int axis_add(cp_axis *a, const char *v, const char *where, sb_err *e)
+/* Values are appended as they come, duplicates included; axis_dedup removes them once
+ * the axis is complete. */
+static int axis_add(cp_axis *a, const char *v, sb_err *e)
 {
-	for (long i = 0; i < a->n; i++)
-		if (!strcmp(a->values[i], v))
-			return 0; /* "2.6, 2.60" is one grid point, not two identical runs */
-	if (a->n >= CP_MAX_VALUES)
-		return sb_errf(e, SB_EUSAGE, "%s: %s: more than %d values", where, a->key, CP_MAX_VALUES);
 	if ((a->n & (a->n - 1)) == 0) {
 		char **nv = realloc(a->values, sizeof *nv * (size_t)(a->n ? 2 * a->n : 1));
 		if (!nv)
@@ -49,21 +47,75 @@ static int axis_add(cp_axis *a, const char *v, const char *where, sb_err *e)
 	return 0;
 }
 
-/* Check one value with the engine's own parser and keep its canonical text, so that
- * "2.60" and "2.6" are the same value and the run id does not depend on spelling. */
-static int value_add(cp_axis *a, const char *v, const char *where, sb_err *e)
+struct ranked {
+	const char *v;
+	long at;
+};
+
+static int by_text_then_place(const void *pa, const void *pb)
 {
-	sb_scene s;
-	params_defaults(&s);
-	if (params_set(&s, a->key, v, where, e))
+	const struct ranked *a = pa, *b = pb;
+	int c = strcmp(a->v, b->v);
+	return c ? c : (a->at > b->at) - (a->at < b->at);
+}
+
+/* "2.6, 2.60" is one grid point, not two identical runs. Sorting makes this
+ * O(n log n) (a range can give 10^5 values); the first occurrence of each value stays,
+ * in file order, which is the order `study expand` and the database show. */
+static int axis_dedup(cp_axis *a, sb_err *e)
+{
+	if (a->n < 2)
+		return 0;
+	struct ranked *r = malloc(sizeof *r * (size_t)a->n);
+	if (!r)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	for (long i = 0; i < a->n; i++)
+		r[i] = (struct ranked){a->values[i], i};
+	qsort(r, (size_t)a->n, sizeof *r, by_text_then_place);
+	/* marked first, freed after: r[i - 1].v must live for the next comparison */
+	for (long i = 1; i < a->n; i++)
+		if (!strcmp(r[i].v, r[i - 1].v))
+			a->values[r[i].at] = NULL;
+	long w = 0;
+	for (long i = 0; i < a->n; i++)
+		if (!a->values[r[i].at])
+			free((char *)r[i].v);
+	for (long i = 0; i < a->n; i++)
+		if (a->values[i])
+			a->values[w++] = a->values[i];
+	free(r);
+	a->n = w;
+	return 0;
+}
+
+/* Check one value with the engine's own parser and keep its canonical text, so that
+ * "2.60" and "2.6" are the same value and the run id does not depend on spelling.
+ * `scratch` is a scene at the defaults: only the value's own key is set and read. */
+static int value_add(cp_axis *a, sb_scene *scratch, const char *v, const char *where, sb_err *e)
+{
+	if (params_set(scratch, a->key, v, where, e))
 		return e->code;
 	const sb_param *p = params_find(a->key);
 	if (p->type == PT_STR && *v && !safe_path_value(v))
 		return sb_errf(e, SB_EUSAGE, "%s: %s: '%s' is not a plain file name ([A-Za-z0-9_./+-], no '..')",
 			       where, a->key, v);
 	char buf[SB_STR_MAX + 8];
-	params_format(&s, p, buf, sizeof buf);
-	return axis_add(a, buf, where, e);
+	params_format(scratch, p, buf, sizeof buf);
+	return axis_add(a, buf, e);
+}
+
+/* Room for k more values in the axis (duplicates count: they cost as much to make);
+ * `count` is k as text, exact for integer ranges. */
+static int axis_room(const cp_axis *a, double k, const char *count, const char *item, const char *where,
+		     sb_err *e)
+{
+	if (k <= (double)(CP_MAX_VALUES - a->n))
+		return 0;
+	if (a->n)
+		return sb_errf(e, SB_EUSAGE, "%s: %s: '%s' takes the axis past %d values (%ld before it)", where,
+			       a->key, item, CP_MAX_VALUES, a->n);
+	return sb_errf(e, SB_EUSAGE, "%s: %s: range '%s' has %s values, more than %d in one axis", where, a->key,
+		       item, count, CP_MAX_VALUES);
 }
 
 static int parse_num(const char *t, double *x)
@@ -80,17 +132,16 @@ static int parse_long(const char *t, long *x)
 {
 	char *end;
 	errno = 0;
-	long long v = strtoll(t, &end, 10);
+	*x = strtol(t, &end, 10);
 	while (*end == ' ' || *end == '\t')
 		end++;
-	*x = (long)v;
 	return end != t && !*end && !errno;
 }
 
 /* START:STOP:STEP, endpoint included. Value k is START + k STEP printed with 12
  * significant digits and parsed again: 2.5 + 14 * 0.05 = 3.2000000000000002 becomes
  * "3.2", so a range gives the same values (and run ids) as the written-out list. */
-static int float_range(cp_axis *a, char *item, const char *where, sb_err *e)
+static int float_range(cp_axis *a, sb_scene *scratch, char *item, const char *where, sb_err *e)
 {
 	char *c1 = strchr(item, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
 	double lo, hi, step;
@@ -104,22 +155,28 @@ static int float_range(cp_axis *a, char *item, const char *where, sb_err *e)
 	*c1 = *c2 = ':';
 	if (!(step > 0) || hi < lo)
 		return sb_errf(e, SB_EUSAGE, "%s: %s: bad range '%s' (needs STEP > 0 and STOP >= START)", where, a->key, item);
-	double span = (hi - lo) / step;
-	if (span > CP_MAX_VALUES)
-		return sb_errf(e, SB_EUSAGE, "%s: %s: range '%s' has more than %d values", where, a->key, item, CP_MAX_VALUES);
-	/* the tolerance keeps the endpoint when (STOP - START) / STEP lands a hair below
-	 * an integer (0.7 / 0.05 = 13.999999999999998) */
-	long n = (long)floor(span + 1e-9);
-	for (long k = 0; k <= n; k++) {
+	/* STOP - START overflows to inf for ends near +-DBL_MAX, and a subnormal STEP
+	 * overflows the quotient: both give an inf count, which axis_room refuses like any
+	 * other count past the limit; the tolerance keeps the endpoint when
+	 * (STOP - START) / STEP lands a hair below an integer (0.7 / 0.05 = 13.999999999999998) */
+	double count = floor((hi - lo) / step + 1e-9) + 1;
+	char ct[32];
+	if (!isfinite(count))
+		snprintf(ct, sizeof ct, "too many");
+	else
+		snprintf(ct, sizeof ct, count < 1e15 ? "%.0f" : "%.3g", count);
+	if (axis_room(a, count, ct, item, where, e))
+		return e->code;
+	for (long k = 0; k < (long)count; k++) {
 		char buf[64];
 		snprintf(buf, sizeof buf, "%.12g", lo + (double)k * step);
-		if (value_add(a, buf, where, e))
+		if (value_add(a, scratch, buf, where, e))
 			return e->code;
 	}
 	return 0;
 }
 
-static int int_range(cp_axis *a, char *item, char *dots, const char *where, sb_err *e)
+static int int_range(cp_axis *a, sb_scene *scratch, char *item, char *dots, const char *where, sb_err *e)
 {
 	long lo, hi;
 	*dots = 0;
@@ -128,12 +185,22 @@ static int int_range(cp_axis *a, char *item, char *dots, const char *where, sb_e
 	if (!okn || hi < lo)
 		return sb_errf(e, SB_EUSAGE, "%s: %s: bad range '%s' (expected FIRST..LAST, integers, FIRST <= LAST)",
 			       where, a->key, item);
-	if (hi - lo >= CP_MAX_VALUES)
-		return sb_errf(e, SB_EUSAGE, "%s: %s: range '%s' has more than %d values", where, a->key, item, CP_MAX_VALUES);
-	for (long k = lo; k <= hi; k++) {
+	/* hi - lo overflows a long for -1..2^63-1; the unsigned difference does not */
+	unsigned long span = (unsigned long)hi - (unsigned long)lo;
+	double count = (double)span + 1;
+	char ct[32];
+	if (span == ULONG_MAX)
+		snprintf(ct, sizeof ct, "%lu + 1", span);
+	else
+		snprintf(ct, sizeof ct, "%lu", span + 1);
+	if (axis_room(a, count, ct, item, where, e))
+		return e->code;
+	/* counting, not k <= hi: k++ past LONG_MAX would overflow */
+	long k = lo;
+	for (long i = 0; i < (long)count; i++, k += k < hi) {
 		char buf[32];
 		snprintf(buf, sizeof buf, "%ld", k);
-		if (value_add(a, buf, where, e))
+		if (value_add(a, scratch, buf, where, e))
 			return e->code;
 	}
 	return 0;
@@ -146,31 +213,82 @@ int campaign_axis_parse(cp_axis *a, const char *key, const char *text, const cha
 	char *copy = strdup(text);
 	if (!copy)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
+	sb_scene scratch;
+	params_defaults(&scratch);
 	char *save = NULL;
-	int any = 0;
-	for (char *item = strtok_r(copy, ",", &save); item; item = strtok_r(NULL, ",", &save)) {
+	int any = 0, rc = 0;
+	for (char *item = strtok_r(copy, ",", &save); item && !rc; item = strtok_r(NULL, ",", &save)) {
 		trim(item);
 		if (!*item)
 			continue;
 		any = 1;
 		const sb_param *p = params_find(key);
 		char *dots = strstr(item, "..");
-		int rc;
 		if (p && (p->type == PT_INT || p->type == PT_REAL) && strchr(item, ':'))
-			rc = float_range(a, item, where, e);
+			rc = float_range(a, &scratch, item, where, e);
 		else if (p && p->type == PT_INT && dots)
-			rc = int_range(a, item, dots, where, e);
+			rc = int_range(a, &scratch, item, dots, where, e);
+		else if (!axis_room(a, 1, "1", item, where, e))
+			rc = value_add(a, &scratch, item, where, e);
 		else
-			rc = value_add(a, item, where, e);
-		if (rc) {
-			free(copy);
-			return rc;
-		}
+			rc = e->code;
 	}
 	free(copy);
-	if (!any)
-		return sb_errf(e, SB_EUSAGE, "%s: %s: no values", where, key);
-	return 0;
+	if (!rc && !any)
+		rc = sb_errf(e, SB_EUSAGE, "%s: %s: no values", where, key);
+	if (!rc)
+		rc = axis_dedup(a, e);
+	return rc;
+}
+
+int campaign_points(const campaign *c, long *points, sb_err *e)
+{
+	long limit = c->max_runs ? c->max_runs : CP_MAX_RUNS_DEFAULT;
+	long total = 1;
+	int past = -1; /* the axis that takes the product past the limit */
+	int over = 0;  /* the product does not fit a long */
+	for (int a = 0; a < c->naxes; a++) {
+		long n = c->axes[a].n;
+		if (n < 1)
+			continue;
+		if (!over && total > LONG_MAX / n)
+			over = 1;
+		else if (!over)
+			total *= n;
+		if (past < 0 && (over || total > limit))
+			past = a;
+	}
+	*points = over ? LONG_MAX : total;
+	if (past < 0)
+		return 0;
+	char sizes[400] = "";
+	size_t l = 0;
+	for (int a = 0; a < c->naxes && l < sizeof sizes; a++)
+		l += (size_t)snprintf(sizes + l, sizeof sizes - l, "%s%s %ld", a ? " x " : "", c->axes[a].key,
+				      c->axes[a].n);
+	if (l >= sizeof sizes)
+		memcpy(sizes + sizeof sizes - 4, "...", 4);
+	const cp_axis *ax = &c->axes[past];
+	/* the replicates shorthand is the seed axis: name the key the file wrote */
+	int rep = c->replicates && ax->line == c->replicates_line && !strcmp(ax->key, "seed");
+	char count[64], now[160], fix[160];
+	if (over)
+		snprintf(count, sizeof count, "more than %ld", LONG_MAX);
+	else
+		snprintf(count, sizeof count, "%ld", total);
+	if (c->max_runs)
+		snprintf(now, sizeof now, "max_runs = %ld (line %d)", limit, c->max_runs_line);
+	else
+		snprintf(now, sizeof now, "the limit of %ld", limit);
+	if (over || total > CP_MAX_RUNS_LIMIT)
+		snprintf(fix, sizeof fix, "max_runs under [campaign] raises the limit to at most %d: "
+			 "split the campaign or drop values", CP_MAX_RUNS_LIMIT);
+	else if (c->max_runs)
+		snprintf(fix, sizeof fix, "raise max_runs to %ld under [campaign] to allow them", total);
+	else
+		snprintf(fix, sizeof fix, "add max_runs = %ld under [campaign] to allow them", total);
+	return sb_errf(e, SB_EUSAGE, "%s:%d: %s: the grid has %s points (%s), more than %s; %s", c->path,
+		       ax->line, rep ? "replicates" : ax->key, count, sizes, now, fix);
 }
 
 /* ---- the INI reader (same line counting as core/params.c) ---- */
@@ -191,22 +309,45 @@ struct rd {
 /* inih's Debian build has no INI_HANDLER_LINENO: the reader counts lines (the handler
  * runs right after its line is read), strips indentation (inih would take it as a
  * continuation of the previous value) and inline " # comments", and checks section
- * names itself (inih says nothing about an empty section). */
+ * names itself (inih says nothing about an empty section). It reads byte by byte
+ * rather than with fgets, which cannot tell a NUL byte from the end of the line (the
+ * rest of the line would vanish), and refuses a line longer than inih's buffer
+ * (num - 1 characters before the newline) instead of letting inih cut it in two. */
 static char *cp_reader(char *str, int num, void *stream)
 {
 	struct rd *r = stream;
 	if (r->err_line)
 		return NULL;
-	char *got = fgets(str, num, r->f);
-	if (!got)
+	int ch = 0;
+	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
+	while (len < num - 1 && (ch = getc(r->f)) != EOF) {
+		if (!ch && !nul)
+			nul = len + 1;
+		str[len++] = (char)ch;
+		if (ch == '\n')
+			break;
+	}
+	if (!len)
 		return NULL;
+	str[len] = 0;
 	r->line++;
-	size_t l = strlen(str);
-	if (l == (size_t)num - 1 && str[l - 1] != '\n') {
+	if (nul) {
 		r->err_line = r->line;
-		sb_errf(r->e, SB_EUSAGE, "%s:%d: line too long", r->c->path, r->line);
+		sb_errf(r->e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a campaign file is text)", r->c->path,
+			r->line, nul);
 		return NULL;
 	}
+	if (len == num - 1 && str[len - 1] != '\n') {
+		/* a line of exactly num - 1 characters fits: only its newline is left */
+		ch = getc(r->f);
+		if (ch != EOF && ch != '\n') {
+			r->err_line = r->line;
+			sb_errf(r->e, SB_EUSAGE, "%s:%d: line too long (the limit is %d characters)", r->c->path,
+				r->line, num - 1);
+			return NULL;
+		}
+	}
+	char *got = str;
 	size_t lead = strspn(str, " \t");
 	if (lead)
 		memmove(str, str + lead, strlen(str + lead) + 1);
@@ -242,6 +383,20 @@ static char *cp_reader(char *str, int num, void *stream)
 		r->section = sec;
 	}
 	return got;
+}
+
+/* Whether the product of the axes' sizes exceeds limit (without overflowing). */
+static int product_past(const campaign *c, long limit)
+{
+	long total = 1;
+	for (int a = 0; a < c->naxes; a++) {
+		if (c->axes[a].n < 1)
+			continue;
+		if (c->axes[a].n > limit / total)
+			return 1;
+		total *= c->axes[a].n;
+	}
+	return 0;
 }
 
 static int seen_key(const campaign *c, const char *key)
@@ -310,9 +465,19 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 			return sb_errf(e, SB_EUSAGE, "%s: replicates: expected an integer in [1, %d], got '%s'", where,
 				       CP_MAX_VALUES, value);
 		c->replicates = n;
+		c->replicates_line = r->line;
+	} else if (!strcmp(name, "max_runs")) {
+		char *end;
+		errno = 0;
+		long n = strtol(value, &end, 10);
+		if (!*value || *end || errno || n < 1 || n > CP_MAX_RUNS_LIMIT)
+			return sb_errf(e, SB_EUSAGE, "%s: max_runs: expected an integer in [1, %d], got '%s'", where,
+				       CP_MAX_RUNS_LIMIT, value);
+		c->max_runs = n;
+		c->max_runs_line = r->line;
 	} else {
 		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [campaign] "
-			       "(name, description, scene, seed, seeds, replicates)", where, name);
+			       "(name, description, scene, seed, seeds, replicates, max_runs)", where, name);
 	}
 	return 0;
 }
@@ -371,6 +536,11 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 		} else if (!campaign_axis_parse(&c->axes[c->naxes], name, value, where, &tmp)) {
 			c->axes[c->naxes].line = r->line;
 			c->naxes++;
+			/* max_runs may come later in the file, so the limit is checked at the
+			 * end; past the most it can be, reading more axes is wasted work */
+			long points;
+			if (product_past(c, CP_MAX_RUNS_LIMIT))
+				campaign_points(c, &points, &tmp);
 		} else {
 			cp_axis *a = &c->axes[c->naxes];
 			for (long i = 0; i < a->n; i++)
@@ -426,15 +596,19 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: both replicates and seed given; "
 			       "replicates = N means seed = 1..N", path, sl);
 	if (c->replicates) {
-		char buf[64];
+		char buf[64], where[SB_STR_MAX + 32];
 		snprintf(buf, sizeof buf, "1..%ld", c->replicates);
+		snprintf(where, sizeof where, "%s:%d", path, c->replicates_line);
 		if (c->naxes >= CP_MAX_KEYS)
-			return sb_errf(e, SB_EUSAGE, "%s: too many axes", path);
-		if (campaign_axis_parse(&c->axes[c->naxes], "seed", buf, path, e))
+			return sb_errf(e, SB_EUSAGE, "%s: too many axes", where);
+		if (campaign_axis_parse(&c->axes[c->naxes], "seed", buf, where, e))
 			return e->code;
-		c->naxes++;
+		c->axes[c->naxes++].line = c->replicates_line;
 	}
-	return 0;
+	/* counted from the axes' sizes before anything expands the grid: a grid of 10^6
+	 * points takes minutes to check, and a driver would start it without a word */
+	long points;
+	return campaign_points(c, &points, e);
 }
 
 void campaign_free(campaign *c)

@@ -7,7 +7,14 @@
 #include "params.h"
 
 #define CP_MAX_KEYS 64
+/* Values one axis may generate, duplicates included: checked against each range's
+ * size before any value is made, so the work of reading an axis stays bounded. */
 #define CP_MAX_VALUES 100000
+/* Grid points (the product of the axes' sizes) a campaign may have: the default, which
+ * `max_runs = N` in [campaign] raises, and the most N may be (64 bytes a point in
+ * memory, a few hundred microseconds a point to expand and check). */
+#define CP_MAX_RUNS_DEFAULT 100000
+#define CP_MAX_RUNS_LIMIT 10000000
 
 enum cp_seeds { CP_SEEDS_DERIVED, CP_SEEDS_LITERAL };
 
@@ -32,6 +39,9 @@ typedef struct campaign {
 	unsigned long long seed;        /* campaign seed */
 	int seeds;                      /* enum cp_seeds */
 	long replicates;                /* 0 = not given */
+	int replicates_line;
+	long max_runs;                  /* 0 = not given: CP_MAX_RUNS_DEFAULT */
+	int max_runs_line;
 	int nfixed, naxes;
 	cp_fixed fixed[CP_MAX_KEYS];
 	cp_axis axes[CP_MAX_KEYS];
@@ -42,11 +52,17 @@ typedef struct campaign {
 int campaign_load(campaign *c, const char *path, sb_err *e);
 void campaign_free(campaign *c);
 
+/* The number of grid points (the product of the axes' sizes) in *points, or an error
+ * naming the axis that takes the grid past max_runs and how to raise it. */
+int campaign_points(const campaign *c, long *points, sb_err *e);
+
 /* Keys the driver owns (paths, restart, progress): not allowed in a campaign. */
 int campaign_key_reserved(const char *key);
 
 /* Expand one axis value text ("2.6, 2.8", "2.5:3.2:0.05", "1..8") into canonical
- * values, each checked with params_set; `where` is "FILE:LINE". */
+ * values, each checked with params_set, duplicates removed (first occurrence kept, file
+ * order); at most CP_MAX_VALUES values before duplicates are removed. `where` is
+ * "FILE:LINE". */
 int campaign_axis_parse(cp_axis *a, const char *key, const char *text, const char *where, sb_err *e);
 
 #endif

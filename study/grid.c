@@ -4,8 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define GRID_MAX_RUNS 1000000L
-
 /* SplitMix64 finaliser: a bijective mix, so distinct inputs stay distinct. */
 static unsigned long long mix64(unsigned long long z)
 {
@@ -39,10 +37,9 @@ long grid_seed(const campaign *c, const sb_scene *s, long replicate)
  * an observable on computes the runs again. Left out, by resetting them to their
  * defaults: what the driver sets for every run (paths, restart, progress) and
  * checkpoint_every (when the state is saved, not what a run computes). */
-unsigned long long grid_run_hash(const sb_scene *s)
+static unsigned long long run_hash(const sb_scene *s, const sb_scene *def)
 {
-	sb_scene t = *s, def;
-	params_defaults(&def);
+	sb_scene t = *s;
 	size_t n;
 	const sb_param *tab = params_table(&n);
 	for (size_t i = 0; i < n; i++) {
@@ -50,10 +47,17 @@ unsigned long long grid_run_hash(const sb_scene *s)
 			continue;
 		char v[SB_STR_MAX + 8];
 		sb_err e = {0};
-		params_format(&def, &tab[i], v, sizeof v);
+		params_format(def, &tab[i], v, sizeof v);
 		params_set(&t, tab[i].name, v, "default", &e);
 	}
 	return params_hash_nondefault(&t, ~0u);
+}
+
+unsigned long long grid_run_hash(const sb_scene *s)
+{
+	sb_scene def;
+	params_defaults(&def);
+	return run_hash(s, &def);
 }
 
 static void scene_point(const campaign *c, long point, sb_scene *s)
@@ -85,16 +89,17 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 {
 	memset(g, 0, sizeof *g);
 	g->c = c;
-	long total = 1;
-	for (int a = 0; a < c->naxes; a++) {
-		if (total > GRID_MAX_RUNS / c->axes[a].n)
-			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: the grid has more than %ld points", c->path,
-				       c->axes[a].line, c->axes[a].key, GRID_MAX_RUNS);
-		total *= c->axes[a].n;
-	}
+	/* campaign_load has checked this; a campaign assembled otherwise gets the same
+	 * limit before anything is allocated */
+	long total;
+	if (campaign_points(c, &total, e))
+		return e->code;
 	g->runs = calloc((size_t)total, sizeof *g->runs);
 	if (!g->runs)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
+	/* once, not per point: making the defaults is a third of a point's cost */
+	sb_scene def;
+	params_defaults(&def);
 	for (long p = 0; p < total; p++) {
 		sb_scene s;
 		scene_point(c, p, &s);
@@ -124,7 +129,7 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 		s.seed = r->seed;
 		/* hashes over non-default values only: a key added to the engine later
 		 * leaves the identities of existing campaigns as they were */
-		snprintf(r->id, sizeof r->id, "%016llx", grid_run_hash(&s));
+		snprintf(r->id, sizeof r->id, "%016llx", run_hash(&s, &def));
 		snprintf(r->cache_key, sizeof r->cache_key, "%016llx", params_hash_nondefault(&s, PF_PREP));
 		g->n++;
 	}
