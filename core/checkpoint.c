@@ -70,6 +70,7 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 	io(w, &s->n_flux, sizeof s->n_flux);
 	io(w, &s->n_field, sizeof s->n_field);
 	io(w, &s->n_strobe, sizeof s->n_strobe);
+	io(w, &s->loop_seconds, sizeof s->loop_seconds); /* a resumed run's CPU time is the sum */
 	io(w, &x->builds, sizeof x->builds);
 	io(w, &x->joff, sizeof x->joff);
 	io(w, s->prov.start_time, sizeof s->prov.start_time);

@@ -594,7 +594,7 @@ int sim_run(sb_sim *s, sb_err *e)
 	}
 	s->ov_track = 1;
 	s->law.max_overlap = fmin(s->obs.ov_max * (1 + 1e-9), sc->max_overlap);
-	double w0 = now(), wlast = w0;
+	double w0 = now(), wlast = w0, seg = w0; /* seg: loop time not yet in loop_seconds */
 	long step0 = s->step;
 	while (s->step < s->nsteps) {
 		/* a stop waits until the state is corrected (not yet predicted) */
@@ -624,6 +624,9 @@ int sim_run(sb_sim *s, sb_err *e)
 			break;
 		TOC(PH_RECORD);
 		if (s->step == s->next_ckpt_step) {
+			double w = now(); /* the checkpoint carries the CPU time so far */
+			s->loop_seconds += w - seg;
+			seg = w;
 			if (ckpt_write(s, e))
 				break;
 			s->n_ckpt++;
@@ -634,7 +637,7 @@ int sim_run(sb_sim *s, sb_err *e)
 	}
 	s->ov_track = 0;
 	s->law.max_overlap = sc->max_overlap;
-	s->loop_seconds += now() - w0;
+	s->loop_seconds += now() - seg;
 	if (s->progress && s->nsteps > 0) {
 		progress(s, w0, step0, &wlast);
 		fputc('\n', stderr);

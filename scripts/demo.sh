@@ -10,12 +10,12 @@ echo "demo: campaign done in $((SECONDS - t0)) s; results (runs/study.db):"
 echo
 sqlite3 -header -column runs/study.db "
 SELECT frequency, replicate, status, from_cache,
-       round(intruder_settled_y, 2) AS y_settled, round(intruder_final_y, 2) AS y_final,
-       round(intruder_max_y, 2) AS y_max, round(wall_seconds, 2) AS seconds
+       round(intruder_settled_y_box, 2) AS y_settled, round(intruder_final_y_box, 2) AS y_final,
+       round(intruder_max_y_box, 2) AS y_max, round(wall_seconds, 2) AS seconds
 FROM runs WHERE campaign = 'demo' ORDER BY frequency, replicate;"
 echo
 sqlite3 -header -column runs/study.db "
-SELECT frequency, COUNT(*) AS runs, round(AVG(intruder_final_y - intruder_settled_y), 3) AS mean_rise_cm
+SELECT frequency, COUNT(*) AS runs, round(AVG(intruder_rise_box), 3) AS mean_rise_cm
 FROM runs WHERE campaign = 'demo' AND status = 'ok' GROUP BY frequency ORDER BY frequency;"
 run=$(sqlite3 runs/study.db "SELECT id FROM runs WHERE campaign = 'demo' AND status = 'ok' ORDER BY frequency DESC, replicate LIMIT 1")
 out=runs/demo

@@ -10,13 +10,15 @@
 static const char SCHEMA[] =
 	"CREATE TABLE IF NOT EXISTS campaign(\n"
 	"  name TEXT PRIMARY KEY, description TEXT, file TEXT, scene_file TEXT,\n"
-	"  seed TEXT, seeds TEXT, axes TEXT, created TEXT, updated TEXT);\n"
+	"  seed TEXT, seeds TEXT, axes TEXT, created TEXT, updated TEXT,\n"
+	"  version INTEGER NOT NULL DEFAULT 1);\n"
 	"CREATE TABLE IF NOT EXISTS run(\n"
 	"  campaign TEXT NOT NULL, id TEXT NOT NULL, replicate INTEGER, seed INTEGER,\n"
 	"  cache_key TEXT, state TEXT NOT NULL DEFAULT 'pending'\n"
 	"    CHECK (state IN ('pending', 'running', 'done', 'failed')),\n"
 	"  attempts INTEGER NOT NULL DEFAULT 0, from_cache INTEGER NOT NULL DEFAULT 0,\n"
 	"  host TEXT, added TEXT, started TEXT, finished TEXT,\n"
+	"  current INTEGER NOT NULL DEFAULT 1,\n"
 	"  PRIMARY KEY (campaign, id));\n"
 	"CREATE TABLE IF NOT EXISTS param(\n"
 	"  campaign TEXT NOT NULL, run TEXT NOT NULL, key TEXT NOT NULL, value,\n"
@@ -25,15 +27,6 @@ static const char SCHEMA[] =
 	"  campaign TEXT NOT NULL, run TEXT NOT NULL, n INTEGER NOT NULL, host TEXT,\n"
 	"  exit_code INTEGER, status TEXT, message TEXT, finished TEXT, wall_seconds REAL,\n"
 	"  PRIMARY KEY (campaign, run, n));\n"
-	"CREATE TABLE IF NOT EXISTS result(\n"
-	"  campaign TEXT NOT NULL, run TEXT NOT NULL, status TEXT, exit_code INTEGER, message TEXT,\n"
-	"  status_time REAL, steps INTEGER, settle_time REAL, settle_steps INTEGER,\n"
-	"  surface_height REAL, intruder_settled_y REAL, intruder_settled_depth REAL,\n"
-	"  intruder_radius REAL, n_mobile INTEGER, neighbour_builds INTEGER, wall_seconds REAL,\n"
-	"  host TEXT, git_hash TEXT, git_dirty INTEGER, start_time TEXT, end_time TEXT,\n"
-	"  traj_rows INTEGER, intruder_final_y REAL, intruder_max_y REAL, intruder_min_y REAL,\n"
-	"  intruder_mean_y REAL, rise_time REAL,\n"
-	"  PRIMARY KEY (campaign, run));\n"
 	"CREATE TABLE IF NOT EXISTS cache(\n"
 	"  campaign TEXT NOT NULL, key TEXT NOT NULL, state TEXT, settle_time REAL,\n"
 	"  settle_steps INTEGER, wall_seconds REAL, host TEXT, message TEXT, built TEXT,\n"
@@ -106,20 +99,78 @@ static int exec_script(st_db *d, const char *sql, sb_err *e)
 	return 0;
 }
 
-/* The `runs` view: one row per run with every engine parameter as a column (generated
- * from the engine's table, so a new key shows up without a schema change), its state
- * and its key results. */
-static int make_runs_view(st_db *d, sb_err *e)
+/* Columns of a table, as "a,b,c," ("" when the table does not exist). */
+static void table_columns(st_db *d, const char *table, char *out, size_t len)
+{
+	sqlite3_stmt *st;
+	sb_err e = {0};
+	size_t l = 0;
+	out[0] = 0;
+	char sql[128];
+	snprintf(sql, sizeof sql, "PRAGMA table_info(%s)", table);
+	if (db_exec(d, &e, &st, sql, ""))
+		return;
+	while (sqlite3_step(st) == SQLITE_ROW && l < len)
+		l += (size_t)snprintf(out + l, len - l, "%s,", (const char *)sqlite3_column_text(st, 1));
+	sqlite3_finalize(st);
+}
+
+/* A column added since the table was first created (older databases lack it). */
+static int ensure_column(st_db *d, const char *table, const char *col, const char *decl, sb_err *e)
+{
+	char cols[4096] = ",", want[128], sql[256];
+	table_columns(d, table, cols + 1, sizeof cols - 1);
+	snprintf(want, sizeof want, ",%s,", col);
+	if (strstr(cols, want))
+		return 0;
+	snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table, col, decl);
+	return exec_script(d, sql, e);
+}
+
+static const char *sql_type(rt_type t)
+{
+	return t == RT_TEXT ? "TEXT" : t == RT_INT ? "INTEGER" : "REAL";
+}
+
+/* The `result` table, one column per stored column of the results table. A database
+ * whose result table has other columns (written by another version) gets the table
+ * anew: every result is in the run files, and the sweep reads them again. */
+static int make_result_table(st_db *d, sb_err *e)
 {
 	size_t n;
+	const rcol *t = results_table(&n);
+	char want[4096] = "campaign,run,", have[4096];
+	size_t l = strlen(want);
+	for (size_t i = 0; i < n; i++)
+		if (!(t[i].flags & RF_DERIVED))
+			l += (size_t)snprintf(want + l, sizeof want - l, "%s,", t[i].name);
+	table_columns(d, "result", have, sizeof have);
+	if (!strcmp(have, want))
+		return 0;
+	char sql[8192] = "DROP TABLE IF EXISTS result; CREATE TABLE result(campaign TEXT NOT NULL, run TEXT NOT NULL";
+	l = strlen(sql);
+	for (size_t i = 0; i < n; i++)
+		if (!(t[i].flags & RF_DERIVED))
+			l += (size_t)snprintf(sql + l, sizeof sql - l, ", %s %s", t[i].name, sql_type(t[i].type));
+	snprintf(sql + l, sizeof sql - l, ", PRIMARY KEY (campaign, run))");
+	return exec_script(d, sql, e);
+}
+
+/* The `runs` view: one row per run with every engine parameter as a column (generated
+ * from the engine's table, so a new key shows up without a schema change), its state
+ * and every result column of the results table (derived ones computed). */
+static int make_runs_view(st_db *d, sb_err *e)
+{
+	size_t n, nr;
 	const sb_param *t = params_table(&n);
-	size_t cap = 4096 + n * 256;
+	const rcol *rc = results_table(&nr);
+	size_t cap = 4096 + n * 256 + nr * 128;
 	char *sql = malloc(cap);
 	if (!sql)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	size_t l = 0;
 	l += (size_t)snprintf(sql + l, cap - l,
-			      "CREATE VIEW runs AS SELECT r.campaign, r.id, r.state, r.attempts, r.replicate");
+			      "CREATE VIEW runs AS SELECT r.campaign, r.id, r.state, r.attempts, r.replicate, r.current");
 	for (size_t i = 0; i < n; i++) {
 		if (t[i].flags & PF_OUT)
 			continue; /* paths and recording switches: in the param table */
@@ -127,12 +178,29 @@ static int make_runs_view(st_db *d, sb_err *e)
 				      ",\n  (SELECT value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id"
 				      " AND p.key = '%s') AS %s", t[i].name, t[i].name);
 	}
+	l += (size_t)snprintf(sql + l, cap - l, ",\n  r.from_cache, r.cache_key");
+	for (size_t i = 0; i < nr; i++) {
+		if (rc[i].flags & RF_NOVIEW)
+			continue;
+		if (rc[i].flags & RF_DERIVED) {
+			/* the expression's column names are the result table's */
+			char expr[256];
+			size_t el = 0;
+			for (const char *p = rc[i].where; *p && el < sizeof expr - 4;) {
+				if ((*p >= 'a' && *p <= 'z') && (p == rc[i].where || p[-1] == ' ')) {
+					expr[el++] = 's';
+					expr[el++] = '.';
+				}
+				expr[el++] = *p++;
+			}
+			expr[el] = 0;
+			l += (size_t)snprintf(sql + l, cap - l, ", %s AS %s", expr, rc[i].name);
+		} else {
+			l += (size_t)snprintf(sql + l, cap - l, ", s.%s", rc[i].name);
+		}
+	}
 	l += (size_t)snprintf(sql + l, cap - l,
-			      ",\n  s.status, s.exit_code, s.message, r.from_cache, r.cache_key, s.settle_time,"
-			      " s.surface_height, s.intruder_settled_y, s.intruder_settled_depth, s.intruder_radius,"
-			      " s.intruder_final_y, s.intruder_max_y, s.intruder_min_y, s.intruder_mean_y,"
-			      " s.intruder_final_y - s.intruder_settled_y AS intruder_rise, s.rise_time, s.steps,"
-			      " s.wall_seconds, r.host, s.git_hash, s.git_dirty, r.started, r.finished\n"
+			      ", r.host, r.started, r.finished\n"
 			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id");
 	sqlite3_stmt *st;
 	int same = 0;
@@ -141,11 +209,11 @@ static int make_runs_view(st_db *d, sb_err *e)
 			same = !strcmp((const char *)sqlite3_column_text(st, 0), sql);
 		sqlite3_finalize(st);
 	}
-	int rc = 0;
+	int rcode = 0;
 	if (!same && !e->code) {
-		rc = exec_script(d, "DROP VIEW IF EXISTS runs", e);
-		if (!rc)
-			rc = exec_script(d, sql, e);
+		rcode = exec_script(d, "DROP VIEW IF EXISTS runs", e);
+		if (!rcode)
+			rcode = exec_script(d, sql, e);
 	}
 	free(sql);
 	return e->code;
@@ -170,7 +238,9 @@ int db_open(st_db *d, const char *path, int writable, sb_err *e)
 		return e->code;
 	if (db_begin(d, e))
 		return e->code;
-	if (exec_script(d, SCHEMA, e) || make_runs_view(d, e)) {
+	if (exec_script(d, SCHEMA, e) || ensure_column(d, "run", "current", "INTEGER NOT NULL DEFAULT 1", e) ||
+	    ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) || make_result_table(d, e) ||
+	    make_runs_view(d, e)) {
 		db_rollback(d);
 		return e->code;
 	}
@@ -229,8 +299,9 @@ int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s
 		    " VALUES (?, ?, ?, ?, ?, ?)",
 		    "ttllt" "t", c->name, r->id, r->replicate, r->seed, r->cache_key, now))
 		return e->code;
-	if (sqlite3_changes(d->h) == 0)
-		return 0; /* known run: its parameters are already recorded */
+	if (sqlite3_changes(d->h) == 0) /* known run: its parameters are already recorded */
+		return db_exec(d, e, NULL, "UPDATE run SET current = 1 WHERE campaign = ? AND id = ? AND current = 0",
+			       "tt", c->name, r->id);
 	size_t n;
 	const sb_param *t = params_table(&n);
 	sqlite3_stmt *st;
@@ -298,30 +369,63 @@ int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const
 	return attempt_row(d, camp, id, exit_code, status, message, host, now, 0, 0, state, e);
 }
 
+/* The result row of a run from its file's summary: generated from the results table;
+ * a run from the packing cache did not settle itself, its settling is the cache's. */
+int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb_err *e)
+{
+	size_t n;
+	const rcol *t = results_table(&n);
+	char cols[4096] = "campaign, run", vals[8192] = "?1, ?2";
+	size_t lc = strlen(cols), lv = strlen(vals);
+	int k = 3;
+	for (size_t i = 0; i < n; i++) {
+		if (t[i].flags & RF_DERIVED)
+			continue;
+		lc += (size_t)snprintf(cols + lc, sizeof cols - lc, ", %s", t[i].name);
+		if (t[i].flags & RF_CACHE)
+			lv += (size_t)snprintf(vals + lv, sizeof vals - lv,
+					       ", CASE WHEN (SELECT from_cache FROM run WHERE campaign = ?1 AND id = ?2) THEN"
+					       " (SELECT c.%s FROM cache c JOIN run r ON c.campaign = r.campaign"
+					       " AND c.key = r.cache_key WHERE r.campaign = ?1 AND r.id = ?2) ELSE ?%d END",
+					       t[i].name, k++);
+		else
+			lv += (size_t)snprintf(vals + lv, sizeof vals - lv, ", ?%d", k++);
+	}
+	char sql[16384];
+	snprintf(sql, sizeof sql, "INSERT OR REPLACE INTO result(%s) VALUES (%s)", cols, vals);
+	sqlite3_stmt *st;
+	if (db_exec(d, e, &st, sql, "tt", camp, id))
+		return e->code;
+	k = 3;
+	for (size_t i = 0; i < n; i++) {
+		if (t[i].flags & RF_DERIVED)
+			continue;
+		const h5val *v = &s->v[i];
+		if (!v->has)
+			sqlite3_bind_null(st, k);
+		else if (t[i].type == RT_TEXT)
+			sqlite3_bind_text(st, k, v->s, -1, SQLITE_TRANSIENT);
+		else if (t[i].type == RT_INT)
+			sqlite3_bind_int64(st, k, v->i);
+		else
+			sqlite3_bind_double(st, k, v->d);
+		k++;
+	}
+	int rc = sqlite3_step(st);
+	sqlite3_finalize(st);
+	if (rc != SQLITE_DONE)
+		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+	return 0;
+}
+
 int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e)
 {
-	int okrun = !strcmp(s->status, "ok");
-	if (attempt_row(d, camp, id, s->exit_code, s->status, s->message, s->host, now, 1, s->loop_seconds,
-			okrun ? "done" : "failed", e))
+	const char *status = h5sum_text(s, "status");
+	/* the run finished when the engine wrote its file, not when the driver read it */
+	const char *end = h5sum_text(s, "end_time");
+	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
+			h5sum_text(s, "host"), end[0] ? end : now, 1, h5sum_real(s, "wall_seconds"),
+			strcmp(status, "ok") ? "failed" : "done", e))
 		return e->code;
-	/* a run from the packing cache did not settle itself: its settling is the cache's */
-	return db_exec(d, e, NULL,
-		       "INSERT OR REPLACE INTO result(campaign, run, status, exit_code, message, status_time, steps,"
-		       " settle_time, settle_steps, surface_height, intruder_settled_y, intruder_settled_depth,"
-		       " intruder_radius, n_mobile, neighbour_builds, wall_seconds, host, git_hash, git_dirty,"
-		       " start_time, end_time, traj_rows, intruder_final_y, intruder_max_y, intruder_min_y,"
-		       " intruder_mean_y, rise_time) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7,"
-		       " CASE WHEN (SELECT from_cache FROM run WHERE campaign = ?1 AND id = ?2) THEN"
-		       " (SELECT c.settle_time FROM cache c JOIN run r ON c.campaign = r.campaign AND c.key = r.cache_key"
-		       "  WHERE r.campaign = ?1 AND r.id = ?2) ELSE ?8 END,"
-		       " CASE WHEN (SELECT from_cache FROM run WHERE campaign = ?1 AND id = ?2) THEN"
-		       " (SELECT c.settle_steps FROM cache c JOIN run r ON c.campaign = r.campaign AND c.key = r.cache_key"
-		       "  WHERE r.campaign = ?1 AND r.id = ?2) ELSE ?9 END,"
-		       " ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18, ?19, ?20, ?21, ?22, ?23, ?24, ?25, ?26, ?27)",
-		       "tttltdldlddddlldttlttlDDDDD", camp, id, s->status, s->exit_code, s->message, s->status_time,
-		       s->steps, s->settle_time, s->settle_steps, s->surface_height, s->intruder_settled_y,
-		       s->intruder_settled_depth, s->intruder_radius, s->n_mobile, s->neighbour_builds,
-		       s->loop_seconds, s->host, s->git_hash, s->git_dirty, s->start_time, s->end_time,
-		       s->traj_rows, s->has_traj, s->final_y, s->has_traj, s->max_y, s->has_traj, s->min_y,
-		       s->has_traj, s->mean_y, s->rise_time >= 0, s->rise_time);
+	return db_result_put(d, camp, id, s, e);
 }

@@ -39,6 +39,9 @@ int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t
 
 /* Record a finished attempt from its output file (state done/failed by its status). */
 int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e);
+/* Write (or rewrite) only the result row of a run from its file: a database rebuilt
+ * or written by another version gets its results back from the files. */
+int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb_err *e);
 /* Record an attempt that left no output file; state is the run's new state. */
 int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
 	       const char *message, const char *host, const char *now, const char *state, sb_err *e);

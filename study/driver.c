@@ -81,6 +81,9 @@ static int exists(const char *p)
 
 /* ---- ingestion ---- */
 
+static void cache_state(drv *d, const char *key, char *st, size_t len);
+static int ingest_cache(drv *d, const char *key, sb_err *e);
+
 static int ingest_run(drv *d, const char *id, sb_err *e)
 {
 	char path[PATHX], now[32];
@@ -90,16 +93,34 @@ static int ingest_run(drv *d, const char *id, sb_err *e)
 	sb_err re = {0};
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (h5sum_read(path, &s, &re))
+	if (h5sum_read(path, &s, &re)) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
-	else
-		db_ingest(&d->db, d->c.name, id, &s, now, e);
+	} else {
+		/* the file says whether the run started from the packing cache: a database
+		 * rebuilt from the files gets from_cache and the cache's row back */
+		const grid_run *r = grid_find(&d->g, id);
+		char want[128];
+		snprintf(want, sizeof want, "cache/%s.txt", r ? r->cache_key : "");
+		if (r && !strcmp(s.particles, want)) {
+			char st[16];
+			cache_state(d, r->cache_key, st, sizeof st);
+			char h5[PATHX];
+			snprintf(h5, sizeof h5, "%s/cache/%s.h5", d->dir, r->cache_key);
+			if (!st[0] && exists(h5))
+				ingest_cache(d, r->cache_key, e);
+			if (!e->code)
+				db_exec(&d->db, e, NULL, "UPDATE run SET from_cache = 1 WHERE campaign = ? AND id = ?", "tt",
+					d->c.name, id);
+		}
+		if (!e->code)
+			db_ingest(&d->db, d->c.name, id, &s, now, e);
+	}
 	if (e->code) {
 		db_rollback(&d->db);
 		return e->code;
 	}
 	d->n_ingested++;
-	if (re.code || strcmp(s.status, "ok"))
+	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
 		d->n_failed_now++;
 	return db_commit(&d->db, e);
 }
@@ -113,12 +134,14 @@ static int ingest_cache(drv *d, const char *key, sb_err *e)
 	h5sum s;
 	sb_err re = {0};
 	h5sum_read(path, &s, &re);
-	int okc = !re.code && !strcmp(s.status, "ok") && exists(txt);
+	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
+	const char *end = h5sum_text(&s, "end_time");
 	return db_exec(&d->db, e, NULL,
 		       "INSERT OR REPLACE INTO cache(campaign, key, state, settle_time, settle_steps, wall_seconds,"
 		       " host, message, built) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
-		       "tttdldttt", d->c.name, key, okc ? "ok" : "failed", s.settle_time, s.settle_steps,
-		       s.loop_seconds, s.host, re.code ? re.msg : s.message, now);
+		       "tttdldttt", d->c.name, key, okc ? "ok" : "failed", h5sum_real(&s, "settle_time"),
+		       h5sum_int(&s, "settle_steps"), h5sum_real(&s, "wall_seconds"), h5sum_text(&s, "host"),
+		       re.code ? re.msg : h5sum_text(&s, "message"), end[0] ? end : now);
 }
 
 static void cache_state(drv *d, const char *key, char *st, size_t len)
@@ -449,6 +472,202 @@ out:
 
 /* ---- the campaign ---- */
 
+/* Distinct values of a key among a set of runs, as "a, b, c" (at most 6, then "..."). */
+static void add_value(char *set, size_t len, const char *v, int *count)
+{
+	char probe[SB_STR_MAX + 16];
+	snprintf(probe, sizeof probe, "|%s|", v);
+	if (strstr(set, probe))
+		return;
+	size_t l = strlen(set);
+	if (!l && len > 1) {
+		snprintf(set, len, "|");
+		l = 1;
+	}
+	if (*count < 6)
+		snprintf(set + l, len - l, "%s|", v);
+	else if (*count == 6)
+		snprintf(set + l, len - l, "...|");
+	(*count)++;
+}
+
+/* Every item of a in b and of b in a (sets as "|x|y|"; a truncated one never equals). */
+static int same_set(const char *a, const char *b)
+{
+	for (int pass = 0; pass < 2; pass++, (void)0) {
+		const char *x = pass ? b : a, *y = pass ? a : b;
+		for (const char *p = x + 1; *p;) {
+			const char *q = strchr(p, '|');
+			if (!q)
+				break;
+			char item[SB_STR_MAX + 16];
+			snprintf(item, sizeof item, "|%.*s|", (int)(q - p), p);
+			if (!strcmp(item, "|...|") || !strstr(y, item))
+				return 0;
+			p = q + 1;
+		}
+	}
+	return 1;
+}
+
+static void show_set(const char *set, char *out, size_t len)
+{
+	size_t l = 0;
+	out[0] = 0;
+	for (const char *p = set; *p && l < len;) {
+		if (*p == '|') {
+			p++;
+			continue;
+		}
+		const char *q = strchr(p, '|');
+		int n = q ? (int)(q - p) : (int)strlen(p);
+		l += (size_t)snprintf(out + l, len - l, "%s%.*s", l ? ", " : "", n, p);
+		p += n;
+	}
+}
+
+/* The recorded runs of the campaign's current version that its file's grid no longer
+ * has: a key of the file changed, or values left an axis. They are never mixed with
+ * the new grid silently: the user keeps them as an earlier version (out of every
+ * analysis unless asked) or forgets them (rows deleted, files moved aside). */
+static int check_changes(drv *d, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(&d->db, e, &q, "SELECT id, state FROM run WHERE campaign = ? AND current = 1", "t", d->c.name))
+		return e->code;
+	char **stale = NULL;
+	long ns = 0, cap = 0, nd = 0, nf = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		const char *id = (const char *)sqlite3_column_text(q, 0), *st = (const char *)sqlite3_column_text(q, 1);
+		if (!id || grid_find(&d->g, id))
+			continue;
+		if (ns == cap) {
+			cap = cap ? 2 * cap : 64;
+			char **x = realloc(stale, sizeof *x * (size_t)cap);
+			if (!x)
+				break;
+			stale = x;
+		}
+		stale[ns++] = strdup(id);
+		nd += st && !strcmp(st, "done");
+		nf += st && !strcmp(st, "failed");
+	}
+	sqlite3_finalize(q);
+	if (!ns)
+		return 0;
+	if (!d->o->keep_old && !d->o->forget_old) {
+		/* what changed: per key, the values of the runs that left against the grid's */
+		char msg[3000];
+		size_t l = (size_t)snprintf(msg, sizeof msg,
+					    "campaign %s changed since it was recorded: %ld recorded runs (%ld done, %ld failed) "
+					    "are no longer in %s:\n",
+					    d->c.name, ns, nd, nf, d->c.path);
+		size_t np;
+		const sb_param *t = params_table(&np);
+		sqlite3_stmt *pv = NULL;
+		db_exec(&d->db, e, &pv, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "");
+		int shown = 0;
+		for (size_t k = 0; pv && k < np && l < sizeof msg - 200; k++) {
+			if (!strcmp(t[k].name, "output") || !strcmp(t[k].name, "progress") || !strcmp(t[k].name, "seed"))
+				continue;
+			char olds[1024] = "", news[1024] = "";
+			int no = 0, nn = 0;
+			for (long i = 0; i < ns && i < 2000; i++) {
+				sqlite3_reset(pv);
+				sqlite3_bind_text(pv, 1, d->c.name, -1, SQLITE_STATIC);
+				sqlite3_bind_text(pv, 2, stale[i], -1, SQLITE_STATIC);
+				sqlite3_bind_text(pv, 3, t[k].name, -1, SQLITE_STATIC);
+				if (sqlite3_step(pv) == SQLITE_ROW && sqlite3_column_text(pv, 0)) {
+					/* the canonical text of the value, as the grid's are printed
+					 * (a REAL read back as text would lose digits) */
+					sb_scene sc;
+					params_defaults(&sc);
+					char v[SB_STR_MAX + 8], raw[64];
+					const char *txt = (const char *)sqlite3_column_text(pv, 0);
+					if (sqlite3_column_type(pv, 0) == SQLITE_FLOAT) {
+						snprintf(raw, sizeof raw, "%.17g", sqlite3_column_double(pv, 0));
+						txt = raw;
+					}
+					sb_err pe = {0};
+					if (!params_set(&sc, t[k].name, txt, "", &pe))
+						params_format(&sc, &t[k], v, sizeof v);
+					else
+						snprintf(v, sizeof v, "%s", txt);
+					add_value(olds, sizeof olds, v, &no);
+				}
+			}
+			for (long i = 0; i < d->g.n; i++) {
+				sb_scene sc;
+				char v[SB_STR_MAX + 8];
+				grid_scene(&d->g, &d->g.runs[i], &sc);
+				params_format(&sc, &t[k], v, sizeof v);
+				add_value(news, sizeof news, v, &nn);
+			}
+			if (!olds[0] || same_set(olds, news))
+				continue;
+			char a[512], b[512];
+			show_set(olds, a, sizeof a);
+			show_set(news, b, sizeof b);
+			l += (size_t)snprintf(msg + l, sizeof msg - l, "  %s: %s -> %s\n", t[k].name, a, b);
+			shown++;
+		}
+		sqlite3_finalize(pv);
+		if (!shown)
+			l += (size_t)snprintf(msg + l, sizeof msg - l, "  (no key differs in value: replicates or seeds changed)\n");
+		snprintf(msg + l, sizeof msg - l,
+			 "Nothing was run. Run again with --keep-old to keep those runs as an earlier version of the "
+			 "campaign (out of every analysis unless a tool is given --all-versions), or with --forget-old to "
+			 "delete their rows and move their files to %s/forgotten/.",
+			 d->dir);
+		sb_errf(e, SB_EUSAGE, "%s", msg);
+		goto out;
+	}
+	if (db_begin(&d->db, e))
+		goto out;
+	if (d->o->keep_old)
+		db_exec(&d->db, e, NULL, "UPDATE campaign SET version = version + 1 WHERE name = ?", "t", d->c.name);
+	for (long i = 0; i < ns && !e->code; i++) {
+		if (d->o->keep_old) {
+			db_exec(&d->db, e, NULL, "UPDATE run SET current = 0 WHERE campaign = ? AND id = ?", "tt", d->c.name,
+				stale[i]);
+			continue;
+		}
+		static const char *const tables[] = {"DELETE FROM run WHERE campaign = ?1 AND id = ?2",
+						     "DELETE FROM param WHERE campaign = ?1 AND run = ?2",
+						     "DELETE FROM attempt WHERE campaign = ?1 AND run = ?2",
+						     "DELETE FROM result WHERE campaign = ?1 AND run = ?2"};
+		for (size_t k = 0; k < sizeof tables / sizeof *tables && !e->code; k++)
+			db_exec(&d->db, e, NULL, tables[k], "tt", d->c.name, stale[i]);
+	}
+	if (e->code || db_commit(&d->db, e)) {
+		db_rollback(&d->db);
+		goto out;
+	}
+	if (d->o->forget_old) {
+		char dir[PATHX];
+		snprintf(dir, sizeof dir, "%s/forgotten", d->dir);
+		if (mkdir_p(dir, e))
+			goto out;
+		for (long i = 0; i < ns; i++) {
+			static const char *const files[] = {"%s/%s.h5", "%s/%s.xmf", "%s/jobs/%s.args", "%s/logs/%s.log"};
+			for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
+				char from[PATHX], to[PATHX + 64];
+				snprintf(from, sizeof from, files[k], d->dir, stale[i]);
+				snprintf(to, sizeof to, "%s/%s", dir, strrchr(from, '/') + 1);
+				if (exists(from) && rename(from, to))
+					fprintf(stderr, "study: %s: cannot move aside: %s\n", from, strerror(errno));
+			}
+		}
+	}
+	fprintf(stderr, "study: %s: %ld runs of the earlier campaign file %s\n", d->c.name, ns,
+		d->o->keep_old ? "kept as an earlier version (current = 0 in the runs view)" : "forgotten");
+out:
+	for (long i = 0; i < ns; i++)
+		free(stale[i]);
+	free(stale);
+	return e->code;
+}
+
 static int record(drv *d, sb_err *e)
 {
 	char now[32];
@@ -473,6 +692,17 @@ static int record(drv *d, sb_err *e)
 	return db_commit(&d->db, e);
 }
 
+static int has_result(drv *d, const char *id)
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	if (db_exec(&d->db, &e, &q, "SELECT 1 FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
+		return 1;
+	int found = sqlite3_step(q) == SQLITE_ROW;
+	sqlite3_finalize(q);
+	return found;
+}
+
 /* Ingest every output that exists but is not recorded (finished while no driver was
  * listening), and with --retry-failed put failed runs back in the queue. Returns the
  * pending runs' indices in *pend. */
@@ -487,13 +717,27 @@ static int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			return e->code;
 		char path[PATHX];
 		snprintf(path, sizeof path, "%s/%s.h5", d->dir, r->id);
-		if (!strcmp(st, "pending") || !strcmp(st, "running")) {
-			if (exists(path)) {
-				if (ingest_run(d, r->id, e))
+		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
+		if (queued && exists(path)) {
+			if (ingest_run(d, r->id, e))
+				return e->code;
+			continue;
+		}
+		if (!queued && exists(path) && !has_result(d, r->id)) {
+			/* a database rebuilt, or written by another version: the result row
+			 * comes back from the file (the attempts are as recorded) */
+			h5sum s;
+			sb_err re = {0};
+			if (!h5sum_read(path, &s, &re)) {
+				if (db_begin(&d->db, e) || db_result_put(&d->db, d->c.name, r->id, &s, e)) {
+					db_rollback(&d->db);
 					return e->code;
-				continue;
+				}
+				if (db_commit(&d->db, e))
+					return e->code;
 			}
-		} else if (!strcmp(st, "failed") && pend && d->o->retry_failed) {
+		}
+		if (!strcmp(st, "failed") && pend && d->o->retry_failed) {
 			/* keep the failed output beside the attempt that produced it */
 			if (exists(path)) {
 				char keep[PATHX];
@@ -510,10 +754,9 @@ static int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			}
 			if (db_commit(&d->db, e))
 				return e->code;
-		} else {
-			continue;
+			queued = 1;
 		}
-		if (pend)
+		if (queued && pend)
 			pend[(*npend)++] = i;
 	}
 	return 0;
@@ -706,7 +949,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	}
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
-	if (db_open(&d->db, dbp, 1, e) || record(d, e))
+	if (db_open(&d->db, dbp, 1, e) || check_changes(d, e) || record(d, e))
 		goto out;
 
 	struct sigaction sa;

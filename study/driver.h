@@ -13,6 +13,8 @@ typedef struct driver_opts {
 	const char *self;          /* absolute path of the study binary */
 	int jobs;                  /* 0: number of cores */
 	int retry_failed;
+	int keep_old;              /* runs no longer in the file: keep as an earlier version */
+	int forget_old;            /* ... or delete their rows, move their files aside */
 	int use_cache;             /* packing cache on (default) */
 	int progress;              /* -1 auto (terminal), 0 no, 1 yes */
 } driver_opts;

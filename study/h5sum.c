@@ -1,7 +1,9 @@
-/* h5sum.c - reading a run's status and cheap results with the HDF5 C API. */
+/* h5sum.c - a run's results from its HDF5 file, column by column as results.c says
+ * where each lives. */
 #include "h5sum.h"
 
 #include <hdf5.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,122 +78,117 @@ static void get_str(hid_t obj, const char *name, char *out, size_t len, int *bad
 		H5Aclose(a);
 }
 
-static void trajectory(hid_t f, h5sum *s, int *bad)
+/* Rows of a dataset (its first dimension). */
+static long long dataset_rows(hid_t f, const char *path, int *has, int *bad)
 {
-	if (H5Lexists(f, "/intruder", H5P_DEFAULT) <= 0 || H5Lexists(f, "/intruder/trajectory", H5P_DEFAULT) <= 0)
-		return;
-	hid_t d = H5Dopen2(f, "/intruder/trajectory", H5P_DEFAULT);
+	if (H5Lexists(f, path, H5P_DEFAULT) <= 0) /* parents are checked by the caller */
+		return 0;
+	hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
 	hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-	hsize_t dims[2] = {0, 0};
-	if (sp < 0 || H5Sget_simple_extent_ndims(sp) != 2 || H5Sget_simple_extent_dims(sp, dims, NULL) < 0 ||
-	    dims[1] != 6) {
+	hsize_t dims[8] = {0};
+	int nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+	if (nd < 1 || nd > 8 || H5Sget_simple_extent_dims(sp, dims, NULL) < 0)
 		*bad = 1;
-		goto out;
-	}
-	s->traj_rows = (long)dims[0];
-	if (dims[0] > 0) {
-		double *t = malloc(sizeof *t * dims[0] * 6);
-		if (!t || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t) < 0) {
-			*bad = 1;
-			free(t);
-			goto out;
-		}
-		s->has_traj = 1;
-		s->final_y = t[(dims[0] - 1) * 6 + 2];
-		s->max_y = s->min_y = t[2];
-		double sum = 0;
-		s->rise_time = -1;
-		for (hsize_t i = 0; i < dims[0]; i++) {
-			double y = t[i * 6 + 2];
-			sum += y;
-			if (y > s->max_y)
-				s->max_y = y;
-			if (y < s->min_y)
-				s->min_y = y;
-			if (s->rise_time < 0 && s->intruder_radius > 0 &&
-			    y - s->intruder_settled_y > 2 * s->intruder_radius)
-				s->rise_time = t[i * 6];
-		}
-		s->mean_y = sum / (double)dims[0];
-		free(t);
-	}
-out:
+	else
+		*has = 1;
 	if (sp >= 0)
 		H5Sclose(sp);
 	if (d >= 0)
 		H5Dclose(d);
+	return (long long)dims[0];
 }
 
-/* The intruder's radius from /particles (its index is an attribute of /intruder). */
-static double intruder_radius(hid_t f, int *bad)
+/* Does every group along path exist? (H5Lexists fails on a missing parent.) */
+static int path_exists(hid_t f, const char *path)
 {
-	if (H5Lexists(f, "/intruder", H5P_DEFAULT) <= 0 || H5Lexists(f, "/particles", H5P_DEFAULT) <= 0 ||
-	    H5Lexists(f, "/particles/radius", H5P_DEFAULT) <= 0)
-		return 0;
-	hid_t g = H5Gopen2(f, "/intruder", H5P_DEFAULT);
-	long idx = g >= 0 && attr_exists(g, "index") ? get_long(g, "index", bad) : -1;
-	if (g >= 0)
-		H5Gclose(g);
-	if (idx < 0)
-		return 0;
-	double r = 0;
-	hid_t d = H5Dopen2(f, "/particles/radius", H5P_DEFAULT);
-	hid_t fs = d >= 0 ? H5Dget_space(d) : -1;
-	hsize_t n = 0;
-	if (fs >= 0)
-		H5Sget_simple_extent_dims(fs, &n, NULL);
-	if (fs >= 0 && (hsize_t)idx < n) {
-		hsize_t start = (hsize_t)idx, one = 1;
-		hid_t ms = H5Screate_simple(1, &one, NULL);
-		H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &one, NULL);
-		if (H5Dread(d, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, &r) < 0)
-			*bad = 1;
-		H5Sclose(ms);
+	char buf[256];
+	snprintf(buf, sizeof buf, "%s", path);
+	for (char *p = buf + 1;; p++) {
+		char c = *p;
+		if (c == '/' || c == 0) {
+			*p = 0;
+			if (H5Lexists(f, buf, H5P_DEFAULT) <= 0)
+				return 0;
+			*p = c;
+		}
+		if (!c)
+			return 1;
 	}
-	if (fs >= 0)
-		H5Sclose(fs);
-	if (d >= 0)
-		H5Dclose(d);
-	return r;
+}
+
+static void read_column(hid_t f, const rcol *c, h5val *v, int *bad)
+{
+	char obj[256];
+	const char *at = strchr(c->where, '@'), *rows = strstr(c->where, "#rows");
+	if (rows) {
+		snprintf(obj, sizeof obj, "%.*s", (int)(rows - c->where), c->where);
+		if (path_exists(f, obj))
+			v->i = dataset_rows(f, obj, &v->has, bad);
+		return;
+	}
+	if (!at)
+		return;
+	snprintf(obj, sizeof obj, "%.*s", (int)(at - c->where), c->where);
+	hid_t o = f;
+	if (obj[0]) {
+		if (!path_exists(f, obj))
+			return;
+		o = H5Oopen(f, obj, H5P_DEFAULT);
+		if (o < 0) {
+			*bad = 1;
+			return;
+		}
+	}
+	const char *name = at + 1;
+	if (attr_exists(o, name)) {
+		v->has = 1;
+		if (c->type == RT_TEXT)
+			get_str(o, name, v->s, sizeof v->s, bad);
+		else if (c->type == RT_INT)
+			v->i = get_long(o, name, bad);
+		else
+			v->d = get_double(o, name, bad);
+	}
+	if (o != f)
+		H5Oclose(o);
 }
 
 int h5sum_read(const char *path, h5sum *s, sb_err *e)
 {
 	memset(s, 0, sizeof *s);
-	s->rise_time = -1;
+	size_t n;
+	const rcol *t = results_table(&n);
+	if (n > H5SUM_MAX)
+		return sb_errf(e, SB_ENOMEM, "results table larger than H5SUM_MAX");
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are returned, not printed */
 	hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (f < 0)
 		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file", path);
 	int bad = 0;
-	get_str(f, "status", s->status, sizeof s->status, &bad);
-	s->exit_code = get_long(f, "exit_code", &bad);
-	get_str(f, "status_message", s->message, sizeof s->message, &bad);
-	s->status_time = get_double(f, "status_time", &bad);
-	s->steps = get_long(f, "steps", &bad);
-	s->settle_time = get_double(f, "settle_time", &bad);
-	s->settle_steps = get_long(f, "settle_steps", &bad);
-	s->surface_height = get_double(f, "surface_height", &bad);
-	s->intruder_settled_y = get_double(f, "intruder_settled_y", &bad);
-	s->intruder_settled_depth = get_double(f, "intruder_settled_depth", &bad);
-	s->n_mobile = get_long(f, "n_mobile", &bad);
-	s->neighbour_builds = get_long(f, "neighbour_builds", &bad);
-	if (H5Lexists(f, "/provenance", H5P_DEFAULT) > 0) {
-		hid_t g = H5Gopen2(f, "/provenance", H5P_DEFAULT);
-		if (g >= 0) {
-			s->loop_seconds = get_double(g, "loop_seconds", &bad);
-			get_str(g, "host", s->host, sizeof s->host, &bad);
-			get_str(g, "git_hash", s->git_hash, sizeof s->git_hash, &bad);
-			s->git_dirty = get_long(g, "git_dirty", &bad);
-			get_str(g, "start_time", s->start_time, sizeof s->start_time, &bad);
-			get_str(g, "end_time", s->end_time, sizeof s->end_time, &bad);
-			H5Gclose(g);
-		}
-	}
-	s->intruder_radius = intruder_radius(f, &bad);
-	trajectory(f, s, &bad);
+	for (size_t i = 0; i < n; i++)
+		if (!(t[i].flags & RF_DERIVED))
+			read_column(f, &t[i], &s->v[i], &bad);
+	get_str(f, "particles", s->particles, sizeof s->particles, &bad);
 	H5Fclose(f);
-	if (bad || !s->status[0])
+	if (bad || !h5sum_text(s, "status")[0])
 		return sb_errf(e, SB_EIO, "%s: not a complete shakebox run file (missing or unreadable status)", path);
 	return 0;
+}
+
+const char *h5sum_text(const h5sum *s, const char *name)
+{
+	int k = results_find(name);
+	return k >= 0 && s->v[k].has ? s->v[k].s : "";
+}
+
+double h5sum_real(const h5sum *s, const char *name)
+{
+	int k = results_find(name);
+	return k >= 0 && s->v[k].has ? s->v[k].d : 0;
+}
+
+long h5sum_int(const h5sum *s, const char *name)
+{
+	int k = results_find(name);
+	return k >= 0 && s->v[k].has ? (long)s->v[k].i : 0;
 }

@@ -1,38 +1,33 @@
-/* h5sum.h - the summary of one finished run, read from its HDF5 output. */
+/* h5sum.h - a run's results read from its HDF5 output: every column of the results
+ * table (results.h), each with a flag saying whether the file holds it. */
 #ifndef ST_H5SUM_H
 #define ST_H5SUM_H
 
 #include "err.h"
+#include "results.h"
+
+#define H5SUM_MAX 64
+#define H5SUM_TEXT 1024
+
+typedef struct h5val {
+	int has;            /* 0: absent from the file (NULL in the database) */
+	long long i;        /* RT_INT */
+	double d;           /* RT_REAL */
+	char s[H5SUM_TEXT]; /* RT_TEXT */
+} h5val;
 
 typedef struct h5sum {
-	char status[32];
-	long exit_code;
-	char message[1024];
-	double status_time;
-	long steps;
-	double settle_time;
-	long settle_steps;
-	double surface_height;
-	double intruder_settled_y;
-	double intruder_settled_depth;
-	long n_mobile;
-	long neighbour_builds;
-	double loop_seconds;
-	char host[256];
-	char git_hash[64];
-	long git_dirty;
-	char start_time[64], end_time[64];
-	/* from /intruder/trajectory (has_traj = 0 without one) */
-	int has_traj;
-	long traj_rows;
-	double intruder_radius;   /* 0 without an intruder */
-	double final_y, max_y, min_y, mean_y;
-	/* first time the centre rose more than one intruder diameter above its settled
-	 * height (MODEL.md waiting time); < 0 when it never did (right-censored) */
-	double rise_time;
+	h5val v[H5SUM_MAX]; /* indexed like results_table() */
+	char particles[H5SUM_TEXT]; /* the run's particles parameter: the packing it started from */
 } h5sum;
 
-/* Read the summary; missing optional parts stay 0. */
+/* Read every stored column; an error when the file cannot be opened, a value cannot
+ * be read or the run's status is missing (not a complete run file). */
 int h5sum_read(const char *path, h5sum *s, sb_err *e);
+
+/* A column by name: "" / 0 when absent. */
+const char *h5sum_text(const h5sum *s, const char *name);
+double h5sum_real(const h5sum *s, const char *name);
+long h5sum_int(const h5sum *s, const char *name);
 
 #endif

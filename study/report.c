@@ -1,6 +1,8 @@
 /* report.c - status, list and export: readers of the database, never writers. */
 #include "report.h"
 
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -41,6 +43,28 @@ static void fmt_dur(double s, char *buf, size_t len)
 		snprintf(buf, len, "%.1f h", s / 3600);
 }
 
+/* Runs finished per second over the last (at most 20) attempts to finish: 0 when
+ * fewer than two finished or they finished in the same second. */
+static double throughput(st_db *d, const char *name)
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	double rate = 0;
+	if (db_exec(d, &e, &q,
+		    "SELECT COUNT(*), (MAX(j) - MIN(j)) * 86400 FROM (SELECT julianday(finished) AS j FROM attempt"
+		    " WHERE campaign = ? AND finished IS NOT NULL ORDER BY finished DESC LIMIT 20)",
+		    "t", name))
+		return 0;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		long n = sqlite3_column_int64(q, 0);
+		double span = sqlite3_column_double(q, 1);
+		if (n >= 2 && span > 0)
+			rate = (double)(n - 1) / span;
+	}
+	sqlite3_finalize(q);
+	return rate;
+}
+
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -63,11 +87,18 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		fprintf(out, "  packing cache: %ld finished runs started from a shared packing\n", hits);
 		if (pending + running > 0) {
 			char eta[32];
-			if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
-				/* mean engine time of the finished runs, spread over the workers */
-				fmt_dur(mean * (double)(pending + running) / (jobs > 0 ? jobs : 1), eta, sizeof eta);
-				fprintf(out, "  ETA: about %s with %d job%s (mean run %.1f s)\n", eta, jobs, jobs > 1 ? "s" : "",
-					mean);
+			double rate = throughput(d, name);
+			if (rate > 0) {
+				/* what actually ran: the pace of the last runs to finish, whatever
+				 * the number of jobs or hosts that produced it */
+				fmt_dur((double)(pending + running) / rate, eta, sizeof eta);
+				fprintf(out, "  ETA: about %s at the pace of the last runs (%.1f runs/h)\n", eta, 3600 * rate);
+			} else if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
+				/* a single finished run: its time spread over what runs now */
+				int w = running > 0 ? (int)running : jobs;
+				fmt_dur(mean * (double)(pending + running) / (w > 0 ? w : 1), eta, sizeof eta);
+				fprintf(out, "  ETA: about %s with %d run%s at a time (mean run %.1f s)\n", eta, w,
+					w > 1 ? "s" : "", mean);
 			} else {
 				fprintf(out, "  ETA: unknown until a run has finished\n");
 			}
@@ -152,6 +183,19 @@ static void csv_field(FILE *out, const char *s)
 	fputc('"', out);
 }
 
+void report_number(double v, char *buf, size_t len)
+{
+	if (v == floor(v) && fabs(v) < 1e15) { /* 20, 3000000: no exponent */
+		snprintf(buf, len, "%.0f", v);
+		return;
+	}
+	for (int p = 1; p <= 17; p++) {
+		snprintf(buf, len, "%.*g", p, v);
+		if (strtod(buf, NULL) == v)
+			return;
+	}
+}
+
 int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 {
 	st_db d;
@@ -172,8 +216,9 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 				if (i)
 					fputc(',', out);
 				if (sqlite3_column_type(q, i) == SQLITE_FLOAT) {
-					/* exact: a result read back from CSV is the stored double */
-					fprintf(out, "%.17g", sqlite3_column_double(q, i));
+					char num[40];
+					report_number(sqlite3_column_double(q, i), num, sizeof num);
+					fputs(num, out);
 				} else {
 					csv_field(out, col(q, i));
 				}

@@ -14,4 +14,8 @@ int report_list(const char *db_path, FILE *out, sb_err *e);
 /* CSV of the `runs` view (parameters + results), one row per run. */
 int report_export(const char *db_path, const char *name, FILE *out, sb_err *e);
 
+/* The shortest text that reads back as the same double (0.85, not
+ * 0.84999999999999998; 20, not 2e+01): what the user wrote, and still exact. */
+void report_number(double v, char *buf, size_t len);
+
 #endif

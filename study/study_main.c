@@ -10,6 +10,7 @@
 #include "driver.h"
 #include "grid.h"
 #include "report.h"
+#include "results.h"
 #include "worker.h"
 
 static const char *USAGE =
@@ -19,7 +20,8 @@ static const char *USAGE =
 	"  study status [NAME]      counts per state, failures with reasons, ETA\n"
 	"  study list               the campaigns in the database\n"
 	"  study export NAME        CSV of every run: parameters and results\n"
-	"  study expand CAMPAIGN    check a campaign and print its grid (id, seed, values)\n\n"
+	"  study expand CAMPAIGN    check a campaign and print its grid (id, seed, values)\n"
+	"  study columns            the result columns: type, place in the run file, unit, definition\n\n"
 	"Common options: --runs DIR (outputs; default runs), --db FILE (default DIR/study.db).\n"
 	"`study COMMAND --help` describes each command; study/README.md the schema.\n";
 
@@ -35,6 +37,11 @@ static const char *HELP_RUN =
 	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
 	"                      ~/.shakebox/NAME on each host, outputs copied back\n"
 	"  --retry-failed      run failed runs again (their attempts stay recorded)\n"
+	"  --keep-old          the file changed and recorded runs are no longer in its grid:\n"
+	"                      keep them as an earlier version (current = 0; analysis tools\n"
+	"                      leave them out unless given --all-versions)\n"
+	"  --forget-old        ... or delete their rows and move their files to NAME/forgotten/\n"
+	"                      (without either, study run refuses and says what changed)\n"
 	"  --no-cache          every run settles its own packing\n"
 	"  --progress          progress bar (default: when stderr is a terminal)\n\n"
 	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O, 3 some runs failed\n"
@@ -61,6 +68,12 @@ static const char *HELP_EXPAND =
 	"per run: id, cache key, replicate, engine seed and the swept values (TSV).\n"
 	"Nothing is run or recorded.\n";
 
+static const char *HELP_COLUMNS =
+	"usage: study columns\n\n"
+	"Prints the result columns of the database (table `result`, view `runs`) as a\n"
+	"Markdown table: name, SQL type, where the value is in the run's HDF5 file, unit and\n"
+	"definition. study/README.md holds this table verbatim.\n";
+
 static const char *HELP_EXEC =
 	"usage: study exec DIR run|cache NAME\n\n"
 	"Internal: what GNU parallel runs for one job (see study/README.md).\n";
@@ -68,7 +81,7 @@ static const char *HELP_EXEC =
 struct opts {
 	const char *runs, *db, *ssh, *outfile;
 	const char *pos[4];
-	int npos, jobs, retry, nocache, progress;
+	int npos, jobs, retry, nocache, progress, keep_old, forget_old;
 };
 
 static int parse(int argc, char **argv, struct opts *o, const char *help, int maxpos)
@@ -99,6 +112,8 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 			continue;
 		}
 		if (!strcmp(a, "--retry-failed")) { o->retry = 1; continue; }
+		if (!strcmp(a, "--keep-old")) { o->keep_old = 1; continue; }
+		if (!strcmp(a, "--forget-old")) { o->forget_old = 1; continue; }
 		if (!strcmp(a, "--no-cache")) { o->nocache = 1; continue; }
 		if (!strcmp(a, "--progress")) { o->progress = 1; continue; }
 		if (!strcmp(a, "--no-progress")) { o->progress = 0; continue; }
@@ -154,7 +169,11 @@ static int cmd_expand(const char *path, sb_err *e)
 				if (!strcmp(c->axes[a].key, "seed"))
 					continue;
 				char v[SB_STR_MAX + 8];
-				params_format(&s, params_find(c->axes[a].key), v, sizeof v);
+				const sb_param *p = params_find(c->axes[a].key);
+				if (p->type == PT_REAL) /* the value as written; the id hashes all 17 digits */
+					report_number(*(const double *)((const char *)&s + p->offset), v, sizeof v);
+				else
+					params_format(&s, p, v, sizeof v);
 				printf("\t%s", v);
 			}
 			printf("\n");
@@ -209,12 +228,17 @@ int main(int argc, char **argv)
 			return 2;
 		}
 		self[l] = 0;
+		if (o.keep_old && o.forget_old) {
+			fprintf(stderr, "study: run: --keep-old and --forget-old exclude each other\n");
+			return 1;
+		}
 		if (o.ssh && access(o.ssh, R_OK)) {
 			fprintf(stderr, "study: --sshloginfile: %s: %s\n", o.ssh, strerror(errno));
 			return 1;
 		}
 		driver_opts d = {.campaign_file = o.pos[0], .runs_dir = o.runs, .db_path = o.db,
 				 .sshloginfile = o.ssh, .self = self, .jobs = o.jobs, .retry_failed = o.retry,
+				 .keep_old = o.keep_old, .forget_old = o.forget_old,
 				 .use_cache = !o.nocache, .progress = o.progress};
 		if (driver_run(&d, &e)) {
 			fprintf(stderr, "study: %s\n", e.msg);
@@ -235,6 +259,12 @@ int main(int argc, char **argv)
 			fprintf(stderr, "study: %s\n", e.msg);
 			return e.code == SB_EUSAGE ? 1 : 2;
 		}
+		return 0;
+	}
+	if (!strcmp(cmd, "columns")) {
+		if ((rc = parse(argc, argv, &o, HELP_COLUMNS, 0)))
+			return rc < 0 ? 0 : 1;
+		results_markdown(stdout);
 		return 0;
 	}
 	const char *help = !strcmp(cmd, "status") ? HELP_STATUS : !strcmp(cmd, "list") ? HELP_LIST

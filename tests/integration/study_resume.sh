@@ -53,7 +53,7 @@ rc=$?
 [ "$rc" -eq 0 ] && ok resume.completes || fail resume.completes "exit $rc: $(tail -c 400 final.log)"
 rows() {
 	sqlite3 -batch "$1" "SELECT id, state, status, exit_code, steps, replicate, printf('%.17g|%.17g|%.17g|%.17g', frequency,
-		intruder_final_y, intruder_max_y, settle_time), from_cache, seed FROM runs ORDER BY id"
+		intruder_final_y_box, intruder_max_y_box, settle_time), from_cache, seed FROM runs ORDER BY id"
 }
 rows REF/study.db >ref.rows
 rows K/study.db >k.rows

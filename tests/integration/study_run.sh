@@ -36,7 +36,7 @@ DB=R/study.db
 	ok run.joblog || fail run.joblog "$(cat R/t/joblog.txt 2>&1 | head -n 8)"
 [ "$(ls R/t/*.h5 2>/dev/null | wc -l)" = 4 ] && ok run.outputs || fail run.outputs "$(ls R/t)"
 [ "$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 't' AND state = 'done' AND status = 'ok' AND attempts = 1
-	AND intruder_final_y IS NOT NULL AND wall_seconds > 0 AND host <> '' AND steps = 5000")" = 4 ] &&
+	AND intruder_final_y_box IS NOT NULL AND wall_seconds > 0 AND host <> '' AND steps = 5000")" = 4 ] &&
 	ok run.db_rows || fail run.db_rows "$(q $DB "SELECT id, state, status, attempts, steps FROM runs")"
 # the ids in the database are the ids `study expand` gives, and the files are named by them
 "$STUDY" expand t.campaign | tail -n +2 | cut -f1 | sort >ids.expand
@@ -67,8 +67,8 @@ for f in R/t/*.h5; do
 	same_output "$f" "N/t/$b" particles settle settle_steps settle_time && same=$((same + 1))
 done
 [ "$same" = 4 ] && ok cache.bit_identical || fail cache.bit_identical "only $same of 4 runs identical with and without the cache"
-[ "$(q N/study.db "SELECT group_concat(printf('%.17g', intruder_final_y)) FROM (SELECT intruder_final_y FROM result ORDER BY run)")" = \
-	"$(q $DB "SELECT group_concat(printf('%.17g', intruder_final_y)) FROM (SELECT intruder_final_y FROM result ORDER BY run)")" ] &&
+[ "$(q N/study.db "SELECT group_concat(printf('%.17g', intruder_final_y_box)) FROM (SELECT intruder_final_y_box FROM result ORDER BY run)")" = \
+	"$(q $DB "SELECT group_concat(printf('%.17g', intruder_final_y_box)) FROM (SELECT intruder_final_y_box FROM result ORDER BY run)")" ] &&
 	ok cache.same_results || fail cache.same_results "results differ with and without the cache"
 
 # --- a second run does nothing ---
@@ -134,7 +134,7 @@ fid=$(q $DB "SELECT id FROM run WHERE campaign = 'f' AND state = 'failed'")
 "$STUDY" list --runs "$TMP/R" >list.out 2>&1
 grep -Eq '^t +9 +9 +0 +0 ' list.out && grep -Eq '^f +2 +1 +1 +0 ' list.out && ok list || fail list "$(cat list.out)"
 "$STUDY" export t --runs "$TMP/R" -o t.csv 2>export.err
-head -n 1 t.csv | grep -q '^campaign,id,state,attempts,replicate,.*frequency.*,intruder_final_y' &&
+head -n 1 t.csv | grep -q '^campaign,id,state,attempts,replicate,.*frequency.*,intruder_final_y_box' &&
 	[ "$(wc -l <t.csv)" = 10 ] && ok export.csv || fail export.csv "$(head -c 300 t.csv) $(cat export.err)"
 "$STUDY" export nosuch --runs "$TMP/R" >/dev/null 2>&1 && fail export.unknown "exit 0" || ok export.unknown
 # the database answers while a driver holds it (WAL): a reader during a run
