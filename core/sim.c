@@ -395,7 +395,8 @@ static int settle(sb_sim *s, sb_err *e)
 int sim_derive(sb_sim *s, sb_err *e)
 {
 	if (s->st.nm == 0)
-		return sb_errf(e, SB_EUSAGE, "the scene has no mobile disks");
+		return sb_errf(e, SB_EUSAGE, "%s%sthe scene has no mobile disks (grains or an intruder): nothing to shake",
+			       s->sc.particles[0] ? s->sc.particles : "", s->sc.particles[0] ? ": " : "");
 	double rs = 0;
 	int ng = 0;
 	for (int i = 0; i < s->st.nm; i++)
