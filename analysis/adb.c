@@ -54,14 +54,61 @@ static char *dup_text(const unsigned char *s)
 	return p;
 }
 
+/* 1 when table (or, with col, its column) exists: a database written by an older
+ * bin/study lacks some of what a newer one records. */
+static int has(adb *d, const char *table, const char *col)
+{
+	sqlite3_stmt *st;
+	const char *sql = col ? "SELECT COUNT(*) FROM pragma_table_info(?1) WHERE name = ?2"
+			      : "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = ?1";
+	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
+		return 0;
+	sqlite3_bind_text(st, 1, table, -1, SQLITE_TRANSIENT);
+	if (col)
+		sqlite3_bind_text(st, 2, col, -1, SQLITE_TRANSIENT);
+	int yes = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) > 0;
+	sqlite3_finalize(st);
+	return yes;
+}
+
+int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e)
+{
+	sqlite3_stmt *st;
+	*yes = 0;
+	if (sqlite3_prepare_v2(d->h, "SELECT COUNT(*) FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
+		return dberr(d, e);
+	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
+	*yes = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) > 0;
+	sqlite3_finalize(st);
+	return 0;
+}
+
 int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e)
 {
 	*out = NULL;
 	*n = 0;
 	sqlite3_stmt *st = NULL, *ps = NULL;
-	if (sqlite3_prepare_v2(d->h,
-			       "SELECT id, replicate, seed FROM run WHERE campaign = ? AND state = 'done' ORDER BY id",
-			       -1, &st, NULL) != SQLITE_OK)
+	/* A failed run has a result row when the engine wrote its file (a physics failure);
+	 * without one (bad input, I/O) its last attempt says why. */
+	const int res = has(d, "result", NULL), att = has(d, "attempt", NULL);
+	const char *cur = has(d, "run", "current") ? "r.current" : "1";
+	char last[2][200], sql[2048];
+	static const char *const acol[2] = {"status", "message"};
+	for (int c = 0; c < 2; c++) {
+		if (att)
+			snprintf(last[c], sizeof last[c],
+				 "(SELECT a.%s FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id"
+				 " ORDER BY a.n DESC LIMIT 1)", acol[c]);
+		else
+			snprintf(last[c], sizeof last[c], "NULL");
+	}
+	snprintf(sql, sizeof sql,
+		 "SELECT r.id, r.replicate, r.seed, r.state, %s, COALESCE(%s, %s), COALESCE(%s, %s), %s FROM run r %s"
+		 " WHERE r.campaign = ? ORDER BY r.id",
+		 cur, res ? "s.status" : "NULL", last[0], res && has(d, "result", "message") ? "s.message" : "NULL", last[1],
+		 res && has(d, "result", "status_time") ? "s.status_time" : "NULL",
+		 res ? "LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id" : "");
+	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
 	if (sqlite3_prepare_v2(d->h, "SELECT key, value FROM param WHERE campaign = ? AND run = ? ORDER BY key", -1,
 			       &ps, NULL) != SQLITE_OK) {
@@ -86,6 +133,13 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		snprintf(x->id, sizeof x->id, "%s", (const char *)sqlite3_column_text(st, 0));
 		x->replicate = (long)sqlite3_column_int64(st, 1);
 		x->seed = (long)sqlite3_column_int64(st, 2);
+		snprintf(x->state, sizeof x->state, "%s", sqlite3_column_text(st, 3) ? (const char *)sqlite3_column_text(st, 3) : "");
+		x->current = sqlite3_column_int(st, 4) != 0;
+		snprintf(x->status, sizeof x->status, "%s", sqlite3_column_text(st, 5) ? (const char *)sqlite3_column_text(st, 5) : "");
+		snprintf(x->message, sizeof x->message, "%s",
+			 sqlite3_column_text(st, 6) ? (const char *)sqlite3_column_text(st, 6) : "");
+		x->status_time = sqlite3_column_type(st, 7) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 7);
+		x->used_s = x->planned_s = NAN;
 		snprintf(x->path, sizeof x->path, "%s/%s/%s.h5", runs_dir, campaign, x->id);
 		sqlite3_bind_text(ps, 1, campaign, -1, SQLITE_TRANSIENT);
 		sqlite3_bind_text(ps, 2, x->id, -1, SQLITE_TRANSIENT);

@@ -1,5 +1,5 @@
-/* adb.h - the analysis side of a campaign database: the finished runs of a campaign
- * with their parameters and output paths, grouping by parameters, and the `analysis`
+/* adb.h - the analysis side of a campaign database: every run of a campaign with its
+ * state, its parameters and output path, grouping by parameters, and the `analysis`
  * table where the tools store their derived numbers (prepared statements only). */
 #ifndef AN_ADB_H
 #define AN_ADB_H
@@ -17,6 +17,17 @@ typedef struct an_run {
 	int nparam;
 	char **key, **val;  /* param table rows, values as text */
 	int group;          /* index into an_groups.label, set by an_group_runs */
+	char state[12];     /* run.state: pending, running, done, failed */
+	int current;        /* run.current: 1 = the campaign file's current grid (1 when the
+			     * database has no such column), 0 = a run of an earlier version */
+	char status[32];    /* result.status, else the last attempt's; "" when none */
+	char message[400];  /* ... and its message */
+	double status_time; /* result.status_time (s): when the run ended or failed; NaN if unknown */
+	/* what became of the run in a tool's statistic, set by the tool (acct.h) */
+	int use;            /* an_use */
+	double used_s;      /* a failed run used up to its failure: the seconds used */
+	double planned_s;   /* ... of the seconds it was to run (duration) */
+	char why[400];      /* why it is not used (unreadable, unusable); "" otherwise */
 } an_run;
 
 typedef struct adb {
@@ -28,11 +39,15 @@ typedef struct adb {
 int adb_open(adb *d, const char *path, int writable, sb_err *e);
 void adb_close(adb *d);
 
-/* Runs of campaign in state 'done' (ordered by id), their parameters from the param
- * table and output path runs_dir/campaign/id.h5. Returns 0 or an error code; *n may
- * be 0 (no finished runs). */
+/* Every run of campaign whatever its state or version (ordered by id): state, current,
+ * status, its parameters from the param table and output path runs_dir/campaign/id.h5.
+ * Databases without run.current or a result table are read too. Returns 0 or an error
+ * code; *n may be 0. */
 int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e);
 void adb_runs_free(an_run *r, int n);
+
+/* 1 when the campaign has a row in table campaign, 0 when not. */
+int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e);
 
 /* The campaign's swept axes (campaign.axes, space separated); *n = 0 when unknown. */
 int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_err *e);

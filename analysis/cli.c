@@ -71,7 +71,7 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *a
 			continue;
 		}
 		const char *name = a + (a[1] == '-' ? 2 : 1);
-		int flag = !strcmp(name, "no-plot") || !strcmp(name, "no-store");
+		int flag = !strcmp(name, "no-plot") || !strcmp(name, "no-store") || !strcmp(name, "all-versions");
 		if (strcmp(name, "db") && strcmp(name, "runs") && strcmp(name, "out") && !flag && !allowed_opt(allowed, name)) {
 			fprintf(stderr, "%s: unknown option '%s' (%s --help)\n", tool, a, tool);
 			return 1;
@@ -79,8 +79,10 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *a
 		if (flag) {
 			if (!strcmp(name, "no-plot"))
 				o->no_plot = 1;
-			else
+			else if (!strcmp(name, "no-store"))
 				o->no_store = 1;
+			else
+				o->all_versions = 1;
 			continue;
 		}
 		if (!v) {

@@ -28,6 +28,7 @@ typedef struct an_opts {
 	char where_key[8][48], where_val[8][64]; /* figures: --where KEY=VALUE selections */
 	int nwhere;
 	int no_plot, no_store;
+	int all_versions;     /* also the runs of earlier versions of the campaign file */
 } an_opts;
 
 /* Parses argv; allowed lists the tool's own options (" boot seed ... ", with spaces).

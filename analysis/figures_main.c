@@ -6,12 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acct.h"
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
 #include "h5read.h"
 
-#define VERSION "2"
+#define VERSION "3"
+
+/* a run whose records are drawn: finished, or failed and used up to the failure */
+#define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 #define MAXROWS 6
 
 static int cmp_dbl(const void *a, const void *b)
@@ -47,8 +51,9 @@ static double median_positive(const double *v, size_t n)
 
 static const char *HELP =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
-	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--no-plot] [--no-store]\n\n"
-	"The paper's figures from the finished fixed-frequency runs (ramp = none) of a\n"
+	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--all-versions]\n"
+	"               [--no-plot] [--no-store]\n\n"
+	"The paper's figures from the fixed-frequency runs (ramp = none) of a\n"
 	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
 	"at most 6) and two systems: without intruder (radius_ratio = 0) and with one of\n"
 	"radius ratio R (--ratio, default the largest in the campaign; --ratio 0: without\n"
@@ -62,19 +67,27 @@ static const char *HELP =
 	"            replicates, whose grids differ slightly, join it by their centres);\n"
 	"            arrows on a common scale (the 95th percentile = 0.9 cell, longer\n"
 	"            ones clipped; cells sampled < 1/5 of the median left out) in all panels;\n"
-	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line after the first FRAC\n"
-	"            of the periods (--skip, default 0.2), against the line height D above\n"
-	"            the bottom (/flux, flux = yes), both systems in one panel per frequency;\n"
+	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line over the periods of\n"
+	"            the panel's runs after the first FRAC of each (--skip, default 0.2),\n"
+	"            against the line height D above the bottom (/flux, flux = yes), both\n"
+	"            systems in one panel per frequency;\n"
 	"  fig4.png  Fig. 4: the intruder's height y(t) (/intruder/trajectory, lab frame) at\n"
 	"            the highest selected frequency, one panel per radius ratio > 0 (the\n"
 	"            run with the lowest replicate), with its settled height and the surface.\n"
-	"A figure without data is skipped with a note.\n\n"
+	"A figure without data is skipped with a note. A failed run is drawn with what it\n"
+	"recorded before its failure (Fig. 3: its periods after the transient of the run as\n"
+	"planned, pooled with the other runs' periods; Fig. 1: its samples); Fig. 4 draws a\n"
+	"finished run when the panel has one. Per panel (frequency, radius ratio) the output,\n"
+	"figures_accounting.csv and the stored rows count the runs used, failed (by status;\n"
+	"used up to the failure or unusable), unreadable, pending and running.\n\n"
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
+	"  --all-versions   also the runs of earlier versions of the campaign file (run.current = 0)\n"
 	"  --no-plot, --no-store\n\n"
 	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the PNGs; stores per\n"
 	"panel of Fig. 3 in `analysis` (tool 'figures', grp 'fig3 f=F radius_ratio=R'):\n"
 	"phi_max (largest |Phi(D)|), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
-	"deep the rolls reach), runs. Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"deep the rolls reach), runs (used) and the accounting (runs_failed, runs_failed_used,\n"
+	"..., as onset --help lists). Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 static int cmpd(const void *a, const void *b)
 {
@@ -126,6 +139,52 @@ static int pooled_axis(adb *d, const an_opts *o, an_run *runs, int k, sb_err *e)
 	return 0;
 }
 
+/* What of a run the figures can draw (acct.h): with flux = yes its periods after the
+ * transient (a failed run's up to the failure; none when it failed within the
+ * transient), else its file up to its status time. */
+static void classify(an_run *r, const flux_opts *fo)
+{
+	if (acct_classify(r))
+		return;
+	const int failed = !strcmp(r->state, "failed");
+	const char *fl = an_str(r, "flux");
+	const double dur = an_num(r, "duration", NAN);
+	if (fl && !strcmp(fl, "yes")) {
+		flux_data fd;
+		if (flux_load(r, &fd)) {
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			return;
+		}
+		size_t p0 = flux_first(&fd, fo);
+		if (p0 >= fd.P)
+			acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, none after the first %zu (transient)",
+				 failed ? "failed (" : "finished", failed ? r->status : "", failed ? ")" : "", fd.P, p0);
+		else if (failed)
+			acct_set(r, AN_PARTLY, fd.t[fd.P - 1], dur, "failed at t = %g s (%s): the %zu periods before it used",
+				 r->status_time, r->status, fd.P);
+		else
+			acct_set(r, AN_USED, NAN, NAN, NULL);
+		flux_free(&fd);
+		return;
+	}
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he)) {
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
+		fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+		return;
+	}
+	double st = r->status_time;
+	h5r_attr_num(h, "/", "status_time", &st);
+	h5r_close(h);
+	if (!failed)
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (st > 0)
+		acct_set(r, AN_PARTLY, st, dur, "failed at t = %g s (%s): used up to it", st, r->status);
+	else
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "figures", .version = VERSION};
@@ -136,7 +195,9 @@ int main(int argc, char **argv)
 	sb_err e = {0};
 	adb d;
 	an_run *runs = NULL;
-	int nr = 0, k = 0, made = 0, stored = 0;
+	int nr = 0, k = 0, made = 0, stored = 0, ng = 0;
+	char **labels = NULL;
+	an_acct *A = NULL;
 	FILE *f = NULL;
 	char path[1400], script[1400], png[1400];
 	double freqs[64], ratios[64];
@@ -152,11 +213,12 @@ int main(int argc, char **argv)
 			goto out;
 		}
 	}
+	long nold = 0;
 	for (int i = 0; i < nr; i++) {
 		const char *ramp = an_str(&runs[i], "ramp");
 		if (ramp && strcmp(ramp, "none"))
 			continue;
-		if (!where_ok(&o, &runs[i]))
+		if (!where_ok(&o, &runs[i]) || acct_version_skip(&runs[i], o.all_versions, &nold))
 			continue;
 		an_run t = runs[k];
 		runs[k] = runs[i];
@@ -175,8 +237,12 @@ int main(int argc, char **argv)
 		k++;
 	}
 	if (!k) {
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s%s", o.campaign, o.db,
-			o.nwhere ? " that matches --where" : "");
+		int known = 0;
+		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
+			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
+		else
+			sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s%s%s", o.campaign, o.db,
+				o.nwhere ? " that matches --where" : "", nold ? " of the current grid (--all-versions)" : "");
 		goto out;
 	}
 	if (pooled_axis(&d, &o, runs, k, &e))
@@ -192,8 +258,49 @@ int main(int argc, char **argv)
 	double R = isnan(o.ratio) ? (nra ? ratios[nra - 1] : 0) : o.ratio;
 	/* the second system is the one with an intruder: none when R = 0 */
 	const int nsys = R > 0 ? 2 : 1;
+	/* the panels are the groups of the accounting: row r, system sys is group r * nsys + sys */
+	ng = nf * nsys;
+	labels = calloc((size_t)ng, sizeof *labels);
+	if (!labels) {
+		sb_errf(&e, SB_ENOMEM, "out of memory");
+		goto out;
+	}
+	for (int j = 0; j < ng; j++) {
+		char l[96];
+		snprintf(l, sizeof l, "f=%g radius_ratio=%g", freqs[j / nsys], j % nsys ? R : 0);
+		if (!(labels[j] = strdup(l))) {
+			sb_errf(&e, SB_ENOMEM, "out of memory");
+			goto out;
+		}
+	}
+	for (int i = 0; i < k; i++) {
+		runs[i].group = -1;
+		for (int j = 0; j < ng; j++)
+			if (near(an_num(&runs[i], "frequency", NAN), freqs[j / nsys]) &&
+			    near(an_num(&runs[i], "radius_ratio", 0), j % nsys ? R : 0))
+				runs[i].group = j;
+		if (runs[i].group >= 0)
+			classify(&runs[i], &fo);
+	}
+	if (acct_tally(runs, k, ng, &A)) {
+		sb_errf(&e, SB_ENOMEM, "out of memory");
+		goto out;
+	}
+	long used = 0;
+	for (int j = 0; j < ng; j++)
+		used += acct_used(&A[j]);
+	if (!used) {
+		acct_print(stdout, "figures", labels, A, ng, nold, o.all_versions);
+		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of the runs of the panels drawn is usable yet", o.campaign);
+		goto out;
+	}
 	if (cli_outdir(&o, &e))
 		goto out;
+	if (!(f = cli_fopen(&o, "figures_accounting.csv", path, sizeof path, &e)))
+		goto out;
+	acct_runs_csv(f, runs, k, labels);
+	fclose(f);
+	f = NULL;
 	if (!o.no_store && adb_store_begin(&d, o.campaign, "figures", &e))
 		goto out;
 
@@ -219,7 +326,7 @@ int main(int argc, char **argv)
 					size_t dims0[3] = {0, 0, 0};
 					int used = 0;
 					for (int i = 0; i < k; i++) {
-						if (!near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
+						if (!USED(&runs[i]) || !near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
 						    !near(an_num(&runs[i], "radius_ratio", 0), ra))
 							continue;
 						hid_t h;
@@ -352,57 +459,67 @@ int main(int argc, char **argv)
 			goto out;
 		fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
 		int panels = 0;
-		printf("%-10s %-6s %5s %10s %12s\n", "frequency", "R", "runs", "phi_max", "half_height");
+		printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
+		       "unfinished");
 		for (int r = 0; r < nf; r++)
 			for (int sys = 0; sys < nsys; sys++) {
-				double ra = sys ? R : 0, *sp = NULL, *sh = NULL;
+				double ra = sys ? R : 0, *sp = NULL, *sh = NULL, wsum = 0, pm = 0, half = NAN;
+				const an_acct *a = &A[r * nsys + sys];
 				size_t L = 0;
 				int used = 0;
 				for (int i = 0; i < k; i++) {
-					if (!near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
-					    !near(an_num(&runs[i], "radius_ratio", 0), ra))
+					if (!USED(&runs[i]) || runs[i].group != r * nsys + sys)
 						continue;
 					flux_data fd;
-					sb_err fe = {0};
-					if (flux_read(runs[i].path, &fd, &fe))
-						continue;
+					if (flux_load(&runs[i], &fd))
+						continue; /* classified as usable: only a file changed since could fail */
 					if (!used) {
 						L = fd.L;
 						sp = calloc(L ? L : 1, sizeof *sp);
 						sh = calloc(L ? L : 1, sizeof *sh);
 					}
 					double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
-					if (sp && sh && prof && fd.L == L && fd.P) {
+					size_t p0 = flux_first(&fd, &fo);
+					/* the runs' periods pooled: a failed run weighs what it recorded */
+					double w = fd.P > p0 ? (double)(fd.P - p0) : 0;
+					if (sp && sh && prof && fd.L == L && w > 0) {
 						flux_profile(&fd, &fo, prof);
 						for (size_t l = 0; l < L; l++) {
-							sp[l] += prof[l];
-							sh[l] += fd.h[l];
+							sp[l] += w * prof[l];
+							sh[l] += w * fd.h[l];
 						}
+						wsum += w;
 						used++;
 					}
 					free(prof);
 					flux_free(&fd);
 				}
 				if (used) {
-					double pm = 0, half = NAN;
 					for (size_t l = 0; l < L; l++) {
-						fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, freqs[r], ra, l, sh[l] / used,
-							sp[l] / used, used);
-						pm = fmax(pm, fabs(sp[l] / used));
+						fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, freqs[r], ra, l, sh[l] / wsum,
+							sp[l] / wsum, used);
+						pm = fmax(pm, fabs(sp[l] / wsum));
 					}
 					for (size_t l = 0; l < L && isnan(half); l++)
-						if (pm > 0 && fabs(sp[l] / used) >= 0.5 * pm)
-							half = sh[l] / used;
-					printf("%-10g %-6g %5d %10.4g %12.4g\n", freqs[r], ra, used, pm, half);
-					if (!o.no_store) {
-						char g[128];
-						snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", freqs[r], ra);
+						if (pm > 0 && fabs(sp[l] / wsum) >= 0.5 * pm)
+							half = sh[l] / wsum;
+					printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", freqs[r], ra, used, pm, half, a->failed,
+					       a->n[AN_PENDING] + a->n[AN_RUNNING]);
+					panels++;
+				}
+				long any = 0; /* a panel with runs of any kind has its accounting stored */
+				for (int u = 0; u < AN_NUSE; u++)
+					any += a->n[u];
+				if (!o.no_store && any) {
+					char g[128];
+					snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", freqs[r], ra);
+					if (used) {
 						adb_store(&d, o.campaign, "figures", VERSION, g, "phi_max", pm, NAN, NAN, used, &e);
 						adb_store(&d, o.campaign, "figures", VERSION, g, "half_height", half, NAN, NAN, used, &e);
-						adb_store(&d, o.campaign, "figures", VERSION, g, "runs", used, NAN, NAN, used, &e);
-						stored++;
 					}
-					panels++;
+					adb_store(&d, o.campaign, "figures", VERSION, g, "runs", used, NAN, NAN, used, &e);
+					acct_store(&d, o.campaign, "figures", VERSION, g, a, &e);
+					stored++;
 				}
 				free(sp);
 				free(sh);
@@ -444,10 +561,14 @@ int main(int argc, char **argv)
 		double f4 = nf ? freqs[nf - 1] : NAN, meta[8][3];
 		int panels = 0;
 		for (int q = 0; q < nra && panels < 8; q++) {
+			/* the finished run with the lowest replicate; a failed one only when none finished */
 			int best = -1;
 			for (int i = 0; i < k; i++)
-				if (near(an_num(&runs[i], "frequency", NAN), f4) && near(an_num(&runs[i], "radius_ratio", 0), ratios[q]) &&
-				    (best < 0 || runs[i].replicate < runs[best].replicate))
+				if (USED(&runs[i]) && near(an_num(&runs[i], "frequency", NAN), f4) &&
+				    near(an_num(&runs[i], "radius_ratio", 0), ratios[q]) &&
+				    (best < 0 || (runs[i].use == AN_USED) > (runs[best].use == AN_USED) ||
+				     ((runs[i].use == AN_USED) == (runs[best].use == AN_USED) &&
+				      runs[i].replicate < runs[best].replicate)))
 					best = i;
 			if (best < 0)
 				continue;
@@ -495,12 +616,24 @@ int main(int argc, char **argv)
 	}
 	if (!o.no_store && adb_store_end(&d, !e.code, &e))
 		goto out;
-	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv\n", o.out);
+	acct_print(stdout, "figures", labels, A, ng, nold, o.all_versions);
+	long partly = 0;
+	for (int j = 0; j < ng; j++)
+		partly += A[j].n[AN_PARTLY];
+	if (partly)
+		printf("# %ld failed runs enter with what they recorded before the failure: Fig. 3 with their periods after"
+		       " the transient of the run as planned (the runs' periods are pooled), Fig. 1 with their samples\n",
+		       partly);
+	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
 out:
 	if (f)
 		fclose(f);
 	if (e.code && !o.no_store && d.ins)
 		adb_store_end(&d, 0, &e);
+	free(A);
+	for (int j = 0; labels && j < ng; j++)
+		free(labels[j]);
+	free(labels);
 	adb_runs_free(runs, nr);
 	adb_close(&d);
 	(void)made;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acct.h"
 #include "h5read.h"
 
 int flux_read(const char *path, flux_data *d, sb_err *e)
@@ -39,6 +40,23 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 	if (!isfinite(d->surface) && d->L)
 		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */
 	h5r_close(f);
+	return 0;
+}
+
+int flux_load(an_run *r, flux_data *d)
+{
+	memset(d, 0, sizeof *d);
+	if (acct_classify(r))
+		return 1;
+	sb_err e = {0};
+	if (flux_read(r->path, d, &e)) {
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
+		return 1;
+	}
+	const char *ramp = an_str(r, "ramp");
+	double per = an_num(r, "duration", NAN) * an_num(r, "frequency", NAN);
+	if (!strcmp(r->state, "failed") && (!ramp || !strcmp(ramp, "none")) && per >= 0 && per < 1e12)
+		d->planned = (size_t)floor(per + 1e-9);
 	return 0;
 }
 
@@ -87,6 +105,10 @@ double flux_plane(const flux_data *d, size_t p, size_t l0, size_t l1)
 
 size_t flux_first(const flux_data *d, const flux_opts *o)
 {
+	/* the transient is the start of the shaking, a fraction of the run as planned:
+	 * a run that failed early does not have a shorter transient */
+	if (d->planned > d->P)
+		return (size_t)floor(o->skip * (double)d->planned);
 	size_t k = (size_t)floor(o->skip * (double)d->P);
 	return d->P && k >= d->P ? d->P - 1 : k;
 }
@@ -96,7 +118,7 @@ double flux_summary(const flux_data *d, const flux_opts *o)
 	size_t l0, l1;
 	flux_band(d, o, &l0, &l1);
 	size_t p0 = flux_first(d, o);
-	if (d->P == 0 || l1 <= l0)
+	if (p0 >= d->P || l1 <= l0)
 		return NAN;
 	double s = 0;
 	for (size_t p = p0; p < d->P; p++)

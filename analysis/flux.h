@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "adb.h"
 #include "err.h"
 
 typedef struct flux_opts {
@@ -23,17 +24,26 @@ typedef struct flux_data {
 	double *phi;              /* [P x L] particles per period */
 	double *h;                /* [L] line heights, cm above the bottom */
 	double surface;           /* settled free-surface height, cm */
+	size_t planned;           /* periods the whole run was to record (0: P); set by the
+				   * caller for a run stopped by a failure, which holds fewer */
 } flux_data;
 
 int flux_read(const char *path, flux_data *d, sb_err *e);
+/* A run's flux for a statistic (acct.h): returns 1 when there is nothing to read
+ * (pending, running, no file, unreadable file: r->use and r->why say which), else 0
+ * with d read; for a failed run d->planned is the number of periods its duration
+ * holds at its frequency (fixed frequency), so that its transient is the planned one. */
+int flux_load(an_run *r, flux_data *d);
 void flux_free(flux_data *d);
 /* Lines [*l0, *l1) whose heights lie in the band (the nearest line when none does). */
 void flux_band(const flux_data *d, const flux_opts *o, size_t *l0, size_t *l1);
 /* Phi through the plane in period p. */
 double flux_plane(const flux_data *d, size_t p, size_t l0, size_t l1);
-/* First period after the transient: floor(skip * P), at most P - 1. */
+/* First period after the transient: floor(skip * P), at most P - 1; of a run stopped
+ * early (planned > P) floor(skip * planned), which is P or more when it stopped within
+ * the transient: then it has no period after it. */
 size_t flux_first(const flux_data *d, const flux_opts *o);
-/* Mean plane Phi over the periods after the transient (NaN without periods). */
+/* Mean plane Phi over the periods after the transient (NaN without such periods). */
 double flux_summary(const flux_data *d, const flux_opts *o);
 /* Time-mean Phi per line over the periods after the transient, into prof[L]. */
 void flux_profile(const flux_data *d, const flux_opts *o, double *prof);

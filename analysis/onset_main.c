@@ -6,19 +6,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acct.h"
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
 #include "onsetfit.h"
 
-#define VERSION "1"
+#define VERSION "2"
+
+/* a run whose records are in the statistic: finished, or failed and used up to it */
+#define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
 static const char *HELP =
 	"usage: onset CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
 	"             [--skip FRAC] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
-	"             [--no-plot] [--no-store]\n\n"
-	"Onset of convection. For every finished run at a fixed frequency (ramp = none) with\n"
-	"a /flux group: Phi through the plane = the mean of Phi over the height lines that\n"
+	"             [--all-versions] [--no-plot] [--no-store]\n\n"
+	"Onset of convection. For every run at a fixed frequency (ramp = none) with flux =\n"
+	"yes: Phi through the plane = the mean of Phi over the height lines that\n"
 	"lie in the band LO..HI of the settled surface height (default 0.4:0.6, the middle\n"
 	"of the bed), averaged over the periods after the first FRAC of them (default 0.2).\n"
 	"Per group (default: radius_ratio, depth and every other swept axis but frequency;\n"
@@ -31,15 +35,28 @@ static const char *HELP =
 	"both with percentile bootstrap intervals over seeds (replicates resampled with\n"
 	"replacement, all frequencies of a drawn seed together; over runs when a group has\n"
 	"one seed), and the spread (standard deviation) of the per-seed threshold estimates.\n\n"
+	"No run is dropped silently: per group the table, onset_summary.csv and the stored\n"
+	"rows count the runs used; the failed ones by status, of which those used up to the\n"
+	"failure (a failed run's file holds its periods before it: used after the transient\n"
+	"of the run as planned, floor(FRAC * duration * f) periods; one point like any run);\n"
+	"the unusable ones (failed without an output file, or within the transient); the\n"
+	"unreadable files (missing, truncated); the runs still pending or running (then the\n"
+	"campaign is not finished and the numbers will change: the output says so).\n"
+	"onset_accounting.csv has one row per run with what became of it and why.\n\n"
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
 	"  --by KEYS        group by these parameters (comma separated)\n"
 	"  --boot N         bootstrap replicates (default 1000); --seed S its seed (default 1)\n"
 	"  --level L        confidence level (default 0.95)\n"
+	"  --all-versions   also the runs of earlier versions of the campaign file (run.current\n"
+	"                   = 0, kept by study run --keep-old); by default the current grid's\n"
 	"  --no-plot        no PNG;  --no-store  nothing written to the database\n\n"
 	"Writes onset_runs.csv (Phi per run), onset_seeds.csv (per-seed estimates),\n"
-	"onset_summary.csv, onset.png; stores per group in `analysis` (tool 'onset'):\n"
-	"runs, seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step, threshold_f (lo, hi),\n"
-	"threshold_seed_sd. Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"onset_summary.csv, onset_accounting.csv, onset.png; stores per group in `analysis`\n"
+	"(tool 'onset'): runs (used), seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step,\n"
+	"threshold_f (lo, hi), threshold_seed_sd, and the accounting: runs_failed,\n"
+	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
+	"runs_pending, runs_running, failed_STATUS per status.\n"
+	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 int main(int argc, char **argv)
 {
@@ -56,6 +73,7 @@ int main(int argc, char **argv)
 	double *phi = NULL, *xs = NULL, *ys = NULL;
 	long *us = NULL;
 	onset_res *R = NULL;
+	an_acct *A = NULL;
 	FILE *f = NULL, *s = NULL;
 	char path[1400], script[1400], png[1400];
 	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
@@ -68,28 +86,45 @@ int main(int argc, char **argv)
 		sb_errf(&e, SB_ENOMEM, "out of memory");
 		goto out;
 	}
+	/* every fixed-frequency run with flux = yes is accounted for, whatever its state */
+	long nold = 0;
 	for (int i = 0; i < nr; i++) {
-		const char *ramp = an_str(&runs[i], "ramp");
-		if (ramp && strcmp(ramp, "none"))
+		const char *ramp = an_str(&runs[i], "ramp"), *fl = an_str(&runs[i], "flux");
+		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) ||
+		    acct_version_skip(&runs[i], o.all_versions, &nold))
 			continue;
+		an_run *r = &runs[i];
 		flux_data fd;
-		sb_err fe = {0};
-		if (flux_read(runs[i].path, &fd, &fe)) {
-			fprintf(stderr, "onset: skipping %s\n", fe.msg);
-			continue;
-		}
-		double v = flux_summary(&fd, &fo);
-		flux_free(&fd);
-		if (!isfinite(v))
-			continue;
+		double v = NAN;
+		if (!flux_load(r, &fd)) {
+			v = flux_summary(&fd, &fo);
+			const double dur = an_num(r, "duration", NAN), T = fd.P ? fd.t[fd.P - 1] : 0;
+			if (isfinite(v) && !strcmp(r->state, "failed"))
+				acct_set(r, AN_PARTLY, T, dur, "failed at t = %g s (%s): the %zu periods before it used, after the"
+					 " first %zu", r->status_time, r->status, fd.P, flux_first(&fd, &fo));
+			else if (isfinite(v))
+				acct_set(r, AN_USED, NAN, NAN, NULL);
+			else if (!strcmp(r->state, "failed"))
+				acct_set(r, AN_UNUSABLE, NAN, NAN, "failed at t = %g s (%s) within the transient: %zu periods"
+					 " recorded, the first %zu of the planned %zu are the transient", r->status_time,
+					 r->status, fd.P, flux_first(&fd, &fo), fd.planned);
+			else
+				acct_set(r, AN_UNUSABLE, NAN, NAN, "no flux period recorded");
+			flux_free(&fd);
+		} else if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "onset: warning: %s (counted as unreadable)\n", r->why);
 		an_run t = runs[k];
 		runs[k] = runs[i];
 		runs[i] = t;
 		phi[k++] = v;
 	}
 	if (!k) {
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run with flux = yes in %s", o.campaign,
-			o.db);
+		int known = 0;
+		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
+			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
+		else
+			sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run with flux = yes in %s%s",
+				o.campaign, o.db, nold ? " of the current grid (--all-versions)" : "");
 		goto out;
 	}
 	static const char *const always[] = {"radius_ratio", "depth", NULL};
@@ -100,24 +135,38 @@ int main(int argc, char **argv)
 		goto out;
 	ng = an_group_runs(runs, k, keys, nk, &labels);
 	R = calloc((size_t)(ng > 0 ? ng : 1), sizeof *R);
-	if (ng < 0 || !R) {
+	if (ng < 0 || !R || acct_tally(runs, k, ng, &A)) {
 		sb_errf(&e, SB_ENOMEM, "out of memory");
+		goto out;
+	}
+	long used = 0;
+	for (int j = 0; j < ng; j++)
+		used += acct_used(&A[j]);
+	if (!used) {
+		acct_print(stdout, "onset", labels, A, ng, nold, o.all_versions);
+		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of its %d fixed-frequency runs with flux = yes is usable yet",
+			o.campaign, k);
 		goto out;
 	}
 	if (cli_outdir(&o, &e))
 		goto out;
 	if (!(f = cli_fopen(&o, "onset_runs.csv", path, sizeof path, &e)))
 		goto out;
-	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi\n");
+	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s\n");
 	for (int j = 0; j < ng; j++)
 		for (int i = 0; i < k; i++)
-			if (runs[i].group == j) {
+			if (runs[i].group == j && USED(&runs[i])) {
 				fprintf(f, "%d,", j);
 				csv_str(f, labels[j]);
-				fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", runs[i].id, runs[i].replicate, runs[i].seed,
-					an_num(&runs[i], "radius_ratio", NAN), an_num(&runs[i], "depth", NAN),
-					an_num(&runs[i], "frequency", NAN), phi[i]);
+				fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", runs[i].id, runs[i].replicate,
+					runs[i].seed, an_num(&runs[i], "radius_ratio", NAN), an_num(&runs[i], "depth", NAN),
+					an_num(&runs[i], "frequency", NAN), phi[i], acct_use_name(runs[i].use), runs[i].used_s);
 			}
+	fclose(f);
+	f = NULL;
+	if (!(f = cli_fopen(&o, "onset_accounting.csv", path, sizeof path, &e)))
+		goto out;
+	acct_runs_csv(f, runs, k, labels);
 	fclose(f);
 	f = NULL;
 	if (!(f = cli_fopen(&o, "onset_seeds.csv", path, sizeof path, &e)) ||
@@ -125,23 +174,30 @@ int main(int argc, char **argv)
 		goto out;
 	fprintf(f, "group_index,group,seed_unit,sigmoid_f0,threshold_f\n");
 	fprintf(s, "group,intruder,runs,seeds,sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi,sigmoid_width,"
-		   "sigmoid_step,threshold_f,threshold_f_lo,threshold_f_hi,threshold_seed_sd,boot_ok\n");
-	printf("%-30s %4s %4s %5s %22s %7s %22s %7s\n", "group", "intr", "runs", "seeds", "sigmoid f0 [CI] (Hz)",
-	       "width", "threshold f [CI] (Hz)", "seed_sd");
+		   "sigmoid_step,threshold_f,threshold_f_lo,threshold_f_hi,threshold_seed_sd,boot_ok");
+	acct_csv_head(s);
+	fputc('\n', s);
+	printf("%-30s %4s %4s %5s %22s %7s %22s %7s %6s %7s\n", "group", "intr", "used", "seeds", "sigmoid f0 [CI] (Hz)",
+	       "width", "threshold f [CI] (Hz)", "seed_sd", "failed", "unfinished");
 	if (!o.no_store && adb_store_begin(&d, o.campaign, "onset", &e))
 		goto out;
 	for (int j = 0; j < ng && !e.code; j++) {
 		size_t np = 0;
 		double ratio = 0;
-		for (int i = 0; i < k; i++)
-			if (runs[i].group == j) {
-				xs[np] = an_num(&runs[i], "frequency", NAN);
-				ys[np] = phi[i];
-				us[np++] = runs[i].replicate;
-				ratio = an_num(&runs[i], "radius_ratio", 0);
-			}
+		for (int i = 0; i < k; i++) {
+			if (runs[i].group != j)
+				continue;
+			ratio = an_num(&runs[i], "radius_ratio", 0);
+			if (!USED(&runs[i]))
+				continue;
+			xs[np] = an_num(&runs[i], "frequency", NAN);
+			ys[np] = phi[i];
+			us[np++] = runs[i].replicate;
+		}
 		onset_res *r = &R[j];
-		if (onset_estimate(xs, ys, us, np, o.threshold, (size_t)(o.boot > 1 ? o.boot : 0), o.seed, o.level, r)) {
+		if (!np) { /* every run of the group failed, is unreadable or not finished */
+			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
+		} else if (onset_estimate(xs, ys, us, np, o.threshold, (size_t)(o.boot > 1 ? o.boot : 0), o.seed, o.level, r)) {
 			sb_errf(&e, SB_ENOMEM, "out of memory");
 			break;
 		}
@@ -154,12 +210,14 @@ int main(int argc, char **argv)
 		char c1[64], c2[64];
 		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", F->ok ? F->x0 : NAN, r->fit_lo, r->fit_hi);
 		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
-		printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f\n", labels[j], ratio > 0 ? "yes" : "no", np, r->units, c1,
-		       F->ok ? F->w : NAN, c2, r->seed_sd);
+		printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", labels[j], ratio > 0 ? "yes" : "no", np,
+		       r->units, c1, F->ok ? F->w : NAN, c2, r->seed_sd, A[j].failed, A[j].n[AN_PENDING] + A[j].n[AN_RUNNING]);
 		csv_str(s, labels[j]);
-		fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu\n", ratio > 0, np,
+		fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np,
 			r->units, F->ok, F->ok ? F->x0 : NAN, r->fit_lo, r->fit_hi, F->ok ? F->w : NAN, F->ok ? F->a : NAN,
 			r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
+		acct_csv_row(s, &A[j]);
+		fputc('\n', s);
 		if (!o.no_store) {
 			const char *L = labels[j];
 			long n = (long)np;
@@ -171,6 +229,7 @@ int main(int argc, char **argv)
 			adb_store(&d, o.campaign, "onset", VERSION, L, "sigmoid_step", F->ok ? F->a : NAN, NAN, NAN, n, &e);
 			adb_store(&d, o.campaign, "onset", VERSION, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n, &e);
 			adb_store(&d, o.campaign, "onset", VERSION, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n, &e);
+			acct_store(&d, o.campaign, "onset", VERSION, L, &A[j], &e);
 		}
 	}
 	fclose(f);
@@ -180,6 +239,13 @@ int main(int argc, char **argv)
 		goto out;
 	if (e.code)
 		goto out;
+	acct_print(stdout, "onset", labels, A, ng, nold, o.all_versions);
+	long partly = 0;
+	for (int j = 0; j < ng; j++)
+		partly += A[j].n[AN_PARTLY];
+	if (partly)
+		printf("# %ld failed runs enter with the periods they recorded before the failure (after the transient of"
+		       " the run as planned): one point each, like a finished run\n", partly);
 	if (!o.no_plot) {
 		if (!(f = gp_open(&o, "onset", 1000, 560, script, png, sizeof script, &e)))
 			goto out;
@@ -206,7 +272,7 @@ int main(int argc, char **argv)
 			goto out;
 		printf("# figure: %s\n", png);
 	}
-	printf("# csv: %s/onset_{runs,seeds,summary}.csv\n", o.out);
+	printf("# csv: %s/onset_{runs,seeds,summary,accounting}.csv\n", o.out);
 out:
 	if (f)
 		fclose(f);
@@ -215,6 +281,7 @@ out:
 	for (int j = 0; R && j < ng; j++)
 		onset_res_free(&R[j]);
 	free(R);
+	free(A);
 	free(phi);
 	free(xs);
 	free(ys);

@@ -1,6 +1,7 @@
 /* flux.c - the flux-plane summary on a synthetic run file written here: the band
- * picks the right lines, the transient is dropped, the profile is the time mean per
- * line; a file without /flux is an error. */
+ * picks the right lines, the transient is dropped (of a failed run: the transient of
+ * the run as planned), the profile is the time mean per line; a file without /flux
+ * is an error. */
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -80,6 +81,19 @@ int main(void)
 	flux_profile(&d, &o, prof);
 	CHECK("flux.profile", fabs(prof[0] - 1) < 1e-12 && fabs(prof[19] - 20) < 1e-12, "profile %g .. %g", prof[0],
 	      prof[19]);
+	/* a run stopped by a failure after its 10 periods of 40 planned: its transient is
+	 * floor(0.2 * 40) = 8 periods, so periods 8 and 9 are used; one planned for 60
+	 * stopped within its transient (12 periods) and has nothing to use */
+	o.band_lo = 0.4;
+	o.band_hi = 0.6;
+	d.planned = 40;
+	CHECK("flux.failed.first_of_planned", flux_first(&d, &o) == 8, "first %zu", flux_first(&d, &o));
+	CHECK_REL("flux.failed.summary_after_planned_transient", flux_summary(&d, &o), 10.5, 1e-12);
+	d.planned = 60;
+	flux_profile(&d, &o, prof);
+	CHECK("flux.failed.within_transient", isnan(flux_summary(&d, &o)) && isnan(prof[0]), "summary %g",
+	      flux_summary(&d, &o));
+	d.planned = 0;
 	flux_free(&d);
 
 	/* a run without flux = yes */

@@ -53,7 +53,7 @@ plane_phi() {
 		      printf "%.17g\n", s / (P - p0) }'
 }
 bad=0 n=0
-while IFS=, read -r _ _ run _ _ _ _ _ phi; do
+while IFS=, read -r _ _ run _ _ _ _ _ phi _; do
 	n=$((n + 1))
 	want=$(plane_phi "R/c/$run.h5")
 	close "$phi" "$want" || { bad=1; echo "# run $run: onset $phi, from the file $want"; }

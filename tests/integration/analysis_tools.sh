@@ -46,7 +46,7 @@ grep -q '^group .*sigmoid f0' onset.out && grep -q '^radius_ratio=0 depth=1 .* n
 	ok onset.csv || fail onset.csv "$(ls $A)"
 png_ok $A/onset.png && ok onset.png || fail onset.png "no PNG"
 [ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'onset' AND key IN ('sigmoid_f0', 'threshold_f')
-	AND version = '1' AND n = 6 AND created LIKE '20%'")" = 4 ] &&
+	AND version = '2' AND n = 6 AND created LIKE '20%'")" = 4 ] &&
 	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'seeds' AND value = 2")" = 2 ] &&
 	ok onset.db_rows || fail onset.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'onset'")"
 # the threshold estimate lies inside the sampled frequencies and its interval around it
@@ -56,7 +56,8 @@ png_ok $A/onset.png && ok onset.png || fail onset.png "no PNG"
 q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows1
 tool onset t --runs R --boot 60 --seed 7 --no-plot
 q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows2
-cmp -s onset.rows1 onset.rows2 && [ "$(wc -l <onset.rows1)" = 14 ] && ok onset.rerun_reproducible_no_duplicates ||
+# 7 keys of the estimates and 8 of the accounting per group
+cmp -s onset.rows1 onset.rows2 && [ "$(wc -l <onset.rows1)" = 30 ] && ok onset.rerun_reproducible_no_duplicates ||
 	fail onset.rerun_reproducible_no_duplicates "$(diff onset.rows1 onset.rows2 | head -n 4)"
 # the database path and the output convention can be given explicitly
 tool onset t --db R/study.db --out "$TMP/o2" --boot 20 --no-store && [ -s o2/onset_runs.csv ] && png_ok o2/onset.png &&
@@ -67,7 +68,7 @@ tool waiting t --runs R
 rc=$?
 [ "$rc" -eq 0 ] && ok waiting.exit || fail waiting.exit "exit $rc: $(cat waiting.err)"
 # runs without intruder have no waiting time: three groups (R = 2 at 3 frequencies)
-[ "$(grep -c '^radius_ratio=2 frequency=' waiting.out)" = 3 ] && ! grep -q '^radius_ratio=0' waiting.out &&
+[ "$(sed '/^$/q' waiting.out | grep -c '^radius_ratio=2 frequency=')" = 3 ] && ! grep -q '^radius_ratio=0' waiting.out &&
 	ok waiting.table || fail waiting.table "$(cat waiting.out)"
 [ "$(tail -n +2 $A/waiting_runs.csv | wc -l)" = 6 ] && [ -s $A/waiting_km.csv ] && [ -s $A/waiting_hist.csv ] &&
 	ok waiting.csv || fail waiting.csv "$(ls $A)"
@@ -75,8 +76,8 @@ png_ok $A/waiting_km.png && png_ok $A/waiting_hist.png && ok waiting.png || fail
 # each run's pair (waiting_time, risen) is the one in its output file
 id=$(q "SELECT id FROM runs WHERE radius_ratio = 2 ORDER BY id LIMIT 1")
 line=$(grep ",$id," $A/waiting_runs.csv)
-[ -n "$line" ] && [ "$(echo "$line" | awk -F, '{print $NF}')" = "$(attr R/t/$id.h5 /risen)" ] &&
-	awk -v a="$(echo "$line" | awk -F, '{print $(NF-1)}')" -v b="$(attr R/t/$id.h5 /waiting_time)" 'BEGIN { exit !(a == b) }' &&
+[ -n "$line" ] && [ "$(echo "$line" | awk -F, '{print $7}')" = "$(attr R/t/$id.h5 /risen)" ] &&
+	awk -v a="$(echo "$line" | awk -F, '{print $6}')" -v b="$(attr R/t/$id.h5 /waiting_time)" 'BEGIN { exit !(a == b) }' &&
 	ok waiting.matches_output || fail waiting.matches_output "csv '$line' vs file risen=$(attr R/t/$id.h5 /risen)"
 [ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND key = 'fraction_risen'
 	AND value BETWEEN 0 AND 1 AND n = 2")" = 3 ] &&
@@ -94,7 +95,7 @@ grep -q '^5  *2  *2 ' figures.out && ok figures.table || fail figures.table "$(c
 [ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'figures' AND key = 'phi_max'")" = 6 ] &&
 	ok figures.db_rows || fail figures.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'figures'")"
 # the other tools' rows are untouched by this one
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset'")" = 14 ] && ok figures.keeps_other_tools ||
+[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset'")" = 30 ] && ok figures.keeps_other_tools ||
 	fail figures.keeps_other_tools "onset rows changed"
 
 # ---- hysteresis ----
@@ -108,7 +109,7 @@ grep -q '^radius_ratio=2 depth=1 ' hysteresis.out && ok hysteresis.table || fail
 	awk -F, 'NR > 1 && $5 == "up" { if (seen[$3] && $7 < last[$3]) bad = 1; seen[$3] = 1; last[$3] = $7 } END { exit bad }' $H/hysteresis_periods.csv &&
 	ok hysteresis.branches || fail hysteresis.branches "$(head -n 5 $H/hysteresis_periods.csv)"
 png_ok $H/hysteresis.png && [ -s $H/hysteresis_summary.csv ] && ok hysteresis.outputs || fail hysteresis.outputs "$(ls $H)"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'h' AND tool = 'hysteresis'")" = 8 ] &&
+[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'h' AND tool = 'hysteresis'")" = 16 ] &&
 	[ "$(q "SELECT value FROM analysis WHERE campaign = 'h' AND key = 'seeds'")" = 2.0 ] &&
 	ok hysteresis.db_rows || fail hysteresis.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'hysteresis'")"
 # the fixed-frequency campaign has no ramps: a clear error, nothing stored

@@ -1,0 +1,216 @@
+/* acct.c - per-group accounting of the runs behind a statistic. */
+#include "acct.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+static const char *const USE[AN_NUSE] = {"used", "failed_used", "unusable", "unreadable", "pending", "running"};
+
+const char *acct_use_name(int use)
+{
+	return use >= 0 && use < AN_NUSE ? USE[use] : "?";
+}
+
+void acct_set(an_run *r, int use, double used_s, double planned_s, const char *fmt, ...)
+{
+	r->use = use;
+	r->used_s = used_s;
+	r->planned_s = planned_s;
+	r->why[0] = 0;
+	if (fmt) {
+		va_list ap;
+		va_start(ap, fmt);
+		vsnprintf(r->why, sizeof r->why, fmt, ap);
+		va_end(ap);
+	}
+}
+
+int acct_classify(an_run *r)
+{
+	const int failed = !strcmp(r->state, "failed");
+	if (!failed && strcmp(r->state, "done")) {
+		/* not finished: pending, running (or a state this tool does not know) */
+		acct_set(r, strcmp(r->state, "running") ? AN_PENDING : AN_RUNNING, NAN, NAN,
+			 strcmp(r->state, "pending") && strcmp(r->state, "running") ? "state '%s'" : NULL, r->state);
+		return 1;
+	}
+	if (access(r->path, F_OK)) {
+		/* a run that failed on bad input or I/O has no file: its status says why */
+		if (failed)
+			acct_set(r, AN_UNUSABLE, NAN, NAN, "failed without an output file (%s%s%s)",
+				 r->status[0] ? r->status : "no status", r->message[0] ? ": " : "", r->message);
+		else
+			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no such file", r->path);
+		return 1;
+	}
+	return 0;
+}
+
+int acct_version_skip(const an_run *r, int all, long *nold)
+{
+	if (r->current)
+		return 0;
+	++*nold;
+	return !all;
+}
+
+int acct_tally(const an_run *r, int n, int ng, an_acct **out)
+{
+	an_acct *a = calloc((size_t)(ng > 0 ? ng : 1), sizeof *a);
+	*out = a;
+	if (!a)
+		return -1;
+	for (int i = 0; i < n; i++) {
+		if (r[i].group < 0 || r[i].group >= ng)
+			continue;
+		an_acct *g = &a[r[i].group];
+		const int use = r[i].use >= 0 && r[i].use < AN_NUSE ? r[i].use : AN_UNUSABLE;
+		g->n[use]++;
+		if (use == AN_PARTLY) {
+			g->used_s += isfinite(r[i].used_s) ? r[i].used_s : 0;
+			g->planned_s += isfinite(r[i].planned_s) ? r[i].planned_s : 0;
+		}
+		if (strcmp(r[i].state, "failed"))
+			continue;
+		g->failed++;
+		const char *st = r[i].status[0] ? r[i].status : "unknown";
+		int k = 0;
+		while (k < g->nreason && strcmp(g->reason[k].status, st))
+			k++;
+		if (k == g->nreason) {
+			if (k == AN_MAXREASON) {
+				k = AN_MAXREASON - 1;
+				snprintf(g->reason[k].status, sizeof g->reason[k].status, "other");
+			} else {
+				snprintf(g->reason[k].status, sizeof g->reason[k].status, "%s", st);
+				g->nreason++;
+			}
+		}
+		g->reason[k].n++;
+		g->reason[k].used += use == AN_USED || use == AN_PARTLY;
+	}
+	return 0;
+}
+
+long acct_used(const an_acct *a)
+{
+	return a->n[AN_USED] + a->n[AN_PARTLY];
+}
+
+void acct_reasons(const an_acct *a, char *buf, size_t len)
+{
+	size_t l = 0;
+	buf[0] = 0;
+	for (int k = 0; k < a->nreason && l < len; k++)
+		l += (size_t)snprintf(buf + l, len - l, "%s%s=%ld", k ? ";" : "", a->reason[k].status, a->reason[k].n);
+}
+
+void acct_print(FILE *f, const char *tool, char **labels, const an_acct *a, int ng, long nold, int all_versions)
+{
+	long tot[AN_NUSE] = {0}, all = 0, failed = 0;
+	int w = 24;
+	for (int j = 0; j < ng; j++) {
+		for (int u = 0; u < AN_NUSE; u++) {
+			tot[u] += a[j].n[u];
+			all += a[j].n[u];
+		}
+		failed += a[j].failed;
+		int l = (int)strlen(labels[j]);
+		w = l > w ? l : w;
+	}
+	if (all_versions)
+		fprintf(f, "\n# runs: %ld, %ld of them of earlier versions of the campaign file (--all-versions)\n", all,
+			nold);
+	else if (nold)
+		fprintf(f, "\n# runs: %ld of the campaign's current grid; %ld of earlier versions of the campaign file left out"
+			   " (--all-versions uses them)\n", all, nold);
+	else
+		fprintf(f, "\n# runs: %ld of the campaign's current grid\n", all);
+	fprintf(f, "%-*s %5s %6s %21s %8s %10s %7s %7s  %s\n", w, "group", "used", "failed", "failed_used (s of s)",
+		"unusable", "unreadable", "pending", "running", "failed by status");
+	for (int j = 0; j < ng; j++) {
+		char part[64], why[256];
+		if (a[j].n[AN_PARTLY])
+			snprintf(part, sizeof part, "%ld (%.3g of %.3g)", a[j].n[AN_PARTLY], a[j].used_s, a[j].planned_s);
+		else
+			snprintf(part, sizeof part, "0");
+		acct_reasons(&a[j], why, sizeof why);
+		fprintf(f, "%-*s %5ld %6ld %21s %8ld %10ld %7ld %7ld  %s\n", w, labels[j], acct_used(&a[j]), a[j].failed, part,
+			a[j].n[AN_UNUSABLE], a[j].n[AN_UNREADABLE], a[j].n[AN_PENDING], a[j].n[AN_RUNNING],
+			why[0] ? why : "-");
+	}
+	if (tot[AN_PENDING] + tot[AN_RUNNING])
+		fprintf(f, "# NOT FINISHED: %ld runs pending and %ld running; every number above is over the runs finished"
+			   " so far and will change\n", tot[AN_PENDING], tot[AN_RUNNING]);
+	if (failed)
+		fprintf(f, "# %ld runs failed: %ld of them used up to the failure, the rest unusable"
+			   " (why: %s_accounting.csv)\n", failed, tot[AN_PARTLY], tool);
+	if (tot[AN_UNREADABLE])
+		fprintf(f, "# %ld run files could not be read: counted as unreadable, not used (why: %s_accounting.csv)\n",
+			tot[AN_UNREADABLE], tool);
+}
+
+void acct_csv_head(FILE *f)
+{
+	fprintf(f, ",runs_failed,runs_failed_used,failed_used_s,failed_planned_s,runs_unusable,runs_unreadable,"
+		   "runs_pending,runs_running,failed_by_status");
+}
+
+void acct_csv_row(FILE *f, const an_acct *a)
+{
+	char why[256];
+	acct_reasons(a, why, sizeof why);
+	fprintf(f, ",%ld,%ld,%.17g,%.17g,%ld,%ld,%ld,%ld,", a->failed, a->n[AN_PARTLY], a->used_s, a->planned_s,
+		a->n[AN_UNUSABLE], a->n[AN_UNREADABLE], a->n[AN_PENDING], a->n[AN_RUNNING]);
+	csv_str(f, why);
+}
+
+void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels)
+{
+	fprintf(f, "group_index,group,run,replicate,current,state,status,use,used_s,planned_s,why\n");
+	for (int i = 0; i < n; i++) {
+		if (r[i].group < 0)
+			continue; /* in no group of this tool (e.g. a frequency not drawn) */
+		fprintf(f, "%d,", r[i].group);
+		csv_str(f, labels[r[i].group]);
+		fprintf(f, ",%s,%ld,%d,%s,", r[i].id, r[i].replicate, r[i].current, r[i].state);
+		csv_str(f, r[i].status);
+		fprintf(f, ",%s,%.17g,%.17g,", acct_use_name(r[i].use), r[i].used_s, r[i].planned_s);
+		csv_str(f, r[i].why);
+		fputc('\n', f);
+	}
+}
+
+int acct_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
+	       const an_acct *a, sb_err *e)
+{
+	const struct {
+		const char *key;
+		double v;
+	} row[] = {
+		{"runs_failed", (double)a->failed},
+		{"runs_failed_used", (double)a->n[AN_PARTLY]},
+		{"failed_used_s", a->used_s},
+		{"failed_planned_s", a->planned_s},
+		{"runs_unusable", (double)a->n[AN_UNUSABLE]},
+		{"runs_unreadable", (double)a->n[AN_UNREADABLE]},
+		{"runs_pending", (double)a->n[AN_PENDING]},
+		{"runs_running", (double)a->n[AN_RUNNING]},
+	};
+	for (size_t i = 0; i < sizeof row / sizeof row[0]; i++)
+		if (adb_store(d, campaign, tool, version, grp, row[i].key, row[i].v, NAN, NAN,
+			      i == 2 || i == 3 ? a->n[AN_PARTLY] : (long)row[i].v, e))
+			return e->code;
+	for (int k = 0; k < a->nreason; k++) {
+		char key[64];
+		snprintf(key, sizeof key, "failed_%s", a->reason[k].status);
+		if (adb_store(d, campaign, tool, version, grp, key, (double)a->reason[k].n, NAN, NAN, a->reason[k].n, e))
+			return e->code;
+	}
+	return 0;
+}
