@@ -74,7 +74,6 @@ done
 # run.current exists once bin/study records versions; a database without it is read too
 [ "$(q "SELECT COUNT(*) FROM pragma_table_info('run') WHERE name = 'current'")" = 1 ] ||
 	q "ALTER TABLE run ADD COLUMN current INTEGER NOT NULL DEFAULT 1"
-cp R/study.db nocur.db
 # pick CLAUSE : the id of the first run of campaign s (by id) that matches
 pick() { q "SELECT r.id FROM run r JOIN param a ON a.campaign = r.campaign AND a.run = r.id AND a.key = 'radius_ratio'
 	JOIN param b ON b.campaign = r.campaign AND b.run = r.id AND b.key = 'frequency' WHERE r.campaign = 's' AND $1 ORDER BY r.id LIMIT 1"; }
@@ -93,6 +92,9 @@ q "UPDATE run SET current = 0 WHERE campaign = 's' AND id = '$OLD';
      WHERE campaign = 's' AND run = '$NOFILE'"
 rm -f "R/s/$NOFILE.h5"
 truncate -s 3000 "R/s/$TRUNC.h5"
+# the database of an older bin/study: no run.current (the runs view reads it)
+cp R/study.db nocur.db
+sqlite3 nocur.db "DROP VIEW IF EXISTS runs; ALTER TABLE run DROP COLUMN current" || fail acc.setup.nocur "cannot drop run.current"
 [ -n "$OLD" ] && [ -n "$PEND" ] && [ -n "$RUNG" ] && [ -n "$TRUNC" ] && [ -n "$NOFILE" ] && ok acc.setup.changes ||
 	{ fail acc.setup.changes "old '$OLD' pending '$PEND' running '$RUNG' truncated '$TRUNC' no file '$NOFILE'"; finish; }
 
@@ -238,7 +240,7 @@ want=$(expected flux 'radius_ratio=%g depth=1%.0s' 1)
 [ "$rc" -eq 0 ] && grep -q ",$OLD," all/onset_runs.csv && grep -q '^# runs: 18, 1 of them of earlier versions' onset_all.out &&
 	[ "$want" = "$(got all/onset_summary.csv)" ] && ok acc.onset.all_versions ||
 	fail acc.onset.all_versions "exit $rc: $(grep '^# runs' onset_all.out; cat onset_all.err)"
-# a database without run.current: every run is of the current grid
+# a database without run.current: every run is of the current grid, the earlier version's too
 "$BINDIR/onset" s --db nocur.db --runs R --boot 10 --no-plot --no-store --out "$TMP/nocur" >nocur.out 2>nocur.err
 rc=$?
 [ "$rc" -eq 0 ] && grep -q ",$OLD," nocur/onset_runs.csv && ok acc.onset.database_without_current ||
