@@ -56,7 +56,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults
 all: $(SHAKE)
 
 help:
@@ -67,6 +67,7 @@ help:
 	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
+	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH, V=1 (show commands), SAN=1 (sanitizer build in build/san),"
 	@echo "       PORTABLE=1 (baseline x86-64 build in build/port)"
@@ -113,7 +114,15 @@ $(BUILD)/tests/%: tests/%.c $(LIB) tests/testlib.h $(BUILD)/flags
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(ALLCFLAGS) -Itests $(LDFLAGS) -o $@ $< $(LIB) $(PKG_LIBS)
 
-tests: $(SHAKE) $(TEST_BIN)
+# The fault shim (tests/faults/iofail.c) is preloaded into the tools, so it is built
+# plain, without the sanitizers, whichever build the tests use.
+FAULT_SHIM = build/faults/iofail.so
+$(FAULT_SHIM): tests/faults/iofail.c | build/.deps-ok
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $<")
+	$(Q)$(CC) -std=c11 -Wall -Wextra -Werror -O1 -shared -fPIC -o $@ $< -ldl
+
+tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
 # the integration scripts; the release and the portable bin/shake run the regression
@@ -123,6 +132,13 @@ check: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
 	$(Q)$(MAKE) --no-print-directory PORTABLE=1 build/port/bin/shake
 	$(Q)bash tests/run.sh
+
+# Fault injection (I/O faults at random moments, damaged outputs, litter, a second
+# driver) against the sanitizer build; FAULT_ROUNDS rounds (make check runs one).
+FAULT_ROUNDS ?= 8
+faults: build/.deps-ok
+	$(Q)$(MAKE) --no-print-directory SAN=1 tests
+	$(Q)FAULT_ROUNDS=$(FAULT_ROUNDS) SHAKE=$(CURDIR)/build/san/bin/shake bash tests/integration/faults.sh
 
 bench: build/.deps-ok all
 	$(Q)bash tests/bench/bench.sh

@@ -112,7 +112,7 @@ int main(int argc, char **argv)
 		free(s);
 		return e.code ? e.code : SB_EIO;
 	}
-	if (loaded && s->progress)
+	if (loaded) /* always said: a log must show that a run continued another */
 		fprintf(stderr, "shake: resuming from %s at t = %.4f s\n", s->ckpt_path, s->step * sc.dt);
 	if (!loaded) {
 		if (s->progress)
@@ -145,6 +145,12 @@ int main(int argc, char **argv)
 		sb_err e2 = {0};
 		if (sim_write_output(s, &e2)) {
 			fprintf(stderr, "shake: %s\n", e2.msg);
+			/* a run that simulated to its end keeps that end as a checkpoint (where
+			 * the fault allows): run again, it only writes the file */
+			sb_err e3 = {0};
+			if (!code && sc.checkpoint_every > 0 && !ckpt_write(s, &e3))
+				fprintf(stderr, "shake: checkpoint %s holds the finished run; run again to write the output\n",
+					s->ckpt_path);
 			if (!code)
 				code = e2.code;
 		} else {

@@ -3,6 +3,7 @@
  * from GNU parallel's bookkeeping, so any interruption is repaired by running again. */
 #include "driver.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -38,6 +39,8 @@ typedef struct drv {
 	long *logfrom;        /* per grid run: size of its log when START was seen */
 	long n_ingested, n_failed_now;
 	int jobs;
+	int io_fault;         /* a run failed on I/O: launch nothing more */
+	char io_msg[1200];
 } drv;
 
 static volatile sig_atomic_t g_stop;
@@ -192,10 +195,19 @@ static int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		return ingest_run(d, name, e);
 	if (code == 0)
 		return 0; /* output still on its way back from a remote host: the final sweep */
-	/* interrupted (7) or killed by a signal: resumable, stays pending; anything else
-	 * that left no output (bad input, I/O) is a failure */
-	int resumable = code == SB_EINTR || code >= 128;
+	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
+	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
+	 * stays pending and no further run starts, since every one would fail the same way
+	 * and a queue emptied in seconds would be marked failed. Bad input (1) fails. */
+	int io = code == SB_EIO;
+	int resumable = code == SB_EINTR || code >= 128 || io;
 	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : sb_code_name((int)code);
+	if (io && !d->io_fault) {
+		d->io_fault = 1;
+		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
+		if (g_parallel > 0)
+			kill((pid_t)g_parallel, SIGTERM); /* no new jobs; running ones checkpoint */
+	}
 	char now[32];
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
@@ -461,7 +473,7 @@ static int run_parallel(drv *d, const char *kind, char **names, long n, char **b
 		unreported(d, e);
 	if (WIFEXITED(st) && WEXITSTATUS(st) == 127 && !g_stop)
 		sb_errf(e, SB_EIO, "GNU parallel did not start (is it installed? make deps)");
-	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !g_stop)
+	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !g_stop && !d->io_fault)
 		sb_errf(e, SB_EIO, "GNU parallel failed (see the messages above)");
 out:
 	for (int i = 0; i < argc; i++)
@@ -692,6 +704,62 @@ static int record(drv *d, sb_err *e)
 	return db_commit(&d->db, e);
 }
 
+/* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
+ * is recorded with the reason, the result row goes, and the run is pending again. */
+static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb_err *e)
+{
+	char path[PATHX], keep[PATHX + 64], now[32];
+	snprintf(path, sizeof path, "%s/%s.h5", d->dir, id);
+	if (exists(path)) {
+		snprintf(keep, sizeof keep, "%s/damaged", d->dir);
+		if (mkdir_p(keep, e))
+			return e->code;
+		snprintf(keep, sizeof keep, "%s/damaged/%s.attempt%ld.h5", d->dir, id, att);
+		if (rename(path, keep))
+			return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
+	}
+	fprintf(stderr, "study: %s: run %s was done but %s: run again\n", d->c.name, id, why);
+	db_now(now, sizeof now);
+	if (db_begin(&d->db, e))
+		return e->code;
+	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", now, "pending", e) ||
+	    db_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	return db_commit(&d->db, e);
+}
+
+/* What an engine killed at the wrong moment leaves beside a finished run: its last
+ * checkpoint and journal (a finished run removes them itself), and temporary files
+ * of processes that are gone. */
+static void remove_litter(drv *d, const char *id)
+{
+	static const char *const stale[] = {"%s/%s.h5.ckpt", "%s/%s.h5.journal"};
+	char p[PATHX + 256];
+	for (size_t k = 0; k < sizeof stale / sizeof *stale; k++) {
+		snprintf(p, sizeof p, stale[k], d->dir, id);
+		unlink(p);
+	}
+	DIR *dd = opendir(d->dir);
+	if (!dd)
+		return;
+	char pre[64];
+	size_t lp = (size_t)snprintf(pre, sizeof pre, "%s.h5", id);
+	for (struct dirent *de; (de = readdir(dd));) {
+		const char *t = strstr(de->d_name, ".tmp.");
+		if (strncmp(de->d_name, pre, lp) || !t)
+			continue;
+		char *end;
+		long pid = strtol(t + 5, &end, 10);
+		if (*end || pid <= 0 || (kill((pid_t)pid, 0) != 0 && errno == ESRCH)) {
+			snprintf(p, sizeof p, "%s/%s", d->dir, de->d_name);
+			unlink(p);
+		}
+	}
+	closedir(dd);
+}
+
 static int has_result(drv *d, const char *id)
 {
 	sqlite3_stmt *q;
@@ -722,6 +790,19 @@ static int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			if (ingest_run(d, r->id, e))
 				return e->code;
 			continue;
+		}
+		if (!strcmp(st, "done") && pend) {
+			/* a finished run's file is read again on every sweep: a truncated or
+			 * deleted one puts the run back in the queue instead of shrinking its
+			 * group silently */
+			h5sum s;
+			sb_err re = {0};
+			if (!exists(path) || h5sum_read(path, &s, &re)) {
+				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
+					return e->code;
+				queued = 1;
+			}
+			remove_litter(d, r->id);
 		}
 		if (!queued && exists(path) && !has_result(d, r->id)) {
 			/* a database rebuilt, or written by another version: the result row
@@ -944,7 +1025,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
 	lock = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
 	if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB)) {
-		sb_errf(e, SB_EUSAGE, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
+		sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
 		goto out;
 	}
 	char dbp[PATHLEN];
@@ -972,7 +1053,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 		goto out;
 	fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
 		d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "", o->sshloginfile ? o->sshloginfile : "");
-	if (npend && !g_stop) {
+	if (npend && !g_stop && !d->io_fault) {
 		if (caches(d, pend, npend, &basefiles, &nbase, e))
 			goto out;
 		if (!g_stop && !prepare_jobs(d, pend, npend, names, e)) {
@@ -989,7 +1070,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 		pending, d->n_ingested);
 	if (!e->code && se.code)
 		sb_errf(e, se.code, "%s", se.msg);
-	if (!e->code && (g_stop || pending))
+	if (!e->code && d->io_fault)
+		sb_errf(e, SB_EIO,
+			"%s: I/O fault (%s): no further run was started; %ld runs are pending. Fix the cause (disk space, "
+			"permissions) and run the same command again",
+			d->c.name, d->io_msg, pending);
+	else if (!e->code && (g_stop || pending))
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
 	else if (!e->code && failed)

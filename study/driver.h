@@ -20,7 +20,7 @@ typedef struct driver_opts {
 } driver_opts;
 
 /* Driver exit codes (documented in study/README.md). */
-enum { DRV_OK = 0, DRV_USAGE = 1, DRV_IO = 2, DRV_FAILED = 3, DRV_INTERRUPTED = 7 };
+enum { DRV_OK = 0, DRV_USAGE = 1, DRV_IO = 2, DRV_FAILED = 3, DRV_BUSY = 4, DRV_INTERRUPTED = 7 };
 
 int driver_run(const driver_opts *o, sb_err *e);
 

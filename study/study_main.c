@@ -44,8 +44,9 @@ static const char *HELP_RUN =
 	"                      (without either, study run refuses and says what changed)\n"
 	"  --no-cache          every run settles its own packing\n"
 	"  --progress          progress bar (default: when stderr is a terminal)\n\n"
-	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O, 3 some runs failed\n"
-	"(recorded; see study status), 7 interrupted (run again to resume).\n";
+	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O (a run's I/O fault stops\n"
+	"the launching; the runs stay pending), 3 some runs failed (recorded; see study status),\n"
+	"4 another driver is running this campaign, 7 interrupted (run again to resume).\n";
 
 static const char *HELP_STATUS =
 	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--runs DIR] [--db FILE]\n\n"
@@ -242,7 +243,7 @@ int main(int argc, char **argv)
 				 .use_cache = !o.nocache, .progress = o.progress};
 		if (driver_run(&d, &e)) {
 			fprintf(stderr, "study: %s\n", e.msg);
-			return e.code == DRV_FAILED || e.code == DRV_INTERRUPTED ? e.code
+			return e.code == DRV_FAILED || e.code == DRV_INTERRUPTED || e.code == DRV_BUSY ? e.code
 			       : e.code == SB_EUSAGE                             ? DRV_USAGE
 										 : DRV_IO;
 		}

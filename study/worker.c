@@ -83,8 +83,10 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	clean(host);
 	int is_cache = !strcmp(kind, "cache");
 	if ((!is_cache && strcmp(kind, "run")) || !safe_name(name) || chdir(dir) != 0) {
-		report_done(name, 2, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
-		return 2;
+		/* exit codes as the engine's: 1 a job that can never run (the driver marks it
+		 * failed), 2 an I/O fault (the run stays pending and the driver stops) */
+		report_done(name, 1, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
+		return 1;
 	}
 	char args[600], log[600], out[600], lockp[600];
 	snprintf(args, sizeof args, "%s/%s.args", is_cache ? "cache" : "jobs", name);
@@ -139,8 +141,8 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	if (toomany) {
 		for (int i = 1; i < argc; i++)
 			free(argv[i]);
-		report_done(name, 2, host, 0, "exec: argument file has more than 126 parameters");
-		return 2;
+		report_done(name, 1, host, 0, "exec: argument file has more than 126 parameters");
+		return 1;
 	}
 
 	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND, 0666);

@@ -49,6 +49,6 @@ bin/study run over.campaign --runs "$TMP/R" >over.log 2>&1
 rc=$?
 row=$(sqlite3 R/study.db "SELECT state || '|' || exit_code || '|' || message FROM failures WHERE campaign = 'over'")
 [ -n "$id" ] && [ "$rc" -eq 3 ] && [ ! -e "R/over/$id.h5" ] &&
-	[ "$row" = "failed|2|exec: argument file has more than 126 parameters" ] && ok fault.args_overflow_refused ||
+	[ "$row" = "failed|1|exec: argument file has more than 126 parameters" ] && ok fault.args_overflow_refused ||
 	fail fault.args_overflow_refused "exit $rc, output $(ls R/over/*.h5 2>/dev/null), recorded '$row'"
 finish

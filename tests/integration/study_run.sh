@@ -151,7 +151,7 @@ for i in $(seq 100); do [ -e R/slow/jobs ] && break; sleep 0.05; done
 sleep 0.3
 "$STUDY" run slow.campaign --runs "$TMP/R" >slow2.log 2>&1
 rc=$?
-[ "$rc" -eq 1 ] && grep -q "another study driver" slow2.log && ok driver.exclusive || fail driver.exclusive "exit $rc: $(cat slow2.log)"
+[ "$rc" -eq 4 ] && grep -q "another study driver" slow2.log && ok driver.exclusive || fail driver.exclusive "exit $rc: $(cat slow2.log)"
 # each run is in the database as soon as it has finished, and sqlite3 reads it while
 # the driver is still running the others (8 runs, one job at a time)
 live=

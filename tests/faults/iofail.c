@@ -1,0 +1,115 @@
+/* iofail.c - an LD_PRELOAD shim that makes file writes fail on demand, for the fault
+ * tests (root ignores a read-only directory, so chmod cannot stage one). While the file
+ * named by IOFAIL_TRIGGER exists, opening for writing or renaming a path that contains
+ * one of the ':'-separated strings of IOFAIL_MATCH fails with errno IOFAIL_ERRNO
+ * (default EROFS). Reads are never touched. */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int armed(const char *path)
+{
+	const char *trig = getenv("IOFAIL_TRIGGER"), *match = getenv("IOFAIL_MATCH");
+	if (!trig || !match || !path || access(trig, F_OK) != 0)
+		return 0;
+	char buf[1024];
+	snprintf(buf, sizeof buf, "%s", match);
+	for (char *sv, *tok = strtok_r(buf, ":", &sv); tok; tok = strtok_r(NULL, ":", &sv))
+		if (*tok && strstr(path, tok)) {
+			const char *en = getenv("IOFAIL_ERRNO");
+			errno = en ? atoi(en) : EROFS;
+			return 1;
+		}
+	return 0;
+}
+
+static int writes(int flags)
+{
+	return (flags & (O_WRONLY | O_RDWR | O_CREAT | O_TRUNC)) != 0;
+}
+
+typedef int (*open_fn)(const char *, int, ...);
+typedef int (*openat_fn)(int, const char *, int, ...);
+typedef FILE *(*fopen_fn)(const char *, const char *);
+typedef int (*rename_fn)(const char *, const char *);
+/* the next definition of name (libc's), looked up once */
+#define REAL(name, type) \
+	static type real_##name; \
+	if (!real_##name) \
+	*(void **)&real_##name = dlsym(RTLD_NEXT, #name)
+
+int open(const char *path, int flags, ...)
+{
+	REAL(open, open_fn);
+	mode_t mode = 0;
+	if (flags & O_CREAT) {
+		va_list ap;
+		va_start(ap, flags);
+		mode = (mode_t)va_arg(ap, int);
+		va_end(ap);
+	}
+	if (writes(flags) && armed(path))
+		return -1;
+	return real_open(path, flags, mode);
+}
+
+int open64(const char *path, int flags, ...)
+{
+	REAL(open64, open_fn);
+	mode_t mode = 0;
+	if (flags & O_CREAT) {
+		va_list ap;
+		va_start(ap, flags);
+		mode = (mode_t)va_arg(ap, int);
+		va_end(ap);
+	}
+	if (writes(flags) && armed(path))
+		return -1;
+	return real_open64(path, flags, mode);
+}
+
+int openat(int dir, const char *path, int flags, ...)
+{
+	REAL(openat, openat_fn);
+	mode_t mode = 0;
+	if (flags & O_CREAT) {
+		va_list ap;
+		va_start(ap, flags);
+		mode = (mode_t)va_arg(ap, int);
+		va_end(ap);
+	}
+	if (writes(flags) && armed(path))
+		return -1;
+	return real_openat(dir, path, flags, mode);
+}
+
+FILE *fopen(const char *path, const char *m)
+{
+	REAL(fopen, fopen_fn);
+	if (m && (strchr(m, 'w') || strchr(m, 'a') || strchr(m, '+')) && armed(path))
+		return NULL;
+	return real_fopen(path, m);
+}
+
+FILE *fopen64(const char *path, const char *m)
+{
+	REAL(fopen64, fopen_fn);
+	if (m && (strchr(m, 'w') || strchr(m, 'a') || strchr(m, '+')) && armed(path))
+		return NULL;
+	return real_fopen64(path, m);
+}
+
+int rename(const char *from, const char *to)
+{
+	REAL(rename, rename_fn);
+	if (armed(from) || armed(to))
+		return -1;
+	return real_rename(from, to);
+}

@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# faults.sh - faults of the machine, injected on purpose, never poison a campaign:
+#   * an I/O fault (writes fail as on a read-only or full run directory, staged with the
+#     build/faults/iofail.so shim since root ignores permissions) stops the launching,
+#     leaves every untouched run pending and marks none failed; the run that hit it
+#     keeps its end as a checkpoint, so the next `study run` only writes its file; the
+#     campaign then ends as an uninterrupted one (export equal, timing aside);
+#   * a truncated or deleted output of a done run is found on the next sweep and run
+#     again, instead of shrinking its group silently;
+#   * what killed engines leave beside finished runs (stale checkpoints, temporary
+#     files of dead processes) is removed, a live process's is not;
+#   * a second driver on the same campaign is refused with its own exit code (4).
+# `make faults` runs it with FAULT_ROUNDS rounds of the I/O fault armed at random
+# moments; `make check` runs one round armed from the start.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+ROUNDS="${FAULT_ROUNDS:-1}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+[ -f "$SHIM" ] || { fail setup "$SHIM is missing (make tests builds it)"; finish; }
+cd "$TMP" || exit 1
+q() { sqlite3 -batch -noheader "$1" "$2"; }
+# the sanitizer build's runtime must come first; the shim is preloaded before it
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:verify_asan_link_order=0"
+
+cat >f.campaign <<'EOF'
+[campaign]
+name = f
+seed = 3
+replicates = 3
+[scene]
+n_grains = 40
+width = 16
+radius_ratio = 2
+settle_ke = 1
+settle_min = 0.2
+duration = 0.4
+checkpoint_every = 0.1
+traj_rate = 100
+snapshots = no
+[grid]
+frequency = 4, 5
+EOF
+# an uninterrupted campaign to compare with
+"$STUDY" run f.campaign --runs "$TMP/REF" --jobs 2 --no-cache >ref.log 2>&1 || fail setup.reference "exit $?: $(tail -n 2 ref.log)"
+"$STUDY" export f --runs "$TMP/REF" >ref.csv
+# export without the columns that say when, where and how often (not what)
+strip() {
+	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
+		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
+}
+
+# --- an I/O fault: launching stops, nothing is marked failed, resume completes ---
+for round in $(seq 1 "$ROUNDS"); do
+	R="$TMP/R$round"
+	rm -f trig
+	if [ "$round" = 1 ]; then
+		touch trig # armed from the start: the first run to finish hits it
+	else
+		(sleep "$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.3 + 2 * rand() }')" && touch trig) &
+	fi
+	LD_PRELOAD="$SHIM" IOFAIL_TRIGGER="$TMP/trig" IOFAIL_MATCH=".h5.tmp" \
+		"$STUDY" run f.campaign --runs "$R" --jobs 1 --no-cache >io$round.log 2>&1
+	rc=$?
+	wait
+	nfail=$(q "$R/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'failed'")
+	ndone=$(q "$R/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'done'")
+	if [ "$rc" = 2 ]; then
+		[ "$nfail" = 0 ] && [ "$ndone" -lt 6 ] && grep -q 'I/O fault' io$round.log &&
+			ok "io.round$round.stops_launching_none_failed" ||
+			fail "io.round$round.stops_launching_none_failed" "failed $nfail, done $ndone: $(tail -n 2 io$round.log)"
+		# the run that hit the fault kept its end: the next attempt only writes the file
+		hit=$(q "$R/study.db" "SELECT run FROM attempt WHERE campaign = 'f' AND status = 'io' LIMIT 1")
+		if [ "$round" = 1 ]; then
+			[ -n "$hit" ] && [ -f "$R/f/$hit.h5.ckpt" ] && ok io.checkpoint_kept ||
+				fail io.checkpoint_kept "run '$hit': no checkpoint of its end ($(ls "$R/f" | head -n 5 | tr '\n' ' '))"
+		fi
+	elif [ "$rc" = 0 ] && [ "$round" != 1 ]; then
+		ok "io.round$round.armed_after_the_end" # the trigger came after the last write
+	else
+		fail "io.round$round.exit" "exit $rc (expected 2): $(tail -n 3 io$round.log)"
+	fi
+	rm -f trig
+	"$STUDY" run f.campaign --runs "$R" --jobs 2 --no-cache >resume$round.log 2>&1 ||
+		fail "io.round$round.resume" "exit $?: $(tail -n 3 resume$round.log)"
+	if [ "$round" = 1 ] && [ -n "${hit:-}" ]; then
+		grep -q "resuming from .* at t = 0.4000 s" "$R/f/logs/$hit.log" && ok io.resume_only_writes ||
+			fail io.resume_only_writes "the faulted run simulated again: $(tail -n 3 "$R/f/logs/$hit.log")"
+	fi
+	"$STUDY" export f --runs "$R" >io$round.csv
+	cmp -s <(strip ref.csv) <(strip io$round.csv) && ok "io.round$round.export_equals_uninterrupted" ||
+		fail "io.round$round.export_equals_uninterrupted" "$(diff <(strip ref.csv) <(strip io$round.csv) | head -n 3 | cut -c1-300)"
+done
+
+# --- a damaged or deleted output of a done run is run again ---
+R="$TMP/R1"
+ids=($(q "$R/study.db" "SELECT id FROM run WHERE campaign = 'f' ORDER BY id"))
+sz=$(stat -c %s "$R/f/${ids[0]}.h5")
+truncate -s $((sz / 2)) "$R/f/${ids[0]}.h5"
+rm -f "$R/f/${ids[1]}.h5"
+"$STUDY" run f.campaign --runs "$R" --jobs 2 --no-cache >dmg.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && [ "$(q "$R/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'done'")" = 6 ] &&
+	[ -f "$R/f/damaged/${ids[0]}.attempt2.h5" ] || [ -f "$R/f/damaged/${ids[0]}.attempt1.h5" ] &&
+	grep -q "was done but" dmg.log && ok damaged.rerun || fail damaged.rerun "exit $rc: $(tail -n 3 dmg.log)"
+"$STUDY" export f --runs "$R" >dmg.csv
+cmp -s <(strip ref.csv) <(strip dmg.csv) && ok damaged.export_equals_uninterrupted ||
+	fail damaged.export_equals_uninterrupted "$(diff <(strip ref.csv) <(strip dmg.csv) | head -n 3 | cut -c1-300)"
+[ "$(q "$R/study.db" "SELECT COUNT(*) FROM attempt WHERE campaign = 'f' AND status = 'damaged'")" = 2 ] &&
+	ok damaged.recorded || fail damaged.recorded "$(q "$R/study.db" "SELECT run, status, message FROM attempt WHERE status <> 'ok'")"
+
+# --- litter of killed engines beside finished runs ---
+sleep 300 &
+live=$!
+touch "$R/f/${ids[2]}.h5.ckpt" "$R/f/${ids[2]}.h5.journal" "$R/f/${ids[2]}.h5.ckpt.tmp.999999999" \
+	"$R/f/${ids[2]}.h5.tmp.999999998" "$R/f/${ids[3]}.h5.ckpt.tmp.$live"
+"$STUDY" run f.campaign --runs "$R" --jobs 2 --no-cache >litter.log 2>&1
+left=$(cd "$R/f" && ls "${ids[2]}".h5.* 2>/dev/null | tr '\n' ' ')
+[ -z "$left" ] && [ -f "$R/f/${ids[3]}.h5.ckpt.tmp.$live" ] && ok litter.removed_but_live_kept ||
+	fail litter.removed_but_live_kept "left: '$left'"
+kill "$live" 2>/dev/null
+rm -f "$R/f/${ids[3]}.h5.ckpt.tmp.$live"
+
+# --- a second driver on the same campaign: refused with its own exit code ---
+flock "$R/f/.driver.lock" sleep 5 &
+holder=$!
+sleep 0.3
+"$STUDY" run f.campaign --runs "$R" >busy.log 2>&1
+rc=$?
+kill "$holder" 2>/dev/null
+wait 2>/dev/null
+[ "$rc" = 4 ] && grep -q 'another study driver' busy.log && ok busy.exit_code_4 || fail busy.exit_code_4 "exit $rc: $(cat busy.log)"
+finish
