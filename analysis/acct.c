@@ -145,14 +145,15 @@ void acct_print(FILE *f, const char *tool, char **labels, const an_acct *a, int 
 			why[0] ? why : "-");
 	}
 	if (tot[AN_PENDING] + tot[AN_RUNNING])
-		fprintf(f, "# NOT FINISHED: %ld runs pending and %ld running; every number above is over the runs finished"
-			   " so far and will change\n", tot[AN_PENDING], tot[AN_RUNNING]);
+		fprintf(f, "# NOT FINISHED: %ld run%s pending and %ld running; every number above is over the runs"
+			   " finished so far and will change\n", tot[AN_PENDING], tot[AN_PENDING] == 1 ? "" : "s",
+			tot[AN_RUNNING]);
 	if (failed)
-		fprintf(f, "# %ld runs failed: %ld of them used up to the failure, the rest unusable"
-			   " (why: %s_accounting.csv)\n", failed, tot[AN_PARTLY], tool);
+		fprintf(f, "# %ld run%s failed: %ld used up to the failure, %ld not usable (why: %s_accounting.csv)\n", failed,
+			failed == 1 ? "" : "s", tot[AN_PARTLY], failed - tot[AN_PARTLY], tool);
 	if (tot[AN_UNREADABLE])
-		fprintf(f, "# %ld run files could not be read: counted as unreadable, not used (why: %s_accounting.csv)\n",
-			tot[AN_UNREADABLE], tool);
+		fprintf(f, "# %ld run file%s could not be read: counted as unreadable, not used (why: %s_accounting.csv)\n",
+			tot[AN_UNREADABLE], tot[AN_UNREADABLE] == 1 ? "" : "s", tool);
 }
 
 void acct_csv_head(FILE *f)

@@ -621,9 +621,9 @@ int main(int argc, char **argv)
 	for (int j = 0; j < ng; j++)
 		partly += A[j].n[AN_PARTLY];
 	if (partly)
-		printf("# %ld failed runs enter with what they recorded before the failure: Fig. 3 with their periods after"
+		printf("# %ld failed run%s enter%s with what they recorded before the failure: Fig. 3 with their periods after"
 		       " the transient of the run as planned (the runs' periods are pooled), Fig. 1 with their samples\n",
-		       partly);
+		       partly, partly == 1 ? "" : "s", partly == 1 ? "s" : "");
 	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
 out:
 	if (f)

@@ -236,8 +236,8 @@ int main(int argc, char **argv)
 	for (int j = 0; j < ng; j++)
 		partly += A[j].n[AN_PARTLY];
 	if (partly)
-		printf("# %ld failed runs enter with the periods they recorded before the failure (a leg cut short by"
-		       " it is used as far as it got)\n", partly);
+		printf("# %ld failed run%s enter%s with the periods they recorded before the failure (a leg cut short by"
+		       " it is used as far as it got)\n", partly, partly == 1 ? "" : "s", partly == 1 ? "s" : "");
 	if (!o.no_plot) {
 		if (!(f = gp_open(&o, "hysteresis", 1000, 560, script, png, sizeof script, &e)))
 			goto out;

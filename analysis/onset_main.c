@@ -244,8 +244,9 @@ int main(int argc, char **argv)
 	for (int j = 0; j < ng; j++)
 		partly += A[j].n[AN_PARTLY];
 	if (partly)
-		printf("# %ld failed runs enter with the periods they recorded before the failure (after the transient of"
-		       " the run as planned): one point each, like a finished run\n", partly);
+		printf("# %ld failed run%s enter%s with the periods they recorded before the failure (after the transient of"
+		       " the run as planned): one point each, like a finished run\n", partly,
+		       partly == 1 ? "" : "s", partly == 1 ? "s" : "");
 	if (!o.no_plot) {
 		if (!(f = gp_open(&o, "onset", 1000, 560, script, png, sizeof script, &e)))
 			goto out;

@@ -336,9 +336,10 @@ int main(int argc, char **argv)
 		goto out;
 	acct_print(stdout, "waiting", labels, A, ng, nold, o.all_versions);
 	if (f_ev + f_cens)
-		printf("# %ld failed runs are observed up to their failure: %ld had risen before it (events at their waiting"
+		printf("# %ld failed run%s %s observed up to the failure: %ld had risen before it (events at their waiting"
 		       " times), %ld are censored at the failure time; this assumes that the failure is independent of"
-		       " the rise (non-informative censoring)\n", f_ev + f_cens, f_ev, f_cens);
+		       " the rise (non-informative censoring)\n", f_ev + f_cens, f_ev + f_cens == 1 ? "" : "s",
+		       f_ev + f_cens == 1 ? "is" : "are", f_ev, f_cens);
 
 	if (!o.no_plot) {
 		if (!(f = gp_open(&o, "waiting_km", 900, 520, script, png, sizeof script, &e)))

@@ -176,7 +176,7 @@ while read -r g1 g2 used failed fu un ur pe ru; do
 done <<<"$want"
 [ "$bad" = 0 ] && grep -q '^group .* failed *unfinished$' onset.out && ok acc.onset.printed_counts ||
 	fail acc.onset.printed_counts "$(cat onset.out)"
-grep -q '^# NOT FINISHED: 1 runs pending and 1 running' onset.out && ok acc.onset.says_unfinished ||
+grep -q '^# NOT FINISHED: 1 run pending and 1 running' onset.out && ok acc.onset.says_unfinished ||
 	fail acc.onset.says_unfinished "$(grep '^#' onset.out)"
 # stored rows: the same counts, and per-status counts of the failures
 bad=0
@@ -272,7 +272,7 @@ for id in $(q "SELECT id FROM run WHERE campaign = 's' AND state = 'failed' AND 
 done
 [ "$bad" = 0 ] && [ "$ev" -ge 1 ] && [ "$ce" -ge 2 ] && ok acc.waiting.failed_risen_or_censored ||
 	fail acc.waiting.failed_risen_or_censored "events $ev, censored $ce"
-grep -q "^# $((ev + ce)) failed runs are observed up to their failure: $ev had risen before it .*, $ce are censored at the failure time; this assumes that the failure is independent of the rise" waiting.out &&
+grep -q "^# $((ev + ce)) failed runs are observed up to the failure: $ev had risen before it .*, $ce are censored at the failure time; this assumes that the failure is independent of the rise" waiting.out &&
 	ok acc.waiting.says_assumption || fail acc.waiting.says_assumption "$(grep '^#' waiting.out)"
 # the Kaplan-Meier curve starts with every used run at risk
 bad=0
