@@ -1,0 +1,28 @@
+# fuzz.mk - `make fuzz`: time-bounded mutation fuzzing of scene, campaign and particle
+# files against the sanitizer builds of bin/shake and `study expand`
+# (tests/fuzz/fuzz.sh drives tests/fuzz/fuzz.c). Included by the top-level Makefile;
+# not part of `make check`, which runs tests/integration/fuzz_quick.sh (a fixed seed, a
+# fixed number of inputs). Findings go to FUZZ_OUT, one directory each with repro.sh.
+# Knobs: FUZZ_SECONDS (default 600), FUZZ_SEED (1), FUZZ_INPUTS (0 = no limit),
+# FUZZ_TIMEOUT (seconds after which a run is a hang, 10), FUZZ_OUT (build/fuzz/findings).
+FUZZ_BIN      = build/fuzz/fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_SEED    ?= 1
+FUZZ_INPUTS  ?= 0
+FUZZ_TIMEOUT ?= 10
+FUZZ_OUT     ?= build/fuzz/findings
+
+.PHONY: fuzz
+
+# The fuzzer is a tool, not what is tested: one plain build for every flavour.
+$(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $<")
+	$(Q)$(CC) $(BASEFLAGS) -O2 -g -o $@ $<
+
+tests: $(FUZZ_BIN)
+
+fuzz: build/.deps-ok $(FUZZ_BIN)
+	$(Q)$(MAKE) --no-print-directory SAN=1 build/san/bin/shake build/san/bin/study
+	$(Q)FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) FUZZ_INPUTS=$(FUZZ_INPUTS) \
+		FUZZ_TIMEOUT=$(FUZZ_TIMEOUT) FUZZ_OUT=$(FUZZ_OUT) bash tests/fuzz/fuzz.sh

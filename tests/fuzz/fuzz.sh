@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# fuzz.sh - `make fuzz`: the seed corpus (scenes/, campaigns/, and small particle files
+# the engine writes, text and LAMMPS) and the keys (shake --params), then the mutation
+# fuzzer against the sanitizer builds. Knobs (environment):
+#   FUZZ_SECONDS  time limit (default 600; 0 = none, then FUZZ_INPUTS is needed)
+#   FUZZ_INPUTS   number of inputs (default 0 = no limit)
+#   FUZZ_SEED     PRNG seed (default 1): input k is the same for the same seed and corpus
+#   FUZZ_TIMEOUT  seconds after which a run is a hang (default 10)
+#   FUZZ_OUT      findings directory, emptied first (default build/fuzz/findings)
+#   FUZZ_WORK     scratch directory (default build/fuzz/work)
+#   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN  the binaries (default build/san/bin/{shake,study},
+#                 build/fuzz/fuzz)
+# Exits 1 when there are findings (each under FUZZ_OUT with repro.sh), 2 on a setup error.
+set -u
+cd "$(dirname "$0")/../.." || exit 2
+SECONDS_LIMIT="${FUZZ_SECONDS:-600}"
+INPUTS="${FUZZ_INPUTS:-0}"
+SEED="${FUZZ_SEED:-1}"
+TIMEOUT="${FUZZ_TIMEOUT:-10}"
+OUT="${FUZZ_OUT:-build/fuzz/findings}"
+WORK="${FUZZ_WORK:-build/fuzz/work}"
+SHAKE="${FUZZ_SHAKE:-build/san/bin/shake}"
+STUDY="${FUZZ_STUDY:-build/san/bin/study}"
+FUZZ="${FUZZ_BIN:-build/fuzz/fuzz}"
+for b in "$SHAKE" "$STUDY" "$FUZZ"; do
+	[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
+done
+SHAKE=$(realpath "$SHAKE")
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+
+rm -rf "$OUT" "$WORK"
+mkdir -p "$OUT" "$WORK/corpus" || exit 2
+C="$WORK/corpus"
+"$SHAKE" --params >"$C/keys.tsv" || { echo "fuzz: $SHAKE --params failed" >&2; exit 2; }
+
+# Particle seeds: a small bed with a 2x intruder (the integration tests' FAST scene) and
+# one without an intruder, as the engine writes them; the runs of the particle target
+# use the same box width.
+PW=20
+gen() { # NAME args...
+	local name=$1
+	shift
+	(cd "$C" && "$SHAKE" "$@" width=$PW settle_ke=1 settle_min=0.2 duration=0 progress=no \
+		write_particles="$name.txt" write_lammps="$name.data" output="$name.h5" >"$name.log" 2>&1) ||
+		{ echo "fuzz: could not write the particle seed $name: $(head -c 300 "$C/$name.log")" >&2; exit 2; }
+	rm -f "$C/$name.h5" "$C/$name.xmf"
+}
+gen bed n_grains=60 radius_ratio=2 depth=1
+gen bed0 n_grains=30 radius_ratio=0
+# a few lines of each are enough: mutations act on the structure, and a short file
+# keeps each run short
+head -n 24 "$C/bed.txt" >"$C/bed_short.txt"
+
+# Scene seeds beside scenes/paper.scene (whose 950 grains the budget cuts to 150, too
+# few to settle in the budget's 0.3 s): small beds that settle at once, so that
+# mutations reach the shaking, the ramps and the observables too.
+cat >"$C/small.scene" <<EOF
+# the integration tests' FAST scene, shaken fast enough (Gamma = 1) for a few
+# periods in the fuzzer's time budget
+n_grains = 60
+width = 20
+radius_ratio = 2
+depth = 1
+settle_ke = 1
+settle_min = 0.1
+duration = 0.05
+snapshots = yes
+traj_rate = 200
+frequency = 50
+amplitude = 0.01
+EOF
+cat >"$C/observe.scene" <<EOF
+[scene]
+n_grains = 40
+width = 16
+radius_ratio = 1.5
+depth = 0
+settle_ke = 1
+settle_min = 0.1
+preset = fast
+ramp = linear
+ramp_from = 30
+ramp_to = 50
+amplitude = 0.02
+duration = 0.05
+flux = yes
+flux_lines = 10
+field = yes
+field_periods = 1
+ring = yes
+ring_every = 2
+checkpoint_every = 0.01
+EOF
+
+args=(--shake "$SHAKE" --study "$STUDY" --seed "$SEED" --timeout "$TIMEOUT" --out "$OUT" --work "$WORK"
+	--keys "$C/keys.tsv" --particle-arg "width=$PW" --particle-arg settle=no)
+[ "$SECONDS_LIMIT" != 0 ] && args+=(--seconds "$SECONDS_LIMIT")
+[ "$INPUTS" != 0 ] && args+=(--inputs "$INPUTS")
+for f in scenes/*.scene "$C/small.scene" "$C/observe.scene"; do args+=(--scene "$f"); done
+for f in campaigns/*.campaign; do args+=(--campaign "$f"); done
+for f in "$C"/bed.txt "$C"/bed.data "$C"/bed0.txt "$C"/bed0.data "$C"/bed_short.txt; do args+=(--particles "$f"); done
+exec "$FUZZ" "${args[@]}"
