@@ -3,7 +3,7 @@
 # which a max_overlap just above the usual overlaps stops some runs on physics, mid-way,
 # with their output file; then a run of an earlier version of the campaign file
 # (current = 0), a pending and a running run, a truncated file and a failed run without
-# an output file (an I/O failure), all made with sqlite3 and the shell. Checks, against
+# an output file (bad input), all made with sqlite3 and the shell. Checks, against
 # an independent classification from the database and the files (h5dump): every tool's
 # counts per group (table, summary CSV, stored rows), the failed runs' treatment in the
 # waiting times (risen before the failure: an event; else censored at the failure) and
@@ -81,14 +81,14 @@ OLD=$(pick "a.value = 2 AND b.value = 4 AND r.state = 'done'")   # of an earlier
 PEND=$(pick "a.value = 0 AND b.value = 4 AND r.state = 'done'")  # queued again
 RUNG=$(pick "a.value = 2 AND b.value = 6 AND r.state = 'done'")  # running
 TRUNC=$(pick "a.value = 0 AND b.value = 6 AND r.state = 'done'") # its file truncated
-# failed without an output file: an I/O failure (no file, no result row, the attempt says why)
+# failed without an output file: bad input (no file, no result row, the attempt says why)
 NOFILE=$(q "SELECT r.id FROM run r JOIN result s ON s.campaign = r.campaign AND s.run = r.id JOIN param a ON a.campaign = r.campaign
 	AND a.run = r.id AND a.key = 'radius_ratio' WHERE r.campaign = 's' AND r.state = 'failed' AND a.value = 2 ORDER BY s.status_time LIMIT 1")
 q "UPDATE run SET current = 0 WHERE campaign = 's' AND id = '$OLD';
    UPDATE run SET state = 'pending' WHERE campaign = 's' AND id = '$PEND';
    UPDATE run SET state = 'running' WHERE campaign = 's' AND id = '$RUNG';
    DELETE FROM result WHERE campaign = 's' AND run = '$NOFILE';
-   UPDATE attempt SET status = 'io', exit_code = 2, message = 'runs/s/$NOFILE.h5.tmp: cannot create HDF5 file'
+   UPDATE attempt SET status = 'usage', exit_code = 1, message = 'shake: frequency: expected a number in (0, 100], got x'
      WHERE campaign = 's' AND run = '$NOFILE'"
 rm -f "R/s/$NOFILE.h5"
 truncate -s 3000 "R/s/$TRUNC.h5"
@@ -189,7 +189,7 @@ while read -r g1 g2 used failed fu un ur pe ru; do
 	nst=$(q "SELECT COALESCE(SUM(value), 0) FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = '$g1 $g2' AND key LIKE 'failed\_%' ESCAPE '\' AND key NOT IN ('failed_used_s', 'failed_planned_s')")
 	awk -v a="$nst" -v b="$failed" 'BEGIN { exit !(a == b) }' || { bad=1; echo "# $g1 $g2: failed_STATUS sum $nst, failed $failed"; }
 done <<<"$want"
-[ "$bad" = 0 ] && [ "$(q "SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = 'radius_ratio=2 depth=1' AND key = 'failed_io'")" = 1.0 ] &&
+[ "$bad" = 0 ] && [ "$(q "SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = 'radius_ratio=2 depth=1' AND key = 'failed_usage'")" = 1.0 ] &&
 	ok acc.onset.stored_counts || fail acc.onset.stored_counts "$(q "SELECT grp, key, value FROM analysis WHERE tool = 'onset' AND key LIKE '%runs%' OR key LIKE 'failed%'")"
 # every run considered is in the accounting CSV with the use the rules give it
 bad=0 n=0
@@ -229,7 +229,7 @@ grep -q "^[0-9]*,\"[^\"]*\",$TRUNC,.*,unreadable," $A/onset_accounting.csv && gr
 	! grep -q "$TRUNC" $A/onset_runs.csv && ok acc.onset.truncated_file_unreadable ||
 	fail acc.onset.truncated_file_unreadable "$(grep "$TRUNC" $A/onset_accounting.csv; cat onset.err)"
 # the failed run without a file is unusable and says why
-grep "$NOFILE" $A/onset_accounting.csv | grep -q ',unusable,.*without an output file (io: ' &&
+grep "$NOFILE" $A/onset_accounting.csv | grep -q ',unusable,.*without an output file (usage: shake: frequency' &&
 	ok acc.onset.failed_without_file || fail acc.onset.failed_without_file "$(grep "$NOFILE" $A/onset_accounting.csv)"
 # pending and running runs are not used even though their files exist
 ! grep -q "$PEND\|$RUNG" $A/onset_runs.csv && ok acc.onset.unfinished_not_used || fail acc.onset.unfinished_not_used "$(grep "$PEND\|$RUNG" $A/onset_runs.csv)"
