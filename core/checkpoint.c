@@ -13,7 +13,7 @@
 #include "fsutil.h"
 #include "sim.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '2'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '3'};
 
 typedef struct hw {
 	FILE *f;
@@ -144,11 +144,20 @@ int ckpt_load(sb_sim *s, sb_err *e)
 	hw_get(&r, &ph, sizeof ph);
 	hw_get(&r, hdr, sizeof hdr);
 	int err = 0;
-	if (!r.bad && !memcmp(m, MAGIC, 6) && memcmp(m, MAGIC, 8))
+	if (!r.bad && !memcmp(m, MAGIC, 6) && memcmp(m, MAGIC, 8)) {
+		/* another engine version's checkpoint: restart = auto starts over (only
+		 * time is lost), restart = yes cannot do what it was asked */
+		if (s->sc.restart != TRI_YES) {
+			snprintf(s->warning, sizeof s->warning,
+				 "%.400s: a checkpoint of format %.2s (this engine writes %.2s): starting over", path, m + 6,
+				 MAGIC + 6);
+			fclose(f);
+			return 0;
+		}
 		err = sb_errf(e, SB_EUSAGE,
 			      "%s: a checkpoint of format %.2s, this engine writes %.2s; remove it or set restart = no",
 			      path, m + 6, MAGIC + 6);
-	else if (r.bad || memcmp(m, MAGIC, 8))
+	} else if (r.bad || memcmp(m, MAGIC, 8))
 		err = sb_errf(e, SB_EIO, "%s: not a shakebox checkpoint", path);
 	else if (ph != ckpt_hash(&s->sc))
 		err = sb_errf(e, SB_EUSAGE,

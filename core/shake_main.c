@@ -112,14 +112,24 @@ int main(int argc, char **argv)
 		free(s);
 		return e.code ? e.code : SB_EIO;
 	}
-	if (loaded) /* always said: a log must show that a run continued another */
+	if (loaded) { /* always said: a log must show that a run continued another */
 		fprintf(stderr, "shake: resuming from %s at t = %.4f s\n", s->ckpt_path, s->step * sc.dt);
+	} else if (s->warning[0]) { /* a checkpoint it could not use */
+		fprintf(stderr, "shake: warning: %s\n", s->warning);
+		s->warning[0] = 0;
+	}
 	if (!loaded) {
 		if (s->progress)
 			fprintf(stderr, "shake: preparing %s\n", sc.particles[0] ? sc.particles : "the scene");
 		int prc = sim_prepare(s, &e);
 		if (s->warning[0])
 			fprintf(stderr, "shake: warning: %s\n", s->warning);
+		/* legal (a free fall, a collision test) but more often a file whose walls were
+		 * forgotten: LAMMPS would at least have its box, here nothing holds the grains */
+		if (sc.particles[0] && (!prc || s->status) && s->st.nm > 0 && s->st.n == s->st.nm)
+			fprintf(stderr, "shake: warning: %s: no walls (disks of kind wall, LAMMPS type 3): nothing holds the "
+					"grains and no disk can leave the box\n",
+				sc.particles);
 		if (prc && !s->status) {
 			/* bad particle file, out of memory, I/O: nothing ran, nothing to record */
 			fprintf(stderr, "shake: %s\n", e.msg);

@@ -44,6 +44,23 @@ else
 	fail resume.setup "the interrupted run left no checkpoint: $(tail -n 2 r1.log)"
 fi
 
+# --- a checkpoint of another engine version: restart = auto starts over, yes refuses ---
+if [ -f r.h5.ckpt ] || { timeout -s TERM 2 "$SHAKE" "${long[@]}" output=v.h5 >v0.log 2>&1; [ -f v.h5.ckpt ]; }; then
+	ck=$( [ -f r.h5.ckpt ] && echo r || echo v )
+	printf 'SBCKPT01' | dd of=$ck.h5.ckpt conv=notrunc 2>/dev/null
+	cp $ck.h5.ckpt old.ckpt
+	shake_run v1.log "${FAST[@]}" "${GENTLE[@]}" duration=0.2 checkpoint=old.ckpt restart=yes output=v1.h5
+	rc=$?
+	[ "$rc" = 1 ] && grep -q 'format 01' v1.log && ok checkpoint.other_version_refused_with_restart_yes ||
+		fail checkpoint.other_version_refused_with_restart_yes "exit $rc: $(tail -n 1 v1.log)"
+	shake_run v2.log "${FAST[@]}" "${GENTLE[@]}" duration=0.2 checkpoint=old.ckpt restart=auto output=v2.h5
+	rc=$?
+	[ "$rc" = 0 ] && grep -q 'starting over' v2.log && ok checkpoint.other_version_starts_over_with_auto ||
+		fail checkpoint.other_version_starts_over_with_auto "exit $rc: $(tail -n 1 v2.log)"
+else
+	fail checkpoint.setup "no checkpoint to alter"
+fi
+
 # --- degenerate scenes, every observable on ---
 ALL=(flux=yes field=yes ring=yes snapshots=yes traj_rate=100 duration=0.3 "${GENTLE[@]}" progress=no)
 shake_run d0.log n_grains=0 width=12 radius_ratio=2 "${ALL[@]}" output=d0.h5

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# overlap_report.sh - the distribution of the largest overlap per run of the
+# overlap_safety campaigns (paper and fast preset), as the Markdown table the README
+# quotes: runs, how many the max_overlap stop ended, quantiles of overlap_max, and the
+# largest per frequency. Usage: scripts/overlap_report.sh [RUNS-DIR]   (default runs)
+set -euo pipefail
+RUNS=${1:-runs}
+DB=$RUNS/study.db
+[ -f "$DB" ] || { echo "overlap_report: $DB: no study database (run the campaigns first)" >&2; exit 1; }
+q() { sqlite3 -batch -noheader -separator ' ' "$DB" "$1"; }
+echo "| preset | runs done / failed / pending | stopped by max_overlap | median | 90 % | 99 % | largest | largest at 2.7 / 2.8 / 2.9 / 3.0 / 3.1 / 3.2 Hz |"
+echo "|---|---|---|---|---|---|---|---|"
+for c in overlap_safety overlap_safety_fast; do
+	n=$(q "SELECT COUNT(*) FROM runs WHERE campaign = '$c' AND current")
+	[ "${n:-0}" -gt 0 ] || continue
+	counts=$(q "SELECT SUM(state = 'done') || ' / ' || SUM(state = 'failed') || ' / ' || SUM(state IN ('pending', 'running')) FROM runs WHERE campaign = '$c' AND current")
+	stops=$(q "SELECT COUNT(*) FROM runs WHERE campaign = '$c' AND current AND status = 'overlap'")
+	# quantiles of the runs with a file (nearest rank)
+	qs=$(q "SELECT overlap_max FROM runs WHERE campaign = '$c' AND current AND overlap_max IS NOT NULL ORDER BY overlap_max" |
+		awk '{ v[NR] = $1 } END { if (!NR) { print "- - - -"; exit }
+			split("0.5 0.9 0.99", p, " "); s = "";
+			for (k = 1; k <= 3; k++) { r = int(p[k] * NR + 0.999999); if (r < 1) r = 1; s = s sprintf("%.3f ", v[r]) }
+			printf "%s%.3f\n", s, v[NR] }')
+	perf=$(q "SELECT printf('%.3f', MAX(overlap_max)) FROM runs WHERE campaign = '$c' AND current GROUP BY frequency ORDER BY frequency" | paste -sd/ | sed 's|/| / |g')
+	preset=$(q "SELECT preset FROM runs WHERE campaign = '$c' LIMIT 1")
+	read -r q50 q90 q99 qmax <<<"$qs"
+	echo "| $preset | $counts | $stops | $q50 | $q90 | $q99 | $qmax | $perf |"
+done
