@@ -144,8 +144,11 @@ static int pooled_axis(adb *d, const an_opts *o, an_run *runs, int k, sb_err *e)
  * transient), else its file up to its status time. */
 static void classify(an_run *r, const flux_opts *fo)
 {
-	if (acct_classify(r))
+	if (acct_classify(r)) {
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
 		return;
+	}
 	const int failed = !strcmp(r->state, "failed");
 	const char *fl = an_str(r, "flux");
 	const double dur = an_num(r, "duration", NAN);

@@ -89,7 +89,7 @@ int main(int argc, char **argv)
 							    an_num(r, "ramp_to", NAN), an_num(r, "ramp_hold", 0), leg);
 			const int failed = !strcmp(r->state, "failed");
 			if (!nl)
-				acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, none after the hold",
+				acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, too few after the hold",
 					 failed ? "failed (" : "finished", failed ? r->status : "", failed ? ")" : "", D->P);
 			else if (failed)
 				acct_set(r, AN_PARTLY, D->t[D->P - 1], an_num(r, "duration", NAN),
