@@ -21,7 +21,7 @@ for c in overlap_safety overlap_safety_fast; do
 			split("0.5 0.9 0.99", p, " "); s = "";
 			for (k = 1; k <= 3; k++) { r = int(p[k] * NR + 0.999999); if (r < 1) r = 1; s = s sprintf("%.3f ", v[r]) }
 			printf "%s%.3f\n", s, v[NR] }')
-	perf=$(q "SELECT printf('%.3f', MAX(overlap_max)) FROM runs WHERE campaign = '$c' AND current GROUP BY frequency ORDER BY frequency" | paste -sd/ | sed 's|/| / |g')
+	perf=$(q "SELECT CASE WHEN MAX(overlap_max) IS NULL THEN '-' ELSE printf('%.3f', MAX(overlap_max)) END FROM runs WHERE campaign = '$c' AND current GROUP BY frequency ORDER BY frequency" | paste -sd/ | sed 's|/| / |g')
 	preset=$(q "SELECT preset FROM runs WHERE campaign = '$c' LIMIT 1")
 	read -r q50 q90 q99 qmax <<<"$qs"
 	echo "| $preset | $counts | $stops | $q50 | $q90 | $q99 | $qmax | $perf |"
