@@ -4,6 +4,8 @@
 #include <gsl/gsl_rng.h>
 #include <math.h>
 
+#include "guard.h"
+
 double prepare_mass(const sb_scene *sc, double r)
 {
 	return sc->mass_factor * sc->density * r * r;
@@ -12,19 +14,48 @@ double prepare_mass(const sb_scene *sc, double r)
 int prepare_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e)
 {
 	double m = prepare_mass(sc, r);
-	double inv_m = 1.0 / m;
+	double inv_m = 1.0 / m, inv_i = 1.0 / (0.5 * m * r * r);
+	/* every key is in range and still the product can underflow (r = 1e-160) or the
+	 * moment of inertia alone does: the dynamics would divide by zero */
+	if (!(m > 0) || !isfinite(inv_m) || !isfinite(inv_i))
+		return sb_errf(e, SB_EUSAGE,
+			       "a disk of radius %g cm gets mass %g g and moment of inertia %g g cm^2 from mass_factor %g (%s) "
+			       "and density %g (%s): both must be positive and finite",
+			       r, m, 0.5 * m * r * r, sc->mass_factor, params_where(sc, "mass_factor"), sc->density,
+			       params_where(sc, "density"));
 	if (kind == KIND_WALL && sc->wall_mass == WALLMASS_INFINITE)
 		inv_m = 0;
-	return state_push(st, x, y, r, kind, m, inv_m, 1.0 / (0.5 * m * r * r), e);
+	return state_push(st, x, y, r, kind, m, inv_m, inv_i, e);
 }
 
-/* Evenly spaced points from a to b (both included) no farther apart than s. */
-static int n_span(double a, double b, double s)
+/* How many evenly spaced points from a to b (both included) no farther apart than s:
+ * as a double, so that a count beyond int is seen before it is cast. */
+static double n_span(double a, double b, double s)
 {
-	return (int)ceil((b - a) / s - 1e-9) + 1;
+	return ceil((b - a) / s - 1e-9) + 1;
 }
 
-int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
+/* The wall disks of a box of side walls H high, checked before the count is cast. */
+static int check_walls(const sb_scene *sc, double nb, double H, double ns, sb_err *e)
+{
+	const double total = nb + 2 * (ns - 1);
+	if (total <= GUARD_MAX_WALLS)
+		return 0;
+	char height[200] = "";
+	if (sc->wall_height > 0)
+		snprintf(height, sizeof height, " and wall_height %g cm (%s)", H, params_where(sc, "wall_height"));
+	else if (ns > 1)
+		snprintf(height, sizeof height,
+			 " and side walls %.3g cm high (wall_height 0: twice the loose bed of n_grains %ld, %s)", H,
+			 sc->n_grains, params_where(sc, "n_grains"));
+	return sb_errf(e, SB_EUSAGE,
+		       "%s: wall_spacing %g cm makes %.3g wall disks for width %g cm (%s)%s; a box takes at most %d: "
+		       "a larger wall_spacing (at most 2 wall_radius) or a smaller box",
+		       params_where(sc, "wall_spacing"), sc->wall_spacing, total, sc->width, params_where(sc, "width"),
+		       height, GUARD_MAX_WALLS);
+}
+
+static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 {
 	const double W = sc->width, rw = sc->wall_radius;
 	const double rmean = 0.5 * (sc->r_min + sc->r_max);
@@ -32,7 +63,21 @@ int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
 	/* Loose square lattice 10 % wider than the largest grain: nobody overlaps and the
 	 * bed compacts by only a few percent while settling. */
 	const double pitch = 2.2 * sc->r_max;
-	const int ncol = (int)floor(W / pitch);
+	const double cols = floor(W / pitch);
+	if (!(cols <= GUARD_MAX_COLUMNS))
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: width %g cm holds %.3g lattice sites of 2.2 r_max = %g cm in a row (r_max %g cm, %s); "
+			       "the placement takes at most %d: larger grains or a narrower box",
+			       params_where(sc, "width"), W, cols, pitch, sc->r_max, params_where(sc, "r_max"),
+			       GUARD_MAX_COLUMNS);
+	const int ncol = (int)cols;
+	/* The walls are counted before the placement too (it may take seconds), with the
+	 * side walls no lower than the rows n_grains fill at least. */
+	const double nb = n_span(-rw, W + rw, sc->wall_spacing);
+	const double rows = ncol > 0 ? ceil((double)sc->n_grains / ncol) : 0;
+	const double H0 = sc->wall_height > 0 ? sc->wall_height : 2 * fmax(0, rows - 0.5) * pitch;
+	if (check_walls(sc, nb, H0, H0 > 0 ? n_span(-rw, H0, sc->wall_spacing) : 1, e))
+		return e->code;
 	const double xoff = 0.5 * (W - ncol * pitch) + 0.5 * pitch;
 	const double jit = 0.5 * pitch - sc->r_max; /* free play of a grain in its site */
 	const double gap = 0.05 * sc->r_max;
@@ -46,11 +91,15 @@ int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
 	int err = 0;
 	if (R1 > 0)
 		err = prepare_push(sc, st, ix, iy, R1, KIND_INTRUDER, e);
-	long placed = 0;
+	long placed = 0, sites = 0;
 	double top = R1 > 0 ? iy + R1 : 0;
 	for (long row = 0; placed < sc->n_grains && !err; row++) {
 		const double y = (row + 0.5) * pitch;
 		for (int c = 0; c < ncol && placed < sc->n_grains && !err; c++) {
+			if (++sites % 65536 == 0 && guard_stopped()) {
+				err = sb_errf(e, SB_EINTR, "interrupted while placing the grains");
+				break;
+			}
 			/* draw first so that a skipped site still advances the stream alike */
 			const double r = sc->r_min + (sc->r_max - sc->r_min) * gsl_rng_uniform(rng);
 			const double dx = jit * (2 * gsl_rng_uniform(rng) - 1);
@@ -71,15 +120,33 @@ int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
 	/* Walls: a bottom row with centres at y = -rw (its top touches y = 0) and two side
 	 * columns at x = -rw and W + rw, so the inner box is [0, W] x [0, height]. */
 	const double H = sc->wall_height > 0 ? sc->wall_height : 2 * top;
-	const int nb = n_span(-rw, W + rw, sc->wall_spacing);
-	for (int k = 0; k < nb && !err; k++)
-		err = prepare_push(sc, st, -rw + (W + 2 * rw) * k / (nb - 1), -rw, rw, KIND_WALL, e);
-	const int ns = n_span(-rw, H, sc->wall_spacing);
-	for (int k = 1; k < ns && !err; k++) {
-		const double y = -rw + (H + rw) * k / (ns - 1);
+	const double ns = n_span(-rw, H, sc->wall_spacing);
+	if (check_walls(sc, nb, H, ns, e))
+		return e->code;
+	const int inb = (int)nb, ins = (int)ns;
+	for (int k = 0; k < inb && !err; k++) {
+		if (k % 65536 == 65535 && guard_stopped())
+			return sb_errf(e, SB_EINTR, "interrupted while placing the walls");
+		err = prepare_push(sc, st, -rw + (W + 2 * rw) * k / (inb - 1), -rw, rw, KIND_WALL, e);
+	}
+	for (int k = 1; k < ins && !err; k++) {
+		if (k % 65536 == 0 && guard_stopped())
+			return sb_errf(e, SB_EINTR, "interrupted while placing the walls");
+		const double y = -rw + (H + rw) * k / (ins - 1);
 		err = prepare_push(sc, st, -rw, y, rw, KIND_WALL, e);
 		if (!err)
 			err = prepare_push(sc, st, W + rw, y, rw, KIND_WALL, e);
 	}
+	return err;
+}
+
+int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
+{
+	/* up to 10^7 grains and as many wall disks take seconds: a SIGINT or SIGTERM in
+	 * them must end the run as one while settling does */
+	guard_sig g;
+	guard_hold(&g);
+	int err = place(sc, st, e);
+	guard_release(&g);
 	return err;
 }
