@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #define OFF(f) offsetof(sb_scene, f)
 #define BIG 1e300
@@ -300,20 +301,58 @@ struct ini_ctx {
 	int seen[NTABLE]; /* line where each key of the table was set, 0 if not yet */
 };
 
+/* A scene is a few dozen keys; the bound keeps the line counter far from overflowing
+ * on an endless stream (a pipe of comments). */
+#define SCENE_MAX_LINES 100000
+
 /* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader.
  * The reader also checks section headers (inih tells the handler nothing about a
  * section without keys), strips "#" comments after a value (inih keeps them), and
  * strips indentation: inih would take an indented line as the continuation of the
- * previous value, so "  mu = 0.3" after "output = a.h5" would vanish into output. */
+ * previous value, so "  mu = 0.3" after "output = a.h5" would vanish into output.
+ * It reads byte by byte rather than with fgets, which cannot tell a NUL byte from the
+ * end of the line (the rest of the line would vanish), and refuses a line longer than
+ * inih's buffer (num - 1 characters before the newline): inih would cut it in two and
+ * read its tail as a line of its own, so the end of a long comment could set a key. */
 static char *scene_reader(char *str, int num, void *stream)
 {
 	struct ini_ctx *c = stream;
 	if (c->err_line)
 		return NULL; /* stop at the first error */
-	char *r = fgets(str, num, c->f);
-	if (!r)
+	int ch = 0;
+	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
+	while (len < num - 1 && (ch = getc(c->f)) != EOF) {
+		if (!ch && !nul)
+			nul = len + 1;
+		str[len++] = (char)ch;
+		if (ch == '\n')
+			break;
+	}
+	if (!len)
 		return NULL;
+	str[len] = 0;
+	if (c->line == SCENE_MAX_LINES) {
+		c->err_line = c->line;
+		sb_errf(c->e, SB_EUSAGE, "%s: more than %d lines (a scene is a few dozen keys)", c->path,
+			SCENE_MAX_LINES);
+		return NULL;
+	}
 	c->line++;
+	if (nul) {
+		c->err_line = c->line;
+		sb_errf(c->e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a scene file is text)", c->path, c->line, nul);
+		return NULL;
+	}
+	if (len == num - 1 && str[len - 1] != '\n') {
+		/* a line of exactly num - 1 characters fits: only its newline is left */
+		ch = getc(c->f);
+		if (ch != EOF && ch != '\n') {
+			c->err_line = c->line;
+			sb_errf(c->e, SB_EUSAGE, "%s:%d: line too long (the limit is %d characters)", c->path, c->line,
+				num - 1);
+			return NULL;
+		}
+	}
 	size_t lead = strspn(str, " \t");
 	if (lead)
 		memmove(str, str + lead, strlen(str + lead) + 1);
@@ -336,7 +375,7 @@ static char *scene_reader(char *str, int num, void *stream)
 			return NULL;
 		}
 	}
-	return r;
+	return str;
 }
 
 static int scene_handler(void *user, const char *section, const char *name, const char *value)
@@ -374,9 +413,18 @@ int params_load_file(sb_scene *s, const char *path, sb_err *e)
 	FILE *f = fopen(path, "r");
 	if (!f)
 		return sb_errf(e, SB_EUSAGE, "%s: cannot open scene file: %s", path, strerror(errno));
+	/* a directory opens, and reads as an empty scene: the defaults would run unasked */
+	struct stat sb;
+	if (!fstat(fileno(f), &sb) && S_ISDIR(sb.st_mode)) {
+		fclose(f);
+		return sb_errf(e, SB_EUSAGE, "%s: is a directory, not a scene file", path);
+	}
 	struct ini_ctx c = {s, e, path, f, 0, 0, {0}};
 	int rc = ini_parse_stream(scene_reader, &c, scene_handler, &c);
+	const int rerr = ferror(f) ? (errno ? errno : EIO) : 0;
 	fclose(f);
+	if (rerr && !c.err_line)
+		return sb_errf(e, SB_EIO, "%s: cannot read scene file: %s", path, strerror(rerr));
 	if (rc > 0 && (!c.err_line || rc < c.err_line)) {
 		/* a syntax error inih found before any value error */
 		e->code = 0;
