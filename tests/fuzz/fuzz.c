@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <ftw.h>
+#include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -64,6 +65,11 @@ static struct {
 	long nlines;
 	char **keys;  /* every scene key (shake --params) and the [campaign] keys */
 	long nkeys;
+	struct keyrow { /* shake --params: what a valid value of each scene key is */
+		char name[64], type[16], choices[128];
+		double min, max;
+	} *rows;
+	long nrows;
 	const char *particle_args[MAX_ARGS];
 	int nparticle_args;
 	finding_sig sigs[MAX_SIGS];
@@ -409,12 +415,100 @@ static void mut_value_syntax(buf *b)
 	buf_insert(b, s, v, strlen(v));
 }
 
+/* A scene key set to a value at or just past the edges of its valid range (from the
+ * parameter table), or to an extreme inside it: where the engine's arithmetic on valid
+ * input overflows, divides by almost zero or loops for ever. The key's line is
+ * replaced when the file has one (a key given twice is refused before anything runs),
+ * else appended. */
+static void mut_key_boundary(buf *b)
+{
+	if (!F.nrows)
+		return;
+	const struct keyrow *r = &F.rows[below((size_t)F.nrows)];
+	char v[700];
+	if (!strcmp(r->type, "int") || !strcmp(r->type, "real")) {
+		int isint = !strcmp(r->type, "int");
+		double span = r->max - r->min;
+		double x;
+		switch (below(10)) {
+		case 0: x = r->min; break;
+		case 1: x = r->max; break;
+		case 2: x = isint ? r->max + 1 : r->max * (1 + 1e-15); break;
+		case 3: x = isint ? r->min - 1 : r->min - 1e-300; break;
+		case 4: x = isint ? r->min + 1 : r->min + 1e-300; break;
+		case 5: x = isint ? r->max - 1 : r->min + span * 1e-12; break;
+		case 6: x = r->min + span / 2; break;
+		default: /* log-uniform over the range's magnitudes */
+			x = pow(10, (double)below(600) / 600.0 * (log10(r->max > 1 ? r->max : 1) + 12) - 12);
+			if (x > r->max)
+				x = r->max;
+			break;
+		}
+		if (isint)
+			snprintf(v, sizeof v, "%.0f", x);
+		else
+			snprintf(v, sizeof v, "%.17g", x);
+	} else if (!strcmp(r->type, "enum")) {
+		char c[128];
+		snprintf(c, sizeof c, "%s", r->choices);
+		char *opt[16];
+		int n = 0;
+		for (char *p = strtok(c, "|"); p && n < 16; p = strtok(NULL, "|"))
+			opt[n++] = p;
+		snprintf(v, sizeof v, "%s", n && below(5) ? opt[below((size_t)n)] : below(2) ? "" : "AUTO");
+	} else if (!strcmp(r->type, "bool")) {
+		static const char *const B[] = {"yes", "no", "on", "off", "1", "0", "true", "maybe", ""};
+		snprintf(v, sizeof v, "%s", B[below(sizeof B / sizeof B[0])]);
+	} else { /* a path */
+		static const char *const S[] = {"", "x", "/dev/null", "/nonexistent/dir/x", "a b", "../x", "-",
+						".", "run.h5", "input.scene"};
+		if (below(6) == 0) {
+			size_t n = 500 + below(40);
+			fill(v, n, 'p');
+			v[n] = 0;
+		} else {
+			snprintf(v, sizeof v, "%s", S[below(sizeof S / sizeof S[0])]);
+		}
+	}
+	/* replace the key's last line, else append a line */
+	size_t kl = strlen(r->name), at = b->n, ls = 0, le = 0;
+	int found = 0;
+	for (size_t a = 0; a < b->n;) {
+		size_t e = line_end(b, a), i = a;
+		while (i < e && (b->p[i] == ' ' || b->p[i] == '\t'))
+			i++;
+		if (e - i > kl && !memcmp(b->p + i, r->name, kl) &&
+		    (b->p[i + kl] == ' ' || b->p[i + kl] == '=' || b->p[i + kl] == '\t')) {
+			ls = a;
+			le = e;
+			found = 1;
+		}
+		a = e + 1;
+	}
+	char line[800];
+	int n = snprintf(line, sizeof line, "%s = %s", r->name, v);
+	if (found) {
+		buf_erase(b, ls, le - ls);
+		buf_insert(b, ls, line, (size_t)n);
+	} else {
+		if (b->n && b->p[b->n - 1] != '\n')
+			buf_insert(b, b->n, "\n", 1);
+		at = b->n;
+		buf_insert(b, at, line, (size_t)n);
+		buf_insert(b, b->n, "\n", 1);
+	}
+}
+
 static void mutate_once(buf *b, int target, const seedfile *self)
 {
 	size_t s, e, s2, e2;
-	unsigned op = (unsigned)below(17);
-	if (target == T_PARTICLES && (op == 11 || op == 12 || op == 16) && below(2))
-		op = 15; /* particle files have no keys or sections: swap kinds instead */
+	unsigned op = (unsigned)below(21);
+	if (target == T_PARTICLES && (op == 11 || op == 12 || op >= 16) && below(2))
+		op = below(2) ? 15 : 9; /* particle files have no keys: kinds and numbers instead */
+	if (op >= 17 && target != T_PARTICLES) {
+		mut_key_boundary(b);
+		return;
+	}
 	switch (op) {
 	case 0: /* bit flip */
 		if (b->n)
@@ -646,22 +740,26 @@ static int scene_number(const buf *b, const char *key, double *x)
 	return found;
 }
 
-/* What a scene run may cost: the keys whose valid values make a run long (grains,
- * simulated time, time step) are forced to small values on the command line unless the
- * file's own value is already within the budget, so that every run takes well under a
- * second unless it hangs, and small or broken values in the file still reach the
- * engine. */
+/* What a scene run may cost: the keys whose valid values make a run long in
+ * proportion to what they ask for (grains, wall disks, simulated time, time step,
+ * checkpoints) are forced to small values on the command line unless the file's own
+ * value is already within the budget, so that every run takes well under a second
+ * unless it hangs, and small or broken values in the file still reach the engine. */
 static const struct budget {
 	const char *key;
 	double lo, hi;
+	int zero_ok; /* 0 is within the budget too (0 = off) */
 	const char *force;
 } BUDGET[] = {
-	{"n_grains", 0, 300, "n_grains=150"},
-	{"duration", 0, 0.05, "duration=0.02"},
-	{"settle_max", 0, 1, "settle_max=1"},
-	{"settle_min", 0, 0.3, "settle_min=0.1"},
-	{"dt", 2e-5, 0.01, "dt=5e-05"},
-	{"width", 0, 400, "width=60"},
+	{"n_grains", 0, 300, 0, "n_grains=150"},
+	{"duration", 0, 0.05, 0, "duration=0.02"},
+	{"settle_max", 0, 1, 0, "settle_max=1"},
+	{"settle_min", 0, 0.3, 0, "settle_min=0.1"},
+	{"dt", 2e-5, 0.01, 0, "dt=5e-05"},
+	{"width", 0, 400, 0, "width=60"},
+	{"wall_height", 0, 400, 0, "wall_height=0"},
+	{"wall_spacing", 0.1, 2000, 0, "wall_spacing=2"},
+	{"checkpoint_every", 0.005, 1e8, 1, "checkpoint_every=0"},
 };
 
 static int build_argv(int target, const buf *b, const char *input, char **argv)
@@ -673,7 +771,8 @@ static int build_argv(int target, const buf *b, const char *input, char **argv)
 		argv[n++] = (char *)input;
 		for (size_t i = 0; i < sizeof BUDGET / sizeof BUDGET[0]; i++) {
 			double x;
-			if (!scene_number(b, BUDGET[i].key, &x) || !(x >= BUDGET[i].lo && x <= BUDGET[i].hi))
+			if (!scene_number(b, BUDGET[i].key, &x) ||
+			    !((x >= BUDGET[i].lo && x <= BUDGET[i].hi) || (x == 0 && BUDGET[i].zero_ok)))
 				argv[n++] = (char *)BUDGET[i].force;
 		}
 		argv[n++] = "output=run.h5";
@@ -732,6 +831,8 @@ static void signature(int kind, int status, const char *err, char *sig, size_t l
 		const char *nl = strchr(p, '\n');
 		const char *end = colon && (!nl || colon < nl) ? colon : nl ? nl : p + strlen(p);
 		snprintf(sig, len, "%.*s", (int)(end - ls), ls);
+	} else if (kind == K_SANITIZER && strstr(err, "hard rss limit exhausted")) {
+		snprintf(sig, len, "AddressSanitizer: hard rss limit exhausted (a memory blow-up)");
 	} else if (kind == K_SANITIZER && strstr(err, "LeakSanitizer")) {
 		/* the first frame in shakebox's own code says where the leak was made */
 		const char *f = strstr(err, "Direct leak");
@@ -822,8 +923,11 @@ static void keep(long iter, int kind, int target, const char *sig, const buf *in
 	fprintf(f, "#!/bin/sh\n# fuzz finding: %s (%s, input %ld of seed %llu)\n# %s\n# %s\n", KIND[kind],
 		TARGET[target], iter, F.seed, sig, why);
 	fprintf(f, "cd \"$(dirname \"$0\")/run\" || exit 2\n");
-	fprintf(f, "ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1} \\\n"
-		"  timeout %g", F.timeout);
+	fprintf(f, "ASAN_OPTIONS=");
+	shell_quote(f, getenv("ASAN_OPTIONS"));
+	fprintf(f, " UBSAN_OPTIONS=");
+	shell_quote(f, getenv("UBSAN_OPTIONS"));
+	fprintf(f, " \\\n  timeout %g", F.timeout);
 	for (int i = 0; argv[i]; i++) {
 		fputc(' ', f);
 		shell_quote(f, argv[i]);
@@ -888,9 +992,28 @@ static void load_keys(const char *path)
 	char line[4096];
 	int first = 1;
 	while (fgets(line, sizeof line, f)) {
-		line[strcspn(line, "\t\n")] = 0;
-		if (!first && *line)
-			add_key(line);
+		line[strcspn(line, "\n")] = 0;
+		char *col[8] = {0};
+		int nc = 0;
+		for (char *p = line, *t; nc < 8 && p; p = t) {
+			t = strchr(p, '\t');
+			if (t)
+				*t++ = 0;
+			col[nc++] = p;
+		}
+		if (!first && nc >= 7 && *col[0]) {
+			add_key(col[0]);
+			struct keyrow *r = realloc(F.rows, sizeof *r * (size_t)(F.nrows + 1));
+			if (!r)
+				die("out of memory");
+			F.rows = r;
+			r = &F.rows[F.nrows++];
+			snprintf(r->name, sizeof r->name, "%s", col[0]);
+			snprintf(r->type, sizeof r->type, "%s", col[1]);
+			snprintf(r->choices, sizeof r->choices, "%s", col[6]);
+			r->min = atof(col[4]);
+			r->max = atof(col[5]);
+		}
 		first = 0;
 	}
 	fclose(f);

@@ -18,7 +18,7 @@ FUZZ_OUT     ?= build/fuzz/findings
 $(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
-	$(Q)$(CC) $(BASEFLAGS) -O2 -g -o $@ $<
+	$(Q)$(CC) $(BASEFLAGS) -O2 -g -o $@ $< -lm
 
 tests: $(FUZZ_BIN)
 

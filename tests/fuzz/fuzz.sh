@@ -6,6 +6,7 @@
 #   FUZZ_INPUTS   number of inputs (default 0 = no limit)
 #   FUZZ_SEED     PRNG seed (default 1): input k is the same for the same seed and corpus
 #   FUZZ_TIMEOUT  seconds after which a run is a hang (default 10)
+#   FUZZ_RSS_MB   memory (MB) past which ASan stops a run and reports it (default 1024)
 #   FUZZ_OUT      findings directory, emptied first (default build/fuzz/findings)
 #   FUZZ_WORK     scratch directory (default build/fuzz/work)
 #   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN  the binaries (default build/san/bin/{shake,study},
@@ -26,7 +27,8 @@ for b in "$SHAKE" "$STUDY" "$FUZZ"; do
 	[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
 done
 SHAKE=$(realpath "$SHAKE")
-export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+# a run past FUZZ_RSS_MB of memory is stopped by ASan and reported: the machine is shared
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:hard_rss_limit_mb=${FUZZ_RSS_MB:-1024}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 
 rm -rf "$OUT" "$WORK"
