@@ -3,28 +3,100 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "fsutil.h"
+#include "guard.h"
 #include "prepare.h"
+
+/* What a particle file may hold. A line is at most PF_LINE_MAX characters (the
+ * engine writes about 170); a longer one is refused rather than read in pieces, whose
+ * tail would be read as a disk of its own. A file is a regular file of at most
+ * PF_MAX_BYTES (the largest scene the engine makes, 2 10^7 disks, writes about 4 GB):
+ * a FIFO or a device would be read without end. Radii are cm-sized: one beyond
+ * [PF_R_MIN, PF_R_MAX] is a slip of units (m or um for cm) or a corrupt number; the
+ * run would end in a non-finite position (a mass that underflows, a disk that dwarfs
+ * the box) instead of naming the line. */
+#define PF_LINE_MAX 1023
+#define PF_MAX_BYTES (8LL << 30)
+#define PF_R_MIN 1e-4
+#define PF_R_MAX 1e4
 
 typedef struct disk {
 	double x, y, r, vx, vy, w;
+	long line, vline; /* lines of the disk and of its velocity (LAMMPS), 0 if none */
+	long id;          /* LAMMPS atom id */
 	int kind;
 } disk;
 
 typedef struct dlist {
 	disk *d;
-	int n, cap;
+	int n, cap, max;
 } dlist;
 
-static int dl_push(dlist *l, disk d, sb_err *e)
+/* Lines of a particle file, read byte by byte: fgets cannot tell a NUL byte from the
+ * end of the line (the rest of the line would vanish). */
+typedef struct lreader {
+	FILE *f;
+	const char *path;
+	long line;
+	char buf[PF_LINE_MAX + 1];
+} lreader;
+
+/* The next line into r->buf, without its newline: 1, or 0 at the end of the file, or
+ * -1 with the error in e (a NUL byte, a line too long, a read error, SIGINT/SIGTERM). */
+static int lr_next(lreader *r, sb_err *e)
 {
+	int ch;
+	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
+	while ((ch = getc_unlocked(r->f)) != EOF && ch != '\n') {
+		if (len == PF_LINE_MAX) {
+			sb_errf(e, SB_EUSAGE, "%s:%ld: line too long (the limit is %d characters)", r->path, r->line + 1,
+				PF_LINE_MAX);
+			return -1;
+		}
+		if (!ch && !nul)
+			nul = len + 1;
+		r->buf[len++] = (char)ch;
+	}
+	if (ch == EOF && ferror(r->f)) {
+		sb_errf(e, SB_EIO, "%s: cannot read particle file: %s", r->path, strerror(errno));
+		return -1;
+	}
+	if (ch == EOF && !len)
+		return 0;
+	r->buf[len] = 0;
+	r->line++;
+	if (nul) {
+		sb_errf(e, SB_EUSAGE, "%s:%ld: NUL byte in column %ld (a particle file is text)", r->path, r->line, nul);
+		return -1;
+	}
+	if (r->line % 65536 == 0 && guard_stopped()) {
+		sb_errf(e, SB_EINTR, "%s: interrupted while reading", r->path);
+		return -1;
+	}
+	return 1;
+}
+
+static void lr_rewind(lreader *r)
+{
+	rewind(r->f);
+	r->line = 0;
+}
+
+static int dl_push(dlist *l, disk d, const char *path, sb_err *e)
+{
+	if (l->n == l->max)
+		return sb_errf(e, SB_EUSAGE, "%s:%ld: more than %d disks (10^7 grains, an intruder and the walls of a box)",
+			       path, d.line, l->max);
 	if (l->n == l->cap) {
-		int nc = l->cap ? 2 * l->cap : 1024;
+		int nc = l->cap ? (l->cap > l->max / 2 ? l->max : 2 * l->cap) : 1024;
 		disk *p = realloc(l->d, sizeof(disk) * (size_t)nc);
 		if (!p)
 			return sb_errf(e, SB_ENOMEM, "out of memory reading particles");
@@ -42,42 +114,53 @@ static int blank_or_comment(const char *s)
 	return *s == 0 || *s == '#';
 }
 
-static int is_lammps(FILE *f)
+static int check_radius(const char *path, long line, double r, sb_err *e)
 {
-	char line[1024];
-	long n;
-	char word[64];
-	int found = 0;
-	for (int k = 0; k < 50 && fgets(line, sizeof line, f); k++)
-		if (sscanf(line, "%ld %63s", &n, word) == 2 && strcmp(word, "atoms") == 0) {
-			found = 1;
-			break;
-		}
-	rewind(f);
-	return found;
+	if (r >= PF_R_MIN && r <= PF_R_MAX)
+		return 0;
+	return sb_errf(e, SB_EUSAGE, "%s:%ld: radius %g cm: expected a number in [%g, %g] cm", path, line, r, PF_R_MIN,
+		       PF_R_MAX);
 }
 
-static int read_text(FILE *f, const char *path, dlist *l, sb_err *e)
+static int is_lammps(lreader *r, int *found, sb_err *e)
 {
-	char line[1024];
-	int ln = 0;
-	while (fgets(line, sizeof line, f)) {
-		ln++;
+	long n;
+	char word[64];
+	*found = 0;
+	while (r->line < 50 && lr_next(r, e) > 0)
+		if (sscanf(r->buf, "%ld %63s", &n, word) == 2 && strcmp(word, "atoms") == 0) {
+			*found = 1;
+			break;
+		}
+	if (e->code)
+		return e->code;
+	lr_rewind(r);
+	return 0;
+}
+
+static int read_text(lreader *r, dlist *l, sb_err *e)
+{
+	const char *path = r->path;
+	int k;
+	while ((k = lr_next(r, e)) > 0) {
+		char *line = r->buf;
 		if (blank_or_comment(line))
 			continue;
 		char *hash = strchr(line, '#');
 		if (hash)
 			*hash = 0;
-		disk d = {0};
+		disk d = {.line = r->line};
 		char kind[32], extra[8];
-		int k = sscanf(line, "%lf %lf %lf %31s %lf %lf %lf %7s", &d.x, &d.y, &d.r, kind, &d.vx,
-			       &d.vy, &d.w, extra);
-		if (k != 4 && k != 7)
-			return sb_errf(e, SB_EUSAGE, "%s:%d: expected 'x y r kind [vx vy omega]'", path, ln);
-		if (!isfinite(d.x) || !isfinite(d.y) || !isfinite(d.vx) || !isfinite(d.vy) ||
-		    !isfinite(d.w) || !(d.r > 0) || !isfinite(d.r))
-			return sb_errf(e, SB_EUSAGE, "%s:%d: numbers must be finite and the radius positive",
-				       path, ln);
+		int nf = sscanf(line, "%lf %lf %lf %31s %lf %lf %lf %7s", &d.x, &d.y, &d.r, kind, &d.vx, &d.vy, &d.w,
+				extra);
+		if (nf != 4 && nf != 7)
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'x y r kind [vx vy omega]'", path, r->line);
+		if (!isfinite(d.x) || !isfinite(d.y) || !isfinite(d.vx) || !isfinite(d.vy) || !isfinite(d.w) ||
+		    !(d.r > 0) || !isfinite(d.r))
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: numbers must be finite and the radius positive", path,
+				       r->line);
+		if (check_radius(path, r->line, d.r, e))
+			return e->code;
 		if (!strcmp(kind, "grain"))
 			d.kind = KIND_GRAIN;
 		else if (!strcmp(kind, "intruder"))
@@ -85,29 +168,85 @@ static int read_text(FILE *f, const char *path, dlist *l, sb_err *e)
 		else if (!strcmp(kind, "wall"))
 			d.kind = KIND_WALL;
 		else
-			return sb_errf(e, SB_EUSAGE, "%s:%d: kind: expected grain, intruder or wall, got '%s'",
-				       path, ln, kind);
-		if (dl_push(l, d, e))
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: kind: expected grain, intruder or wall, got '%s'", path,
+				       r->line, kind);
+		if (dl_push(l, d, path, e))
 			return e->code;
 	}
+	return k < 0 ? e->code : 0;
+}
+
+/* atom ids of a LAMMPS file in order, with the disk each belongs to */
+typedef struct idref {
+	long id;
+	int k;
+} idref;
+
+static int cmp_idref(const void *a, const void *b)
+{
+	const idref *x = a, *y = b;
+	if (x->id != y->id)
+		return (x->id > y->id) - (x->id < y->id);
+	return (x->k > y->k) - (x->k < y->k);
+}
+
+/* Sort the ids once the Atoms section is read (the Velocities section looks them up,
+ * and a linear search per velocity made a 10^5-atom file take seconds). A duplicate is
+ * named by its first repetition in the file. */
+static int index_ids(const dlist *l, idref **out, const char *path, sb_err *e)
+{
+	idref *ref = *out = malloc(sizeof *ref * (size_t)(l->n ? l->n : 1));
+	if (!ref)
+		return sb_errf(e, SB_ENOMEM, "out of memory reading particles");
+	for (int i = 0; i < l->n; i++)
+		ref[i] = (idref){l->d[i].id, i};
+	qsort(ref, (size_t)l->n, sizeof *ref, cmp_idref);
+	long bad = 0, first = 0, id = 0;
+	for (int i = 1; i < l->n; i++)
+		if (ref[i].id == ref[i - 1].id) {
+			const long ln = l->d[ref[i].k].line;
+			if (!bad || ln < bad) {
+				bad = ln;
+				first = l->d[ref[i - 1].k].line;
+				id = ref[i].id;
+			}
+		}
+	if (bad)
+		return sb_errf(e, SB_EUSAGE, "%s:%ld: duplicate atom id %ld, first at line %ld", path, bad, id, first);
 	return 0;
+}
+
+static int find_id(const idref *ref, int n, long id)
+{
+	int lo = 0, hi = n;
+	while (lo < hi) {
+		int mid = lo + (hi - lo) / 2;
+		if (ref[mid].id < id)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < n && ref[lo].id == id ? ref[lo].k : -1;
 }
 
 /* LAMMPS data file, atom_style sphere: Atoms lines are
  * "id type diameter density x y z [ix iy iz]", Velocities "id vx vy vz wx wy wz".
- * The density column is ignored: masses follow the scene's mass model. */
-static int read_lammps(FILE *f, const char *path, dlist *l, sb_err *e)
+ * The density column is ignored: masses follow the scene's mass model. As LAMMPS's
+ * read_data does, an atom outside the box of the header is an error, and so are a
+ * repeated atom id, Velocities before Atoms and an Atoms section of another style. */
+static int read_lammps(lreader *r, dlist *l, sb_err *e)
 {
-	char line[1024];
-	int ln = 0;
-	long natoms = -1;
+	const char *path = r->path;
+	long natoms = -1, atoms_line = 0, natoms_line = 0;
+	double box[2][2];
+	int has_box[2] = {0, 0};
 	enum { HEAD, ATOMS, VELS, OTHER } sec = HEAD;
-	long *ids = NULL;
-	int idcap = 0;
+	idref *ref = NULL;
+	int indexed = 0;
 	int err = 0;
-	while (!err && fgets(line, sizeof line, f)) {
-		ln++;
-		if (ln == 1)
+	while (!err && lr_next(r, e) > 0) {
+		char *line = r->buf;
+		if (r->line == 1)
 			continue; /* the first line of a data file is a free comment */
 		char *hash = strchr(line, '#');
 		char tag[64] = "";
@@ -116,10 +255,26 @@ static int read_lammps(FILE *f, const char *path, dlist *l, sb_err *e)
 		if (hash)
 			*hash = 0;
 		if (!strcmp(tag, "Atoms")) {
+			char style[64] = "";
+			if (atoms_line)
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: a second Atoms section (the first on line %ld)", path,
+					      r->line, atoms_line);
+			else if (hash && sscanf(hash + 1, "%63s", style) == 1 && strcmp(style, "sphere"))
+				err = sb_errf(e, SB_EUSAGE,
+					      "%s:%ld: Atoms section of atom_style %s: only atom_style sphere is read "
+					      "(id type diameter density x y z)",
+					      path, r->line, style);
+			atoms_line = r->line;
 			sec = ATOMS;
 			continue;
 		}
 		if (!strcmp(tag, "Velocities")) {
+			if (!atoms_line)
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: Velocities before the Atoms section", path, r->line);
+			else if (!indexed) {
+				err = index_ids(l, &ref, path, e);
+				indexed = 1;
+			}
 			sec = VELS;
 			continue;
 		}
@@ -131,81 +286,388 @@ static int read_lammps(FILE *f, const char *path, dlist *l, sb_err *e)
 			continue;
 		if (sec == HEAD) {
 			long n;
-			char w[64];
-			if (sscanf(line, "%ld %63s", &n, w) == 2 && !strcmp(w, "atoms"))
+			double lo, hi;
+			char w[64], w2[64];
+			if (sscanf(line, "%ld %63s", &n, w) == 2 && !strcmp(w, "atoms")) {
 				natoms = n;
+				natoms_line = r->line;
+				if (n < 0 || n > l->max)
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %ld atoms: expected at most %d (10^7 grains, an intruder and the walls of a box)",
+						      path, r->line, n, l->max);
+			} else if (sscanf(line, "%lf %lf %63s %63s", &lo, &hi, w, w2) == 4 && w[0] && !strcmp(w + 1, "lo") &&
+				   w2[0] == w[0] && !strcmp(w2 + 1, "hi") && (w[0] == 'x' || w[0] == 'y')) {
+				const int a = w[0] == 'y';
+				if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %s %s: expected finite numbers lo < hi", path,
+						      r->line, w, w2);
+				box[a][0] = lo;
+				box[a][1] = hi;
+				has_box[a] = 1;
+			}
 		} else if (sec == ATOMS) {
 			long id;
 			int type;
 			double dia, rho, z;
-			disk d = {0};
+			disk d = {.line = r->line};
 			if (sscanf(line, "%ld %d %lf %lf %lf %lf %lf", &id, &type, &dia, &rho, &d.x, &d.y, &z) != 7)
-				err = sb_errf(e, SB_EUSAGE, "%s:%d: expected 'id type diameter density x y z' (atom_style sphere)",
-					      path, ln);
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id type diameter density x y z' (atom_style sphere)",
+					      path, r->line);
+			else if (id < 1)
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom id %ld: expected a positive integer", path, r->line,
+					      id);
 			else if (type < 1 || type > 3)
-				err = sb_errf(e, SB_EUSAGE, "%s:%d: atom type %d: expected 1 (grain), 2 (intruder) or 3 (wall)",
-					      path, ln, type);
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom type %d: expected 1 (grain), 2 (intruder) or 3 (wall)",
+					      path, r->line, type);
 			else if (!(dia > 0) || !isfinite(dia) || !isfinite(d.x) || !isfinite(d.y))
-				err = sb_errf(e, SB_EUSAGE, "%s:%d: numbers must be finite and the diameter positive", path, ln);
-			else {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: numbers must be finite and the diameter positive", path,
+					      r->line);
+			else if (!check_radius(path, r->line, 0.5 * dia, e)) {
+				for (int a = 0; a < 2 && !err; a++) {
+					const double v = a ? d.y : d.x;
+					if (has_box[a] && !(v >= box[a][0] && v <= box[a][1]))
+						err = sb_errf(e, SB_EUSAGE,
+							      "%s:%ld: atom %ld at %c = %g lies outside the box of the header "
+							      "(%clo %chi = %g %g), as LAMMPS would refuse it",
+							      path, r->line, id, "xy"[a], v, "xy"[a], "xy"[a], box[a][0],
+							      box[a][1]);
+				}
 				d.r = 0.5 * dia;
 				d.kind = type == 1 ? KIND_GRAIN : type == 2 ? KIND_INTRUDER : KIND_WALL;
-				if (l->n == idcap) {
-					idcap = idcap ? 2 * idcap : 1024;
-					long *p = realloc(ids, sizeof(long) * (size_t)idcap);
-					if (!p) {
-						err = sb_errf(e, SB_ENOMEM, "out of memory reading particles");
-						break;
-					}
-					ids = p;
-				}
-				ids[l->n] = id;
-				err = dl_push(l, d, e);
-			}
+				d.id = id;
+				if (!err)
+					err = dl_push(l, d, path, e);
+			} else
+				err = e->code;
 		} else if (sec == VELS) {
 			long id;
 			double vx, vy, vz, wx, wy, wz;
 			if (sscanf(line, "%ld %lf %lf %lf %lf %lf %lf", &id, &vx, &vy, &vz, &wx, &wy, &wz) != 7) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%d: expected 'id vx vy vz wx wy wz'", path, ln);
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id vx vy vz wx wy wz'", path, r->line);
 				break;
 			}
-			int k;
-			for (k = 0; k < l->n && ids[k] != id; k++)
-				;
-			if (k == l->n) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%d: velocity for unknown atom id %ld", path, ln, id);
+			if (!isfinite(vx) || !isfinite(vy) || !isfinite(wz)) {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: velocities must be finite", path, r->line);
 				break;
 			}
-			l->d[k].vx = vx;
-			l->d[k].vy = vy;
-			l->d[k].w = wz;
+			const int i = find_id(ref, l->n, id);
+			if (i < 0) {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: velocity for unknown atom id %ld", path, r->line, id);
+				break;
+			}
+			if (l->d[i].vline) {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: a second velocity for atom id %ld (the first on line %ld)",
+					      path, r->line, id, l->d[i].vline);
+				break;
+			}
+			l->d[i].vx = vx;
+			l->d[i].vy = vy;
+			l->d[i].w = wz;
+			l->d[i].vline = r->line;
 		}
 	}
-	free(ids);
+	if (!err && e->code)
+		err = e->code; /* from the line reader */
+	if (!err && !indexed) /* no Velocities: the ids are checked all the same */
+		err = index_ids(l, &ref, path, e);
+	free(ref);
 	if (!err && natoms >= 0 && natoms != l->n)
-		err = sb_errf(e, SB_EUSAGE, "%s: header says %ld atoms, the Atoms section has %d", path, natoms, l->n);
+		err = sb_errf(e, SB_EUSAGE, "%s:%ld: the header says %ld atoms, the Atoms section has %d", path, natoms_line,
+			      natoms, l->n);
 	if (!err && natoms < 0)
 		err = sb_errf(e, SB_EUSAGE, "%s: no 'N atoms' line in the header", path);
+	return err;
+}
+static const char *kind_name(int k)
+{
+	return k == KIND_GRAIN ? "grain" : k == KIND_INTRUDER ? "intruder" : "wall";
+}
+
+/* Where the disks lie. Coordinates and extents are measured in mean diameters of the
+ * mobile disks: within GUARD_MAX_SPAN of the origin a double resolves a contact's
+ * overlap, and grids of one diameter per cell (free surface, displacement field, the
+ * overlap check below) fit in int. */
+static int check_span(const dlist *l, const char *path, sb_err *e)
+{
+	double rs = 0;
+	int nm = 0;
+	for (int i = 0; i < l->n; i++)
+		if (l->d[i].kind != KIND_WALL) {
+			rs += l->d[i].r;
+			nm++;
+		}
+	if (!nm)
+		return 0; /* nothing to shake: sim_derive says so */
+	const double dia = 2 * rs / nm, lim = GUARD_MAX_SPAN * dia;
+	int lo[2] = {0, 0}, hi[2] = {0, 0};
+	for (int i = 0; i < l->n; i++) {
+		const disk *d = &l->d[i];
+		if (!(fabs(d->x) <= lim && fabs(d->y) <= lim))
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: %s at (%g, %g) cm is %.3g mean disk diameters (%g cm) from the origin; at most %g",
+				       path, d->line, kind_name(d->kind), d->x, d->y, fmax(fabs(d->x), fabs(d->y)) / dia, dia,
+				       GUARD_MAX_SPAN);
+		if (d->x < l->d[lo[0]].x)
+			lo[0] = i;
+		if (d->x > l->d[hi[0]].x)
+			hi[0] = i;
+		if (d->y < l->d[lo[1]].y)
+			lo[1] = i;
+		if (d->y > l->d[hi[1]].y)
+			hi[1] = i;
+	}
+	for (int a = 0; a < 2; a++) {
+		const disk *p = &l->d[lo[a]], *q = &l->d[hi[a]];
+		const double span = a ? q->y - p->y : q->x - p->x;
+		if (span > lim)
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: the disks on lines %ld and %ld lie %g cm apart in %c, %.3g mean disk diameters (%g cm); at most %g",
+				       path, p->line > q->line ? p->line : q->line, p->line < q->line ? p->line : q->line,
+				       p->line < q->line ? q->line : p->line, span, "xy"[a], span / dia, dia, GUARD_MAX_SPAN);
+	}
+	return 0;
+}
+
+/* A mobile disk far outside the box its walls make. LAMMPS refuses an atom outside the
+ * box of its data file (read_data), and read_lammps does the same; the text format has
+ * no box of its own, so the box is the hull of the wall disks. A disk just outside it
+ * is left to the run, which stops at its first step naming the disk that left the box
+ * (exit code 5) as it would at any later step; one farther away than the box is large
+ * (a grain at y = 1e6 cm over a 50 cm box) is no state of this box but a slip of units
+ * or a typo, and is refused with its line. Without walls there is no box (main warns). */
+static int check_far(const dlist *l, const char *path, sb_err *e)
+{
+	double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+	for (int i = 0; i < l->n; i++) {
+		const disk *d = &l->d[i];
+		if (d->kind != KIND_WALL)
+			continue;
+		x0 = fmin(x0, d->x - d->r);
+		x1 = fmax(x1, d->x + d->r);
+		y0 = fmin(y0, d->y - d->r);
+		y1 = fmax(y1, d->y + d->r);
+	}
+	if (!(x0 <= x1))
+		return 0;
+	const double size = fmax(x1 - x0, y1 - y0);
+	for (int i = 0; i < l->n; i++) {
+		const disk *d = &l->d[i];
+		if (d->kind == KIND_WALL)
+			continue;
+		const double off = fmax(fmax(x0 - d->x, d->x - x1), fmax(y0 - d->y, d->y - y1));
+		if (off > size)
+			return sb_errf(e, SB_EUSAGE,
+				       "%s:%ld: %s at (%g, %g) cm lies %g cm outside the box of the walls ([%g, %g] x [%g, %g] cm), "
+				       "farther than the box is large: a slip of units?",
+				       path, d->line, kind_name(d->kind), d->x, d->y, off, x0, x1, y0, y1);
+	}
+	return 0;
+}
+
+/* A grid of cells over a subset of the disks (the mobile ones or the walls), by cell
+ * then file order. */
+typedef struct grid {
+	double x0, y0, inv;
+	int nx, ny;
+	int *start; /* [nx ny + 2] */
+	int *idx;
+} grid;
+
+static int grid_cell(double v, double o, double inv, int n)
+{
+	const double c = floor((v - o) * inv);
+	return c < 0 ? 0 : c >= n ? n - 1 : (int)c;
+}
+
+static int grid_of(const grid *g, const disk *d)
+{
+	return grid_cell(d->y, g->y0, g->inv, g->ny) * g->nx + grid_cell(d->x, g->x0, g->inv, g->nx);
+}
+
+static int grid_build(grid *g, const dlist *l, int walls, sb_err *e)
+{
+	const int nc = g->nx * g->ny;
+	g->start = calloc((size_t)nc + 2, sizeof(int));
+	g->idx = malloc(sizeof(int) * ((size_t)l->n + 1));
+	if (!g->start || !g->idx)
+		return sb_errf(e, SB_ENOMEM, "out of memory checking particles");
+	for (int i = 0; i < l->n; i++)
+		if ((l->d[i].kind == KIND_WALL) == walls)
+			g->start[grid_of(g, &l->d[i]) + 2]++;
+	for (int c = 0; c < nc; c++)
+		g->start[c + 2] += g->start[c + 1];
+	for (int i = 0; i < l->n; i++)
+		if ((l->d[i].kind == KIND_WALL) == walls)
+			g->idx[g->start[grid_of(g, &l->d[i]) + 1]++] = i;
+	return 0;
+}
+
+/* Coincident or deeply overlapping disks (beyond max_overlap of the smaller radius,
+ * where the run would stop at its first step): an input error naming both lines. Two
+ * disks at the same place have no direction to be pushed apart, so they are refused
+ * whatever max_overlap allows. */
+static int pair_check(const sb_scene *sc, const disk *a, const disk *b, const char *path, sb_err *e)
+{
+	const double dx = a->x - b->x, dy = a->y - b->y, rs = a->r + b->r;
+	const double d = sqrt(dx * dx + dy * dy);
+	if (d >= rs)
+		return 0;
+	if (a->line < b->line) { /* named at the later line */
+		const disk *t = a;
+		a = b;
+		b = t;
+	}
+	if (d <= 1e-12 * rs)
+		return sb_errf(e, SB_EUSAGE, "%s:%ld: %s at (%g, %g) coincides with the %s on line %ld", path, a->line,
+			       kind_name(a->kind), a->x, a->y, kind_name(b->kind), b->line);
+	const double f = (rs - d) / fmin(a->r, b->r);
+	if (f > sc->max_overlap)
+		return sb_errf(e, SB_EUSAGE,
+			       "%s:%ld: %s overlaps the %s on line %ld by %.3g of the smaller radius, beyond max_overlap %g (%s)",
+			       path, a->line, kind_name(a->kind), kind_name(b->kind), b->line, f, sc->max_overlap,
+			       params_where(sc, "max_overlap"));
+	return 0;
+}
+
+/* Every overlapping pair is found from its larger disk, which looks 2 r around itself
+ * for partners no larger than itself: in cells of a mean mobile diameter that is a
+ * 3 x 3 block for an ordinary disk. Two walls are never a contact (sim.h): a wall looks
+ * for mobile partners only, and a mobile disk for smaller walls, so a row of
+ * overlapping wall disks costs nothing. */
+static int check_overlaps(const sb_scene *sc, const dlist *l, const char *path, sb_err *e)
+{
+	double rs = 0, xl = INFINITY, xh = -INFINITY, yl = INFINITY, yh = -INFINITY;
+	int nm = 0;
+	for (int i = 0; i < l->n; i++) {
+		const disk *d = &l->d[i];
+		if (d->kind != KIND_WALL) {
+			rs += d->r;
+			nm++;
+		}
+		xl = fmin(xl, d->x);
+		xh = fmax(xh, d->x);
+		yl = fmin(yl, d->y);
+		yh = fmax(yh, d->y);
+	}
+	if (!nm)
+		return 0;
+	/* as the neighbour list does: about 2 cells a disk at most, larger cells if need be
+	 * (check_span keeps the counts far inside int) */
+	double cell = 2 * rs / nm, cx, cy;
+	for (;;) {
+		cx = floor((xh - xl) / cell) + 1;
+		cy = floor((yh - yl) / cell) + 1;
+		if (cx * cy <= 2.0 * l->n + 64)
+			break;
+		cell *= 1.5;
+	}
+	grid gm = {xl, yl, 1 / cell, (int)cx, (int)cy, NULL, NULL}, gw = gm;
+	int err = grid_build(&gm, l, 0, e) || grid_build(&gw, l, 1, e) ? e->code : 0;
+	for (int i = 0; i < l->n && !err; i++) {
+		if (i % 4096 == 4095 && guard_stopped()) {
+			err = sb_errf(e, SB_EINTR, "%s: interrupted while checking the disks", path);
+			break;
+		}
+		const disk *a = &l->d[i];
+		const int wall = a->kind == KIND_WALL;
+		const double reach = 2 * a->r;
+		const int i0 = grid_cell(a->x - reach, gm.x0, gm.inv, gm.nx);
+		const int i1 = grid_cell(a->x + reach, gm.x0, gm.inv, gm.nx);
+		const int j0 = grid_cell(a->y - reach, gm.y0, gm.inv, gm.ny);
+		const int j1 = grid_cell(a->y + reach, gm.y0, gm.inv, gm.ny);
+		for (int pass = 0; pass < 2 - wall && !err; pass++) {
+			const grid *g = pass ? &gw : &gm; /* a wall looks at mobile disks only */
+			for (int cj = j0; cj <= j1 && !err; cj++)
+				for (int ci = i0; ci <= i1 && !err; ci++) {
+					const int c = cj * g->nx + ci;
+					for (int q = g->start[c]; q < g->start[c + 1] && !err; q++) {
+						const int j = g->idx[q];
+						const disk *b = &l->d[j];
+						/* the larger one looks; of two alike the later mobile
+						 * disk, or the wall */
+						const int mine = wall   ? b->r <= a->r
+								 : pass ? b->r < a->r
+									: b->r < a->r || (b->r == a->r && j < i);
+						if (mine)
+							err = pair_check(sc, a, b, path, e);
+					}
+				}
+		}
+	}
+	free(gm.start);
+	free(gm.idx);
+	free(gw.start);
+	free(gw.idx);
+	return err;
+}
+
+static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
+{
+	/* opened without blocking, so that a FIFO is refused instead of waiting for a
+	 * writer (O_NONBLOCK changes nothing for a regular file) */
+	int fd = open(path, O_RDONLY | O_NONBLOCK);
+	if (fd < 0)
+		return sb_errf(e, SB_EUSAGE, "%s: cannot open particle file: %s", path, strerror(errno));
+	struct stat sb;
+	if (fstat(fd, &sb)) {
+		close(fd);
+		return sb_errf(e, SB_EIO, "%s: cannot open particle file: %s", path, strerror(errno));
+	}
+	if (!S_ISREG(sb.st_mode)) {
+		close(fd);
+		return sb_errf(e, SB_EUSAGE, "%s: %s: a particle file must be a regular file (a FIFO or a device would be read without end)",
+			       path, S_ISDIR(sb.st_mode) ? "is a directory" : "is not a regular file");
+	}
+	if (sb.st_size > PF_MAX_BYTES) {
+		close(fd);
+		return sb_errf(e, SB_EUSAGE, "%s: %lld bytes, more than the %lld a particle file may have", path,
+			       (long long)sb.st_size, PF_MAX_BYTES);
+	}
+	FILE *f = fdopen(fd, "r");
+	if (!f) {
+		close(fd);
+		return sb_errf(e, SB_ENOMEM, "%s: cannot open particle file: %s", path, strerror(errno));
+	}
+	lreader *r = malloc(sizeof *r);
+	int lammps = 0;
+	int err = !r ? sb_errf(e, SB_ENOMEM, "out of memory reading particles") : 0;
+	if (!err) {
+		*r = (lreader){.f = f, .path = path};
+		err = is_lammps(r, &lammps, e);
+	}
+	if (!err)
+		err = lammps ? read_lammps(r, l, e) : read_text(r, l, e);
+	free(r);
+	fclose(f);
+	if (!err && l->n == 0)
+		err = sb_errf(e, SB_EUSAGE, "%s: no particles", path);
+	if (!err)
+		err = check_span(l, path, e);
+	if (!err)
+		err = check_far(l, path, e);
+	if (!err)
+		err = check_overlaps(sc, l, path, e);
 	return err;
 }
 
 int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
 {
-	FILE *f = fopen(path, "r");
-	if (!f)
-		return sb_errf(e, SB_EUSAGE, "%s: cannot open particle file: %s", path, strerror(errno));
-	dlist l = {0};
-	int err = is_lammps(f) ? read_lammps(f, path, &l, e) : read_text(f, path, &l, e);
-	fclose(f);
-	if (!err && l.n == 0)
-		err = sb_errf(e, SB_EUSAGE, "%s: no particles", path);
+	const sb_param *ng = params_find("n_grains");
+	dlist l = {.max = (int)ng->max + 1 + GUARD_MAX_WALLS};
+	/* a file of 10^7 disks takes seconds to read and check: SIGINT and SIGTERM end it */
+	guard_sig g;
+	guard_hold(&g);
+	int err = read_file(sc, path, &l, e);
+	guard_release(&g);
 	/* mobile disks first, in file order, then the walls */
 	for (int pass = 0; pass < 2 && !err; pass++)
 		for (int i = 0; i < l.n && !err; i++) {
 			const disk *d = &l.d[i];
 			if ((d->kind == KIND_WALL) != pass)
 				continue;
-			err = prepare_push(sc, st, d->x, d->y, d->r, d->kind, e);
+			sb_err pe = {0};
+			err = prepare_push(sc, st, d->x, d->y, d->r, d->kind, &pe);
+			if (err == SB_EUSAGE) /* the mass model: name the disk's line */
+				sb_errf(e, err, "%s:%ld: %s", path, d->line, pe.msg);
+			else if (err)
+				sb_errf(e, err, "%s", pe.msg);
 			if (!err && d->kind != KIND_WALL) {
 				int k = st->n - 1;
 				st->q[C_X][1][k] = d->vx * sc->dt;
@@ -215,11 +677,6 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
 		}
 	free(l.d);
 	return err;
-}
-
-static const char *kind_name(int k)
-{
-	return k == KIND_GRAIN ? "grain" : k == KIND_INTRUDER ? "intruder" : "wall";
 }
 
 /* Lab frame: y + yshift; mobile velocities are taken as lab-frame already (the file
