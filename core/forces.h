@@ -1,4 +1,5 @@
-/* forces.h - Cundall-Strack contact forces of MODEL.md, eqs. (1)-(6), over the Verlet list. */
+/* forces.h - Cundall-Strack contact forces (docs/model.md, "Contact law") over the
+ * Verlet list: the law, the portable kernel, and the largest overlap. */
 #ifndef SB_FORCES_H
 #define SB_FORCES_H
 
@@ -11,25 +12,20 @@ typedef struct sb_law {
 	int clip;                /* clip_attractive */
 } sb_law;
 
-/* Contact forces and torques into st->f, evaluated at q[.][0] with velocities
- * q[.][1] * inv_dt. Returns 1 if some overlap exceeded max_overlap, else 0. */
-int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt);
+/* The portable kernel's per-pair scratch (kernel.c owns and sizes it): m_eff of each
+ * pair of the list, and the pairs in contact this step with their distance and its
+ * inverse. */
+typedef struct sb_kscratch {
+	double *pmeff, *cd, *cinv;
+	int *contact;
+} sb_kscratch;
 
-/* The same for a step whose corrector is integ_correct_predict_acc: in the AVX-512
- * build the forces stay in nl's per-disk accumulators (st->f is not written), which
- * that corrector reads; packed = 1 says the previous such corrector already wrote
- * the records this kernel reads and cleared the accumulators (so the state must not
- * have changed since). In the scalar build this is forces_compute. */
-int forces_compute_acc(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int packed);
-
-/* After integ_correct_predict_acc (AVX-512 build) the mobile disks' x, y, vx, vy
- * are only in the kernel's records: copy them into st. */
-void forces_records_to_state(const sb_nlist *nl, sb_state *st);
-
-/* The same, adding to fabs_sum[i] and fabs_sum[j] the magnitude of each contact force
- * (the ring observable; a separately compiled kernel, so this costs nothing when off). */
-int forces_compute_track(const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
-			 double *fabs_sum);
+/* The portable kernel: contact forces and torques into st->f, evaluated at q[.][0]
+ * with velocities q[.][1] * inv_dt, over a list of unscaled indices (pshift 0).
+ * fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1
+ * if some overlap exceeded max_overlap, else 0. A step calls it through kernel.h. */
+int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb_kscratch *ks, double inv_dt,
+		   double *fabs_sum);
 
 /* The force on disk i from disk j for given relative geometry; the unit of every
  * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
@@ -37,8 +33,8 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		 double dvx, double dvy, double wi, double wj, double meff,
 		 double *fx, double *fy, double *ti, double *tj);
 
-/* Largest overlap / smaller radius over all current contacts, and where (slow; for
- * the blow-up message). */
+/* Largest overlap / smaller radius over all current contacts, and which disks (a scan
+ * of the list: for the overlap record and the stop's message). */
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);
 
 #endif

@@ -1,12 +1,11 @@
 /* integrate.c - time integrators. Gear (1971) in Nordsieck form, scaled variables
  * q_k = dt^k/k! d^k q/dt^k (Allen & Tildesley 1987, app. E). Corrector constants for
- * velocity-dependent forces (MODEL.md): 6-value c0 = 3/16, 5-value c0 = 19/90. */
+ * velocity-dependent forces (docs/model.md, "Integrators"): 6-value c0 = 3/16, 5-value c0 = 19/90. */
 #include "integrate.h"
 
 #include <math.h>
 #include <stdio.h>
 
-#include "krec.h"
 #include "params.h"
 
 void integ_init(sb_integ *in, int kind, double dt)
@@ -186,172 +185,6 @@ void integ_correct_predict(const sb_integ *in, sb_state *st, double gy)
 			correct_predict_verlet(st->nm, in->half_dt2, st->f[c], inv, extra, q[0], q[1], q[2]);
 	}
 }
-
-#if SB_KERNEL_AVX512
-/* The fused pass of the AVX-512 build: per block of eight disks, the forces from the
- * kernel's accumulators, the three coordinates' correct_predict (the same operations
- * element by element, written with vector operators; no FMA is formed, as
- * -ffp-contract=off holds for them too), sim.c's screening of the predicted state,
- * and the records of that state for the next force evaluation - which are also where
- * x, y and their velocities are kept between such passes. The Nordsieck arrays, the
- * accumulators and the records are then each touched once a step, where separate
- * passes swept the state four more times. A partial last block masks its loads and
- * stores. */
-typedef __m512d v8;
-
-static inline __attribute__((always_inline)) v8 vload(const double *p, int full, __mmask8 m)
-{
-	return full ? _mm512_loadu_pd(p) : _mm512_maskz_loadu_pd(m, p);
-}
-
-static inline __attribute__((always_inline)) void vstore(double *p, v8 v, int full, __mmask8 m)
-{
-	if (full)
-		_mm512_storeu_pd(p, v);
-	else
-		_mm512_mask_storeu_pd(p, m, v);
-}
-
-/* one coordinate's Nordsieck arrays; restrict: the stores into one never change
- * another, nor the pointers (else each store reloads all of them) */
-typedef struct qarr {
-	double *restrict q0, *restrict q1, *restrict q2, *restrict q3, *restrict q4, *restrict q5;
-} qarr;
-
-static inline __attribute__((always_inline)) qarr qarr_of(const sb_state *st, int c)
-{
-	return (qarr){st->q[c][0], st->q[c][1], st->q[c][2], st->q[c][3], st->q[c][4], st->q[c][5]};
-}
-
-/* One coordinate of eight disks from i. soa01: q0 and q1 are read from and written to
- * the arrays, and *q0, *q1 get the predicted ones; else *q0, *q1 are the current ones
- * in and the predicted ones out, the arrays untouched (x and y: the records hold
- * them, see cpa_block). */
-static inline __attribute__((always_inline)) void cp_block(const int nval, const double *c, double h,
-							   v8 f, v8 inv, double extra, qarr q, int i,
-							   int full, __mmask8 m, const int soa01, v8 *q0,
-							   v8 *q1)
-{
-	const v8 a2 = (f * inv + extra) * h;
-	const v8 c0 = soa01 ? vload(q.q0 + i, full, m) : *q0, c1 = soa01 ? vload(q.q1 + i, full, m) : *q1;
-	if (nval == 6) {
-		const v8 d = a2 - vload(q.q2 + i, full, m);
-		const v8 b0 = c0 + c[0] * d, a1 = c1 + c[1] * d, a3 = vload(q.q3 + i, full, m) + c[3] * d,
-			 a4 = vload(q.q4 + i, full, m) + c[4] * d, a5 = vload(q.q5 + i, full, m) + c[5] * d;
-		*q0 = b0 + (a1 + a2 + a3 + a4 + a5);
-		*q1 = a1 + 2 * a2 + 3 * a3 + 4 * a4 + 5 * a5;
-		vstore(q.q2 + i, a2 + 3 * a3 + 6 * a4 + 10 * a5, full, m);
-		vstore(q.q3 + i, a3 + 4 * a4 + 10 * a5, full, m);
-		vstore(q.q4 + i, a4 + 5 * a5, full, m);
-		vstore(q.q5 + i, a5, full, m);
-	} else if (nval == 5) {
-		const v8 d = a2 - vload(q.q2 + i, full, m);
-		const v8 b0 = c0 + c[0] * d, a1 = c1 + c[1] * d, a3 = vload(q.q3 + i, full, m) + c[3] * d,
-			 a4 = vload(q.q4 + i, full, m) + c[4] * d;
-		*q0 = b0 + (a1 + a2 + a3 + a4);
-		*q1 = a1 + 2 * a2 + 3 * a3 + 4 * a4;
-		vstore(q.q2 + i, a2 + 3 * a3 + 6 * a4, full, m);
-		vstore(q.q3 + i, a3 + 4 * a4, full, m);
-		vstore(q.q4 + i, a4, full, m);
-	} else {
-		const v8 v = c1 + a2;
-		*q1 = v + a2;
-		*q0 = c0 + (v + a2);
-		vstore(q.q2 + i, a2, full, m);
-	}
-	if (soa01) {
-		vstore(q.q0 + i, *q0, full, m);
-		vstore(q.q1 + i, *q1, full, m);
-	}
-}
-
-typedef struct cpa_args {
-	qarr x, y, t;
-	const double *restrict inv_m, *restrict inv_i, *restrict r, *restrict xref, *restrict yref;
-	double *restrict facc, *restrict rec;
-	double c[SB_MAXORDER], h, gy;
-	double lim, xlo, xhi, ylo;
-} cpa_args;
-
-/* the flags of sb_screen, lane by lane */
-typedef struct cpa_flags {
-	__mmask8 rebuild, bad, out;
-} cpa_flags;
-
-static inline __attribute__((always_inline)) void cpa_block(const int nval, const cpa_args *a,
-							    int i, int count, cpa_flags *fl)
-{
-	const int full = count == 8;
-	const __mmask8 m = (__mmask8)((1u << count) - 1);
-	v8 fx, fy, ft, x0, x1, y0, y1, t0, t1;
-	krec_load_acc8(a->facc + 4 * i, &fx, &fy, &ft);
-	for (int k = 0; k < 4; k++) /* the next kernel adds into them: beyond count are walls, */
-		_mm512_store_pd(a->facc + 4 * i + 8 * k, _mm512_setzero_pd()); /* which it clears */
-	/* x, y and their velocities live in the records between fused passes: the kernel
-	 * of this step read them there (forces_compute_acc packs them if the last step
-	 * was not fused), and this pass writes them only there - four arrays fewer to
-	 * stream, where the pass is bound by moving lines between L1 and L2 (or L3).
-	 * forces_records_to_state() brings st up to date for everyone else. */
-	krec_load8(a->rec + 8 * i, &x0, &y0, &x1, &y1);
-	const v8 im = vload(a->inv_m + i, full, m), R = vload(a->r + i, full, m);
-	cp_block(nval, a->c, a->h, fx, im, 0, a->x, i, full, m, 0, &x0, &x1);
-	cp_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, full, m, 0, &y0, &y1);
-	cp_block(nval, a->c, a->h, ft, vload(a->inv_i + i, full, m), 0, a->t, i, full, m, 1, &t0, &t1);
-	krec_store8(a->rec + 8 * i, x0, y0, x1, y1, t1, R, im, count);
-	/* sim.c's check_state, operation by operation */
-	const v8 dx = x0 - vload(a->xref + i, full, m), dy = y0 - vload(a->yref + i, full, m);
-	const v8 d2 = dx * dx + dy * dy;
-	const v8 at = _mm512_abs_pd(t0);
-	fl->rebuild |= _mm512_mask_cmp_pd_mask(m, d2, _mm512_set1_pd(a->lim), _CMP_GT_OQ);
-	fl->bad |= _mm512_mask_cmp_pd_mask(m, d2 + at, _mm512_set1_pd(INFINITY), _CMP_NLT_UQ);
-	fl->out |= _mm512_mask_cmp_pd_mask(m, x0, _mm512_set1_pd(a->xlo), _CMP_LT_OQ) |
-		   _mm512_mask_cmp_pd_mask(m, x0, _mm512_set1_pd(a->xhi), _CMP_GT_OQ) |
-		   _mm512_mask_cmp_pd_mask(m, y0, _mm512_set1_pd(a->ylo), _CMP_LT_OQ);
-}
-
-static inline __attribute__((always_inline)) void cpa(const int nval, const sb_integ *in,
-						      sb_state *st, double gy, sb_nlist *nl,
-						      sb_screen *scr)
-{
-	cpa_args a = {qarr_of(st, C_X), qarr_of(st, C_Y), qarr_of(st, C_TH), st->inv_m, st->inv_i,
-		      st->r, nl->xref, nl->yref, nl->facc, nl->rec, {0}, in->half_dt2, gy,
-		      scr->lim, scr->xlo, scr->xhi, scr->ylo};
-	for (int k = 0; k < SB_MAXORDER; k++)
-		a.c[k] = in->c[k];
-	cpa_flags fl = {0, 0, 0};
-	const int n = st->nm;
-	int i = 0;
-	for (; i + 8 <= n; i += 8)
-		cpa_block(nval, &a, i, 8, &fl);
-	if (i < n)
-		cpa_block(nval, &a, i, n - i, &fl);
-	scr->done = 1;
-	scr->rebuild = fl.rebuild != 0;
-	scr->bad = fl.bad != 0;
-	scr->out = fl.out != 0;
-}
-
-int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
-			      sb_screen *scr)
-{
-	if (in->nval == 6)
-		cpa(6, in, st, gy, nl, scr);
-	else if (in->nval == 5)
-		cpa(5, in, st, gy, nl, scr);
-	else
-		cpa(3, in, st, gy, nl, scr);
-	return 1;
-}
-#else
-int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, sb_nlist *nl,
-			      sb_screen *scr)
-{
-	(void)nl;
-	scr->done = 0;
-	integ_correct_predict(in, st, gy);
-	return 0;
-}
-#endif
 
 void integ_correct(const sb_integ *in, sb_state *st, double gy)
 {

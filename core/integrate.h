@@ -29,33 +29,21 @@ void integ_correct(const sb_integ *in, sb_state *st, double gy);
  * one pass over the arrays; for steps after which nobody reads the corrected state. */
 void integ_correct_predict(const sb_integ *in, sb_state *st, double gy);
 
-struct sb_nlist;
-
-/* The screening of the predicted state that the step does before its forces, done
- * by integ_correct_predict_acc in the same pass (AVX-512 build): a disk moved more
- * than half the skin since the last neighbour build (d^2 > lim), a non-finite
- * position or angle, a disk outside the box (x < xlo, x > xhi, y < ylo). */
+/* The screening of the predicted state that a step does before its forces, done by
+ * the AVX-512 build's fused corrector in the same pass (kernel_correct_predict): a disk
+ * moved more than half the skin since the last neighbour build (d^2 > lim), a
+ * non-finite position or angle, a disk outside the box (x < xlo, x > xhi, y < ylo). */
 typedef struct sb_screen {
 	double lim, xlo, xhi, ylo;
-	int done;                 /* 0: not screened (scalar build), check it yourself */
+	int done;                 /* 0: not screened (portable build), check it yourself */
 	int rebuild, bad, out;
 } sb_screen;
-
-/* integ_correct_predict for a step whose forces came from forces_compute_acc: in the
- * AVX-512 build the forces are read from nl's accumulators, which are cleared, x, y
- * and their velocities are read from and written to the force-kernel records only
- * (st's arrays of them are stale until forces_records_to_state), and the next step's
- * forces_compute_acc is called with packed = 1. Bit-identical to forces_compute +
- * integ_correct_predict; in the scalar build it is the latter. Returns 1 when st's
- * x, y, vx, vy are left stale, else 0. */
-int integ_correct_predict_acc(const sb_integ *in, sb_state *st, double gy, struct sb_nlist *nl,
-			      sb_screen *scr);
 
 /* Start from positions and velocities: set the acceleration term from st->f and
  * clear the higher derivatives. */
 void integ_start(const sb_integ *in, sb_state *st, double gy);
 
-/* The stability guard (issue 5, measured by `make stress`): the largest dt each
+/* The stability guard (measured by `make stress`): the largest dt each
  * integrator survives is k t_c (for stiff contacts) but never more than an absolute
  * bound, with t_c = pi / sqrt(Y/m_eff - (gamma_N/2)^2) of the lightest pair (m_eff =
  * m_min / 2). Returns the limit; *tc gets t_c. */

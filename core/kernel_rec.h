@@ -1,16 +1,16 @@
-/* krec.h - the AVX-512 force kernel's per-disk data, shared by the kernel (forces.c)
- * and the pass that fills it (integrate.c): a 64-byte record (x, y, vx, vy, R w,
+/* kernel_rec.h - private to the kernel module (kernel.c; and its unit test): the
+ * AVX-512 force kernel's per-disk data: a 64-byte record (x, y, vx, vy, R w,
  * 1/m, R, R) per disk, read by the kernel two per pair, and a 32-byte accumulator (Fx, Fy,
  * torque, 0) per disk, into which it adds one vector per contact. The corrector
  * consumes the accumulators and writes the next step's records in the same pass over
  * the disks, so neither is a separate sweep over memory. Velocities are the scaled
  * Nordsieck ones (v dt), as everywhere in the kernel. The record's sixth lane is 1/m
  * (0 for walls): the kernel forms m_eff = 1 / (1/m_i + 1/m_j) of a pair from the two
- * records (nlist.c's formula) instead of streaming a per-pair array. */
-#ifndef SB_KREC_H
-#define SB_KREC_H
+ * records (the scalar kernel's formula) instead of streaming a per-pair array. */
+#ifndef SB_KERNEL_REC_H
+#define SB_KERNEL_REC_H
 
-#include "nlist.h"
+#include "kernel.h"
 
 #if SB_KERNEL_AVX512
 #include <immintrin.h>

@@ -36,7 +36,7 @@ static void *regrow(void *p, int old, int cap, size_t elem)
 	return q;
 }
 
-/* The flat list and the scalar kernel's per-pair scratch grow together. */
+/* The flat list's two arrays grow together. */
 static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 {
 	int cap = nl->fcap ? nl->fcap : 4096;
@@ -53,12 +53,6 @@ static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 	} while (0)
 	GROW(pi);
 	GROW(pj);
-#if !SB_KERNEL_AVX512 /* the AVX-512 kernel forms m_eff from its records (krec.h) */
-	GROW(pmeff);
-	GROW(contact);
-	GROW(cd);
-	GROW(cinv);
-#endif
 #undef GROW
 	if (!ok)
 		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
@@ -66,7 +60,8 @@ static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 	return 0;
 }
 
-#if SB_KERNEL_AVX512
+/* The candidate scan in AVX-512 where the build targets it. */
+#if defined(__AVX512F__) && defined(__AVX512VL__)
 #include <immintrin.h>
 /* Appends to the list the candidates k0..k1 (cell order) of disk i within reach ri:
  * eight at a time, the kept ones compressed out of the lanes in order. */
@@ -74,7 +69,8 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 			   int np)
 {
 	const __m512d X = _mm512_set1_pd(xi), Yv = _mm512_set1_pd(yi), R = _mm512_set1_pd(ri);
-	const __m256i I = _mm256_set1_epi32(i), I8 = _mm256_set1_epi32(SB_PSCALE * i);
+	const __m256i I = _mm256_set1_epi32(i), I8 = _mm256_set1_epi32(i << nl->pshift);
+	const __m128i shift = _mm_cvtsi32_si128(nl->pshift);
 	for (int k = k0; k < k1; k += 8) {
 		const __mmask8 live = k1 - k >= 8 ? 0xff : (__mmask8)((1u << (k1 - k)) - 1);
 		const __m256i j = _mm256_maskz_loadu_epi32(live, nl->cell_idx + k);
@@ -85,7 +81,7 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 		const __mmask8 m = _mm512_mask_cmp_pd_mask(_mm256_mask_cmpgt_epi32_mask(live, j, I), d2,
 							   _mm512_mul_pd(rc, rc), _CMP_LT_OQ);
 		_mm256_storeu_si256((__m256i *)(nl->pj + np),
-				    _mm256_maskz_compress_epi32(m, _mm256_slli_epi32(j, 3))); /* 8 j */
+				    _mm256_maskz_compress_epi32(m, _mm256_sll_epi32(j, shift)));
 		_mm256_storeu_si256((__m256i *)(nl->pi + np), I8);
 		np += __builtin_popcount(m);
 	}
@@ -101,24 +97,22 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 	for (int k = k0; k < k1; k++) {
 		const int j = idx[k];
 		const double ddx = xi - xs[k], ddy = yi - ys[k], rc = ri + rs[k];
-		pj[np] = j;
-		pi[np] = i;
+		pj[np] = j << nl->pshift;
+		pi[np] = i << nl->pshift;
 		np += (j > i) & (ddx * ddx + ddy * ddy < rc * rc);
 	}
 	return np;
 }
 #endif
 
-int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
+int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err *e)
 {
 	memset(nl, 0, sizeof *nl);
-	if (st->n > (INT_MAX - 64) / 8) /* the list holds 8 i in an int (SB_PSCALE) */
+	if (st->n > (INT_MAX - 64) >> pshift) /* the list holds i << pshift in an int */
 		return sb_errf(e, SB_EUSAGE, "%d disks: the neighbour list holds at most %d", st->n,
-			       (INT_MAX - 64) / 8);
+			       (INT_MAX - 64) >> pshift);
 	nl->skin = skin;
-	/* ~300 bytes a disk are swept every step (the state's arrays, record, accumulator,
-	 * pairs) */
-	nl->prefetch = 300.0 * st->n > 0.5 * (double)bigmem_llc_bytes();
+	nl->pshift = pshift;
 	nl->cap = st->n;
 	nl->large = calloc((size_t)st->n + 1, 1);
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));
@@ -132,15 +126,6 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, sb_err *e)
 	nl->rs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->xref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->yref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
-#if SB_KERNEL_AVX512
-	/* whole 64-byte lines, so that a record is one aligned vector load */
-	nl->rec = bigmem_alloc(sizeof(double) * 8 * ((size_t)st->n + 8));
-	nl->kbuf = aligned_alloc(64, sizeof(sb_kbuf));
-	nl->facc = bigmem_alloc(sizeof(double) * 4 * ((size_t)st->n + 9));
-	if (!nl->rec || !nl->kbuf || !nl->facc)
-		return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
-	nl->kbuf->walls_packed = -1;
-#endif
 	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_x || !nl->cell_y ||
 	    !nl->cell_idx || !nl->xs || !nl->ys || !nl->rs ||
 	    !nl->xref || !nl->yref)
@@ -175,16 +160,6 @@ void nlist_free(sb_nlist *nl)
 	free(nl->rs);
 	free(nl->pi);
 	free(nl->pj);
-#if SB_KERNEL_AVX512
-	free(nl->rec);
-	free(nl->facc);
-	free(nl->kbuf);
-#else
-	free(nl->pmeff);
-	free(nl->contact);
-	free(nl->cd);
-	free(nl->cinv);
-#endif
 	free(nl->large);
 	free(nl->large_list);
 	free(nl->xref);
@@ -334,8 +309,8 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 					if (ddx * ddx + ddy * ddy < rc * rc) {
 						if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 							return e->code;
-						nl->pi[nb] = SB_PSCALE * L;
-						nl->pj[nb++] = SB_PSCALE * j;
+						nl->pi[nb] = L << nl->pshift;
+						nl->pj[nb++] = j << nl->pshift;
 					}
 				}
 			}
@@ -347,8 +322,8 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			if (ddx * ddx + ddy * ddy < rc * rc) {
 				if (nb + 16 > nl->fcap && grow_flat(nl, nb + 16, e))
 					return e->code;
-				nl->pi[nb] = SB_PSCALE * L;
-				nl->pj[nb++] = SB_PSCALE * M;
+				nl->pi[nb] = L << nl->pshift;
+				nl->pj[nb++] = M << nl->pshift;
 			}
 		}
 	}
@@ -359,14 +334,6 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 	/* pad to whole vectors of 8 (the SIMD kernel masks these lanes out) */
 	for (int p = nf; p < ((nf + 7) & ~7); p++)
 		nl->pi[p] = nl->pj[p] = 0;
-#if !SB_KERNEL_AVX512
-	/* m_eff in one pass over the list (it vectorises: a division per pair) */
-	const double *restrict im = st->inv_m;
-	const int *restrict pi = nl->pi, *restrict pj = nl->pj;
-	double *restrict pm = nl->pmeff;
-	for (int p = 0; p < nf; p++)
-		pm[p] = 1.0 / (im[pi[p]] + im[pj[p]]); /* a wall of infinite mass: the grain's */
-#endif
 	nl->nflat = nf;
 	return 0;
 }

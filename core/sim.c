@@ -50,6 +50,8 @@ void sim_free(sb_sim *s)
 	obs_free(&s->obs);
 	journal_close(&s->jr);
 	nlist_free(&s->nl);
+	kernel_free(s->kern);
+	s->kern = NULL;
 	state_free(&s->st);
 }
 
@@ -189,26 +191,6 @@ static void add_drag(sb_state *st, double gamma, double inv_dt)
 	}
 }
 
-/* After a fused corrector of the AVX-512 build, the mobile disks' x, y, vx and vy
- * are in the force kernel's records only (integrate.h); anything that reads them
- * from st calls this first. */
-static void sync_state(sb_sim *s)
-{
-	if (s->stale) {
-		forces_records_to_state(&s->nl, &s->st);
-		s->stale = 0;
-	}
-}
-
-static double intruder_y(const sb_sim *s)
-{
-#if SB_KERNEL_AVX512
-	if (s->stale)
-		return s->nl.rec[8 * (size_t)s->intruder + 1];
-#endif
-	return s->st.q[C_Y][0][s->intruder];
-}
-
 /* The largest overlap of the shaking is recorded without a cost per step: the force
  * kernel's overlap flag, which stops a run past max_overlap, is armed at the record so
  * far instead, and only a step that beats the record scans the pairs (a few hundred
@@ -229,102 +211,166 @@ static void new_overlap_record(sb_sim *s, double f, int a, int b, double t)
 	s->law.max_overlap = fmin(s->obs.ov_max * (1 + 1e-9), s->sc.max_overlap);
 }
 
-/* fuse: nobody reads the corrected state after this step, so the next step's
- * predictor runs inside this step's corrector (s->predicted remembers it). */
-static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
-		     int fuse, double *track, sb_err *e)
+/* The state after the predictor, screened: rebuild the list, or stop the run on a
+ * non-finite number or a disk outside the box. The fused corrector of the last step
+ * may have screened it already (scr.done). */
+static int check(sb_sim *s, const char *stage, double t, long step, int *rebuild, sb_err *e)
 {
 	sb_state *st = &s->st;
-	if (!s->predicted) {
-		TIC(PH_PREDICT);
-		integ_predict(&s->in, st);
-		TOC(PH_PREDICT);
-	}
-	s->predicted = 0;
-	/* packed: the last step's fused corrector (integ_correct_predict_acc) already
-	 * wrote this state's force-kernel records and screened it */
-	const int packed = s->packed;
-	s->packed = 0;
-
-	TIC(PH_CHECK);
 	scan c = {s->screen.rebuild, s->screen.bad, s->screen.out, -1};
-	if (!packed || !s->screen.done || c.bad_num || c.out) { /* the scan also finds where */
-		sync_state(s);
+	if (!s->screen.done || c.bad_num || c.out) { /* the scan also finds where */
+		kernel_sync(s->kern, st);
 		c = check_state(s);
 	}
-	TOC(PH_CHECK);
-	if (c.bad_num || c.out) {
-		char what[256];
-		int i = c.where < 0 ? 0 : c.where;
-		if (c.bad_num) {
-			snprintf(what, sizeof what, "%s: non-finite position or velocity of disk %d", stage,
-				 st->id[i]);
-			return fail(s, e, SB_ENAN, t, step, "%s at t = %.6f s, step %ld (time step too large?)", what);
-		}
-		snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", stage, st->id[i],
-			 st->q[C_X][0][i], st->q[C_Y][0][i]);
-		return fail(s, e, SB_ELEFT, t, step, "%s at t = %.6f s, step %ld", what);
+	s->screen.done = 0;
+	*rebuild = c.rebuild;
+	if (!c.bad_num && !c.out)
+		return 0;
+	char what[256];
+	int i = c.where < 0 ? 0 : c.where;
+	if (c.bad_num) {
+		snprintf(what, sizeof what, "%s: non-finite position or velocity of disk %d", stage, st->id[i]);
+		return fail(s, e, SB_ENAN, t, step, "%s at t = %.6f s, step %ld (time step too large?)", what);
 	}
-	/* waiting time (MODEL.md): the first time the intruder's centre is one diameter
-	 * above its settled height, on the positions the forces are evaluated at */
-	if (s->intruder >= 0 && !s->obs.risen &&
-	    intruder_y(s) - s->intruder_y0 > s->obs.rise_height && step > 0 &&
-	    s->obs.rise_height > 0) {
+	snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", stage, st->id[i],
+		 st->q[C_X][0][i], st->q[C_Y][0][i]);
+	return fail(s, e, SB_ELEFT, t, step, "%s at t = %.6f s, step %ld", what);
+}
+
+/* The waiting time (docs/model.md, "Waiting time"): the first time the intruder's
+ * centre is one diameter above its settled height, on the positions the forces are
+ * evaluated at. */
+static void watch_rise(sb_sim *s, double t, long step)
+{
+	if (s->intruder >= 0 && !s->obs.risen && step > 0 && s->obs.rise_height > 0 &&
+	    kernel_y(s->kern, &s->st, s->intruder) - s->intruder_y0 > s->obs.rise_height) {
 		s->obs.risen = 1;
 		s->obs.wait_time = t;
 	}
-	if (c.rebuild) {
-		sync_state(s);
-		TIC(PH_NEIGH);
-		if (nlist_build(&s->nl, st, e))
-			return e->code;
-		TOC(PH_NEIGH);
-	}
+}
 
-	/* acc: the fused corrector takes the forces straight from the kernel's
-	 * accumulators (not with the settling drag, which acts on st->f) */
-	const int acc = fuse && drag == 0 && !track;
-	if (!acc || !packed) /* the other correctors, and the packing of records, read st */
-		sync_state(s);
-	TIC(PH_FORCE);
-	int bad = track ? forces_compute_track(&s->law, st, &s->nl, 1.0 / s->sc.dt, track)
-		: acc	? forces_compute_acc(&s->law, st, &s->nl, 1.0 / s->sc.dt, packed)
-			: forces_compute(&s->law, st, &s->nl, 1.0 / s->sc.dt);
+static int neighbours(sb_sim *s, sb_err *e)
+{
+	kernel_sync(s->kern, &s->st);
+	return nlist_build(&s->nl, &s->st, e);
+}
+
+/* Forces at the predicted state (keep: for the fused corrector; track: the ring's
+ * per-disk |F| sums; drag: settling's viscous drag). An overlap past the kernel's
+ * threshold beats the run's record (kept, the step goes on) or the stop (it ends). */
+static int forces(sb_sim *s, int keep, double *track, double drag, const char *stage, double t, long step,
+		  sb_err *e)
+{
+	sb_state *st = &s->st;
+	const double inv_dt = 1.0 / s->sc.dt;
+	int bad = kernel_forces(s->kern, &s->law, st, &s->nl, inv_dt, keep, track, e);
+	if (bad < 0)
+		return e->code;
 	if (drag > 0) /* settling only */
-		add_drag(st, drag, 1.0 / s->sc.dt);
-	TOC(PH_FORCE);
-
-	if (bad) { /* measured on the positions the kernel saw, before the correction */
-		sync_state(s);
-		int a = 0, b = 0;
-		double f = forces_max_overlap(st, &s->nl, &a, &b);
-		if (s->ov_track && f <= s->sc.max_overlap) {
-			new_overlap_record(s, f, a, b, t);
-			goto correct;
-		}
-		char what[256];
-		snprintf(what, sizeof what, "%s: overlap of disks %d and %d is %.3f of the smaller radius (max_overlap %g)",
-			 stage, st->id[a], st->id[b], f, s->sc.max_overlap);
-		return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
+		add_drag(st, drag, inv_dt);
+	if (!bad)
+		return 0;
+	/* measured on the positions the kernel saw, before the correction */
+	kernel_sync(s->kern, st);
+	int a = 0, b = 0;
+	double f = forces_max_overlap(st, &s->nl, &a, &b);
+	if (s->ov_track && f <= s->sc.max_overlap) {
+		new_overlap_record(s, f, a, b, t);
+		return 0;
 	}
+	char what[256];
+	snprintf(what, sizeof what, "%s: overlap of disks %d and %d is %.3f of the smaller radius (max_overlap %g)",
+		 stage, st->id[a], st->id[b], f, s->sc.max_overlap);
+	return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
+}
 
-correct:
+/* The reference step, as in a textbook MD code: predict, check, neighbours, forces,
+ * correct (record: sim_run). gy is the uniform acceleration in y at the new time t
+ * (step). Its corrected state is in st for whoever reads it next. */
+static int step_reference(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
+			  double *track, sb_err *e)
+{
+	int rebuild;
+	if (!s->predicted) {
+		TIC(PH_PREDICT);
+		integ_predict(&s->in, &s->st);
+		TOC(PH_PREDICT);
+	}
+	s->predicted = 0;
+	TIC(PH_CHECK);
+	int rc = check(s, stage, t, step, &rebuild, e);
+	TOC(PH_CHECK);
+	if (rc)
+		return rc;
+	watch_rise(s, t, step);
+	if (rebuild) {
+		TIC(PH_NEIGH);
+		rc = neighbours(s, e);
+		TOC(PH_NEIGH);
+		if (rc)
+			return rc;
+	}
+	TIC(PH_FORCE);
+	rc = forces(s, 0, track, drag, stage, t, step, e);
+	TOC(PH_FORCE);
+	if (rc)
+		return rc;
 	TIC(PH_CORRECT);
-	if (acc) {
-		const double half = 0.5 * s->sc.skin;
-		s->screen.lim = half * half;
-		s->screen.xlo = s->xlo;
-		s->screen.xhi = s->xhi;
-		s->screen.ylo = s->ylo;
-		s->stale = integ_correct_predict_acc(&s->in, st, gy, &s->nl, &s->screen);
-	} else if (fuse)
-		integ_correct_predict(&s->in, st, gy);
-	else
-		integ_correct(&s->in, st, gy);
-	s->predicted = fuse;
-	s->packed = acc;
+	integ_correct(&s->in, &s->st, gy);
 	TOC(PH_CORRECT);
 	return 0;
+}
+
+/* The fused step, for a step whose corrected state nobody reads: the same recipe, but
+ * the corrector also predicts the next step (s->predicted), and without settling's
+ * drag it takes the forces straight from the kernel and screens the predicted state
+ * (kernel_correct_predict). Bit-identical to step_reference followed by a predictor. */
+static int step_fused(sb_sim *s, double gy, double drag, double t, long step, const char *stage, sb_err *e)
+{
+	int rebuild;
+	if (!s->predicted) {
+		TIC(PH_PREDICT);
+		integ_predict(&s->in, &s->st);
+		TOC(PH_PREDICT);
+	}
+	s->predicted = 0;
+	TIC(PH_CHECK);
+	int rc = check(s, stage, t, step, &rebuild, e);
+	TOC(PH_CHECK);
+	if (rc)
+		return rc;
+	watch_rise(s, t, step);
+	if (rebuild) {
+		TIC(PH_NEIGH);
+		rc = neighbours(s, e);
+		TOC(PH_NEIGH);
+		if (rc)
+			return rc;
+	}
+	const int keep = drag == 0; /* the drag acts on st->f, which a kept force skips */
+	TIC(PH_FORCE);
+	rc = forces(s, keep, NULL, drag, stage, t, step, e);
+	TOC(PH_FORCE);
+	if (rc)
+		return rc;
+	TIC(PH_CORRECT);
+	if (keep) {
+		const double half = 0.5 * s->sc.skin;
+		s->screen = (sb_screen){half * half, s->xlo, s->xhi, s->ylo, 0, 0, 0, 0};
+		kernel_correct_predict(s->kern, &s->in, &s->st, gy, &s->nl, &s->screen);
+	} else {
+		integ_correct_predict(&s->in, &s->st, gy);
+	}
+	s->predicted = 1;
+	TOC(PH_CORRECT);
+	return 0;
+}
+
+static int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, int fuse,
+		     double *track, sb_err *e)
+{
+	return fuse && !track ? step_fused(s, gy, drag, t, step, stage, e)
+			      : step_reference(s, gy, drag, t, step, stage, track, e);
 }
 
 int sim_step(sb_sim *s, double gy, sb_err *e)
@@ -338,7 +384,8 @@ int sim_start(sb_sim *s, double gy, sb_err *e)
 {
 	if (nlist_build(&s->nl, &s->st, e))
 		return e->code;
-	forces_compute(&s->law, &s->st, &s->nl, 1.0 / s->sc.dt);
+	if (kernel_forces(s->kern, &s->law, &s->st, &s->nl, 1.0 / s->sc.dt, 0, NULL, e) < 0)
+		return e->code;
 	integ_start(&s->in, &s->st, gy);
 	return 0;
 }
@@ -407,7 +454,9 @@ int sim_derive(sb_sim *s, sb_err *e)
 	s->rmean = ng ? rs / ng : 0.5 * (s->sc.r_min + s->sc.r_max);
 	s->intruder = state_find_intruder(&s->st);
 	set_bounds(s);
-	return nlist_init(&s->nl, &s->st, s->sc.skin, e);
+	if (kernel_init(&s->kern, &s->st, e))
+		return e->code;
+	return nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e);
 }
 
 /* The inner faces of the side walls: the hull of the wall disks less their radii

@@ -9,6 +9,7 @@
 #include "forces.h"
 #include "integrate.h"
 #include "journal.h"
+#include "kernel.h"
 #include "nlist.h"
 #include "observe.h"
 #include "params.h"
@@ -21,6 +22,7 @@ typedef struct sb_sim {
 	sb_scene sc;
 	sb_state st;
 	sb_nlist nl;
+	sb_kernel *kern;         /* the force kernel and its fast path */
 	sb_law law;
 	sb_integ in;
 	sb_prov prov;
@@ -36,9 +38,7 @@ typedef struct sb_sim {
 	/* shaking */
 	long step, nsteps;
 	int predicted;           /* the next step's predictor already ran (fused) */
-	int packed;              /* ... and wrote the force kernel's records (forces_compute_acc) */
 	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
-	int stale;               /* ... and left x, y, vx, vy in nl's records only (sim.c) */
 	int ov_track;            /* shaking: the kernel's overlap threshold is the record so
 				  * far (obs.ov_max), not the stop (sim.c) */
 	long n_traj, n_snap;     /* records written so far */

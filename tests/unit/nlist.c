@@ -5,12 +5,13 @@
  * tight cluster plus a disk far away, which makes the grid clamp and grow cells).
  * Pair SETS are compared: the flat list's ordinary pairs (i, j > i, rows of ascending
  * i) plus its pairs involving large disks, each normalised to (min, max); every pair
- * must appear exactly once, and every m_eff must be 1 / (1/m_i + 1/m_j). */
+ * must appear exactly once (m_eff per pair: tests/unit/kernel.c). */
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel.h"
 #include "nlist.h"
 #include "prepare.h"
 #include "testlib.h"
@@ -38,16 +39,16 @@ static int compare(const sb_state *st, const sb_nlist *nl, double skin, char *wh
 	}
 	/* the ordinary pairs: rows of ascending i, j > i, no large disk */
 	for (int p = 0; p < nl->npairs; p++) {
-		int i = nl->pi[p] / SB_PSCALE, j = nl->pj[p] / SB_PSCALE;
+		int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
 		if (j <= i || j >= st->n || i >= st->nm || nl->large[i] || nl->large[j] ||
-		    (p > 0 && i < nl->pi[p - 1] / SB_PSCALE)) {
+		    (p > 0 && i < nl->pi[p - 1] >> nl->pshift)) {
 			snprintf(why, len, "ordinary pair %d = (%d, %d) is not j > i, in rows of ascending i", p, i, j);
 			ok = 0;
 		}
 		a[k++] = (long)i * st->n + j;
 	}
 	for (int p = nl->npairs; p < nl->nflat; p++) {
-		int i = nl->pi[p] / SB_PSCALE, j = nl->pj[p] / SB_PSCALE;
+		int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
 		if (!nl->large[i] && !nl->large[j] && ok) {
 			snprintf(why, len, "big pair (%d, %d) involves no large disk", i, j);
 			ok = 0;
@@ -55,18 +56,6 @@ static int compare(const sb_state *st, const sb_nlist *nl, double skin, char *wh
 		int lo = i < j ? i : j, hi = i < j ? j : i;
 		a[k++] = (long)lo * st->n + hi;
 	}
-#if !SB_KERNEL_AVX512
-	/* m_eff of every pair (the AVX-512 build keeps no such array: its kernel forms
-	 * m_eff from the disks' records, held to the scalar kernel's forces by
-	 * tests/integration/regression.sh) */
-	for (int p = 0; p < nl->nflat && ok; p++) {
-		double want = 1.0 / (st->inv_m[nl->pi[p]] + st->inv_m[nl->pj[p]]);
-		if (nl->pmeff[p] != want) {
-			snprintf(why, len, "m_eff of pair %d is %.17g, want %.17g", p, nl->pmeff[p], want);
-			ok = 0;
-		}
-	}
-#endif
 	for (long q = 0; q < nb; q++)
 		b[q] = (long)bi[q] * st->n + bj[q];
 	qsort(a, (size_t)k, sizeof(long), cmp_pair);
@@ -152,7 +141,7 @@ int main(void)
 		sb_nlist nl;
 		sb_err e = {0};
 		build_scene(&st, rng, 300, ratio, 40, 30);
-		int ok = !nlist_init(&nl, &st, skin, &e) && !nlist_build(&nl, &st, &e);
+		int ok = !nlist_init(&nl, &st, skin, kernel_pair_shift(), &e) && !nlist_build(&nl, &st, &e);
 		snprintf(id, sizeof id, "nlist.random.seed%d.intruder_is_large", seed);
 		CHECK(id, ok && nl.large[0] && nl.nlarge >= 1, "ratio %g: intruder not classified large", ratio);
 		snprintf(id, sizeof id, "nlist.random.seed%d.build", seed);
@@ -180,7 +169,7 @@ int main(void)
 		/* grain 1 flies away (stays mobile: nm unchanged) */
 		st.q[C_X][0][1] = 1e5;
 		st.q[C_Y][0][1] = -3e4;
-		int ok = !nlist_init(&nl, &st, 0.3, &e) && !nlist_build(&nl, &st, &e);
+		int ok = !nlist_init(&nl, &st, 0.3, kernel_pair_shift(), &e) && !nlist_build(&nl, &st, &e);
 		CHECK("nlist.flying.build", ok && compare(&st, &nl, 0.3, why, sizeof why), "%s %s", why, e.msg);
 		CHECK("nlist.flying.cells_capped", ok && (double)nl.ncx * nl.ncy <= 4.0 * st.n + 64,
 		      "%d x %d cells", nl.ncx, nl.ncy);
@@ -213,7 +202,7 @@ int main(void)
 			prepare_push(&sc, &st, 5, 5, 1, KIND_GRAIN, &e);
 		prepare_push(&sc, &st, 5, 5, 1, KIND_WALL, &e);
 		prepare_push(&sc, &st, 5, 6, 1, KIND_WALL, &e);
-		int ok = !nlist_init(&nl, &st, 0.15, &e) && !nlist_build(&nl, &st, &e);
+		int ok = !nlist_init(&nl, &st, 0.15, kernel_pair_shift(), &e) && !nlist_build(&nl, &st, &e);
 		CHECK("nlist.degenerate.same_spot", ok && compare(&st, &nl, 0.15, why, sizeof why), "%s %s", why, e.msg);
 		nlist_free(&nl);
 		state_free(&st);
