@@ -58,6 +58,7 @@ static struct {
 	unsigned long long seed;
 	long keep;
 	int quiet;
+	int only[NTARGET], nonly; /* --target: fuzz only these */
 	long line_max[NTARGET];
 	seedfile seeds[MAX_SEEDS];
 	int nseeds;
@@ -1035,6 +1036,7 @@ static const char USAGE[] =
 	"  --keep N          findings kept per distinct signature; default 3\n"
 	"  --particle-arg K=V  a scene key for the particle-file runs (repeatable)\n"
 	"  --line-max TARGET=N  the reader's line limit (scene=199, campaign=199, particles=1023)\n"
+	"  --target T        fuzz only target T (scene, campaign, particles; repeatable)\n"
 	"  --quiet           no progress lines\n"
 	"Prints a summary and writes OUT/summary.tsv; exits 1 when there are findings.\n";
 
@@ -1082,6 +1084,14 @@ int main(int argc, char **argv)
 			if (F.nparticle_args == MAX_ARGS - 16)
 				die("too many --particle-arg");
 			F.particle_args[F.nparticle_args++] = v;
+		} else if (!strcmp(a, "--target")) {
+			int t;
+			for (t = 0; t < NTARGET && strcmp(v, TARGET[t]); t++)
+				;
+			if (t == NTARGET)
+				die("--target %s: expected scene, campaign or particles", v);
+			F.only[t] = 1;
+			F.nonly++;
 		} else if (!strcmp(a, "--line-max")) {
 			int t;
 			for (t = 0; t < NTARGET; t++)
@@ -1123,7 +1133,10 @@ int main(int argc, char **argv)
 		}
 	int per[NTARGET][MAX_SEEDS], nper[NTARGET] = {0};
 	for (int i = 0; i < F.nseeds; i++)
-		per[F.seeds[i].target][nper[F.seeds[i].target]++] = i;
+		if (!F.nonly || F.only[F.seeds[i].target])
+			per[F.seeds[i].target][nper[F.seeds[i].target]++] = i;
+	if (!nper[T_SCENE] && !nper[T_CAMPAIGN] && !nper[T_PARTICLES])
+		die("no seed files for the targets asked for");
 
 	double t0 = now(), last = t0;
 	long iter;

@@ -7,6 +7,7 @@
 #   FUZZ_SEED     PRNG seed (default 1): input k is the same for the same seed and corpus
 #   FUZZ_TIMEOUT  seconds after which a run is a hang (default 10)
 #   FUZZ_RSS_MB   memory (MB) past which ASan stops a run and reports it (default 1024)
+#   FUZZ_TARGETS  comma-separated subset of scene,campaign,particles (default all)
 #   FUZZ_OUT      findings directory, emptied first (default build/fuzz/findings)
 #   FUZZ_WORK     scratch directory (default build/fuzz/work)
 #   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN  the binaries (default build/san/bin/{shake,study},
@@ -17,6 +18,7 @@ cd "$(dirname "$0")/../.." || exit 2
 SECONDS_LIMIT="${FUZZ_SECONDS:-600}"
 INPUTS="${FUZZ_INPUTS:-0}"
 SEED="${FUZZ_SEED:-1}"
+FUZZ_TARGETS="${FUZZ_TARGETS:-}"
 TIMEOUT="${FUZZ_TIMEOUT:-10}"
 OUT="${FUZZ_OUT:-build/fuzz/findings}"
 WORK="${FUZZ_WORK:-build/fuzz/work}"
@@ -97,6 +99,7 @@ EOF
 
 args=(--shake "$SHAKE" --study "$STUDY" --seed "$SEED" --timeout "$TIMEOUT" --out "$OUT" --work "$WORK"
 	--keys "$C/keys.tsv" --particle-arg "width=$PW" --particle-arg settle=no)
+for t in ${FUZZ_TARGETS//,/ }; do args+=(--target "$t"); done
 [ "$SECONDS_LIMIT" != 0 ] && args+=(--seconds "$SECONDS_LIMIT")
 [ "$INPUTS" != 0 ] && args+=(--inputs "$INPUTS")
 for f in scenes/*.scene "$C/small.scene" "$C/observe.scene"; do args+=(--scene "$f"); done
