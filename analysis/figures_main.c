@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "flux.h"
 #include "h5read.h"
+#include "tool.h"
 
 #define VERSION "3"
 
@@ -89,15 +90,41 @@ static const char *HELP =
 	"deep the rolls reach), runs (used) and the accounting (runs_failed, runs_failed_used,\n"
 	"..., as onset --help lists). Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
-static int cmpd(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
-
 static int near(double a, double b)
 {
 	return fabs(a - b) <= 1e-9 * fmax(1, fabs(b));
+}
+
+/* The panels: one row per frequency; the system without intruder and, when R > 0,
+ * the one with an intruder of radius ratio R. Panel (row r, system sys) is group
+ * r * nsys + sys of the accounting. */
+typedef struct panels {
+	flux_opts fo;
+	double freqs[64];  /* the campaign's frequencies, then the rows' */
+	double ratios[64]; /* the campaign's radius ratios > 0 */
+	int nf, nra;
+	double R;
+	int nsys;
+} panels;
+
+static double sys_ratio(const panels *P, int sys)
+{
+	return sys ? P->R : 0;
+}
+
+/* every --where names a parameter of the campaign */
+static int where_known(an_tool *t)
+{
+	const an_opts *o = t->o;
+	for (int w = 0; w < o->nwhere; w++) {
+		int known = 0;
+		for (int i = 0; i < t->nr && !known; i++)
+			known = an_str(&t->runs[i], o->where_key[w]) != NULL;
+		if (t->nr && !known)
+			return sb_errf(&t->e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o->where_key[w],
+				       o->campaign);
+	}
+	return 0;
 }
 
 /* the run's KEY equals VALUE for every --where (as numbers when both are numbers) */
@@ -116,22 +143,50 @@ static int where_ok(const an_opts *o, const an_run *r)
 	return 1;
 }
 
+/* Adds x to v[0..*n) unless it is there already, ok is false or v is full. */
+static void add_value(double *v, int *n, double x, int ok)
+{
+	int seen = 0;
+	for (int j = 0; j < *n; j++)
+		seen |= near(v[j], x);
+	if (!seen && *n < 64 && ok)
+		v[(*n)++] = x;
+}
+
+/* Every fixed-frequency run that matches --where is considered, whatever its state;
+ * their frequencies and radius ratios are noted. */
+static int consider(an_tool *t, panels *P)
+{
+	const an_opts *o = t->o;
+	for (int i = 0; i < t->nr; i++) {
+		const char *ramp = an_str(&t->runs[i], "ramp");
+		if ((ramp && strcmp(ramp, "none")) || !where_ok(o, &t->runs[i]) || tool_old(t, &t->runs[i]))
+			continue;
+		const an_run *r = &t->runs[tool_keep(t, i)];
+		const double fr = an_num(r, "frequency", NAN), ra = an_num(r, "radius_ratio", 0);
+		add_value(P->freqs, &P->nf, fr, isfinite(fr));
+		add_value(P->ratios, &P->nra, ra, ra > 0);
+	}
+	return t->k ? 0 : tool_none(t, "fixed-frequency run", o->nwhere ? " that matches --where" : "");
+}
+
 /* A panel averages its runs: runs that differ in another swept key (depth, width...)
  * would be averaged silently, so that is an error naming the key and two values. */
-static int pooled_axis(adb *d, const an_opts *o, an_run *runs, int k, sb_err *e)
+static int pooled_axis(an_tool *t)
 {
+	const an_opts *o = t->o;
 	char axes[AN_MAXKEYS][48];
 	int na = 0;
-	if (adb_axes(d, o->campaign, axes, AN_MAXKEYS, &na, e))
-		return e->code;
+	if (adb_axes(&t->d, o->campaign, axes, AN_MAXKEYS, &na, &t->e))
+		return t->e.code;
 	for (int a = 0; a < na; a++) {
 		if (!strcmp(axes[a], "frequency") || !strcmp(axes[a], "radius_ratio") || !strcmp(axes[a], "seed"))
 			continue;
-		const char *first = an_str(&runs[0], axes[a]);
-		for (int i = 1; i < k; i++) {
-			const char *v = an_str(&runs[i], axes[a]);
+		const char *first = an_str(&t->runs[0], axes[a]);
+		for (int i = 1; i < t->k; i++) {
+			const char *v = an_str(&t->runs[i], axes[a]);
 			if (first && v && strcmp(first, v))
-				return sb_errf(e, SB_EUSAGE,
+				return sb_errf(&t->e, SB_EUSAGE,
 					       "campaign '%s' sweeps %s (%s, %s, ...): a panel would average over it; "
 					       "choose with --where %s=VALUE", o->campaign, axes[a], first, v, axes[a]);
 		}
@@ -188,462 +243,487 @@ static void classify(an_run *r, const flux_opts *fo)
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
 }
 
+/* The rows (--freq, else the campaign's frequencies, at most MAXROWS), the systems
+ * (--ratio, else the largest radius ratio), the panels' labels, each considered run's
+ * panel and what of it is drawn. */
+static int layout(an_tool *t, panels *P)
+{
+	const an_opts *o = t->o;
+	qsort(P->freqs, (size_t)P->nf, sizeof *P->freqs, cmp_dbl);
+	qsort(P->ratios, (size_t)P->nra, sizeof *P->ratios, cmp_dbl);
+	if (o->nfreq) {
+		P->nf = o->nfreq;
+		memcpy(P->freqs, o->freqs, sizeof(double) * (size_t)P->nf);
+	}
+	if (P->nf > MAXROWS)
+		P->nf = MAXROWS;
+	P->R = isnan(o->ratio) ? (P->nra ? P->ratios[P->nra - 1] : 0) : o->ratio;
+	/* the second system is the one with an intruder: none when R = 0 */
+	P->nsys = P->R > 0 ? 2 : 1;
+	t->ng = P->nf * P->nsys;
+	if (!(t->labels = calloc((size_t)t->ng, sizeof *t->labels)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int j = 0; j < t->ng; j++) {
+		char l[96];
+		snprintf(l, sizeof l, "f=%g radius_ratio=%g", P->freqs[j / P->nsys], sys_ratio(P, j % P->nsys));
+		if (!(t->labels[j] = strdup(l)))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	}
+	for (int i = 0; i < t->k; i++) {
+		an_run *r = &t->runs[i];
+		r->group = -1;
+		for (int j = 0; j < t->ng; j++)
+			if (near(an_num(r, "frequency", NAN), P->freqs[j / P->nsys]) &&
+			    near(an_num(r, "radius_ratio", 0), sys_ratio(P, j % P->nsys)))
+				r->group = j;
+		if (r->group >= 0)
+			classify(r, &P->fo);
+	}
+	return tool_tally(t, stdout, "the runs of the panels drawn");
+}
+
+/* ---- Fig. 1: displacement field ---- */
+
+/* One panel's field: the cells of its runs, count-weighted, on the grid of its first run. */
+typedef struct field {
+	size_t ny, nx;
+	double cell, x0;      /* the grid: cell size, left edge (cell 0: none yet) */
+	double *sx, *sy, *sc; /* [ny * nx] sums of count * ux, count * uy and of count */
+	int runs;
+} field;
+
+static void field_free(field *fl)
+{
+	free(fl->sx);
+	free(fl->sy);
+	free(fl->sc);
+}
+
+/* Adds a run's field (dims d, cell size and left edge from h). The grid is one mean
+ * diameter of the run's own grains, so replicates differ slightly: the panel takes the
+ * grid of its first run, and every run's cells go, by their centres, into the cell of
+ * that grid that holds them. */
+static void field_sum(field *fl, hid_t h, const size_t d[3], const double *ux, const double *uy, const double *cn)
+{
+	double ci = 0, xi = 0;
+	h5r_attr_num(h, "/field", "cell", &ci);
+	h5r_attr_num(h, "/field", "x0", &xi);
+	if (!(ci > 0))
+		return;
+	if (!fl->runs) {
+		field_free(fl);
+		fl->ny = d[1];
+		fl->nx = d[2];
+		fl->sx = calloc(d[1] * d[2], sizeof *fl->sx);
+		fl->sy = calloc(d[1] * d[2], sizeof *fl->sy);
+		fl->sc = calloc(d[1] * d[2], sizeof *fl->sc);
+		fl->cell = ci;
+		fl->x0 = xi;
+	}
+	for (size_t b = 0; fl->sx && fl->sy && fl->sc && b < d[0]; b++)
+		for (size_t rr = 0; rr < d[1]; rr++)
+			for (size_t c = 0; c < d[2]; c++) {
+				const size_t q = (b * d[1] + rr) * d[2] + c;
+				const double n = cn[q];
+				const double gx = floor((xi + ((double)c + 0.5) * ci - fl->x0) / fl->cell);
+				const double gy = floor(((double)rr + 0.5) * ci / fl->cell);
+				if (!(n > 0) || gx < 0 || gy < 0 || gx >= (double)fl->nx || gy >= (double)fl->ny)
+					continue;
+				const size_t g = (size_t)gy * fl->nx + (size_t)gx;
+				fl->sx[g] += n * ux[q];
+				fl->sy[g] += n * uy[q];
+				fl->sc[g] += n;
+			}
+	fl->runs += fl->sx != NULL;
+}
+
+/* Adds run r's /field to fl when it has a readable one. */
+static void field_add(field *fl, const an_run *r)
+{
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return;
+	double *ux = NULL, *uy = NULL, *cn = NULL;
+	size_t d1[3], d2[3], d3[3];
+	int rk;
+	if (h5r_exists(h, "/field") && !h5r_read(h, "/field/ux", &ux, &rk, d1, &he) &&
+	    !h5r_read(h, "/field/uy", &uy, &rk, d2, &he) && !h5r_read(h, "/field/count", &cn, &rk, d3, &he) && rk == 3 &&
+	    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1))
+		field_sum(fl, h, d1, ux, uy, cn);
+	free(ux);
+	free(uy);
+	free(cn);
+	h5r_close(h);
+}
+
+/* The arrows of every panel on one scale. The scale is the 95th percentile of the
+ * arrow lengths, not the longest: a grain thrown off the surface in a thinly sampled
+ * cell would otherwise shrink every arrow of the bulk to a dot. Longer arrows are
+ * drawn at that length (their direction kept), and cells sampled less than a fifth as
+ * often as the panel's median cell are left out. */
+typedef struct arrows {
+	double umax;         /* the common length (0 before it is known) */
+	double *lens;        /* every arrow's length, to find it */
+	size_t n, cap;
+	double xlo, xhi, yhi; /* the extent of the panels' grids */
+	double head;         /* the cell of the last panel drawn: the arrow heads' size */
+} arrows;
+
+static void arrows_note(arrows *a, const field *fl, double len)
+{
+	if (a->n == a->cap) {
+		size_t cap = a->cap ? 2 * a->cap : 1024;
+		double *p = realloc(a->lens, cap * sizeof *a->lens);
+		if (!p)
+			return;
+		a->lens = p;
+		a->cap = cap;
+	}
+	a->lens[a->n++] = len;
+	a->xlo = fmin(a->xlo, fl->x0);
+	a->xhi = fmax(a->xhi, fl->x0 + fl->nx * fl->cell);
+	a->yhi = fmax(a->yhi, fl->ny * fl->cell);
+}
+
+/* Panel (r, sys)'s arrows: their lengths into a (f NULL), or their rows into f, as
+ * panel 2 r + sys, clipped to the common length. */
+static void field_arrows(const field *fl, arrows *a, FILE *f, const panels *P, int r, int sys)
+{
+	const double cell = fl->cell, scale = a->umax > 0 ? 0.9 * cell / a->umax : 1;
+	const double cmin = 0.2 * median_positive(fl->sc, fl->ny * fl->nx);
+	for (size_t rr = 0; rr < fl->ny; rr++)
+		for (size_t c = 0; c < fl->nx; c++) {
+			const size_t q = rr * fl->nx + c;
+			if (fl->sc[q] <= 0 || fl->sc[q] < cmin)
+				continue;
+			double ux = fl->sx[q] / fl->sc[q], uy = fl->sy[q] / fl->sc[q];
+			const double x = fl->x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
+			if (!f) {
+				arrows_note(a, fl, hypot(ux, uy));
+				continue;
+			}
+			if (a->umax > 0 && hypot(ux, uy) > a->umax) {
+				const double shrink = a->umax / hypot(ux, uy); /* clipped */
+				ux *= shrink;
+				uy *= shrink;
+			}
+			fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", 2 * r + sys, P->freqs[r],
+				sys_ratio(P, sys), x - 0.5 * ux * scale, y - 0.5 * uy * scale, ux, uy, fl->sc[q], ux * scale,
+				uy * scale);
+		}
+}
+
+/* Every panel's field, in two passes (f NULL: the lengths, to find the common scale;
+ * then the rows into f); the panels drawn. */
+static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f)
+{
+	int drawn = 0;
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++) {
+			field fl = {0};
+			for (int i = 0; i < t->k; i++) {
+				const an_run *run = &t->runs[i];
+				if (USED(run) && near(an_num(run, "frequency", NAN), P->freqs[r]) &&
+				    near(an_num(run, "radius_ratio", 0), sys_ratio(P, sys)))
+					field_add(&fl, run);
+			}
+			if (fl.runs && fl.sx && fl.sy && fl.sc) {
+				field_arrows(&fl, a, f, P, r, sys);
+				drawn++;
+			}
+			if (fl.cell > 0)
+				a->head = fl.cell;
+			field_free(&fl);
+		}
+	return drawn;
+}
+
+static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
+{
+	char script[1400], png[1400];
+	FILE *f = gp_open(t->o, "fig1", 900, 330 * P->nf + 60, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set multiplot layout %d,%d title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
+		   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n"
+		   "set xlabel 'x (cm)'\nset ylabel 'height above the bottom (cm)'\n",
+		P->nf, P->nsys, a->umax, a->xlo, a->xhi, a->yhi);
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++) {
+			if (sys)
+				fprintf(f, "set title 'with intruder R = %g, f = %g Hz'\n", P->R, P->freqs[r]);
+			else
+				fprintf(f, "set title 'without intruder, f = %g Hz'\n", P->freqs[r]);
+			fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
+				2 * r + sys, 0.25 * a->head);
+		}
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig1: %s (%d panels)\n", png, drawn);
+	return 0;
+}
+
+/* fig1_field.csv and fig1.png */
+static int fig1(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig1_field.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
+	arrows a = {.xlo = INFINITY, .xhi = -INFINITY, .head = 1};
+	fig1_pass(t, P, &a, NULL);
+	a.umax = percentile(a.lens, a.n, 0.95);
+	const int drawn = fig1_pass(t, P, &a, f);
+	free(a.lens);
+	fclose(f);
+	if (!drawn)
+		printf("# fig1: no run with field = yes; skipped\n");
+	else if (!t->o->no_plot)
+		return fig1_plot(t, P, &a, drawn);
+	return 0;
+}
+
+/* ---- Fig. 3: Phi(D) ---- */
+
+/* One panel's profile: Phi(D) of its runs, pooled by their periods after the transient. */
+typedef struct profile {
+	size_t L;
+	double *sp, *sh; /* [L] sums of w * Phi and of w * D over the runs, w their periods */
+	double wsum;
+	int runs;
+} profile;
+
+static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
+{
+	flux_data fd;
+	if (flux_load(r, &fd))
+		return; /* classified as usable: only a file changed since could fail */
+	if (!pr->runs) {
+		free(pr->sp);
+		free(pr->sh);
+		pr->L = fd.L;
+		pr->sp = calloc(pr->L ? pr->L : 1, sizeof *pr->sp);
+		pr->sh = calloc(pr->L ? pr->L : 1, sizeof *pr->sh);
+	}
+	double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
+	const size_t p0 = flux_first(&fd, fo);
+	/* the runs' periods pooled: a failed run weighs what it recorded */
+	const double w = fd.P > p0 ? (double)(fd.P - p0) : 0;
+	if (pr->sp && pr->sh && prof && fd.L == pr->L && w > 0) {
+		flux_profile(&fd, fo, prof);
+		for (size_t l = 0; l < pr->L; l++) {
+			pr->sp[l] += w * prof[l];
+			pr->sh[l] += w * fd.h[l];
+		}
+		pr->wsum += w;
+		pr->runs++;
+	}
+	free(prof);
+	flux_free(&fd);
+}
+
+/* Panel (r, sys)'s curve into f and its table row; its phi_max and half height. */
+static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
+			double *pm, double *half)
+{
+	*pm = 0;
+	*half = NAN;
+	for (size_t l = 0; l < pr->L; l++) {
+		fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, P->freqs[r], sys_ratio(P, sys), l,
+			pr->sh[l] / pr->wsum, pr->sp[l] / pr->wsum, pr->runs);
+		*pm = fmax(*pm, fabs(pr->sp[l] / pr->wsum));
+	}
+	for (size_t l = 0; l < pr->L && isnan(*half); l++)
+		if (*pm > 0 && fabs(pr->sp[l] / pr->wsum) >= 0.5 * *pm)
+			*half = pr->sh[l] / pr->wsum;
+	printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", P->freqs[r], sys_ratio(P, sys), pr->runs, *pm, *half,
+	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+}
+
+/* Panel (r, sys): its curve and table row when a run is drawn; its stored rows when
+ * it has runs of any kind. Returns 1 when drawn. */
+static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f)
+{
+	const int j = r * P->nsys + sys;
+	const an_acct *a = &t->A[j];
+	profile pr = {0};
+	double pm = 0, half = NAN;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i]) && t->runs[i].group == j)
+			profile_add(&pr, &t->runs[i], &P->fo);
+	if (pr.runs)
+		profile_out(&pr, P, r, sys, a, f, &pm, &half);
+	long any = 0;
+	for (int u = 0; u < AN_NUSE; u++)
+		any += a->n[u];
+	if (any) {
+		char g[128];
+		snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", P->freqs[r], sys_ratio(P, sys));
+		if (pr.runs) {
+			tool_store(t, g, "phi_max", pm, NAN, NAN, pr.runs);
+			tool_store(t, g, "half_height", half, NAN, NAN, pr.runs);
+		}
+		tool_store(t, g, "runs", pr.runs, NAN, NAN, pr.runs);
+		tool_store_acct(t, g, j);
+	}
+	free(pr.sp);
+	free(pr.sh);
+	return pr.runs > 0;
+}
+
+static int fig3_plot(an_tool *t, const panels *P, int drawn)
+{
+	char script[1400], png[1400];
+	FILE *f = gp_open(t->o, "fig3", 800, 260 * P->nf + 60, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set multiplot layout %d,1 title 'Fig. 3: convective flux Phi through planes at height D'\n"
+		   "set xlabel 'D (cm above the bottom)'\nset ylabel 'Phi (particles/period)'\n", P->nf);
+	for (int r = 0; r < P->nf; r++) {
+		fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n",
+			P->freqs[r], r);
+		if (P->nsys > 1)
+			fprintf(f, "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', \\\n",
+				r, P->R);
+		fprintf(f, "  0 with lines lc 'gray' notitle\n");
+	}
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig3: %s (%d curves)\n", png, drawn);
+	return 0;
+}
+
+/* fig3_profile.csv, the table of the curves, their stored rows and fig3.png */
+static int fig3(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig3_profile.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
+	printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
+	       "unfinished");
+	int drawn = 0;
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++)
+			drawn += fig3_panel(t, P, r, sys, f);
+	fclose(f);
+	if (t->e.code)
+		return t->e.code;
+	if (!drawn)
+		printf("# fig3: no run with flux = yes; skipped\n");
+	else if (!t->o->no_plot)
+		return fig3_plot(t, P, drawn);
+	return 0;
+}
+
+/* ---- Fig. 4: intruder height ---- */
+
+/* The run drawn at frequency f4 and radius ratio ra: the finished one with the lowest
+ * replicate, a failed one only when none finished; -1 when there is none. */
+static int fig4_run(const an_tool *t, double f4, double ra)
+{
+	int best = -1;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (!USED(r) || !near(an_num(r, "frequency", NAN), f4) || !near(an_num(r, "radius_ratio", 0), ra))
+			continue;
+		const int done = r->use == AN_USED, best_done = best >= 0 && t->runs[best].use == AN_USED;
+		if (best < 0 || done > best_done || (done == best_done && r->replicate < t->runs[best].replicate))
+			best = i;
+	}
+	return best;
+}
+
+/* Run r's intruder trajectory into f as panel p, its settled height and the surface
+ * into meta; 1 when it has one. */
+static int fig4_traj(const an_run *r, double ra, int p, FILE *f, double meta[3])
+{
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return 0;
+	double *tr = NULL;
+	size_t dm[3];
+	int rk, ok = !h5r_read(h, "/intruder/trajectory", &tr, &rk, dm, &he) && rk == 2 && dm[1] >= 3 && dm[0] > 0;
+	if (ok) {
+		for (size_t j = 0; j < dm[0]; j++)
+			fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", p, ra, r->id, tr[j * dm[1]], tr[j * dm[1] + 2]);
+		meta[0] = ra;
+		meta[1] = meta[2] = NAN;
+		h5r_attr_num(h, "/", "intruder_settled_y", &meta[1]);
+		h5r_attr_num(h, "/", "surface_height", &meta[2]);
+	}
+	free(tr);
+	h5r_close(h);
+	return ok;
+}
+
+static int fig4_plot(an_tool *t, double f4, double meta[][3], int drawn)
+{
+	char script[1400], png[1400];
+	FILE *f = gp_open(t->o, "fig4", 800, 260 * drawn + 60, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set multiplot layout %d,1 title 'Fig. 4: height of the intruder, f = %g Hz'\n"
+		   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", drawn, f4);
+	for (int p = 0; p < drawn; p++)
+		fprintf(f, "set title 'R = %g'\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lc 1 title 'intruder centre', \\\n"
+			   "  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' title 'free surface (t = 0)'\n",
+			meta[p][0], p, meta[p][1], meta[p][2]);
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig4: %s (%d panels)\n", png, drawn);
+	return 0;
+}
+
+/* fig4_traj.csv and fig4.png: one panel per radius ratio > 0 of the campaign (at most
+ * 8), at the highest row's frequency */
+static int fig4(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig4_traj.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "panel,radius_ratio,run,t,y\n");
+	const double f4 = P->nf ? P->freqs[P->nf - 1] : NAN;
+	double meta[8][3];
+	int drawn = 0;
+	for (int q = 0; q < P->nra && drawn < 8; q++) {
+		const int best = fig4_run(t, f4, P->ratios[q]);
+		if (best >= 0 && fig4_traj(&t->runs[best], P->ratios[q], drawn, f, meta[drawn]))
+			drawn++;
+	}
+	fclose(f);
+	if (!drawn)
+		printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
+	else if (!t->o->no_plot)
+		return fig4_plot(t, f4, meta, drawn);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "figures", .version = VERSION};
 	int pr = cli_parse(&o, argc, argv, HELP, " freq ratio skip where ");
 	if (pr)
 		return pr < 0 ? 0 : 1;
-	flux_opts fo = {0.4, 0.6, o.skip};
-	sb_err e = {0};
-	adb d;
-	an_run *runs = NULL;
-	int nr = 0, k = 0, made = 0, stored = 0, ng = 0;
-	char **labels = NULL;
-	an_acct *A = NULL;
-	FILE *f = NULL;
-	char path[1400], script[1400], png[1400];
-	double freqs[64], ratios[64];
-	int nf = 0, nra = 0;
-	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
+	an_tool t;
+	panels P = {.fo = {0.4, 0.6, o.skip}};
+	if (tool_open(&t, &o) || where_known(&t) || consider(&t, &P) || pooled_axis(&t) || layout(&t, &P))
 		goto out;
-	for (int w = 0; w < o.nwhere; w++) {
-		int known = 0;
-		for (int i = 0; i < nr && !known; i++)
-			known = an_str(&runs[i], o.where_key[w]) != NULL;
-		if (nr && !known) {
-			sb_errf(&e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o.where_key[w], o.campaign);
-			goto out;
-		}
-	}
-	long nold = 0;
-	for (int i = 0; i < nr; i++) {
-		const char *ramp = an_str(&runs[i], "ramp");
-		if (ramp && strcmp(ramp, "none"))
-			continue;
-		if (!where_ok(&o, &runs[i]) || acct_version_skip(&runs[i], o.all_versions, &nold))
-			continue;
-		an_run t = runs[k];
-		runs[k] = runs[i];
-		runs[i] = t;
-		double fr = an_num(&runs[k], "frequency", NAN), ra = an_num(&runs[k], "radius_ratio", 0);
-		int seen = 0;
-		for (int j = 0; j < nf; j++)
-			seen |= near(freqs[j], fr);
-		if (!seen && nf < 64 && isfinite(fr))
-			freqs[nf++] = fr;
-		seen = 0;
-		for (int j = 0; j < nra; j++)
-			seen |= near(ratios[j], ra);
-		if (!seen && nra < 64 && ra > 0)
-			ratios[nra++] = ra;
-		k++;
-	}
-	if (!k) {
-		int known = 0;
-		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
-			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
-		else
-			sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run in %s%s%s", o.campaign, o.db,
-				o.nwhere ? " that matches --where" : "", nold ? " of the current grid (--all-versions)" : "");
+	if (cli_outdir(&o, &t.e) || tool_accounting_csv(&t) || tool_store_begin(&t))
 		goto out;
-	}
-	if (pooled_axis(&d, &o, runs, k, &e))
+	if (fig1(&t, &P) || fig3(&t, &P) || fig4(&t, &P) || tool_store_end(&t))
 		goto out;
-	qsort(freqs, (size_t)nf, sizeof *freqs, cmpd);
-	qsort(ratios, (size_t)nra, sizeof *ratios, cmpd);
-	if (o.nfreq) {
-		nf = o.nfreq;
-		memcpy(freqs, o.freqs, sizeof(double) * (size_t)nf);
-	}
-	if (nf > MAXROWS)
-		nf = MAXROWS;
-	double R = isnan(o.ratio) ? (nra ? ratios[nra - 1] : 0) : o.ratio;
-	/* the second system is the one with an intruder: none when R = 0 */
-	const int nsys = R > 0 ? 2 : 1;
-	/* the panels are the groups of the accounting: row r, system sys is group r * nsys + sys */
-	ng = nf * nsys;
-	labels = calloc((size_t)ng, sizeof *labels);
-	if (!labels) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		goto out;
-	}
-	for (int j = 0; j < ng; j++) {
-		char l[96];
-		snprintf(l, sizeof l, "f=%g radius_ratio=%g", freqs[j / nsys], j % nsys ? R : 0);
-		if (!(labels[j] = strdup(l))) {
-			sb_errf(&e, SB_ENOMEM, "out of memory");
-			goto out;
-		}
-	}
-	for (int i = 0; i < k; i++) {
-		runs[i].group = -1;
-		for (int j = 0; j < ng; j++)
-			if (near(an_num(&runs[i], "frequency", NAN), freqs[j / nsys]) &&
-			    near(an_num(&runs[i], "radius_ratio", 0), j % nsys ? R : 0))
-				runs[i].group = j;
-		if (runs[i].group >= 0)
-			classify(&runs[i], &fo);
-	}
-	if (acct_tally(runs, k, ng, &A)) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		goto out;
-	}
-	long used = 0;
-	for (int j = 0; j < ng; j++)
-		used += acct_used(&A[j]);
-	if (!used) {
-		acct_print(stdout, "figures", labels, A, ng, nold, o.all_versions);
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of the runs of the panels drawn is usable yet", o.campaign);
-		goto out;
-	}
-	if (cli_outdir(&o, &e))
-		goto out;
-	if (!(f = cli_fopen(&o, "figures_accounting.csv", path, sizeof path, &e)))
-		goto out;
-	acct_runs_csv(f, runs, k, labels);
-	fclose(f);
-	f = NULL;
-	if (!o.no_store && adb_store_begin(&d, o.campaign, "figures", &e))
-		goto out;
-
-	/* ---- Fig. 1: displacement field ---- */
-	{
-		if (!(f = cli_fopen(&o, "fig1_field.csv", path, sizeof path, &e)))
-			goto out;
-		fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
-		double umax = 0, cell = 1, xlo = INFINITY, xhi = -INFINITY, yhi = 0;
-		int panels = 0;
-		/* The arrow scale is the 95th percentile of the arrow lengths, not the longest:
-		 * a grain thrown off the surface in a thinly sampled cell would otherwise
-		 * shrink every arrow of the bulk to a dot. Longer arrows are drawn at that
-		 * length (their direction kept), and cells sampled less than a fifth as often
-		 * as the panel's median cell are left out. */
-		double *lens = NULL;
-		size_t nlens = 0, caplens = 0;
-		/* two passes: the first finds the common arrow scale */
-		for (int pass = 0; pass < 2; pass++)
-			for (int r = 0; r < nf; r++)
-				for (int sys = 0; sys < nsys; sys++) {
-					double ra = sys ? R : 0, *sx = NULL, *sy = NULL, *sc = NULL, x0 = 0;
-					size_t dims0[3] = {0, 0, 0};
-					int used = 0;
-					for (int i = 0; i < k; i++) {
-						if (!USED(&runs[i]) || !near(an_num(&runs[i], "frequency", NAN), freqs[r]) ||
-						    !near(an_num(&runs[i], "radius_ratio", 0), ra))
-							continue;
-						hid_t h;
-						sb_err he = {0};
-						if (h5r_open(runs[i].path, &h, &he) || !h5r_exists(h, "/field")) {
-							if (!he.code)
-								h5r_close(h);
-							continue;
-						}
-						double *ux = NULL, *uy = NULL, *cn = NULL;
-						size_t d1[3], d2[3], d3[3];
-						int rk;
-						if (!h5r_read(h, "/field/ux", &ux, &rk, d1, &he) && !h5r_read(h, "/field/uy", &uy, &rk, d2, &he) &&
-						    !h5r_read(h, "/field/count", &cn, &rk, d3, &he) && rk == 3 &&
-						    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1)) {
-							/* The grid is one mean diameter of the run's own grains, so
-							 * replicates differ slightly: the panel takes the grid of
-							 * its first run, and every run's cells go, by their centres,
-							 * into the cell of that grid that holds them. */
-							double ci = 0, xi = 0;
-							h5r_attr_num(h, "/field", "cell", &ci);
-							h5r_attr_num(h, "/field", "x0", &xi);
-							if (!used && ci > 0) {
-								memcpy(dims0, d1, sizeof dims0);
-								size_t nc = d1[1] * d1[2];
-								sx = calloc(nc, sizeof *sx);
-								sy = calloc(nc, sizeof *sy);
-								sc = calloc(nc, sizeof *sc);
-								cell = ci;
-								x0 = xi;
-							}
-							for (size_t b = 0; sx && sy && sc && ci > 0 && b < d1[0]; b++)
-								for (size_t rr = 0; rr < d1[1]; rr++)
-									for (size_t c = 0; c < d1[2]; c++) {
-										size_t q = (b * d1[1] + rr) * d1[2] + c;
-										double n = cn[q];
-										double gx = floor((xi + ((double)c + 0.5) * ci - x0) / cell);
-										double gy = floor(((double)rr + 0.5) * ci / cell);
-										if (!(n > 0) || gx < 0 || gy < 0 || gx >= (double)dims0[2] ||
-										    gy >= (double)dims0[1])
-											continue;
-										size_t t = (size_t)gy * dims0[2] + (size_t)gx;
-										sx[t] += n * ux[q];
-										sy[t] += n * uy[q];
-										sc[t] += n;
-									}
-							used += sx && ci > 0;
-						}
-						free(ux);
-						free(uy);
-						free(cn);
-						h5r_close(h);
-					}
-					if (used && sx && sy && sc) {
-						size_t ny = dims0[1], nx = dims0[2];
-						double scale = umax > 0 ? 0.9 * cell / umax : 1;
-						double cmin = 0.2 * median_positive(sc, ny * nx);
-						for (size_t rr = 0; rr < ny; rr++)
-							for (size_t c = 0; c < nx; c++) {
-								size_t q = rr * nx + c;
-								if (sc[q] <= 0 || sc[q] < cmin)
-									continue;
-								double ux = sx[q] / sc[q], uy = sy[q] / sc[q];
-								double x = x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
-								if (pass == 1 && umax > 0 && hypot(ux, uy) > umax) {
-									double shrink = umax / hypot(ux, uy); /* clipped */
-									ux *= shrink;
-									uy *= shrink;
-								}
-								if (pass == 0) {
-									if (nlens == caplens) {
-										caplens = caplens ? 2 * caplens : 1024;
-										double *p = realloc(lens, caplens * sizeof *lens);
-										if (!p)
-											continue;
-										lens = p;
-									}
-									lens[nlens++] = hypot(ux, uy);
-									xlo = fmin(xlo, x0);
-									xhi = fmax(xhi, x0 + nx * cell);
-									yhi = fmax(yhi, ny * cell);
-									continue;
-								}
-								fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", 2 * r + sys,
-									freqs[r], ra, x - 0.5 * ux * scale, y - 0.5 * uy * scale, ux, uy, sc[q],
-									ux * scale, uy * scale);
-							}
-						panels += pass;
-					}
-					free(sx);
-					free(sy);
-					free(sc);
-					if (pass == 0 && r == nf - 1 && sys == nsys - 1)
-						umax = percentile(lens, nlens, 0.95);
-				}
-		free(lens);
-		fclose(f);
-		f = NULL;
-		if (!panels)
-			printf("# fig1: no run with field = yes; skipped\n");
-		else if (!o.no_plot) {
-			if (!(f = gp_open(&o, "fig1", 900, 330 * nf + 60, script, png, sizeof script, &e)))
-				goto out;
-			fprintf(f, "set multiplot layout %d,%d title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
-				   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n"
-				   "set xlabel 'x (cm)'\nset ylabel 'height above the bottom (cm)'\n",
-				nf, nsys, umax, xlo, xhi, yhi);
-			for (int r = 0; r < nf; r++)
-				for (int sys = 0; sys < nsys; sys++) {
-					if (sys)
-						fprintf(f, "set title 'with intruder R = %g, f = %g Hz'\n", R, freqs[r]);
-					else
-						fprintf(f, "set title 'without intruder, f = %g Hz'\n", freqs[r]);
-					fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
-						2 * r + sys, 0.25 * cell);
-				}
-			fprintf(f, "unset multiplot\n");
-			fclose(f);
-			f = NULL;
-			if (gp_run(script, png, &e))
-				goto out;
-			made++;
-			printf("# fig1: %s (%d panels)\n", png, panels);
-		}
-	}
-
-	/* ---- Fig. 3: Phi(D) ---- */
-	{
-		if (!(f = cli_fopen(&o, "fig3_profile.csv", path, sizeof path, &e)))
-			goto out;
-		fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
-		int panels = 0;
-		printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
-		       "unfinished");
-		for (int r = 0; r < nf; r++)
-			for (int sys = 0; sys < nsys; sys++) {
-				double ra = sys ? R : 0, *sp = NULL, *sh = NULL, wsum = 0, pm = 0, half = NAN;
-				const an_acct *a = &A[r * nsys + sys];
-				size_t L = 0;
-				int used = 0;
-				for (int i = 0; i < k; i++) {
-					if (!USED(&runs[i]) || runs[i].group != r * nsys + sys)
-						continue;
-					flux_data fd;
-					if (flux_load(&runs[i], &fd))
-						continue; /* classified as usable: only a file changed since could fail */
-					if (!used) {
-						L = fd.L;
-						sp = calloc(L ? L : 1, sizeof *sp);
-						sh = calloc(L ? L : 1, sizeof *sh);
-					}
-					double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
-					size_t p0 = flux_first(&fd, &fo);
-					/* the runs' periods pooled: a failed run weighs what it recorded */
-					double w = fd.P > p0 ? (double)(fd.P - p0) : 0;
-					if (sp && sh && prof && fd.L == L && w > 0) {
-						flux_profile(&fd, &fo, prof);
-						for (size_t l = 0; l < L; l++) {
-							sp[l] += w * prof[l];
-							sh[l] += w * fd.h[l];
-						}
-						wsum += w;
-						used++;
-					}
-					free(prof);
-					flux_free(&fd);
-				}
-				if (used) {
-					for (size_t l = 0; l < L; l++) {
-						fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, freqs[r], ra, l, sh[l] / wsum,
-							sp[l] / wsum, used);
-						pm = fmax(pm, fabs(sp[l] / wsum));
-					}
-					for (size_t l = 0; l < L && isnan(half); l++)
-						if (pm > 0 && fabs(sp[l] / wsum) >= 0.5 * pm)
-							half = sh[l] / wsum;
-					printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", freqs[r], ra, used, pm, half, a->failed,
-					       a->n[AN_PENDING] + a->n[AN_RUNNING]);
-					panels++;
-				}
-				long any = 0; /* a panel with runs of any kind has its accounting stored */
-				for (int u = 0; u < AN_NUSE; u++)
-					any += a->n[u];
-				if (!o.no_store && any) {
-					char g[128];
-					snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", freqs[r], ra);
-					if (used) {
-						adb_store(&d, o.campaign, "figures", VERSION, g, "phi_max", pm, NAN, NAN, used, &e);
-						adb_store(&d, o.campaign, "figures", VERSION, g, "half_height", half, NAN, NAN, used, &e);
-					}
-					adb_store(&d, o.campaign, "figures", VERSION, g, "runs", used, NAN, NAN, used, &e);
-					acct_store(&d, o.campaign, "figures", VERSION, g, a, &e);
-					stored++;
-				}
-				free(sp);
-				free(sh);
-			}
-		fclose(f);
-		f = NULL;
-		if (e.code)
-			goto out;
-		if (!panels)
-			printf("# fig3: no run with flux = yes; skipped\n");
-		else if (!o.no_plot) {
-			if (!(f = gp_open(&o, "fig3", 800, 260 * nf + 60, script, png, sizeof script, &e)))
-				goto out;
-			fprintf(f, "set multiplot layout %d,1 title 'Fig. 3: convective flux Phi through planes at height D'\n"
-				   "set xlabel 'D (cm above the bottom)'\nset ylabel 'Phi (particles/period)'\n", nf);
-			for (int r = 0; r < nf; r++) {
-				fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n",
-					freqs[r], r);
-				if (nsys > 1)
-					fprintf(f, "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', \\\n",
-						r, R);
-				fprintf(f, "  0 with lines lc 'gray' notitle\n");
-			}
-			fprintf(f, "unset multiplot\n");
-			fclose(f);
-			f = NULL;
-			if (gp_run(script, png, &e))
-				goto out;
-			made++;
-			printf("# fig3: %s (%d curves)\n", png, panels);
-		}
-	}
-
-	/* ---- Fig. 4: intruder height ---- */
-	{
-		if (!(f = cli_fopen(&o, "fig4_traj.csv", path, sizeof path, &e)))
-			goto out;
-		fprintf(f, "panel,radius_ratio,run,t,y\n");
-		double f4 = nf ? freqs[nf - 1] : NAN, meta[8][3];
-		int panels = 0;
-		for (int q = 0; q < nra && panels < 8; q++) {
-			/* the finished run with the lowest replicate; a failed one only when none finished */
-			int best = -1;
-			for (int i = 0; i < k; i++)
-				if (USED(&runs[i]) && near(an_num(&runs[i], "frequency", NAN), f4) &&
-				    near(an_num(&runs[i], "radius_ratio", 0), ratios[q]) &&
-				    (best < 0 || (runs[i].use == AN_USED) > (runs[best].use == AN_USED) ||
-				     ((runs[i].use == AN_USED) == (runs[best].use == AN_USED) &&
-				      runs[i].replicate < runs[best].replicate)))
-					best = i;
-			if (best < 0)
-				continue;
-			hid_t h;
-			sb_err he = {0};
-			if (h5r_open(runs[best].path, &h, &he))
-				continue;
-			double *tr = NULL;
-			size_t dm[3];
-			int rk;
-			if (!h5r_read(h, "/intruder/trajectory", &tr, &rk, dm, &he) && rk == 2 && dm[1] >= 3 && dm[0] > 0) {
-				for (size_t j = 0; j < dm[0]; j++)
-					fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", panels, ratios[q], runs[best].id, tr[j * dm[1]],
-						tr[j * dm[1] + 2]);
-				meta[panels][0] = ratios[q];
-				meta[panels][1] = meta[panels][2] = NAN;
-				h5r_attr_num(h, "/", "intruder_settled_y", &meta[panels][1]);
-				h5r_attr_num(h, "/", "surface_height", &meta[panels][2]);
-				panels++;
-			}
-			free(tr);
-			h5r_close(h);
-		}
-		fclose(f);
-		f = NULL;
-		if (!panels)
-			printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
-		else if (!o.no_plot) {
-			if (!(f = gp_open(&o, "fig4", 800, 260 * panels + 60, script, png, sizeof script, &e)))
-				goto out;
-			fprintf(f, "set multiplot layout %d,1 title 'Fig. 4: height of the intruder, f = %g Hz'\n"
-				   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", panels, f4);
-			for (int p = 0; p < panels; p++)
-				fprintf(f, "set title 'R = %g'\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lc 1 title 'intruder centre', \\\n"
-					   "  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' title 'free surface (t = 0)'\n",
-					meta[p][0], p, meta[p][1], meta[p][2]);
-			fprintf(f, "unset multiplot\n");
-			fclose(f);
-			f = NULL;
-			if (gp_run(script, png, &e))
-				goto out;
-			made++;
-			printf("# fig4: %s (%d panels)\n", png, panels);
-		}
-	}
-	if (!o.no_store && adb_store_end(&d, !e.code, &e))
-		goto out;
-	acct_print(stdout, "figures", labels, A, ng, nold, o.all_versions);
-	long partly = 0;
-	for (int j = 0; j < ng; j++)
-		partly += A[j].n[AN_PARTLY];
-	if (partly)
-		printf("# %ld failed run%s enter%s with what they recorded before the failure: Fig. 3 with their periods after"
-		       " the transient of the run as planned (the runs' periods are pooled), Fig. 1 with their samples\n",
-		       partly, partly == 1 ? "" : "s", partly == 1 ? "s" : "");
+	tool_report(&t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
+				" of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
 	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
 out:
-	if (f)
-		fclose(f);
-	if (e.code && !o.no_store && d.ins)
-		adb_store_end(&d, 0, &e);
-	free(A);
-	for (int j = 0; labels && j < ng; j++)
-		free(labels[j]);
-	free(labels);
-	adb_runs_free(runs, nr);
-	adb_close(&d);
-	(void)made;
-	(void)stored;
-	if (e.code) {
-		fprintf(stderr, "figures: %s\n", e.msg);
-		return e.code == SB_EUSAGE ? 1 : 2;
-	}
-	return 0;
+	return tool_close(&t, stderr);
 }

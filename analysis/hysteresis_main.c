@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "flux.h"
 #include "hyst.h"
+#include "tool.h"
 
 #define VERSION "3"
 
@@ -46,249 +47,250 @@ static const char *HELP =
 	"the accounting (runs_failed, runs_failed_used, ..., as onset --help lists).\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
+/* What hysteresis computes besides the frame: the flux of every considered run, the
+ * points of each group's branches and their estimates. */
+typedef struct hyst_state {
+	flux_opts fo;
+	flux_data *F;     /* [k] the considered runs' flux (freed when unusable) */
+	size_t pmax;      /* the most periods of a run */
+	double *raw, *sm; /* [pmax] one run's plane Phi per period, smoothed within its legs */
+	hyst_data *G;     /* [ng] */
+	hyst_res *R;      /* [ng] */
+} hyst_state;
+
+static void state_free(const an_tool *t, hyst_state *s)
+{
+	for (int j = 0; s->G && j < t->ng; j++)
+		hyst_free(&s->G[j]);
+	free(s->G);
+	free(s->R);
+	for (int i = 0; s->F && i < t->k; i++)
+		flux_free(&s->F[i]);
+	free(s->F);
+	free(s->raw);
+	free(s->sm);
+}
+
+/* The legs of run r's ramp in D (hyst_legs); 0 when it has fewer than two periods. */
+static int legs(const an_run *r, const flux_data *D, hyst_leg leg[2])
+{
+	if (D->P < 2)
+		return 0;
+	return hyst_legs(D, !strcmp(an_str(r, "ramp"), "updown"), an_num(r, "ramp_from", NAN), an_num(r, "ramp_to", NAN),
+			 an_num(r, "ramp_hold", 0), leg);
+}
+
+/* Reads run r's flux into D and says what of it the statistic uses (acct.h). */
+static void classify(an_run *r, flux_data *D, size_t *pmax)
+{
+	if (flux_load(r, D)) {
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "hysteresis: warning: %s (counted as unreadable)\n", r->why);
+		return;
+	}
+	hyst_leg leg[2];
+	const int nl = legs(r, D, leg), failed = !strcmp(r->state, "failed");
+	if (!nl)
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, too few after the hold",
+			 failed ? "failed (" : "finished", failed ? r->status : "", failed ? ")" : "", D->P);
+	else if (failed)
+		acct_set(r, AN_PARTLY, D->t[D->P - 1], an_num(r, "duration", NAN),
+			 "failed at t = %g s (%s): the %zu periods before it used", r->status_time, r->status, D->P);
+	else
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	if (!nl)
+		flux_free(D);
+	*pmax = D->P > *pmax ? D->P : *pmax;
+}
+
+/* Every ramp run with flux = yes is considered, whatever its state. */
+static int consider(an_tool *t, hyst_state *s)
+{
+	if (!(s->F = calloc((size_t)(t->nr ? t->nr : 1), sizeof *s->F)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	s->pmax = 1;
+	for (int i = 0; i < t->nr; i++) {
+		an_run *r = &t->runs[i];
+		const char *ramp = an_str(r, "ramp"), *fl = an_str(r, "flux");
+		if (!ramp || !strcmp(ramp, "none") || (fl && strcmp(fl, "yes")) || tool_old(t, r))
+			continue;
+		classify(r, &s->F[t->k], &s->pmax);
+		tool_keep(t, i);
+	}
+	return t->k ? 0 : tool_none(t, "ramp run (ramp = linear|updown) with flux = yes", "");
+}
+
+/* Grouping reorders nothing: it only labels. */
+static int groups(an_tool *t, hyst_state *s)
+{
+	static const char *const always[] = {"radius_ratio", "depth", NULL};
+	static const char *const drop[] = {"frequency", "ramp", "ramp_from", "ramp_to", "ramp_hold", NULL};
+	if (tool_group(t, always, drop))
+		return t->e.code;
+	const size_t ng = (size_t)(t->ng > 0 ? t->ng : 1);
+	s->G = calloc(ng, sizeof *s->G);
+	s->R = calloc(ng, sizeof *s->R);
+	s->raw = malloc(sizeof *s->raw * s->pmax);
+	s->sm = malloc(sizeof *s->sm * s->pmax);
+	if (!s->G || !s->R || !s->raw || !s->sm)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if (tool_tally(t, stdout, "its %d ramp runs with flux = yes", t->k))
+		return t->e.code;
+	for (int j = 0; j < t->ng; j++)
+		hyst_init(&s->G[j], t->o->threshold);
+	return 0;
+}
+
+/* Considered run i's periods into its group's branches and hysteresis_periods.csv. */
+static int run_periods(an_tool *t, hyst_state *s, int i, FILE *f)
+{
+	const an_run *r = &t->runs[i];
+	hyst_data *g = &s->G[r->group];
+	const flux_data *D = &s->F[i];
+	size_t l0, l1;
+	flux_band(D, &s->fo, &l0, &l1);
+	hyst_leg leg[2];
+	const int nl = legs(r, D, leg);
+	if (hyst_add_run(g, r->replicate))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (size_t p = 0; p < D->P; p++)
+		s->raw[p] = flux_plane(D, p, l0, l1);
+	for (int q = 0; q < nl; q++) {
+		hyst_smooth(s->raw, leg[q].a, leg[q].b, t->o->smooth, s->sm);
+		for (size_t p = leg[q].a; p < leg[q].b; p++) {
+			if (hyst_add(g, leg[q].branch, D->f[p], s->sm[p], r->replicate))
+				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			fprintf(f, "%d,", r->group);
+			csv_str(f, t->labels[r->group]);
+			fprintf(f, ",%s,%ld,%s,%zu,%.17g,%.17g,%.17g,%s\n", r->id, r->replicate,
+				leg[q].branch == HYST_DOWN ? "down" : "up", p, D->f[p], s->raw[p], s->sm[p],
+				acct_use_name(r->use));
+		}
+	}
+	return 0;
+}
+
+/* hysteresis_periods.csv, and the points of every group's branches */
+static int periods(an_tool *t, hyst_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "hysteresis_periods.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,run,replicate,branch,period,frequency,phi,phi_smooth,use\n");
+	for (int i = 0; i < t->k; i++)
+		if ((t->runs[i].use == AN_USED || t->runs[i].use == AN_PARTLY) && run_periods(t, s, i, f))
+			break;
+	fclose(f);
+	return t->e.code;
+}
+
+/* Group j's estimates: its table row, its summary row, its stored rows. */
+static void group_out(an_tool *t, const hyst_data *g, const hyst_res *r, int j, FILE *s)
+{
+	static const char *const names[6] = {"up_sigmoid_f", "down_sigmoid_f", "diff_sigmoid",
+					     "up_threshold_f", "down_threshold_f", "diff_threshold"};
+	const char *L = t->labels[j];
+	const an_acct *a = &t->A[j];
+	char c[3][64];
+	for (int q = 0; q < 3; q++)
+		snprintf(c[q], sizeof c[q], "%.3f [%.3f, %.3f]", r->v[q], r->lo[q], r->hi[q]);
+	printf("%-26s %4zu %5zu %22s %22s %24s %8.3f %8.3f %8.3f %6ld %10ld\n", L, g->nruns, g->nu, c[0], c[1], c[2],
+	       r->v[3], r->v[4], r->v[5], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	csv_str(s, L);
+	fprintf(s, ",%zu,%zu", g->nruns, g->nu);
+	for (int q = 0; q < 6; q++)
+		fprintf(s, ",%.17g,%.17g,%.17g", r->v[q], r->lo[q], r->hi[q]);
+	fprintf(s, ",%zu", r->boot_ok);
+	tool_summary_acct(t, s, j);
+	const long n = (long)g->nruns;
+	tool_store(t, L, "runs", (double)g->nruns, NAN, NAN, n);
+	tool_store(t, L, "seeds", (double)g->nu, NAN, NAN, n);
+	for (int q = 0; q < 6; q++)
+		tool_store(t, L, names[q], r->v[q], r->lo[q], r->hi[q], n);
+	tool_store_acct(t, L, j);
+}
+
+/* Per group: the estimates into hysteresis_summary.csv, the table and the analysis
+ * table (storing begun here, ended by the caller). */
+static int estimate(an_tool *t, hyst_state *s)
+{
+	const an_opts *o = t->o;
+	FILE *sum = tool_summary_csv(t, "hysteresis_summary.csv",
+				     "group,runs,seeds,up_sigmoid_f,up_lo,up_hi,down_sigmoid_f,down_lo,down_hi,diff_sigmoid,"
+				     "diff_lo,diff_hi,up_threshold_f,up_thr_lo,up_thr_hi,down_threshold_f,down_thr_lo,"
+				     "down_thr_hi,diff_threshold,diff_thr_lo,diff_thr_hi,boot_ok");
+	if (!sum)
+		return t->e.code;
+	printf("%-26s %4s %5s %22s %22s %24s %8s %8s %8s %6s %10s\n", "group", "used", "seeds", "f_up sigmoid [CI]",
+	       "f_down sigmoid [CI]", "up - down [CI] (Hz)", "f_up_thr", "f_dn_thr", "diff_thr", "failed", "unfinished");
+	tool_store_begin(t);
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		if (hyst_estimate(&s->G[j], (size_t)(o->boot > 1 ? o->boot : 0), o->seed, o->level, &s->R[j])) {
+			sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			break;
+		}
+		group_out(t, &s->G[j], &s->R[j], j, sum);
+	}
+	fclose(sum);
+	return t->e.code;
+}
+
+/* hysteresis.png: every group's points and fitted sigmoid per branch */
+static int plot(an_tool *t, const hyst_state *s)
+{
+	char script[1400], png[1400];
+	FILE *f = gp_open(t->o, "hysteresis", 1000, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set title 'Flux through the plane during frequency ramps (running mean of %ld periods; lines: fitted sigmoids)'\n"
+		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\nset samples 500\n",
+		t->o->smooth);
+	for (int j = 0; j < t->ng; j++)
+		for (int b = 0; b < 2; b++) {
+			const sig_fit *F = &s->R[j].fit[b];
+			if (F->ok)
+				fprintf(f, "s%d_%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, b, F->b, F->a,
+					F->x0, F->w);
+		}
+	fprintf(f, "plot ");
+	for (int j = 0; j < t->ng; j++)
+		for (int b = 0; b < 2; b++) {
+			fprintf(f, "%s'hysteresis_periods.csv' skip 1 using 7:($1==%d&&strcol(5)eq'%s'?$9:1/0) with points pt %d ps 0.6 lc %d title ",
+				j || b ? ", \\\n  " : "", j, b ? "down" : "up", b ? 6 : 7, 2 * j + b + 1);
+			char title[600];
+			snprintf(title, sizeof title, "%s, %s", t->labels[j], b ? "down" : "up");
+			gp_str(f, title);
+			if (s->R[j].fit[b].ok)
+				fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lc %d notitle", j, b, b ? 2 : 1, 2 * j + b + 1);
+		}
+	fprintf(f, "\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# figure: %s\n", png);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "hysteresis", .version = VERSION};
 	int pr = cli_parse(&o, argc, argv, HELP, " by band smooth threshold boot seed level ");
 	if (pr)
 		return pr < 0 ? 0 : 1;
-	flux_opts fo = {o.band_lo, o.band_hi, 0};
-	sb_err e = {0};
-	adb d;
-	an_run *runs = NULL;
-	int nr = 0, ng = 0, k = 0;
-	char **labels = NULL;
-	hyst_data *G = NULL;
-	hyst_res *R = NULL;
-	an_acct *A = NULL;
-	flux_data *F = NULL;
-	double *raw = NULL, *sm = NULL;
-	FILE *f = NULL, *s = NULL;
-	char path[1400], script[1400], png[1400];
-	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
+	an_tool t;
+	hyst_state s = {.fo = {o.band_lo, o.band_hi, 0}};
+	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s))
 		goto out;
-	F = calloc((size_t)(nr ? nr : 1), sizeof *F);
-	if (!F) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
+	if (cli_outdir(&o, &t.e) || periods(&t, &s) || tool_accounting_csv(&t))
 		goto out;
-	}
-	/* every ramp run with flux = yes is accounted for, whatever its state */
-	size_t pmax = 1;
-	long nold = 0;
-	for (int i = 0; i < nr; i++) {
-		an_run *r = &runs[i];
-		const char *ramp = an_str(r, "ramp"), *fl = an_str(r, "flux");
-		if (!ramp || !strcmp(ramp, "none") || (fl && strcmp(fl, "yes")) ||
-		    acct_version_skip(r, o.all_versions, &nold))
-			continue;
-		flux_data *D = &F[k];
-		if (!flux_load(r, D)) {
-			hyst_leg leg[2];
-			const int nl = D->P < 2 ? 0
-						: hyst_legs(D, !strcmp(ramp, "updown"), an_num(r, "ramp_from", NAN),
-							    an_num(r, "ramp_to", NAN), an_num(r, "ramp_hold", 0), leg);
-			const int failed = !strcmp(r->state, "failed");
-			if (!nl)
-				acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, too few after the hold",
-					 failed ? "failed (" : "finished", failed ? r->status : "", failed ? ")" : "", D->P);
-			else if (failed)
-				acct_set(r, AN_PARTLY, D->t[D->P - 1], an_num(r, "duration", NAN),
-					 "failed at t = %g s (%s): the %zu periods before it used", r->status_time, r->status, D->P);
-			else
-				acct_set(r, AN_USED, NAN, NAN, NULL);
-			if (!nl)
-				flux_free(D);
-			pmax = D->P > pmax ? D->P : pmax;
-		} else if (r->use == AN_UNREADABLE)
-			fprintf(stderr, "hysteresis: warning: %s (counted as unreadable)\n", r->why);
-		an_run t = runs[k];
-		runs[k] = runs[i];
-		runs[i] = t;
-		k++;
-	}
-	if (!k) {
-		int known = 0;
-		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
-			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
-		else
-			sb_errf(&e, SB_EUSAGE,
-				"campaign '%s': no finished ramp run (ramp = linear|updown) with flux = yes in %s%s", o.campaign,
-				o.db, nold ? " of the current grid (--all-versions)" : "");
+	if (estimate(&t, &s) || tool_store_end(&t))
 		goto out;
-	}
-	static const char *const always[] = {"radius_ratio", "depth", NULL};
-	static const char *const drop[] = {"frequency", "ramp", "ramp_from", "ramp_to", "ramp_hold", NULL};
-	char keys[AN_MAXKEYS][48];
-	int nk;
-	if (cli_keys(&o, &d, always, drop, keys, &nk, &e))
+	tool_report(&t, stdout, "the periods they recorded before the failure (a leg cut short by it is used as far as"
+				" it got)");
+	if (!o.no_plot && plot(&t, &s))
 		goto out;
-	/* grouping reorders nothing: it only labels */
-	ng = an_group_runs(runs, k, keys, nk, &labels);
-	G = calloc((size_t)(ng > 0 ? ng : 1), sizeof *G);
-	R = calloc((size_t)(ng > 0 ? ng : 1), sizeof *R);
-	raw = malloc(sizeof *raw * pmax);
-	sm = malloc(sizeof *sm * pmax);
-	if (ng < 0 || !G || !R || !raw || !sm || acct_tally(runs, k, ng, &A)) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		goto out;
-	}
-	long used = 0;
-	for (int j = 0; j < ng; j++)
-		used += acct_used(&A[j]);
-	if (!used) {
-		acct_print(stdout, "hysteresis", labels, A, ng, nold, o.all_versions);
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of its %d ramp runs with flux = yes is usable yet", o.campaign, k);
-		goto out;
-	}
-	for (int j = 0; j < ng; j++)
-		hyst_init(&G[j], o.threshold);
-	if (cli_outdir(&o, &e) || !(f = cli_fopen(&o, "hysteresis_periods.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,run,replicate,branch,period,frequency,phi,phi_smooth,use\n");
-	for (int i = 0; i < k; i++) {
-		if (runs[i].use != AN_USED && runs[i].use != AN_PARTLY)
-			continue;
-		hyst_data *g = &G[runs[i].group];
-		flux_data *D = &F[i];
-		size_t l0, l1;
-		flux_band(D, &fo, &l0, &l1);
-		hyst_leg leg[2];
-		int nl = hyst_legs(D, !strcmp(an_str(&runs[i], "ramp"), "updown"), an_num(&runs[i], "ramp_from", NAN),
-				   an_num(&runs[i], "ramp_to", NAN), an_num(&runs[i], "ramp_hold", 0), leg);
-		if (hyst_add_run(g, runs[i].replicate)) {
-			sb_errf(&e, SB_ENOMEM, "out of memory");
-			goto out;
-		}
-		for (size_t p = 0; p < D->P; p++)
-			raw[p] = flux_plane(D, p, l0, l1);
-		for (int q = 0; q < nl; q++) {
-			hyst_smooth(raw, leg[q].a, leg[q].b, o.smooth, sm);
-			for (size_t p = leg[q].a; p < leg[q].b; p++) {
-				if (hyst_add(g, leg[q].branch, D->f[p], sm[p], runs[i].replicate)) {
-					sb_errf(&e, SB_ENOMEM, "out of memory");
-					goto out;
-				}
-				fprintf(f, "%d,", runs[i].group);
-				csv_str(f, labels[runs[i].group]);
-				fprintf(f, ",%s,%ld,%s,%zu,%.17g,%.17g,%.17g,%s\n", runs[i].id, runs[i].replicate,
-					leg[q].branch == HYST_DOWN ? "down" : "up", p, D->f[p], raw[p], sm[p],
-					acct_use_name(runs[i].use));
-			}
-		}
-	}
-	fclose(f);
-	f = NULL;
-	if (!(f = cli_fopen(&o, "hysteresis_accounting.csv", path, sizeof path, &e)))
-		goto out;
-	acct_runs_csv(f, runs, k, labels);
-	fclose(f);
-	f = NULL;
-	if (!(s = cli_fopen(&o, "hysteresis_summary.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(s, "group,runs,seeds,up_sigmoid_f,up_lo,up_hi,down_sigmoid_f,down_lo,down_hi,diff_sigmoid,diff_lo,diff_hi,"
-		   "up_threshold_f,up_thr_lo,up_thr_hi,down_threshold_f,down_thr_lo,down_thr_hi,diff_threshold,"
-		   "diff_thr_lo,diff_thr_hi,boot_ok");
-	acct_csv_head(s);
-	fputc('\n', s);
-	printf("%-26s %4s %5s %22s %22s %24s %8s %8s %8s %6s %10s\n", "group", "used", "seeds", "f_up sigmoid [CI]",
-	       "f_down sigmoid [CI]", "up - down [CI] (Hz)", "f_up_thr", "f_dn_thr", "diff_thr", "failed", "unfinished");
-	if (!o.no_store && adb_store_begin(&d, o.campaign, "hysteresis", &e))
-		goto out;
-	for (int j = 0; j < ng && !e.code; j++) {
-		hyst_data *g = &G[j];
-		hyst_res *r = &R[j];
-		if (hyst_estimate(g, (size_t)(o.boot > 1 ? o.boot : 0), o.seed, o.level, r)) {
-			sb_errf(&e, SB_ENOMEM, "out of memory");
-			break;
-		}
-		char c[3][64];
-		for (int q = 0; q < 3; q++)
-			snprintf(c[q], sizeof c[q], "%.3f [%.3f, %.3f]", r->v[q], r->lo[q], r->hi[q]);
-		printf("%-26s %4zu %5zu %22s %22s %24s %8.3f %8.3f %8.3f %6ld %10ld\n", labels[j], g->nruns, g->nu, c[0], c[1],
-		       c[2], r->v[3], r->v[4], r->v[5], A[j].failed, A[j].n[AN_PENDING] + A[j].n[AN_RUNNING]);
-		csv_str(s, labels[j]);
-		fprintf(s, ",%zu,%zu", g->nruns, g->nu);
-		for (int q = 0; q < 6; q++)
-			fprintf(s, ",%.17g,%.17g,%.17g", r->v[q], r->lo[q], r->hi[q]);
-		fprintf(s, ",%zu", r->boot_ok);
-		acct_csv_row(s, &A[j]);
-		fputc('\n', s);
-		if (!o.no_store) {
-			static const char *const names[6] = {"up_sigmoid_f", "down_sigmoid_f", "diff_sigmoid",
-							     "up_threshold_f", "down_threshold_f", "diff_threshold"};
-			long n = (long)g->nruns;
-			adb_store(&d, o.campaign, "hysteresis", VERSION, labels[j], "runs", (double)g->nruns, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "hysteresis", VERSION, labels[j], "seeds", (double)g->nu, NAN, NAN, n, &e);
-			for (int q = 0; q < 6; q++)
-				adb_store(&d, o.campaign, "hysteresis", VERSION, labels[j], names[q], r->v[q], r->lo[q], r->hi[q],
-					  n, &e);
-			acct_store(&d, o.campaign, "hysteresis", VERSION, labels[j], &A[j], &e);
-		}
-	}
-	fclose(s);
-	s = NULL;
-	if (!o.no_store && adb_store_end(&d, !e.code, &e))
-		goto out;
-	if (e.code)
-		goto out;
-	acct_print(stdout, "hysteresis", labels, A, ng, nold, o.all_versions);
-	long partly = 0;
-	for (int j = 0; j < ng; j++)
-		partly += A[j].n[AN_PARTLY];
-	if (partly)
-		printf("# %ld failed run%s enter%s with the periods they recorded before the failure (a leg cut short by"
-		       " it is used as far as it got)\n", partly, partly == 1 ? "" : "s", partly == 1 ? "s" : "");
-	if (!o.no_plot) {
-		if (!(f = gp_open(&o, "hysteresis", 1000, 560, script, png, sizeof script, &e)))
-			goto out;
-		fprintf(f, "set title 'Flux through the plane during frequency ramps (running mean of %ld periods; lines: fitted sigmoids)'\n"
-			   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\nset samples 500\n",
-			o.smooth);
-		for (int j = 0; j < ng; j++)
-			for (int b = 0; b < 2; b++)
-				if (R[j].fit[b].ok)
-					fprintf(f, "s%d_%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, b,
-						R[j].fit[b].b, R[j].fit[b].a, R[j].fit[b].x0, R[j].fit[b].w);
-		fprintf(f, "plot ");
-		for (int j = 0; j < ng; j++)
-			for (int b = 0; b < 2; b++) {
-				fprintf(f, "%s'hysteresis_periods.csv' skip 1 using 7:($1==%d&&strcol(5)eq'%s'?$9:1/0) with points pt %d ps 0.6 lc %d title ",
-					j || b ? ", \\\n  " : "", j, b ? "down" : "up", b ? 6 : 7, 2 * j + b + 1);
-				char t[600];
-				snprintf(t, sizeof t, "%s, %s", labels[j], b ? "down" : "up");
-				gp_str(f, t);
-				if (R[j].fit[b].ok)
-					fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lc %d notitle", j, b, b ? 2 : 1, 2 * j + b + 1);
-			}
-		fprintf(f, "\n");
-		fclose(f);
-		f = NULL;
-		if (gp_run(script, png, &e))
-			goto out;
-		printf("# figure: %s\n", png);
-	}
 	printf("# csv: %s/hysteresis_{periods,summary,accounting}.csv\n", o.out);
 out:
-	if (f)
-		fclose(f);
-	if (s)
-		fclose(s);
-	for (int j = 0; G && j < ng; j++)
-		hyst_free(&G[j]);
-	free(G);
-	free(R);
-	free(A);
-	for (int i = 0; F && i < k; i++)
-		flux_free(&F[i]);
-	free(F);
-	free(raw);
-	free(sm);
-	an_labels_free(labels, ng);
-	adb_runs_free(runs, nr);
-	adb_close(&d);
-	if (e.code) {
-		fprintf(stderr, "hysteresis: %s\n", e.msg);
-		return e.code == SB_EUSAGE ? 1 : 2;
-	}
-	return 0;
+	state_free(&t, &s);
+	return tool_close(&t, stderr);
 }

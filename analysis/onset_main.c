@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "flux.h"
 #include "onsetfit.h"
+#include "tool.h"
 
 #define VERSION "2"
 
@@ -58,241 +59,255 @@ static const char *HELP =
 	"runs_pending, runs_running, failed_STATUS per status.\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
+/* What onset computes besides the frame: Phi through the plane of every considered
+ * run, one group's points at a time, and the estimates of every group. */
+typedef struct onset_state {
+	flux_opts fo;
+	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
+	double *xs, *ys; /* one group's points: frequency, Phi */
+	long *us;        /* ... and their seed (replicate) */
+	onset_res *R;    /* [ng] */
+} onset_state;
+
+static int state_alloc(an_tool *t, onset_state *s)
+{
+	size_t n = (size_t)(t->nr ? t->nr : 1);
+	s->phi = calloc(n, sizeof *s->phi);
+	s->xs = calloc(n, sizeof *s->xs);
+	s->ys = calloc(n, sizeof *s->ys);
+	s->us = calloc(n, sizeof *s->us);
+	if (!s->phi || !s->xs || !s->ys || !s->us)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+static void state_free(const an_tool *t, onset_state *s)
+{
+	for (int j = 0; s->R && j < t->ng; j++)
+		onset_res_free(&s->R[j]);
+	free(s->R);
+	free(s->phi);
+	free(s->xs);
+	free(s->ys);
+	free(s->us);
+}
+
+/* Phi through the plane of run r, and what of it the statistic uses (acct.h); NaN
+ * when nothing. */
+static double classify(an_run *r, const flux_opts *fo)
+{
+	flux_data fd;
+	double v = NAN;
+	if (flux_load(r, &fd)) {
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "onset: warning: %s (counted as unreadable)\n", r->why);
+		return v;
+	}
+	v = flux_summary(&fd, fo);
+	const double dur = an_num(r, "duration", NAN), T = fd.P ? fd.t[fd.P - 1] : 0;
+	if (isfinite(v) && !strcmp(r->state, "failed"))
+		acct_set(r, AN_PARTLY, T, dur, "failed at t = %g s (%s): the %zu periods before it used, after the"
+			 " first %zu", r->status_time, r->status, fd.P, flux_first(&fd, fo));
+	else if (isfinite(v))
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (!strcmp(r->state, "failed"))
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed at t = %g s (%s) within the transient: %zu periods"
+			 " recorded, the first %zu of the planned %zu are the transient", r->status_time,
+			 r->status, fd.P, flux_first(&fd, fo), fd.planned);
+	else
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "no flux period recorded");
+	flux_free(&fd);
+	return v;
+}
+
+/* Every fixed-frequency run with flux = yes is considered, whatever its state. */
+static int consider(an_tool *t, onset_state *s)
+{
+	for (int i = 0; i < t->nr; i++) {
+		const char *ramp = an_str(&t->runs[i], "ramp"), *fl = an_str(&t->runs[i], "flux");
+		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) || tool_old(t, &t->runs[i]))
+			continue;
+		const double v = classify(&t->runs[i], &s->fo);
+		s->phi[tool_keep(t, i)] = v;
+	}
+	return t->k ? 0 : tool_none(t, "fixed-frequency run with flux = yes", "");
+}
+
+static int groups(an_tool *t, onset_state *s)
+{
+	static const char *const always[] = {"radius_ratio", "depth", NULL};
+	static const char *const drop[] = {"frequency", "ramp", "ramp_from", "ramp_to", NULL};
+	if (tool_group(t, always, drop))
+		return t->e.code;
+	if (!(s->R = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->R)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return tool_tally(t, stdout, "its %d fixed-frequency runs with flux = yes", t->k);
+}
+
+/* onset_runs.csv: Phi of every run used, by group */
+static int runs_csv(an_tool *t, const onset_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "onset_runs.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < t->k; i++) {
+			const an_run *r = &t->runs[i];
+			if (r->group != j || !USED(r))
+				continue;
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", r->id, r->replicate, r->seed,
+				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), an_num(r, "frequency", NAN), s->phi[i],
+				acct_use_name(r->use), r->used_s);
+		}
+	fclose(f);
+	return 0;
+}
+
+/* Group j's points (frequency, Phi, seed) into xs, ys, us; their number. *ratio is
+ * the group's radius ratio. */
+static size_t group_points(const an_tool *t, onset_state *s, int j, double *ratio)
+{
+	size_t np = 0;
+	*ratio = 0;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j)
+			continue;
+		*ratio = an_num(r, "radius_ratio", 0);
+		if (!USED(r))
+			continue;
+		s->xs[np] = an_num(r, "frequency", NAN);
+		s->ys[np] = s->phi[i];
+		s->us[np++] = r->replicate;
+	}
+	return np;
+}
+
+/* Group j's estimates: its per-seed rows, its table row, its summary row, its stored rows. */
+static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double ratio, FILE *f, FILE *s)
+{
+	const char *L = t->labels[j];
+	const an_acct *a = &t->A[j];
+	for (size_t u = 0; u < r->units; u++) {
+		fprintf(f, "%d,", j);
+		csv_str(f, L);
+		fprintf(f, ",%ld,%.17g,%.17g\n", r->unit_id[u], r->seed_fit[u], r->seed_thr[u]);
+	}
+	const sig_fit *F = &r->fit;
+	const double f0 = F->ok ? F->x0 : NAN, w = F->ok ? F->w : NAN, step = F->ok ? F->a : NAN;
+	char c1[64], c2[64];
+	snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", f0, r->fit_lo, r->fit_hi);
+	snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
+	printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", L, ratio > 0 ? "yes" : "no", np, r->units, c1,
+	       w, c2, r->seed_sd, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	csv_str(s, L);
+	fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np, r->units,
+		F->ok, f0, r->fit_lo, r->fit_hi, w, step, r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
+	tool_summary_acct(t, s, j);
+	const long n = (long)np;
+	tool_store(t, L, "runs", (double)np, NAN, NAN, n);
+	tool_store(t, L, "seeds", (double)r->units, NAN, NAN, n);
+	tool_store(t, L, "sigmoid_f0", f0, r->fit_lo, r->fit_hi, n);
+	tool_store(t, L, "sigmoid_width", w, NAN, NAN, n);
+	tool_store(t, L, "sigmoid_step", step, NAN, NAN, n);
+	tool_store(t, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n);
+	tool_store(t, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n);
+	tool_store_acct(t, L, j);
+}
+
+/* Per group: the estimates into onset_seeds.csv, onset_summary.csv, the table and
+ * the analysis table (storing begun here, ended by the caller). */
+static int estimate(an_tool *t, onset_state *s)
+{
+	const an_opts *o = t->o;
+	char path[1400];
+	FILE *f = cli_fopen(o, "onset_seeds.csv", path, sizeof path, &t->e), *sum = NULL;
+	if (f)
+		sum = tool_summary_csv(t, "onset_summary.csv",
+				       "group,intruder,runs,seeds,sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi,"
+				       "sigmoid_width,sigmoid_step,threshold_f,threshold_f_lo,threshold_f_hi,"
+				       "threshold_seed_sd,boot_ok");
+	if (sum) {
+		fprintf(f, "group_index,group,seed_unit,sigmoid_f0,threshold_f\n");
+		printf("%-30s %4s %4s %5s %22s %7s %22s %7s %6s %7s\n", "group", "intr", "used", "seeds",
+		       "sigmoid f0 [CI] (Hz)", "width", "threshold f [CI] (Hz)", "seed_sd", "failed", "unfinished");
+		tool_store_begin(t);
+	}
+	for (int j = 0; sum && j < t->ng && !t->e.code; j++) {
+		double ratio;
+		const size_t np = group_points(t, s, j, &ratio);
+		onset_res *r = &s->R[j];
+		if (!np) /* every run of the group failed, is unreadable or not finished */
+			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
+		else if (onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0),
+					o->seed, o->level, r)) {
+			sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			break;
+		}
+		group_out(t, r, j, np, ratio, f, sum);
+	}
+	if (f)
+		fclose(f);
+	if (sum)
+		fclose(sum);
+	return t->e.code;
+}
+
+/* onset.png: every group's runs and fitted sigmoid */
+static int plot(an_tool *t, const onset_state *s)
+{
+	const an_opts *o = t->o;
+	char script[1400], png[1400];
+	FILE *f = gp_open(o, "onset", 1000, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set title 'Convective flux through the plane (%.2f-%.2f of the bed height) vs frequency'\n"
+		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\n"
+		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
+		o->band_lo, o->band_hi);
+	for (int j = 0; j < t->ng; j++)
+		if (s->R[j].fit.ok)
+			fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, s->R[j].fit.b,
+				s->R[j].fit.a, s->R[j].fit.x0, s->R[j].fit.w);
+	fprintf(f, "plot ");
+	for (int j = 0; j < t->ng; j++) {
+		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lc %d title ",
+			j ? ", \\\n  " : "", j, j + 1);
+		gp_str(f, t->labels[j]);
+		if (s->R[j].fit.ok)
+			fprintf(f, ", s%d(x) with lines lw 2 lc %d notitle", j, j + 1);
+	}
+	fprintf(f, "\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# figure: %s\n", png);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "onset", .version = VERSION};
 	int pr = cli_parse(&o, argc, argv, HELP, " by band skip threshold boot seed level ");
 	if (pr)
 		return pr < 0 ? 0 : 1;
-	flux_opts fo = {o.band_lo, o.band_hi, o.skip};
-	sb_err e = {0};
-	adb d;
-	an_run *runs = NULL;
-	int nr = 0, ng = 0, k = 0;
-	char **labels = NULL;
-	double *phi = NULL, *xs = NULL, *ys = NULL;
-	long *us = NULL;
-	onset_res *R = NULL;
-	an_acct *A = NULL;
-	FILE *f = NULL, *s = NULL;
-	char path[1400], script[1400], png[1400];
-	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
+	an_tool t;
+	onset_state s = {.fo = {o.band_lo, o.band_hi, o.skip}};
+	if (tool_open(&t, &o) || state_alloc(&t, &s) || consider(&t, &s) || groups(&t, &s))
 		goto out;
-	phi = calloc((size_t)(nr ? nr : 1), sizeof *phi);
-	xs = calloc((size_t)(nr ? nr : 1), sizeof *xs);
-	ys = calloc((size_t)(nr ? nr : 1), sizeof *ys);
-	us = calloc((size_t)(nr ? nr : 1), sizeof *us);
-	if (!phi || !xs || !ys || !us) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
+	if (cli_outdir(&o, &t.e) || runs_csv(&t, &s) || tool_accounting_csv(&t))
 		goto out;
-	}
-	/* every fixed-frequency run with flux = yes is accounted for, whatever its state */
-	long nold = 0;
-	for (int i = 0; i < nr; i++) {
-		const char *ramp = an_str(&runs[i], "ramp"), *fl = an_str(&runs[i], "flux");
-		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) ||
-		    acct_version_skip(&runs[i], o.all_versions, &nold))
-			continue;
-		an_run *r = &runs[i];
-		flux_data fd;
-		double v = NAN;
-		if (!flux_load(r, &fd)) {
-			v = flux_summary(&fd, &fo);
-			const double dur = an_num(r, "duration", NAN), T = fd.P ? fd.t[fd.P - 1] : 0;
-			if (isfinite(v) && !strcmp(r->state, "failed"))
-				acct_set(r, AN_PARTLY, T, dur, "failed at t = %g s (%s): the %zu periods before it used, after the"
-					 " first %zu", r->status_time, r->status, fd.P, flux_first(&fd, &fo));
-			else if (isfinite(v))
-				acct_set(r, AN_USED, NAN, NAN, NULL);
-			else if (!strcmp(r->state, "failed"))
-				acct_set(r, AN_UNUSABLE, NAN, NAN, "failed at t = %g s (%s) within the transient: %zu periods"
-					 " recorded, the first %zu of the planned %zu are the transient", r->status_time,
-					 r->status, fd.P, flux_first(&fd, &fo), fd.planned);
-			else
-				acct_set(r, AN_UNUSABLE, NAN, NAN, "no flux period recorded");
-			flux_free(&fd);
-		} else if (r->use == AN_UNREADABLE)
-			fprintf(stderr, "onset: warning: %s (counted as unreadable)\n", r->why);
-		an_run t = runs[k];
-		runs[k] = runs[i];
-		runs[i] = t;
-		phi[k++] = v;
-	}
-	if (!k) {
-		int known = 0;
-		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
-			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
-		else
-			sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished fixed-frequency run with flux = yes in %s%s",
-				o.campaign, o.db, nold ? " of the current grid (--all-versions)" : "");
+	if (estimate(&t, &s) || tool_store_end(&t))
 		goto out;
-	}
-	static const char *const always[] = {"radius_ratio", "depth", NULL};
-	static const char *const drop[] = {"frequency", "ramp", "ramp_from", "ramp_to", NULL};
-	char keys[AN_MAXKEYS][48];
-	int nk;
-	if (cli_keys(&o, &d, always, drop, keys, &nk, &e))
+	tool_report(&t, stdout, "the periods they recorded before the failure (after the transient of the run as"
+				" planned): one point each, like a finished run");
+	if (!o.no_plot && plot(&t, &s))
 		goto out;
-	ng = an_group_runs(runs, k, keys, nk, &labels);
-	R = calloc((size_t)(ng > 0 ? ng : 1), sizeof *R);
-	if (ng < 0 || !R || acct_tally(runs, k, ng, &A)) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		goto out;
-	}
-	long used = 0;
-	for (int j = 0; j < ng; j++)
-		used += acct_used(&A[j]);
-	if (!used) {
-		acct_print(stdout, "onset", labels, A, ng, nold, o.all_versions);
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of its %d fixed-frequency runs with flux = yes is usable yet",
-			o.campaign, k);
-		goto out;
-	}
-	if (cli_outdir(&o, &e))
-		goto out;
-	if (!(f = cli_fopen(&o, "onset_runs.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s\n");
-	for (int j = 0; j < ng; j++)
-		for (int i = 0; i < k; i++)
-			if (runs[i].group == j && USED(&runs[i])) {
-				fprintf(f, "%d,", j);
-				csv_str(f, labels[j]);
-				fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", runs[i].id, runs[i].replicate,
-					runs[i].seed, an_num(&runs[i], "radius_ratio", NAN), an_num(&runs[i], "depth", NAN),
-					an_num(&runs[i], "frequency", NAN), phi[i], acct_use_name(runs[i].use), runs[i].used_s);
-			}
-	fclose(f);
-	f = NULL;
-	if (!(f = cli_fopen(&o, "onset_accounting.csv", path, sizeof path, &e)))
-		goto out;
-	acct_runs_csv(f, runs, k, labels);
-	fclose(f);
-	f = NULL;
-	if (!(f = cli_fopen(&o, "onset_seeds.csv", path, sizeof path, &e)) ||
-	    !(s = cli_fopen(&o, "onset_summary.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,seed_unit,sigmoid_f0,threshold_f\n");
-	fprintf(s, "group,intruder,runs,seeds,sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi,sigmoid_width,"
-		   "sigmoid_step,threshold_f,threshold_f_lo,threshold_f_hi,threshold_seed_sd,boot_ok");
-	acct_csv_head(s);
-	fputc('\n', s);
-	printf("%-30s %4s %4s %5s %22s %7s %22s %7s %6s %7s\n", "group", "intr", "used", "seeds", "sigmoid f0 [CI] (Hz)",
-	       "width", "threshold f [CI] (Hz)", "seed_sd", "failed", "unfinished");
-	if (!o.no_store && adb_store_begin(&d, o.campaign, "onset", &e))
-		goto out;
-	for (int j = 0; j < ng && !e.code; j++) {
-		size_t np = 0;
-		double ratio = 0;
-		for (int i = 0; i < k; i++) {
-			if (runs[i].group != j)
-				continue;
-			ratio = an_num(&runs[i], "radius_ratio", 0);
-			if (!USED(&runs[i]))
-				continue;
-			xs[np] = an_num(&runs[i], "frequency", NAN);
-			ys[np] = phi[i];
-			us[np++] = runs[i].replicate;
-		}
-		onset_res *r = &R[j];
-		if (!np) { /* every run of the group failed, is unreadable or not finished */
-			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
-		} else if (onset_estimate(xs, ys, us, np, o.threshold, (size_t)(o.boot > 1 ? o.boot : 0), o.seed, o.level, r)) {
-			sb_errf(&e, SB_ENOMEM, "out of memory");
-			break;
-		}
-		for (size_t u = 0; u < r->units; u++) {
-			fprintf(f, "%d,", j);
-			csv_str(f, labels[j]);
-			fprintf(f, ",%ld,%.17g,%.17g\n", r->unit_id[u], r->seed_fit[u], r->seed_thr[u]);
-		}
-		const sig_fit *F = &r->fit;
-		char c1[64], c2[64];
-		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", F->ok ? F->x0 : NAN, r->fit_lo, r->fit_hi);
-		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
-		printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", labels[j], ratio > 0 ? "yes" : "no", np,
-		       r->units, c1, F->ok ? F->w : NAN, c2, r->seed_sd, A[j].failed, A[j].n[AN_PENDING] + A[j].n[AN_RUNNING]);
-		csv_str(s, labels[j]);
-		fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np,
-			r->units, F->ok, F->ok ? F->x0 : NAN, r->fit_lo, r->fit_hi, F->ok ? F->w : NAN, F->ok ? F->a : NAN,
-			r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
-		acct_csv_row(s, &A[j]);
-		fputc('\n', s);
-		if (!o.no_store) {
-			const char *L = labels[j];
-			long n = (long)np;
-			adb_store(&d, o.campaign, "onset", VERSION, L, "runs", (double)np, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "seeds", (double)r->units, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "sigmoid_f0", F->ok ? F->x0 : NAN, r->fit_lo, r->fit_hi, n,
-				  &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "sigmoid_width", F->ok ? F->w : NAN, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "sigmoid_step", F->ok ? F->a : NAN, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n, &e);
-			adb_store(&d, o.campaign, "onset", VERSION, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n, &e);
-			acct_store(&d, o.campaign, "onset", VERSION, L, &A[j], &e);
-		}
-	}
-	fclose(f);
-	fclose(s);
-	f = s = NULL;
-	if (!o.no_store && adb_store_end(&d, !e.code, &e))
-		goto out;
-	if (e.code)
-		goto out;
-	acct_print(stdout, "onset", labels, A, ng, nold, o.all_versions);
-	long partly = 0;
-	for (int j = 0; j < ng; j++)
-		partly += A[j].n[AN_PARTLY];
-	if (partly)
-		printf("# %ld failed run%s enter%s with the periods they recorded before the failure (after the transient of"
-		       " the run as planned): one point each, like a finished run\n", partly,
-		       partly == 1 ? "" : "s", partly == 1 ? "s" : "");
-	if (!o.no_plot) {
-		if (!(f = gp_open(&o, "onset", 1000, 560, script, png, sizeof script, &e)))
-			goto out;
-		fprintf(f, "set title 'Convective flux through the plane (%.2f-%.2f of the bed height) vs frequency'\n"
-			   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\n"
-			   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
-			o.band_lo, o.band_hi);
-		for (int j = 0; j < ng; j++)
-			if (R[j].fit.ok)
-				fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, R[j].fit.b, R[j].fit.a,
-					R[j].fit.x0, R[j].fit.w);
-		fprintf(f, "plot ");
-		for (int j = 0; j < ng; j++) {
-			fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lc %d title ",
-				j ? ", \\\n  " : "", j, j + 1);
-			gp_str(f, labels[j]);
-			if (R[j].fit.ok)
-				fprintf(f, ", s%d(x) with lines lw 2 lc %d notitle", j, j + 1);
-		}
-		fprintf(f, "\n");
-		fclose(f);
-		f = NULL;
-		if (gp_run(script, png, &e))
-			goto out;
-		printf("# figure: %s\n", png);
-	}
 	printf("# csv: %s/onset_{runs,seeds,summary,accounting}.csv\n", o.out);
 out:
-	if (f)
-		fclose(f);
-	if (s)
-		fclose(s);
-	for (int j = 0; R && j < ng; j++)
-		onset_res_free(&R[j]);
-	free(R);
-	free(A);
-	free(phi);
-	free(xs);
-	free(ys);
-	free(us);
-	an_labels_free(labels, ng);
-	adb_runs_free(runs, nr);
-	adb_close(&d);
-	if (e.code) {
-		fprintf(stderr, "onset: %s\n", e.msg);
-		return e.code == SB_EUSAGE ? 1 : 2;
-	}
-	return 0;
+	state_free(&t, &s);
+	return tool_close(&t, stderr);
 }

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "h5read.h"
 #include "km.h"
+#include "tool.h"
 
 #define VERSION "2"
 
@@ -97,306 +98,328 @@ static double zq(double level)
 	return 0.5 * (lo + hi);
 }
 
+/* What waiting computes besides the frame: the observation of every considered run,
+ * the used ones' times and events per group, their survival curves. */
+typedef struct wait_state {
+	double *wt;         /* [k] the time considered run i was observed to or rose at */
+	int *risen;         /* [k] 1 when it rose (an event), 0 when censored */
+	grp *g;             /* [ng] the used runs' times and events */
+	km_curve *km;       /* [ng] */
+	double z;           /* normal quantile of the level */
+	double tmax;        /* the longest observation of all groups */
+	double bw;          /* histogram bin width */
+	long f_ev, f_cens;  /* failed runs used: risen before the failure, censored at it */
+} wait_state;
+
+static void state_free(const an_tool *t, wait_state *s)
+{
+	for (int j = 0; s->g && j < t->ng; j++) {
+		free(s->g[j].t);
+		free(s->g[j].ev);
+		free(s->g[j].run);
+		if (s->km)
+			km_free(&s->km[j]);
+	}
+	free(s->g);
+	free(s->km);
+	free(s->wt);
+	free(s->risen);
+}
+
+/* Reads run r's rise (*rs: risen, *w: waiting time) and says what of it the statistic
+ * uses (acct.h): a failed run was observed up to its failure. */
+static void classify(an_run *r, double *rs, double *w, wait_state *s)
+{
+	double st = NAN;
+	if (acct_classify(r))
+		return;
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
+	else {
+		if (h5r_attr_num(h, "/", "risen", rs) || h5r_attr_num(h, "/", "waiting_time", w) || !(*w >= 0) ||
+		    !isfinite(*w))
+			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no valid root attributes risen, waiting_time", r->path);
+		h5r_attr_num(h, "/", "status_time", &st);
+		h5r_close(h);
+	}
+	if (r->use == AN_UNREADABLE)
+		fprintf(stderr, "waiting: warning: %s (counted as unreadable)\n", r->why);
+	else if (strcmp(r->state, "failed"))
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (!(*w > 0))
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+	else {
+		/* observed up to the failure: a rise before it is an event, else the run is
+		 * censored when it failed */
+		if (!isfinite(st))
+			st = isfinite(r->status_time) ? r->status_time : *w;
+		acct_set(r, AN_PARTLY, *rs != 0 ? st : *w, an_num(r, "duration", NAN),
+			 *rs != 0 ? "failed at t = %g s (%s) after the rise at %g s: an event"
+				  : "failed at t = %g s (%s) before any rise: censored at %g s",
+			 st, r->status, *w);
+		if (*rs != 0)
+			s->f_ev++;
+		else
+			s->f_cens++;
+	}
+}
+
+/* Every run with an intruder is considered, whatever its state. */
+static int consider(an_tool *t, wait_state *s)
+{
+	s->wt = calloc((size_t)(t->nr ? t->nr : 1), sizeof *s->wt);
+	s->risen = calloc((size_t)(t->nr ? t->nr : 1), sizeof *s->risen);
+	if (!s->wt || !s->risen)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int i = 0; i < t->nr; i++) {
+		an_run *r = &t->runs[i];
+		if (!(an_num(r, "radius_ratio", 0) > 0) || tool_old(t, r))
+			continue;
+		double rs = NAN, w = NAN;
+		classify(r, &rs, &w, s);
+		const int k = tool_keep(t, i);
+		s->wt[k] = w;
+		s->risen[k] = rs != 0 && !isnan(rs);
+	}
+	return t->k ? 0 : tool_none(t, "run with an intruder", "");
+}
+
+/* Groups the considered runs; each used one's time and event joins its group. */
+static int groups(an_tool *t, wait_state *s)
+{
+	static const char *const always[] = {"radius_ratio", NULL};
+	if (tool_group(t, always, NULL))
+		return t->e.code;
+	s->g = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->g);
+	s->km = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->km);
+	if (!s->g || !s->km)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if (tool_tally(t, stdout, "its %d runs with an intruder", t->k))
+		return t->e.code;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i]) && push(&s->g[t->runs[i].group], s->wt[i], s->risen[i], i))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+/* Each group's Kaplan-Meier curve, and the longest observation. */
+static int fit(an_tool *t, wait_state *s)
+{
+	s->z = zq(t->o->level);
+	s->tmax = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (km_fit(s->g[j].t, s->g[j].ev, (size_t)s->g[j].n, &s->km[j]))
+			return sb_errf(&t->e, SB_EIO, "group %s: bad waiting times", t->labels[j]);
+		for (int i = 0; i < s->g[j].n; i++)
+			s->tmax = fmax(s->tmax, s->g[j].t[i]);
+	}
+	s->bw = s->tmax > 0 ? s->tmax / (double)t->o->bins : 1;
+	return 0;
+}
+
+/* waiting_runs.csv: each used run's time and event */
+static int runs_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_runs.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,state,use\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < s->g[j].n; i++) {
+			const an_run *r = &t->runs[s->g[j].run[i]];
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->g[j].t[i], s->g[j].ev[i],
+				r->state, acct_use_name(r->use));
+		}
+	fclose(f);
+	return 0;
+}
+
+/* waiting_km.csv: the survival curves, each starting at (0, 1) */
+static int km_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_km.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		const km_curve *km = &s->km[j];
+		fprintf(f, "%d,", j);
+		csv_str(f, t->labels[j]);
+		fprintf(f, ",0,%ld,0,0,1,0,1,1\n", km->n);
+		for (size_t i = 0; i < km->m; i++) {
+			const double S = km->s[i], se = km->se[i];
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
+				S, se, fmax(0, S - s->z * se), fmin(1, S + s->z * se));
+		}
+	}
+	fclose(f);
+	return 0;
+}
+
+/* waiting_hist.csv: the risen runs' waiting times, bins common to every group */
+static int hist_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	const long bins = t->o->bins;
+	FILE *f = cli_fopen(t->o, "waiting_hist.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,lo,hi,count\n");
+	for (int j = 0; j < t->ng; j++)
+		for (long b = 0; b < bins; b++) {
+			long c = 0;
+			for (int i = 0; i < s->g[j].n; i++) {
+				long q = (long)floor(s->g[j].t[i] / s->bw);
+				if (q >= bins)
+					q = bins - 1;
+				c += s->g[j].ev[i] && q == b;
+			}
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%.17g,%.17g,%ld\n", b * s->bw, (b + 1) * s->bw, c);
+		}
+	fclose(f);
+	return 0;
+}
+
+/* Group j's summary: its table row, its summary row, its stored rows. */
+static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
+{
+	const km_curve *km = &s->km[j];
+	const char *L = t->labels[j];
+	const an_acct *a = &t->A[j];
+	double lo, hi, med = km_median(km, s->z, &lo, &hi), tm = 0;
+	for (int i = 0; i < s->g[j].n; i++)
+		tm = fmax(tm, s->g[j].t[i]);
+	const double se_end = km->m ? km->se[km->m - 1] : 0, s_end = km->m ? km->s[km->m - 1] : 1;
+	const double s_lo = fmax(0, s_end - s->z * se_end), s_hi = fmin(1, s_end + s->z * se_end);
+	const double frac = (double)km->events / (double)km->n;
+	char ci[64], ms[32];
+	snprintf(ms, sizeof ms, isnan(med) ? ">%.3g" : "%.3f", isnan(med) ? tm : med);
+	if (isnan(lo))
+		snprintf(ci, sizeof ci, "[>%.3g, -]", tm);
+	else if (isnan(hi))
+		snprintf(ci, sizeof ci, "[%.3f, >%.3g]", lo, tm);
+	else
+		snprintf(ci, sizeof ci, "[%.3f, %.3f]", lo, hi);
+	printf("%-36s %5ld %5ld %6.3f %9s %21s %8.3f %6.3f %6ld %10ld\n", L, km->n, km->events, frac, ms, ci, tm, s_end,
+	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	csv_str(sum, L);
+	fprintf(sum, ",%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", km->n, km->events, frac, med, lo, hi,
+		tm, s_end, s_lo, s_hi);
+	tool_summary_acct(t, sum, j);
+	const long n = km->n;
+	tool_store(t, L, "runs", (double)n, NAN, NAN, n);
+	tool_store(t, L, "risen", (double)km->events, NAN, NAN, n);
+	tool_store(t, L, "fraction_risen", frac, NAN, NAN, n);
+	tool_store(t, L, "median", med, lo, hi, n);
+	tool_store(t, L, "t_max", tm, NAN, NAN, n);
+	tool_store(t, L, "s_end", s_end, s_lo, s_hi, n);
+	tool_store_acct(t, L, j);
+}
+
+/* Per group: waiting_summary.csv, the table and the analysis table (storing begun
+ * here, ended by the caller). */
+static int summary(an_tool *t, const wait_state *s)
+{
+	FILE *sum = tool_summary_csv(t, "waiting_summary.csv",
+				     "group,runs,risen,fraction_risen,median,median_lo,median_hi,t_max,s_end,s_end_lo,"
+				     "s_end_hi");
+	if (!sum)
+		return t->e.code;
+	printf("%-36s %5s %5s %6s %9s %21s %8s %6s %6s %10s\n", "group", "used", "risen", "frac", "median_s",
+	       "CI (Brookmeyer-Crowley)", "t_max_s", "S_end", "failed", "unfinished");
+	tool_store_begin(t);
+	for (int j = 0; j < t->ng && !t->e.code; j++)
+		group_out(t, s, j, sum);
+	fclose(sum);
+	return t->e.code;
+}
+
+/* The closing lines, and how the failed runs used entered. */
+static void report(const an_tool *t, const wait_state *s)
+{
+	tool_report(t, stdout, NULL);
+	const long n = s->f_ev + s->f_cens;
+	if (n)
+		printf("# %ld failed run%s %s observed up to the failure: %ld had risen before it (events at their waiting"
+		       " times), %ld are censored at the failure time; this assumes that the failure is independent of"
+		       " the rise (non-informative censoring)\n", n, n == 1 ? "" : "s", n == 1 ? "is" : "are", s->f_ev,
+		       s->f_cens);
+}
+
+/* waiting_km.png: the survival curves, censored runs marked */
+static int plot_km(an_tool *t)
+{
+	char script[1400], png[1400];
+	FILE *f = gp_open(t->o, "waiting_km", 900, 520, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set title 'Intruder waiting time: Kaplan-Meier survival (+ censored)'\n"
+		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
+		   "set yrange [0:1.05]\nset xrange [0:*]\nplot ");
+	for (int j = 0; j < t->ng; j++) {
+		fprintf(f, "%s'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lc %d title ",
+			j ? ", \\\n  " : "", j, j + 1);
+		gp_str(f, t->labels[j]);
+		fprintf(f, ", 'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lc %d notitle",
+			j, j + 1);
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
+}
+
+/* waiting_hist.png: the histograms side by side in each bin */
+static int plot_hist(an_tool *t, const wait_state *s)
+{
+	char script[1400], png[1400];
+	const double bw = s->bw;
+	FILE *f = gp_open(t->o, "waiting_hist", 900, 520, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "set title 'Intruder waiting time: histogram of the risen runs'\n"
+		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\nset xrange [0:%.17g]\n"
+		   "set style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
+		bw * (double)t->o->bins, bw / t->ng);
+	for (int j = 0; j < t->ng; j++) {
+		fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lc %d title ",
+			j ? ", \\\n  " : "", bw / t->ng * (j + 0.5), j, j + 1);
+		gp_str(f, t->labels[j]);
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
+}
+
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "waiting", .version = VERSION};
 	int pr = cli_parse(&o, argc, argv, HELP, " by level bins ");
 	if (pr)
 		return pr < 0 ? 0 : 1;
-	sb_err e = {0};
-	adb d;
-	an_run *runs = NULL;
-	int nr = 0, ng = 0;
-	char **labels = NULL;
-	grp *g = NULL;
-	km_curve *km = NULL;
-	an_acct *A = NULL;
-	FILE *f = NULL;
-	char path[1400], script[1400], png[1400];
-	if (adb_open(&d, o.db, !o.no_store, &e) || adb_runs(&d, o.campaign, o.runs, &runs, &nr, &e))
+	an_tool t;
+	wait_state s = {0};
+	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || fit(&t, &s))
 		goto out;
-	/* every run with an intruder is accounted for, whatever its state */
-	double *wt = calloc((size_t)(nr ? nr : 1), sizeof *wt);
-	int *risen = calloc((size_t)(nr ? nr : 1), sizeof *risen), k = 0;
-	long nold = 0, f_ev = 0, f_cens = 0;
-	if (!wt || !risen) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		free(wt);
-		free(risen);
+	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || km_csv(&t, &s) || hist_csv(&t, &s))
 		goto out;
-	}
-	for (int i = 0; i < nr; i++) {
-		an_run *r = &runs[i];
-		if (!(an_num(r, "radius_ratio", 0) > 0) || acct_version_skip(r, o.all_versions, &nold))
-			continue;
-		double rs = NAN, w = NAN, st = NAN;
-		if (!acct_classify(r)) {
-			hid_t h;
-			sb_err he = {0};
-			if (h5r_open(r->path, &h, &he))
-				acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
-			else {
-				if (h5r_attr_num(h, "/", "risen", &rs) || h5r_attr_num(h, "/", "waiting_time", &w) ||
-				    !(w >= 0) || !isfinite(w))
-					acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no valid root attributes risen, waiting_time",
-						 r->path);
-				h5r_attr_num(h, "/", "status_time", &st);
-				h5r_close(h);
-			}
-			if (r->use == AN_UNREADABLE)
-				fprintf(stderr, "waiting: warning: %s (counted as unreadable)\n", r->why);
-			else if (strcmp(r->state, "failed"))
-				acct_set(r, AN_USED, NAN, NAN, NULL);
-			else if (!(w > 0))
-				acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
-			else {
-				/* observed up to the failure: a rise before it is an event, else the
-				 * run is censored when it failed */
-				if (!isfinite(st))
-					st = isfinite(r->status_time) ? r->status_time : w;
-				acct_set(r, AN_PARTLY, rs != 0 ? st : w, an_num(r, "duration", NAN),
-					 rs != 0 ? "failed at t = %g s (%s) after the rise at %g s: an event"
-						 : "failed at t = %g s (%s) before any rise: censored at %g s",
-					 st, r->status, w);
-				if (rs != 0)
-					f_ev++;
-				else
-					f_cens++;
-			}
-		}
-		an_run t = runs[k];
-		runs[k] = runs[i];
-		runs[i] = t;
-		wt[k] = w;
-		risen[k] = rs != 0 && !isnan(rs);
-		k++;
-	}
-	if (k == 0) {
-		int known = 0;
-		if (!adb_campaign_exists(&d, o.campaign, &known, &e) && !known)
-			sb_errf(&e, SB_EUSAGE, "campaign '%s' is not in %s", o.campaign, o.db);
-		else
-			sb_errf(&e, SB_EUSAGE, "campaign '%s': no finished run with an intruder in %s%s", o.campaign, o.db,
-				nold ? " of the current grid (--all-versions)" : "");
-		free(wt);
-		free(risen);
+	if (summary(&t, &s) || tool_store_end(&t))
 		goto out;
-	}
-	static const char *const always[] = {"radius_ratio", NULL};
-	char keys[AN_MAXKEYS][48];
-	int nk;
-	if (cli_keys(&o, &d, always, NULL, keys, &nk, &e)) {
-		free(wt);
-		free(risen);
-		goto out;
-	}
-	/* group the first k runs; remember each used one's time and event */
-	ng = an_group_runs(runs, k, keys, nk, &labels);
-	g = calloc((size_t)(ng > 0 ? ng : 1), sizeof *g);
-	km = calloc((size_t)(ng > 0 ? ng : 1), sizeof *km);
-	if (ng < 0 || !g || !km || acct_tally(runs, k, ng, &A)) {
-		sb_errf(&e, SB_ENOMEM, "out of memory");
-		free(wt);
-		free(risen);
-		goto out;
-	}
-	for (int i = 0; i < k; i++)
-		if (USED(&runs[i]) && push(&g[runs[i].group], wt[i], risen[i], i)) {
-			sb_errf(&e, SB_ENOMEM, "out of memory");
-			break;
-		}
-	free(wt);
-	free(risen);
-	long used = 0;
-	for (int j = 0; j < ng; j++)
-		used += g[j].n;
-	if (!e.code && !used) {
-		acct_print(stdout, "waiting", labels, A, ng, nold, o.all_versions);
-		sb_errf(&e, SB_EUSAGE, "campaign '%s': none of its %d runs with an intruder is usable yet", o.campaign, k);
-		goto out;
-	}
-	if (e.code || cli_outdir(&o, &e))
-		goto out;
-	double z = zq(o.level), tmax_all = 0;
-	for (int j = 0; j < ng; j++) {
-		if (km_fit(g[j].t, g[j].ev, (size_t)g[j].n, &km[j])) {
-			sb_errf(&e, SB_EIO, "group %s: bad waiting times", labels[j]);
-			goto out;
-		}
-		for (int i = 0; i < g[j].n; i++)
-			tmax_all = fmax(tmax_all, g[j].t[i]);
-	}
-
-	/* per-run CSV */
-	if (!(f = cli_fopen(&o, "waiting_runs.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,state,use\n");
-	for (int j = 0; j < ng; j++)
-		for (int i = 0; i < g[j].n; i++) {
-			const an_run *r = &runs[g[j].run[i]];
-			fprintf(f, "%d,", j);
-			csv_str(f, labels[j]);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, g[j].t[i], g[j].ev[i], r->state,
-				acct_use_name(r->use));
-		}
-	fclose(f);
-	if (!(f = cli_fopen(&o, "waiting_accounting.csv", path, sizeof path, &e)))
-		goto out;
-	acct_runs_csv(f, runs, k, labels);
-	fclose(f);
-	/* survival curves, starting at (0, 1) */
-	if (!(f = cli_fopen(&o, "waiting_km.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
-	for (int j = 0; j < ng; j++) {
-		fprintf(f, "%d,", j);
-		csv_str(f, labels[j]);
-		fprintf(f, ",0,%ld,0,0,1,0,1,1\n", km[j].n);
-		for (size_t i = 0; i < km[j].m; i++) {
-			double s = km[j].s[i], se = km[j].se[i];
-			fprintf(f, "%d,", j);
-			csv_str(f, labels[j]);
-			fprintf(f, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km[j].t[i], km[j].n_risk[i], km[j].d[i],
-				km[j].c[i], s, se, fmax(0, s - z * se), fmin(1, s + z * se));
-		}
-	}
-	fclose(f);
-	/* histogram of observed waiting times (risen runs), common bins */
-	double bw = tmax_all > 0 ? tmax_all / (double)o.bins : 1;
-	if (!(f = cli_fopen(&o, "waiting_hist.csv", path, sizeof path, &e)))
-		goto out;
-	fprintf(f, "group_index,group,lo,hi,count\n");
-	for (int j = 0; j < ng; j++)
-		for (long b = 0; b < o.bins; b++) {
-			long c = 0;
-			for (int i = 0; i < g[j].n; i++) {
-				long q = (long)floor(g[j].t[i] / bw);
-				if (q >= o.bins)
-					q = o.bins - 1;
-				c += g[j].ev[i] && q == b;
-			}
-			fprintf(f, "%d,", j);
-			csv_str(f, labels[j]);
-			fprintf(f, ",%.17g,%.17g,%ld\n", b * bw, (b + 1) * bw, c);
-		}
-	fclose(f);
-	f = NULL;
-
-	/* summary: table, CSV, database */
-	FILE *s = cli_fopen(&o, "waiting_summary.csv", path, sizeof path, &e);
-	if (!s)
-		goto out;
-	fprintf(s, "group,runs,risen,fraction_risen,median,median_lo,median_hi,t_max,s_end,s_end_lo,s_end_hi");
-	acct_csv_head(s);
-	fputc('\n', s);
-	printf("%-36s %5s %5s %6s %9s %21s %8s %6s %6s %10s\n", "group", "used", "risen", "frac", "median_s",
-	       "CI (Brookmeyer-Crowley)", "t_max_s", "S_end", "failed", "unfinished");
-	if (!o.no_store && adb_store_begin(&d, o.campaign, "waiting", &e)) {
-		fclose(s);
-		goto out;
-	}
-	for (int j = 0; j < ng && !e.code; j++) {
-		double lo, hi, med = km_median(&km[j], z, &lo, &hi), tm = 0;
-		for (int i = 0; i < g[j].n; i++)
-			tm = fmax(tm, g[j].t[i]);
-		double se_end = km[j].m ? km[j].se[km[j].m - 1] : 0, s_end = km[j].m ? km[j].s[km[j].m - 1] : 1;
-		double frac = (double)km[j].events / (double)km[j].n;
-		char ci[64], ms[32];
-		snprintf(ms, sizeof ms, isnan(med) ? ">%.3g" : "%.3f", isnan(med) ? tm : med);
-		if (isnan(lo))
-			snprintf(ci, sizeof ci, "[>%.3g, -]", tm);
-		else if (isnan(hi))
-			snprintf(ci, sizeof ci, "[%.3f, >%.3g]", lo, tm);
-		else
-			snprintf(ci, sizeof ci, "[%.3f, %.3f]", lo, hi);
-		printf("%-36s %5ld %5ld %6.3f %9s %21s %8.3f %6.3f %6ld %10ld\n", labels[j], km[j].n, km[j].events, frac, ms,
-		       ci, tm, s_end, A[j].failed, A[j].n[AN_PENDING] + A[j].n[AN_RUNNING]);
-		csv_str(s, labels[j]);
-		fprintf(s, ",%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", km[j].n, km[j].events, frac, med, lo,
-			hi, tm, s_end, fmax(0, s_end - z * se_end), fmin(1, s_end + z * se_end));
-		acct_csv_row(s, &A[j]);
-		fputc('\n', s);
-		if (!o.no_store) {
-			const char *L = labels[j];
-			long n = km[j].n;
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "runs", (double)n, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "risen", (double)km[j].events, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "fraction_risen", frac, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "median", med, lo, hi, n, &e);
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "t_max", tm, NAN, NAN, n, &e);
-			adb_store(&d, o.campaign, "waiting", VERSION, L, "s_end", s_end, fmax(0, s_end - z * se_end),
-				  fmin(1, s_end + z * se_end), n, &e);
-			acct_store(&d, o.campaign, "waiting", VERSION, L, &A[j], &e);
-		}
-	}
-	fclose(s);
-	if (!o.no_store && adb_store_end(&d, !e.code, &e))
-		goto out;
-	if (e.code)
-		goto out;
-	acct_print(stdout, "waiting", labels, A, ng, nold, o.all_versions);
-	if (f_ev + f_cens)
-		printf("# %ld failed run%s %s observed up to the failure: %ld had risen before it (events at their waiting"
-		       " times), %ld are censored at the failure time; this assumes that the failure is independent of"
-		       " the rise (non-informative censoring)\n", f_ev + f_cens, f_ev + f_cens == 1 ? "" : "s",
-		       f_ev + f_cens == 1 ? "is" : "are", f_ev, f_cens);
-
+	report(&t, &s);
 	if (!o.no_plot) {
-		if (!(f = gp_open(&o, "waiting_km", 900, 520, script, png, sizeof script, &e)))
-			goto out;
-		fprintf(f, "set title 'Intruder waiting time: Kaplan-Meier survival (+ censored)'\n"
-			   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
-			   "set yrange [0:1.05]\nset xrange [0:*]\nplot ");
-		for (int j = 0; j < ng; j++) {
-			fprintf(f, "%s'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lc %d title ",
-				j ? ", \\\n  " : "", j, j + 1);
-			gp_str(f, labels[j]);
-			fprintf(f, ", 'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lc %d notitle",
-				j, j + 1);
-		}
-		fprintf(f, "\n");
-		fclose(f);
-		f = NULL;
-		if (gp_run(script, png, &e))
-			goto out;
-		if (!(f = gp_open(&o, "waiting_hist", 900, 520, script, png, sizeof script, &e)))
-			goto out;
-		fprintf(f, "set title 'Intruder waiting time: histogram of the risen runs'\n"
-			   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\nset xrange [0:%.17g]\n"
-			   "set style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
-			bw * (double)o.bins, bw / ng);
-		for (int j = 0; j < ng; j++) {
-			fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lc %d title ",
-				j ? ", \\\n  " : "", bw / ng * (j + 0.5), j, j + 1);
-			gp_str(f, labels[j]);
-		}
-		fprintf(f, "\n");
-		fclose(f);
-		f = NULL;
-		if (gp_run(script, png, &e))
+		if (plot_km(&t) || plot_hist(&t, &s))
 			goto out;
 		printf("# figures: %s/waiting_km.png %s/waiting_hist.png\n", o.out, o.out);
 	}
 	printf("# csv: %s/waiting_{runs,km,hist,summary,accounting}.csv\n", o.out);
 out:
-	if (f)
-		fclose(f);
-	for (int j = 0; g && j < ng; j++) {
-		free(g[j].t);
-		free(g[j].ev);
-		free(g[j].run);
-		if (km)
-			km_free(&km[j]);
-	}
-	free(g);
-	free(km);
-	free(A);
-	an_labels_free(labels, ng);
-	adb_runs_free(runs, nr);
-	adb_close(&d);
-	if (e.code) {
-		fprintf(stderr, "waiting: %s\n", e.msg);
-		return e.code == SB_EUSAGE ? 1 : 2;
-	}
-	return 0;
+	state_free(&t, &s);
+	return tool_close(&t, stderr);
 }

@@ -1,0 +1,165 @@
+/* tool.c - the frame every analysis tool's main shares (tool.h). */
+#include "tool.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+int tool_open(an_tool *t, const an_opts *o)
+{
+	memset(t, 0, sizeof *t);
+	t->o = o;
+	if (adb_open(&t->d, o->db, !o->no_store, &t->e))
+		return t->e.code;
+	return adb_runs(&t->d, o->campaign, o->runs, &t->runs, &t->nr, &t->e);
+}
+
+int tool_old(an_tool *t, const an_run *r)
+{
+	return acct_version_skip(r, t->o->all_versions, &t->nold);
+}
+
+int tool_keep(an_tool *t, int i)
+{
+	an_run s = t->runs[t->k];
+	t->runs[t->k] = t->runs[i];
+	t->runs[i] = s;
+	return t->k++;
+}
+
+int tool_none(an_tool *t, const char *kind, const char *narrowed)
+{
+	const an_opts *o = t->o;
+	int known = 0;
+	if (!adb_campaign_exists(&t->d, o->campaign, &known, &t->e) && !known)
+		return sb_errf(&t->e, SB_EUSAGE, "campaign '%s' is not in %s", o->campaign, o->db);
+	return sb_errf(&t->e, SB_EUSAGE, "campaign '%s': no finished %s in %s%s%s", o->campaign, kind, o->db, narrowed,
+		       t->nold ? " of the current grid (--all-versions)" : "");
+}
+
+int tool_group(an_tool *t, const char *const *always, const char *const *drop)
+{
+	char keys[AN_MAXKEYS][48];
+	int nk;
+	if (cli_keys(t->o, &t->d, always, drop, keys, &nk, &t->e))
+		return t->e.code;
+	t->ng = an_group_runs(t->runs, t->k, keys, nk, &t->labels);
+	if (t->ng < 0)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+int tool_tally(an_tool *t, FILE *out, const char *fmt, ...)
+{
+	if (acct_tally(t->runs, t->k, t->ng, &t->A))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	long used = 0;
+	for (int j = 0; j < t->ng; j++)
+		used += acct_used(&t->A[j]);
+	if (used)
+		return 0;
+	char what[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(what, sizeof what, fmt, ap);
+	va_end(ap);
+	acct_print(out, t->o->tool, t->labels, t->A, t->ng, t->nold, t->o->all_versions);
+	return sb_errf(&t->e, SB_EUSAGE, "campaign '%s': none of %s is usable yet", t->o->campaign, what);
+}
+
+int tool_accounting_csv(an_tool *t)
+{
+	char name[128], path[1400];
+	snprintf(name, sizeof name, "%s_accounting.csv", t->o->tool);
+	FILE *f = cli_fopen(t->o, name, path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	acct_runs_csv(f, t->runs, t->k, t->labels);
+	fclose(f);
+	return 0;
+}
+
+FILE *tool_summary_csv(an_tool *t, const char *name, const char *head)
+{
+	char path[1400];
+	FILE *s = cli_fopen(t->o, name, path, sizeof path, &t->e);
+	if (!s)
+		return NULL;
+	fputs(head, s);
+	acct_csv_head(s);
+	fputc('\n', s);
+	return s;
+}
+
+void tool_summary_acct(const an_tool *t, FILE *s, int j)
+{
+	acct_csv_row(s, &t->A[j]);
+	fputc('\n', s);
+}
+
+int tool_store_begin(an_tool *t)
+{
+	if (t->o->no_store)
+		return 0;
+	return adb_store_begin(&t->d, t->o->campaign, t->o->tool, &t->e);
+}
+
+void tool_store(an_tool *t, const char *grp, const char *key, double value, double lo, double hi, long n)
+{
+	if (!t->o->no_store)
+		adb_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, key, value, lo, hi, n, &t->e);
+}
+
+void tool_store_acct(an_tool *t, const char *grp, int j)
+{
+	if (!t->o->no_store)
+		acct_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, &t->A[j], &t->e);
+}
+
+int tool_store_end(an_tool *t)
+{
+	if (!t->o->no_store)
+		adb_store_end(&t->d, !t->e.code, &t->e);
+	return t->e.code;
+}
+
+int tool_plot(an_tool *t, FILE *f, const char *script, const char *png)
+{
+	fclose(f);
+	return gp_run(script, png, &t->e);
+}
+
+long tool_partly(const an_tool *t)
+{
+	long partly = 0;
+	for (int j = 0; j < t->ng; j++)
+		partly += t->A[j].n[AN_PARTLY];
+	return partly;
+}
+
+void tool_report(const an_tool *t, FILE *out, const char *partly)
+{
+	acct_print(out, t->o->tool, t->labels, t->A, t->ng, t->nold, t->o->all_versions);
+	long n = tool_partly(t);
+	if (partly && n)
+		fprintf(out, "# %ld failed run%s enter%s with %s\n", n, n == 1 ? "" : "s", n == 1 ? "s" : "", partly);
+}
+
+int tool_close(an_tool *t, FILE *err)
+{
+	/* an error between tool_store_begin and tool_store_end leaves nothing half stored */
+	if (t->d.ins)
+		adb_store_end(&t->d, 0, &t->e);
+	free(t->A);
+	an_labels_free(t->labels, t->ng);
+	adb_runs_free(t->runs, t->nr);
+	adb_close(&t->d);
+	t->A = NULL;
+	t->labels = NULL;
+	t->runs = NULL;
+	if (!t->e.code)
+		return 0;
+	fprintf(err, "%s: %s\n", t->o->tool, t->e.msg);
+	return t->e.code == SB_EUSAGE ? 1 : 2;
+}

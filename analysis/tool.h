@@ -1,0 +1,85 @@
+/* tool.h - the frame every analysis tool's main shares: the campaign's runs read from
+ * the database, the runs the tool considers gathered at the front, their groups and
+ * accounting, the rows stored in `analysis`, the closing lines and the exit code. What
+ * a tool considers, how it classifies a run and what it computes stay in its main.
+ * Functions return the error code kept in t->e (the first error wins); the ones that
+ * print take the stream, so that only the mains choose where output goes. */
+#ifndef AN_TOOL_H
+#define AN_TOOL_H
+
+#include <stdio.h>
+
+#include "acct.h"
+#include "adb.h"
+#include "cli.h"
+#include "err.h"
+
+typedef struct an_tool {
+	const an_opts *o;
+	adb d;
+	an_run *runs;   /* every run of the campaign; runs[0..k) are the ones considered */
+	int nr, k;
+	long nold;      /* runs of earlier versions of the campaign file left out */
+	int ng;         /* groups of the considered runs, labelled labels[0..ng) */
+	char **labels;  /* malloc'd strings, freed by tool_close */
+	an_acct *A;     /* the accounting of each group (tool_tally) */
+	sb_err e;
+} an_tool;
+
+/* Opens the database (writable unless --no-store) and reads every run of the campaign;
+ * t is zeroed first. */
+int tool_open(an_tool *t, const an_opts *o);
+
+/* A run of an earlier version of the campaign file that the options leave out
+ * (counted in t->nold). */
+int tool_old(an_tool *t, const an_run *r);
+
+/* Moves runs[i] to runs[k], the end of the considered runs (i >= k), and returns k,
+ * its new index. */
+int tool_keep(an_tool *t, int i);
+
+/* The usage error when no run was considered: the campaign is not in the database, or
+ * it has no finished KIND (e.g. "run with an intruder"); narrowed ends that sentence
+ * (e.g. " that matches --where", or ""). */
+int tool_none(an_tool *t, const char *kind, const char *narrowed);
+
+/* Groups the considered runs by the grouping keys (cli_keys: --by, else always[] and
+ * the swept axes not in drop[]). */
+int tool_group(an_tool *t, const char *const *always, const char *const *drop);
+
+/* Counts each group's runs (acct_tally). When none of them is usable, prints the
+ * accounting to out and fails: "campaign 'C': none of WHAT is usable yet", WHAT
+ * formatted from fmt. */
+int tool_tally(an_tool *t, FILE *out, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* TOOL_accounting.csv in the output directory: one row per considered run. */
+int tool_accounting_csv(an_tool *t);
+
+/* A summary CSV: its own columns (head, without newline) and the accounting's; a
+ * row's own values are the caller's, tool_summary_acct ends it with group j's. */
+FILE *tool_summary_csv(an_tool *t, const char *name, const char *head);
+void tool_summary_acct(const an_tool *t, FILE *s, int j);
+
+/* Rows of the analysis table (nothing under --no-store): begin replaces the tool's
+ * earlier rows, one row, group j's accounting rows (acct_store), and end commits
+ * when no error was kept, else rolls back and returns the error. */
+int tool_store_begin(an_tool *t);
+void tool_store(an_tool *t, const char *grp, const char *key, double value, double lo, double hi, long n);
+void tool_store_acct(an_tool *t, const char *grp, int j);
+int tool_store_end(an_tool *t);
+
+/* Closes a gnuplot script (gp_open) and runs it. */
+int tool_plot(an_tool *t, FILE *f, const char *script, const char *png);
+
+/* The closing lines: the accounting table and, when failed runs were used up to
+ * their failure, "# N failed runs enter with PARTLY" (no such line when partly is
+ * NULL: the tool says it itself). */
+void tool_report(const an_tool *t, FILE *out, const char *partly);
+/* Runs used up to their failure, over every group. */
+long tool_partly(const an_tool *t);
+
+/* Rolls back unfinished storing, frees everything, prints the error to err as
+ * "TOOL: message" and returns the exit code: 0 ok, 1 usage or no usable runs, 2 I/O. */
+int tool_close(an_tool *t, FILE *err);
+
+#endif
