@@ -11,7 +11,7 @@ FUZZ="${FUZZ_BIN:-$REPO/build/fuzz/fuzz}"
 for b in "$STUDY" "$FUZZ"; do
 	[ -x "$b" ] || { fail setup "$b is not an executable (run make tests)"; finish; }
 done
-N="${FUZZ_QUICK_INPUTS:-300}"
+N="${FUZZ_QUICK_INPUTS:-500}"
 SEED="${FUZZ_QUICK_SEED:-11}"
 OUT="$REPO/build/fuzz/quick"
 # Findings that others are fixing: "kind<TAB>target<TAB>signature<TAB>why" lines; a
@@ -22,12 +22,12 @@ KNOWN="${FUZZ_QUICK_KNOWN:-$REPO/tests/fuzz/known.tsv}"
 FUZZ_SHAKE="$SHAKE" FUZZ_STUDY="$STUDY" FUZZ_BIN="$FUZZ" FUZZ_SECONDS=0 FUZZ_INPUTS="$N" FUZZ_SEED="$SEED" \
 	FUZZ_OUT="$OUT" FUZZ_WORK="$TMP/work" bash "$REPO/tests/fuzz/fuzz.sh" >"$TMP/fuzz.log" 2>&1
 rc=$?
-grep -E '^fuzz: [0-9]+ inputs in|^fuzz: findings|exit codes' "$TMP/fuzz.log" | sed 's/^/# /'
+grep -E '^fuzz: [0-9]+ inputs in .* seed|^fuzz: findings|exit codes' "$TMP/fuzz.log" | sed 's/^/# /'
 if [ "$rc" -gt 1 ] || [ ! -s "$OUT/summary.tsv" ]; then
 	fail fuzz.quick.runs "exit $rc: $(tail -n 5 "$TMP/fuzz.log")"
 	finish
 fi
-read -r tried <<<"$(sed -n 's/^fuzz: \([0-9]*\) inputs in.*/\1/p' "$TMP/fuzz.log")"
+read -r tried <<<"$(sed -n 's/^fuzz: \([0-9]*\) inputs in .*, seed .*/\1/p' "$TMP/fuzz.log")"
 [ "${tried:-0}" = "$N" ] && ok fuzz.quick.runs || fail fuzz.quick.runs "$tried of $N inputs tried"
 
 declare -A seen=()
