@@ -31,6 +31,7 @@ static const char *const KIND[NKIND] = {"crash", "sanitizer", "hang", "exit", "a
 #define MAX_ARGS 64
 #define MAX_SIGS 4096
 #define STDERR_KEEP 65536
+#define EXEC_FAILED "fuzz: cannot run the target"
 
 typedef struct buf {
 	char *p;
@@ -656,6 +657,7 @@ static int run(char *const argv[], const char *cwd, const char *errpath, int *st
 		dup2(nul, 1);
 		dup2(fd, 2);
 		execv(argv[0], argv);
+		dprintf(2, "%s: %s: %s\n", EXEC_FAILED, argv[0], strerror(errno));
 		_exit(127);
 	}
 	setpgid(pid, pid);
@@ -1166,15 +1168,23 @@ int main(int argc, char **argv)
 			die("%s: %s", input, strerror(errno));
 		char *av[MAX_ARGS];
 		build_argv(target, &in, sf->name, av);
-		int status = 0;
-		int hung = run(av, rundir, errpath, &status);
+		int status = 0, hung;
+		size_t en;
+		/* a binary that is being rebuilt is missing for a moment: not a finding */
+		for (int tries = 0;; tries++) {
+			hung = run(av, rundir, errpath, &status);
+			FILE *ef = fopen(errpath, "rb");
+			en = ef ? fread(err, 1, STDERR_KEEP, ef) : 0;
+			if (ef)
+				fclose(ef);
+			err[en] = 0;
+			if (hung || !WIFEXITED(status) || WEXITSTATUS(status) != 127 || !strstr(err, EXEC_FAILED))
+				break;
+			if (tries == 10)
+				die("%s", err);
+			sleep(1);
+		}
 		F.tried[target]++;
-
-		FILE *ef = fopen(errpath, "rb");
-		size_t en = ef ? fread(err, 1, STDERR_KEEP, ef) : 0;
-		if (ef)
-			fclose(ef);
-		err[en] = 0;
 		for (size_t i = 0; i < en; i++)
 			if (!err[i])
 				err[i] = ' ';
