@@ -1,0 +1,282 @@
+/* study_grid.c - grid expansion (study/campaign.c, study/grid.c) against the contract of
+ * campaigns/README.md: the runs are the cartesian product of the axes (first axis
+ * fastest, values in file order, replicates the last axis), sorted by id; values are
+ * canonical and duplicates are dropped, within an axis and between grid points;
+ * START:STOP:STEP and FIRST..LAST ranges give the values of the written-out list; the
+ * grid's size is bounded by max_runs before anything is expanded. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "campaign.h"
+#include "grid.h"
+#include "params.h"
+#include "study_files.h"
+#include "testlib.h"
+
+#define WHERE "t.campaign:3"
+
+/* The axis's values joined by commas (truncated to len). */
+static const char *joined(const cp_axis *a, char *buf, size_t len)
+{
+	size_t l = 0;
+	buf[0] = 0;
+	for (long i = 0; i < a->n && l < len; i++)
+		l += (size_t)snprintf(buf + l, len - l, "%s%s", i ? "," : "", a->values[i]);
+	return buf;
+}
+
+static void axis_free(cp_axis *a)
+{
+	for (long i = 0; i < a->n; i++)
+		free(a->values[i]);
+	free(a->values);
+	memset(a, 0, sizeof *a);
+}
+
+/* The canonical text (params_format) of each of the comma-separated values, joined
+ * by commas: what an axis stores (real values as %.17g). */
+static const char *canonical(const char *key, const char *values, char *buf, size_t len)
+{
+	char copy[4096], *save = NULL;
+	size_t l = 0;
+	sb_scene s;
+	params_defaults(&s);
+	snprintf(copy, sizeof copy, "%s", values);
+	buf[0] = 0;
+	for (char *v = strtok_r(copy, ",", &save); v && l < len; v = strtok_r(NULL, ",", &save)) {
+		sb_err e = {0};
+		char one[SB_STR_MAX + 8];
+		params_set(&s, key, v, "test", &e);
+		params_format(&s, params_find(key), one, sizeof one);
+		l += (size_t)snprintf(buf + l, len - l, "%s%s", l ? "," : "", one);
+	}
+	return buf;
+}
+
+/* CHECKs that key = text gives exactly the values want (comma separated, canonical
+ * text of each). */
+static void axis_is(const char *id, const char *key, const char *text, const char *want)
+{
+	cp_axis a;
+	sb_err e = {0};
+	char got[4096], w[4096];
+	int rc = campaign_axis_parse(&a, key, text, WHERE, &e);
+	canonical(key, want, w, sizeof w);
+	CHECK(id, !rc && !strcmp(joined(&a, got, sizeof got), w), "%s = %s: got '%s' (%s), want '%s'", key, text,
+	      rc ? "" : got, rc ? e.msg : "ok", w);
+	axis_free(&a);
+}
+
+/* CHECKs that key = text gives the same values as key = list (a written-out list). */
+static void axis_same(const char *id, const char *key, const char *text, const char *list)
+{
+	cp_axis a, b;
+	sb_err e1 = {0}, e2 = {0};
+	char ga[4096], gb[4096];
+	int r1 = campaign_axis_parse(&a, key, text, WHERE, &e1), r2 = campaign_axis_parse(&b, key, list, WHERE, &e2);
+	CHECK(id, !r1 && !r2 && a.n == b.n && !strcmp(joined(&a, ga, sizeof ga), joined(&b, gb, sizeof gb)),
+	      "%s = %s gives '%s' (%s), the list '%s' (%s)", key, text, r1 ? "" : ga, e1.msg, r2 ? "" : gb, e2.msg);
+	axis_free(&a);
+	axis_free(&b);
+}
+
+/* CHECKs that key = text is refused as a usage error whose message holds every one of
+ * the (NULL-terminated) words. */
+static void axis_refused(const char *id, const char *key, const char *text, const char *const *words)
+{
+	cp_axis a;
+	sb_err e = {0};
+	int rc = campaign_axis_parse(&a, key, text, WHERE, &e);
+	int named = rc == SB_EUSAGE && !strncmp(e.msg, WHERE ": ", strlen(WHERE) + 2);
+	for (const char *const *w = words; named && *w; w++)
+		named = strstr(e.msg, *w) != NULL;
+	CHECK(id, named, "%s = %s: rc %d, message '%s'", key, text, rc, e.msg);
+	axis_free(&a); /* a refused axis keeps the values made before the error (the caller frees) */
+}
+
+/* The runs are the product of the axes: its size, every point once, the values of
+ * each point decoded as a mixed radix (first axis fastest), replicates last, the runs
+ * sorted by id and found by it. */
+static void test_product(void)
+{
+	campaign c;
+	grid g;
+	sb_err e;
+	int rc = sf_expand("[campaign]\nname = g\nseed = 5\nreplicates = 2\n[grid]\nfrequency = 3, 4, 5\n"
+			   "radius_ratio = 0, 2\n", &c, &g, &e);
+	CHECK("study.grid.product.expands", !rc, "%s", e.msg);
+	if (rc)
+		return;
+	long points = 0;
+	campaign_points(&c, &points, &e);
+	CHECK("study.grid.product.size", points == 12 && g.n == 12, "%ld points, %ld runs; want 3 x 2 x 2 = 12", points,
+	      g.n);
+	CHECK("study.grid.product.replicates_last_axis",
+	      c.naxes == 3 && !strcmp(c.axes[0].key, "frequency") && !strcmp(c.axes[1].key, "radius_ratio") &&
+		      !strcmp(c.axes[2].key, "seed") && c.axes[2].n == 2,
+	      "axes: %d, the last '%s'", c.naxes, c.naxes ? c.axes[c.naxes - 1].key : "");
+	int seen[12] = {0}, points_ok = 1, decoded = 1, sorted = 1, found = 1, hex = 1;
+	char why[2 * SB_STR_MAX + 200] = "";
+	for (long i = 0; i < g.n; i++) {
+		const grid_run *r = &g.runs[i];
+		if (r->point < 0 || r->point >= 12 || seen[r->point]++)
+			points_ok = 0;
+		if (i && strcmp(g.runs[i - 1].id, r->id) >= 0)
+			sorted = 0;
+		if (grid_find(&g, r->id) != r)
+			found = 0;
+		hex &= strlen(r->id) == 16 && strspn(r->id, "0123456789abcdef") == 16;
+		sb_scene s;
+		grid_scene(&g, r, &s);
+		long stride = 1;
+		for (int a = 0; a < c.naxes; a++) {
+			const cp_axis *ax = &c.axes[a];
+			const char *want = ax->values[(r->point / stride) % ax->n];
+			char got[SB_STR_MAX + 8];
+			if (!strcmp(ax->key, "seed")) /* the scene holds the engine seed; the label is the replicate */
+				snprintf(got, sizeof got, "%ld", r->replicate);
+			else
+				params_format(&s, params_find(ax->key), got, sizeof got);
+			if (strcmp(got, want) && decoded) {
+				decoded = 0;
+				snprintf(why, sizeof why, "point %ld: %s = %s, want %s", r->point, ax->key, got, want);
+			}
+			stride *= ax->n;
+		}
+	}
+	CHECK("study.grid.product.every_point_once", points_ok, "the points are not 0..11 once each");
+	CHECK("study.grid.order.first_axis_fastest", decoded, "%s", why);
+	CHECK("study.grid.order.sorted_by_id", sorted, "runs not in ascending id order");
+	CHECK("study.grid.find", found && !grid_find(&g, "no such id"), "grid_find does not find the runs' ids");
+	CHECK("study.grid.id.hex16", hex, "an id is not 16 lower-case hex digits");
+	sf_free(&c, &g);
+}
+
+/* Values keep their first occurrence in file order; spellings of one value are one. */
+static void test_axis_values(void)
+{
+	axis_is("study.grid.axis.file_order", "frequency", "5, 3, 4", "5,3,4");
+	axis_is("study.grid.axis.canonical", "frequency", "2.60, 3.0, 4e0", "2.6,3,4");
+	axis_is("study.grid.axis.duplicates_dropped", "frequency", "2.6, 2.60, 2.8, 26e-1, 2.6", "2.6,2.8");
+	axis_is("study.grid.axis.first_occurrence_kept", "frequency", "2.8, 2.6, 2.80", "2.8,2.6");
+	axis_is("study.grid.axis.int_duplicates", "depth", "3, 1, 3, 2, 1", "3,1,2");
+	axis_is("study.grid.axis.enum_duplicates", "integrator", "verlet, gear5, verlet", "verlet,gear5");
+	axis_is("study.grid.axis.blank_items", "depth", " 1 ,, 2 ,", "1,2");
+	/* many duplicates: the first occurrences, in order */
+	cp_axis a;
+	sb_err e = {0};
+	int rc = campaign_axis_parse(&a, "depth", "1..50000, 1..50000", WHERE, &e), order = !rc && a.n == 50000;
+	for (long i = 0; order && i < a.n; i++)
+		order = atol(a.values[i]) == i + 1;
+	CHECK("study.grid.axis.many_duplicates", order, "rc %d (%s), %ld values", rc, e.msg, rc ? 0 : a.n);
+	axis_free(&a);
+	static const char *const none[] = {"depth", "no values", NULL};
+	axis_refused("study.grid.axis.empty_refused", "depth", " , ", none);
+
+	/* in a campaign: a duplicated axis value is no second run */
+	campaign c;
+	grid g;
+	rc = sf_expand("[campaign]\nname = d\nseed = 1\n[grid]\nfrequency = 3, 3.0, 4\n", &c, &g, &e);
+	CHECK("study.grid.axis.duplicates_no_runs", !rc && c.axes[0].n == 2 && g.n == 2, "rc %d (%s), %ld runs", rc,
+	      e.msg, rc ? 0 : g.n);
+	if (!rc)
+		sf_free(&c, &g);
+}
+
+/* Ranges give exactly the values of the written-out list (hence the same run ids). */
+static void test_ranges(void)
+{
+	axis_same("study.grid.range.float", "frequency", "2.5:3.2:0.05",
+		  "2.5, 2.55, 2.6, 2.65, 2.7, 2.75, 2.8, 2.85, 2.9, 2.95, 3, 3.05, 3.1, 3.15, 3.2");
+	axis_is("study.grid.range.float_count", "frequency", "2.5:3.2:0.05",
+		"2.5,2.55,2.6,2.65,2.7,2.75,2.8,2.85,2.9,2.95,3,3.05,3.1,3.15,3.2");
+	axis_is("study.grid.range.float_stop_off_grid", "frequency", "1:2:0.3", "1,1.3,1.6,1.9");
+	axis_is("study.grid.range.float_one_value", "frequency", "2:2:0.5", "2");
+	axis_same("study.grid.range.mixed_with_list", "radius_ratio", "2:4:0.25, 5, 6",
+		  "2, 2.25, 2.5, 2.75, 3, 3.25, 3.5, 3.75, 4, 5, 6");
+	axis_is("study.grid.range.overlap_deduplicated", "frequency", "1:2:0.5, 1.5:2.5:0.5", "1,1.5,2,2.5");
+	axis_is("study.grid.range.colon_on_int_key", "depth", "0:4:2", "0,2,4");
+	axis_is("study.grid.range.int", "depth", "0..3", "0,1,2,3");
+	axis_is("study.grid.range.int_one_value", "depth", "2..2", "2");
+	axis_is("study.grid.range.int_overlap", "depth", "0..2, 1..4", "0,1,2,3,4");
+	axis_same("study.grid.range.int_as_list", "n_grains", "98..102", "98, 99, 100, 101, 102");
+
+	static const char *const bad_f[] = {"frequency", "bad range", NULL};
+	static const char *const bad_d[] = {"depth", "bad range", NULL};
+	static const char *const freq[] = {"frequency", NULL};
+	axis_refused("study.grid.range.refused.stop_below_start", "frequency", "3:2:0.1", bad_f);
+	axis_refused("study.grid.range.refused.step_zero", "frequency", "1:2:0", bad_f);
+	axis_refused("study.grid.range.refused.step_negative", "frequency", "1:2:-0.1", bad_f);
+	axis_refused("study.grid.range.refused.two_parts", "frequency", "1:2", bad_f);
+	axis_refused("study.grid.range.refused.four_parts", "frequency", "1:2:3:4", bad_f);
+	axis_refused("study.grid.range.refused.not_a_number", "frequency", "a:2:0.1", bad_f);
+	axis_refused("study.grid.range.refused.int_descending", "depth", "3..1", bad_d);
+	axis_refused("study.grid.range.refused.int_not_a_number", "depth", "1..x", bad_d);
+	/* FIRST..LAST is for integer keys: on a real key it is no number */
+	axis_refused("study.grid.range.refused.dots_on_real_key", "frequency", "1..3", freq);
+	/* every value of a range is checked against the key's range */
+	axis_refused("study.grid.range.refused.value_out_of_range", "frequency", "999:1001:1", freq);
+}
+
+/* Two grid points with the same parameters are one run: a preset axis after a dt axis
+ * sets dt at every point. */
+static void test_point_duplicates(void)
+{
+	campaign c;
+	grid g;
+	sb_err e;
+	int rc = sf_expand("[campaign]\nname = p\nseed = 1\n[grid]\ndt = 0.0001, 0.0002\npreset = fast\n", &c, &g, &e);
+	long points = 0;
+	if (!rc)
+		campaign_points(&c, &points, &e);
+	CHECK("study.grid.points.duplicates_one_run", !rc && points == 2 && g.n == 1, "rc %d (%s): %ld points, %ld runs",
+	      rc, e.msg, points, rc ? 0 : g.n);
+	if (!rc)
+		sf_free(&c, &g);
+}
+
+/* The grid's size is known before any point is made, and bounded: CP_MAX_RUNS_DEFAULT,
+ * raised by max_runs; an axis has at most CP_MAX_VALUES values. */
+static void test_bounds(void)
+{
+	campaign c;
+	sb_err e;
+	int rc = sf_load("[campaign]\nname = b\nseed = 1\nmax_runs = 12\n[grid]\nfrequency = 3, 4, 5\ndepth = 0..3\n", &c,
+			 &e);
+	CHECK("study.grid.bounds.max_runs_reached", !rc, "12 points with max_runs = 12: %s", e.msg);
+	campaign_free(&c);
+	rc = sf_load("[campaign]\nname = b\nseed = 1\nmax_runs = 11\n[grid]\nfrequency = 3, 4, 5\ndepth = 0..3\n", &c, &e);
+	CHECK("study.grid.bounds.max_runs_exceeded", rc == SB_EUSAGE && strstr(e.msg, "max_runs"),
+	      "12 points with max_runs = 11: rc %d '%s'", rc, e.msg);
+	campaign_free(&c);
+	/* 400 x 300 points: refused by default, counted (not expanded) when allowed */
+	rc = sf_load("[campaign]\nname = b\nseed = 1\n[grid]\ndepth = 1..400\nn_grains = 1..300\n", &c, &e);
+	CHECK("study.grid.bounds.default_limit", rc == SB_EUSAGE && strstr(e.msg, "max_runs") && CP_MAX_RUNS_DEFAULT < 120000,
+	      "120000 points without max_runs: rc %d '%s'", rc, e.msg);
+	campaign_free(&c);
+	rc = sf_load("[campaign]\nname = b\nseed = 1\nmax_runs = 120000\n[grid]\ndepth = 1..400\nn_grains = 1..300\n", &c,
+		     &e);
+	long points = 0;
+	if (!rc)
+		campaign_points(&c, &points, &e);
+	CHECK("study.grid.bounds.max_runs_raises", !rc && points == 120000, "rc %d '%s', %ld points", rc, e.msg, points);
+	campaign_free(&c);
+	static const char *const many[] = {"depth", NULL};
+	axis_refused("study.grid.bounds.axis_values", "depth", "0..100000", many);
+}
+
+int main(void)
+{
+	if (sf_init()) {
+		printf("FAIL study.grid.setup: cannot make a temporary directory\n");
+		return 1;
+	}
+	test_product();
+	test_axis_values();
+	test_ranges();
+	test_point_duplicates();
+	test_bounds();
+	sf_cleanup();
+	return tl_done();
+}
