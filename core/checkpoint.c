@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
-#include "sim.h"
+#include "checkpoint.h"
 
 static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '3'};
 

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
-#include "sim.h"
+#include "h5out.h"
 
 typedef struct h5 {
 	hid_t file, gcpl, dcpl;
@@ -537,4 +537,12 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 		return rc;
 	}
 	return write_xdmf(s, path, e);
+}
+
+int h5out_write_run(sb_sim *s, sb_err *e)
+{
+	long off;
+	if (s->jr.f && journal_sync(&s->jr, &off, e))
+		return e->code;
+	return h5out_write(s, s->sc.output, e);
 }

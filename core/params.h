@@ -111,8 +111,6 @@ int params_load_file(sb_scene *s, const char *path, sb_err *e);
 /* One "key=value" command-line override. */
 int params_override(sb_scene *s, const char *arg, sb_err *e);
 
-/* Checks that involve more than one key (r_min <= r_max, ...). */
-int params_validate(const sb_scene *s, sb_err *e);
 
 /* Canonical text of a value: what --help shows, what goes into HDF5 and hashes.
  * Reals use %.17g so that the text round-trips exactly. */

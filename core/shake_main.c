@@ -6,8 +6,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "params.h"
+#include "checkpoint.h"
+#include "h5out.h"
+#include "prep.h"
+#include "run.h"
 #include "sim.h"
+#include "validate.h"
 
 static volatile sig_atomic_t g_stop; /* the one piece of global state: signals need it */
 
@@ -153,7 +157,7 @@ int main(int argc, char **argv)
 		journal_close(&s->jr);
 	} else {
 		sb_err e2 = {0};
-		if (sim_write_output(s, &e2)) {
+		if (h5out_write_run(s, &e2)) {
 			fprintf(stderr, "shake: %s\n", e2.msg);
 			/* a run that simulated to its end keeps that end as a checkpoint (where
 			 * the fault allows): run again, it only writes the file */

@@ -1,5 +1,5 @@
-/* sim.h - one run: preparation, the shaking loop (a recipe of phases), recording,
- * safety checks, checkpoints. */
+/* sim.h - one run's state and setup. Its phases have their own modules: prep.h
+ * (preparation), step.h (one step), run.h (the shaking loop), checkpoint.h, h5out.h. */
 #ifndef SB_SIM_H
 #define SB_SIM_H
 
@@ -67,23 +67,11 @@ typedef struct sb_sim {
 int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e);
 void sim_free(sb_sim *s);
 
-/* Place or read the disks, settle, write particle files if asked, enter the box frame. */
-int sim_prepare(sb_sim *s, sb_err *e);
-/* Derived quantities of a state in place (intruder, box bounds, neighbour setup);
- * used by sim_prepare and by a restart. */
+/* Derived quantities of a state in place (intruder, box bounds, the force kernel and
+ * the neighbour list); used by the preparation (prep.h) and by a restart. */
 int sim_derive(sb_sim *s, sb_err *e);
 /* Set up the observables for the state at t = 0 (also after a restart). */
 int sim_obs_init(sb_sim *s, sb_err *e);
-/* Low-level stepping for tests and tools: sim_start builds the neighbour list and
- * sets the integrator's acceleration from the current forces (call it after placing
- * disks and setting velocities q[c][1] = v dt); sim_step advances one step with the
- * uniform extra acceleration gy in y (e.g. -gravity), no drive, and counts s->step. */
-int sim_start(sb_sim *s, double gy, sb_err *e);
-int sim_step(sb_sim *s, double gy, sb_err *e);
-/* Shake until duration; returns SB_OK or the code that stopped the run (also in s->status). */
-int sim_run(sb_sim *s, sb_err *e);
-/* Assemble the HDF5 output (and its XDMF sidecar) from the journal and final state. */
-int sim_write_output(sb_sim *s, sb_err *e);
 /* Remove journal and checkpoint after the output is in place. */
 void sim_cleanup_files(sb_sim *s);
 
@@ -94,13 +82,5 @@ double sim_box_a(const sb_sim *s, double t);
 
 /* Kinetic energy (translation + rotation) of the mobile disks in the box frame. */
 double sim_kinetic(const sb_sim *s);
-
-/* checkpoint.c */
-int ckpt_write(sb_sim *s, sb_err *e);
-/* Returns 1 if a checkpoint was loaded, 0 if none exists (and restart allows that). */
-int ckpt_load(sb_sim *s, sb_err *e);
-
-/* h5out.c */
-int h5out_write(const sb_sim *s, const char *path, sb_err *e);
 
 #endif

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "validate.h"
+
 /* SplitMix64 finaliser: a bijective mix, so distinct inputs stay distinct. */
 static unsigned long long mix64(unsigned long long z)
 {

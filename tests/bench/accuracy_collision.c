@@ -26,6 +26,7 @@
 #include "collision_analytic.h"
 #include "prepare.h"
 #include "sim.h"
+#include "step.h"
 #include "units.h"
 
 typedef struct ccase {

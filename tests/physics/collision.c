@@ -30,6 +30,7 @@
 #include "collision_analytic.h"
 #include "prepare.h"
 #include "sim.h"
+#include "step.h"
 #include "testlib.h"
 #include "units.h"
 

@@ -22,6 +22,7 @@
 
 #include "prepare.h"
 #include "sim.h"
+#include "step.h"
 #include "testlib.h"
 #include "units.h"
 

@@ -24,6 +24,7 @@
 
 #include "prepare.h"
 #include "sim.h"
+#include "step.h"
 #include "testlib.h"
 #include "units.h"
 

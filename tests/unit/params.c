@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "params.h"
+#include "validate.h"
 #include "testlib.h"
 
 static char tmpdir[] = "/tmp/sb_params_XXXXXX";

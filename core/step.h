@@ -1,0 +1,24 @@
+/* step.h - one time step of a run (step.c). */
+#ifndef SB_STEP_H
+#define SB_STEP_H
+
+#include "sim.h"
+
+/* One step of length dt to the new time t (step number step): gy is the uniform
+ * acceleration in y at t (gravity and, in the box frame, minus the box's), drag the
+ * settling's viscous drag (0 while shaking), stage names the phase in messages. fuse:
+ * nobody reads the corrected state, so the next step's predictor runs inside this
+ * step's corrector (s->predicted). track: the ring's per-disk |F| sums, or NULL. A
+ * failure (non-finite number, a disk out of the box, an overlap past max_overlap) is
+ * recorded in s->status and returned. */
+int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, int fuse,
+	      double *track, sb_err *e);
+
+/* Low-level stepping for tests and tools: sim_start builds the neighbour list and
+ * sets the integrator's acceleration from the current forces (call it after placing
+ * disks and setting velocities q[c][1] = v dt); sim_step advances one reference step
+ * with the uniform extra acceleration gy in y, no drive, and counts s->step. */
+int sim_start(sb_sim *s, double gy, sb_err *e);
+int sim_step(sb_sim *s, double gy, sb_err *e);
+
+#endif

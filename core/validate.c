@@ -1,0 +1,62 @@
+/* validate.c - the checks of a scene that involve more than one key (r_min <= r_max,
+ * an intruder that fits the box, ramps, rings, the time step against its stability
+ * limit, ...): each error names where the key at fault was set. */
+#include "validate.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "dtguard.h"
+
+int params_validate(const sb_scene *s, sb_err *e)
+{
+#define W(key) params_where(s, key)
+	/* step counts are integers: a dt that makes one overflow is refused here, not
+	 * cast (1e15 steps are thousands of years of CPU at the engine's speed) */
+	static const char *const lens[] = {"duration", "settle_max", "settle_min"};
+	const double len[] = {s->duration, s->settle_max, s->settle_min};
+	for (int k = 0; k < 3; k++)
+		if (len[k] / s->dt > 1e15)
+			return sb_errf(e, SB_EUSAGE, "%s: %s / dt = %g steps (dt %g, %s): at most 1e15", W(lens[k]), lens[k],
+				       len[k] / s->dt, s->dt, W("dt"));
+	if (s->r_min > s->r_max)
+		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
+			       s->r_max, W("r_max"));
+	if (s->wall_spacing > 2 * s->wall_radius)
+		return sb_errf(e, SB_EUSAGE, "%s: wall_spacing (%g) must be at most 2 wall_radius (%g, %s): grains would fall through",
+			       W("wall_spacing"), s->wall_spacing, 2 * s->wall_radius, W("wall_radius"));
+	if (!s->particles[0] && s->width < 4 * s->r_max)
+		return sb_errf(e, SB_EUSAGE, "%s: width (%g) must hold at least two grains (4 r_max = %g, r_max %s)",
+			       W("width"), s->width, 4 * s->r_max, W("r_max"));
+	double ri = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
+	if (!s->particles[0] && 2 * ri > s->width - 2 * s->r_max)
+		return sb_errf(e, SB_EUSAGE, "%s: radius_ratio %g gives an intruder of diameter %g cm that does not fit width %g (%s)",
+			       W("radius_ratio"), s->radius_ratio, 2 * ri, s->width, W("width"));
+	if (!s->output[0])
+		return sb_errf(e, SB_EUSAGE, "%s: output: must not be empty", W("output"));
+	if (s->ramp != 0 && !(s->duration > s->ramp_hold))
+		return sb_errf(e, SB_EUSAGE, "%s: ramp = %s needs duration (%g s, %s) > ramp_hold (%g s, %s): the ramp spans the rest of the run",
+			       W("ramp"), s->ramp == 1 ? "linear" : "updown", s->duration, W("duration"), s->ramp_hold,
+			       W("ramp_hold"));
+	if (s->ring && s->ring_inner >= s->ring_outer)
+		return sb_errf(e, SB_EUSAGE, "%s: ring_inner (%g) must be smaller than ring_outer (%g, %s)",
+			       W("ring_inner"), s->ring_inner, s->ring_outer, W("ring_outer"));
+	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_y < 0)
+		return sb_errf(e, SB_EUSAGE, "%s: ring: without an intruder (radius_ratio = 0) set the ring centre height ring_y",
+			       W("ring"));
+	if (!s->particles[0]) { /* the lightest disk of a generated scene is a grain of r_min */
+		char warn[8];
+		if (dtguard_check(s, s->mass_factor * s->density * s->r_min * s->r_min, warn, sizeof warn, e))
+			return e->code;
+	}
+	if (s->settle_min > s->settle_max)
+		return sb_errf(e, SB_EUSAGE, "%s: settle_min (%g) must not exceed settle_max (%g, %s)", W("settle_min"),
+			       s->settle_min, s->settle_max, W("settle_max"));
+	if (s->restart == TRI_YES && s->checkpoint_every <= 0 && !s->checkpoint[0])
+		return sb_errf(e, SB_EUSAGE, "%s: restart = yes needs a checkpoint file (checkpoint or checkpoint_every)",
+			       W("restart"));
+	return 0;
+#undef W
+}
+
