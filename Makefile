@@ -13,7 +13,7 @@ ifeq ($(origin MARCH),undefined)
 		   elif grep -qw avx2 /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v3; fi)
 endif
 # No -ffast-math and no FMA contraction: a run must be bit-identical on every machine
-# that runs the same build (MODEL.md, issue 2 point 3). -fno-math-errno only drops the
+# that runs the same build (docs/model.md, "Integrators"). -fno-math-errno only drops the
 # errno side effect of sqrt (which nobody reads), so that it compiles to one instruction.
 BASEFLAGS = -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 SAN     ?= 0

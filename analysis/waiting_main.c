@@ -21,7 +21,7 @@
 static const char *HELP =
 	"usage: waiting CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--level L]\n"
 	"               [--bins N] [--all-versions] [--no-plot] [--no-store]\n\n"
-	"Waiting time of the intruder's rise (MODEL.md: first time its centre is one intruder\n"
+	"Waiting time of the intruder's rise (docs/model.md: first time its centre is one intruder\n"
 	"diameter above its settled height; a run that ends first is right-censored at the\n"
 	"time it observed), read from the root attributes `risen` and `waiting_time` of each\n"
 	"run with an intruder (radius_ratio > 0). A run that failed is observed up to its\n"

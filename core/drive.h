@@ -1,5 +1,5 @@
 /* drive.h - the box motion y_box = A sin(phi(t)): constant frequency, or a slow
- * linear frequency ramp with a continuous phase phi = 2 pi int f dt (MODEL.md). */
+ * linear frequency ramp with a continuous phase phi = 2 pi int f dt (docs/model.md, "Walls and box motion"). */
 #ifndef SB_DRIVE_H
 #define SB_DRIVE_H
 

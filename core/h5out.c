@@ -490,7 +490,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	attr_long(&h, h.file, "n_mobile", s->st.nm);
 	attr_long(&h, h.file, "n_walls", s->st.n - s->st.nm);
 	attr_long(&h, h.file, "neighbour_builds", s->nl.builds);
-	/* MODEL.md: the waiting time is the first time the intruder's centre is one
+	/* docs/model.md, "Waiting time": the waiting time is the first time the intruder's centre is one
 	 * diameter above its settled height. A run that ends first is right-censored:
 	 * risen = 0 and waiting_time = the time observed (the survival-analysis pair). */
 	/* the largest overlap of the shaking, and where (0 when nothing touched) */

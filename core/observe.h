@@ -1,5 +1,5 @@
 /* observe.h - the paper's observables, each off unless the scene asks for it and then
- * recorded into the run's journal/HDF5 (definitions: MODEL.md "Decisions"):
+ * recorded into the run's journal/HDF5 (definitions: docs/model.md, "Observables"):
  *   flux      crossings of nlines height lines between stroboscopic samples, j_top in
  *             the central half, j_bot in the outer half, per period (Fig. 3, ramps);
  *   field     per-disk displacement between samples averaged on a grid of cells one

@@ -13,7 +13,7 @@
 #define OFF(f) offsetof(sb_scene, f)
 #define BIG 1e300
 
-/* Defaults are the `paper` preset of shared/MODEL.md; every row names its unit. */
+/* Defaults are the `paper` preset (docs/model.md); every row names its unit. */
 static const sb_param TABLE[] = {
 	/* --- preparation --- */
 	{"n_grains", PT_INT, "", "950", 0, 10000000, NULL, PF_PREP, OFF(n_grains),
@@ -533,7 +533,7 @@ static const char *type_name(const sb_param *p)
 
 void params_print_help(FILE *f)
 {
-	fprintf(f, "Scene keys (units cgs; defaults are the paper preset of MODEL.md):\n");
+	fprintf(f, "Scene keys (units cgs; defaults are the paper preset of docs/model.md):\n");
 	for (size_t i = 0; i < NTABLE; i++) {
 		const sb_param *p = &TABLE[i];
 		char rng[96] = "";

@@ -6,7 +6,7 @@
 #include "params.h"
 #include "state.h"
 
-/* Mass model of MODEL.md: m = mass_factor * rho * R^2, I = m R^2 / 2. */
+/* Mass model (docs/model.md, "Units and the paper's values"): m = mass_factor * rho * R^2, I = m R^2 / 2. */
 double prepare_mass(const sb_scene *sc, double r);
 
 /* Place grains, the intruder and the walls for a scene (no particles file). */

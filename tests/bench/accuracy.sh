@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# accuracy.sh - run time against error for every integrator (issue 5, section 1;
+# accuracy.sh - run time against error for every integrator (
 # `make bench-accuracy`). Three measurements, one table each, a work-precision plot and
 # a conclusion in build/bench/accuracy/report.txt:
 #  (a) two-disk collisions (disk-disk, disk-wall; head-on, oblique) against the analytic
@@ -238,7 +238,7 @@ awk -v rig="$REF_IG" -v rdt="$REF_DT" -v dw="$DUR_W" -v df="$DUR_F" -v pw="$OUT/
 gnuplot <<EOF 2>/dev/null
 set terminal pngcairo size 1500,480 font ',10'
 set output '$OUT/work_precision.png'
-set multiplot layout 1,3 title 'shakebox work-precision (issue 5): error against cost, one curve per integrator'
+set multiplot layout 1,3 title 'shakebox work-precision: error against cost, one curve per integrator'
 set logscale xy
 set grid
 set key top right

@@ -1,5 +1,5 @@
 /* accuracy_collision.c - run time against error of every integrator on single
- * two-disk collisions (issue 5, section 1a): restitution coefficient and contact
+ * two-disk collisions: restitution coefficient and contact
  * duration against the analytic linear spring-dashpot solution (head-on) or against
  * a gear5 run at dt = 1e-7 s (oblique, where the rotating contact normal and the
  * shear force make the 1D solution only approximate), for dt from 1e-5 s up to

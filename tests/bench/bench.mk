@@ -1,4 +1,4 @@
-# bench.mk - issue 5 evidence: run time against error (`make bench-accuracy`) and the
+# bench.mk - the evidence for speed and accuracy: run time against error (`make bench-accuracy`) and the
 # numerical-stability stress tests (`make stress`). Included by the top-level Makefile;
 # neither target is part of `make check` (tests/integration/stress_quick.sh is).
 # Knobs: ACC_QUICK=1 (a few-minute accuracy run), STRESS_QUICK=1 (a short stress run),

@@ -45,7 +45,7 @@ set -- $t0y
 [ "${1:-x}" = 0 ] && within "${2:-}" "$y0" 1e-12 && ok rise.trajectory_starts_at_settled_y ||
 	fail rise.trajectory_starts_at_settled_y "first sample '$t0y', intruder_settled_y $y0"
 
-# waiting_time (MODEL.md): the first time the intruder's centre is more than one intruder
+# waiting_time (docs/model.md, "Waiting time"): the first time the intruder's centre is more than one intruder
 # diameter above its settled height. Computed here from the trajectory, independently of
 # the engine: the diameter from the scene's parameters (the intruder's radius is
 # radius_ratio times the mean grain radius (r_min + r_max) / 2), the height relative to
@@ -110,7 +110,7 @@ within "$sh" "$surf" 1e-9 && ok settled.surface_height_from_settled_state ||
 	fail settled.surface_height_from_settled_state "surface_height $sh, recomputed from the settled particles '$surf'"
 
 # The depth key is the number of rows of small grains placed beneath the intruder
-# (MODEL.md, --help; 0 = on the bottom wall). With the same grains, more rows beneath
+# (docs/model.md "Preparation", --help; 0 = on the bottom wall). With the same grains, more rows beneath
 # put the intruder higher and leave fewer grains above it: intruder_settled_y grows and
 # intruder_settled_depth shrinks as depth grows. Settle only (duration = 0).
 prev_y='' prev_d='' prev_b='' mono_y=1 mono_d=1 mono_b=1 runs=0 b0=''

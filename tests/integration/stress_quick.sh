@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# stress_quick.sh - the short subset of `make stress` (issue 5, section 2) for make check:
+# stress_quick.sh - the short subset of `make stress` for make check:
 # every integrator runs a small shaken bed at twice the paper's dt and stops with a clear
 # blow-up error (exit 3/4/5, no NaN in the file) at 40x; a settled bed left without
 # vibration for 1e5 steps stays at rest (no heating, no creep) for each integrator;

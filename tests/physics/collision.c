@@ -1,5 +1,5 @@
 /* collision.c - head-on collisions of two disks against the analytic linear
- * spring-dashpot solution (MODEL.md contact law, gear5).
+ * spring-dashpot solution (docs/model.md, "Contact law"; gear5).
  *
  * Relative coordinate: xi = R_i + R_j - d. For two mobile disks the force F_N acts on
  * i along n and on j along -n, so xi'' = -F_N / m_eff with

@@ -1,5 +1,5 @@
 /* tangential.c - sign conventions and conservation laws of the tangential force
- * and the torques (MODEL.md: F_S = -sign(v_t) min(gS m_eff |v_t|, mu |F_N|),
+ * and the torques (docs/model.md, "Contact law": F_S = -sign(v_t) min(gS m_eff |v_t|, mu |F_N|),
  * v_t = (v_i - v_j).t - (R_i w_i + R_j w_j), t = n rotated by +90 deg, torque on
  * each disk -R F_S).
  *

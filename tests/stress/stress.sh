@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# stress.sh - numerical-stability stress tests (issue 5, section 2; `make stress`).
+# stress.sh - numerical-stability stress tests (`make stress`).
 # Prints "ok ID" / "FAIL ID: why" per check and writes tables to
 # build/stress/report.txt and a plot build/stress/dt_max.png:
 #  (i)   the largest stable dt of each integrator for stiffness Y = 3e5 .. 3e8 (bisection

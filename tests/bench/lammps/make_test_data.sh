@@ -6,7 +6,7 @@
 #
 # usage: make_test_data.sh [NGRAINS=950] [SEED=1] [R1=4] [W=60] [NSIDE=44] > file.data
 #
-# Geometry (MODEL.md defaults):
+# Geometry (docs/model.md defaults):
 #   type 3 wall disks, radius 1, touching (spacing 2): bottom row centres at
 #   y = -1, x = -1, 1, ..., W+1; side columns at x = -1 and x = W+1,
 #   y = 1, 3, ..., 2*NSIDE-1.

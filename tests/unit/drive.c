@@ -1,0 +1,151 @@
+/* drive.c - the box motion (core/drive.h): the phase of every drive, frequency ramps
+ * up, down and up-and-down included, is continuous with rate f(t), and the velocity
+ * and acceleration are the derivatives of the displacement. */
+#include <math.h>
+#include <stdio.h>
+
+#include "drive.h"
+#include "testlib.h"
+
+static void test_ramp(void)
+{
+	/* the phase of every drive is continuous with derivative f(t), also at the turn */
+	sb_drive d[4] = {{RAMP_NONE, 2, 3.0, 0, 0, 10, 0},
+			 {RAMP_LINEAR, 2, 0, 2.5, 3.2, 10, 0},
+			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10, 0},
+			 {RAMP_UPDOWN, 2, 0, 2.5, 3.2, 10, 1.5}};
+	const char *names[4] = {"none", "linear", "updown", "updown_hold"};
+	for (int k = 0; k < 4; k++) {
+		double worst_c = 0, worst_f = 0, worst_y = 0;
+		const double h = 1e-6;
+		for (double t = 0.01; t < 12; t += 0.0173) {
+			/* derivative of cycles is f (central difference, O(h^2) ~ 1e-12) */
+			double dc = (drive_cycles(&d[k], t + h) - drive_cycles(&d[k], t - h)) / (2 * h);
+			worst_f = fmax(worst_f, fabs(dc - drive_freq(&d[k], t)));
+			/* velocity is the derivative of the position */
+			double dy = (drive_y(&d[k], t + h) - drive_y(&d[k], t - h)) / (2 * h);
+			worst_y = fmax(worst_y, fabs(dy - drive_v(&d[k], t)) / (2 * 2 * 3.14159 * 3.2));
+		}
+		/* continuity at the turning point and at the end of the ramp */
+		double ts[3] = {5 + d[k].hold, 10 + d[k].hold, d[k].hold > 0 ? d[k].hold : 5};
+		for (int q = 0; q < 3; q++)
+			worst_c = fmax(worst_c, fabs(drive_cycles(&d[k], ts[q] + 1e-9) - drive_cycles(&d[k], ts[q] - 1e-9)));
+		char id[64];
+		snprintf(id, sizeof id, "drive.%s.phase_rate_is_frequency", names[k]);
+		CHECK(id, worst_f < 1e-6, "max |dcycles/dt - f| = %g", worst_f);
+		snprintf(id, sizeof id, "drive.%s.velocity_is_derivative", names[k]);
+		CHECK(id, worst_y < 1e-6, "max relative |dy/dt - v| = %g", worst_y);
+		snprintf(id, sizeof id, "drive.%s.phase_continuous", names[k]);
+		CHECK(id, worst_c < 1e-7, "jump %g", worst_c);
+	}
+	/* updown returns to the start frequency and covers the mean frequency's cycles */
+	CHECK_REL("drive.updown.ends_at_start", drive_freq(&d[2], 10), 2.5, 1e-15);
+	CHECK_REL("drive.updown.turns_at_top", drive_freq(&d[2], 5), 3.2, 1e-15);
+	CHECK_REL("drive.updown.cycles", drive_cycles(&d[2], 10), 0.5 * (2.5 + 3.2) * 10, 1e-14);
+	CHECK_REL("drive.linear.cycles", drive_cycles(&d[1], 10), 0.5 * (2.5 + 3.2) * 10, 1e-14);
+	/* the acceleration is the derivative of the velocity */
+	double worst_a = 0;
+	for (double t = 0.01; t < 10; t += 0.031) {
+		double h = 1e-6;
+		double da = (drive_v(&d[2], t + h) - drive_v(&d[2], t - h)) / (2 * h);
+		worst_a = fmax(worst_a, fabs(da - drive_a(&d[2], t)) / (2 * pow(2 * 3.14159 * 3.2, 2)));
+	}
+	CHECK("drive.updown.acceleration_is_derivative", worst_a < 1e-5, "max relative %g", worst_a);
+	/* a hold keeps f0, then the same ramp shifted in time */
+	CHECK_REL("drive.hold.holds", drive_freq(&d[3], 1.0), 2.5, 1e-15);
+	CHECK_REL("drive.hold.turns_later", drive_freq(&d[3], 6.5), 3.2, 1e-15);
+	CHECK_REL("drive.hold.cycles", drive_cycles(&d[3], 11.5), 2.5 * 1.5 + 0.5 * (2.5 + 3.2) * 10, 1e-14);
+}
+
+/* The cycles of d over [0, b] as the integral of its frequency, without drive_cycles:
+ * Simpson's rule on each piece between the breakpoints of the definition (end of the
+ * hold, end of the ramp), where f is linear or constant and Simpson's rule is exact. */
+static double cycles_by_quadrature(const sb_drive *d, double b)
+{
+	double edge[4] = {0, d->hold, d->hold + d->T, INFINITY}, sum = 0;
+	for (int p = 0; p < 3 && edge[p] < b; p++) {
+		double lo = edge[p], hi = fmin(edge[p + 1], b), h = (hi - lo) / 20;
+		double s = drive_freq(d, lo + 1e-12) + drive_freq(d, hi - 1e-12);
+		for (int i = 1; i < 20; i++)
+			s += (i % 2 ? 4 : 2) * drive_freq(d, lo + i * h);
+		sum += s * h / 3;
+	}
+	return sum;
+}
+
+/* A linear ramp DOWN (ramp_from > ramp_to): f falls linearly from f0 to f1 over T (after
+ * the hold) and stays at f1; the phase is 2 pi int f dt, continuous everywhere, and the
+ * box velocity and acceleration are the derivatives of its position and velocity (the
+ * acceleration carries 2 pi A (df/dt) cos(phi), negative on the way down). */
+static void test_ramp_down(void)
+{
+	const double f0 = 3.2, f1 = 2.5, T = 10, A = 2;
+	const double holds[2] = {0, 1.5};
+	const char *names[2] = {"linear_down", "linear_down_hold"};
+	for (int k = 0; k < 2; k++) {
+		const double hold = holds[k];
+		sb_drive d = {RAMP_LINEAR, A, 0, f0, f1, T, hold};
+		double worst_lin = 0, worst_rate = 0, worst_int = 0, worst_y = 0, worst_a = 0, worst_end = 0;
+		int decreasing = 1;
+		const double h = 1e-6, vscale = A * 2 * M_PI * f0, ascale = A * pow(2 * M_PI * f0, 2);
+		for (double t = 0.01; t < hold + T + 2; t += 0.0173) {
+			double f = drive_freq(&d, t);
+			/* the line through (hold, f0) and (hold + T, f1), f0 before, f1 after */
+			double want = t < hold ? f0 : t > hold + T ? f1 : f0 + (f1 - f0) * (t - hold) / T;
+			if (t < hold + T)
+				worst_lin = fmax(worst_lin, fabs(f - want));
+			else
+				worst_end = fmax(worst_end, fabs(f - want));
+			if (t > hold + 0.02 && t < hold + T)
+				decreasing &= drive_freq(&d, t) < drive_freq(&d, t - 0.01);
+			double dc = (drive_cycles(&d, t + h) - drive_cycles(&d, t - h)) / (2 * h);
+			worst_rate = fmax(worst_rate, fabs(dc - f));
+			double dy = (drive_y(&d, t + h) - drive_y(&d, t - h)) / (2 * h);
+			worst_y = fmax(worst_y, fabs(dy - drive_v(&d, t)) / vscale);
+			double dv = (drive_v(&d, t + h) - drive_v(&d, t - h)) / (2 * h);
+			worst_a = fmax(worst_a, fabs(dv - drive_a(&d, t)) / ascale);
+		}
+		/* cycles = the integral of f from 0, at points spread over hold, ramp and after */
+		const double tq[5] = {hold * 0.5, hold + 0.3 * T, hold + T, hold + T + 1.7, hold + 0.999 * T};
+		for (int q = 0; q < 5; q++)
+			worst_int = fmax(worst_int, fabs(drive_cycles(&d, tq[q]) - cycles_by_quadrature(&d, tq[q])));
+		/* no jump of phase, position or velocity where the ramp starts and ends */
+		double worst_c = 0, worst_jy = 0;
+		const double tj[2] = {hold, hold + T};
+		for (int q = 0; q < 2; q++) {
+			double a = tj[q] - 1e-9, b = tj[q] + 1e-9;
+			worst_c = fmax(worst_c, fabs(drive_cycles(&d, b) - drive_cycles(&d, a)));
+			worst_jy = fmax(worst_jy, fabs(drive_y(&d, b) - drive_y(&d, a)) / A);
+			worst_jy = fmax(worst_jy, fabs(drive_v(&d, b) - drive_v(&d, a)) / vscale);
+		}
+		char id[80];
+		snprintf(id, sizeof id, "drive.%s.frequency_linear", names[k]);
+		CHECK(id, worst_lin < 1e-13, "max |f - (f0 + (f1 - f0) t / T)| = %g", worst_lin);
+		snprintf(id, sizeof id, "drive.%s.frequency_decreases", names[k]);
+		CHECK(id, decreasing, "f(t) not strictly decreasing on the ramp");
+		snprintf(id, sizeof id, "drive.%s.holds_end_frequency", names[k]);
+		CHECK(id, worst_end < 1e-13, "max |f - f1| after the ramp = %g", worst_end);
+		snprintf(id, sizeof id, "drive.%s.phase_rate_is_frequency", names[k]);
+		CHECK(id, worst_rate < 1e-6, "max |dcycles/dt - f| = %g", worst_rate);
+		snprintf(id, sizeof id, "drive.%s.phase_is_integral_of_frequency", names[k]);
+		CHECK(id, worst_int < 1e-9, "max |cycles - Simpson int f dt| = %g", worst_int);
+		snprintf(id, sizeof id, "drive.%s.phase_continuous", names[k]);
+		CHECK(id, worst_c < 1e-7, "jump %g", worst_c);
+		snprintf(id, sizeof id, "drive.%s.motion_continuous", names[k]);
+		CHECK(id, worst_jy < 1e-7, "relative jump of y or v %g", worst_jy);
+		snprintf(id, sizeof id, "drive.%s.velocity_is_derivative", names[k]);
+		CHECK(id, worst_y < 1e-6, "max relative |dy/dt - v| = %g", worst_y);
+		snprintf(id, sizeof id, "drive.%s.acceleration_is_derivative", names[k]);
+		CHECK(id, worst_a < 1e-5, "max relative |dv/dt - a| = %g", worst_a);
+		/* the hold's f0 hold plus the ramp's trapezoid (f0 + f1) T / 2 */
+		snprintf(id, sizeof id, "drive.%s.cycles", names[k]);
+		CHECK_REL(id, drive_cycles(&d, hold + T), f0 * hold + 0.5 * (f0 + f1) * T, 1e-14);
+	}
+}
+
+int main(void)
+{
+	test_ramp();
+	test_ramp_down();
+	return tl_done();
+}
