@@ -74,8 +74,7 @@ const char *params_where(const sb_scene *s, const char *key);
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
 
 /* What a parameter influences. The study driver hashes PREP keys for the packing
- * cache and every key but its own (paths, restart, progress, checkpoint_every) for
- * the run identity (study/grid.c: what is recorded changes a run's output too); a
+ * cache and every key but the DRIVER and NOID ones for the run identity (study/grid.c: what is recorded changes a run's output too); a
  * checkpoint is only resumed when every PREP|DYN key equals the scene's. */
 enum sb_pflag {
 	PF_PREP = 1,   /* changes the prepared (settled) state */
@@ -83,6 +82,10 @@ enum sb_pflag {
 	PF_LEN = 4,    /* changes how long the run is */
 	PF_OUT = 8,    /* only where and what is written */
 	PF_MINX = 16,  /* the minimum is exclusive */
+	PF_DRIVER = 32, /* set by the campaign driver for every run (paths, restart,
+			 * progress): refused in a campaign file, never in a run's id */
+	PF_NOID = 64,  /* a campaign may set it, but it is not in a run's id (when the
+			* state is saved, not what a run computes) */
 };
 
 typedef struct sb_param {

@@ -13,12 +13,8 @@
 
 int campaign_key_reserved(const char *key)
 {
-	static const char *const own[] = {"output", "checkpoint", "restart", "write_particles",
-					  "write_lammps", "progress", NULL};
-	for (int i = 0; own[i]; i++)
-		if (!strcmp(key, own[i]))
-			return 1;
-	return 0;
+	const sb_param *p = params_find(key);
+	return p && (p->flags & PF_DRIVER);
 }
 
 static void trim(char *s)

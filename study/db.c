@@ -309,7 +309,7 @@ int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s
 		    c->name, r->id))
 		return e->code;
 	for (size_t i = 0; i < n; i++) {
-		if (!strcmp(t[i].name, "output") || !strcmp(t[i].name, "progress"))
+		if (t[i].flags & PF_DRIVER) /* the same for every run: the driver's */
 			continue;
 		const char *base = (const char *)s + t[i].offset;
 		char v[SB_STR_MAX + 8];

@@ -580,7 +580,7 @@ static int check_changes(drv *d, sb_err *e)
 		db_exec(&d->db, e, &pv, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "");
 		int shown = 0;
 		for (size_t k = 0; pv && k < np && l < sizeof msg - 200; k++) {
-			if (!strcmp(t[k].name, "output") || !strcmp(t[k].name, "progress") || !strcmp(t[k].name, "seed"))
+			if ((t[k].flags & PF_DRIVER) || !strcmp(t[k].name, "seed")) /* seed: the replicate's */
 				continue;
 			char olds[1024] = "", news[1024] = "";
 			int no = 0, nn = 0;

@@ -45,7 +45,7 @@ static unsigned long long run_hash(const sb_scene *s, const sb_scene *def)
 	size_t n;
 	const sb_param *tab = params_table(&n);
 	for (size_t i = 0; i < n; i++) {
-		if (!campaign_key_reserved(tab[i].name) && strcmp(tab[i].name, "checkpoint_every"))
+		if (!(tab[i].flags & (PF_DRIVER | PF_NOID)))
 			continue;
 		char v[SB_STR_MAX + 8];
 		sb_err e = {0};
