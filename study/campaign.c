@@ -289,6 +289,8 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 
 /* ---- the INI reader (same line counting as core/params.c) ---- */
 
+#define CP_MAX_LINES 100000
+
 enum { SEC_NONE, SEC_CAMPAIGN, SEC_SCENE, SEC_GRID };
 
 struct rd {
@@ -327,6 +329,13 @@ static char *cp_reader(char *str, int num, void *stream)
 		return NULL;
 	str[len] = 0;
 	r->line++;
+	if (r->line > CP_MAX_LINES) {
+		/* a pipe that never ends (yes '# x' |) must not keep the reader forever */
+		r->err_line = r->line;
+		sb_errf(r->e, SB_EUSAGE, "%s:%d: more than %d lines (a campaign file is a few dozen)", r->c->path,
+			r->line, CP_MAX_LINES);
+		return NULL;
+	}
 	if (nul) {
 		r->err_line = r->line;
 		sb_errf(r->e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a campaign file is text)", r->c->path,

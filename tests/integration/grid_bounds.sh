@@ -73,6 +73,11 @@ refused_file cp.nul_in_value 5 "NUL byte in column 14 (a campaign file is text)"
 refused_file cp.nul_line 5 "NUL byte in column 1"
 { printf '%s\n' "${H[@]}" '[grid]'; printf 'frequency = 2\n\0'; } >cp.nul_at_end.campaign
 refused_file cp.nul_at_end 6 "NUL byte in column 1"
+# an endless campaign (a pipe of comments) is bounded
+timeout -k 2 "$LIMIT" "$STUDY" expand <(printf '%s\n' "${H[@]}"; yes '# a comment') >cp.endless.out 2>cp.endless.err
+rc=$?
+[ "$rc" -eq 1 ] && grep -qE ':100001: more than 100000 lines' cp.endless.err && sanitizer_free cp.endless.err &&
+	ok cp.endless || fail cp.endless "exit $rc: $(head -c 300 cp.endless.err)"
 
 # --- each axis is bounded before its values are made ---
 # 100001 values: the count is refused before they are made (it took 24 s to make them,
