@@ -1,6 +1,8 @@
 /* adb.c - campaign runs, parameter grouping and the `analysis` results table. */
 #include "adb.h"
 
+#include "layout.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -140,7 +142,9 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 			 sqlite3_column_text(st, 6) ? (const char *)sqlite3_column_text(st, 6) : "");
 		x->status_time = sqlite3_column_type(st, 7) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 7);
 		x->used_s = x->planned_s = NAN;
-		snprintf(x->path, sizeof x->path, "%s/%s/%s.h5", runs_dir, campaign, x->id);
+		char dir[1200];
+		layout_campaign(runs_dir, campaign, dir, sizeof dir);
+		layout_file(dir, 0, x->id, LAY_OUTPUT, x->path, sizeof x->path);
 		sqlite3_bind_text(ps, 1, campaign, -1, SQLITE_TRANSIENT);
 		sqlite3_bind_text(ps, 2, x->id, -1, SQLITE_TRANSIENT);
 		int pc = 0;

@@ -3,13 +3,14 @@
 # $(BUILD)/analysis/libanalysis.a; each tool is one *_main.c.
 AN_MAIN   = onset hysteresis waiting figures
 AN_SRC    = $(filter-out %_main.c,$(wildcard analysis/*.c))
-AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o)
+# and study/layout.o: the runs directory's layout is bin/study's
+AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o) $(BUILD)/study/layout.o
 AN_LIB    = $(BUILD)/analysis/libanalysis.a
 AN_BIN    = $(AN_MAIN:%=$(BIN)/%)
 AN_TSRC   = $(wildcard tests/analysis/*.c)
 AN_TBIN   = $(AN_TSRC:%.c=$(BUILD)/%)
 
-$(BUILD)/analysis/%.o: ALLCFLAGS += -Ianalysis
+$(BUILD)/analysis/%.o: ALLCFLAGS += -Ianalysis -Istudy
 
 $(AN_LIB): $(AN_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")

@@ -1,6 +1,8 @@
 /* cli.c - shared options, paths, grouping keys, CSV and gnuplot helpers. */
 #include "cli.h"
 
+#include "layout.h"
+
 #include <errno.h>
 #include <math.h>
 #include <spawn.h>
@@ -182,7 +184,7 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *a
 		fprintf(stderr, "%s: which campaign? (%s --help)\n", tool, tool);
 		return 1;
 	}
-	/* RUNS/study.db and RUNS/CAMPAIGN/ID.h5 are bin/study's layout */
+	/* bin/study's layout (study/layout.h) */
 	if (runs)
 		snprintf(o->runs, sizeof o->runs, "%s", runs);
 	else if (db) {
@@ -194,9 +196,14 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *a
 			snprintf(o->runs, sizeof o->runs, ".");
 	} else
 		snprintf(o->runs, sizeof o->runs, "runs");
-	int l1 = db ? snprintf(o->db, sizeof o->db, "%s", db) : snprintf(o->db, sizeof o->db, "%s/study.db", o->runs);
-	int l2 = out ? snprintf(o->out, sizeof o->out, "%s", out)
-		     : snprintf(o->out, sizeof o->out, "%s/%s/analysis", o->runs, o->campaign);
+	int l1 = layout_db(o->runs, db, o->db, sizeof o->db), l2;
+	if (out) {
+		l2 = snprintf(o->out, sizeof o->out, "%s", out);
+	} else {
+		char dir[1200];
+		layout_campaign(o->runs, o->campaign, dir, sizeof dir);
+		l2 = layout_sub(dir, "analysis", o->out, sizeof o->out);
+	}
 	if (l1 >= (int)sizeof o->db || l2 >= (int)sizeof o->out - 300) {
 		fprintf(stderr, "%s: path too long\n", tool);
 		return 1;

@@ -21,6 +21,7 @@
 #include "db.h"
 #include "grid.h"
 #include "h5sum.h"
+#include "layout.h"
 #include "safe.h"
 #include "worker.h"
 
@@ -56,10 +57,7 @@ static void on_signal(int sig)
 
 void driver_db_path(const char *runs_dir, const char *db_path, char *out, size_t len)
 {
-	if (db_path)
-		snprintf(out, len, "%s", db_path);
-	else
-		snprintf(out, len, "%s/study.db", runs_dir ? runs_dir : "runs");
+	layout_db(runs_dir, db_path, out, len);
 }
 
 static int mkdir_p(const char *path, sb_err *e)
@@ -90,7 +88,7 @@ static int ingest_cache(drv *d, const char *key, sb_err *e);
 static int ingest_run(drv *d, const char *id, sb_err *e)
 {
 	char path[PATHX], now[32];
-	snprintf(path, sizeof path, "%s/%s.h5", d->dir, id);
+	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 	db_now(now, sizeof now);
 	h5sum s;
 	sb_err re = {0};
@@ -103,12 +101,12 @@ static int ingest_run(drv *d, const char *id, sb_err *e)
 		 * rebuilt from the files gets from_cache and the cache's row back */
 		const grid_run *r = grid_find(&d->g, id);
 		char want[128];
-		snprintf(want, sizeof want, "cache/%s.txt", r ? r->cache_key : "");
+		layout_cache_particles("", r ? r->cache_key : "", want, sizeof want);
 		if (r && !strcmp(s.particles, want)) {
 			char st[16];
 			cache_state(d, r->cache_key, st, sizeof st);
 			char h5[PATHX];
-			snprintf(h5, sizeof h5, "%s/cache/%s.h5", d->dir, r->cache_key);
+			layout_file(d->dir, 1, r->cache_key, LAY_OUTPUT, h5, sizeof h5);
 			if (!st[0] && exists(h5))
 				ingest_cache(d, r->cache_key, e);
 			if (!e->code)
@@ -131,8 +129,8 @@ static int ingest_run(drv *d, const char *id, sb_err *e)
 static int ingest_cache(drv *d, const char *key, sb_err *e)
 {
 	char path[PATHX], txt[PATHX], now[32];
-	snprintf(path, sizeof path, "%s/cache/%s.h5", d->dir, key);
-	snprintf(txt, sizeof txt, "%s/cache/%s.txt", d->dir, key);
+	layout_file(d->dir, 1, key, LAY_OUTPUT, path, sizeof path);
+	layout_cache_particles(d->dir, key, txt, sizeof txt);
 	db_now(now, sizeof now);
 	h5sum s;
 	sb_err re = {0};
@@ -172,7 +170,7 @@ static int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	long code = strtol(f[2], NULL, 10);
 	char path[PATHX];
 	if (is_cache) {
-		snprintf(path, sizeof path, "%s/cache/%s.h5", d->dir, name);
+		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
 		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128)) {
 			if (db_begin(&d->db, e))
 				return e->code;
@@ -190,7 +188,7 @@ static int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	if (!r)
 		return 0;
 	d->started[r - d->g.runs] = 2;
-	snprintf(path, sizeof path, "%s/%s.h5", d->dir, name);
+	layout_file(d->dir, 0, name, LAY_OUTPUT, path, sizeof path);
 	if (exists(path))
 		return ingest_run(d, name, e);
 	if (code == 0)
@@ -234,7 +232,7 @@ static int on_start(drv *d, char *line, sb_err *e)
 	/* where this attempt's lines begin in the run's log (earlier attempts precede) */
 	char lp[PATHX];
 	struct stat sb;
-	snprintf(lp, sizeof lp, "%s/logs/%s.log", d->dir, r->id);
+	layout_file(d->dir, 0, r->id, LAY_LOG, lp, sizeof lp);
 	d->logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
 	char now[32];
 	db_now(now, sizeof now);
@@ -261,10 +259,10 @@ static void unreported(drv *d, sb_err *e)
 		d->started[i] = 2;
 		const char *id = d->g.runs[i].id;
 		char path[PATHX], msg[1024] = "", now[32];
-		snprintf(path, sizeof path, "%s/%s.h5", d->dir, id);
+		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 		if (exists(path))
 			continue; /* finished after all: the sweep ingests it */
-		snprintf(path, sizeof path, "%s/logs/%s.log", d->dir, id);
+		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
 		worker_last_message(path, d->logfrom[i], msg, sizeof msg);
 		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
 		 * no checkpoint yet, and it says so) */
@@ -657,14 +655,21 @@ static int check_changes(drv *d, sb_err *e)
 	}
 	if (d->o->forget_old) {
 		char dir[PATHX];
-		snprintf(dir, sizeof dir, "%s/forgotten", d->dir);
+		layout_sub(d->dir, "forgotten", dir, sizeof dir);
 		if (mkdir_p(dir, e))
 			goto out;
 		for (long i = 0; i < ns; i++) {
-			static const char *const files[] = {"%s/%s.h5", "%s/%s.xmf", "%s/jobs/%s.args", "%s/logs/%s.log"};
-			for (size_t k = 0; k < sizeof files / sizeof *files; k++) {
+			static const enum lay_kind kinds[] = {LAY_OUTPUT, LAY_ARGS, LAY_LOG};
+			for (size_t k = 0; k < sizeof kinds / sizeof *kinds + 1; k++) {
 				char from[PATHX], to[PATHX + 64];
-				snprintf(from, sizeof from, files[k], d->dir, stale[i]);
+				if (k < sizeof kinds / sizeof *kinds)
+					layout_file(d->dir, 0, stale[i], kinds[k], from, sizeof from);
+				else { /* the output's ParaView sidecar: ID.xmf beside ID.h5 */
+					int l = layout_file(d->dir, 0, stale[i], LAY_OUTPUT, from, sizeof from);
+					if (l < 3 || (size_t)l + 2 > sizeof from)
+						continue;
+					memcpy(from + l - 3, ".xmf", 5);
+				}
 				snprintf(to, sizeof to, "%s/%s", dir, strrchr(from, '/') + 1);
 				if (exists(from) && rename(from, to))
 					fprintf(stderr, "study: %s: cannot move aside: %s\n", from, strerror(errno));
@@ -709,12 +714,12 @@ static int record(drv *d, sb_err *e)
 static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb_err *e)
 {
 	char path[PATHX], keep[PATHX + 64], now[32];
-	snprintf(path, sizeof path, "%s/%s.h5", d->dir, id);
+	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 	if (exists(path)) {
-		snprintf(keep, sizeof keep, "%s/damaged", d->dir);
+		layout_sub(d->dir, "damaged", keep, sizeof keep);
 		if (mkdir_p(keep, e))
 			return e->code;
-		snprintf(keep, sizeof keep, "%s/damaged/%s.attempt%ld.h5", d->dir, id, att);
+		layout_aside(d->dir, "damaged", id, att, keep, sizeof keep);
 		if (rename(path, keep))
 			return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
 	}
@@ -735,10 +740,11 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
  * of processes that are gone. */
 static void remove_litter(drv *d, const char *id)
 {
-	static const char *const stale[] = {"%s/%s.h5.ckpt", "%s/%s.h5.journal"};
+	static const char *const stale[] = {".ckpt", ".journal"}; /* the engine's, beside its output */
 	char p[PATHX + 256];
 	for (size_t k = 0; k < sizeof stale / sizeof *stale; k++) {
-		snprintf(p, sizeof p, stale[k], d->dir, id);
+		int l = layout_file(d->dir, 0, id, LAY_OUTPUT, p, sizeof p - 16);
+		snprintf(p + l, sizeof p - (size_t)l, "%s", stale[k]);
 		unlink(p);
 	}
 	DIR *dd = opendir(d->dir);
@@ -784,7 +790,7 @@ static int sweep(drv *d, long *pend, long *npend, sb_err *e)
 		if (db_run_state(&d->db, d->c.name, r->id, st, sizeof st, &att, e))
 			return e->code;
 		char path[PATHX];
-		snprintf(path, sizeof path, "%s/%s.h5", d->dir, r->id);
+		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
 		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
 		if (queued && exists(path)) {
 			if (ingest_run(d, r->id, e))
@@ -822,7 +828,7 @@ static int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			/* keep the failed output beside the attempt that produced it */
 			if (exists(path)) {
 				char keep[PATHX];
-				snprintf(keep, sizeof keep, "%s/failed/%s.attempt%ld.h5", d->dir, r->id, att);
+				layout_aside(d->dir, "failed", r->id, att, keep, sizeof keep);
 				if (rename(path, keep))
 					return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
 			}
@@ -887,7 +893,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	for (long k = 0; k < nk && !e->code; k++) {
 		char st[16], h5[PATHX];
 		cache_state(d, keys[k], st, sizeof st);
-		snprintf(h5, sizeof h5, "%s/cache/%s.h5", d->dir, keys[k]);
+		layout_file(d->dir, 1, keys[k], LAY_OUTPUT, h5, sizeof h5);
 		if (!strcmp(st, "failed") && d->o->retry_failed) {
 			unlink(h5);
 			st[0] = 0;
@@ -904,13 +910,13 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 		sb_scene s;
 		grid_scene(&d->g, &d->g.runs[first[k]], &s);
 		char args[PATHX], out[64];
-		snprintf(args, sizeof args, "%s/cache/%s.args", d->dir, keys[k]);
-		snprintf(out, sizeof out, "cache/%s.h5", keys[k]);
+		layout_file(d->dir, 1, keys[k], LAY_ARGS, args, sizeof args);
+		layout_file("", 1, keys[k], LAY_OUTPUT, out, sizeof out);
 		driver_owned(&s, out);
 		s.duration = 0;
 		s.checkpoint_every = 0;
 		s.restart = TRI_NO;
-		snprintf(s.write_particles, sizeof s.write_particles, "cache/%s.txt", keys[k]);
+		layout_cache_particles("", keys[k], s.write_particles, sizeof s.write_particles);
 		if (!write_args(args, &s, e))
 			build[nb++] = keys[k];
 	}
@@ -940,8 +946,8 @@ static int prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 	for (long i = 0; i < npend && !e->code; i++) {
 		const grid_run *r = &d->g.runs[pend[i]];
 		char args[PATHX], out[64];
-		snprintf(args, sizeof args, "%s/jobs/%s.args", d->dir, r->id);
-		snprintf(out, sizeof out, "%s.h5", r->id);
+		layout_file(d->dir, 0, r->id, LAY_ARGS, args, sizeof args);
+		layout_file("", 0, r->id, LAY_OUTPUT, out, sizeof out);
 		names[i] = (char *)r->id;
 		if (exists(args))
 			continue; /* a resumed run keeps its arguments (and its cache choice) */
@@ -952,7 +958,7 @@ static int prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 		if (fc) {
 			/* bit-identical to settling here (engine contract); only the particles,
 			 * settle and settle_* attributes of the output differ */
-			snprintf(s.particles, sizeof s.particles, "cache/%s.txt", r->cache_key);
+			layout_cache_particles("", r->cache_key, s.particles, sizeof s.particles);
 			s.settle = TRI_NO;
 		}
 		if (db_begin(&d->db, e))
@@ -1013,7 +1019,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 		goto out;
 	}
 	/* the campaign name is checked ([A-Za-z0-9_.-], no leading dot): this stays inside root */
-	snprintf(d->dir, sizeof d->dir, "%s/%s", d->root, d->c.name);
+	layout_campaign(d->root, d->c.name, d->dir, sizeof d->dir);
 	const char *sub[] = {"", "/jobs", "/logs", "/cache", "/failed"};
 	for (size_t i = 0; i < sizeof sub / sizeof *sub; i++) {
 		char p[PATHX];

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "params.h"
+#include "layout.h"
 #include "safe.h"
 
 static volatile sig_atomic_t g_child;
@@ -89,10 +90,10 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		return 1;
 	}
 	char args[600], log[600], out[600], lockp[600];
-	snprintf(args, sizeof args, "%s/%s.args", is_cache ? "cache" : "jobs", name);
-	snprintf(log, sizeof log, "%s/%s.log", is_cache ? "cache" : "logs", name);
-	snprintf(out, sizeof out, "%s%s.h5", is_cache ? "cache/" : "", name);
-	snprintf(lockp, sizeof lockp, "%s/%s.lock", is_cache ? "cache" : "jobs", name);
+	layout_file("", is_cache, name, LAY_ARGS, args, sizeof args);
+	layout_file("", is_cache, name, LAY_LOG, log, sizeof log);
+	layout_file("", is_cache, name, LAY_OUTPUT, out, sizeof out);
+	layout_file("", is_cache, name, LAY_LOCK, lockp, sizeof lockp);
 	mkdir("logs", 0777);
 	printf("%s\t%s\t%s\n", WORKER_START, name, host);
 	fflush(stdout);
