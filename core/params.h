@@ -91,12 +91,12 @@ enum sb_pflag {
 typedef struct sb_param {
 	const char *name;
 	enum sb_ptype type;
+	size_t offset;        /* of the field in sb_scene (its type checked: params.c) */
 	const char *unit;     /* "" for dimensionless */
 	const char *def;      /* default, as text (parsed like any input) */
 	double min, max;      /* range for INT/REAL */
 	const char *choices;  /* "a|b|c" for ENUM */
 	unsigned flags;
-	size_t offset;
 	const char *help;
 } sb_param;
 
