@@ -20,7 +20,8 @@ double dtguard_limit(int kind, double Y, double gamma_n, double m_min, double *t
 
 int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_err *e)
 {
-	static const char *names[3] = {"gear5", "gear4", "verlet"};
+	char name[32]; /* the integrator's name, from the parameter table */
+	params_format(sc, params_find("integrator"), name, sizeof name);
 	warn[0] = 0;
 	if (sc->dt_guard == 2 || !(m_min > 0))
 		return 0;
@@ -30,10 +31,10 @@ int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_e
 			       "%s: dt: %g s is beyond the stability limit %.3g s of %s at this stiffness "
 			       "(contact time %.3g s; make stress measures the limits); a smaller dt, or "
 			       "dt_guard = warn to run anyway", params_where(sc, "dt"), sc->dt, lim,
-			       names[sc->integrator], tc);
+			       name, tc);
 	if (sc->dt > 0.5 * lim)
 		snprintf(warn, len, "dt = %g s is %s the stability limit %.3g s of %s at this stiffness "
 				    "(contact time %.3g s)", sc->dt, sc->dt > lim ? "beyond" : "close to", lim,
-			 names[sc->integrator], tc);
+			 name, tc);
 	return 0;
 }

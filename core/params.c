@@ -27,6 +27,15 @@
 #define STR(f) PT_STR, TYPED(f, char *)
 #define BIG 1e300
 
+/* The presets, in the order of the preset row's choices: each a list of key, value
+ * pairs (the paper preset's values are also the table's defaults; tests/unit/params.c
+ * holds the two to each other and the names to the row's choices). */
+const sb_preset PRESETS[] = {
+	{"paper", {"integrator", "gear5", "dt", "5e-05", NULL}},
+	{"fast", {"integrator", "verlet", "dt", "0.0002", NULL}},
+	{NULL, {NULL}},
+};
+
 /* Defaults are the `paper` preset (docs/model.md); every row names its unit. */
 static const sb_param TABLE[] = {
 	/* --- preparation --- */
@@ -277,13 +286,10 @@ static int set_value(sb_scene *s, const char *key, const char *value, const char
 			return sb_errf(e, SB_EUSAGE, "%s: %s: expected one of %s, got '%s'",
 				       where, key, p->choices, v);
 		*(int *)base = k;
-		if (!strcmp(key, "preset")) {
-			/* a preset is a set of values, applied where it stands: keys after it
-			 * override it */
-			static const char *const vals[2][2] = {{"gear5", "5e-05"}, {"verlet", "0.0002"}};
-			return params_set(s, "integrator", vals[k][0], where, e) ||
-			       params_set(s, "dt", vals[k][1], where, e);
-		}
+		if (!strcmp(key, "preset")) /* its values, applied where it stands: later keys override them */
+			for (const char *const *kv = PRESETS[k].set; *kv; kv += 2)
+				if (params_set(s, kv[0], kv[1], where, e))
+					return e->code;
 		return 0;
 	}
 	case PT_STR:

@@ -101,6 +101,13 @@ typedef struct sb_param {
 } sb_param;
 
 const sb_param *params_table(size_t *n);
+
+/* A named set of values (the preset key): key, value pairs, NULL-terminated. */
+typedef struct sb_preset {
+	const char *name;
+	const char *set[8];
+} sb_preset;
+extern const sb_preset PRESETS[]; /* ends with a NULL name */
 const sb_param *params_find(const char *name);
 
 void params_defaults(sb_scene *s);

@@ -35,10 +35,12 @@ int params_validate(const sb_scene *s, sb_err *e)
 			       W("radius_ratio"), s->radius_ratio, 2 * ri, s->width, W("width"));
 	if (!s->output[0])
 		return sb_errf(e, SB_EUSAGE, "%s: output: must not be empty", W("output"));
-	if (s->ramp != 0 && !(s->duration > s->ramp_hold))
+	if (s->ramp != 0 && !(s->duration > s->ramp_hold)) {
+		char ramp[32];
+		params_format(s, params_find("ramp"), ramp, sizeof ramp);
 		return sb_errf(e, SB_EUSAGE, "%s: ramp = %s needs duration (%g s, %s) > ramp_hold (%g s, %s): the ramp spans the rest of the run",
-			       W("ramp"), s->ramp == 1 ? "linear" : "updown", s->duration, W("duration"), s->ramp_hold,
-			       W("ramp_hold"));
+			       W("ramp"), ramp, s->duration, W("duration"), s->ramp_hold, W("ramp_hold"));
+	}
 	if (s->ring && s->ring_inner >= s->ring_outer)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_inner (%g) must be smaller than ring_outer (%g, %s)",
 			       W("ring_inner"), s->ring_inner, s->ring_outer, W("ring_outer"));

@@ -51,6 +51,40 @@ static void test_hash_nondefault(void)
 	      "an output key changed the run hash");
 }
 
+/* The presets: their names are the preset row's choices, in order; the paper preset's
+ * values are the table's defaults; applying one sets its values, and a key after it
+ * overrides it. */
+static void test_presets(void)
+{
+	const sb_param *row = params_find("preset");
+	char names[256] = "";
+	size_t l = 0;
+	for (int k = 0; PRESETS[k].name; k++)
+		l += (size_t)snprintf(names + l, sizeof names - l, "%s%s", k ? "|" : "", PRESETS[k].name);
+	CHECK("params.preset.names_are_choices", row && !strcmp(names, row->choices), "'%s' vs '%s'", names,
+	      row ? row->choices : "?");
+	sb_scene d;
+	params_defaults(&d);
+	int same = 1;
+	for (const char *const *kv = PRESETS[0].set; *kv; kv += 2) {
+		sb_scene t = d;
+		sb_err e = {0};
+		char a[64], b[64];
+		params_set(&t, kv[0], kv[1], "test", &e);
+		params_format(&t, params_find(kv[0]), a, sizeof a);
+		params_format(&d, params_find(kv[0]), b, sizeof b);
+		same &= !e.code && !strcmp(a, b);
+	}
+	CHECK("params.preset.paper_is_the_defaults", same, "the paper preset differs from the table's defaults");
+	sb_scene f = d;
+	sb_err e = {0};
+	params_set(&f, "preset", "fast", "test", &e);
+	CHECK("params.preset.fast_sets_its_values", !e.code && f.integrator == INTEG_VERLET && f.dt == 2e-4,
+	      "integrator %d dt %g (%s)", f.integrator, f.dt, e.msg);
+	params_set(&f, "dt", "1e-4", "test", &e);
+	CHECK("params.preset.later_key_overrides", f.dt == 1e-4 && f.integrator == INTEG_VERLET, "dt %g", f.dt);
+}
+
 int main(void)
 {
 	char id[200], buf[SB_STR_MAX + 64];
@@ -292,5 +326,6 @@ int main(void)
 	}
 	rmdir(tmpdir);
 	test_hash_nondefault();
+	test_presets();
 	return tl_done();
 }
