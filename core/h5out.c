@@ -493,6 +493,16 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	/* docs/model.md, "Waiting time": the waiting time is the first time the intruder's centre is one
 	 * diameter above its settled height. A run that ends first is right-censored:
 	 * risen = 0 and waiting_time = the time observed (the survival-analysis pair). */
+	/* which stop rule ended the run (docs/model.md, "Stop rules"), and when */
+	{
+		sb_scene r = s->sc;
+		r.stop = s->obs.stop_rule;
+		char rule[32];
+		params_format(&r, params_find("stop"), rule, sizeof rule);
+		attr_str(&h, h.file, "stopped_by", rule);
+		if (s->obs.stop_rule)
+			attr_double(&h, h.file, "stop_time", s->obs.stop_step * s->sc.dt);
+	}
 	/* the largest overlap of the shaking, and where (0 when nothing touched) */
 	attr_double(&h, h.file, "overlap_max", s->obs.ov_max);
 	if (s->obs.ov_max > 0) {

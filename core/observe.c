@@ -39,6 +39,21 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 		o->jbot = zalloc((size_t)o->nlines, &bad);
 		for (int l = 0; l < o->nlines && !bad; l++)
 			o->hline[l] = surface * (l + 0.5) / o->nlines;
+		/* the stop rule's band: the lines within it (the nearest one when none is),
+		 * as the analysis tools choose their plane */
+		const double lo = sc->stop_flux_lo * surface, hi = sc->stop_flux_hi * surface;
+		o->band_l0 = o->nlines;
+		o->band_l1 = 0;
+		for (int l = 0; l < o->nlines && !bad; l++)
+			if (o->hline[l] >= lo && o->hline[l] <= hi) {
+				o->band_l0 = l < o->band_l0 ? l : o->band_l0;
+				o->band_l1 = l + 1;
+			}
+		if (o->band_l1 <= o->band_l0 && !bad) {
+			int k = (int)floor(0.5 * (sc->stop_flux_lo + sc->stop_flux_hi) * o->nlines);
+			o->band_l0 = k < 0 ? 0 : k >= o->nlines ? o->nlines - 1 : k;
+			o->band_l1 = o->band_l0 + 1;
+		}
 	}
 	if (o->field_on) {
 		double rs = 0;
@@ -135,6 +150,23 @@ static void field_add(sb_obs *o, const double *x, const double *y)
 	}
 }
 
+void obs_band_add(sb_obs *o)
+{
+	o->band_n += 1;
+	o->band_sum += o->band_last;
+	o->band_sum2 += o->band_last * o->band_last;
+	o->have_band = 0;
+}
+
+double obs_band_se(const sb_obs *o, double min_n)
+{
+	if (o->band_n < min_n)
+		return INFINITY;
+	const double n = o->band_n, mean = o->band_sum / n;
+	const double var = (o->band_sum2 - n * mean * mean) / (n - 1);
+	return sqrt(var > 0 ? var / n : 0);
+}
+
 int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
 	       long *nfield, sb_err *e)
 {
@@ -150,6 +182,12 @@ int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr
 				return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
 			rec[0] = t;
 			rec[1] = f;
+			/* the band's flux of this period: Phi = j_top - j_bot, averaged over its lines */
+			double band = 0;
+			for (int l = o->band_l0; l < o->band_l1; l++)
+				band += o->jtop[l] - o->jbot[l];
+			o->band_last = o->band_l1 > o->band_l0 ? band / (o->band_l1 - o->band_l0) : 0;
+			o->have_band = 1;
 			memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
 			memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
 			int rc = journal_record(jr, JR_FLUX, rec, obs_flux_len(o), e);
@@ -239,6 +277,11 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 	io(ctx, &o->ov_y, sizeof o->ov_y);
 	io(ctx, &o->ov_i, sizeof o->ov_i);
 	io(ctx, &o->ov_j, sizeof o->ov_j);
+	io(ctx, &o->band_n, sizeof o->band_n);
+	io(ctx, &o->band_sum, sizeof o->band_sum);
+	io(ctx, &o->band_sum2, sizeof o->band_sum2);
+	io(ctx, &o->stop_step, sizeof o->stop_step);
+	io(ctx, &o->stop_rule, sizeof o->stop_rule);
 	if (o->flux_on || o->field_on) {
 		io(ctx, o->xp, sizeof(double) * (size_t)o->nm);
 		io(ctx, o->yp, sizeof(double) * (size_t)o->nm);

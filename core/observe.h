@@ -44,12 +44,24 @@ typedef struct sb_obs {
 	 * box frame); ov_max = 0 while no two disks have touched */
 	double ov_max, ov_t, ov_x, ov_y;
 	int ov_i, ov_j;
+	/* the flux in a band of lines per period (the flux stop rule): the last period's,
+	 * and the sums over the periods after the transient */
+	int band_l0, band_l1, have_band;
+	double band_last, band_n, band_sum, band_sum2;
+	/* a stop rule that fired: the step the run ends with (0: none) and which */
+	long stop_step;
+	int stop_rule;
 } sb_obs;
 
 /* Set up from the scene and the prepared state (t = 0). intruder: index or -1. */
 int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, double surface,
 	     double x0, double x1, sb_err *e);
 void obs_free(sb_obs *o);
+
+/* The running mean of the band's flux: add the last period's (after the transient),
+ * and its standard error (infinite below min_n periods). */
+void obs_band_add(sb_obs *o);
+double obs_band_se(const sb_obs *o, double min_n);
 
 /* Record sizes, for the journal and the HDF5 layout. */
 int obs_flux_len(const sb_obs *o);   /* t, f, jtop[nl], jbot[nl] */

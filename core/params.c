@@ -119,7 +119,21 @@ static const sb_param TABLE[] = {
 	 "where the contact law stops making sense; the largest overlap of every run is recorded)"},
 	/* --- run length --- */
 	{"duration", REAL(duration), "s", "10", 0, 1e8, NULL, PF_LEN,
-	 "seconds of shaking after preparation"},
+	 "seconds of shaking after preparation (the longest a run lasts with a stop rule)"},
+	{"stop", ENUM(stop), "", "none", 0, 0, "none|risen|flux", PF_LEN,
+	 "end the run when its question is answered: risen = stop_after seconds after the intruder rose "
+	 "(waiting time); flux = once the running mean of the per-period flux in the band stop_flux_lo..hi "
+	 "has a standard error below stop_flux_se (after stop_skip seconds and at least 20 periods)"},
+	{"stop_after", REAL(stop_after), "s", "0", 0, 1e8, NULL, PF_LEN,
+	 "stop = risen: shaking kept after the rise (for the intruder's motion at the top)"},
+	{"stop_skip", REAL(stop_skip), "s", "0", 0, 1e8, NULL, PF_LEN,
+	 "stop = flux: the transient whose periods the rule ignores"},
+	{"stop_flux_se", REAL(stop_flux_se), "1/period", "0.05", 0, 1e6, NULL, PF_LEN | PF_MINX,
+	 "stop = flux: the standard error of the band's mean flux at which the run ends"},
+	{"stop_flux_lo", REAL(stop_flux_lo), "", "0.4", 0, 1, NULL, PF_LEN,
+	 "stop = flux: lower edge of the band of flux lines, fraction of the settled surface height"},
+	{"stop_flux_hi", REAL(stop_flux_hi), "", "0.6", 0, 1, NULL, PF_LEN,
+	 "stop = flux: upper edge of the band"},
 	/* --- recording --- */
 	{"output", STR(output), "", "run.h5", 0, 0, NULL, PF_OUT | PF_DRIVER,
 	 "HDF5 output file (an XDMF sidecar .xmf is written beside it)"},

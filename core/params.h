@@ -12,6 +12,7 @@
 #define SB_NKEYS 80  /* at least the number of keys (checked in params.c) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
+enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 
@@ -42,8 +43,10 @@ struct sb_scene {
 	int preset;          /* 0 paper, 1 fast */
 	double skin;
 	double max_overlap;
-	/* run length */
+	/* run length, and the rules that end a run when its question is answered */
 	double duration;
+	int stop;            /* enum sb_stop */
+	double stop_after, stop_skip, stop_flux_se, stop_flux_lo, stop_flux_hi;
 	/* recording and files */
 	char output[SB_STR_MAX];
 	double traj_rate;

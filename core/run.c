@@ -100,6 +100,34 @@ static void progress(sb_sim *s, double t0, long step0, double *last)
 	fflush(stderr);
 }
 
+/* The stop rules (docs/model.md, "Stop rules"): once the run's question is answered
+ * the run ends - at a step after the one that answered it (which may have been fused,
+ * its state not yet corrected), and never before anything that step would have
+ * recorded - so that everything a stopped run holds is what the same run without the
+ * rule holds up to then. The step it ends with is checkpointed (obs.stop_step), so a
+ * restart across the stop ends at the same step. */
+static void stop_rules(sb_sim *s)
+{
+	sb_obs *o = &s->obs;
+	const sb_scene *sc = &s->sc;
+	if (sc->stop == STOP_FLUX && o->have_band) { /* a period just ended */
+		if (s->step * sc->dt > sc->stop_skip)
+			obs_band_add(o);
+		o->have_band = 0;
+		if (!o->stop_step && obs_band_se(o, 20) < sc->stop_flux_se) {
+			o->stop_step = s->step + 1;
+			o->stop_rule = STOP_FLUX;
+		}
+	}
+	if (sc->stop == STOP_RISEN && o->risen && !o->stop_step) {
+		const long k = llround(o->wait_time / sc->dt), after = llround(sc->stop_after / sc->dt);
+		o->stop_step = k + (after > 1 ? after : 1);
+		o->stop_rule = STOP_RISEN;
+	}
+	if (o->stop_step > 0 && o->stop_step < s->nsteps)
+		s->nsteps = o->stop_step;
+}
+
 int sim_run(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
@@ -113,6 +141,7 @@ int sim_run(sb_sim *s, sb_err *e)
 		if (record(s, e))
 			return e->code;
 	}
+	stop_rules(s); /* a resumed run whose rule fired ends where it would have */
 	s->ov_track = 1;
 	s->law.max_overlap = fmin(s->obs.ov_max * (1 + 1e-9), sc->max_overlap);
 	double w0 = sb_now(), wlast = w0, seg = w0; /* seg: loop time not yet in loop_seconds */
@@ -144,6 +173,7 @@ int sim_run(sb_sim *s, sb_err *e)
 		if (record(s, e))
 			break;
 		TOC(PH_RECORD);
+		stop_rules(s);
 		if (s->step == s->next_ckpt_step) {
 			double w = sb_now(); /* the checkpoint carries the CPU time so far */
 			s->loop_seconds += w - seg;

@@ -20,6 +20,14 @@ int params_validate(const sb_scene *s, sb_err *e)
 		if (len[k] / s->dt > 1e15)
 			return sb_errf(e, SB_EUSAGE, "%s: %s / dt = %g steps (dt %g, %s): at most 1e15", W(lens[k]), lens[k],
 				       len[k] / s->dt, s->dt, W("dt"));
+	if (s->stop == STOP_FLUX && !s->flux)
+		return sb_errf(e, SB_EUSAGE, "%s: stop = flux needs flux = yes (%s)", W("stop"), W("flux"));
+	if (s->stop == STOP_FLUX && !(s->stop_flux_lo < s->stop_flux_hi))
+		return sb_errf(e, SB_EUSAGE, "%s: stop_flux_lo (%g) must be below stop_flux_hi (%g, %s)", W("stop_flux_lo"),
+			       s->stop_flux_lo, s->stop_flux_hi, W("stop_flux_hi"));
+	if (s->stop == STOP_RISEN && s->radius_ratio == 0 && !s->particles[0])
+		return sb_errf(e, SB_EUSAGE, "%s: stop = risen needs an intruder (radius_ratio is 0, %s)", W("stop"),
+			       W("radius_ratio"));
 	if (s->r_min > s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
 			       s->r_max, W("r_max"));

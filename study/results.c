@@ -12,6 +12,8 @@ static const rcol TABLE[] = {
 	{"exit_code", RT_INT, "@exit_code", "", "the engine's exit code (0 ok; bin/shake --help lists them)", 0},
 	{"message", RT_TEXT, "@status_message", "", "the engine's message when the run failed, else empty", 0},
 	{"status_time", RT_REAL, "@status_time", "s", "simulated time at which the run ended or failed", 0},
+	{"stopped_by", RT_TEXT, "@stopped_by", "",
+	 "the stop rule that ended the run (none: it ran its duration, or failed; risen, flux)", 0},
 	{"steps", RT_INT, "@steps", "", "time steps of shaking done", 0},
 	{"settle_time", RT_REAL, "@settle_time", "s",
 	 "simulated settling time (of the shared packing for a run started from the cache)", RF_CACHE},
