@@ -143,7 +143,7 @@ int sim_run(sb_sim *s, sb_err *e)
 	}
 	stop_rules(s); /* a resumed run whose rule fired ends where it would have */
 	s->ov_track = 1;
-	s->law.max_overlap = fmin(s->obs.ov_max * (1 + 1e-9), sc->max_overlap);
+	step_arm_overlap(s);
 	double w0 = sb_now(), wlast = w0, seg = w0; /* seg: loop time not yet in loop_seconds */
 	long step0 = s->step;
 	while (s->step < s->nsteps) {

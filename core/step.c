@@ -67,11 +67,18 @@ static void add_drag(sb_state *st, double gamma, double inv_dt)
 }
 
 /* The largest overlap of the shaking is recorded without a cost per step: the force
- * kernel's overlap flag, which stops a run past max_overlap, is armed at the record so
- * far instead, and only a step that beats the record scans the pairs (a few hundred
- * steps of a run). The forces do not depend on the threshold. The kernel and the scan
- * round the overlap differently, so the threshold sits a relative 1e-9 above the
- * record: a contact at the record does not trigger a scan every step. */
+ * kernel's overlap flag, which stops a run past max_overlap, is armed 1 % above the
+ * record so far instead, and only a step that beats that scans the pairs (a scan costs
+ * about a force evaluation). With the threshold at the record itself, every step of a
+ * record-setting collision scanned: +4 % on a 1-s run of the paper scene; with 1 %
+ * steps a run scans at most ~300 times (from 0.01 to 0.6 of the radius), and the
+ * record is the exact overlap of a step, at most 1 % below the largest one. The forces
+ * do not depend on the threshold. */
+void step_arm_overlap(sb_sim *s)
+{
+	s->law.max_overlap = fmin(s->obs.ov_max * 1.01, s->sc.max_overlap);
+}
+
 static void new_overlap_record(sb_sim *s, double f, int a, int b, double t)
 {
 	const sb_state *st = &s->st;
@@ -83,7 +90,7 @@ static void new_overlap_record(sb_sim *s, double f, int a, int b, double t)
 		s->obs.ov_x = 0.5 * (st->q[C_X][0][a] + st->q[C_X][0][b]);
 		s->obs.ov_y = 0.5 * (st->q[C_Y][0][a] + st->q[C_Y][0][b]);
 	}
-	s->law.max_overlap = fmin(s->obs.ov_max * (1 + 1e-9), s->sc.max_overlap);
+	step_arm_overlap(s);
 }
 
 /* The state after the predictor, screened: rebuild the list, or stop the run on a

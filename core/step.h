@@ -14,6 +14,9 @@
 int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, int fuse,
 	      double *track, sb_err *e);
 
+/* Arm the kernel's overlap flag for the run's overlap record (step.c). */
+void step_arm_overlap(sb_sim *s);
+
 /* Low-level stepping for tests and tools: sim_start builds the neighbour list and
  * sets the integrator's acceleration from the current forces (call it after placing
  * disks and setting velocities q[c][1] = v dt); sim_step advances one reference step

@@ -43,7 +43,7 @@ static const rcol TABLE[] = {
 	 "when risen = 1 the first time it did (the waiting time), else the time observed "
 	 "(the censoring time, also for a run that failed before its intruder rose)", 0},
 	{"overlap_max", RT_REAL, "@overlap_max", "",
-	 "largest overlap of two disks while shaking, as a fraction of the smaller radius "
+	 "largest overlap of two disks while shaking, as a fraction of the smaller radius, to 1 % "
 	 "(the max_overlap stop is at 1 by default)", 0},
 	{"overlap_max_time", RT_REAL, "@overlap_max_time", "s", "when the largest overlap happened", 0},
 	{"overlap_max_disk_a", RT_INT, "@overlap_max_disk_a", "", "id of one disk of the largest overlap", 0},
