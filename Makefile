@@ -56,7 +56,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz
 all: $(SHAKE)
 
 help:
@@ -68,6 +68,8 @@ help:
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
+	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files against the sanitizer build"
+	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH, V=1 (show commands), SAN=1 (sanitizer build in build/san),"
 	@echo "       PORTABLE=1 (baseline x86-64 build in build/port)"
@@ -153,5 +155,6 @@ clean:
 -include study/study.mk
 -include analysis/analysis.mk
 -include tests/bench/bench.mk
+-include tests/fuzz/fuzz.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)

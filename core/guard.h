@@ -7,11 +7,12 @@
 #include <signal.h>
 
 /* Sizes computed from user numbers are checked against these before they are cast to
- * int or allocated. Both equal the largest n_grains: a lattice row wider than that can
- * never be filled, and a box needing more wall disks than grains has walls finer than
- * anything the contact law resolves (and costs gigabytes before the first step). */
+ * int or allocated. Columns: the largest n_grains, since a lattice row wider than that
+ * can never be filled. Walls: 10^6, ten times what a 10^5-grain bed needs; beyond it a
+ * box's walls cost gigabytes and minutes before the first step (5 10^6 wall disks took
+ * 2.6 GB and did not finish in 2 minutes). */
 #define GUARD_MAX_COLUMNS 10000000 /* sites in a row of the placement lattice */
-#define GUARD_MAX_WALLS 10000000   /* wall disks of a generated box */
+#define GUARD_MAX_WALLS 1000000    /* wall disks of a generated box */
 
 /* A particle file spans at most this many mean grain diameters in x or y: the grids
  * sized by the grain diameter (free-surface columns, displacement field, the load

@@ -84,11 +84,13 @@ refused sizes.lattice_columns "command line: width|r_max|lattice sites|at most 1
 refused sizes.lattice_columns.tiny_radii "width|r_max|at most 10000000" \
 	duration=0 n_grains=5 r_min=1e-300 r_max=1e-300 width=10 radius_ratio=0
 # the bottom wall's disk count overflowed int: no bottom wall, a failure much later
-refused sizes.walls.bottom "wall_spacing|width|wall disks|at most 10000000" \
+refused sizes.walls.bottom "wall_spacing|width|wall disks|at most 1000000" \
 	duration=0 n_grains=5 radius_ratio=0 width=1e7 wall_spacing=1e-3 wall_radius=1e-3
 refused sizes.step_count "duration / dt|at most 1e15" dt=1e-300 dt_guard=off duration=1 output=steps.h5
 refused sizes.settle_step_count "settle_max / dt|at most 1e15" dt=1e-300 dt_guard=off duration=0
-refused sizes.walls.sides "wall_spacing|wall_height|wall disks|at most 10000000" \
+refused sizes.depth_beyond_the_grains "depth 50000 rows|n_grains is 150" n_grains=150 depth=50000 duration=0.02
+refused sizes.walls.tall "wall_spacing|wall_height|at most 1000000" n_grains=150 wall_height=5000000 duration=0.02
+refused sizes.walls.sides "wall_spacing|wall_height|wall disks|at most 1000000" \
 	duration=0 n_grains=5 radius_ratio=0 width=20 wall_height=1e7 wall_spacing=1e-3 wall_radius=1e-3
 # every key in range, the mass m = mass_factor rho R^2 underflows to 0 (1/m = inf)
 refused sizes.mass_underflow "mass_factor|density|positive and finite" \
