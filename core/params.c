@@ -1,7 +1,6 @@
 /* params.c - the parameter table and everything it drives (parse, check, help, echo). */
 #include "params.h"
 
-
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
@@ -9,6 +8,8 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+
+#include "textline.h"
 
 /* A row's type and field in one macro: the offset, and a compile-time check that the
  * field has the C type the parser will write through it (a row whose type does not
@@ -343,49 +344,19 @@ struct ini_ctx {
  * section without keys), strips "#" comments after a value (inih keeps them), and
  * strips indentation: inih would take an indented line as the continuation of the
  * previous value, so "  mu = 0.3" after "output = a.h5" would vanish into output.
- * It reads byte by byte rather than with fgets, which cannot tell a NUL byte from the
- * end of the line (the rest of the line would vanish), and refuses a line longer than
- * inih's buffer (num - 1 characters before the newline): inih would cut it in two and
- * read its tail as a line of its own, so the end of a long comment could set a key. */
+ * The line itself comes from textline_next (NUL bytes, long lines, endless streams). */
 static char *scene_reader(char *str, int num, void *stream)
 {
 	struct ini_ctx *c = stream;
 	if (c->err_line)
 		return NULL; /* stop at the first error */
-	int ch = 0;
-	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
-	while (len < num - 1 && (ch = getc(c->f)) != EOF) {
-		if (!ch && !nul)
-			nul = len + 1;
-		str[len++] = (char)ch;
-		if (ch == '\n')
-			break;
-	}
-	if (!len)
+	textline tl = {c->f, c->path, "scene file", SCENE_MAX_LINES, c->line};
+	int got = textline_next(&tl, str, num, c->e);
+	c->line = tl.line;
+	if (got < 0)
+		c->err_line = c->line ? c->line : 1;
+	if (got <= 0)
 		return NULL;
-	str[len] = 0;
-	if (c->line == SCENE_MAX_LINES) {
-		c->err_line = c->line;
-		sb_errf(c->e, SB_EUSAGE, "%s: more than %d lines (a scene is a few dozen keys)", c->path,
-			SCENE_MAX_LINES);
-		return NULL;
-	}
-	c->line++;
-	if (nul) {
-		c->err_line = c->line;
-		sb_errf(c->e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a scene file is text)", c->path, c->line, nul);
-		return NULL;
-	}
-	if (len == num - 1 && str[len - 1] != '\n') {
-		/* a line of exactly num - 1 characters fits: only its newline is left */
-		ch = getc(c->f);
-		if (ch != EOF && ch != '\n') {
-			c->err_line = c->line;
-			sb_errf(c->e, SB_EUSAGE, "%s:%d: line too long (the limit is %d characters)", c->path, c->line,
-				num - 1);
-			return NULL;
-		}
-	}
 	size_t lead = strspn(str, " \t");
 	if (lead)
 		memmove(str, str + lead, strlen(str + lead) + 1);

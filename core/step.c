@@ -166,11 +166,9 @@ static int forces(sb_sim *s, int keep, double *track, double drag, const char *s
 	return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
 }
 
-/* The reference step, as in a textbook MD code: predict, check, neighbours, forces,
- * correct (record: sim_run). gy is the uniform acceleration in y at the new time t
- * (step). Its corrected state is in st for whoever reads it next. */
-static int step_reference(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
-			  double *track, sb_err *e)
+/* What both recipes begin with: predict (unless the last step's corrector did),
+ * check, watch the rise, rebuild the neighbour list when due. */
+static int step_begin(sb_sim *s, double t, long step, const char *stage, sb_err *e)
 {
 	int rebuild;
 	if (!s->predicted) {
@@ -189,9 +187,19 @@ static int step_reference(sb_sim *s, double gy, double drag, double t, long step
 		TIC(PH_NEIGH);
 		rc = neighbours(s, e);
 		TOC(PH_NEIGH);
-		if (rc)
-			return rc;
 	}
+	return rc;
+}
+
+/* The reference step, as in a textbook MD code: predict, check, neighbours, forces,
+ * correct (record: sim_run). gy is the uniform acceleration in y at the new time t
+ * (step). Its corrected state is in st for whoever reads it next. */
+static int step_reference(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
+			  double *track, sb_err *e)
+{
+	int rc = step_begin(s, t, step, stage, e);
+	if (rc)
+		return rc;
 	TIC(PH_FORCE);
 	rc = forces(s, 0, track, drag, stage, t, step, e);
 	TOC(PH_FORCE);
@@ -209,26 +217,9 @@ static int step_reference(sb_sim *s, double gy, double drag, double t, long step
  * (kernel_correct_predict). Bit-identical to step_reference followed by a predictor. */
 static int step_fused(sb_sim *s, double gy, double drag, double t, long step, const char *stage, sb_err *e)
 {
-	int rebuild;
-	if (!s->predicted) {
-		TIC(PH_PREDICT);
-		integ_predict(&s->in, &s->st);
-		TOC(PH_PREDICT);
-	}
-	s->predicted = 0;
-	TIC(PH_CHECK);
-	int rc = check(s, stage, t, step, &rebuild, e);
-	TOC(PH_CHECK);
+	int rc = step_begin(s, t, step, stage, e);
 	if (rc)
 		return rc;
-	watch_rise(s, t, step);
-	if (rebuild) {
-		TIC(PH_NEIGH);
-		rc = neighbours(s, e);
-		TOC(PH_NEIGH);
-		if (rc)
-			return rc;
-	}
 	const int keep = drag == 0; /* the drag acts on st->f, which a kept force skips */
 	TIC(PH_FORCE);
 	rc = forces(s, keep, NULL, drag, stage, t, step, e);
