@@ -43,23 +43,26 @@ static void fmt_dur(double s, char *buf, size_t len)
 		snprintf(buf, len, "%.1f h", s / 3600);
 }
 
-/* Runs finished per second over the last (at most 20) attempts to finish: 0 when
- * fewer than two finished or they finished in the same second. */
+/* Runs finished per second by what actually ran: the last (at most 20) runs to finish,
+ * over the time from the first of them starting to the last finishing (runs that ran
+ * side by side count together, whatever --jobs or hosts did it); 0 when none has. */
 static double throughput(st_db *d, const char *name)
 {
 	sqlite3_stmt *q;
 	sb_err e = {0};
 	double rate = 0;
 	if (db_exec(d, &e, &q,
-		    "SELECT COUNT(*), (MAX(j) - MIN(j)) * 86400 FROM (SELECT julianday(finished) AS j FROM attempt"
-		    " WHERE campaign = ? AND finished IS NOT NULL ORDER BY finished DESC LIMIT 20)",
+		    "SELECT COUNT(*), (MAX(f) - MIN(s)) * 86400 FROM (SELECT julianday(a.finished) AS f,"
+		    " julianday(r.started) AS s FROM attempt a JOIN run r ON r.campaign = a.campaign AND r.id = a.run"
+		    " WHERE a.campaign = ? AND a.finished IS NOT NULL AND r.started IS NOT NULL"
+		    " ORDER BY a.finished DESC LIMIT 20)",
 		    "t", name))
 		return 0;
 	if (sqlite3_step(q) == SQLITE_ROW) {
 		long n = sqlite3_column_int64(q, 0);
 		double span = sqlite3_column_double(q, 1);
-		if (n >= 2 && span > 0)
-			rate = (double)(n - 1) / span;
+		if (n >= 1 && span > 0)
+			rate = (double)n / span;
 	}
 	sqlite3_finalize(q);
 	return rate;
