@@ -104,6 +104,8 @@ typedef struct sb_param {
 } sb_param;
 
 const sb_param *params_table(size_t *n);
+/* The known key nearest to a mistyped one (frequncy -> frequency), or NULL. */
+const char *params_nearest(const char *key);
 
 /* A named set of values (the preset key): key, value pairs, NULL-terminated. */
 typedef struct sb_preset {

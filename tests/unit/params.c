@@ -85,6 +85,28 @@ static void test_presets(void)
 	CHECK("params.preset.later_key_overrides", f.dt == 1e-4 && f.integrator == INTEG_VERLET, "dt %g", f.dt);
 }
 
+/* A mistyped key is answered with the nearest known one; another word is not. */
+static void test_nearest(void)
+{
+	const char *typo[][2] = {{"frequncy", "frequency"}, {"dt_gaurd", "dt_guard"}, {"durration", "duration"},
+				 {"r_mx", "r_max"}, {"max_overlpa", "max_overlap"}};
+	for (size_t k = 0; k < sizeof typo / sizeof *typo; k++) {
+		const char *n = params_nearest(typo[k][0]);
+		char id[64];
+		snprintf(id, sizeof id, "params.nearest.%s", typo[k][0]);
+		CHECK(id, n && !strcmp(n, typo[k][1]), "got %s, want %s", n ? n : "(none)", typo[k][1]);
+	}
+	CHECK("params.nearest.no_guess_for_another_word", !params_nearest("xyz") && !params_nearest("temperature"),
+	      "a suggestion for an unrelated word");
+	sb_scene d;
+	params_defaults(&d);
+	sb_err e = {0};
+	params_set(&d, "frequncy", "3", "x.scene:4", &e);
+	CHECK("params.nearest.in_the_message", e.code == SB_EUSAGE && strstr(e.msg, "x.scene:4") &&
+						 strstr(e.msg, "did you mean frequency?"),
+	      "'%s'", e.msg);
+}
+
 int main(void)
 {
 	char id[200], buf[SB_STR_MAX + 64];
@@ -327,5 +349,6 @@ int main(void)
 	rmdir(tmpdir);
 	test_hash_nondefault();
 	test_presets();
+	test_nearest();
 	return tl_done();
 }
