@@ -5,10 +5,12 @@
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
+#include "adapt.h"
 #include "safe.h"
 
 int campaign_key_reserved(const char *key)
@@ -291,7 +293,7 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 
 #define CP_MAX_LINES 100000
 
-enum { SEC_NONE, SEC_CAMPAIGN, SEC_SCENE, SEC_GRID };
+enum { SEC_NONE, SEC_CAMPAIGN, SEC_SCENE, SEC_GRID, SEC_ONSET, SEC_N };
 
 struct rd {
 	campaign *c;
@@ -299,7 +301,7 @@ struct rd {
 	FILE *f;
 	int line, err_line, section;
 	int seen_name, seen_seed;
-	int sec_line[4];
+	int sec_line[SEC_N];
 	char ckey[8][16];     /* [campaign] keys seen, with their lines */
 	int ckey_line[8], nckey;
 };
@@ -372,9 +374,11 @@ static char *cp_reader(char *str, int num, void *stream)
 			sec = SEC_SCENE;
 		else if (q && n == 4 && !strncmp(str + 1, "grid", 4))
 			sec = SEC_GRID;
+		else if (q && n == 5 && !strncmp(str + 1, "onset", 5))
+			sec = SEC_ONSET;
 		if (sec < 0) {
 			r->err_line = r->line;
-			sb_errf(r->e, SB_EUSAGE, "%s:%d: unknown section '%.*s' (expected [campaign], [scene] or [grid])",
+			sb_errf(r->e, SB_EUSAGE, "%s:%d: unknown section '%.*s' (expected [campaign], [scene], [grid] or [onset])",
 				r->c->path, r->line, (int)strcspn(str, "\r\n"), str);
 			return NULL;
 		}
@@ -386,6 +390,8 @@ static char *cp_reader(char *str, int num, void *stream)
 		}
 		r->sec_line[sec] = r->line;
 		r->section = sec;
+		if (sec == SEC_ONSET)
+			r->c->onset.line = r->line;
 	}
 	return got;
 }
@@ -487,6 +493,209 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 	return 0;
 }
 
+/* ---- [onset]: one table of its keys drives the parser, the range checks and the
+ * messages ---- */
+
+enum { OK_OBS, OK_FREQ, OK_REAL, OK_BAND, OK_REPS, OK_INT };
+
+static const struct onset_keydef {
+	const char *name;
+	int kind;
+	double min, max;       /* OK_REAL, OK_INT, OK_REPS; OK_FREQ: the frequency key's */
+	int min_open, max_open;
+	size_t val, line;      /* offsets in cp_onset: the value (double or long) and its line */
+} ONSET_KEYS[] = {
+	{"observable", OK_OBS, 0, 0, 0, 0, offsetof(cp_onset, observable), offsetof(cp_onset, observable_line)},
+	{"from", OK_FREQ, 0, 0, 1, 0, offsetof(cp_onset, from), offsetof(cp_onset, from_line)},
+	{"to", OK_FREQ, 0, 0, 1, 0, offsetof(cp_onset, to), offsetof(cp_onset, to_line)},
+	{"tolerance", OK_REAL, 0, 1000, 1, 0, offsetof(cp_onset, tolerance), offsetof(cp_onset, tolerance_line)},
+	{"threshold", OK_REAL, 0, 1e6, 0, 0, offsetof(cp_onset, threshold), offsetof(cp_onset, threshold_line)},
+	{"band", OK_BAND, 0, 1, 0, 0, offsetof(cp_onset, band_lo), offsetof(cp_onset, band_line)},
+	{"skip", OK_REAL, 0, 1, 0, 1, offsetof(cp_onset, skip), offsetof(cp_onset, skip_line)},
+	{"replicates", OK_REPS, 1, AD_MAX_REPLICATES, 0, 0, offsetof(cp_onset, replicates),
+	 offsetof(cp_onset, replicates_line)},
+	{"max_replicates", OK_INT, 1, AD_MAX_REPLICATES, 0, 0, offsetof(cp_onset, max_replicates),
+	 offsetof(cp_onset, max_line)},
+	{"batch", OK_INT, 1, AD_MAX_REPLICATES, 0, 0, offsetof(cp_onset, batch), offsetof(cp_onset, batch_line)},
+	{"target", OK_REAL, 0, 1000, 1, 0, offsetof(cp_onset, target), offsetof(cp_onset, target_line)},
+	/* at most 0.999: an interval of the median at 0.999 needs 11 replicates */
+	{"level", OK_REAL, 0.5, 0.999, 0, 0, offsetof(cp_onset, level), offsetof(cp_onset, level_line)},
+};
+#define N_ONSET_KEYS (sizeof ONSET_KEYS / sizeof *ONSET_KEYS)
+
+static const struct onset_keydef *onset_keydef(const char *name)
+{
+	for (size_t i = 0; i < N_ONSET_KEYS; i++)
+		if (!strcmp(ONSET_KEYS[i].name, name))
+			return &ONSET_KEYS[i];
+	return NULL;
+}
+
+static int *onset_line(cp_onset *o, const char *name)
+{
+	return (int *)((char *)o + onset_keydef(name)->line);
+}
+
+/* "(0, 1000]" */
+static void range_text(double lo, double hi, int lo_open, int hi_open, char *buf, size_t len)
+{
+	snprintf(buf, len, "%c%g, %g%c", lo_open ? '(' : '[', lo, hi, hi_open ? ')' : ']');
+}
+
+static int in_range(double x, double lo, double hi, int lo_open, int hi_open)
+{
+	return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+}
+
+static int onset_key(cp_onset *o, int line, const char *where, const char *name, const char *value, sb_err *e)
+{
+	const struct onset_keydef *k = onset_keydef(name);
+	if (!k) {
+		char keys[400];
+		size_t l = 0;
+		for (size_t i = 0; i < N_ONSET_KEYS; i++)
+			l += (size_t)snprintf(keys + l, sizeof keys - l, "%s%s", i ? ", " : "", ONSET_KEYS[i].name);
+		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [onset] (%s)", where, name, keys);
+	}
+	int *at = (int *)((char *)o + k->line);
+	if (*at)
+		return sb_errf(e, SB_EUSAGE, "%s: %s: given twice (first on line %d)", where, name, *at);
+	*at = line;
+	double *dv = (double *)((char *)o + k->val);
+	long *lv = (long *)((char *)o + k->val);
+	double lo = k->min, hi = k->max, x;
+	long n;
+	char rt[96];
+	switch (k->kind) {
+	case OK_OBS:
+		if (!strcmp(value, "rise"))
+			o->observable = CP_OBS_RISE;
+		else if (!strcmp(value, "flux"))
+			o->observable = CP_OBS_FLUX;
+		else
+			return sb_errf(e, SB_EUSAGE, "%s: observable: expected one of rise|flux, got '%s'", where, value);
+		return 0;
+	case OK_BAND: {
+		/* LO:HI, fractions of the settled surface height */
+		const char *c = strchr(value, ':');
+		char a[64];
+		double b0, b1;
+		snprintf(a, sizeof a, "%.*s", c ? (int)(c - value) : 0, value);
+		if (!c || strlen(value) > 60 || !parse_num(a, &b0) || !parse_num(c + 1, &b1) || !(b0 >= 0) ||
+		    !(b1 <= 1) || !(b0 < b1))
+			return sb_errf(e, SB_EUSAGE, "%s: band: expected LO:HI with 0 <= LO < HI <= 1 "
+				       "(fractions of the settled surface height), got '%s'", where, value);
+		dv[0] = b0;
+		o->band_hi = b1;
+		return 0;
+	}
+	case OK_REPS:
+		if (!strcmp(value, "auto")) {
+			o->autorep = 1;
+			return 0;
+		}
+		if (!parse_long(value, &n) || n < (long)lo || n > (long)hi)
+			return sb_errf(e, SB_EUSAGE, "%s: replicates: expected auto or an integer in [%.0f, %.0f], got '%s'",
+				       where, lo, hi, value);
+		*lv = n;
+		return 0;
+	case OK_INT:
+		if (!parse_long(value, &n) || n < (long)lo || n > (long)hi)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected an integer in [%.0f, %.0f], got '%s'", where, name, lo,
+				       hi, value);
+		*lv = n;
+		return 0;
+	case OK_FREQ: {
+		/* the engine's own range of the frequency key, without its 0 (no shaking) */
+		const sb_param *f = params_find("frequency");
+		lo = f->min;
+		hi = f->max;
+	}
+		/* fall through */
+	default:
+		range_text(lo, hi, k->min_open, k->max_open, rt, sizeof rt);
+		if (!parse_num(value, &x) || !in_range(x, lo, hi, k->min_open, k->max_open))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s, got '%s'", where, name, rt,
+				       k->kind == OK_FREQ || !strcmp(name, "tolerance") || !strcmp(name, "target")
+					       ? " (Hz)" : "",
+				       value);
+		*dv = x;
+		return 0;
+	}
+}
+
+/* The [onset] section as a whole, and what it excludes elsewhere in the file. */
+static int onset_finish(campaign *c, int campaign_replicates_line, sb_err *e)
+{
+	cp_onset *o = &c->onset;
+	const char *p = c->path;
+	const char *need[] = {"observable", "from", "to", "tolerance"};
+	for (size_t i = 0; i < sizeof need / sizeof *need; i++)
+		if (!*onset_line(o, need[i]))
+			return sb_errf(e, SB_EUSAGE, "%s:%d: [onset] has no %s%s", p, o->line, need[i],
+				       i ? "" : " (rise or flux)");
+	if (!(o->to > o->from))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: to: expected a frequency above from = %g (line %d), got %g", p,
+			       o->to_line, o->from, o->from_line, o->to);
+	/* at most AD_MAX_LEVELS halvings of the range; a bracket as wide as the range is
+	 * no search */
+	double w = o->to - o->from, tmin = ldexp(w, -AD_MAX_LEVELS);
+	if (o->tolerance < tmin || o->tolerance >= w)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: tolerance: expected a width in [%.3g, %g) Hz (from %g to %g in at "
+			       "most %d halvings), got %g", p, o->tolerance_line, tmin, w, o->from, o->to, AD_MAX_LEVELS,
+			       o->tolerance);
+	if (o->observable == CP_OBS_FLUX && !o->threshold_line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: [onset] has no threshold (observable = flux: a run is on when "
+			       "its mean flux through the band is at least threshold particles per period)", p, o->line);
+	if (o->observable == CP_OBS_RISE) {
+		const char *flux_only[] = {"threshold", "band", "skip"};
+		for (size_t i = 0; i < 3; i++)
+			if (*onset_line(o, flux_only[i]))
+				return sb_errf(e, SB_EUSAGE, "%s:%d: %s: only for observable = flux (a run's rise is the "
+					       "engine's risen)", p, *onset_line(o, flux_only[i]), flux_only[i]);
+	}
+	if (!o->replicates_line)
+		o->autorep = 1;
+	if (!o->autorep) {
+		const char *auto_only[] = {"max_replicates", "batch", "target"};
+		for (size_t i = 0; i < 3; i++)
+			if (*onset_line(o, auto_only[i]))
+				return sb_errf(e, SB_EUSAGE, "%s:%d: %s: only with replicates = auto (line %d says %ld)", p,
+					       *onset_line(o, auto_only[i]), auto_only[i], o->replicates_line, o->replicates);
+	}
+	if (!o->band_line) {
+		o->band_lo = 0.4;
+		o->band_hi = 0.6;
+	}
+	if (!o->skip_line)
+		o->skip = 0.2;
+	if (!o->level_line)
+		o->level = 0.95;
+	if (!o->batch_line)
+		o->batch = 4;
+	if (!o->max_line)
+		o->max_replicates = 32;
+	if (!o->target_line)
+		o->target = o->tolerance;
+	long nmin = adapt_min_replicates(o->level);
+	if (o->autorep && o->max_replicates < nmin)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: max_replicates: at least %ld replicates are needed for an "
+			       "interval of the onset at level %g, got %ld", p, o->max_line ? o->max_line : o->line, nmin,
+			       o->level, o->max_replicates);
+	/* the search owns the frequency and the replicates */
+	if (campaign_replicates_line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: replicates: an [onset] campaign sets its replicates under [onset] "
+			       "(replicates = auto | N)", p, campaign_replicates_line);
+	int l;
+	if ((l = seen_key(c, "frequency")))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: frequency: chosen by the [onset] search (from %g to %g, line %d); "
+			       "remove it", p, l, o->from, o->to, o->line);
+	if ((l = seen_key(c, "seed")))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: the [onset] search numbers its replicates 1, 2, ...; remove "
+			       "it", p, l);
+	return 0;
+}
+
 static int cp_handler(void *user, const char *section, const char *name, const char *value)
 {
 	struct rd *r = user;
@@ -506,6 +715,8 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 			tmp = *r->e;
 			r->e->code = 0;
 		}
+	} else if (r->section == SEC_ONSET) {
+		onset_key(&c->onset, r->line, where, name, value, &tmp);
 	} else {
 		int prev;
 		if (!params_find(name))
@@ -596,6 +807,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 		if (params_set(&c->base, c->fixed[i].key, c->fixed[i].value, where, e))
 			return e->code;
 	}
+	if (c->onset.line && onset_finish(c, c->replicates ? c->replicates_line : 0, e))
+		return e->code;
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: both replicates and seed given; "

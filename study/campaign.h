@@ -17,6 +17,28 @@
 #define CP_MAX_RUNS_LIMIT 10000000
 
 enum cp_seeds { CP_SEEDS_DERIVED, CP_SEEDS_LITERAL };
+enum cp_observable { CP_OBS_NONE, CP_OBS_RISE, CP_OBS_FLUX };
+
+/* [onset]: instead of a frequency axis, the onset frequency of an observable per
+ * group of the other axes, searched by bisection per replicate (study/README.md,
+ * "Adaptive onset search"). Lines are 0 for keys the file did not give. */
+typedef struct cp_onset {
+	int line;                 /* the section's header; 0: no [onset] */
+	int observable;           /* enum cp_observable */
+	double from, to;          /* Hz: off at from, on at to */
+	double tolerance;         /* Hz: a replicate's bracket at most this wide is its answer */
+	double threshold;         /* flux: |mean flux| at or above it is on (particles/period) */
+	double band_lo, band_hi;  /* flux: the band of heights, fractions of the surface */
+	double skip;              /* flux: fraction of the periods left out as transient */
+	int autorep;              /* replicates = auto */
+	long replicates;          /* fixed: this many; auto: 0 */
+	long max_replicates;      /* auto: at most */
+	long batch;               /* auto: added at a time */
+	double target;            /* auto: interval width to reach, Hz */
+	double level;             /* confidence level of the interval */
+	int observable_line, from_line, to_line, tolerance_line, threshold_line, band_line, skip_line,
+		replicates_line, max_line, batch_line, target_line, level_line;
+} cp_onset;
 
 typedef struct cp_axis {
 	char key[64];
@@ -46,6 +68,8 @@ typedef struct campaign {
 	cp_fixed fixed[CP_MAX_KEYS];
 	cp_axis axes[CP_MAX_KEYS];
 	sb_scene base;                  /* defaults + scene file + [scene]; seed = replicate label */
+	cp_onset onset;                 /* onset.line != 0: an adaptive campaign (its axes are
+					 * the groups; frequency and seed are the search's) */
 } campaign;
 
 /* Read and check a campaign file. On error e holds "FILE:LINE: key: why". */

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,7 @@
 #include "h5sum.h"
 #include "layout.h"
 #include "safe.h"
+#include "search.h"
 #include "worker.h"
 
 #define PATHLEN 4096
@@ -38,6 +40,11 @@ typedef struct drv {
 	char *cache_ok;       /* per grid run: start from the packing cache */
 	char *started;        /* per grid run: 1 START seen, 2 DONE seen (this driver) */
 	long *logfrom;        /* per grid run: size of its log when START was seen */
+	long *pend;           /* per grid run: the indices of the runs to run */
+	char **names;         /* their ids, for GNU parallel */
+	int adaptive;         /* an [onset] campaign: the grid is its chains' runs, pass by pass */
+	search srch;
+	long rounds;
 	long n_ingested, n_failed_now;
 	int jobs;
 	int io_fault;         /* a run failed on I/O: launch nothing more */
@@ -543,13 +550,20 @@ static void show_set(const char *set, char *out, size_t len)
 static int check_changes(drv *d, sb_err *e)
 {
 	sqlite3_stmt *q;
-	if (db_exec(&d->db, e, &q, "SELECT id, state FROM run WHERE campaign = ? AND current = 1", "t", d->c.name))
+	if (db_exec(&d->db, e, &q,
+		    "SELECT r.id, r.state, r.replicate, (SELECT value FROM param p WHERE p.campaign = r.campaign"
+		    " AND p.run = r.id AND p.key = 'frequency') FROM run r WHERE r.campaign = ? AND r.current = 1",
+		    "t", d->c.name))
 		return e->code;
 	char **stale = NULL;
 	long ns = 0, cap = 0, nd = 0, nf = 0;
 	while (sqlite3_step(q) == SQLITE_ROW) {
 		const char *id = (const char *)sqlite3_column_text(q, 0), *st = (const char *)sqlite3_column_text(q, 1);
-		if (!id || grid_find(&d->g, id))
+		/* an [onset] campaign's runs are its chains' so far, and more may come: a
+		 * recorded run belongs to it when some chain can ask for it */
+		if (!id || (d->adaptive ? search_member(&d->c, d->g.points, (long)sqlite3_column_int64(q, 2),
+							sqlite3_column_double(q, 3), id)
+					: grid_find(&d->g, id) != NULL))
 			continue;
 		if (ns == cap) {
 			cap = cap ? 2 * cap : 64;
@@ -905,7 +919,9 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 				db_rollback(&d->db);
 			cache_state(d, keys[k], st, sizeof st);
 		}
-		if (st[0] || count[k] < 2)
+		/* a replicate of an [onset] search runs several frequencies, one at a time:
+		 * its packing is worth settling once from its first run on */
+		if (st[0] || count[k] < (d->adaptive ? 1 : 2))
 			continue;
 		sb_scene s;
 		grid_scene(&d->g, &d->g.runs[first[k]], &s);
@@ -992,18 +1008,128 @@ static void counts(drv *d, long *done, long *failed, long *pending)
 	}
 }
 
+/* The per-run arrays for the grid as it is now (an [onset] campaign's grid grows
+ * pass by pass). */
+static int alloc_runs(drv *d, sb_err *e)
+{
+	free(d->pend);
+	free(d->names);
+	free(d->cache_ok);
+	free(d->started);
+	free(d->logfrom);
+	d->pend = calloc((size_t)d->g.n + 1, sizeof *d->pend);
+	d->names = calloc((size_t)d->g.n + 1, sizeof *d->names);
+	d->cache_ok = calloc((size_t)d->g.n + 1, 1);
+	d->started = calloc((size_t)d->g.n + 1, 1);
+	d->logfrom = calloc((size_t)d->g.n + 1, sizeof *d->logfrom);
+	if (!d->pend || !d->names || !d->cache_ok || !d->started || !d->logfrom)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+/* Runs the pending runs: their packings, their argument files, GNU parallel. */
+static int launch(drv *d, long npend, sb_err *e)
+{
+	char **basefiles = NULL;
+	long nbase = 0;
+	if (!caches(d, d->pend, npend, &basefiles, &nbase, e) && !g_stop &&
+	    !prepare_jobs(d, d->pend, npend, d->names, e)) {
+		if (nbase)
+			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
+		run_parallel(d, "run", d->names, npend, basefiles, nbase, e);
+	}
+	for (long i = 0; i < nbase; i++)
+		free(basefiles[i]);
+	free(basefiles);
+	return e->code;
+}
+
+/* A pass of an [onset] campaign: its chains walked again from the database and the
+ * files (search.c), their runs as the grid, recorded, the search's state stored. On
+ * the first pass, recorded runs that no chain can ask for are a changed campaign. */
+static int onset_pass(drv *d, int first, sb_err *e)
+{
+	grid_free(&d->g);
+	if (grid_expand(&d->g, &d->c, e) || search_derive(&d->srch, &d->g, &d->db, e))
+		return e->code;
+	if (first && check_changes(d, e))
+		return e->code;
+	if (record(d, e) || search_store(&d->srch, &d->db, e))
+		return e->code;
+	return alloc_runs(d, e);
+}
+
+/* An [onset] campaign, round by round: each round runs what the chains wait for (one
+ * run per unanswered replicate), and the next pass chooses from its results. A pass
+ * that finds results nobody had recorded (a driver killed mid-round) walks again
+ * before anything runs, so a resumed search asks for the points it would have. */
+static int run_onset(drv *d, sb_err *e)
+{
+	for (int first = 1;; first = 0) {
+		if (onset_pass(d, first, e))
+			return e->code;
+		long got = d->n_ingested, failed = d->n_failed_now, npend;
+		if (sweep(d, d->pend, &npend, e))
+			return e->code;
+		if (d->n_ingested > got)
+			continue;
+		if (!npend || g_stop || d->io_fault)
+			return 0;
+		long searching = 0;
+		for (long i = 0; i < d->srch.ngroups; i++)
+			searching += d->srch.groups[i].state == AD_G_SEARCHING;
+		d->rounds++;
+		fprintf(stderr, "study: %s: onset round %ld: %ld run%s, %ld of %ld group%s searching, %d job%s%s%s\n",
+			d->c.name, d->rounds, npend, npend > 1 ? "s" : "", searching, d->srch.ngroups,
+			d->srch.ngroups > 1 ? "s" : "", d->jobs, d->jobs > 1 ? "s" : "",
+			d->o->sshloginfile ? " per host of " : "", d->o->sshloginfile ? d->o->sshloginfile : "");
+		if (launch(d, npend, e) || g_stop || d->io_fault)
+			return e->code;
+		if (d->n_ingested == got && d->n_failed_now == failed)
+			return 0; /* nothing finished (every run stopped): the next `study run` goes on */
+	}
+}
+
+/* "2.68", "< 2.5", "> 3.2": an end of an interval or an estimate */
+static void onset_number(double v, char *buf, size_t len)
+{
+	if (isnan(v))
+		snprintf(buf, len, "none");
+	else if (isinf(v))
+		snprintf(buf, len, "%s", v < 0 ? "-inf" : "+inf");
+	else
+		snprintf(buf, len, "%.6g", v);
+}
+
+/* One line per group of an [onset] campaign: where its search stands. */
+static void onset_summary(drv *d)
+{
+	const cp_onset *o = &d->c.onset;
+	for (long i = 0; i < d->srch.ngroups; i++) {
+		const srch_group *gr = &d->srch.groups[i];
+		char est[32], lo[32], hi[32];
+		onset_number(gr->iv.est, est, sizeof est);
+		onset_number(gr->iv.lo, lo, sizeof lo);
+		onset_number(gr->iv.hi, hi, sizeof hi);
+		long found = 0;
+		for (long k = 0; k < gr->nrep; k++)
+			found += gr->reps[k].state == AD_FOUND;
+		fprintf(stderr, "study: %s: %s: onset %s Hz, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld runs: %s\n",
+			d->c.name, gr->label, est, 100 * o->level, lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found,
+			gr->runs, adapt_gstate_name(gr->state));
+	}
+}
+
 int driver_run(const driver_opts *o, sb_err *e)
 {
 	drv *d = calloc(1, sizeof *d);
 	if (!d)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	d->o = o;
-	long *pend = NULL;
-	char **names = NULL, **basefiles = NULL;
-	long nbase = 0;
 	int lock = -1;
 	if (campaign_load(&d->c, o->campaign_file, e) || grid_expand(&d->g, &d->c, e))
 		goto out;
+	d->adaptive = d->c.onset.line != 0;
 	d->jobs = o->jobs > 0 ? o->jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
 	if (d->jobs < 1)
 		d->jobs = 1;
@@ -1034,9 +1160,11 @@ int driver_run(const driver_opts *o, sb_err *e)
 		sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
 		goto out;
 	}
+	if (d->adaptive)
+		search_init(&d->srch, &d->c, d->dir);
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
-	if (db_open(&d->db, dbp, 1, e) || check_changes(d, e) || record(d, e))
+	if (db_open(&d->db, dbp, 1, e) || (!d->adaptive && (check_changes(d, e) || record(d, e))))
 		goto out;
 
 	struct sigaction sa;
@@ -1045,31 +1173,26 @@ int driver_run(const driver_opts *o, sb_err *e)
 	sigaction(SIGINT, &sa, NULL);
 	sigaction(SIGTERM, &sa, NULL);
 
-	pend = calloc((size_t)d->g.n + 1, sizeof *pend);
-	names = calloc((size_t)d->g.n + 1, sizeof *names);
-	d->cache_ok = calloc((size_t)d->g.n + 1, 1);
-	d->started = calloc((size_t)d->g.n + 1, 1);
-	d->logfrom = calloc((size_t)d->g.n + 1, sizeof *d->logfrom);
-	if (!pend || !names || !d->cache_ok || !d->started || !d->logfrom) {
-		sb_errf(e, SB_ENOMEM, "out of memory");
-		goto out;
-	}
 	long npend;
-	if (sweep(d, pend, &npend, e))
-		goto out;
-	fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
-		d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "", o->sshloginfile ? o->sshloginfile : "");
-	if (npend && !g_stop && !d->io_fault) {
-		if (caches(d, pend, npend, &basefiles, &nbase, e))
+	if (d->adaptive) {
+		if (run_onset(d, e) && e->code == SB_EUSAGE)
+			goto out; /* a changed campaign: nothing ran */
+	} else {
+		if (alloc_runs(d, e) || sweep(d, d->pend, &npend, e))
 			goto out;
-		if (!g_stop && !prepare_jobs(d, pend, npend, names, e)) {
-			if (nbase)
-				qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
-			run_parallel(d, "run", names, npend, basefiles, nbase, e);
-		}
+		fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
+			d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "",
+			o->sshloginfile ? o->sshloginfile : "");
+		if (npend && !g_stop && !d->io_fault)
+			launch(d, npend, e);
 	}
 	sb_err se = {0};
 	sweep(d, NULL, &npend, &se); /* outputs that came back after their DONE line */
+	if (d->adaptive && !e->code && !se.code) {
+		/* the search's state after the last round, for study status */
+		onset_pass(d, 0, &se);
+		onset_summary(d);
+	}
 	long done, failed, pending;
 	counts(d, &done, &failed, &pending);
 	fprintf(stderr, "study: %s: %ld done, %ld failed, %ld pending (ingested %ld now)\n", d->c.name, done, failed,
@@ -1088,14 +1211,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 		sb_errf(e, DRV_FAILED, "%s: %ld runs failed (study status %s lists the reasons)", d->c.name, failed,
 			d->c.name);
 out:
-	for (long i = 0; i < nbase; i++)
-		free(basefiles[i]);
-	free(basefiles);
-	free(pend);
-	free(names);
+	free(d->pend);
+	free(d->names);
 	free(d->cache_ok);
 	free(d->started);
 	free(d->logfrom);
+	search_free(&d->srch);
 	db_close(&d->db);
 	grid_free(&d->g);
 	campaign_free(&d->c);

@@ -79,12 +79,83 @@ static void scene_point(const campaign *c, long point, sb_scene *s)
 void grid_scene(const grid *g, const grid_run *r, sb_scene *s)
 {
 	scene_point(g->c, r->point, s);
+	if (r->has_frequency)
+		s->frequency = r->frequency;
 	s->seed = r->seed;
+}
+
+void grid_point_label(const campaign *c, long point, char *buf, size_t len)
+{
+	sb_scene s;
+	scene_point(c, point, &s);
+	size_t l = 0;
+	buf[0] = 0;
+	for (int a = 0; a < c->naxes && l < len; a++) {
+		const sb_param *p = params_find(c->axes[a].key);
+		char v[SB_STR_MAX + 8];
+		if (p->type == PT_REAL)
+			snprintf(v, sizeof v, "%.12g", *(const double *)((const char *)&s + p->offset));
+		else
+			params_format(&s, p, v, sizeof v);
+		l += (size_t)snprintf(buf + l, len - l, "%s%s=%s", a ? " " : "", c->axes[a].key, v);
+	}
+	if (!c->naxes)
+		snprintf(buf, len, "all");
 }
 
 static int by_id(const void *a, const void *b)
 {
 	return strcmp(((const grid_run *)a)->id, ((const grid_run *)b)->id);
+}
+
+/* A point's scene checked with the engine's cross-key rules; the message names where
+ * the key at fault was set when it was set in this file, else the grid's first line. */
+static int point_check(const campaign *c, const sb_scene *s, const char *extra, sb_err *e)
+{
+	sb_err ve = {0};
+	if (!params_validate(s, &ve))
+		return 0;
+	char pt[1024] = "";
+	size_t l = 0;
+	for (int a = 0; a < c->naxes && l < sizeof pt - 1; a++) {
+		char v[SB_STR_MAX + 8];
+		params_format(s, params_find(c->axes[a].key), v, sizeof v);
+		l += (size_t)snprintf(pt + l, sizeof pt - l, "%s%s=%s", a ? " " : "", c->axes[a].key, v);
+	}
+	if (extra && l < sizeof pt - 1)
+		snprintf(pt + l, sizeof pt - l, "%s%s", l ? " " : "", extra);
+	int line = c->naxes ? c->axes[0].line : 0;
+	if (!strncmp(ve.msg, c->path, strlen(c->path)))
+		return sb_errf(e, SB_EUSAGE, "%s (grid point %s)", ve.msg, pt);
+	return sb_errf(e, SB_EUSAGE, "%s:%d: grid point %s: %s", c->path, line, pt, ve.msg);
+}
+
+/* What an [onset] search needs of every group: fixed-frequency runs, and the
+ * observable it reads (an intruder's rise, or the flux records). */
+static int onset_group_check(const campaign *c, long p, sb_scene *s, sb_err *e)
+{
+	const cp_onset *o = &c->onset;
+	char label[1024];
+	grid_point_label(c, p, label, sizeof label);
+	if (s->ramp != 0) /* RAMP_NONE */
+		return sb_errf(e, SB_EUSAGE, "%s:%d: observable: the search runs fixed frequencies, but group %s has a "
+			       "frequency ramp (ramp, set at %s): set ramp = none", c->path, o->observable_line, label,
+			       params_where(s, "ramp"));
+	if (o->observable == CP_OBS_RISE && !(s->radius_ratio > 0))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: observable: rise needs an intruder, but group %s has "
+			       "radius_ratio = 0", c->path, o->observable_line, label);
+	if (o->observable == CP_OBS_FLUX && !s->flux)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: observable: flux needs the flux records: set flux = yes under "
+			       "[scene] (group %s has flux = no)", c->path, o->observable_line, label);
+	double ends[2] = {o->from, o->to};
+	for (int k = 0; k < 2; k++) {
+		char at[64];
+		s->frequency = ends[k];
+		snprintf(at, sizeof at, "frequency=%.12g", ends[k]);
+		if (point_check(c, s, at, e))
+			return e->code;
+	}
+	return 0;
 }
 
 int grid_expand(grid *g, const campaign *c, sb_err *e)
@@ -96,31 +167,27 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 	long total;
 	if (campaign_points(c, &total, e))
 		return e->code;
+	g->points = total;
+	if (c->onset.line) {
+		for (long p = 0; p < total; p++) {
+			sb_scene s;
+			scene_point(c, p, &s);
+			if (onset_group_check(c, p, &s, e))
+				return e->code;
+		}
+		return 0;
+	}
 	g->runs = calloc((size_t)total, sizeof *g->runs);
 	if (!g->runs)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
+	g->cap = total;
 	/* once, not per point: making the defaults is a third of a point's cost */
 	sb_scene def;
 	params_defaults(&def);
 	for (long p = 0; p < total; p++) {
 		sb_scene s;
 		scene_point(c, p, &s);
-		sb_err ve = {0};
-		if (params_validate(&s, &ve)) {
-			char pt[1024] = "";
-			size_t l = 0;
-			for (int a = 0; a < c->naxes && l < sizeof pt - 1; a++) {
-				char v[SB_STR_MAX + 8];
-				params_format(&s, params_find(c->axes[a].key), v, sizeof v);
-				l += (size_t)snprintf(pt + l, sizeof pt - l, "%s%s=%s", a ? " " : "", c->axes[a].key, v);
-			}
-			/* the message names where the key at fault was set when it was set in
-			 * this file; otherwise the grid's first line stands for it */
-			int line = c->naxes ? c->axes[0].line : 0;
-			if (!strncmp(ve.msg, c->path, strlen(c->path)))
-				sb_errf(e, SB_EUSAGE, "%s (grid point %s)", ve.msg, pt);
-			else
-				sb_errf(e, SB_EUSAGE, "%s:%d: grid point %s: %s", c->path, line, pt, ve.msg);
+		if (point_check(c, &s, NULL, e)) {
 			grid_free(g);
 			return e->code;
 		}
@@ -135,6 +202,14 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 		snprintf(r->cache_key, sizeof r->cache_key, "%016llx", params_hash_nondefault(&s, PF_PREP));
 		g->n++;
 	}
+	grid_sort(g);
+	return 0;
+}
+
+void grid_sort(grid *g)
+{
+	if (!g->n)
+		return;
 	qsort(g->runs, (size_t)g->n, sizeof *g->runs, by_id);
 	/* two points with the same parameters are one run (e.g. literal seeds) */
 	long w = 0;
@@ -142,6 +217,48 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 		if (!w || strcmp(g->runs[w - 1].id, g->runs[i].id))
 			g->runs[w++] = g->runs[i];
 	g->n = w;
+}
+
+/* The scene of an [onset] run: the group's point at the frequency, the engine seed of
+ * the replicate (a replicate's runs share their packing: frequency is no preparation
+ * key). */
+static void onset_run(const campaign *c, long point, long replicate, double frequency, grid_run *r)
+{
+	memset(r, 0, sizeof *r);
+	sb_scene s;
+	scene_point(c, point, &s);
+	s.frequency = frequency;
+	r->point = point;
+	r->has_frequency = 1;
+	r->frequency = frequency;
+	r->replicate = replicate;
+	r->seed = grid_seed(c, &s, replicate);
+	s.seed = r->seed;
+	snprintf(r->id, sizeof r->id, "%016llx", grid_run_hash(&s));
+	snprintf(r->cache_key, sizeof r->cache_key, "%016llx", params_hash_nondefault(&s, PF_PREP));
+}
+
+void grid_onset_id(const campaign *c, long point, long replicate, double frequency, char id[17])
+{
+	grid_run r;
+	onset_run(c, point, replicate, frequency, &r);
+	memcpy(id, r.id, 17);
+}
+
+int grid_add(grid *g, long point, long replicate, double frequency, char id[17], sb_err *e)
+{
+	if (g->n == g->cap) {
+		long cap = g->cap ? 2 * g->cap : 64;
+		grid_run *nr = realloc(g->runs, sizeof *nr * (size_t)cap);
+		if (!nr)
+			return sb_errf(e, SB_ENOMEM, "out of memory");
+		g->runs = nr;
+		g->cap = cap;
+	}
+	grid_run *r = &g->runs[g->n];
+	onset_run(g->c, point, replicate, frequency, r);
+	memcpy(id, r->id, 17);
+	g->n++;
 	return 0;
 }
 
@@ -149,7 +266,7 @@ void grid_free(grid *g)
 {
 	free(g->runs);
 	g->runs = NULL;
-	g->n = 0;
+	g->n = g->cap = 0;
 }
 
 const grid_run *grid_find(const grid *g, const char *id)

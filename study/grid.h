@@ -11,17 +11,34 @@ typedef struct grid_run {
 	long replicate;       /* the campaign's seed value (replicate label) */
 	long seed;            /* the engine seed */
 	long point;           /* index of the grid point (mixed radix over the axes) */
+	int has_frequency;    /* a run of an [onset] search: its frequency is the search's */
+	double frequency;
 } grid_run;
 
 typedef struct grid {
 	const campaign *c;
-	long n;
+	long n, cap;
+	long points;          /* grid points (of an [onset] campaign: its groups) */
 	grid_run *runs;       /* sorted by id */
 } grid;
 
-/* Expand and check every grid point (cross-key rules of params_validate included). */
+/* Expand and check every grid point (cross-key rules of params_validate included).
+ * An [onset] campaign's points are its groups: each is checked at both ends of the
+ * search's range and against what its observable needs, and no run is made (the
+ * search adds them, grid_add). */
 int grid_expand(grid *g, const campaign *c, sb_err *e);
 void grid_free(grid *g);
+
+/* A run of an [onset] search: the group's point at a frequency, replicate label
+ * `replicate`; appended (grid_sort orders the runs again). Its id into id. */
+int grid_add(grid *g, long point, long replicate, double frequency, char id[17], sb_err *e);
+/* The id of that run, without adding it. */
+void grid_onset_id(const campaign *c, long point, long replicate, double frequency, char id[17]);
+/* Orders the runs by id (for grid_find) and drops duplicates. */
+void grid_sort(grid *g);
+/* "radius_ratio=2 depth=1": the point's values of the campaign's axes (reals with 12
+ * significant digits); "all" without axes. */
+void grid_point_label(const campaign *c, long point, char *buf, size_t len);
 
 /* The canonical scene of run k: defaults, scene file, [scene], axis values, engine seed. */
 void grid_scene(const grid *g, const grid_run *r, sb_scene *s);

@@ -68,6 +68,107 @@ static double throughput(st_db *d, const char *name)
 	return rate;
 }
 
+/* "2.6875"; "-" for a NULL (an end that bounds nothing, an estimate that does not exist) */
+static const char *num_or(sqlite3_stmt *q, int i, const char *none, char *buf, size_t len)
+{
+	if (sqlite3_column_type(q, i) == SQLITE_NULL)
+		return none;
+	snprintf(buf, len, "%.6g", sqlite3_column_double(q, i));
+	return buf;
+}
+
+/* An [onset] campaign: the search as the driver's last pass left it (search.c): per
+ * group the replicates and their states, the runs, the onset and its interval, and
+ * every replicate's bracket. Nothing when the campaign has no [onset] or the
+ * database predates it. */
+static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	sb_err qe = {0};
+	if (db_exec(d, &qe, &q,
+		    "SELECT observable, freq_from, freq_to, tolerance, threshold, band_lo, band_hi, skip, replicates,"
+		    " max_replicates, batch, target, level, state, updated FROM onset_search WHERE campaign = ?",
+		    "t", name))
+		return 0; /* an older database: no onset tables */
+	if (sqlite3_step(q) != SQLITE_ROW) {
+		sqlite3_finalize(q);
+		return 0;
+	}
+	char b[8][32];
+	double level = sqlite3_column_double(q, 12);
+	fprintf(out, "  onset search (%s; last pass %s): ", col(q, 13), col(q, 14));
+	if (!strcmp(col(q, 0), "flux"))
+		fprintf(out, "mean flux through %s-%s of the surface after %s of the periods, on at |flux| >= %s "
+			"particles/period", num_or(q, 5, "?", b[0], 32), num_or(q, 6, "?", b[1], 32),
+			num_or(q, 7, "?", b[2], 32), num_or(q, 4, "?", b[3], 32));
+	else
+		fprintf(out, "the intruder's rise (risen)");
+	fprintf(out, ", %s to %s Hz, tolerance %s Hz;\n", num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32),
+		num_or(q, 3, "?", b[2], 32));
+	if (!strcmp(col(q, 8), "auto"))
+		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s Hz wide\n",
+			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32));
+	else
+		fprintf(out, "    replicates %s; %g%% interval over them\n", col(q, 8), 100 * level);
+	sqlite3_finalize(q);
+	if (db_exec(d, e, &q,
+		    "SELECT grp, replicates, searching, found, below, above, blocked, nonmonotone, runs, estimate, ci_lo,"
+		    " ci_hi, width, state FROM onset_group WHERE campaign = ? ORDER BY point",
+		    "t", name))
+		return e->code;
+	fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s\n", "group", "replicates", "searching",
+		"found", "below", "above", "blocked", "runs", "onset (Hz)", "interval (Hz)", "width", "state");
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		char iv[80];
+		snprintf(iv, sizeof iv, "[%s, %s]", num_or(q, 10, "-inf", b[0], 32), num_or(q, 11, "+inf", b[1], 32));
+		fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s%s\n", col(q, 0), col(q, 1), col(q, 2),
+			col(q, 3), col(q, 4), col(q, 5), col(q, 6), col(q, 8), num_or(q, 9, "none", b[2], 32), iv,
+			num_or(q, 12, "inf", b[3], 32), col(q, 13),
+			sqlite3_column_int64(q, 7) ? " (a replicate's runs flip: see its brackets)" : "");
+	}
+	sqlite3_finalize(q);
+	/* every replicate's bracket: "3 [2.68, 2.69]"; "5 [2.6, ~3.2] running 2.75" when
+	 * an end was not run (~: the range's end, assumed); "< 2.5", "> 3.2" out of range */
+	if (db_exec(d, e, &q,
+		    "SELECT grp, replicate, state, lo, hi, lo_run, hi_run, next, nonmonotone FROM onset_replicate"
+		    " WHERE campaign = ? ORDER BY (SELECT point FROM onset_group g WHERE g.campaign = onset_replicate.campaign"
+		    " AND g.grp = onset_replicate.grp), replicate",
+		    "t", name))
+		return e->code;
+	char grp[512] = "";
+	size_t width = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		if (strcmp(grp, col(q, 0))) {
+			snprintf(grp, sizeof grp, "%s", col(q, 0));
+			fprintf(out, "%s    brackets of %s:", width ? "\n" : "", grp);
+			width = 1;
+		}
+		char item[160];
+		const char *st = col(q, 2);
+		if (!strcmp(st, "below"))
+			snprintf(item, sizeof item, "%s < %s", col(q, 1), num_or(q, 4, "?", b[0], 32));
+		else if (!strcmp(st, "above"))
+			snprintf(item, sizeof item, "%s > %s", col(q, 1), num_or(q, 3, "?", b[0], 32));
+		else
+			snprintf(item, sizeof item, "%s [%s%s, %s%s]%s%s%s%s", col(q, 1), sqlite3_column_int64(q, 5) ? "" : "~",
+				 num_or(q, 3, "?", b[0], 32), sqlite3_column_int64(q, 6) ? "" : "~",
+				 num_or(q, 4, "?", b[1], 32),
+				 !strcmp(st, "searching") ? " needs " : !strcmp(st, "blocked") ? " failed at " : "",
+				 !strcmp(st, "searching") || !strcmp(st, "blocked") ? num_or(q, 7, "?", b[2], 32) : "",
+				 sqlite3_column_int64(q, 8) ? " flips" : "", "");
+		if (width > 1 && width + strlen(item) + 2 > 100) {
+			fprintf(out, "\n     ");
+			width = 5;
+		}
+		fprintf(out, "%s %s", width > 5 ? ";" : "", item);
+		width += strlen(item) + 2;
+	}
+	if (width)
+		fprintf(out, "\n");
+	sqlite3_finalize(q);
+	return 0;
+}
+
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -108,6 +209,8 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		}
 	}
 	sqlite3_finalize(q);
+	if (onset_status(d, name, out, e))
+		return e->code;
 	if (db_exec(d, e, &q,
 		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
 		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",

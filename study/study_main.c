@@ -11,6 +11,7 @@
 #include "grid.h"
 #include "report.h"
 #include "results.h"
+#include "search.h"
 #include "worker.h"
 
 static const char *USAGE =
@@ -149,17 +150,37 @@ static int campaign_name(const char *arg, char *name, size_t len, sb_err *e)
 	return 0;
 }
 
+/* An [onset] campaign's first round: what its chains ask for before any result (a
+ * database in memory, with nothing recorded). */
+static int onset_first_round(const campaign *c, grid *g, sb_err *e)
+{
+	st_db mem;
+	search s;
+	if (db_open(&mem, ":memory:", 1, e))
+		return e->code;
+	search_init(&s, c, ".");
+	search_derive(&s, g, &mem, e);
+	search_free(&s);
+	db_close(&mem);
+	return e->code;
+}
+
 static int cmd_expand(const char *path, sb_err *e)
 {
 	campaign *c = malloc(sizeof *c);
-	grid g;
+	grid g = {0};
 	if (!c)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
-	if (!campaign_load(c, path, e) && !grid_expand(&g, c, e)) {
+	if (!campaign_load(c, path, e) && !grid_expand(&g, c, e) && (!c->onset.line || !onset_first_round(c, &g, e))) {
+		if (c->onset.line)
+			fprintf(stderr, "study: %s: an [onset] search: its first round below; the next ones depend on "
+				"the results\n", path);
 		printf("id\tcache_key\treplicate\tseed");
 		for (int a = 0; a < c->naxes; a++)
 			if (strcmp(c->axes[a].key, "seed"))
 				printf("\t%s", c->axes[a].key);
+		if (c->onset.line)
+			printf("\tfrequency");
 		printf("\n");
 		for (long i = 0; i < g.n; i++) {
 			const grid_run *r = &g.runs[i];
@@ -177,10 +198,15 @@ static int cmd_expand(const char *path, sb_err *e)
 					params_format(&s, p, v, sizeof v);
 				printf("\t%s", v);
 			}
+			if (c->onset.line) {
+				char v[40];
+				report_number(s.frequency, v, sizeof v);
+				printf("\t%s", v);
+			}
 			printf("\n");
 		}
-		grid_free(&g);
 	}
+	grid_free(&g);
 	campaign_free(c);
 	free(c);
 	return e->code;
