@@ -1,0 +1,216 @@
+#!/usr/bin/env bash
+# study_adaptive.sh - the [onset] search with the real engine (study/README.md,
+# "Adaptive onset search"). A tiny bed whose intruder's rise is measured first on a
+# fixed frequency grid holding every point the search can ask for; the search must
+# find, replicate by replicate, the bracket a bisection over those measurements gives,
+# with runs identical to the grid's; killed mid-search (the driver alone, or its whole
+# process group) and run again it asks for the same points in the same order;
+# replicates = auto adds batches up to its maximum, stops at the first batch whose
+# interval is narrow enough, and reuses the runs of a search with fixed replicates;
+# study status shows the brackets and the interval; bad [onset] input and a changed
+# range are refused with file, line and key.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+cd "$TMP" || exit 1
+
+# 60 grains, an intruder of 1.5 mean radii, 2 s of the fast preset, ended at the rise:
+# the intruder rises between about 6 and 8 Hz at A = 1 cm, differently per packing
+campaign() { # NAME [CAMPAIGN-LINES...]: the [campaign] and [scene] sections
+	printf '[campaign]\nname = %s\nseed = 11\n' "$1"
+	shift
+	[ $# -gt 0 ] && printf '%s\n' "$@"
+	cat <<C
+[scene]
+preset = fast
+n_grains = 60
+width = 16
+radius_ratio = 1.5
+settle_ke = 1
+settle_min = 0.2
+amplitude = 1
+duration = 2
+stop = risen
+traj_rate = 0
+snapshots = no
+C
+}
+# from 5 to 9 Hz to 0.5 Hz: three halvings, so every point a chain can ask for (7; 6, 8;
+# 5.5 ... 8.5; and the ends) is on the grid 5:9:0.5
+onset() { # extra [onset] lines
+	printf '[onset]\nobservable = rise\nfrom = 5\nto = 9\ntolerance = 0.5\n'
+	printf '%s\n' "$@"
+}
+
+# --- bad input: refused before anything runs, with file, line and key ---
+bad() { # ID EXPECTED [onset] lines...
+	local id=$1 want=$2
+	shift 2
+	{ campaign bad; printf '%s\n' "$@"; } >bad.campaign
+	local out rc
+	out=$("$STUDY" run bad.campaign --runs "$TMP/BAD" 2>&1)
+	rc=$?
+	if [ "$rc" -eq 1 ] && printf '%s' "$out" | grep -qF -- "$want" && [ ! -e BAD/bad ]; then ok "$id"; else
+		fail "$id" "exit $rc: $out"; fi
+}
+bad adaptive.bad.tolerance "bad.campaign:20: tolerance: expected a number in (0, 1000] (Hz), got 'fine'" \
+	'[onset]' 'observable = rise' 'from = 5' 'to = 9' 'tolerance = fine'
+bad adaptive.bad.range "bad.campaign:19: to: expected a frequency above from = 5 (line 18), got 4" \
+	'[onset]' 'observable = rise' 'from = 5' 'to = 4' 'tolerance = 0.5'
+bad adaptive.bad.observable "bad.campaign:17: observable: expected one of rise|flux, got 'convection'" \
+	'[onset]' 'observable = convection'
+bad adaptive.bad.missing "bad.campaign:16: [onset] has no tolerance" \
+	'[onset]' 'observable = rise' 'from = 5' 'to = 9'
+bad adaptive.bad.replicates "bad.campaign:20: replicates: expected auto or an integer in [1, 1000], got '0'" \
+	'[onset]' 'observable = rise' 'from = 5' 'to = 9' 'replicates = 0' 'tolerance = 0.5'
+bad adaptive.bad.flux_records "bad.campaign:17: observable: flux needs the flux records: set flux = yes" \
+	'[onset]' 'observable = flux' 'from = 5' 'to = 9' 'tolerance = 0.5' 'threshold = 1'
+bad adaptive.bad.frequency_axis "bad.campaign:17: frequency: chosen by the [onset] search" \
+	'[grid]' 'frequency = 6, 7' '[onset]' 'observable = rise' 'from = 5' 'to = 9' 'tolerance = 0.5'
+
+# --- the transition measured first: every point the search can ask for, 3 replicates ---
+{ campaign scan 'replicates = 3'; printf '[grid]\nfrequency = 5:9:0.5\n'; } >scan.campaign
+"$STUDY" run scan.campaign --runs "$TMP/SCAN" --jobs 2 >scan.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && ok adaptive.scan.measured || { fail adaptive.scan.measured "exit $rc: $(tail -c 300 scan.log)"; finish; }
+sqlite3 SCAN/study.db "SELECT replicate, printf('%g', frequency), risen, id FROM runs WHERE campaign = 'scan'
+	ORDER BY replicate, frequency" >scan.tsv
+echo "# measured (replicate: frequency:risen): $(awk -F'|' '{ a[$1] = a[$1] " " $2 ":" $3 } END { for (r in a) printf "%s:%s;", r, a[r] }' scan.tsv)"
+# the bisection over the measurements, per replicate: state lo hi and the chain's points
+awk -F'|' '{ risen[$1 "," $2] = $3; reps[$1] = 1 }
+	END {
+		for (r in reps) {
+			lo = 5; hi = 9; ls = 0; hs = 0; chain = ""
+			while (hi - lo > 0.5 + 1e-9) {
+				m = (lo + hi) / 2; chain = chain " " m
+				if (risen[r "," m]) { hi = m; hs = 1 } else { lo = m; ls = 1 }
+			}
+			state = "found"
+			if (!ls) { chain = chain " 5"; if (risen[r ",5"]) state = "below"; else ls = 1 }
+			if (state == "found" && !hs) { chain = chain " 9"; if (!risen[r ",9"]) state = "above" }
+			if (state == "below") { lo = ""; hi = 5 }
+			if (state == "above") { lo = 9; hi = "" }
+			printf "%s|%s|%s|%s|%s\n", r, state, lo, hi, substr(chain, 2)
+		}
+	}' scan.tsv | sort >want.tsv
+
+# --- the search ---
+{ campaign rise; onset 'replicates = 3'; } >rise.campaign
+"$STUDY" expand rise.campaign >expand.tsv 2>expand.err
+[ "$(awk -F'\t' 'NR > 1 { print $3 ":" $5 }' expand.tsv | sort | tr '\n' ' ')" = "1:7 2:7 3:7 " ] &&
+	head -n 1 expand.tsv | grep -q 'frequency$' && ok adaptive.expand.first_round ||
+	fail adaptive.expand.first_round "$(cat expand.tsv expand.err)"
+t0=$(date +%s%N)
+"$STUDY" run rise.campaign --runs "$TMP/REF" --jobs 2 >ref.log 2>&1
+rc=$?
+ref_ms=$((($(date +%s%N) - t0) / 1000000))
+echo "# the search: $ref_ms ms, $(grep -c 'onset round' ref.log) rounds"
+[ "$rc" -eq 0 ] && grep -q "rise: all: onset .* Hz, 95% interval .*: done" ref.log && ok adaptive.run.completes ||
+	{ fail adaptive.run.completes "exit $rc: $(tail -c 400 ref.log)"; finish; }
+# the search's answer per replicate, as want.tsv (an unbounded end empty)
+sqlite3 REF/study.db "SELECT r.replicate, r.state, CASE WHEN r.lo IS NULL THEN '' ELSE printf('%g', r.lo) END,
+	CASE WHEN r.hi IS NULL THEN '' ELSE printf('%g', r.hi) END,
+	(SELECT group_concat(f, ' ') FROM (SELECT printf('%g', frequency) AS f FROM onset_run o
+	 WHERE o.campaign = r.campaign AND o.replicate = r.replicate ORDER BY step))
+	FROM onset_replicate r WHERE r.campaign = 'rise' ORDER BY r.replicate" >got.tsv
+cmp -s want.tsv got.tsv && ok adaptive.finds_measured_transition ||
+	fail adaptive.finds_measured_transition "measured $(tr '\n' ';' <want.tsv), searched $(tr '\n' ';' <got.tsv)"
+# every run of the search is a run of the scan: same parameters, same id, same result
+sqlite3 REF/study.db "SELECT replicate, printf('%g', frequency), risen, id FROM runs WHERE campaign = 'rise'
+	ORDER BY replicate, frequency" >rise.tsv
+sort -o rise.tsv rise.tsv
+sort -o scan.tsv scan.tsv
+[ -s rise.tsv ] && [ -z "$(comm -23 rise.tsv scan.tsv)" ] && ok adaptive.runs_are_ordinary_runs ||
+	fail adaptive.runs_are_ordinary_runs "$(comm -23 rise.tsv scan.tsv | head -n 3)"
+# each bracket, by the engine's own results: off at lo, on at hi, at most the tolerance wide
+bad_brackets=$(sqlite3 REF/study.db "SELECT b.replicate FROM onset_replicate b WHERE b.campaign = 'rise' AND b.state = 'found'
+	AND NOT (b.hi - b.lo <= 0.5
+	AND (SELECT risen FROM runs r WHERE r.campaign = 'rise' AND r.replicate = b.replicate AND r.frequency = b.lo) = 0
+	AND (SELECT risen FROM runs r WHERE r.campaign = 'rise' AND r.replicate = b.replicate AND r.frequency = b.hi) = 1)")
+[ -z "$bad_brackets" ] && [ "$(sqlite3 REF/study.db "SELECT COUNT(*) FROM onset_replicate WHERE state = 'found'")" -gt 0 ] &&
+	ok adaptive.brackets_hold || fail adaptive.brackets_hold "replicates $bad_brackets"
+"$STUDY" status rise --runs "$TMP/REF" >status.txt 2>&1
+grep -q "onset search (done; " status.txt && grep -qE "^ +all +3 +0 .* done$" status.txt &&
+	grep -qE "brackets of all: 1 " status.txt && ok adaptive.status.shows_search || fail adaptive.status.shows_search "$(cat status.txt)"
+"$STUDY" run rise.campaign --runs "$TMP/REF" --jobs 2 >again.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && ! grep -q "onset round" again.log && [ "$(sqlite3 REF/study.db "SELECT COUNT(*) FROM attempt")" = \
+	"$(sqlite3 REF/study.db "SELECT COUNT(*) FROM run")" ] && ok adaptive.rerun_runs_nothing ||
+	fail adaptive.rerun_runs_nothing "exit $rc: $(tail -c 300 again.log)"
+
+# --- killed mid-search (SIGKILL: the driver alone, then its whole process group), resumed ---
+sequence() { # DB: every chain's runs in order
+	sqlite3 "$1" "SELECT grp, replicate, step, printf('%.17g', frequency), run, class FROM onset_run
+		WHERE campaign = 'rise' ORDER BY grp, replicate, step"
+}
+partial=0
+for k in 1 2; do
+	setsid "$STUDY" run rise.campaign --runs "$TMP/K" --jobs 2 >"kill$k.log" 2>&1 &
+	pid=$!
+	ms=$((300 + RANDOM % (ref_ms > 900 ? ref_ms * 2 / 3 : 300)))
+	sleep "$(awk -v m=$ms 'BEGIN { printf "%.3f", m / 1000 }')"
+	if [ "$k" -eq 1 ]; then kill -KILL $pid 2>/dev/null; else kill -KILL -- -$pid 2>/dev/null; fi
+	wait $pid 2>/dev/null
+	# processes of the killed group are gone; a killed driver's workers finish on their own
+	for i in $(seq 100); do pgrep -f "exec $TMP/K/rise run" >/dev/null || break; sleep 0.1; done
+	n=$(sqlite3 K/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'" 2>/dev/null)
+	[ "$(sqlite3 K/study.db "SELECT state FROM onset_search" 2>/dev/null)" = searching ] && partial=$((partial + 1))
+	echo "# kill $k after $ms ms: ${n:-0} runs done, search $(sqlite3 K/study.db "SELECT state FROM onset_search" 2>/dev/null)"
+done
+"$STUDY" run rise.campaign --runs "$TMP/K" --jobs 2 >resume.log 2>&1
+rc=$?
+sequence REF/study.db >ref.seq
+sequence K/study.db >k.seq
+[ "$rc" -eq 0 ] && [ -s ref.seq ] && cmp -s ref.seq k.seq && ok adaptive.resume.same_sequence ||
+	fail adaptive.resume.same_sequence "exit $rc: $(diff ref.seq k.seq | head -n 4) $(tail -c 200 resume.log)"
+[ "$partial" -gt 0 ] && ok adaptive.resume.killed_mid_search ||
+	echo "# (no kill landed mid-search this time: the search finished or had not recorded a pass)"
+[ "$(sqlite3 K/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'ok'")" = "$(sqlite3 K/study.db "SELECT COUNT(*) FROM run")" ] &&
+	ok adaptive.resume.one_ok_attempt_each || fail adaptive.resume.one_ok_attempt_each \
+	"$(sqlite3 K/study.db "SELECT run, n, status FROM attempt")"
+# (h5diff calls the empty trajectory and snapshot datasets of these runs not comparable:
+# the files are compared as text, %.17g, without /provenance)
+same=0 total=0
+for f in REF/rise/*.h5; do
+	total=$((total + 1))
+	dump_noprov "$f" >a.dump
+	dump_noprov "K/rise/$(basename "$f")" >b.dump 2>/dev/null
+	[ -s a.dump ] && cmp -s a.dump b.dump && same=$((same + 1))
+done
+[ "$same" = "$total" ] && ok adaptive.resume.bit_identical || fail adaptive.resume.bit_identical "$same of $total identical"
+
+# --- replicates = auto: the same campaign, extended ---
+# level 0.5: an interval from 2 replicates; batches of 2 up to 6; a target no interval
+# reaches (finer than a bracket): every batch runs, and the search stops at the maximum
+{ campaign rise; onset 'replicates = auto' 'level = 0.5' 'batch = 2' 'max_replicates = 6' 'target = 0.001'; } >auto.campaign
+"$STUDY" run auto.campaign --runs "$TMP/REF" --jobs 2 >auto.log 2>&1
+rc=$?
+row=$(sqlite3 REF/study.db "SELECT replicates || '|' || state FROM onset_group WHERE campaign = 'rise'")
+[ "$rc" -eq 0 ] && [ "$row" = "6|max_replicates" ] && grep -q "rise: all: .* 6 replicates .*: max_replicates" auto.log &&
+	ok adaptive.auto.stops_at_max || fail adaptive.auto.stops_at_max "exit $rc, group '$row': $(tail -c 300 auto.log)"
+# the fixed search's replicates 1-3 are reused as they were: one attempt each, same chains
+sequence REF/study.db | awk -F'|' '$2 <= 3' >auto123.seq
+[ "$(sqlite3 REF/study.db "SELECT COUNT(*) FROM attempt WHERE n > 1")" = 0 ] && cmp -s ref.seq auto123.seq &&
+	ok adaptive.auto.extends_fixed_search || fail adaptive.auto.extends_fixed_search "$(diff ref.seq auto123.seq | head -n 4)"
+# a target the first batch reaches: done with 2 replicates, nothing runs; the interval
+# (level 0.5, 2 replicates: rank 1) is the lowest lower end to the highest upper end
+sed 's/^target = 0.001$/target = 100/' auto.campaign >auto2.campaign
+"$STUDY" run auto2.campaign --runs "$TMP/REF" --jobs 2 >auto2.log 2>&1
+rc=$?
+row=$(sqlite3 REF/study.db "SELECT replicates || '|' || state || '|' || printf('%g|%g', ci_lo, ci_hi) FROM onset_group
+	WHERE campaign = 'rise'")
+want=$(sqlite3 REF/study.db "SELECT '2|done|' || printf('%g|%g', MIN(lo), MAX(hi)) FROM onset_replicate WHERE campaign = 'rise'")
+[ "$rc" -eq 0 ] && [ "$row" = "$want" ] && ! grep -q "onset round" auto2.log && ok adaptive.auto.stops_at_target ||
+	fail adaptive.auto.stops_at_target "exit $rc: group $row, want $want: $(tail -c 300 auto2.log)"
+"$STUDY" status rise --runs "$TMP/REF" >status2.txt 2>&1
+grep -q "replicates auto: 2 at a time, at most 6, until the 50% interval is at most 100 Hz wide" status2.txt &&
+	grep -qE "^ +all +2 +0 .* \[[0-9.]+, [0-9.]+\] .* done$" status2.txt && ok adaptive.auto.status_interval ||
+	fail adaptive.auto.status_interval "$(cat status2.txt)"
+
+# --- a changed range: the recorded runs are no chain's any more: refused, nothing runs ---
+sed 's/^to = 9$/to = 8/' rise.campaign >changed.campaign
+out=$("$STUDY" run changed.campaign --runs "$TMP/REF" 2>&1)
+rc=$?
+[ "$rc" -eq 1 ] && printf '%s' "$out" | grep -q "campaign rise changed since it was recorded" && ok adaptive.changed_range_refused ||
+	fail adaptive.changed_range_refused "exit $rc: $out"
+finish
