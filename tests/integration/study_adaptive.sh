@@ -207,6 +207,29 @@ grep -q "replicates auto: 2 at a time, at most 6, until the 50% interval is at m
 	grep -qE "^ +all +2 +0 .* \[[0-9.]+, [0-9.]+\] .* done$" status2.txt && ok adaptive.auto.status_interval ||
 	fail adaptive.auto.status_interval "$(cat status2.txt)"
 
+# --- the flux observable: a bed without intruder, on when the mean flux through the band
+# (after the transient) is at least the threshold; the value is bin/onset's Phi of the run ---
+{ campaign flux; printf 'flux = yes\n'; onset 'replicates = 2' 'threshold = 0.3'; } |
+	sed 's/^radius_ratio = 1.5$/radius_ratio = 0/; s/^stop = risen$//; s/^observable = rise$/observable = flux/; s/^duration = 2$/duration = 3/; s/^tolerance = 0.5$/tolerance = 1/' >flux.campaign
+"$STUDY" run flux.campaign --runs "$TMP/FLUX" --jobs 2 >flux.log 2>&1
+rc=$?
+[ "$rc" -eq 0 ] && grep -q "flux: all: onset .*: done" flux.log && ok adaptive.flux.completes ||
+	fail adaptive.flux.completes "exit $rc: $(tail -c 400 flux.log)"
+sqlite3 FLUX/study.db "SELECT run, printf('%!.17g', value), class FROM onset_run ORDER BY run" >flux.got
+awk -F'|' '{ v = $2 < 0 ? -$2 : $2; if (($3 == "on") != (v >= 0.3)) bad = bad " " $1 } END { exit bad != "" }' flux.got &&
+	[ "$(sqlite3 FLUX/study.db "SELECT COUNT(*) FROM onset_replicate r WHERE state = 'found' AND
+		(SELECT ABS(value) FROM onset_run o WHERE o.replicate = r.replicate AND o.frequency = r.lo) < 0.3 AND
+		(SELECT ABS(value) FROM onset_run o WHERE o.replicate = r.replicate AND o.frequency = r.hi) >= 0.3")" = 2 ] &&
+	ok adaptive.flux.brackets_hold || fail adaptive.flux.brackets_hold "$(cat flux.got; sqlite3 FLUX/study.db 'SELECT * FROM onset_replicate')"
+ONSET="$(dirname "$SHAKE")/onset"
+if [ -x "$ONSET" ]; then
+	"$ONSET" flux --runs "$TMP/FLUX" --no-plot --no-store --out "$TMP/FLUXAN" >onset.log 2>&1
+	awk -F, 'NR > 1 { print $3 "|" $9 }' FLUXAN/onset_runs.csv 2>/dev/null | sort >onset.phi
+	cut -d'|' -f1,2 flux.got >flux.phi
+	[ -s flux.phi ] && cmp -s onset.phi flux.phi && ok adaptive.flux.value_is_onset_phi ||
+		fail adaptive.flux.value_is_onset_phi "search $(tr '\n' ' ' <flux.phi), bin/onset $(tr '\n' ' ' <onset.phi) $(tail -c 200 onset.log)"
+fi
+
 # --- a changed range: the recorded runs are no chain's any more: refused, nothing runs ---
 sed 's/^to = 9$/to = 8/' rise.campaign >changed.campaign
 out=$("$STUDY" run changed.campaign --runs "$TMP/REF" 2>&1)
