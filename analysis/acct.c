@@ -188,7 +188,7 @@ void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels)
 }
 
 int acct_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
-	       const an_acct *a, sb_err *e)
+	       const char *const *vals, const an_acct *a, sb_err *e)
 {
 	const struct {
 		const char *key;
@@ -204,13 +204,13 @@ int acct_store(adb *d, const char *campaign, const char *tool, const char *versi
 		{"runs_running", (double)a->n[AN_RUNNING]},
 	};
 	for (size_t i = 0; i < sizeof row / sizeof row[0]; i++)
-		if (adb_store(d, campaign, tool, version, grp, row[i].key, row[i].v, NAN, NAN,
+		if (adb_store(d, campaign, tool, version, grp, vals, row[i].key, row[i].v, NAN, NAN,
 			      i == 2 || i == 3 ? a->n[AN_PARTLY] : (long)row[i].v, e))
 			return e->code;
 	for (int k = 0; k < a->nreason; k++) {
 		char key[64];
 		snprintf(key, sizeof key, "failed_%s", a->reason[k].status);
-		if (adb_store(d, campaign, tool, version, grp, key, (double)a->reason[k].n, NAN, NAN, a->reason[k].n, e))
+		if (adb_store(d, campaign, tool, version, grp, vals, key, (double)a->reason[k].n, NAN, NAN, a->reason[k].n, e))
 			return e->code;
 	}
 	return 0;

@@ -73,8 +73,9 @@ void acct_csv_row(FILE *f, const an_acct *a);
  * seconds used of planned, why); runs of group < 0 are in none and left out. */
 void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels);
 /* Stores runs_failed, runs_failed_used, failed_used_s, failed_planned_s, runs_unusable,
- * runs_unreadable, runs_pending, runs_running and failed_STATUS per status. */
+ * runs_unreadable, runs_pending, runs_running and failed_STATUS per status, each with
+ * the group's values of the grouping keys (vals, as adb_store takes them). */
 int acct_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
-	       const an_acct *a, sb_err *e);
+	       const char *const *vals, const an_acct *a, sb_err *e);
 
 #endif

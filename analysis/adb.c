@@ -3,6 +3,7 @@
 
 #include "layout.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -322,13 +323,62 @@ static int exec1(adb *d, const char *sql, sb_err *e)
 	return 0;
 }
 
-int adb_store_begin(adb *d, const char *campaign, const char *tool, sb_err *e)
+/* The columns every analysis table has besides the grouping keys' (adb.h). */
+static const char *const FIXED[] = {"campaign", "tool", "version", "grp", "key", "value", "lo", "hi", "n", "created", NULL};
+/* The keys campaigns sweep most: their columns exist whichever tool ran first, so a
+ * query that names them never fails on a table without them. */
+static const char *const COMMON_KEYS[] = {"radius_ratio", "depth", "width", "frequency", "amplitude", "n_grains",
+					  NULL};
+
+int adb_key_column(const char *key)
+{
+	for (int i = 0; FIXED[i]; i++)
+		if (!strcmp(FIXED[i], key))
+			return 0;
+	return *key != 0;
+}
+
+/* "name" quoted as an SQL identifier into buf */
+static void ident(char *buf, size_t n, const char *name)
+{
+	size_t l = 0;
+	if (n < 3)
+		return;
+	buf[l++] = '"';
+	for (; *name && l + 3 < n; name++) {
+		if (*name == '"')
+			buf[l++] = '"';
+		buf[l++] = *name;
+	}
+	buf[l++] = '"';
+	buf[l] = 0;
+}
+
+/* The column of a grouping key, added to a table that has none yet (a table written
+ * before the tools stored their keys, or by a tool grouping by other keys). */
+static int add_column(adb *d, const char *key, sb_err *e)
+{
+	if (!adb_key_column(key) || has(d, "analysis", key))
+		return 0;
+	char q[200], sql[300];
+	ident(q, sizeof q, key);
+	snprintf(sql, sizeof sql, "ALTER TABLE analysis ADD COLUMN %s", q);
+	return exec1(d, sql, e);
+}
+
+int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][48], int nk, sb_err *e)
 {
 	if (exec1(d, "BEGIN IMMEDIATE", e))
 		return e->code;
 	sqlite3_stmt *st = NULL;
 	if (exec1(d, TABLE, e))
 		goto fail;
+	for (int i = 0; COMMON_KEYS[i]; i++)
+		if (add_column(d, COMMON_KEYS[i], e))
+			goto fail;
+	for (int k = 0; k < nk; k++)
+		if (add_column(d, keys[k], e))
+			goto fail;
 	if (sqlite3_prepare_v2(d->h, "DELETE FROM analysis WHERE campaign = ? AND tool = ?", -1, &st, NULL) != SQLITE_OK) {
 		dberr(d, e);
 		goto fail;
@@ -341,10 +391,27 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, sb_err *e)
 	}
 	sqlite3_finalize(st);
 	st = NULL;
-	if (sqlite3_prepare_v2(d->h,
-			       "INSERT OR REPLACE INTO analysis(campaign, tool, version, grp, key, value, lo, hi, n, created)"
-			       " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-			       -1, &d->ins, NULL) != SQLITE_OK) {
+	/* the grouping keys' columns follow the fixed ten; a key without a column (one
+	 * named like a fixed column) is bound nowhere */
+	char sql[4096] = "INSERT OR REPLACE INTO analysis(campaign, tool, version, grp, key, value, lo, hi, n, created";
+	size_t l = strlen(sql);
+	d->nk = 0;
+	for (int k = 0; k < nk && k < AN_ADB_MAXKEYS; k++) {
+		d->col[k] = 0;
+		if (!adb_key_column(keys[k]))
+			continue;
+		char q[200];
+		ident(q, sizeof q, keys[k]);
+		l += (size_t)snprintf(sql + l, sizeof sql - l, ", %s", q);
+		d->col[k] = 1;
+	}
+	d->nk = nk < AN_ADB_MAXKEYS ? nk : AN_ADB_MAXKEYS;
+	l += (size_t)snprintf(sql + l, sizeof sql - l, ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?");
+	for (int k = 0; k < d->nk; k++)
+		if (d->col[k])
+			l += (size_t)snprintf(sql + l, sizeof sql - l, ", ?");
+	snprintf(sql + l, sizeof sql - l, ")");
+	if (l >= sizeof sql - 2 || sqlite3_prepare_v2(d->h, sql, -1, &d->ins, NULL) != SQLITE_OK) {
 		dberr(d, e);
 		goto fail;
 	}
@@ -353,6 +420,28 @@ fail:
 	sqlite3_finalize(st);
 	sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
 	return e->code;
+}
+
+/* A parameter's text as the value the param table holds: an integer, a real or text
+ * (so radius_ratio = 2 matches 2.0 and depth = 1 is 1); NULL when missing. */
+static void bind_typed(sqlite3_stmt *st, int k, const char *v)
+{
+	char *end;
+	if (!v || !*v) {
+		sqlite3_bind_null(st, k);
+		return;
+	}
+	errno = 0;
+	const long long i = strtoll(v, &end, 10);
+	if (!*end && !errno) {
+		sqlite3_bind_int64(st, k, i);
+		return;
+	}
+	const double x = strtod(v, &end);
+	if (!*end && isfinite(x))
+		sqlite3_bind_double(st, k, x);
+	else
+		sqlite3_bind_text(st, k, v, -1, SQLITE_TRANSIENT);
 }
 
 static void bind_real(sqlite3_stmt *st, int k, double v)
@@ -364,7 +453,7 @@ static void bind_real(sqlite3_stmt *st, int k, double v)
 }
 
 int adb_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
-	      const char *key, double value, double lo, double hi, long n, sb_err *e)
+	      const char *const *vals, const char *key, double value, double lo, double hi, long n, sb_err *e)
 {
 	char now[32];
 	time_t t = time(NULL);
@@ -383,6 +472,9 @@ int adb_store(adb *d, const char *campaign, const char *tool, const char *versio
 	bind_real(st, 8, hi);
 	sqlite3_bind_int64(st, 9, n);
 	sqlite3_bind_text(st, 10, now, -1, SQLITE_TRANSIENT);
+	for (int k = 0, c = 11; k < d->nk; k++)
+		if (d->col[k])
+			bind_typed(st, c++, vals ? vals[k] : NULL);
 	if (sqlite3_step(st) != SQLITE_DONE)
 		return dberr(d, e);
 	return 0;

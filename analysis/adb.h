@@ -30,10 +30,14 @@ typedef struct an_run {
 	char why[400];      /* why it is not used (unreadable, unusable); "" otherwise */
 } an_run;
 
+#define AN_ADB_MAXKEYS 32
+
 typedef struct adb {
 	sqlite3 *h;
 	char path[1024];
 	sqlite3_stmt *ins;  /* INSERT into analysis, prepared by adb_store_begin */
+	int nk;             /* ... with the columns of these grouping keys: */
+	int col[AN_ADB_MAXKEYS]; /* 1 when key k has a column (adb_key_column) */
 } adb;
 
 int adb_open(adb *d, const char *path, int writable, sb_err *e);
@@ -62,13 +66,20 @@ const char *an_str(const an_run *r, const char *key);
 int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels);
 void an_labels_free(char **labels, int ng);
 
-/* Storing results: BEGIN, create the table if missing, delete this tool's earlier
- * rows for the campaign; adb_store inserts one row (NaN value/lo/hi become NULL);
- * adb_store_end commits (ok != 0) or rolls back. Table:
- *   analysis(campaign, tool, version, grp, key, value, lo, hi, n, created) */
-int adb_store_begin(adb *d, const char *campaign, const char *tool, sb_err *e);
+/* Storing results: BEGIN, create the table if missing, add the columns of the grouping
+ * keys keys[0..nk) (and of the common grid keys: radius_ratio, depth, width, frequency,
+ * amplitude, n_grains) when it lacks them, delete this tool's earlier rows for the
+ * campaign; adb_store inserts one row (NaN value/lo/hi become NULL) with the group's
+ * values of the keys, vals[0..nk) as text (NULL or "": NULL; stored typed: integer,
+ * real or text), NULL in the other keys' columns; adb_store_end commits (ok != 0) or
+ * rolls back. Table:
+ *   analysis(campaign, tool, version, grp, key, value, lo, hi, n, created,
+ *            radius_ratio, depth, ..., one column per grouping key) */
+int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][48], int nk, sb_err *e);
 int adb_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
-	      const char *key, double value, double lo, double hi, long n, sb_err *e);
+	      const char *const *vals, const char *key, double value, double lo, double hi, long n, sb_err *e);
+/* 1 when a grouping key gets a column: not empty, not named like one of the fixed ten. */
+int adb_key_column(const char *key);
 int adb_store_end(adb *d, int ok, sb_err *e);
 
 #endif

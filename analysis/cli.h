@@ -31,9 +31,15 @@ typedef struct an_opts {
 	int all_versions;     /* also the runs of earlier versions of the campaign file */
 } an_opts;
 
-/* Parses argv; allowed lists the tool's own options (" boot seed ... ", with spaces).
- * Returns 0 (go on), -1 (help printed: exit 0) or 1 (usage error printed). */
-int cli_parse(an_opts *o, int argc, char **argv, const char *help, const char *allowed);
+/* Parses argv (getopt_long: --opt value, --opt=value, unambiguous prefixes; argv is
+ * permuted); allowed lists the tool's own options (" boot seed ... ", with spaces)
+ * besides the common ones. Returns 0 (go on), -1 (help asked) or 1 (usage error in e:
+ * an unknown option names the nearest one of the tool). */
+int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e);
+/* The edit distance of two words (a swap of neighbours is one edit), and the option
+ * of the tool (allowed as for cli_parse) nearest to name; NULL when none is near. */
+int cli_distance(const char *a, const char *b);
+const char *cli_nearest(const char *name, const char *allowed);
 
 /* Grouping keys: o->by when given, else always[] then the campaign's swept axes not in
  * drop[] (NULL-terminated lists). */
@@ -47,9 +53,16 @@ FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_e
 void csv_str(FILE *f, const char *s);
 /* A gnuplot single-quoted string. */
 void gp_str(FILE *f, const char *s);
-/* Runs gnuplot on the script (no shell); 0 when it exits 0 and png exists. */
+/* Runs gnuplot on the script (no shell); 0 when it exits 0 and wrote png and the PDF
+ * beside it (same name, .pdf), both not empty. */
 int gp_run(const char *script, const char *png, sb_err *e);
-/* Opens a gnuplot script out/name.gp, writes the pngcairo terminal and output out/name.png. */
+/* Opens a gnuplot script out/name.gp that draws its body twice, into out/name.png
+ * (pngcairo, w x h pixels) and out/name.pdf (pdfcairo, vector): it writes the loop's
+ * head, the caller the body (settings and plots, UTF-8 text), gp_close the loop's end. */
 FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, char *png, size_t len, sb_err *e);
+void gp_close(FILE *f);
+/* The axis on top of a plot against the frequency f (Hz): Gamma = A (2 pi f)^2 / g
+ * (A in cm, g in cm/s^2), with ticks at round values of Gamma over [f_lo, f_hi]. */
+void gp_gamma_axis(FILE *f, double A, double g, double f_lo, double f_hi);
 
 #endif

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "flux.h"
 #include "h5read.h"
+#include "label.h"
 #include "tool.h"
 
 #define VERSION "3"
@@ -110,6 +111,18 @@ typedef struct panels {
 static double sys_ratio(const panels *P, int sys)
 {
 	return sys ? P->R : 0;
+}
+
+/* "no intruder" or "𝓡 = 2.5", and with the frequency: "𝓡 = 2.5, 4.5 Hz" */
+static void sys_words(const panels *P, int sys, double f, char *buf, size_t n)
+{
+	char v[64], w[96];
+	snprintf(v, sizeof v, "%.17g", sys_ratio(P, sys));
+	label_param(w, sizeof w, "radius_ratio", v);
+	if (isnan(f))
+		snprintf(buf, n, "%s", w);
+	else
+		snprintf(buf, n, "%s, %g Hz", w, f);
 }
 
 /* every --where names a parameter of the campaign */
@@ -268,6 +281,17 @@ static int layout(an_tool *t, panels *P)
 		snprintf(l, sizeof l, "f=%g radius_ratio=%g", P->freqs[j / P->nsys], sys_ratio(P, j % P->nsys));
 		if (!(t->labels[j] = strdup(l)))
 			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	}
+	/* the panels are groups by frequency and radius ratio: their stored rows say so */
+	char keys[2][48] = {"frequency", "radius_ratio"};
+	if (tool_keys(t, keys, 2))
+		return t->e.code;
+	for (int j = 0; j < t->ng; j++) {
+		char v[2][64];
+		snprintf(v[0], sizeof v[0], "%.17g", P->freqs[j / P->nsys]);
+		snprintf(v[1], sizeof v[1], "%.17g", sys_ratio(P, j % P->nsys));
+		if (tool_value(t, j, 0, v[0]) || tool_value(t, j, 1, v[1]))
+			return t->e.code;
 	}
 	for (int i = 0; i < t->k; i++) {
 		an_run *r = &t->runs[i];
@@ -439,29 +463,56 @@ static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f)
 	return drawn;
 }
 
+/* The box of the runs drawn: its inner width W and the radius of its wall disks. */
+static void box_of(const an_tool *t, double *W, double *rw)
+{
+	*W = NAN;
+	*rw = 1;
+	for (int i = 0; i < t->k && isnan(*W); i++)
+		if (t->runs[i].group >= 0) {
+			*W = an_num(&t->runs[i], "width", NAN);
+			*rw = an_num(&t->runs[i], "wall_radius", 1);
+		}
+}
+
 static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 {
-	char script[1400], png[1400];
-	FILE *f = gp_open(t->o, "fig1", 900, 330 * P->nf + 60, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512];
+	/* the panels show the box: the inner width W between the side walls, the floor at
+	 * 0, a wall (one disk diameter) on either side; at one scale in x and y, so the
+	 * canvas takes the box's shape (a panel's margins are about 75 pixels) */
+	double W, rw;
+	box_of(t, &W, &rw);
+	if (!(W > 0))
+		W = a->xhi - a->xlo;
+	const double x0 = -2 * rw, x1 = W + 2 * rw, y0 = -2 * rw, y1 = a->yhi;
+	const int pw = P->nsys > 1 ? 450 : 600, aw = pw - 80;
+	const int ph = (int)(aw * (y1 - y0) / (x1 - x0)) + 80;
+	FILE *f = gp_open(t->o, "fig1", pw * P->nsys, ph * P->nf + 50, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set multiplot layout %d,%d title 'Fig. 1: mean displacement per period (arrow scale: 95th percentile %.3g cm, longer arrows clipped)'\n"
-		   "set size ratio -1\nunset key\nset xrange [%.17g:%.17g]\nset yrange [0:%.17g]\n"
-		   "set xlabel 'x (cm)'\nset ylabel 'height above the bottom (cm)'\n",
-		P->nf, P->nsys, a->umax, a->xlo, a->xhi, a->yhi);
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set multiplot layout %d,%d title \"Fig. 1: mean displacement per period%s%s\\n"
+		   "arrows to scale, the 95th percentile (%.3g cm) = 0.9 cell; longer ones clipped\"\n"
+		   "set size ratio -1\nunset key\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
+		   "set xlabel 'x (cm)'\nset ylabel 'height above the floor (cm)'\nunset grid\nset tics out\n"
+		   		   "set object 1 rect from %g, %g to 0, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
+		   "set object 2 rect from %g, %g to %g, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
+		   "set object 3 rect from %g, %g to %g, 0 fc rgb '#b0b0b0' fs solid 1 noborder behind\n",
+		P->nf, P->nsys, *set ? ", " : "", set, a->umax, x0, x1, y0, y1, x0, y0, W, y0, x1, x0, y0, x1);
 	for (int r = 0; r < P->nf; r++)
 		for (int sys = 0; sys < P->nsys; sys++) {
-			if (sys)
-				fprintf(f, "set title 'with intruder R = %g, f = %g Hz'\n", P->R, P->freqs[r]);
-			else
-				fprintf(f, "set title 'without intruder, f = %g Hz'\n", P->freqs[r]);
-			fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
+			char title[128];
+			sys_words(P, sys, P->freqs[r], title, sizeof title);
+			fprintf(f, "set title ");
+			gp_str(f, title);
+			fprintf(f, "\nplot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
 				2 * r + sys, 0.25 * a->head);
 		}
 	fprintf(f, "unset multiplot\n");
 	if (tool_plot(t, f, script, png))
 		return t->e.code;
-	printf("# fig1: %s (%d panels)\n", png, drawn);
+	printf("# fig1: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
 	return 0;
 }
 
@@ -527,7 +578,7 @@ static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
 
 /* Panel (r, sys)'s curve into f and its table row; its phi_max and half height. */
 static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
-			double *pm, double *half)
+			double *pm, double *half, int *headed)
 {
 	*pm = 0;
 	*half = NAN;
@@ -539,13 +590,16 @@ static void profile_out(const profile *pr, const panels *P, int r, int sys, cons
 	for (size_t l = 0; l < pr->L && isnan(*half); l++)
 		if (*pm > 0 && fabs(pr->sp[l] / pr->wsum) >= 0.5 * *pm)
 			*half = pr->sh[l] / pr->wsum;
+	if (!(*headed)++)
+		printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
+		       "unfinished");
 	printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", P->freqs[r], sys_ratio(P, sys), pr->runs, *pm, *half,
 	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
 }
 
 /* Panel (r, sys): its curve and table row when a run is drawn; its stored rows when
  * it has runs of any kind. Returns 1 when drawn. */
-static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f)
+static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int *headed)
 {
 	const int j = r * P->nsys + sys;
 	const an_acct *a = &t->A[j];
@@ -555,7 +609,7 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f)
 		if (USED(&t->runs[i]) && t->runs[i].group == j)
 			profile_add(&pr, &t->runs[i], &P->fo);
 	if (pr.runs)
-		profile_out(&pr, P, r, sys, a, f, &pm, &half);
+		profile_out(&pr, P, r, sys, a, f, &pm, &half, headed);
 	long any = 0;
 	for (int u = 0; u < AN_NUSE; u++)
 		any += a->n[u];
@@ -563,10 +617,10 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f)
 		char g[128];
 		snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", P->freqs[r], sys_ratio(P, sys));
 		if (pr.runs) {
-			tool_store(t, g, "phi_max", pm, NAN, NAN, pr.runs);
-			tool_store(t, g, "half_height", half, NAN, NAN, pr.runs);
+			tool_store(t, j, g, "phi_max", pm, NAN, NAN, pr.runs);
+			tool_store(t, j, g, "half_height", half, NAN, NAN, pr.runs);
 		}
-		tool_store(t, g, "runs", pr.runs, NAN, NAN, pr.runs);
+		tool_store(t, j, g, "runs", pr.runs, NAN, NAN, pr.runs);
 		tool_store_acct(t, g, j);
 	}
 	free(pr.sp);
@@ -576,24 +630,31 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f)
 
 static int fig3_plot(an_tool *t, const panels *P, int drawn)
 {
-	char script[1400], png[1400];
-	FILE *f = gp_open(t->o, "fig3", 800, 260 * P->nf + 60, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512], w[2][96];
+	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 70, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set multiplot layout %d,1 title 'Fig. 3: convective flux Phi through planes at height D'\n"
-		   "set xlabel 'D (cm above the bottom)'\nset ylabel 'Phi (particles/period)'\n", P->nf);
+	tool_setting(t, set, sizeof set);
+	sys_words(P, 0, NAN, w[0], sizeof w[0]);
+	sys_words(P, 1, NAN, w[1], sizeof w[1]);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 3: convective flux Φ through planes at height D%s%s\"\n"
+		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n"
+		   "set key inside top left\n", P->nf, *set ? "\\n" : "", set);
 	for (int r = 0; r < P->nf; r++) {
-		fprintf(f, "set title 'f = %g Hz'\nplot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lc 1 title 'without intruder', \\\n",
-			P->freqs[r], r);
-		if (P->nsys > 1)
-			fprintf(f, "  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lc 2 title 'with intruder R = %g', \\\n",
-				r, P->R);
-		fprintf(f, "  0 with lines lc 'gray' notitle\n");
+		/* one legend, in the first panel: the systems are the same in every row */
+		fprintf(f, "%sset title '%g Hz'\n", r == 1 ? "unset key\n" : "", P->freqs[r]);
+		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
+		gp_str(f, w[0]);
+		if (P->nsys > 1) {
+			fprintf(f, ", \\\n  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lt 2 title ", r);
+			gp_str(f, w[1]);
+		}
+		fprintf(f, ", \\\n  0 with lines lc 'gray' notitle\n");
 	}
 	fprintf(f, "unset multiplot\n");
 	if (tool_plot(t, f, script, png))
 		return t->e.code;
-	printf("# fig3: %s (%d curves)\n", png, drawn);
+	printf("# fig3: %s (and .pdf, %d curve%s)\n", png, drawn, drawn == 1 ? "" : "s");
 	return 0;
 }
 
@@ -605,12 +666,10 @@ static int fig3(an_tool *t, const panels *P)
 	if (!f)
 		return t->e.code;
 	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
-	printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
-	       "unfinished");
-	int drawn = 0;
+	int drawn = 0, headed = 0;
 	for (int r = 0; r < P->nf; r++)
 		for (int sys = 0; sys < P->nsys; sys++)
-			drawn += fig3_panel(t, P, r, sys, f);
+			drawn += fig3_panel(t, P, r, sys, f, &headed);
 	fclose(f);
 	if (t->e.code)
 		return t->e.code;
@@ -665,20 +724,29 @@ static int fig4_traj(const an_run *r, double ra, int p, FILE *f, double meta[3])
 
 static int fig4_plot(an_tool *t, double f4, double meta[][3], int drawn)
 {
-	char script[1400], png[1400];
-	FILE *f = gp_open(t->o, "fig4", 800, 260 * drawn + 60, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "fig4", 800, 270 * drawn + 90, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set multiplot layout %d,1 title 'Fig. 4: height of the intruder, f = %g Hz'\n"
-		   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", drawn, f4);
-	for (int p = 0; p < drawn; p++)
-		fprintf(f, "set title 'R = %g'\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lc 1 title 'intruder centre', \\\n"
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\"\n"
+		   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", drawn, f4, *set ? ", " : "", set);
+	for (int p = 0; p < drawn; p++) {
+		char v[64], w[96];
+		snprintf(v, sizeof v, "%.17g", meta[p][0]);
+		label_param(w, sizeof w, "radius_ratio", v);
+		/* one legend, below the last panel: the lines mean the same in every panel */
+		fprintf(f, "%s", p + 1 < drawn ? "unset key\n" : "set key below height 1\n");
+		fprintf(f, "set title ");
+		gp_str(f, w);
+		fprintf(f, "\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lt 1 title 'intruder centre', \\\n"
 			   "  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' title 'free surface (t = 0)'\n",
-			meta[p][0], p, meta[p][1], meta[p][2]);
+			p, meta[p][1], meta[p][2]);
+	}
 	fprintf(f, "unset multiplot\n");
 	if (tool_plot(t, f, script, png))
 		return t->e.code;
-	printf("# fig4: %s (%d panels)\n", png, drawn);
+	printf("# fig4: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
 	return 0;
 }
 
@@ -710,7 +778,7 @@ static int fig4(an_tool *t, const panels *P)
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "figures", .version = VERSION};
-	int pr = cli_parse(&o, argc, argv, HELP, " freq ratio skip where ");
+	int pr = tool_args(&o, argc, argv, HELP, " freq ratio skip where ", stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;

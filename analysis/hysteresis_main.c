@@ -204,10 +204,10 @@ static void group_out(an_tool *t, const hyst_data *g, const hyst_res *r, int j, 
 	fprintf(s, ",%zu", r->boot_ok);
 	tool_summary_acct(t, s, j);
 	const long n = (long)g->nruns;
-	tool_store(t, L, "runs", (double)g->nruns, NAN, NAN, n);
-	tool_store(t, L, "seeds", (double)g->nu, NAN, NAN, n);
+	tool_store(t, j, L, "runs", (double)g->nruns, NAN, NAN, n);
+	tool_store(t, j, L, "seeds", (double)g->nu, NAN, NAN, n);
 	for (int q = 0; q < 6; q++)
-		tool_store(t, L, names[q], r->v[q], r->lo[q], r->hi[q], n);
+		tool_store(t, j, L, names[q], r->v[q], r->lo[q], r->hi[q], n);
 	tool_store_acct(t, L, j);
 }
 
@@ -236,16 +236,26 @@ static int estimate(an_tool *t, hyst_state *s)
 	return t->e.code;
 }
 
-/* hysteresis.png: every group's points and fitted sigmoid per branch */
+/* hysteresis.png and .pdf: every group's points and fitted sigmoid per leg, Gamma on top */
 static int plot(an_tool *t, const hyst_state *s)
 {
-	char script[1400], png[1400];
-	FILE *f = gp_open(t->o, "hysteresis", 1000, 560, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "hysteresis", 1000, 600, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set title 'Flux through the plane during frequency ramps (running mean of %ld periods; lines: fitted sigmoids)'\n"
-		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\nset samples 500\n",
-		t->o->smooth);
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Flux Φ through the plane during frequency ramps (running mean of %ld periods; lines: "
+		   "fitted sigmoids)%s%s\"\nset xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
+		   "set samples 500\n", t->o->smooth, *set ? "\\n" : "", set);
+	double flo = INFINITY, fhi = -INFINITY, A, g;
+	for (int j = 0; j < t->ng; j++)
+		for (int b = 0; b < 2; b++)
+			for (size_t i = 0; i < s->G[j].br[b].n; i++) {
+				flo = fmin(flo, s->G[j].br[b].x[i]);
+				fhi = fmax(fhi, s->G[j].br[b].x[i]);
+			}
+	if (tool_gamma(t, &A, &g) && flo < fhi)
+		gp_gamma_axis(f, A, g, flo, fhi);
 	for (int j = 0; j < t->ng; j++)
 		for (int b = 0; b < 2; b++) {
 			const sig_fit *F = &s->R[j].fit[b];
@@ -254,27 +264,31 @@ static int plot(an_tool *t, const hyst_state *s)
 					F->x0, F->w);
 		}
 	fprintf(f, "plot ");
+	int np = 0;
 	for (int j = 0; j < t->ng; j++)
 		for (int b = 0; b < 2; b++) {
-			fprintf(f, "%s'hysteresis_periods.csv' skip 1 using 7:($1==%d&&strcol(5)eq'%s'?$9:1/0) with points pt %d ps 0.6 lc %d title ",
-				j || b ? ", \\\n  " : "", j, b ? "down" : "up", b ? 6 : 7, 2 * j + b + 1);
-			char title[600];
-			snprintf(title, sizeof title, "%s, %s", t->labels[j], b ? "down" : "up");
+			if (!s->G[j].br[b].n) /* a leg without periods: gnuplot would warn */
+				continue;
+			fprintf(f, "%s'hysteresis_periods.csv' skip 1 using 7:($1==%d&&strcol(5)eq'%s'?$9:1/0) with points pt %d ps 0.6 lt %d title ",
+				np++ ? ", \\\n  " : "", j, b ? "down" : "up", b ? 6 : 7, 2 * j + b + 1);
+			char leg[512], title[600];
+			tool_legend(t, j, 1, leg, sizeof leg);
+			snprintf(title, sizeof title, "%s%s%s", leg, *leg ? ", " : "", b ? "down" : "up");
 			gp_str(f, title);
 			if (s->R[j].fit[b].ok)
-				fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lc %d notitle", j, b, b ? 2 : 1, 2 * j + b + 1);
+				fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lt %d notitle", j, b, b ? 2 : 1, 2 * j + b + 1);
 		}
 	fprintf(f, "\n");
 	if (tool_plot(t, f, script, png))
 		return t->e.code;
-	printf("# figure: %s\n", png);
+	printf("# figure: %s (and .pdf)\n", png);
 	return 0;
 }
 
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "hysteresis", .version = VERSION};
-	int pr = cli_parse(&o, argc, argv, HELP, " by band smooth threshold boot seed level ");
+	int pr = tool_args(&o, argc, argv, HELP, " by band smooth threshold boot seed level ", stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;

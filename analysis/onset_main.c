@@ -209,13 +209,13 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 		F->ok, f0, r->fit_lo, r->fit_hi, w, step, r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
 	tool_summary_acct(t, s, j);
 	const long n = (long)np;
-	tool_store(t, L, "runs", (double)np, NAN, NAN, n);
-	tool_store(t, L, "seeds", (double)r->units, NAN, NAN, n);
-	tool_store(t, L, "sigmoid_f0", f0, r->fit_lo, r->fit_hi, n);
-	tool_store(t, L, "sigmoid_width", w, NAN, NAN, n);
-	tool_store(t, L, "sigmoid_step", step, NAN, NAN, n);
-	tool_store(t, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n);
-	tool_store(t, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n);
+	tool_store(t, j, L, "runs", (double)np, NAN, NAN, n);
+	tool_store(t, j, L, "seeds", (double)r->units, NAN, NAN, n);
+	tool_store(t, j, L, "sigmoid_f0", f0, r->fit_lo, r->fit_hi, n);
+	tool_store(t, j, L, "sigmoid_width", w, NAN, NAN, n);
+	tool_store(t, j, L, "sigmoid_step", step, NAN, NAN, n);
+	tool_store(t, j, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n);
+	tool_store(t, j, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n);
 	tool_store_acct(t, L, j);
 }
 
@@ -257,41 +257,88 @@ static int estimate(an_tool *t, onset_state *s)
 	return t->e.code;
 }
 
-/* onset.png: every group's runs and fitted sigmoid */
+/* The transition a figure marks for group j: the sigmoid's f0 when it was accepted,
+ * else the threshold crossing; its interval; 0 when neither exists. */
+static int onset_mark(const onset_res *r, double *f, double *lo, double *hi, const char **name)
+{
+	if (r->fit.ok) {
+		*f = r->fit.x0, *lo = r->fit_lo, *hi = r->fit_hi, *name = "f₀";
+		return 1;
+	}
+	*f = r->thr, *lo = r->thr_lo, *hi = r->thr_hi, *name = "threshold f";
+	return isfinite(r->thr);
+}
+
+/* onset.png and onset.pdf: every group's runs and fitted sigmoid, the onset (a dashed
+ * line) and its interval (a shaded band) in the group's colour, Gamma on top */
 static int plot(an_tool *t, const onset_state *s)
 {
 	const an_opts *o = t->o;
-	char script[1400], png[1400];
-	FILE *f = gp_open(o, "onset", 1000, 560, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(o, "onset", 1000, 600, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set title 'Convective flux through the plane (%.2f-%.2f of the bed height) vs frequency'\n"
-		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Phi (particles per period)'\n"
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n"
+		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
 		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
-		o->band_lo, o->band_hi);
-	for (int j = 0; j < t->ng; j++)
+		o->band_lo, o->band_hi, set, *set ? "; " : "", 100 * o->level);
+	double flo = INFINITY, fhi = -INFINITY, A, g;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i])) {
+			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
+			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
+		}
+	if (tool_gamma(t, &A, &g) && flo < fhi)
+		gp_gamma_axis(f, A, g, flo, fhi);
+	for (int j = 0; j < t->ng; j++) {
+		double m, lo, hi;
+		const char *nm;
 		if (s->R[j].fit.ok)
 			fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, s->R[j].fit.b,
 				s->R[j].fit.a, s->R[j].fit.x0, s->R[j].fit.w);
+		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+			continue;
+		if (isfinite(lo) && isfinite(hi))
+			fprintf(f, "set object %d rect from %.17g, graph 0 to %.17g, graph 1 behind fc lt %d "
+				   "fs transparent solid 0.15 noborder\n", j + 1, lo, hi, j + 1);
+		fprintf(f, "set arrow %d from %.17g, graph 0 to %.17g, graph 1 nohead lt %d dt 2 lw 1.5\n", j + 1, m, m,
+			j + 1);
+	}
 	fprintf(f, "plot ");
+	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
-		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lc %d title ",
-			j ? ", \\\n  " : "", j, j + 1);
-		gp_str(f, t->labels[j]);
+		if (!acct_used(&t->A[j])) /* nothing to draw: gnuplot would warn */
+			continue;
+		char leg[512], mark[256];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lt %d title ",
+			np++ ? ", \\\n  " : "", j, j + 1);
+		gp_str(f, *leg ? leg : "runs");
 		if (s->R[j].fit.ok)
-			fprintf(f, ", s%d(x) with lines lw 2 lc %d notitle", j, j + 1);
+			fprintf(f, ", s%d(x) with lines lw 2 lt %d notitle", j, j + 1);
+		double m, lo, hi;
+		const char *nm;
+		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+			continue;
+		if (isfinite(lo) && isfinite(hi))
+			snprintf(mark, sizeof mark, "%s = %.3g Hz [%.3g, %.3g]", nm, m, lo, hi);
+		else
+			snprintf(mark, sizeof mark, "%s = %.3g Hz", nm, m);
+		fprintf(f, ", keyentry with lines lt %d dt 2 lw 1.5 title ", j + 1);
+		gp_str(f, mark);
 	}
 	fprintf(f, "\n");
 	if (tool_plot(t, f, script, png))
 		return t->e.code;
-	printf("# figure: %s\n", png);
+	printf("# figure: %s (and .pdf)\n", png);
 	return 0;
 }
 
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "onset", .version = VERSION};
-	int pr = cli_parse(&o, argc, argv, HELP, " by band skip threshold boot seed level ");
+	int pr = tool_args(&o, argc, argv, HELP, " by band skip threshold boot seed level ", stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;

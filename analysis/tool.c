@@ -1,10 +1,23 @@
 /* tool.c - the frame every analysis tool's main shares (tool.h). */
 #include "tool.h"
 
+#include "label.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+
+int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err)
+{
+	sb_err e = {0};
+	const int pr = cli_parse(o, argc, argv, allowed, &e);
+	if (pr < 0)
+		fputs(help, out);
+	else if (pr)
+		fprintf(err, "%s: %s\n", o->tool, e.msg);
+	return pr;
+}
 
 int tool_open(an_tool *t, const an_opts *o)
 {
@@ -38,6 +51,25 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed)
 		       t->nold ? " of the current grid (--all-versions)" : "");
 }
 
+int tool_keys(an_tool *t, char keys[][48], int nk)
+{
+	t->nk = nk;
+	for (int k = 0; k < nk; k++)
+		memcpy(t->keys[k], keys[k], sizeof t->keys[k]);
+	if (!(t->gval = calloc((size_t)(t->ng * nk > 0 ? t->ng * nk : 1), sizeof *t->gval)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+int tool_value(an_tool *t, int j, int k, const char *v)
+{
+	char **p = &t->gval[j * t->nk + k];
+	free(*p);
+	if (!(*p = strdup(v ? v : "")))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
 int tool_group(an_tool *t, const char *const *always, const char *const *drop)
 {
 	char keys[AN_MAXKEYS][48];
@@ -45,9 +77,71 @@ int tool_group(an_tool *t, const char *const *always, const char *const *drop)
 	if (cli_keys(t->o, &t->d, always, drop, keys, &nk, &t->e))
 		return t->e.code;
 	t->ng = an_group_runs(t->runs, t->k, keys, nk, &t->labels);
-	if (t->ng < 0)
+	if (t->ng < 0) {
+		t->ng = 0;
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	}
+	if (tool_keys(t, keys, nk))
+		return t->e.code;
+	/* a group's values are its runs' (they are equal: that is what makes the group) */
+	for (int i = t->k - 1; i >= 0; i--)
+		for (int k = 0; k < nk; k++)
+			if (tool_value(t, t->runs[i].group, k, an_str(&t->runs[i], keys[k])))
+				return t->e.code;
 	return 0;
+}
+
+void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n)
+{
+	label_group(buf, n, t->keys, t->nk, (const char *const *)t->gval, t->ng, j, vary);
+}
+
+/* 1 when every considered run has key and the same value of it, copied to v */
+static int shared(const an_tool *t, const char *key, char *v, size_t n)
+{
+	const char *first = t->k ? an_str(&t->runs[0], key) : NULL;
+	for (int i = 1; first && i < t->k; i++) {
+		const char *x = an_str(&t->runs[i], key);
+		if (!x || strcmp(x, first))
+			return 0;
+	}
+	if (first)
+		snprintf(v, n, "%s", first);
+	return first != NULL;
+}
+
+void tool_setting(const an_tool *t, char *buf, size_t n)
+{
+	static const char *const keys[] = {"n_grains", "width", "amplitude", NULL};
+	size_t l = 0;
+	buf[0] = 0;
+	for (const char *const *k = keys; *k && l + 1 < n; k++) {
+		char v[128], w[160];
+		int grouped = 0;
+		for (int q = 0; q < t->nk; q++)
+			grouped |= !strcmp(t->keys[q], *k);
+		if (grouped || !shared(t, *k, v, sizeof v))
+			continue;
+		label_param(w, sizeof w, *k, v);
+		l += (size_t)snprintf(buf + l, n - l, "%s%s", l ? ", " : "", w);
+	}
+	if (l + 1 < n && t->ng) {
+		char c[512];
+		tool_legend(t, 0, 0, c, sizeof c);
+		if (*c)
+			snprintf(buf + l, n - l, "%s%s", l ? ", " : "", c);
+	}
+}
+
+int tool_gamma(const an_tool *t, double *A, double *g)
+{
+	char a[128], gr[128];
+	if (!shared(t, "amplitude", a, sizeof a))
+		return 0;
+	*A = strtod(a, NULL);
+	/* a database without the key ran with the engine's default */
+	*g = shared(t, "gravity", gr, sizeof gr) ? strtod(gr, NULL) : 981;
+	return *A > 0 && *g > 0;
 }
 
 int tool_tally(an_tool *t, FILE *out, const char *fmt, ...)
@@ -102,19 +196,26 @@ int tool_store_begin(an_tool *t)
 {
 	if (t->o->no_store)
 		return 0;
-	return adb_store_begin(&t->d, t->o->campaign, t->o->tool, &t->e);
+	return adb_store_begin(&t->d, t->o->campaign, t->o->tool, t->keys, t->nk, &t->e);
 }
 
-void tool_store(an_tool *t, const char *grp, const char *key, double value, double lo, double hi, long n)
+/* group j's key values, as adb_store binds them */
+static const char *const *group_vals(const an_tool *t, int j)
+{
+	return j >= 0 && j < t->ng && t->gval ? (const char *const *)&t->gval[j * t->nk] : NULL;
+}
+
+void tool_store(an_tool *t, int j, const char *grp, const char *key, double value, double lo, double hi, long n)
 {
 	if (!t->o->no_store)
-		adb_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, key, value, lo, hi, n, &t->e);
+		adb_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, group_vals(t, j), key, value, lo, hi, n,
+			  &t->e);
 }
 
 void tool_store_acct(an_tool *t, const char *grp, int j)
 {
 	if (!t->o->no_store)
-		acct_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, &t->A[j], &t->e);
+		acct_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, group_vals(t, j), &t->A[j], &t->e);
 }
 
 int tool_store_end(an_tool *t)
@@ -126,7 +227,7 @@ int tool_store_end(an_tool *t)
 
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png)
 {
-	fclose(f);
+	gp_close(f);
 	return gp_run(script, png, &t->e);
 }
 
@@ -152,6 +253,10 @@ int tool_close(an_tool *t, FILE *err)
 	if (t->d.ins)
 		adb_store_end(&t->d, 0, &t->e);
 	free(t->A);
+	for (int i = 0; t->gval && i < t->ng * t->nk; i++)
+		free(t->gval[i]);
+	free(t->gval);
+	t->gval = NULL;
 	an_labels_free(t->labels, t->ng);
 	adb_runs_free(t->runs, t->nr);
 	adb_close(&t->d);

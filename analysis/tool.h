@@ -22,9 +22,16 @@ typedef struct an_tool {
 	long nold;      /* runs of earlier versions of the campaign file left out */
 	int ng;         /* groups of the considered runs, labelled labels[0..ng) */
 	char **labels;  /* malloc'd strings, freed by tool_close */
+	char keys[AN_MAXKEYS][48]; /* the grouping keys ... */
+	int nk;
+	char **gval;    /* [ng * nk]: group j's value of key k as text ("": none), malloc'd */
 	an_acct *A;     /* the accounting of each group (tool_tally) */
 	sb_err e;
 } an_tool;
+
+/* The command line (cli_parse): -1 when the help was printed to out (exit 0), 1 when
+ * a usage error was printed to err (exit 1), 0 to go on. */
+int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err);
 
 /* Opens the database (writable unless --no-store) and reads every run of the campaign;
  * t is zeroed first. */
@@ -47,6 +54,26 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed);
  * the swept axes not in drop[]). */
 int tool_group(an_tool *t, const char *const *always, const char *const *drop);
 
+/* The grouping keys of groups a tool made itself (t->ng and t->labels set): every
+ * group's values "" until tool_value sets them. */
+int tool_keys(an_tool *t, char keys[][48], int nk);
+int tool_value(an_tool *t, int j, int k, const char *v);
+
+/* Figure text for group j in words and symbols (label.h): the keys whose values differ
+ * between the groups (vary = 1: the legend), or those that every group shares (vary =
+ * 0: for the title); "" when there are none. */
+void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n);
+
+/* The setting every considered run shares, in words for a title: the values of the
+ * keys that every run has alike (of N, W, A) and the grouping keys that every group
+ * shares, joined by ", "; "" when none. */
+void tool_setting(const an_tool *t, char *buf, size_t n);
+
+/* The box's amplitude A (cm) and gravity g (cm/s^2) when every considered run shares
+ * them (then 1: the axis Gamma = A (2 pi f)^2 / g of a plot against f means one thing),
+ * else 0. */
+int tool_gamma(const an_tool *t, double *A, double *g);
+
 /* Counts each group's runs (acct_tally). When none of them is usable, prints the
  * accounting to out and fails: "campaign 'C': none of WHAT is usable yet", WHAT
  * formatted from fmt. */
@@ -61,10 +88,12 @@ FILE *tool_summary_csv(an_tool *t, const char *name, const char *head);
 void tool_summary_acct(const an_tool *t, FILE *s, int j);
 
 /* Rows of the analysis table (nothing under --no-store): begin replaces the tool's
- * earlier rows, one row, group j's accounting rows (acct_store), and end commits
- * when no error was kept, else rolls back and returns the error. */
+ * earlier rows (and gives the table a column per grouping key), one row of group j
+ * (its key values in their columns; j < 0: none), group j's accounting rows
+ * (acct_store), and end commits when no error was kept, else rolls back and returns
+ * the error. */
 int tool_store_begin(an_tool *t);
-void tool_store(an_tool *t, const char *grp, const char *key, double value, double lo, double hi, long n);
+void tool_store(an_tool *t, int j, const char *grp, const char *key, double value, double lo, double hi, long n);
 void tool_store_acct(an_tool *t, const char *grp, int j);
 int tool_store_end(an_tool *t);
 

@@ -239,13 +239,39 @@ static int runs_csv(an_tool *t, const wait_state *s)
 	return 0;
 }
 
-/* waiting_km.csv: the survival curves, each starting at (0, 1) */
+/* waiting_km_band.csv: group j's confidence band as the outline of steps (the band
+ * is constant between event times, as S is), for gnuplot's filledcurves: at each
+ * time the band before it, then after it */
+static void band_csv(FILE *b, const an_tool *t, const wait_state *s, int j)
+{
+	const km_curve *km = &s->km[j];
+	double lo = 1, hi = 1;
+	for (size_t i = 0; i < km->m; i++) {
+		fprintf(b, "%d,%.17g,%.17g,%.17g\n", j, km->t[i], lo, hi);
+		lo = fmax(0, km->s[i] - s->z * km->se[i]);
+		hi = fmin(1, km->s[i] + s->z * km->se[i]);
+		fprintf(b, "%d,%.17g,%.17g,%.17g\n", j, km->t[i], lo, hi);
+	}
+	(void)t;
+}
+
+/* waiting_km.csv: the survival curves, each starting at (0, 1), and their bands */
 static int km_csv(an_tool *t, const wait_state *s)
 {
 	char path[1400];
-	FILE *f = cli_fopen(t->o, "waiting_km.csv", path, sizeof path, &t->e);
+	FILE *f = cli_fopen(t->o, "waiting_km.csv", path, sizeof path, &t->e), *b;
 	if (!f)
 		return t->e.code;
+	if (!(b = cli_fopen(t->o, "waiting_km_band.csv", path, sizeof path, &t->e))) {
+		fclose(f);
+		return t->e.code;
+	}
+	fprintf(b, "group_index,t,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		fprintf(b, "%d,0,1,1\n", j);
+		band_csv(b, t, s, j);
+	}
+	fclose(b);
 	fprintf(f, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
 	for (int j = 0; j < t->ng; j++) {
 		const km_curve *km = &s->km[j];
@@ -317,12 +343,12 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 		tm, s_end, s_lo, s_hi);
 	tool_summary_acct(t, sum, j);
 	const long n = km->n;
-	tool_store(t, L, "runs", (double)n, NAN, NAN, n);
-	tool_store(t, L, "risen", (double)km->events, NAN, NAN, n);
-	tool_store(t, L, "fraction_risen", frac, NAN, NAN, n);
-	tool_store(t, L, "median", med, lo, hi, n);
-	tool_store(t, L, "t_max", tm, NAN, NAN, n);
-	tool_store(t, L, "s_end", s_end, s_lo, s_hi, n);
+	tool_store(t, j, L, "runs", (double)n, NAN, NAN, n);
+	tool_store(t, j, L, "risen", (double)km->events, NAN, NAN, n);
+	tool_store(t, j, L, "fraction_risen", frac, NAN, NAN, n);
+	tool_store(t, j, L, "median", med, lo, hi, n);
+	tool_store(t, j, L, "t_max", tm, NAN, NAN, n);
+	tool_store(t, j, L, "s_end", s_end, s_lo, s_hi, n);
 	tool_store_acct(t, L, j);
 }
 
@@ -356,43 +382,58 @@ static void report(const an_tool *t, const wait_state *s)
 		       s->f_cens);
 }
 
-/* waiting_km.png: the survival curves, censored runs marked */
+/* waiting_km.png and .pdf: the survival curves with their confidence bands, censored
+ * runs marked */
 static int plot_km(an_tool *t)
 {
-	char script[1400], png[1400];
-	FILE *f = gp_open(t->o, "waiting_km", 900, 520, script, png, sizeof script, &t->e);
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "waiting_km", 900, 560, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set title 'Intruder waiting time: Kaplan-Meier survival (+ censored)'\n"
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Intruder waiting time: Kaplan–Meier survival\\n%s%sband: %g %% CI (Greenwood), ×: censored\"\n"
 		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
-		   "set yrange [0:1.05]\nset xrange [0:*]\nplot ");
+		   "set yrange [0:1.05]\nset xrange [0:*]\nset style fill transparent solid 0.18 noborder\nplot ",
+		set, *set ? "; " : "", 100 * t->o->level);
+	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
-		fprintf(f, "%s'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lc %d title ",
-			j ? ", \\\n  " : "", j, j + 1);
-		gp_str(f, t->labels[j]);
-		fprintf(f, ", 'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lc %d notitle",
+		if (!acct_used(&t->A[j])) /* nothing to draw: gnuplot would warn */
+			continue;
+		char leg[512];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'waiting_km_band.csv' skip 1 using 2:($1==%d?$3:1/0):4 with filledcurves lt %d notitle, \\\n",
+			np++ ? ", \\\n  " : "", j, j + 1);
+		fprintf(f, "  'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lt %d title ", j, j + 1);
+		gp_str(f, *leg ? leg : "all runs");
+		fprintf(f, ", \\\n  'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lt %d notitle",
 			j, j + 1);
 	}
 	fprintf(f, "\n");
 	return tool_plot(t, f, script, png);
 }
 
-/* waiting_hist.png: the histograms side by side in each bin */
+/* waiting_hist.png and .pdf: the histograms side by side in each bin */
 static int plot_hist(an_tool *t, const wait_state *s)
 {
-	char script[1400], png[1400];
+	char script[1400], png[1400], set[512];
 	const double bw = s->bw;
-	FILE *f = gp_open(t->o, "waiting_hist", 900, 520, script, png, sizeof script, &t->e);
+	FILE *f = gp_open(t->o, "waiting_hist", 900, 560, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "set title 'Intruder waiting time: histogram of the risen runs'\n"
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Intruder waiting time: histogram of the risen runs%s%s\"\n"
 		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\nset xrange [0:%.17g]\n"
 		   "set style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
-		bw * (double)t->o->bins, bw / t->ng);
+		*set ? "\\n" : "", set, bw * (double)t->o->bins, bw / t->ng);
+	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
-		fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lc %d title ",
-			j ? ", \\\n  " : "", bw / t->ng * (j + 0.5), j, j + 1);
-		gp_str(f, t->labels[j]);
+		if (!acct_used(&t->A[j]))
+			continue;
+		char leg[512];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lt %d title ",
+			np++ ? ", \\\n  " : "", bw / t->ng * (j + 0.5), j, j + 1);
+		gp_str(f, *leg ? leg : "all runs");
 	}
 	fprintf(f, "\n");
 	return tool_plot(t, f, script, png);
@@ -401,7 +442,7 @@ static int plot_hist(an_tool *t, const wait_state *s)
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "waiting", .version = VERSION};
-	int pr = cli_parse(&o, argc, argv, HELP, " by level bins ");
+	int pr = tool_args(&o, argc, argv, HELP, " by level bins ", stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;
@@ -416,9 +457,9 @@ int main(int argc, char **argv)
 	if (!o.no_plot) {
 		if (plot_km(&t) || plot_hist(&t, &s))
 			goto out;
-		printf("# figures: %s/waiting_km.png %s/waiting_hist.png\n", o.out, o.out);
+		printf("# figures: %s/waiting_{km,hist}.{png,pdf}\n", o.out);
 	}
-	printf("# csv: %s/waiting_{runs,km,hist,summary,accounting}.csv\n", o.out);
+	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting}.csv\n", o.out);
 out:
 	state_free(&t, &s);
 	return tool_close(&t, stderr);

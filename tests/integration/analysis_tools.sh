@@ -126,7 +126,7 @@ for n in onset waiting figures hysteresis; do
 	rc=$?
 	[ "$rc" -eq 1 ] && grep -q "campaign 'nosuch'" $n.err && ok $n.unknown_campaign || fail $n.unknown_campaign "exit $rc: $(cat $n.err)"
 	tool $n t --runs R --bogus 1
-	[ $? -eq 1 ] && grep -q "unknown option '--bogus'" $n.err && ok $n.bad_option || fail $n.bad_option "$(cat $n.err)"
+	[ $? -eq 1 ] && grep -q "^$n: --bogus: unknown option" $n.err && ok $n.bad_option || fail $n.bad_option "$(cat $n.err)"
 done
 tool onset t --db "$TMP/none/study.db"
 rc=$?
