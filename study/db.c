@@ -299,6 +299,9 @@ int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
 	size_t l = 0;
 	for (int i = 0; i < c->naxes && l < sizeof axes; i++)
 		l += (size_t)snprintf(axes + l, sizeof axes - l, "%s%s", i ? " " : "", c->axes[i].key);
+	/* an [onset] search varies both too: the analysis tools group by the swept keys */
+	if (c->onset.line && l < sizeof axes)
+		snprintf(axes + l, sizeof axes - l, "%sfrequency seed", l ? " " : "");
 	snprintf(seed, sizeof seed, "%llu", c->seed);
 	return db_exec(d, e, NULL,
 		       "INSERT INTO campaign(name, description, file, scene_file, seed, seeds, axes, created, updated)"

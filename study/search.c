@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "flux.h"
+#include "h5sum.h"
 #include "layout.h"
 
 void search_init(search *s, const campaign *c, const char *dir)
@@ -77,16 +78,21 @@ static void val_put(search *s, const char *id, int cls, double value)
 
 /* The mean flux through the band over the periods after the transient, as bin/onset
  * computes a run's Phi (analysis/flux.c, one definition); NaN when the file has no
- * period after the transient; *unreadable when the file cannot be read. */
-static double run_flux(const search *s, const char *id, int *unreadable)
+ * period after the transient or no flux records. *damaged when the file is missing or
+ * is no complete run file: the sweep moves it aside and the run runs again, so its
+ * chain waits for it (a blocked chain could add a batch of replicates that the results
+ * do not ask for). */
+static double run_flux(const search *s, const char *id, int *damaged)
 {
 	char path[4600];
 	layout_file(s->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 	flux_data d;
 	sb_err e = {0};
-	*unreadable = 0;
+	*damaged = 0;
 	if (flux_read(path, &d, &e)) {
-		*unreadable = 1;
+		h5sum sum;
+		sb_err se = {0};
+		*damaged = h5sum_read(path, &sum, &se) != 0;
 		return NAN;
 	}
 	flux_opts o = {s->c->onset.band_lo, s->c->onset.band_hi, s->c->onset.skip};
@@ -123,9 +129,9 @@ static int classify(search *s, sqlite3_stmt *q, const char *id, double *value)
 	} else if (failed) {
 		cls = AD_FAILED;
 	} else {
-		int bad;
-		*value = run_flux(s, id, &bad);
-		if (bad) /* a damaged file: the sweep moves it aside and the run runs again */
+		int damaged;
+		*value = run_flux(s, id, &damaged);
+		if (damaged)
 			return AD_WAIT;
 		cls = isnan(*value) ? AD_FAILED : fabs(*value) >= s->c->onset.threshold ? AD_ON : AD_OFF;
 	}
