@@ -29,3 +29,43 @@ $(BUILD)/tests/analysis/%: tests/analysis/%.c $(AN_LIB) $(LIB) tests/testlib.h $
 
 all: $(AN_BIN)
 tests: $(AN_BIN) $(AN_TBIN)
+
+# make figures: the figures of analysis/README.md (PNG and PDF in analysis/figures/, with
+# the tables the tools printed, NAME.txt) from the campaigns beside them, so that a
+# committed figure is what today's tools draw from today's engine. Each campaign runs
+# in its own runs directory under build/figures/, again from scratch when its file or
+# the engine's sources change (not when bin/shake is only relinked: its version stamp
+# changes with every commit); a campaign interrupted before it was done is resumed.
+# The tools run again whenever they are rebuilt.
+FIG_DIR    = analysis/figures
+FIG_RUNS   = build/figures
+FIG_JOBS  ?= 2
+FIG_ENGINE = $(wildcard core/*.c core/*.h)
+FIG_PNGS   = $(FIG_DIR)/onset.png $(FIG_DIR)/hysteresis.png $(FIG_DIR)/waiting_km.png $(FIG_DIR)/fig1.png
+
+.PHONY: figures
+figures: $(FIG_PNGS)
+
+$(FIG_RUNS)/%/done: $(FIG_DIR)/%.campaign $(FIG_ENGINE) | $(SHAKE) $(STUDY)
+	$(Q)if [ -e $@ ]; then rm -rf $(FIG_RUNS)/$*; fi
+	@echo "  RUN   $<"
+	$(Q)$(STUDY) run $< --runs $(FIG_RUNS)/$* --jobs $(FIG_JOBS) --no-progress
+	$(Q)touch $@
+
+# fig_tool OUT-NAME, TOOL, CAMPAIGN, OPTIONS, FIGURES: the tool's table into
+# FIG_DIR/OUT-NAME.txt, its figures (PNG and PDF) copied beside it
+define fig_tool
+	@echo "  FIG   $(FIG_DIR)/$(1)"
+	$(Q)$(BIN)/$(2) $(3) --runs $(FIG_RUNS)/$(3) --out $(FIG_RUNS)/$(3)/analysis $(4) >$(FIG_DIR)/$(1).txt
+	$(Q)for n in $(5); do cp $(FIG_RUNS)/$(3)/analysis/$$n.png $(FIG_RUNS)/$(3)/analysis/$$n.pdf $(FIG_DIR)/; done
+endef
+
+$(FIG_DIR)/onset.png: $(FIG_RUNS)/readme/done $(BIN)/onset
+	$(call fig_tool,onset,onset,readme,,onset)
+$(FIG_DIR)/fig1.png: $(FIG_RUNS)/readme/done $(BIN)/figures
+	$(call fig_tool,figures,figures,readme,--freq 4.5$(,)5$(,)5.5,fig1 fig3)
+$(FIG_DIR)/hysteresis.png: $(FIG_RUNS)/hyst/done $(BIN)/hysteresis
+	$(call fig_tool,hysteresis,hysteresis,hyst,,hysteresis)
+$(FIG_DIR)/waiting_km.png: $(FIG_RUNS)/wait/done $(BIN)/waiting
+	$(call fig_tool,waiting,waiting,wait,,waiting_km waiting_hist)
+, := ,

@@ -427,6 +427,47 @@ static void with_ext(char *out, size_t n, const char *path, const char *ext)
 	snprintf(out + strlen(out), n - strlen(out), ".%s", ext);
 }
 
+/* cairo stamps a PDF with the time it was written, so every regeneration of an
+ * unchanged figure would differ; the stamp's digits become those of 1970-01-01 (the
+ * same length: the offsets of the file's objects stay right). */
+static char *find(char *buf, size_t n, const char *pat)
+{
+	const size_t m = strlen(pat);
+	for (size_t i = 0; i + m <= n; i++)
+		if (!memcmp(buf + i, pat, m))
+			return buf + i;
+	return NULL;
+}
+
+static int pdf_undate(const char *pdf, sb_err *e)
+{
+	FILE *f = fopen(pdf, "r+b");
+	if (!f)
+		return sb_errf(e, SB_EIO, "%s: %s", pdf, strerror(errno));
+	char buf[1 << 16];
+	const size_t n = fread(buf, 1, sizeof buf - 1, f);
+	buf[n] = 0;
+	/* the info dictionary is near the end; search the last 64 KiB as well */
+	long base = 0;
+	char *p = find(buf, n, "/CreationDate (D:");
+	if (!p && !fseek(f, -(long)(sizeof buf - 1), SEEK_END)) {
+		base = ftell(f);
+		const size_t m = fread(buf, 1, sizeof buf - 1, f);
+		p = find(buf, m, "/CreationDate (D:");
+	}
+	if (p) {
+		static const char epoch[] = "19700101000000";
+		char *d = p + 17;
+		for (size_t i = 0; i < sizeof epoch - 1 && d[i] >= '0' && d[i] <= '9'; i++)
+			d[i] = epoch[i];
+		fseek(f, base + (long)(p - buf), SEEK_SET);
+		fwrite(p, 1, 17 + sizeof epoch - 1, f);
+	}
+	if (fclose(f))
+		return sb_errf(e, SB_EIO, "%s: %s", pdf, strerror(errno));
+	return 0;
+}
+
 int gp_run(const char *script, const char *png, sb_err *e)
 {
 	char pdf[1400];
@@ -452,5 +493,5 @@ int gp_run(const char *script, const char *png, sb_err *e)
 		return sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, png);
 	if (stat(pdf, &sb) || !sb.st_size)
 		return sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, pdf);
-	return 0;
+	return pdf_undate(pdf, e);
 }
