@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "adapt.h"
 #include "db.h"
 
 static int open_ro(st_db *d, const char *path, sb_err *e)
@@ -108,6 +109,9 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	if (!strcmp(col(q, 8), "auto"))
 		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s Hz wide\n",
 			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32));
+	else if (atol(col(q, 8)) < adapt_min_replicates(level))
+		fprintf(out, "    replicates %s; an interval at %g%% needs %ld\n", col(q, 8), 100 * level,
+			adapt_min_replicates(level));
 	else
 		fprintf(out, "    replicates %s; %g%% interval over them\n", col(q, 8), 100 * level);
 	sqlite3_finalize(q);
