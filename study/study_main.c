@@ -33,7 +33,10 @@ static const char *HELP_RUN =
 	"each one that has no complete output yet (RUNS/NAME/RUN-ID.h5) with GNU parallel,\n"
 	"ingesting each as it finishes. Kill it at any moment and run it again: finished runs\n"
 	"are kept, half-way runs continue from their checkpoint. Add axis values and run again:\n"
-	"only the new grid points run.\n\n"
+	"only the new grid points run. A campaign with an [onset] section searches the onset\n"
+	"frequency per group instead, round by round: each round runs the midpoint of every\n"
+	"replicate's bracket, chosen from the results so far (study/README.md, \"Adaptive onset\n"
+	"search\"); killed and run again, it asks for the same points.\n\n"
 	"  --jobs N            parallel jobs (per host with --sshloginfile; default: cores)\n"
 	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
 	"                      ~/.shakebox/NAME on each host, outputs copied back\n"
@@ -53,7 +56,9 @@ static const char *HELP_STATUS =
 	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--runs DIR] [--db FILE]\n\n"
 	"Counts per state (pending, running, done, failed), packing-cache hits, every\n"
 	"unsuccessful attempt with its exit code and message, and an ETA from the mean\n"
-	"time of the finished runs spread over N jobs (default: cores). Without NAME: all.\n";
+	"time of the finished runs spread over N jobs (default: cores). Without NAME: all.\n"
+	"For an [onset] campaign: per group the onset, its interval, the replicates and\n"
+	"runs so far, and every replicate's bracket.\n";
 
 static const char *HELP_LIST =
 	"usage: study list [--runs DIR] [--db FILE]\n\n"
@@ -67,8 +72,9 @@ static const char *HELP_EXPORT =
 static const char *HELP_EXPAND =
 	"usage: study expand CAMPAIGN\n\n"
 	"Checks the campaign file against the engine's parameter table and prints one line\n"
-	"per run: id, cache key, replicate, engine seed and the swept values (TSV).\n"
-	"Nothing is run or recorded.\n";
+	"per run: id, cache key, replicate, engine seed and the swept values (TSV); for an\n"
+	"[onset] campaign the runs of its first round, with their frequency (the next rounds\n"
+	"depend on the results). Nothing is run or recorded.\n";
 
 static const char *HELP_COLUMNS =
 	"usage: study columns\n\n"
