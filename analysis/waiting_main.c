@@ -290,6 +290,20 @@ static int km_csv(an_tool *t, const wait_state *s)
 	return 0;
 }
 
+/* The risen runs of group j whose waiting time is in bin b of bins (the last bin
+ * holds the longest). */
+static long hist_count(const wait_state *s, int j, long b, long bins)
+{
+	long c = 0;
+	for (int i = 0; i < s->g[j].n; i++) {
+		long q = (long)floor(s->g[j].t[i] / s->bw);
+		if (q >= bins)
+			q = bins - 1;
+		c += s->g[j].ev[i] && q == b;
+	}
+	return c;
+}
+
 /* waiting_hist.csv: the risen runs' waiting times, bins common to every group */
 static int hist_csv(an_tool *t, const wait_state *s)
 {
@@ -301,13 +315,7 @@ static int hist_csv(an_tool *t, const wait_state *s)
 	fprintf(f, "group_index,group,lo,hi,count\n");
 	for (int j = 0; j < t->ng; j++)
 		for (long b = 0; b < bins; b++) {
-			long c = 0;
-			for (int i = 0; i < s->g[j].n; i++) {
-				long q = (long)floor(s->g[j].t[i] / s->bw);
-				if (q >= bins)
-					q = bins - 1;
-				c += s->g[j].ev[i] && q == b;
-			}
+			const long c = hist_count(s, j, b, bins);
 			fprintf(f, "%d,", j);
 			csv_str(f, t->labels[j]);
 			fprintf(f, ",%.17g,%.17g,%ld\n", b * s->bw, (b + 1) * s->bw, c);
@@ -421,10 +429,17 @@ static int plot_hist(an_tool *t, const wait_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
+	/* counts: whole-number ticks, and a range also when no run rose (gnuplot would
+	 * warn of an empty one) */
+	long cmax = 0;
+	for (int j = 0; j < t->ng; j++)
+		for (long b = 0; b < t->o->bins; b++)
+			if (hist_count(s, j, b, t->o->bins) > cmax)
+				cmax = hist_count(s, j, b, t->o->bins);
 	fprintf(f, "set title \"Intruder waiting time: histogram of the risen runs%s%s\"\n"
-		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:*]\nset xrange [0:%.17g]\n"
-		   "set style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
-		*set ? "\\n" : "", set, bw * (double)t->o->bins, bw / t->ng);
+		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:%ld]\nset ytics %ld\n"
+		   "set xrange [0:%.17g]\nset style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
+		*set ? "\\n" : "", set, cmax + 1, cmax > 10 ? (cmax + 9) / 10 : 1, bw * (double)t->o->bins, bw / t->ng);
 	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
 		if (!acct_used(&t->A[j]))

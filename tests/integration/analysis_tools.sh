@@ -2,7 +2,7 @@
 # analysis_tools.sh - the analysis tools end to end: a tiny campaign (with and
 # without intruder, three frequencies, two seeds, flux and field on) and a tiny ramp
 # campaign run by bin/study, then onset, waiting, figures and hysteresis on them:
-# exit codes, tables, CSV and PNG files, the rows stored in the `analysis` table,
+# exit codes, nothing on stderr, tables, CSV and PNG files, the rows stored in the `analysis` table,
 # reproducible bootstrap intervals on a second run, and the error paths.
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
@@ -40,6 +40,7 @@ tool onset t --runs R --boot 60 --seed 7
 rc=$?
 A=R/t/analysis
 [ "$rc" -eq 0 ] && ok onset.exit || fail onset.exit "exit $rc: $(cat onset.err)"
+[ ! -s onset.err ] && ok onset.quiet || fail onset.quiet "$(head -c 300 onset.err)"
 grep -q '^group .*sigmoid f0' onset.out && grep -q '^radius_ratio=0 depth=1 .* no ' onset.out &&
 	grep -q '^radius_ratio=2 depth=1 .* yes ' onset.out && ok onset.table || fail onset.table "$(cat onset.out)"
 [ "$(tail -n +2 $A/onset_runs.csv | wc -l)" = 12 ] && [ -s $A/onset_summary.csv ] && [ -s $A/onset_seeds.csv ] &&
@@ -67,6 +68,7 @@ tool onset t --db R/study.db --out "$TMP/o2" --boot 20 --no-store && [ -s o2/ons
 tool waiting t --runs R
 rc=$?
 [ "$rc" -eq 0 ] && ok waiting.exit || fail waiting.exit "exit $rc: $(cat waiting.err)"
+[ ! -s waiting.err ] && ok waiting.quiet || fail waiting.quiet "$(head -c 300 waiting.err)"
 # runs without intruder have no waiting time: three groups (R = 2 at 3 frequencies)
 [ "$(sed '/^$/q' waiting.out | grep -c '^radius_ratio=2 frequency=')" = 3 ] && ! grep -q '^radius_ratio=0' waiting.out &&
 	ok waiting.table || fail waiting.table "$(cat waiting.out)"
@@ -88,6 +90,7 @@ line=$(grep ",$id," $A/waiting_runs.csv)
 tool figures t --runs R
 rc=$?
 [ "$rc" -eq 0 ] && ok figures.exit || fail figures.exit "exit $rc: $(cat figures.err)"
+[ ! -s figures.err ] && ok figures.quiet || fail figures.quiet "$(head -c 300 figures.err)"
 png_ok $A/fig1.png && png_ok $A/fig3.png && png_ok $A/fig4.png && ok figures.png || fail figures.png "$(cat figures.out)"
 [ "$(tail -n +2 $A/fig3_profile.csv | wc -l)" = $((6 * 80)) ] && [ -s $A/fig1_field.csv ] && [ -s $A/fig4_traj.csv ] &&
 	ok figures.csv || fail figures.csv "$(wc -l $A/fig*.csv)"
@@ -103,6 +106,7 @@ tool hysteresis h --runs R --boot 40
 rc=$?
 H=R/h/analysis
 [ "$rc" -eq 0 ] && ok hysteresis.exit || fail hysteresis.exit "exit $rc: $(cat hysteresis.err)"
+[ ! -s hysteresis.err ] && ok hysteresis.quiet || fail hysteresis.quiet "$(head -c 300 hysteresis.err)"
 grep -q '^radius_ratio=2 depth=1 ' hysteresis.out && ok hysteresis.table || fail hysteresis.table "$(cat hysteresis.out)"
 # both branches present for both seeds, frequencies rising on the way up
 [ "$(awk -F, 'NR > 1 { print $5 }' $H/hysteresis_periods.csv | sort -u | tr '\n' ' ')" = "down up " ] &&
