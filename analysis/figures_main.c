@@ -85,11 +85,15 @@ static const char *HELP =
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current = 0)\n"
 	"  --no-plot, --no-store\n\n"
-	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the PNGs; stores per\n"
+	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the figures; stores per\n"
 	"panel of Fig. 3 in `analysis` (tool 'figures', grp 'fig3 f=F radius_ratio=R'):\n"
 	"phi_max (largest |Phi(D)|), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
 	"deep the rolls reach), runs (used) and the accounting (runs_failed, runs_failed_used,\n"
-	"..., as onset --help lists). Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"..., as onset --help lists).\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
+	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 static int near(double a, double b)
 {

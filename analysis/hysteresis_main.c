@@ -41,10 +41,13 @@ static const char *HELP =
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current = 0)\n"
 	"  --no-plot, --no-store\n\n"
 	"Writes hysteresis_periods.csv, hysteresis_summary.csv, hysteresis_accounting.csv,\n"
-	"hysteresis.png (points and the fitted sigmoids of both branches); stores per group\n"
+	"hysteresis.png/.pdf (points and the fitted sigmoids of both branches); stores per group\n"
 	"in `analysis` (tool 'hysteresis'): runs (used), seeds, up_sigmoid_f, down_sigmoid_f,\n"
 	"diff_sigmoid, up_threshold_f, down_threshold_f, diff_threshold (value, lo, hi) and\n"
 	"the accounting (runs_failed, runs_failed_used, ..., as onset --help lists).\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 /* What hysteresis computes besides the frame: the flux of every considered run, the

@@ -50,13 +50,16 @@ static const char *HELP =
 	"  --level L        confidence level (default 0.95)\n"
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current\n"
 	"                   = 0, kept by study run --keep-old); by default the current grid's\n"
-	"  --no-plot        no PNG;  --no-store  nothing written to the database\n\n"
+	"  --no-plot        no figures;  --no-store  nothing written to the database\n\n"
 	"Writes onset_runs.csv (Phi per run), onset_seeds.csv (per-seed estimates),\n"
-	"onset_summary.csv, onset_accounting.csv, onset.png; stores per group in `analysis`\n"
+	"onset_summary.csv, onset_accounting.csv, onset.png/.pdf; stores per group in `analysis`\n"
 	"(tool 'onset'): runs (used), seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step,\n"
 	"threshold_f (lo, hi), threshold_seed_sd, and the accounting: runs_failed,\n"
 	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
 	"runs_pending, runs_running, failed_STATUS per status.\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 /* What onset computes besides the frame: Phi through the plane of every considered

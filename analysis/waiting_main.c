@@ -47,12 +47,16 @@ static const char *HELP =
 	"  --all-versions  also the runs of earlier versions of the campaign file\n"
 	"                (run.current = 0, kept by study run --keep-old); by default the\n"
 	"                current grid's\n"
-	"  --no-plot     no PNG;  --no-store  nothing written to the database\n\n"
+	"  --no-plot     no figures;  --no-store  nothing written to the database\n\n"
 	"Writes waiting_runs.csv, waiting_km.csv, waiting_summary.csv, waiting_hist.csv,\n"
-	"waiting_accounting.csv, waiting_km.png, waiting_hist.png; stores per group in the\n"
+	"waiting_accounting.csv, waiting_km_band.csv, waiting_km.png/.pdf (with the\n"
+	"confidence band), waiting_hist.png/.pdf; stores per group in the\n"
 	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen, median (lo,\n"
 	"hi), t_max, s_end (lo, hi), and the accounting (runs_failed, runs_failed_used, ...,\n"
 	"as onset --help lists).\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 typedef struct grp {
