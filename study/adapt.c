@@ -166,23 +166,28 @@ void adapt_interval(const ad_rep *reps, long n, double level, ad_interval *iv)
 	if (!lo)
 		return;
 	double *hi = lo + n, *mid = hi + n;
+	long m = 0;
 	for (long i = 0; i < n; i++) {
 		const ad_rep *p = &reps[i];
 		/* an end that was not run bounds nothing */
 		lo[i] = p->lo_seen ? p->lo : -INFINITY;
 		hi[i] = p->hi_seen ? p->hi : INFINITY;
+		/* the estimate is the answered replicates' (a bracket still searching or
+		 * blocked has no midpoint to speak of: its ends may be the range's) */
 		if (p->state == AD_BELOW)
-			mid[i] = -INFINITY;
+			mid[m++] = -INFINITY;
 		else if (p->state == AD_ABOVE)
-			mid[i] = INFINITY;
-		else /* the provisional midpoint while the search goes on (assumed ends) */
-			mid[i] = 0.5 * p->lo + 0.5 * p->hi;
+			mid[m++] = INFINITY;
+		else if (p->state == AD_FOUND)
+			mid[m++] = 0.5 * p->lo + 0.5 * p->hi;
 	}
 	qsort(lo, (size_t)n, sizeof *lo, by_value);
 	qsort(hi, (size_t)n, sizeof *hi, by_value);
-	qsort(mid, (size_t)n, sizeof *mid, by_value);
-	double a = mid[(n - 1) / 2], b = mid[n / 2];
-	iv->est = a == b ? a : 0.5 * a + 0.5 * b; /* -inf and +inf: NaN, no median */
+	qsort(mid, (size_t)m, sizeof *mid, by_value);
+	if (m) {
+		double a = mid[(m - 1) / 2], b = mid[m / 2];
+		iv->est = a == b ? a : 0.5 * a + 0.5 * b; /* -inf and +inf: NaN, no median */
+	}
 	long r = adapt_rank(n, level);
 	iv->lo = r ? lo[r - 1] : -INFINITY;
 	iv->hi = r ? hi[n - r] : INFINITY;

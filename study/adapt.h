@@ -82,7 +82,8 @@ long adapt_min_replicates(double level);
 
 typedef struct ad_interval {
 	long n;            /* replicates */
-	double est;        /* median of the bracket midpoints (-inf below, +inf above the range) */
+	double est;        /* median of the answered replicates' bracket midpoints (-inf below,
+			    * +inf above the range); NaN while none is answered */
 	double lo, hi;     /* [r-th smallest lower end, r-th largest upper end]; +-inf unbounded */
 	double width;
 } ad_interval;

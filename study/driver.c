@@ -1114,9 +1114,9 @@ static void onset_summary(drv *d)
 		long found = 0;
 		for (long k = 0; k < gr->nrep; k++)
 			found += gr->reps[k].state == AD_FOUND;
-		fprintf(stderr, "study: %s: %s: onset %s Hz, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld runs: %s\n",
-			d->c.name, gr->label, est, 100 * o->level, lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found,
-			gr->runs, adapt_gstate_name(gr->state));
+		fprintf(stderr, "study: %s: %s: onset %s%s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld runs: %s\n",
+			d->c.name, gr->label, est, isnan(gr->iv.est) ? " (no replicate answered)" : " Hz", 100 * o->level,
+			lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found, gr->runs, adapt_gstate_name(gr->state));
 	}
 }
 

@@ -103,7 +103,9 @@ static double run_flux(const search *s, const char *id, int *damaged)
 
 /* A run's class from its state and results. A run that failed without an answer
  * stops its chain (an intruder that rose before the failure did rise; a failed run's
- * flux is not used: its periods end where the physics broke down). */
+ * flux is not used: its periods end where the physics broke down). Only a finished
+ * run's flux is kept between passes: a failed run may be run again (--retry-failed),
+ * and a done run that is run again (its file was damaged) ends the same, to the bit. */
 static int classify(search *s, sqlite3_stmt *q, const char *id, double *value)
 {
 	*value = NAN;
@@ -120,21 +122,19 @@ static int classify(search *s, sqlite3_stmt *q, const char *id, double *value)
 	int failed = st && !strcmp(st, "failed");
 	if (!st || (strcmp(st, "done") && !failed))
 		return AD_WAIT;
-	int cls;
 	if (s->c->onset.observable == CP_OBS_RISE) {
 		int has = sqlite3_column_type(q, 1) != SQLITE_NULL;
 		long risen = (long)sqlite3_column_int64(q, 1);
 		*value = has ? (double)risen : NAN;
-		cls = has && risen ? AD_ON : !has || failed ? AD_FAILED : AD_OFF;
-	} else if (failed) {
-		cls = AD_FAILED;
-	} else {
-		int damaged;
-		*value = run_flux(s, id, &damaged);
-		if (damaged)
-			return AD_WAIT;
-		cls = isnan(*value) ? AD_FAILED : fabs(*value) >= s->c->onset.threshold ? AD_ON : AD_OFF;
+		return has && risen ? AD_ON : !has || failed ? AD_FAILED : AD_OFF;
 	}
+	if (failed)
+		return AD_FAILED;
+	int damaged;
+	*value = run_flux(s, id, &damaged);
+	if (damaged)
+		return AD_WAIT;
+	int cls = isnan(*value) ? AD_FAILED : fabs(*value) >= s->c->onset.threshold ? AD_ON : AD_OFF;
 	val_put(s, id, cls, *value);
 	return cls;
 }

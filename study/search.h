@@ -29,7 +29,7 @@ typedef struct srch_step {
 	double value;        /* rise: risen; flux: the mean flux through the band (NaN: none) */
 } srch_step;
 
-/* A finished run's observable, read once per driver (flux: from its file). */
+/* A finished run's flux, read from its file once per driver. */
 typedef struct srch_val {
 	char id[17];
 	int cls;
@@ -43,7 +43,7 @@ typedef struct search {
 	srch_group *groups;
 	srch_step *steps;
 	long nsteps, capsteps;
-	srch_val *vals;      /* sorted by id */
+	srch_val *vals;      /* the done runs' flux, sorted by id */
 	long nvals, capvals;
 } search;
 

@@ -7,8 +7,9 @@
 # process group) and run again it asks for the same points in the same order;
 # replicates = auto adds batches up to its maximum, stops at the first batch whose
 # interval is narrow enough, and reuses the runs of a search with fixed replicates;
-# study status shows the brackets and the interval; bad [onset] input and a changed
-# range are refused with file, line and key.
+# study status shows the brackets and the interval; a search over the flux classifies a
+# run by bin/onset's Phi; a run that fails blocks its replicate; bad [onset] input and a
+# changed range are refused with file, line and key.
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
@@ -229,6 +230,17 @@ if [ -x "$ONSET" ]; then
 	[ -s flux.phi ] && cmp -s onset.phi flux.phi && ok adaptive.flux.value_is_onset_phi ||
 		fail adaptive.flux.value_is_onset_phi "search $(tr '\n' ' ' <flux.phi), bin/onset $(tr '\n' ' ' <onset.phi) $(tail -c 200 onset.log)"
 fi
+
+# --- a run that fails before it answers blocks its replicate, which keeps the bracket
+# it had; the search ends (exit 3: runs failed) and says so ---
+{ campaign blocked; printf 'max_overlap = 0.02\n'; onset 'replicates = 2'; } >blocked.campaign
+"$STUDY" run blocked.campaign --runs "$TMP/BLK" --jobs 2 >blocked.log 2>&1
+rc=$?
+"$STUDY" status blocked --runs "$TMP/BLK" >blocked.txt 2>&1
+row=$(sqlite3 BLK/study.db "SELECT blocked || '|' || state || '|' || IFNULL(estimate, 'none') FROM onset_group")
+[ "$rc" -eq 3 ] && [ "$row" = "2|done|none" ] && grep -q "onset none (no replicate answered)" blocked.log &&
+	grep -qF "brackets of all: 1 [~5, ~9] failed at 7; 2 [~5, ~9] failed at 7" blocked.txt &&
+	ok adaptive.failed_run_blocks_replicate || fail adaptive.failed_run_blocks_replicate "exit $rc, group $row: $(cat blocked.txt)"
 
 # --- a changed range: the recorded runs are no chain's any more: refused, nothing runs ---
 sed 's/^to = 9$/to = 8/' rise.campaign >changed.campaign

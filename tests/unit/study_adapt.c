@@ -295,6 +295,23 @@ static void test_interval(void)
 	adapt_interval(six, 6, 0.95, &iv);
 	CHECK("adapt.interval.agreeing", iv.lo == 2.68 && iv.hi == 2.69 && fabs(iv.est - 2.685) < 1e-12,
 	      "est %g [%g, %g]", iv.est, iv.lo, iv.hi);
+	/* the estimate is over the answered replicates alone: one still searching on the
+	 * range's assumed ends does not pull it */
+	six[3].state = AD_SEARCHING;
+	six[3].lo = 2.5;
+	six[3].hi = 3.2;
+	six[3].lo_seen = six[3].hi_seen = 0;
+	six[0].state = AD_BLOCKED;
+	six[0].lo = 2.5;
+	six[0].hi = 3.2;
+	six[0].lo_seen = six[0].hi_seen = 0;
+	adapt_interval(six, 6, 0.95, &iv);
+	CHECK("adapt.interval.estimate_answered_only", fabs(iv.est - 2.685) < 1e-12 && isinf(iv.lo) && isinf(iv.hi),
+	      "est %g [%g, %g]", iv.est, iv.lo, iv.hi);
+	for (int i = 0; i < 6; i++)
+		six[i].state = AD_BLOCKED;
+	adapt_interval(six, 6, 0.95, &iv);
+	CHECK("adapt.interval.no_answer_no_estimate", isnan(iv.est), "est %g", iv.est);
 }
 
 /* ---- replicates: fixed, auto ---- */
