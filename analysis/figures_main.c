@@ -490,9 +490,11 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 	if (!(W > 0))
 		W = a->xhi - a->xlo;
 	const double x0 = -2 * rw, x1 = W + 2 * rw, y0 = -2 * rw, y1 = a->yhi;
-	const int pw = P->nsys > 1 ? 450 : 600, aw = pw - 80;
+	/* a row per frequency with both systems; one system alone fills rows of up to 3 */
+	const int cols = P->nsys > 1 ? P->nsys : (P->nf < 3 ? P->nf : 3), rows = (P->nf * P->nsys + cols - 1) / cols;
+	const int pw = cols > 1 ? 450 : 600, aw = pw - 80;
 	const int ph = (int)(aw * (y1 - y0) / (x1 - x0)) + 80;
-	FILE *f = gp_open(t->o, "fig1", pw * P->nsys, ph * P->nf + 50, script, png, sizeof script, &t->e);
+	FILE *f = gp_open(t->o, "fig1", pw * cols, ph * rows + 50, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -503,7 +505,7 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 		   		   "set object 1 rect from %g, %g to 0, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
 		   "set object 2 rect from %g, %g to %g, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
 		   "set object 3 rect from %g, %g to %g, 0 fc rgb '#b0b0b0' fs solid 1 noborder behind\n",
-		P->nf, P->nsys, *set ? ", " : "", set, a->umax, x0, x1, y0, y1, x0, y0, W, y0, x1, x0, y0, x1);
+		rows, cols, *set ? ", " : "", set, a->umax, x0, x1, y0, y1, x0, y0, W, y0, x1, x0, y0, x1);
 	for (int r = 0; r < P->nf; r++)
 		for (int sys = 0; sys < P->nsys; sys++) {
 			char title[128];
