@@ -71,15 +71,17 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 			       params_where(sc, "width"), W, cols, pitch, sc->r_max, params_where(sc, "r_max"),
 			       GUARD_MAX_COLUMNS);
 	const int ncol = (int)cols;
-	/* depth rows of grains beneath the intruder take depth x ncol grains: with fewer the
-	 * intruder starts in the air above the bed, and its height sets the walls' (50000
-	 * rows over 150 grains built 2.5 10^5 wall disks and never settled) */
-	if (sc->radius_ratio > 0 && (double)sc->depth * ncol > (double)sc->n_grains)
+	/* depth rows of grains beneath the intruder: more rows than n_grains fill leave the
+	 * intruder in the air above the bed, and its height sets the walls' (50000 rows over
+	 * 150 grains built 2.5 10^5 wall disks and never settled). One row more than the
+	 * grains fill is allowed: a few grains, or none, under an intruder is a valid scene. */
+	const double filled = ncol > 0 ? ceil((double)sc->n_grains / ncol) : 0;
+	if (sc->radius_ratio > 0 && (double)sc->depth > filled + 1)
 		return sb_errf(e, SB_EUSAGE,
-			       "%s: depth %ld rows beneath the intruder take %.0f grains (%d a row in width %g cm), "
-			       "but n_grains is %ld (%s): a smaller depth or more grains",
-			       params_where(sc, "depth"), sc->depth, (double)sc->depth * ncol, ncol, W, sc->n_grains,
-			       params_where(sc, "n_grains"));
+			       "%s: depth %ld rows beneath the intruder, but n_grains %ld (%s) fill %.0f rows of %d "
+			       "in width %g cm: at most %.0f, or more grains",
+			       params_where(sc, "depth"), sc->depth, sc->n_grains, params_where(sc, "n_grains"), filled,
+			       ncol, W, filled + 1);
 	/* The walls are counted before the placement too (it may take seconds), with the
 	 * side walls no lower than the rows n_grains fill at least. */
 	const double nb = n_span(-rw, W + rw, sc->wall_spacing);

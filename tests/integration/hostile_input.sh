@@ -88,7 +88,7 @@ refused sizes.walls.bottom "wall_spacing|width|wall disks|at most 1000000" \
 	duration=0 n_grains=5 radius_ratio=0 width=1e7 wall_spacing=1e-3 wall_radius=1e-3
 refused sizes.step_count "duration / dt|at most 1e15" dt=1e-300 dt_guard=off duration=1 output=steps.h5
 refused sizes.settle_step_count "settle_max / dt|at most 1e15" dt=1e-300 dt_guard=off duration=0
-refused sizes.depth_beyond_the_grains "depth 50000 rows|n_grains is 150" n_grains=150 depth=50000 duration=0.02
+refused sizes.depth_beyond_the_grains "depth 50000 rows|n_grains 150|at most" n_grains=150 depth=50000 duration=0.02
 refused sizes.walls.tall "wall_spacing|wall_height|at most 1000000" n_grains=150 wall_height=5000000 duration=0.02
 refused sizes.walls.sides "wall_spacing|wall_height|wall disks|at most 1000000" \
 	duration=0 n_grains=5 radius_ratio=0 width=20 wall_height=1e7 wall_spacing=1e-3 wall_radius=1e-3
