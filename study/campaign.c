@@ -12,6 +12,7 @@
 
 #include "adapt.h"
 #include "safe.h"
+#include "textline.h"
 
 int campaign_key_reserved(const char *key)
 {
@@ -309,51 +310,21 @@ struct rd {
 /* inih's Debian build has no INI_HANDLER_LINENO: the reader counts lines (the handler
  * runs right after its line is read), strips indentation (inih would take it as a
  * continuation of the previous value) and inline " # comments", and checks section
- * names itself (inih says nothing about an empty section). It reads byte by byte
- * rather than with fgets, which cannot tell a NUL byte from the end of the line (the
- * rest of the line would vanish), and refuses a line longer than inih's buffer
- * (num - 1 characters before the newline) instead of letting inih cut it in two. */
+ * names itself (inih says nothing about an empty section). The line comes from
+ * textline_next (NUL bytes, lines past inih's buffer, endless streams). */
 static char *cp_reader(char *str, int num, void *stream)
 {
 	struct rd *r = stream;
 	if (r->err_line)
 		return NULL;
-	int ch = 0;
-	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
-	while (len < num - 1 && (ch = getc(r->f)) != EOF) {
-		if (!ch && !nul)
-			nul = len + 1;
-		str[len++] = (char)ch;
-		if (ch == '\n')
-			break;
-	}
-	if (!len)
+	/* a pipe that never ends (yes '# x' |) must not keep the reader forever */
+	textline tl = {r->f, r->c->path, "campaign file", CP_MAX_LINES, r->line};
+	int rc = textline_next(&tl, str, num, r->e);
+	r->line = tl.line;
+	if (rc < 0)
+		r->err_line = r->line ? r->line : 1;
+	if (rc <= 0)
 		return NULL;
-	str[len] = 0;
-	r->line++;
-	if (r->line > CP_MAX_LINES) {
-		/* a pipe that never ends (yes '# x' |) must not keep the reader forever */
-		r->err_line = r->line;
-		sb_errf(r->e, SB_EUSAGE, "%s:%d: more than %d lines (a campaign file is a few dozen)", r->c->path,
-			r->line, CP_MAX_LINES);
-		return NULL;
-	}
-	if (nul) {
-		r->err_line = r->line;
-		sb_errf(r->e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a campaign file is text)", r->c->path,
-			r->line, nul);
-		return NULL;
-	}
-	if (len == num - 1 && str[len - 1] != '\n') {
-		/* a line of exactly num - 1 characters fits: only its newline is left */
-		ch = getc(r->f);
-		if (ch != EOF && ch != '\n') {
-			r->err_line = r->line;
-			sb_errf(r->e, SB_EUSAGE, "%s:%d: line too long (the limit is %d characters)", r->c->path,
-				r->line, num - 1);
-			return NULL;
-		}
-	}
 	char *got = str;
 	size_t lead = strspn(str, " \t");
 	if (lead)

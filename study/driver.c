@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "campaign.h"
+#include "changes.h"
 #include "db.h"
 #include "grid.h"
 #include "h5sum.h"
@@ -489,216 +490,6 @@ out:
 
 /* ---- the campaign ---- */
 
-/* Distinct values of a key among a set of runs, as "a, b, c" (at most 6, then "..."). */
-static void add_value(char *set, size_t len, const char *v, int *count)
-{
-	char probe[SB_STR_MAX + 16];
-	snprintf(probe, sizeof probe, "|%s|", v);
-	if (strstr(set, probe))
-		return;
-	size_t l = strlen(set);
-	if (!l && len > 1) {
-		snprintf(set, len, "|");
-		l = 1;
-	}
-	if (*count < 6)
-		snprintf(set + l, len - l, "%s|", v);
-	else if (*count == 6)
-		snprintf(set + l, len - l, "...|");
-	(*count)++;
-}
-
-/* Every item of a in b and of b in a (sets as "|x|y|"; a truncated one never equals). */
-static int same_set(const char *a, const char *b)
-{
-	for (int pass = 0; pass < 2; pass++, (void)0) {
-		const char *x = pass ? b : a, *y = pass ? a : b;
-		for (const char *p = x + 1; *p;) {
-			const char *q = strchr(p, '|');
-			if (!q)
-				break;
-			char item[SB_STR_MAX + 16];
-			snprintf(item, sizeof item, "|%.*s|", (int)(q - p), p);
-			if (!strcmp(item, "|...|") || !strstr(y, item))
-				return 0;
-			p = q + 1;
-		}
-	}
-	return 1;
-}
-
-static void show_set(const char *set, char *out, size_t len)
-{
-	size_t l = 0;
-	out[0] = 0;
-	for (const char *p = set; *p && l < len;) {
-		if (*p == '|') {
-			p++;
-			continue;
-		}
-		const char *q = strchr(p, '|');
-		int n = q ? (int)(q - p) : (int)strlen(p);
-		l += (size_t)snprintf(out + l, len - l, "%s%.*s", l ? ", " : "", n, p);
-		p += n;
-	}
-}
-
-/* The recorded runs of the campaign's current version that its file's grid no longer
- * has: a key of the file changed, or values left an axis. They are never mixed with
- * the new grid silently: the user keeps them as an earlier version (out of every
- * analysis unless asked) or forgets them (rows deleted, files moved aside). */
-static int check_changes(drv *d, sb_err *e)
-{
-	sqlite3_stmt *q;
-	if (db_exec(&d->db, e, &q,
-		    "SELECT r.id, r.state, r.replicate, (SELECT value FROM param p WHERE p.campaign = r.campaign"
-		    " AND p.run = r.id AND p.key = 'frequency') FROM run r WHERE r.campaign = ? AND r.current = 1",
-		    "t", d->c.name))
-		return e->code;
-	char **stale = NULL;
-	long ns = 0, cap = 0, nd = 0, nf = 0;
-	while (sqlite3_step(q) == SQLITE_ROW) {
-		const char *id = (const char *)sqlite3_column_text(q, 0), *st = (const char *)sqlite3_column_text(q, 1);
-		/* an [onset] campaign's runs are its chains' so far, and more may come: a
-		 * recorded run belongs to it when some chain can ask for it */
-		if (!id || (d->adaptive ? search_member(&d->c, d->g.points, (long)sqlite3_column_int64(q, 2),
-							sqlite3_column_double(q, 3), id)
-					: grid_find(&d->g, id) != NULL))
-			continue;
-		if (ns == cap) {
-			cap = cap ? 2 * cap : 64;
-			char **x = realloc(stale, sizeof *x * (size_t)cap);
-			if (!x)
-				break;
-			stale = x;
-		}
-		stale[ns++] = strdup(id);
-		nd += st && !strcmp(st, "done");
-		nf += st && !strcmp(st, "failed");
-	}
-	sqlite3_finalize(q);
-	if (!ns)
-		return 0;
-	if (!d->o->keep_old && !d->o->forget_old) {
-		/* what changed: per key, the values of the runs that left against the grid's */
-		char msg[3000];
-		size_t l = (size_t)snprintf(msg, sizeof msg,
-					    "campaign %s changed since it was recorded: %ld recorded runs (%ld done, %ld failed) "
-					    "are no longer in %s:\n",
-					    d->c.name, ns, nd, nf, d->c.path);
-		size_t np;
-		const sb_param *t = params_table(&np);
-		sqlite3_stmt *pv = NULL;
-		db_exec(&d->db, e, &pv, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "");
-		int shown = 0;
-		for (size_t k = 0; pv && k < np && l < sizeof msg - 200; k++) {
-			if ((t[k].flags & PF_DRIVER) || !strcmp(t[k].name, "seed")) /* seed: the replicate's */
-				continue;
-			char olds[1024] = "", news[1024] = "";
-			int no = 0, nn = 0;
-			for (long i = 0; i < ns && i < 2000; i++) {
-				sqlite3_reset(pv);
-				sqlite3_bind_text(pv, 1, d->c.name, -1, SQLITE_STATIC);
-				sqlite3_bind_text(pv, 2, stale[i], -1, SQLITE_STATIC);
-				sqlite3_bind_text(pv, 3, t[k].name, -1, SQLITE_STATIC);
-				if (sqlite3_step(pv) == SQLITE_ROW && sqlite3_column_text(pv, 0)) {
-					/* the canonical text of the value, as the grid's are printed
-					 * (a REAL read back as text would lose digits) */
-					sb_scene sc;
-					params_defaults(&sc);
-					char v[SB_STR_MAX + 8], raw[64];
-					const char *txt = (const char *)sqlite3_column_text(pv, 0);
-					if (sqlite3_column_type(pv, 0) == SQLITE_FLOAT) {
-						snprintf(raw, sizeof raw, "%.17g", sqlite3_column_double(pv, 0));
-						txt = raw;
-					}
-					sb_err pe = {0};
-					if (!params_set(&sc, t[k].name, txt, "", &pe))
-						params_format(&sc, &t[k], v, sizeof v);
-					else
-						snprintf(v, sizeof v, "%s", txt);
-					add_value(olds, sizeof olds, v, &no);
-				}
-			}
-			for (long i = 0; i < d->g.n; i++) {
-				sb_scene sc;
-				char v[SB_STR_MAX + 8];
-				grid_scene(&d->g, &d->g.runs[i], &sc);
-				params_format(&sc, &t[k], v, sizeof v);
-				add_value(news, sizeof news, v, &nn);
-			}
-			if (!olds[0] || same_set(olds, news))
-				continue;
-			char a[512], b[512];
-			show_set(olds, a, sizeof a);
-			show_set(news, b, sizeof b);
-			l += (size_t)snprintf(msg + l, sizeof msg - l, "  %s: %s -> %s\n", t[k].name, a, b);
-			shown++;
-		}
-		sqlite3_finalize(pv);
-		if (!shown)
-			l += (size_t)snprintf(msg + l, sizeof msg - l, "  (no key differs in value: replicates or seeds changed)\n");
-		snprintf(msg + l, sizeof msg - l,
-			 "Nothing was run. Run again with --keep-old to keep those runs as an earlier version of the "
-			 "campaign (out of every analysis unless a tool is given --all-versions), or with --forget-old to "
-			 "delete their rows and move their files to %s/forgotten/.",
-			 d->dir);
-		sb_errf(e, SB_EUSAGE, "%s", msg);
-		goto out;
-	}
-	if (db_begin(&d->db, e))
-		goto out;
-	if (d->o->keep_old)
-		db_exec(&d->db, e, NULL, "UPDATE campaign SET version = version + 1 WHERE name = ?", "t", d->c.name);
-	for (long i = 0; i < ns && !e->code; i++) {
-		if (d->o->keep_old) {
-			db_exec(&d->db, e, NULL, "UPDATE run SET current = 0 WHERE campaign = ? AND id = ?", "tt", d->c.name,
-				stale[i]);
-			continue;
-		}
-		static const char *const tables[] = {"DELETE FROM run WHERE campaign = ?1 AND id = ?2",
-						     "DELETE FROM param WHERE campaign = ?1 AND run = ?2",
-						     "DELETE FROM attempt WHERE campaign = ?1 AND run = ?2",
-						     "DELETE FROM result WHERE campaign = ?1 AND run = ?2"};
-		for (size_t k = 0; k < sizeof tables / sizeof *tables && !e->code; k++)
-			db_exec(&d->db, e, NULL, tables[k], "tt", d->c.name, stale[i]);
-	}
-	if (e->code || db_commit(&d->db, e)) {
-		db_rollback(&d->db);
-		goto out;
-	}
-	if (d->o->forget_old) {
-		char dir[PATHX];
-		layout_sub(d->dir, "forgotten", dir, sizeof dir);
-		if (mkdir_p(dir, e))
-			goto out;
-		for (long i = 0; i < ns; i++) {
-			static const enum lay_kind kinds[] = {LAY_OUTPUT, LAY_ARGS, LAY_LOG};
-			for (size_t k = 0; k < sizeof kinds / sizeof *kinds + 1; k++) {
-				char from[PATHX], to[PATHX + 64];
-				if (k < sizeof kinds / sizeof *kinds)
-					layout_file(d->dir, 0, stale[i], kinds[k], from, sizeof from);
-				else { /* the output's ParaView sidecar: ID.xmf beside ID.h5 */
-					int l = layout_file(d->dir, 0, stale[i], LAY_OUTPUT, from, sizeof from);
-					if (l < 3 || (size_t)l + 2 > sizeof from)
-						continue;
-					memcpy(from + l - 3, ".xmf", 5);
-				}
-				snprintf(to, sizeof to, "%s/%s", dir, strrchr(from, '/') + 1);
-				if (exists(from) && rename(from, to))
-					fprintf(stderr, "study: %s: cannot move aside: %s\n", from, strerror(errno));
-			}
-		}
-	}
-	fprintf(stderr, "study: %s: %ld runs of the earlier campaign file %s\n", d->c.name, ns,
-		d->o->keep_old ? "kept as an earlier version (current = 0 in the runs view)" : "forgotten");
-out:
-	for (long i = 0; i < ns; i++)
-		free(stale[i]);
-	free(stale);
-	return e->code;
-}
-
 static int record(drv *d, sb_err *e)
 {
 	char now[32];
@@ -1042,6 +833,21 @@ static int launch(drv *d, long npend, sb_err *e)
 		free(basefiles[i]);
 	free(basefiles);
 	return e->code;
+}
+
+/* Does the campaign file still ask for a recorded run? An [onset] campaign's runs are
+ * its chains' so far, and more may come: a run belongs to it when some chain can ask
+ * for it. */
+static int asks_for(void *ctx, const char *id, long replicate, double frequency)
+{
+	const drv *d = ctx;
+	return d->adaptive ? search_member(&d->c, d->g.points, replicate, frequency, id) : grid_find(&d->g, id) != NULL;
+}
+
+static int check_changes(drv *d, sb_err *e)
+{
+	changes_ctx x = {&d->db, &d->c, &d->g, d->dir, d->o->keep_old, d->o->forget_old, asks_for, d};
+	return changes_check(&x, e);
 }
 
 /* A pass of an [onset] campaign: its chains walked again from the database and the
