@@ -637,18 +637,19 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int 
 static int fig3_plot(an_tool *t, const panels *P, int drawn)
 {
 	char script[1400], png[1400], set[512], w[2][96];
-	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 70, script, png, sizeof script, &t->e);
+	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 100, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	sys_words(P, 0, NAN, w[0], sizeof w[0]);
 	sys_words(P, 1, NAN, w[1], sizeof w[1]);
 	fprintf(f, "set multiplot layout %d,1 title \"Fig. 3: convective flux Φ through planes at height D%s%s\"\n"
-		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n"
-		   "set key inside top left\n", P->nf, *set ? "\\n" : "", set);
+		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n",
+		P->nf, *set ? "\\n" : "", set);
 	for (int r = 0; r < P->nf; r++) {
-		/* one legend, in the first panel: the systems are the same in every row */
-		fprintf(f, "%sset title '%g Hz'\n", r == 1 ? "unset key\n" : "", P->freqs[r]);
+		/* one legend, below the last panel: the systems are the same in every row */
+		fprintf(f, "%s", r + 1 < P->nf ? "unset key\n" : "set key below height 1\n");
+		fprintf(f, "set title '%g Hz'\n", P->freqs[r]);
 		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
 		gp_str(f, w[0]);
 		if (P->nsys > 1) {
