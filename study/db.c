@@ -186,7 +186,13 @@ static int make_runs_view(st_db *d, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	size_t l = 0;
 	l += (size_t)snprintf(sql + l, cap - l,
-			      "CREATE VIEW runs AS SELECT r.campaign, r.id, r.state, r.attempts, r.replicate, r.current");
+			      "CREATE VIEW runs AS SELECT b.*,\n"
+			      /* the drive's peak acceleration in g and peak velocity: the literature
+			       * reports onsets in both (at a ramp's start frequency) */
+			      "  b.amplitude * (6.283185307179586 * b.frequency) * (6.283185307179586 * b.frequency)"
+			      " / b.gravity AS gamma,\n"
+			      "  6.283185307179586 * b.frequency * b.amplitude AS v_box\nFROM (SELECT r.campaign, r.id, r.state,"
+			      " r.attempts, r.replicate, r.current");
 	for (size_t i = 0; i < n; i++) {
 		if (t[i].flags & PF_OUT)
 			continue; /* paths and recording switches: in the param table */
@@ -217,7 +223,7 @@ static int make_runs_view(st_db *d, sb_err *e)
 	}
 	l += (size_t)snprintf(sql + l, cap - l,
 			      ", r.host, r.started, r.finished\n"
-			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id");
+			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id) b");
 	sqlite3_stmt *st;
 	int same = 0;
 	if (!db_exec(d, e, &st, "SELECT sql FROM sqlite_master WHERE type = 'view' AND name = 'runs'", "")) {

@@ -81,6 +81,10 @@ done < <(tail -n +3 cols.md)
 # the derived column is its expression
 [ "$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 'rise' AND intruder_rise_box = intruder_final_y_box - intruder_settled_y_box")" = 4 ] &&
 	ok results.rise_is_final_minus_settled || fail results.rise_is_final_minus_settled "intruder_rise_box is not final - settled"
+# the drive's Gamma = A (2 pi f)^2 / g and peak velocity 2 pi f A, as columns of the view
+[ "$(q $DB "SELECT COUNT(*) FROM runs WHERE campaign = 'rise' AND abs(gamma - amplitude * (2 * 3.141592653589793 * frequency) * (2 * 3.141592653589793 * frequency) / gravity) < 1e-12
+	AND abs(v_box - 2 * 3.141592653589793 * frequency * amplitude) < 1e-12 AND gamma > 1.2")" = 4 ] &&
+	ok results.gamma_and_v_box || fail results.gamma_and_v_box "$(q $DB "SELECT frequency, amplitude, gamma, v_box FROM runs")"
 # one definition of the rise: no second rise-time column, and the engine's waiting time is
 # the first box-frame crossing of one diameter in the trajectory (sampled at 100 Hz, so
 # within 0.01 s), never the lab-frame one
