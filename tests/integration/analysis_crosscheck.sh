@@ -178,8 +178,8 @@ awk -F, -v id="$id" '$3 == id { br[$6] = $5; raw[$6] = $8; sm[$6] = $9; if ($5 =
 "$BINDIR/figures" c --runs R --ratio 0 --out "$TMP/f0" --no-store >f0.out 2>f0.err
 rc=$?
 [ "$rc" -eq 0 ] && ! awk -F, 'NR > 1 && $2 == 1 { found = 1 } END { exit !found }' f0/fig3_profile.csv &&
-	grep -q 'layout 2,1' f0/fig1.gp && ! grep -q 'with intruder' f0/fig3.gp f0/fig1.gp && [ -s f0/fig1.png ] && [ -s f0/fig3.png ] &&
-	ok figures.no_intruder_system || fail figures.no_intruder_system "exit $rc: $(cat f0.err; grep -c 'with intruder' f0/*.gp)"
+	grep -q 'layout 1,2' f0/fig1.gp && ! grep -q '𝓡 =' f0/fig3.gp f0/fig1.gp && [ -s f0/fig1.png ] && [ -s f0/fig3.png ] &&
+	ok figures.no_intruder_system || fail figures.no_intruder_system "exit $rc: $(cat f0.err; grep -c '𝓡 =' f0/*.gp)"
 "$BINDIR/figures" r --runs R >fr.out 2>fr.err
 rc=$?
 [ "$rc" -eq 1 ] && grep -q "no finished fixed-frequency run" fr.err && ok figures.ramps_only || fail figures.ramps_only "exit $rc: $(cat fr.err)"
