@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "textline.h"
+#include "words.h"
 
 /* A row's type and field in one macro: the offset, and a compile-time check that the
  * field has the C type the parser will write through it (a row whose type does not
@@ -192,38 +193,13 @@ const sb_param *params_table(size_t *n)
 	return TABLE;
 }
 
-/* Damerau-Levenshtein distance (adjacent transpositions count one) of two short words. */
-static int edit_distance(const char *a, const char *b)
-{
-	enum { M = 64 };
-	int la = (int)strlen(a), lb = (int)strlen(b);
-	if (la >= M || lb >= M)
-		return M;
-	int d[M][M];
-	for (int i = 0; i <= la; i++)
-		d[i][0] = i;
-	for (int j = 0; j <= lb; j++)
-		d[0][j] = j;
-	for (int i = 1; i <= la; i++)
-		for (int j = 1; j <= lb; j++) {
-			int c = a[i - 1] != b[j - 1];
-			int v = d[i - 1][j] + 1;
-			v = d[i][j - 1] + 1 < v ? d[i][j - 1] + 1 : v;
-			v = d[i - 1][j - 1] + c < v ? d[i - 1][j - 1] + c : v;
-			if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < v)
-				v = d[i - 2][j - 2] + 1;
-			d[i][j] = v;
-		}
-	return d[la][lb];
-}
-
 const char *params_nearest(const char *key)
 {
 	/* a typo, not another word: at most a third of the key's letters (and 3) apart */
 	int best = 4, lim = (int)strlen(key) / 3;
 	const char *name = NULL;
 	for (size_t i = 0; i < NTABLE; i++) {
-		int dist = edit_distance(key, TABLE[i].name);
+		int dist = words_distance(key, TABLE[i].name);
 		if (dist < best && dist <= (lim > 1 ? lim : 1)) {
 			best = dist;
 			name = TABLE[i].name;
