@@ -13,7 +13,7 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '4'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '5'};
 
 typedef struct hw {
 	FILE *f;
@@ -70,6 +70,8 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 	io(w, &s->n_flux, sizeof s->n_flux);
 	io(w, &s->n_field, sizeof s->n_field);
 	io(w, &s->n_strobe, sizeof s->n_strobe);
+	io(w, &s->n_energy, sizeof s->n_energy);
+	io(w, &s->next_energy_step, sizeof s->next_energy_step);
 	io(w, &s->loop_seconds, sizeof s->loop_seconds); /* a resumed run's CPU time is the sum */
 	io(w, &x->builds, sizeof x->builds);
 	io(w, &x->joff, sizeof x->joff);

@@ -148,6 +148,28 @@ int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb
 	return law->clip ? kernel_clip(law, st, nl, ks, inv_dt) : kernel_plain(law, st, nl, ks, inv_dt);
 }
 
+void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
+			   double *max_overlap, long *contacts)
+{
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
+	double el = 0, worst = 0;
+	long n = 0;
+	for (int p = 0; p < nl->nflat; p++) {
+		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
+		if (i == j) /* the list's padding */
+			continue;
+		const double xi = r[i] + r[j] - hypot(x[i] - x[j], y[i] - y[j]);
+		if (xi <= 0)
+			continue;
+		el += 0.5 * law->Y * xi * xi;
+		worst = fmax(worst, xi / fmin(r[i], r[j]));
+		n++;
+	}
+	*elastic = el;
+	*max_overlap = worst;
+	*contacts = n;
+}
+
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
 {
 	double worst = 0;

@@ -33,6 +33,12 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		 double dvx, double dvy, double wi, double wj, double meff,
 		 double *fx, double *fy, double *ti, double *tj);
 
+/* The elastic energy of the contacts, sum of Y xi^2 / 2, the largest overlap as a
+ * fraction of the smaller radius, and the number of contacts (a scan of the list, for
+ * the energy series). */
+void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
+			   double *max_overlap, long *contacts);
+
 /* Largest overlap / smaller radius over all current contacts, and which disks (a scan
  * of the list: for the overlap record and the stop's message). */
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);

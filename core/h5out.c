@@ -210,6 +210,39 @@ static void write_field(h5 *h, const sb_sim *s, const dbuf *fd)
 	free(cnt);
 }
 
+/* The energy series (energy_rate): one dataset per column, each with its unit. The
+ * energies are the box frame's (the box's own motion is not the bed's). */
+static void write_energy(h5 *h, const dbuf *en, long T)
+{
+	static const char *const names[JR_ENERGY_COLS] = {"time", "kinetic_translational", "kinetic_rotational",
+							  "elastic", "com_height_box", "max_overlap", "contacts"};
+	static const char *const units[JR_ENERGY_COLS] = {"s", "erg", "erg", "erg", "cm", "1", "1"};
+	double *col = malloc(sizeof(double) * (size_t)(T ? T : 1));
+	if (!col) {
+		h->bad = 1;
+		return;
+	}
+	hid_t go = group(h, "/observables");
+	hid_t g = H5Gcreate2(go, "energy", H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
+	for (int c = 0; c < JR_ENERGY_COLS; c++) {
+		for (long k = 0; k < T; k++)
+			col[k] = en->d[k * JR_ENERGY_COLS + c];
+		dset(h, g, names[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)T, 0, col);
+		hid_t d = H5Dopen2(g, names[c], H5P_DEFAULT);
+		if (d >= 0) {
+			attr_str(h, d, "unit", units[c]);
+			H5Dclose(d);
+		}
+	}
+	attr_str(h, g, "definition",
+		 "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y xi^2 / 2 over "
+		 "the contacts; com_height_box = mass-weighted mean y of the mobile disks; max_overlap = largest xi / "
+		 "min(R_i, R_j) at the sample (docs/model.md, \"Observables\")");
+	H5Gclose(g);
+	H5Gclose(go);
+	free(col);
+}
+
 static void write_ring(h5 *h, const sb_sim *s)
 {
 	const sb_obs *o = &s->obs;
@@ -263,11 +296,13 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	long cap = 3L * nm + 1;
 	if (cap < JR_TRAJ_COLS) /* an intruder and no grains: a trajectory row is longer */
 		cap = JR_TRAJ_COLS;
+	if (cap < JR_ENERGY_COLS)
+		cap = JR_ENERGY_COLS;
 	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
 		cap = obs_flux_len(&s->obs);
 	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
 		cap = obs_field_len(&s->obs);
-	dbuf traj = {0}, flux = {0}, field = {0};
+	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0};
 	double *times = malloc(sizeof(double) * (K ? K : 1));
 	double *buf = malloc(sizeof(double) * (size_t)cap);
 	if (!times || !buf) {
@@ -290,7 +325,8 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	sb_jreader r = {0};
 	long ks = 0;
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T || s->n_flux || s->n_field) ? journal_reader_open(&r, s->journal_path, e) : 1;
+	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy) ? journal_reader_open(&r, s->journal_path, e)
+										    : 1;
 	while (!rc && !h->bad) {
 		int count = 0;
 		int tag = journal_next(&r, buf, cap, &count, e);
@@ -304,6 +340,8 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 			rc = dbuf_add(&flux, buf, (size_t)count) ? SB_ENOMEM : 0;
 		else if (tag == JR_FIELD)
 			rc = dbuf_add(&field, buf, (size_t)count) ? SB_ENOMEM : 0;
+		else if (tag == JR_ENERGY)
+			rc = dbuf_add(&energy, buf, JR_ENERGY_COLS) ? SB_ENOMEM : 0;
 		else if (tag == JR_SNAP && (hsize_t)ks < K) {
 			times[ks] = buf[0];
 			hsize_t start[2] = {(hsize_t)ks, 0};
@@ -349,9 +387,15 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 		write_field(h, s, &field);
 	if (!rc && s->obs.ring_on)
 		write_ring(h, s);
+	long ke = (long)(energy.n / JR_ENERGY_COLS);
+	if (!rc && ke != s->n_energy)
+		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld energy records, expected %ld", s->journal_path, ke, s->n_energy);
+	if (!rc && s->sc.energy_rate > 0)
+		write_energy(h, &energy, ke);
 	free(traj.d);
 	free(flux.d);
 	free(field.d);
+	free(energy.d);
 	free(times);
 	free(buf);
 	return rc;

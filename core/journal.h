@@ -9,8 +9,9 @@
 
 #include "err.h"
 
-enum { JR_TRAJ = 1, JR_SNAP = 2, JR_FLUX = 3, JR_FIELD = 4 };
+enum { JR_TRAJ = 1, JR_SNAP = 2, JR_FLUX = 3, JR_FIELD = 4, JR_ENERGY = 5 };
 #define JR_TRAJ_COLS 6
+#define JR_ENERGY_COLS 7 /* t, kinetic (translational, rotational), elastic, com y, max overlap, contacts */
 
 typedef struct sb_journal {
 	FILE *f;

@@ -66,6 +66,29 @@ static int strobe_due(const sb_sim *s, long n)
 	return drive_cycles(&s->drive, n * s->sc.dt) >= s->n_strobe - 1e-9;
 }
 
+/* One row of the energy series (box frame; the state is the corrected one of a
+ * step nobody fused). */
+static int record_energy(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	const double idt = 1.0 / s->sc.dt;
+	double kt = 0, kr = 0, my = 0, m = 0, el, ov;
+	long nc;
+	for (int i = 0; i < st->nm; i++) {
+		const double vx = st->q[C_X][1][i] * idt, vy = st->q[C_Y][1][i] * idt, w = st->q[C_TH][1][i] * idt;
+		kt += 0.5 * st->m[i] * (vx * vx + vy * vy);
+		kr += 0.5 * w * w / st->inv_i[i];
+		my += st->m[i] * st->q[C_Y][0][i];
+		m += st->m[i];
+	}
+	forces_contact_energy(&s->law, st, &s->nl, &el, &ov, &nc);
+	const double row[JR_ENERGY_COLS] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
+	if (journal_record(&s->jr, JR_ENERGY, row, JR_ENERGY_COLS, e))
+		return e->code;
+	s->n_energy++;
+	return 0;
+}
+
 static int record(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
@@ -74,6 +97,11 @@ static int record(sb_sim *s, sb_err *e)
 		if (record_traj(s, t, e))
 			return e->code;
 		s->next_traj_step = due_step(s->n_traj, 1.0 / sc->traj_rate, sc->dt);
+	}
+	if (sc->energy_rate > 0 && s->step >= s->next_energy_step) {
+		if (record_energy(s, t, e))
+			return e->code;
+		s->next_energy_step = due_step(s->n_energy, 1.0 / sc->energy_rate, sc->dt);
 	}
 	if (strobe_due(s, s->step)) {
 		if (sc->snapshots && record_snap(s, t, e))
@@ -162,6 +190,7 @@ int sim_run(sb_sim *s, sb_err *e)
 		/* fuse unless this step's corrected state is recorded, checkpointed or final */
 		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) || ring ||
 				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
+				 (sc->energy_rate > 0 && n1 >= s->next_energy_step) ||
 				 strobe_due(s, n1);
 		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look,
 			      ring ? s->obs.fabs_sum : NULL, e))
