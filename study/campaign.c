@@ -303,8 +303,8 @@ struct rd {
 	int line, err_line, section;
 	int seen_name, seen_seed;
 	int sec_line[SEC_N];
-	char ckey[8][16];     /* [campaign] keys seen, with their lines */
-	int ckey_line[8], nckey;
+	char ckey[16][16];    /* [campaign] keys seen, with their lines */
+	int ckey_line[16], nckey;
 };
 
 /* inih's Debian build has no INI_HANDLER_LINENO: the reader counts lines (the handler
@@ -400,7 +400,7 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 	for (int i = 0; i < r->nckey; i++)
 		if (!strcmp(r->ckey[i], name))
 			return sb_errf(e, SB_EUSAGE, "%s: %s: given twice (first on line %d)", where, name, r->ckey_line[i]);
-	if (r->nckey < 8 && strlen(name) < sizeof r->ckey[0]) {
+	if (r->nckey < 16 && strlen(name) < sizeof r->ckey[0]) {
 		snprintf(r->ckey[r->nckey], sizeof r->ckey[0], "%s", name);
 		r->ckey_line[r->nckey++] = r->line;
 	}
@@ -439,13 +439,45 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 			c->seeds = CP_SEEDS_LITERAL;
 		else
 			return sb_errf(e, SB_EUSAGE, "%s: seeds: expected one of derived|literal, got '%s'", where, value);
+	} else if (!strcmp(name, "replicates") && !strcmp(value, "auto")) {
+		c->autorep.on = 1;
+		c->replicates_line = r->line;
+	} else if (!strcmp(name, "result")) {
+		static const char *const names[] = {"median_wait", "rise_fraction", "mean_flux"};
+		int k = -1;
+		for (int i = 0; i < 3; i++)
+			if (!strcmp(value, names[i]))
+				k = i;
+		if (k < 0)
+			return sb_errf(e, SB_EUSAGE, "%s: result: expected one of median_wait|rise_fraction|mean_flux, "
+				       "got '%s'", where, value);
+		c->autorep.result = k;
+		c->autorep.result_line = r->line;
+	} else if (!strcmp(name, "target") || !strcmp(name, "level")) {
+		int tg = name[0] == 't';
+		double x;
+		/* a width in the result's unit (s, a fraction, particles/period); a level
+		 * above 0.999 would need more replicates than a campaign runs */
+		if (!parse_num(value, &x) || (tg ? !(x > 0 && x <= 1e9) : !(x >= 0.5 && x <= 0.999)))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s, got '%s'", where, name,
+				       tg ? "(0, 1e+09]" : "[0.5, 0.999]", value);
+		*(tg ? &c->autorep.target : &c->autorep.level) = x;
+		*(tg ? &c->autorep.target_line : &c->autorep.level_line) = r->line;
+	} else if (!strcmp(name, "batch") || !strcmp(name, "max_replicates")) {
+		int b = name[0] == 'b';
+		long n;
+		if (!parse_long(value, &n) || n < 1 || n > AD_MAX_REPLICATES)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected an integer in [1, %d], got '%s'", where, name,
+				       AD_MAX_REPLICATES, value);
+		*(b ? &c->autorep.batch : &c->autorep.max_replicates) = n;
+		*(b ? &c->autorep.batch_line : &c->autorep.max_line) = r->line;
 	} else if (!strcmp(name, "replicates")) {
 		char *end;
 		errno = 0;
 		long n = strtol(value, &end, 10);
 		if (!*value || *end || errno || n < 1 || n > CP_MAX_VALUES)
-			return sb_errf(e, SB_EUSAGE, "%s: replicates: expected an integer in [1, %d], got '%s'", where,
-				       CP_MAX_VALUES, value);
+			return sb_errf(e, SB_EUSAGE, "%s: replicates: expected auto or an integer in [1, %d], got '%s'",
+				       where, CP_MAX_VALUES, value);
 		c->replicates = n;
 		c->replicates_line = r->line;
 	} else if (!strcmp(name, "max_runs")) {
@@ -459,7 +491,8 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		c->max_runs_line = r->line;
 	} else {
 		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [campaign] "
-			       "(name, description, scene, seed, seeds, replicates, max_runs)", where, name);
+			       "(name, description, scene, seed, seeds, replicates, max_runs; with replicates = auto: "
+			       "result, target, batch, max_replicates, level)", where, name);
 	}
 	return 0;
 }
@@ -667,6 +700,50 @@ static int onset_finish(campaign *c, int campaign_replicates_line, sb_err *e)
 	return 0;
 }
 
+/* replicates = auto on a grid: its keys as a whole, and what it excludes. */
+static int autorep_finish(campaign *c, sb_err *e)
+{
+	cp_auto *a = &c->autorep;
+	const char *p = c->path;
+	const char *names[] = {"result", "target", "batch", "max_replicates", "level"};
+	const int lines[] = {a->result_line, a->target_line, a->batch_line, a->max_line, a->level_line};
+	if (!a->on) {
+		for (int i = 0; i < 5; i++)
+			if (lines[i])
+				return sb_errf(e, SB_EUSAGE, "%s:%d: %s: only with replicates = auto under [campaign]", p,
+					       lines[i], names[i]);
+		return 0;
+	}
+	if (c->onset.line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: replicates: an [onset] campaign sets its replicates under [onset] "
+			       "(replicates = auto | N)", p, c->replicates_line);
+	if (!a->result_line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: replicates: auto needs result = median_wait|rise_fraction|mean_flux "
+			       "(what the interval is of)", p, c->replicates_line);
+	if (!a->target_line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: replicates: auto needs target = W (the interval width at which a "
+			       "grid point stops getting replicates)", p, c->replicates_line);
+	if (!a->batch_line)
+		a->batch = 4;
+	if (!a->max_line)
+		a->max_replicates = 32;
+	if (!a->level_line)
+		a->level = 0.95;
+	/* the median's interval is the order-statistic one: it needs a few runs */
+	long nmin = a->result == CP_RES_MEDIAN_WAIT ? adapt_min_replicates(a->level) : 2;
+	if (a->max_replicates < nmin)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: max_replicates: at least %ld replicates are needed for an interval "
+			       "of %s at level %g, got %ld", p, a->max_line ? a->max_line : c->replicates_line, nmin,
+			       a->result == CP_RES_MEDIAN_WAIT ? "the median wait" :
+			       a->result == CP_RES_RISE_FRACTION ? "the rise fraction" : "the mean flux", a->level,
+			       a->max_replicates);
+	int l;
+	if ((l = seen_key(c, "seed")))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: replicates = auto (line %d) numbers the replicates 1, 2, ...; "
+			       "remove it", p, l, c->replicates_line);
+	return 0;
+}
+
 static int cp_handler(void *user, const char *section, const char *name, const char *value)
 {
 	struct rd *r = user;
@@ -779,6 +856,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 			return e->code;
 	}
 	if (c->onset.line && onset_finish(c, c->replicates ? c->replicates_line : 0, e))
+		return e->code;
+	if (autorep_finish(c, e))
 		return e->code;
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)

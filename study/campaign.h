@@ -40,6 +40,22 @@ typedef struct cp_onset {
 		replicates_line, max_line, batch_line, target_line, level_line;
 } cp_onset;
 
+/* [campaign] replicates = auto on a grid: per grid point (every axis but the
+ * replicate), batches of replicates until the interval of a result of its runs is at
+ * most target wide (study/README.md, "Replicates until the answer is sharp"). Lines
+ * are 0 for keys the file did not give. */
+enum cp_result { CP_RES_MEDIAN_WAIT, CP_RES_RISE_FRACTION, CP_RES_MEAN_FLUX };
+typedef struct cp_auto {
+	int on;                   /* replicates = auto */
+	int result;               /* enum cp_result */
+	double target;            /* the interval width to reach (the result's unit) */
+	long batch;               /* replicates added at a time (the first batch: at least
+				   * the replicates an interval needs) */
+	long max_replicates;      /* at most this many per point */
+	double level;             /* confidence level of the interval */
+	int result_line, target_line, batch_line, max_line, level_line;
+} cp_auto;
+
 typedef struct cp_axis {
 	char key[64];
 	int line;
@@ -68,6 +84,7 @@ typedef struct campaign {
 	cp_fixed fixed[CP_MAX_KEYS];
 	cp_axis axes[CP_MAX_KEYS];
 	sb_scene base;                  /* defaults + scene file + [scene]; seed = replicate label */
+	cp_auto autorep;                /* autorep.on: replicates = auto on a grid */
 	cp_onset onset;                 /* onset.line != 0: an adaptive campaign (its axes are
 					 * the groups; frequency and seed are the search's) */
 } campaign;

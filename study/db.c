@@ -48,6 +48,13 @@ static const char SCHEMA[] =
 	"CREATE TABLE IF NOT EXISTS onset_run(\n"
 	"  campaign TEXT NOT NULL, run TEXT NOT NULL, grp TEXT, replicate INTEGER, step INTEGER,\n"
 	"  frequency REAL, value REAL, class TEXT, PRIMARY KEY (campaign, run));\n"
+	/* a grid with replicates = auto, per point, as the driver's last pass left it
+	 * (sharpen.c) */
+	"CREATE TABLE IF NOT EXISTS auto_point(\n"
+	"  campaign TEXT NOT NULL, point INTEGER NOT NULL, grp TEXT, result TEXT, replicates INTEGER,\n"
+	"  used INTEGER, waiting INTEGER, failed INTEGER, estimate REAL, ci_lo REAL, ci_hi REAL, width REAL,\n"
+	"  target REAL, level REAL, batch INTEGER, max_replicates INTEGER, state TEXT, updated TEXT,\n"
+	"  PRIMARY KEY (campaign, point));\n"
 	"DROP VIEW IF EXISTS progress;\n"
 	"CREATE VIEW progress AS SELECT campaign, state, COUNT(*) AS runs FROM run GROUP BY campaign, state;\n"
 	"DROP VIEW IF EXISTS failures;\n"
@@ -308,6 +315,9 @@ int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
 	/* an [onset] search varies both too: the analysis tools group by the swept keys */
 	if (c->onset.line && l < sizeof axes)
 		snprintf(axes + l, sizeof axes - l, "%sfrequency seed", l ? " " : "");
+	/* and replicates = auto the replicate, as replicates = N would */
+	if (c->autorep.on && l < sizeof axes)
+		snprintf(axes + l, sizeof axes - l, "%sseed", l ? " " : "");
 	snprintf(seed, sizeof seed, "%llu", c->seed);
 	return db_exec(d, e, NULL,
 		       "INSERT INTO campaign(name, description, file, scene_file, seed, seeds, axes, created, updated)"

@@ -26,6 +26,7 @@
 #include "layout.h"
 #include "safe.h"
 #include "search.h"
+#include "sharpen.h"
 #include "worker.h"
 
 #define PATHLEN 4096
@@ -45,6 +46,8 @@ typedef struct drv {
 	char **names;         /* their ids, for GNU parallel */
 	int adaptive;         /* an [onset] campaign: the grid is its chains' runs, pass by pass */
 	search srch;
+	int autorep;          /* a grid with replicates = auto: its points' replicates, pass by pass */
+	sharpen shp;
 	long rounds;
 	long n_ingested, n_failed_now;
 	int jobs;
@@ -841,6 +844,8 @@ static int launch(drv *d, long npend, sb_err *e)
 static int asks_for(void *ctx, const char *id, long replicate, double frequency)
 {
 	const drv *d = ctx;
+	if (d->autorep)
+		return sharpen_member(&d->c, d->g.points, replicate, id);
 	return d->adaptive ? search_member(&d->c, d->g.points, replicate, frequency, id) : grid_find(&d->g, id) != NULL;
 }
 
@@ -856,11 +861,12 @@ static int check_changes(drv *d, sb_err *e)
 static int onset_pass(drv *d, int first, sb_err *e)
 {
 	grid_free(&d->g);
-	if (grid_expand(&d->g, &d->c, e) || search_derive(&d->srch, &d->g, &d->db, e))
+	if (grid_expand(&d->g, &d->c, e) ||
+	    (d->autorep ? sharpen_derive(&d->shp, &d->g, &d->db, e) : search_derive(&d->srch, &d->g, &d->db, e)))
 		return e->code;
 	if (first && check_changes(d, e))
 		return e->code;
-	if (record(d, e) || search_store(&d->srch, &d->db, e))
+	if (record(d, e) || (d->autorep ? sharpen_store(&d->shp, &d->db, e) : search_store(&d->srch, &d->db, e)))
 		return e->code;
 	return alloc_runs(d, e);
 }
@@ -881,14 +887,15 @@ static int run_onset(drv *d, sb_err *e)
 			continue;
 		if (!npend || g_stop || d->io_fault)
 			return 0;
-		long searching = 0;
-		for (long i = 0; i < d->srch.ngroups; i++)
-			searching += d->srch.groups[i].state == AD_G_SEARCHING;
+		long searching = 0, groups = d->autorep ? d->shp.npoints : d->srch.ngroups;
+		for (long i = 0; i < groups; i++)
+			searching += d->autorep ? d->shp.pts[i].state == SH_RUNNING : d->srch.groups[i].state == AD_G_SEARCHING;
 		d->rounds++;
-		fprintf(stderr, "study: %s: onset round %ld: %ld run%s, %ld of %ld group%s searching, %d job%s%s%s\n",
-			d->c.name, d->rounds, npend, npend > 1 ? "s" : "", searching, d->srch.ngroups,
-			d->srch.ngroups > 1 ? "s" : "", d->jobs, d->jobs > 1 ? "s" : "",
-			d->o->sshloginfile ? " per host of " : "", d->o->sshloginfile ? d->o->sshloginfile : "");
+		fprintf(stderr, "study: %s: %s round %ld: %ld run%s, %ld of %ld %s%s %s, %d job%s%s%s\n", d->c.name,
+			d->autorep ? "replicates" : "onset", d->rounds, npend, npend > 1 ? "s" : "", searching, groups,
+			d->autorep ? "point" : "group", groups > 1 ? "s" : "", d->autorep ? "running" : "searching",
+			d->jobs, d->jobs > 1 ? "s" : "", d->o->sshloginfile ? " per host of " : "",
+			d->o->sshloginfile ? d->o->sshloginfile : "");
 		if (launch(d, npend, e) || g_stop || d->io_fault)
 			return e->code;
 		if (d->n_ingested == got && d->n_failed_now == failed)
@@ -926,6 +933,23 @@ static void onset_summary(drv *d)
 	}
 }
 
+/* One line per point of a grid with replicates = auto: the interval it reached. */
+static void autorep_summary(drv *d)
+{
+	const cp_auto *a = &d->c.autorep;
+	for (long i = 0; i < d->shp.npoints; i++) {
+		const shp_point *pt = &d->shp.pts[i];
+		char est[32], lo[32], hi[32], w[32];
+		onset_number(pt->ev.est, est, sizeof est);
+		onset_number(pt->ev.lo, lo, sizeof lo);
+		onset_number(pt->ev.hi, hi, sizeof hi);
+		onset_number(pt->ev.width, w, sizeof w);
+		fprintf(stderr, "study: %s: %s: %s %s, %g%% interval [%s, %s] (width %s, target %g), %ld replicate%s "
+			"(%ld used): %s\n", d->c.name, pt->label, sharp_result_name(a->result), est, 100 * a->level, lo, hi,
+			w, a->target, pt->nrep, pt->nrep > 1 ? "s" : "", pt->ev.used, sharp_state_name(pt->state));
+	}
+}
+
 int driver_run(const driver_opts *o, sb_err *e)
 {
 	drv *d = calloc(1, sizeof *d);
@@ -936,6 +960,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (campaign_load(&d->c, o->campaign_file, e) || grid_expand(&d->g, &d->c, e))
 		goto out;
 	d->adaptive = d->c.onset.line != 0;
+	d->autorep = d->c.autorep.on;
 	d->jobs = o->jobs > 0 ? o->jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
 	if (d->jobs < 1)
 		d->jobs = 1;
@@ -968,9 +993,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 	}
 	if (d->adaptive)
 		search_init(&d->srch, &d->c, d->dir);
+	if (d->autorep)
+		sharpen_init(&d->shp, &d->c, d->dir);
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
-	if (db_open(&d->db, dbp, 1, e) || (!d->adaptive && (check_changes(d, e) || record(d, e))))
+	int rounds = d->adaptive || d->autorep; /* the grid grows pass by pass */
+	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || record(d, e))))
 		goto out;
 
 	struct sigaction sa;
@@ -980,7 +1008,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	sigaction(SIGTERM, &sa, NULL);
 
 	long npend;
-	if (d->adaptive) {
+	if (rounds) {
 		if (run_onset(d, e) && e->code == SB_EUSAGE)
 			goto out; /* a changed campaign: nothing ran */
 	} else {
@@ -994,10 +1022,13 @@ int driver_run(const driver_opts *o, sb_err *e)
 	}
 	sb_err se = {0};
 	sweep(d, NULL, &npend, &se); /* outputs that came back after their DONE line */
-	if (d->adaptive && !e->code && !se.code) {
-		/* the search's state after the last round, for study status */
+	if (rounds && !e->code && !se.code) {
+		/* the state after the last round, for study status */
 		onset_pass(d, 0, &se);
-		onset_summary(d);
+		if (d->autorep)
+			autorep_summary(d);
+		else
+			onset_summary(d);
 	}
 	long done, failed, pending;
 	counts(d, &done, &failed, &pending);
@@ -1023,6 +1054,7 @@ out:
 	free(d->started);
 	free(d->logfrom);
 	search_free(&d->srch);
+	sharpen_free(&d->shp);
 	db_close(&d->db);
 	grid_free(&d->g);
 	campaign_free(&d->c);

@@ -1,6 +1,7 @@
 /* grid.c - grid expansion, seed derivation, run ids. */
 #include "grid.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -158,6 +159,24 @@ static int onset_group_check(const campaign *c, long p, sb_scene *s, sb_err *e)
 	return 0;
 }
 
+/* What replicates = auto's result needs of every point: an intruder whose rise is
+ * recorded, or the flux records. */
+static int autorep_point_check(const campaign *c, long p, const sb_scene *s, sb_err *e)
+{
+	const cp_auto *a = &c->autorep;
+	char label[1024];
+	grid_point_label(c, p, label, sizeof label);
+	int line = a->result_line;
+	if (a->result != CP_RES_MEAN_FLUX && !(s->radius_ratio > 0))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: result: %s needs an intruder, but grid point %s has "
+			       "radius_ratio = 0", c->path, line,
+			       a->result == CP_RES_MEDIAN_WAIT ? "median_wait" : "rise_fraction", label);
+	if (a->result == CP_RES_MEAN_FLUX && !s->flux)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: result: mean_flux needs the flux records: set flux = yes under "
+			       "[scene] (grid point %s has flux = no)", c->path, line, label);
+	return 0;
+}
+
 int grid_expand(grid *g, const campaign *c, sb_err *e)
 {
 	memset(g, 0, sizeof *g);
@@ -168,6 +187,15 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 	if (campaign_points(c, &total, e))
 		return e->code;
 	g->points = total;
+	if (c->autorep.on) {
+		for (long p = 0; p < total; p++) {
+			sb_scene s;
+			scene_point(c, p, &s);
+			if (autorep_point_check(c, p, &s, e) || point_check(c, &s, NULL, e))
+				return e->code;
+		}
+		return 0;
+	}
 	if (c->onset.line) {
 		for (long p = 0; p < total; p++) {
 			sb_scene s;
@@ -227,10 +255,14 @@ static void onset_run(const campaign *c, long point, long replicate, double freq
 	memset(r, 0, sizeof *r);
 	sb_scene s;
 	scene_point(c, point, &s);
-	s.frequency = frequency;
+	/* NaN: a replicate of a grid point with replicates = auto, at the point's own
+	 * frequency: the same run (and id) as seed = replicate on a fixed grid */
+	if (!isnan(frequency)) {
+		s.frequency = frequency;
+		r->has_frequency = 1;
+		r->frequency = frequency;
+	}
 	r->point = point;
-	r->has_frequency = 1;
-	r->frequency = frequency;
 	r->replicate = replicate;
 	r->seed = grid_seed(c, &s, replicate);
 	s.seed = r->seed;

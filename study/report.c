@@ -82,6 +82,38 @@ static const char *num_or(sqlite3_stmt *q, int i, const char *none, char *buf, s
  * group the replicates and their states, the runs, the onset and its interval, and
  * every replicate's bracket. Nothing when the campaign has no [onset] or the
  * database predates it. */
+/* A grid with replicates = auto, as the driver's last pass left it (sharpen.c): per
+ * point the replicates so far, the runs used, waiting and failed, the result's
+ * estimate and the interval it reached. Nothing for other campaigns. */
+static void autorep_status(st_db *d, const char *name, FILE *out)
+{
+	sqlite3_stmt *q;
+	sb_err qe = {0};
+	if (db_exec(d, &qe, &q,
+		    "SELECT grp, result, replicates, used, waiting, failed, estimate, ci_lo, ci_hi, width, target, level,"
+		    " batch, max_replicates, state, updated FROM auto_point WHERE campaign = ? ORDER BY point",
+		    "t", name))
+		return; /* an older database: no auto_point */
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		char b[4][32];
+		if (first)
+			fprintf(out, "  replicates auto (last pass %s): %s, %s at a time up to %s, until the %g%% interval "
+				"is at most %s wide\n    %-28s %10s %5s %7s %6s %12s %24s %10s  %s\n", col(q, 15), col(q, 1),
+				col(q, 12), col(q, 13), 100 * sqlite3_column_double(q, 11), num_or(q, 10, "?", b[0], sizeof b[0]),
+				"point", "replicates",
+				"used", "waiting", "failed", "estimate", "interval", "width", "state");
+		first = 0;
+		char iv[80];
+		snprintf(iv, sizeof iv, "[%s, %s]", num_or(q, 7, "-inf", b[1], sizeof b[1]),
+			 num_or(q, 8, "+inf", b[2], sizeof b[2]));
+		fprintf(out, "    %-28s %10s %5s %7s %6s %12s %24s %10s  %s\n", col(q, 0), col(q, 2), col(q, 3), col(q, 4),
+			col(q, 5), num_or(q, 6, "none", b[0], sizeof b[0]), iv, num_or(q, 9, "inf", b[3], sizeof b[3]),
+			col(q, 14));
+	}
+	sqlite3_finalize(q);
+}
+
 static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -215,6 +247,7 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 	sqlite3_finalize(q);
 	if (onset_status(d, name, out, e))
 		return e->code;
+	autorep_status(d, name, out);
 	if (db_exec(d, e, &q,
 		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
 		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",

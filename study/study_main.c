@@ -12,6 +12,7 @@
 #include "report.h"
 #include "results.h"
 #include "search.h"
+#include "sharpen.h"
 #include "worker.h"
 
 static const char *USAGE =
@@ -156,17 +157,25 @@ static int campaign_name(const char *arg, char *name, size_t len, sb_err *e)
 	return 0;
 }
 
-/* An [onset] campaign's first round: what its chains ask for before any result (a
- * database in memory, with nothing recorded). */
+/* An [onset] campaign's first round, or the first batch of every point of a grid with
+ * replicates = auto: what it asks for before any result (a database in memory, with
+ * nothing recorded). */
 static int onset_first_round(const campaign *c, grid *g, sb_err *e)
 {
 	st_db mem;
 	search s;
 	if (db_open(&mem, ":memory:", 1, e))
 		return e->code;
-	search_init(&s, c, ".");
-	search_derive(&s, g, &mem, e);
-	search_free(&s);
+	if (c->autorep.on) {
+		sharpen sh;
+		sharpen_init(&sh, c, ".");
+		sharpen_derive(&sh, g, &mem, e);
+		sharpen_free(&sh);
+	} else {
+		search_init(&s, c, ".");
+		search_derive(&s, g, &mem, e);
+		search_free(&s);
+	}
 	db_close(&mem);
 	return e->code;
 }
@@ -177,10 +186,13 @@ static int cmd_expand(const char *path, sb_err *e)
 	grid g = {0};
 	if (!c)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
-	if (!campaign_load(c, path, e) && !grid_expand(&g, c, e) && (!c->onset.line || !onset_first_round(c, &g, e))) {
+	if (!campaign_load(c, path, e) && !grid_expand(&g, c, e) && (!(c->onset.line || c->autorep.on) || !onset_first_round(c, &g, e))) {
 		if (c->onset.line)
 			fprintf(stderr, "study: %s: an [onset] search: its first round below; the next ones depend on "
 				"the results\n", path);
+		if (c->autorep.on)
+			fprintf(stderr, "study: %s: replicates = auto: the first batch of every grid point below; more "
+				"replicates depend on the results\n", path);
 		printf("id\tcache_key\treplicate\tseed");
 		for (int a = 0; a < c->naxes; a++)
 			if (strcmp(c->axes[a].key, "seed"))
