@@ -37,7 +37,10 @@ static const char *HELP_RUN =
 	"only the new grid points run. A campaign with an [onset] section searches the onset\n"
 	"frequency per group instead, round by round: each round runs the midpoint of every\n"
 	"replicate's bracket, chosen from the results so far (study/README.md, \"Adaptive onset\n"
-	"search\"); killed and run again, it asks for the same points.\n\n"
+	"search\"); killed and run again, it asks for the same points. A grid with\n"
+	"[campaign] replicates = auto runs batches of replicates per grid point until the\n"
+	"interval of its result is at most target wide (study/README.md, \"Replicates until\n"
+	"the answer is sharp\").\n\n"
 	"  --jobs N            parallel jobs (per host with --sshloginfile; default: cores)\n"
 	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
 	"                      ~/.shakebox/NAME on each host, outputs copied back\n"
@@ -59,7 +62,8 @@ static const char *HELP_STATUS =
 	"unsuccessful attempt with its exit code and message, and an ETA from the mean\n"
 	"time of the finished runs spread over N jobs (default: cores). Without NAME: all.\n"
 	"For an [onset] campaign: per group the onset, its interval, the replicates and\n"
-	"runs so far, and every replicate's bracket.\n";
+	"runs so far, and every replicate's bracket. For a grid with replicates = auto: per\n"
+	"point the replicates and runs so far, the result's estimate and the interval reached.\n";
 
 static const char *HELP_LIST =
 	"usage: study list [--runs DIR] [--db FILE]\n\n"
@@ -75,7 +79,8 @@ static const char *HELP_EXPAND =
 	"Checks the campaign file against the engine's parameter table and prints one line\n"
 	"per run: id, cache key, replicate, engine seed and the swept values (TSV); for an\n"
 	"[onset] campaign the runs of its first round, with their frequency (the next rounds\n"
-	"depend on the results). Nothing is run or recorded.\n";
+	"depend on the results); with replicates = auto the first batch of every point.\n"
+	"Nothing is run or recorded.\n";
 
 static const char *HELP_COLUMNS =
 	"usage: study columns\n\n"
