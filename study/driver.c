@@ -840,12 +840,12 @@ static int launch(drv *d, long npend, sb_err *e)
 
 /* Does the campaign file still ask for a recorded run? An [onset] campaign's runs are
  * its chains' so far, and more may come: a run belongs to it when some chain can ask
- * for it. */
+ * for it; with replicates = auto, when it is a replicate of a grid point. */
 static int asks_for(void *ctx, const char *id, long replicate, double frequency)
 {
-	const drv *d = ctx;
+	drv *d = ctx;
 	if (d->autorep)
-		return sharpen_member(&d->c, d->g.points, replicate, id);
+		return sharpen_member(&d->shp, d->g.points, replicate, id);
 	return d->adaptive ? search_member(&d->c, d->g.points, replicate, frequency, id) : grid_find(&d->g, id) != NULL;
 }
 
@@ -856,8 +856,9 @@ static int check_changes(drv *d, sb_err *e)
 }
 
 /* A pass of an [onset] campaign: its chains walked again from the database and the
- * files (search.c), their runs as the grid, recorded, the search's state stored. On
- * the first pass, recorded runs that no chain can ask for are a changed campaign. */
+ * files (search.c), their runs as the grid, recorded, the search's state stored; of a
+ * grid with replicates = auto likewise its points' replicates (sharpen.c). On the
+ * first pass, recorded runs that it cannot ask for are a changed campaign. */
 static int onset_pass(drv *d, int first, sb_err *e)
 {
 	grid_free(&d->g);
@@ -874,7 +875,8 @@ static int onset_pass(drv *d, int first, sb_err *e)
 /* An [onset] campaign, round by round: each round runs what the chains wait for (one
  * run per unanswered replicate), and the next pass chooses from its results. A pass
  * that finds results nobody had recorded (a driver killed mid-round) walks again
- * before anything runs, so a resumed search asks for the points it would have. */
+ * before anything runs, so a resumed search asks for the points it would have. A grid
+ * with replicates = auto goes the same way, a batch of replicates per round. */
 static int run_onset(drv *d, sb_err *e)
 {
 	for (int first = 1;; first = 0) {

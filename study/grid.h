@@ -32,9 +32,9 @@ void grid_free(grid *g);
 /* A run of an [onset] search: the group's point at a frequency, replicate label
  * `replicate`; appended (grid_sort orders the runs again). Its id into id. */
 int grid_add(grid *g, long point, long replicate, double frequency, char id[17], sb_err *e);
-/* With replicates = auto (campaign.autorep) frequency is NaN: replicate `replicate`
- * of grid point `point`, the run a fixed grid's seed = replicate makes. */
-/* The id of that run, without adding it. */
+/* The id of that run, without adding it. Of both, with frequency NaN: replicate
+ * `replicate` of grid point `point` of a grid with replicates = auto, the run a fixed
+ * grid's seed = replicate makes. */
 void grid_onset_id(const campaign *c, long point, long replicate, double frequency, char id[17]);
 /* Orders the runs by id (for grid_find) and drops duplicates. */
 void grid_sort(grid *g);

@@ -20,6 +20,10 @@ void sharpen_init(sharpen *s, const campaign *c, const char *dir)
 
 void sharpen_free(sharpen *s)
 {
+	if (s->member)
+		for (long k = 0; k <= AD_MAX_REPLICATES; k++)
+			free(s->member[k]);
+	free(s->member);
 	free(s->pts);
 	memset(s, 0, sizeof *s);
 }
@@ -143,17 +147,29 @@ int sharpen_done(const sharpen *s)
 	return 1;
 }
 
-int sharpen_member(const campaign *c, long points, long replicate, const char *id)
+static int by_id(const void *a, const void *b)
 {
-	if (replicate < 1 || replicate > AD_MAX_REPLICATES)
+	return strcmp((const char *)a, (const char *)b);
+}
+
+/* The ids of a label's runs are made once per label, not once per recorded run: a
+ * check of every run against every point would cost runs x points hashes. */
+int sharpen_member(sharpen *s, long points, long replicate, const char *id)
+{
+	if (replicate < 1 || replicate > AD_MAX_REPLICATES || points < 1)
 		return 0;
-	for (long p = 0; p < points; p++) {
-		char want[17];
-		grid_onset_id(c, p, replicate, NAN, want);
-		if (!strcmp(want, id))
+	if (!s->member && !(s->member = calloc(AD_MAX_REPLICATES + 1, sizeof *s->member)))
+		return 1; /* out of memory: keep the run rather than call it stale */
+	char (*ids)[17] = s->member[replicate];
+	if (!ids) {
+		if (!(ids = malloc(sizeof *ids * (size_t)points)))
 			return 1;
+		for (long p = 0; p < points; p++)
+			grid_onset_id(s->c, p, replicate, NAN, ids[p]);
+		qsort(ids, (size_t)points, sizeof *ids, by_id);
+		s->member[replicate] = ids;
 	}
-	return 0;
+	return bsearch(id, ids, (size_t)points, sizeof *ids, by_id) != NULL;
 }
 
 int sharpen_store(const sharpen *s, st_db *db, sb_err *e)

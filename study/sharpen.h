@@ -23,6 +23,8 @@ typedef struct sharpen {
 	char dir[4400];      /* the campaign's directory (run files) */
 	long npoints;
 	shp_point *pts;
+	char (**member)[17];  /* per replicate label: every point's run id, sorted; made
+			       * when a recorded run of that label is first checked */
 } sharpen;
 
 void sharpen_init(sharpen *s, const campaign *c, const char *dir);
@@ -42,6 +44,6 @@ int sharpen_store(const sharpen *s, st_db *db, sb_err *e);
 
 /* Whether a recorded run (its replicate label and id) belongs to the campaign: a
  * replicate of one of its points. A changed target or maximum keeps the runs. */
-int sharpen_member(const campaign *c, long points, long replicate, const char *id);
+int sharpen_member(sharpen *s, long points, long replicate, const char *id);
 
 #endif

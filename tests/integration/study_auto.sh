@@ -151,8 +151,11 @@ for _ in $(seq 1 100); do
 	[ "$(sqlite3 K/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'" 2>/dev/null)" -ge 2 ] 2>/dev/null && break
 	sleep 0.05
 done
-kill -9 "$pid" 2>/dev/null
-wait "$pid" 2>/dev/null || true
+# (bash reports the killed job on stderr: not a failure)
+exec 3>&2 2>/dev/null
+kill -9 "$pid"
+wait "$pid"
+exec 2>&3 3>&-
 sleep 0.5
 "$STUDY" run kill.campaign --runs "$TMP/K" --jobs 2 >kill2.log 2>&1
 rc=$?
