@@ -14,6 +14,7 @@
 #include "search.h"
 #include "sharpen.h"
 #include "worker.h"
+#include "words.h"
 
 static const char *USAGE =
 	"usage: study COMMAND [options] ...\n\n"
@@ -102,10 +103,20 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 {
 	memset(o, 0, sizeof *o);
 	o->progress = -1;
+	static const char *const known[] = {"--help", "--runs", "--db", "--sshloginfile", "--jobs", "--retry-failed",
+					    "--keep-old", "--forget-old", "--no-cache", "--progress", "--no-progress", NULL};
 	for (int i = 2; i < argc; i++) {
 		const char *a = argv[i];
-		const char *next = i + 1 < argc ? argv[i + 1] : NULL;
-#define VAL(opt, dst) if (!strcmp(a, opt)) { if (!next) { fprintf(stderr, "study: %s needs a value\n", opt); return 1; } dst = next; i++; continue; }
+		/* --opt=value as well as --opt value */
+		char name[64];
+		const char *inl = NULL, *eq = a[0] == '-' && a[1] == '-' ? strchr(a, '=') : NULL;
+		if (eq && eq - a < (long)sizeof name) {
+			snprintf(name, sizeof name, "%.*s", (int)(eq - a), a);
+			inl = eq + 1;
+			a = name;
+		}
+		const char *next = inl ? inl : i + 1 < argc ? argv[i + 1] : NULL;
+#define VAL(opt, dst) if (!strcmp(a, opt)) { if (!next) { fprintf(stderr, "study: %s needs a value\n", opt); return 1; } dst = next; i += !inl; continue; }
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
 			fputs(help, stdout);
 			return -1;
@@ -122,8 +133,12 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 				return 1;
 			}
 			o->jobs = (int)j;
-			i++;
+			i += !inl;
 			continue;
+		}
+		if (inl) {
+			fprintf(stderr, "study: %s: %s takes no value (study %s --help)\n", argv[1], a, argv[1]);
+			return 1;
 		}
 		if (!strcmp(a, "--retry-failed")) { o->retry = 1; continue; }
 		if (!strcmp(a, "--keep-old")) { o->keep_old = 1; continue; }
@@ -133,7 +148,20 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 		if (!strcmp(a, "--no-progress")) { o->progress = 0; continue; }
 #undef VAL
 		if (a[0] == '-' && a[1]) {
-			fprintf(stderr, "study: %s: unknown option '%s' (study %s --help)\n", argv[1], a, argv[1]);
+			const char *best = NULL;
+			int bd = 3;
+			for (int k = 0; known[k]; k++) {
+				int dist = words_distance(a, known[k]);
+				if (dist < bd) {
+					bd = dist;
+					best = known[k];
+				}
+			}
+			if (best)
+				fprintf(stderr, "study: %s: unknown option '%s'; did you mean %s? (study %s --help)\n", argv[1], a,
+					best, argv[1]);
+			else
+				fprintf(stderr, "study: %s: unknown option '%s' (study %s --help)\n", argv[1], a, argv[1]);
 			return 1;
 		}
 		if (o->npos >= maxpos) {

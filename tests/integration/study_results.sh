@@ -115,6 +115,12 @@ head -n 2 e1.csv | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i } NR =
 [ "$(cat e1.vals)" = "0.85 20 4" ] || [ "$(cat e1.vals)" = "0.85 20 5" ] && ok export.numbers_as_written ||
 	fail export.numbers_as_written "r_min, width, frequency exported as '$(cat e1.vals)'"
 
+# --- options as users type them: --opt=value, and a suggestion for a typo ---
+[ "$("$STUDY" export rise --runs="$TMP/R" | md5sum)" = "$("$STUDY" export rise --runs "$TMP/R" | md5sum)" ] &&
+	ok options.equals_form || fail options.equals_form "--runs=DIR and --runs DIR differ"
+"$STUDY" status --rnus "$TMP/R" >typo.log 2>&1
+[ $? = 1 ] && grep -q "did you mean --runs?" typo.log && ok options.suggestion || fail options.suggestion "$(cat typo.log)"
+
 # --- the status ETA is the pace of what ran, not the driver's --jobs ---
 cp "$DB" eta.db
 q eta.db "UPDATE run SET state = 'pending' WHERE campaign = 'rise' AND id IN (SELECT id FROM run WHERE campaign = 'rise' LIMIT 2);
