@@ -41,7 +41,7 @@ if [ -n "${2:-}" ]; then
 		gnuplot <<GP
 set terminal ${term%%|*}
 set output '${term#*|}'
-set title 'Largest overlap per run: paper scene, 120 s, 2.7-3.2 Hz, R = 0, 3, 4'
+set title 'Largest overlap per run: paper scene, 120 s, 2.7–3.2 Hz, 𝓡 = 0, 3, 4'
 set xlabel 'largest overlap / smaller radius'
 set ylabel 'runs per bin of 0.01'
 set xrange [0.3:1.05]
