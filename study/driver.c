@@ -3,23 +3,19 @@
  * from GNU parallel's bookkeeping, so any interruption is repaired by running again. */
 #include "driver.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <limits.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
-#include <sys/prctl.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "campaign.h"
 #include "changes.h"
+#include "drv.h"
 #include "db.h"
 #include "grid.h"
 #include "h5sum.h"
@@ -29,49 +25,12 @@
 #include "sharpen.h"
 #include "worker.h"
 
-#define PATHLEN 4096
-#define PATHX (PATHLEN + 256)
-
-typedef struct drv {
-	const driver_opts *o;
-	campaign c;
-	grid g;
-	st_db db;
-	char root[PATHLEN];   /* absolute runs root */
-	char dir[PATHLEN + 128];    /* root/name */
-	char *cache_ok;       /* per grid run: start from the packing cache */
-	char *started;        /* per grid run: 1 START seen, 2 DONE seen (this driver) */
-	long *logfrom;        /* per grid run: size of its log when START was seen */
-	long *pend;           /* per grid run: the indices of the runs to run */
-	char **names;         /* their ids, for GNU parallel */
-	int adaptive;         /* an [onset] campaign: the grid is its chains' runs, pass by pass */
-	search srch;
-	int autorep;          /* a grid with replicates = auto: its points' replicates, pass by pass */
-	sharpen shp;
-	long rounds;
-	long n_ingested, n_failed_now;
-	int jobs;
-	int io_fault;         /* a run failed on I/O: launch nothing more */
-	char io_msg[1200];
-} drv;
-
-static volatile sig_atomic_t g_stop;
-static volatile sig_atomic_t g_parallel;
-
-static void on_signal(int sig)
-{
-	(void)sig;
-	if (!g_stop && g_parallel > 0)
-		kill((pid_t)g_parallel, SIGTERM); /* no new jobs; running ones checkpoint */
-	g_stop = 1;
-}
-
 void driver_db_path(const char *runs_dir, const char *db_path, char *out, size_t len)
 {
 	layout_db(runs_dir, db_path, out, len);
 }
 
-static int mkdir_p(const char *path, sb_err *e)
+int mkdir_p(const char *path, sb_err *e)
 {
 	char tmp[PATHLEN];
 	snprintf(tmp, sizeof tmp, "%s", path);
@@ -84,209 +43,6 @@ static int mkdir_p(const char *path, sb_err *e)
 	if (mkdir(tmp, 0777) && errno != EEXIST)
 		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
 	return 0;
-}
-
-static int exists(const char *p)
-{
-	return access(p, F_OK) == 0;
-}
-
-/* ---- ingestion ---- */
-
-static void cache_state(drv *d, const char *key, char *st, size_t len);
-static int ingest_cache(drv *d, const char *key, sb_err *e);
-
-static int ingest_run(drv *d, const char *id, sb_err *e)
-{
-	char path[PATHX], now[32];
-	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-	db_now(now, sizeof now);
-	h5sum s;
-	sb_err re = {0};
-	if (db_begin(&d->db, e))
-		return e->code;
-	if (h5sum_read(path, &s, &re)) {
-		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
-	} else {
-		/* the file says whether the run started from the packing cache: a database
-		 * rebuilt from the files gets from_cache and the cache's row back */
-		const grid_run *r = grid_find(&d->g, id);
-		char want[128];
-		layout_cache_particles("", r ? r->cache_key : "", want, sizeof want);
-		if (r && !strcmp(s.particles, want)) {
-			char st[16];
-			cache_state(d, r->cache_key, st, sizeof st);
-			char h5[PATHX];
-			layout_file(d->dir, 1, r->cache_key, LAY_OUTPUT, h5, sizeof h5);
-			if (!st[0] && exists(h5))
-				ingest_cache(d, r->cache_key, e);
-			if (!e->code)
-				db_exec(&d->db, e, NULL, "UPDATE run SET from_cache = 1 WHERE campaign = ? AND id = ?", "tt",
-					d->c.name, id);
-		}
-		if (!e->code)
-			db_ingest(&d->db, d->c.name, id, &s, now, e);
-	}
-	if (e->code) {
-		db_rollback(&d->db);
-		return e->code;
-	}
-	d->n_ingested++;
-	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
-		d->n_failed_now++;
-	return db_commit(&d->db, e);
-}
-
-static int ingest_cache(drv *d, const char *key, sb_err *e)
-{
-	char path[PATHX], txt[PATHX], now[32];
-	layout_file(d->dir, 1, key, LAY_OUTPUT, path, sizeof path);
-	layout_cache_particles(d->dir, key, txt, sizeof txt);
-	db_now(now, sizeof now);
-	h5sum s;
-	sb_err re = {0};
-	h5sum_read(path, &s, &re);
-	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
-	const char *end = h5sum_text(&s, "end_time");
-	return db_exec(&d->db, e, NULL,
-		       "INSERT OR REPLACE INTO cache(campaign, key, state, settle_time, settle_steps, wall_seconds,"
-		       " host, message, built) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
-		       "tttdldttt", d->c.name, key, okc ? "ok" : "failed", h5sum_real(&s, "settle_time"),
-		       h5sum_int(&s, "settle_steps"), h5sum_real(&s, "wall_seconds"), h5sum_text(&s, "host"),
-		       re.code ? re.msg : h5sum_text(&s, "message"), end[0] ? end : now);
-}
-
-static void cache_state(drv *d, const char *key, char *st, size_t len)
-{
-	sqlite3_stmt *q;
-	sb_err e = {0};
-	st[0] = 0;
-	if (db_exec(&d->db, &e, &q, "SELECT state FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key))
-		return;
-	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
-		snprintf(st, len, "%s", (const char *)sqlite3_column_text(q, 0));
-	sqlite3_finalize(q);
-}
-
-/* A DONE line from a worker: the output file decides; without one, the exit code. */
-static int on_done(drv *d, int is_cache, char *line, sb_err *e)
-{
-	char *f[6] = {0};
-	int n = 0;
-	for (char *s = line, *t; n < 6 && (t = strsep(&s, "\t"));)
-		f[n++] = t;
-	if (n < 6 || !safe_name(f[1]))
-		return 0;
-	const char *name = f[1], *host = f[3], *msg = f[5];
-	long code = strtol(f[2], NULL, 10);
-	char path[PATHX];
-	if (is_cache) {
-		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
-		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128)) {
-			if (db_begin(&d->db, e))
-				return e->code;
-			if (exists(path))
-				ingest_cache(d, name, e);
-			else
-				db_exec(&d->db, e, NULL,
-					"INSERT OR REPLACE INTO cache(campaign, key, state, host, message) VALUES (?, ?, 'failed', ?, ?)",
-					"tttt", d->c.name, name, host, msg);
-			return e->code ? (db_rollback(&d->db), e->code) : db_commit(&d->db, e);
-		}
-		return 0;
-	}
-	const grid_run *r = grid_find(&d->g, name);
-	if (!r)
-		return 0;
-	d->started[r - d->g.runs] = 2;
-	layout_file(d->dir, 0, name, LAY_OUTPUT, path, sizeof path);
-	if (exists(path))
-		return ingest_run(d, name, e);
-	if (code == 0)
-		return 0; /* output still on its way back from a remote host: the final sweep */
-	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
-	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
-	 * stays pending and no further run starts, since every one would fail the same way
-	 * and a queue emptied in seconds would be marked failed. Bad input (1) fails. */
-	int io = code == SB_EIO;
-	int resumable = code == SB_EINTR || code >= 128 || io;
-	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : sb_code_name((int)code);
-	if (io && !d->io_fault) {
-		d->io_fault = 1;
-		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
-		if (g_parallel > 0)
-			kill((pid_t)g_parallel, SIGTERM); /* no new jobs; running ones checkpoint */
-	}
-	char now[32];
-	db_now(now, sizeof now);
-	if (db_begin(&d->db, e))
-		return e->code;
-	if (db_attempt(&d->db, d->c.name, name, code, status, msg, host, now, resumable ? "pending" : "failed", e)) {
-		db_rollback(&d->db);
-		return e->code;
-	}
-	if (!resumable)
-		d->n_failed_now++;
-	return db_commit(&d->db, e);
-}
-
-static int on_start(drv *d, char *line, sb_err *e)
-{
-	char *f[3] = {0};
-	int n = 0;
-	for (char *s = line, *t; n < 3 && (t = strsep(&s, "\t"));)
-		f[n++] = t;
-	const grid_run *r = n < 3 ? NULL : grid_find(&d->g, f[1]);
-	if (!r)
-		return 0;
-	d->started[r - d->g.runs] = 1;
-	/* where this attempt's lines begin in the run's log (earlier attempts precede) */
-	char lp[PATHX];
-	struct stat sb;
-	layout_file(d->dir, 0, r->id, LAY_LOG, lp, sizeof lp);
-	d->logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
-	char now[32];
-	db_now(now, sizeof now);
-	if (db_begin(&d->db, e))
-		return e->code;
-	if (db_exec(&d->db, e, NULL,
-		    "UPDATE run SET state = 'running', started = ?, host = ? WHERE campaign = ? AND id = ?"
-		    " AND state = 'pending'",
-		    "tttt", now, f[2], d->c.name, f[1])) {
-		db_rollback(&d->db);
-		return e->code;
-	}
-	return db_commit(&d->db, e);
-}
-
-/* Jobs that started but whose DONE line never came: GNU parallel stopped them (a
- * signal to the driver, or the driver's death) and dropped their output. Each is
- * recorded as an interrupted attempt with the engine's last words; it stays pending. */
-static void unreported(drv *d, sb_err *e)
-{
-	for (long i = 0; i < d->g.n && !e->code; i++) {
-		if (d->started[i] != 1)
-			continue;
-		d->started[i] = 2;
-		const char *id = d->g.runs[i].id;
-		char path[PATHX], msg[1024] = "", now[32];
-		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-		if (exists(path))
-			continue; /* finished after all: the sweep ingests it */
-		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
-		worker_last_message(path, d->logfrom[i], msg, sizeof msg);
-		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
-		 * no checkpoint yet, and it says so) */
-		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
-		db_now(now, sizeof now);
-		if (db_begin(&d->db, e))
-			return;
-		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, "interrupted",
-			       msg[0] ? msg : "stopped with the driver", "", now, "pending", e))
-			db_rollback(&d->db);
-		else
-			db_commit(&d->db, e);
-	}
 }
 
 /* ---- job files ---- */
@@ -336,161 +92,6 @@ static void driver_owned(sb_scene *s, const char *output)
 	}
 }
 
-/* ---- GNU parallel ---- */
-
-static int add_arg(char **argv, int *argc, int max, const char *fmt, const char *a, const char *b)
-{
-	if (*argc >= max - 1)
-		return -1;
-	char buf[3 * PATHX];
-	snprintf(buf, sizeof buf, fmt, a, b);
-	argv[(*argc)++] = strdup(buf);
-	argv[*argc] = NULL;
-	return 0;
-}
-
-/* Runs `study exec` for every name in names through GNU parallel and handles the
- * workers' lines as they arrive. */
-static int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase,
-			sb_err *e)
-{
-	int is_cache = !strcmp(kind, "cache");
-	char jobfile[PATHX], joblog[PATHX];
-	snprintf(jobfile, sizeof jobfile, "%s/%s.jobs", d->dir, kind);
-	snprintf(joblog, sizeof joblog, "+%s/joblog.txt", d->dir);
-	FILE *jf = fopen(jobfile, "w");
-	if (!jf)
-		return sb_errf(e, SB_EIO, "%s: cannot create: %s", jobfile, strerror(errno));
-	for (long i = 0; i < n; i++)
-		fprintf(jf, "%s\n", names[i]);
-	if (fclose(jf))
-		return sb_errf(e, SB_EIO, "%s: cannot write", jobfile);
-
-	enum { MAXA = 4096 };
-	char **argv = calloc(MAXA, sizeof *argv);
-	int argc = 0;
-	char njobs[32];
-	snprintf(njobs, sizeof njobs, "%d", d->jobs);
-	const char *fixed[] = {"parallel", "--will-cite", "--jobs", njobs, "--joblog", joblog, "--arg-file", jobfile};
-	for (size_t i = 0; i < sizeof fixed / sizeof *fixed; i++)
-		add_arg(argv, &argc, MAXA, "%s%s", fixed[i], "");
-	int tty = d->o->progress < 0 ? isatty(2) : d->o->progress;
-	if (tty)
-		add_arg(argv, &argc, MAXA, "%s%s", "--bar", "");
-	char q1[PATHX], q2[PATHX];
-	if (d->o->sshloginfile) {
-		/* Remote: the binaries go once per host (--basefile), each job's argument file
-		 * goes out and its output and log come back (--transferfile, --return). The
-		 * "/./" marks where the path relative to the remote work dir starts. Output is
-		 * grouped per job, so a DONE line arrives after its files are back. */
-		char bindir[PATHX];
-		snprintf(bindir, sizeof bindir, "%s", d->o->self);
-		*strrchr(bindir, '/') = 0;
-		char wd[PATHLEN];
-		snprintf(wd, sizeof wd, ".shakebox/%s", d->c.name);
-		add_arg(argv, &argc, MAXA, "--sshloginfile%s%s", "", "");
-		add_arg(argv, &argc, MAXA, "%s%s", d->o->sshloginfile, "");
-		add_arg(argv, &argc, MAXA, "--workdir%s%s", "", "");
-		add_arg(argv, &argc, MAXA, "%s%s", wd, "");
-		add_arg(argv, &argc, MAXA, "--basefile%s%s", "", "");
-		add_arg(argv, &argc, MAXA, "%s/./%s", bindir, "study");
-		add_arg(argv, &argc, MAXA, "--basefile%s%s", "", "");
-		add_arg(argv, &argc, MAXA, "%s/./%s", bindir, "shake");
-		for (long i = 0; i < nbase; i++) {
-			add_arg(argv, &argc, MAXA, "--basefile%s%s", "", "");
-			add_arg(argv, &argc, MAXA, "%s/./cache/%s.txt", d->dir, basefiles[i]);
-		}
-		const char *xfer = is_cache ? "%s/./cache/{}.args%s" : "%s/./jobs/{}.args%s";
-		add_arg(argv, &argc, MAXA, "--transferfile%s%s", "", "");
-		add_arg(argv, &argc, MAXA, xfer, d->dir, "");
-		const char *ret_run[] = {"%s/./{}.h5%s", "%s/./logs/{}.log%s", NULL};
-		const char *ret_cache[] = {"%s/./cache/{}.h5%s", "%s/./cache/{}.txt%s", "%s/./cache/{}.log%s", NULL};
-		for (const char **r = is_cache ? ret_cache : ret_run; *r; r++) {
-			add_arg(argv, &argc, MAXA, "--return%s%s", "", "");
-			add_arg(argv, &argc, MAXA, *r, d->dir, "");
-		}
-		add_arg(argv, &argc, MAXA, "%s%s", "./study exec . ", kind);
-		add_arg(argv, &argc, MAXA, "%s%s", "{}", "");
-	} else {
-		/* Local: parallel joins the command words into a shell command line, so the
-		 * two paths are single-quoted; the job name is a hex id (and parallel quotes {}). */
-		if (safe_shell_quote(d->o->self, q1, sizeof q1) || safe_shell_quote(d->dir, q2, sizeof q2)) {
-			free(argv);
-			return sb_errf(e, SB_EUSAGE, "path too long");
-		}
-		add_arg(argv, &argc, MAXA, "--line-buffer%s%s", "", "");
-		add_arg(argv, &argc, MAXA, "%s exec %s", q1, q2);
-		add_arg(argv, &argc, MAXA, "%s%s", kind, "");
-		add_arg(argv, &argc, MAXA, "%s%s", "{}", "");
-	}
-
-	int pfd[2];
-	if (pipe(pfd)) {
-		sb_errf(e, SB_EIO, "pipe: %s", strerror(errno));
-		goto out;
-	}
-	pid_t pid = fork();
-	if (pid < 0) {
-		sb_errf(e, SB_EIO, "fork: %s", strerror(errno));
-		goto out;
-	}
-	if (pid == 0) {
-		/* a driver killed outright takes parallel with it: no new jobs start, and
-		 * running ones are stopped with a checkpoint */
-		prctl(PR_SET_PDEATHSIG, SIGTERM);
-		close(pfd[0]);
-		dup2(pfd[1], 1);
-		close(pfd[1]);
-		int dn = open("/dev/null", O_RDONLY);
-		if (dn >= 0)
-			dup2(dn, 0);
-		execvp(argv[0], argv);
-		fprintf(stderr, "study: cannot run GNU parallel: %s\n", strerror(errno));
-		_exit(127);
-	}
-	g_parallel = pid;
-	close(pfd[1]);
-	FILE *in = fdopen(pfd[0], "r");
-	char *line = NULL;
-	size_t cap = 0;
-	ssize_t got;
-	while (in && ((got = getline(&line, &cap, in)) >= 0 || errno == EINTR)) {
-		if (got < 0) {
-			clearerr(in);
-			errno = 0;
-			continue;
-		}
-		line[strcspn(line, "\n")] = 0;
-		sb_err le = {0};
-		if (!strncmp(line, WORKER_START "\t", sizeof WORKER_START))
-			on_start(d, line, &le);
-		else if (!strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE))
-			on_done(d, is_cache, line, &le);
-		else if (line[0])
-			fprintf(stderr, "%s\n", line);
-		if (le.code)
-			fprintf(stderr, "study: %s\n", le.msg); /* the final sweep repairs it */
-	}
-	free(line);
-	if (in)
-		fclose(in);
-	int st = 0;
-	while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
-		;
-	g_parallel = 0;
-	if (!is_cache)
-		unreported(d, e);
-	if (WIFEXITED(st) && WEXITSTATUS(st) == 127 && !g_stop)
-		sb_errf(e, SB_EIO, "GNU parallel did not start (is it installed? make deps)");
-	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !g_stop && !d->io_fault)
-		sb_errf(e, SB_EIO, "GNU parallel failed (see the messages above)");
-out:
-	for (int i = 0; i < argc; i++)
-		free(argv[i]);
-	free(argv);
-	return e->code;
-}
-
 /* ---- the campaign ---- */
 
 static int record(drv *d, sb_err *e)
@@ -515,146 +116,6 @@ static int record(drv *d, sb_err *e)
 		return e->code;
 	}
 	return db_commit(&d->db, e);
-}
-
-/* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
- * is recorded with the reason, the result row goes, and the run is pending again. */
-static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb_err *e)
-{
-	char path[PATHX], keep[PATHX + 64], now[32];
-	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-	if (exists(path)) {
-		layout_sub(d->dir, "damaged", keep, sizeof keep);
-		if (mkdir_p(keep, e))
-			return e->code;
-		layout_aside(d->dir, "damaged", id, att, keep, sizeof keep);
-		if (rename(path, keep))
-			return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
-	}
-	fprintf(stderr, "study: %s: run %s was done but %s: run again\n", d->c.name, id, why);
-	db_now(now, sizeof now);
-	if (db_begin(&d->db, e))
-		return e->code;
-	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", now, "pending", e) ||
-	    db_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
-		db_rollback(&d->db);
-		return e->code;
-	}
-	return db_commit(&d->db, e);
-}
-
-/* What an engine killed at the wrong moment leaves beside a finished run: its last
- * checkpoint and journal (a finished run removes them itself), and temporary files
- * of processes that are gone. */
-static void remove_litter(drv *d, const char *id)
-{
-	static const char *const stale[] = {".ckpt", ".journal"}; /* the engine's, beside its output */
-	char p[PATHX + 256];
-	for (size_t k = 0; k < sizeof stale / sizeof *stale; k++) {
-		int l = layout_file(d->dir, 0, id, LAY_OUTPUT, p, sizeof p - 16);
-		snprintf(p + l, sizeof p - (size_t)l, "%s", stale[k]);
-		unlink(p);
-	}
-	DIR *dd = opendir(d->dir);
-	if (!dd)
-		return;
-	char pre[64];
-	size_t lp = (size_t)snprintf(pre, sizeof pre, "%s.h5", id);
-	for (struct dirent *de; (de = readdir(dd));) {
-		const char *t = strstr(de->d_name, ".tmp.");
-		if (strncmp(de->d_name, pre, lp) || !t)
-			continue;
-		char *end;
-		long pid = strtol(t + 5, &end, 10);
-		if (*end || pid <= 0 || (kill((pid_t)pid, 0) != 0 && errno == ESRCH)) {
-			snprintf(p, sizeof p, "%s/%s", d->dir, de->d_name);
-			unlink(p);
-		}
-	}
-	closedir(dd);
-}
-
-static int has_result(drv *d, const char *id)
-{
-	sqlite3_stmt *q;
-	sb_err e = {0};
-	if (db_exec(&d->db, &e, &q, "SELECT 1 FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
-		return 1;
-	int found = sqlite3_step(q) == SQLITE_ROW;
-	sqlite3_finalize(q);
-	return found;
-}
-
-/* Ingest every output that exists but is not recorded (finished while no driver was
- * listening), and with --retry-failed put failed runs back in the queue. Returns the
- * pending runs' indices in *pend. */
-static int sweep(drv *d, long *pend, long *npend, sb_err *e)
-{
-	*npend = 0;
-	for (long i = 0; i < d->g.n; i++) {
-		const grid_run *r = &d->g.runs[i];
-		char st[16];
-		long att;
-		if (db_run_state(&d->db, d->c.name, r->id, st, sizeof st, &att, e))
-			return e->code;
-		char path[PATHX];
-		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
-		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
-		if (queued && exists(path)) {
-			if (ingest_run(d, r->id, e))
-				return e->code;
-			continue;
-		}
-		if (!strcmp(st, "done") && pend) {
-			/* a finished run's file is read again on every sweep: a truncated or
-			 * deleted one puts the run back in the queue instead of shrinking its
-			 * group silently */
-			h5sum s;
-			sb_err re = {0};
-			if (!exists(path) || h5sum_read(path, &s, &re)) {
-				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
-					return e->code;
-				queued = 1;
-			}
-			remove_litter(d, r->id);
-		}
-		if (!queued && exists(path) && !has_result(d, r->id)) {
-			/* a database rebuilt, or written by another version: the result row
-			 * comes back from the file (the attempts are as recorded) */
-			h5sum s;
-			sb_err re = {0};
-			if (!h5sum_read(path, &s, &re)) {
-				if (db_begin(&d->db, e) || db_result_put(&d->db, d->c.name, r->id, &s, e)) {
-					db_rollback(&d->db);
-					return e->code;
-				}
-				if (db_commit(&d->db, e))
-					return e->code;
-			}
-		}
-		if (!strcmp(st, "failed") && pend && d->o->retry_failed) {
-			/* keep the failed output beside the attempt that produced it */
-			if (exists(path)) {
-				char keep[PATHX];
-				layout_aside(d->dir, "failed", r->id, att, keep, sizeof keep);
-				if (rename(path, keep))
-					return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
-			}
-			if (db_begin(&d->db, e))
-				return e->code;
-			if (db_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND id = ?", "tt",
-				    d->c.name, r->id)) {
-				db_rollback(&d->db);
-				return e->code;
-			}
-			if (db_commit(&d->db, e))
-				return e->code;
-			queued = 1;
-		}
-		if (queued && pend)
-			pend[(*npend)++] = i;
-	}
-	return 0;
 }
 
 static int by_str(const void *a, const void *b)
@@ -826,7 +287,7 @@ static int launch(drv *d, long npend, sb_err *e)
 {
 	char **basefiles = NULL;
 	long nbase = 0;
-	if (!caches(d, d->pend, npend, &basefiles, &nbase, e) && !g_stop &&
+	if (!caches(d, d->pend, npend, &basefiles, &nbase, e) && !parallel_stopped() &&
 	    !prepare_jobs(d, d->pend, npend, d->names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
@@ -887,7 +348,7 @@ static int run_onset(drv *d, sb_err *e)
 			return e->code;
 		if (d->n_ingested > got)
 			continue;
-		if (!npend || g_stop || d->io_fault)
+		if (!npend || parallel_stopped() || d->io_fault)
 			return 0;
 		long searching = 0, groups = d->autorep ? d->shp.npoints : d->srch.ngroups;
 		for (long i = 0; i < groups; i++)
@@ -898,7 +359,7 @@ static int run_onset(drv *d, sb_err *e)
 			d->autorep ? "point" : "group", groups > 1 ? "s" : "", d->autorep ? "running" : "searching",
 			d->jobs, d->jobs > 1 ? "s" : "", d->o->sshloginfile ? " per host of " : "",
 			d->o->sshloginfile ? d->o->sshloginfile : "");
-		if (launch(d, npend, e) || g_stop || d->io_fault)
+		if (launch(d, npend, e) || parallel_stopped() || d->io_fault)
 			return e->code;
 		if (d->n_ingested == got && d->n_failed_now == failed)
 			return 0; /* nothing finished (every run stopped): the next `study run` goes on */
@@ -1003,11 +464,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || record(d, e))))
 		goto out;
 
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
+	parallel_signals();
 
 	long npend;
 	if (rounds) {
@@ -1019,7 +476,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 		fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
 			d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "",
 			o->sshloginfile ? o->sshloginfile : "");
-		if (npend && !g_stop && !d->io_fault)
+		if (npend && !parallel_stopped() && !d->io_fault)
 			launch(d, npend, e);
 	}
 	sb_err se = {0};
@@ -1043,7 +500,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 			"%s: I/O fault (%s): no further run was started; %ld runs are pending. Fix the cause (disk space, "
 			"permissions) and run the same command again",
 			d->c.name, d->io_msg, pending);
-	else if (!e->code && (g_stop || pending))
+	else if (!e->code && (parallel_stopped() || pending))
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
 	else if (!e->code && failed)

@@ -1,0 +1,67 @@
+/* drv.h - private to the campaign driver's modules (driver.c, ingest.c, parallel.c,
+ * sweep.c): the state of one `study run` and what the modules ask of each other. */
+#ifndef ST_DRV_H
+#define ST_DRV_H
+
+#include <unistd.h>
+
+#include "campaign.h"
+#include "db.h"
+#include "driver.h"
+#include "grid.h"
+#include "search.h"
+#include "sharpen.h"
+
+#define PATHLEN 4096
+#define PATHX (PATHLEN + 256)
+
+typedef struct drv {
+	const driver_opts *o;
+	campaign c;
+	grid g;
+	st_db db;
+	char root[PATHLEN];   /* absolute runs root */
+	char dir[PATHLEN + 128];    /* root/name */
+	char *cache_ok;       /* per grid run: start from the packing cache */
+	char *started;        /* per grid run: 1 START seen, 2 DONE seen (this driver) */
+	long *logfrom;        /* per grid run: size of its log when START was seen */
+	long *pend;           /* per grid run: the indices of the runs to run */
+	char **names;         /* their ids, for GNU parallel */
+	int adaptive;         /* an [onset] campaign: the grid is its chains' runs, pass by pass */
+	search srch;
+	int autorep;          /* a grid with replicates = auto: its points' replicates, pass by pass */
+	sharpen shp;
+	long rounds;
+	long n_ingested, n_failed_now;
+	int jobs;
+	int io_fault;         /* a run failed on I/O: launch nothing more */
+	char io_msg[1200];
+} drv;
+
+static inline int exists(const char *p)
+{
+	return access(p, F_OK) == 0;
+}
+
+int mkdir_p(const char *path, sb_err *e);
+
+/* parallel.c: GNU parallel over the jobs, the workers' lines handed to ingest.c; the
+ * driver's SIGINT/SIGTERM (no new jobs, running ones checkpoint) */
+int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase, sb_err *e);
+void parallel_signals(void);
+int parallel_stopped(void);
+void parallel_halt(void);
+
+/* ingest.c: a run's or a packing's outcome into the database */
+int ingest_run(drv *d, const char *id, sb_err *e);
+int ingest_cache(drv *d, const char *key, sb_err *e);
+void cache_state(drv *d, const char *key, char *st, size_t len);
+int on_start(drv *d, char *line, sb_err *e);
+int on_done(drv *d, int is_cache, char *line, sb_err *e);
+void unreported(drv *d, sb_err *e);
+
+/* sweep.c: outputs finished while no driver listened, damaged ones, litter, failed
+ * runs back in the queue (--retry-failed); the pending runs' indices in *pend */
+int sweep(drv *d, long *pend, long *npend, sb_err *e);
+
+#endif

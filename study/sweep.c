@@ -1,0 +1,156 @@
+/* sweep.c - the driver's look at the campaign directory before and after it runs
+ * anything: outputs that finished while no driver listened are ingested; every done
+ * run's file is read again (a damaged or missing one goes back in the queue); what
+ * killed engines left beside finished runs is removed; with --retry-failed, failed
+ * runs go back in the queue; a database rebuilt from the files gets its results back. */
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "drv.h"
+#include "h5sum.h"
+#include "layout.h"
+
+/* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
+ * is recorded with the reason, the result row goes, and the run is pending again. */
+static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb_err *e)
+{
+	char path[PATHX], keep[PATHX + 64], now[32];
+	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
+	if (exists(path)) {
+		layout_sub(d->dir, "damaged", keep, sizeof keep);
+		if (mkdir_p(keep, e))
+			return e->code;
+		layout_aside(d->dir, "damaged", id, att, keep, sizeof keep);
+		if (rename(path, keep))
+			return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
+	}
+	fprintf(stderr, "study: %s: run %s was done but %s: run again\n", d->c.name, id, why);
+	db_now(now, sizeof now);
+	if (db_begin(&d->db, e))
+		return e->code;
+	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", now, "pending", e) ||
+	    db_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	return db_commit(&d->db, e);
+}
+
+/* What an engine killed at the wrong moment leaves beside a finished run: its last
+ * checkpoint and journal (a finished run removes them itself), and temporary files
+ * of processes that are gone. */
+static void remove_litter(drv *d, const char *id)
+{
+	static const char *const stale[] = {".ckpt", ".journal"}; /* the engine's, beside its output */
+	char p[PATHX + 256];
+	for (size_t k = 0; k < sizeof stale / sizeof *stale; k++) {
+		int l = layout_file(d->dir, 0, id, LAY_OUTPUT, p, sizeof p - 16);
+		snprintf(p + l, sizeof p - (size_t)l, "%s", stale[k]);
+		unlink(p);
+	}
+	DIR *dd = opendir(d->dir);
+	if (!dd)
+		return;
+	char pre[64];
+	size_t lp = (size_t)snprintf(pre, sizeof pre, "%s.h5", id);
+	for (struct dirent *de; (de = readdir(dd));) {
+		const char *t = strstr(de->d_name, ".tmp.");
+		if (strncmp(de->d_name, pre, lp) || !t)
+			continue;
+		char *end;
+		long pid = strtol(t + 5, &end, 10);
+		if (*end || pid <= 0 || (kill((pid_t)pid, 0) != 0 && errno == ESRCH)) {
+			snprintf(p, sizeof p, "%s/%s", d->dir, de->d_name);
+			unlink(p);
+		}
+	}
+	closedir(dd);
+}
+
+static int has_result(drv *d, const char *id)
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	if (db_exec(&d->db, &e, &q, "SELECT 1 FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
+		return 1;
+	int found = sqlite3_step(q) == SQLITE_ROW;
+	sqlite3_finalize(q);
+	return found;
+}
+
+/* Ingest every output that exists but is not recorded (finished while no driver was
+ * listening), and with --retry-failed put failed runs back in the queue. Returns the
+ * pending runs' indices in *pend. */
+int sweep(drv *d, long *pend, long *npend, sb_err *e)
+{
+	*npend = 0;
+	for (long i = 0; i < d->g.n; i++) {
+		const grid_run *r = &d->g.runs[i];
+		char st[16];
+		long att;
+		if (db_run_state(&d->db, d->c.name, r->id, st, sizeof st, &att, e))
+			return e->code;
+		char path[PATHX];
+		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
+		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
+		if (queued && exists(path)) {
+			if (ingest_run(d, r->id, e))
+				return e->code;
+			continue;
+		}
+		if (!strcmp(st, "done") && pend) {
+			/* a finished run's file is read again on every sweep: a truncated or
+			 * deleted one puts the run back in the queue instead of shrinking its
+			 * group silently */
+			h5sum s;
+			sb_err re = {0};
+			if (!exists(path) || h5sum_read(path, &s, &re)) {
+				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
+					return e->code;
+				queued = 1;
+			}
+			remove_litter(d, r->id);
+		}
+		if (!queued && exists(path) && !has_result(d, r->id)) {
+			/* a database rebuilt, or written by another version: the result row
+			 * comes back from the file (the attempts are as recorded) */
+			h5sum s;
+			sb_err re = {0};
+			if (!h5sum_read(path, &s, &re)) {
+				if (db_begin(&d->db, e) || db_result_put(&d->db, d->c.name, r->id, &s, e)) {
+					db_rollback(&d->db);
+					return e->code;
+				}
+				if (db_commit(&d->db, e))
+					return e->code;
+			}
+		}
+		if (!strcmp(st, "failed") && pend && d->o->retry_failed) {
+			/* keep the failed output beside the attempt that produced it */
+			if (exists(path)) {
+				char keep[PATHX];
+				layout_aside(d->dir, "failed", r->id, att, keep, sizeof keep);
+				if (rename(path, keep))
+					return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
+			}
+			if (db_begin(&d->db, e))
+				return e->code;
+			if (db_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND id = ?", "tt",
+				    d->c.name, r->id)) {
+				db_rollback(&d->db);
+				return e->code;
+			}
+			if (db_commit(&d->db, e))
+				return e->code;
+			queued = 1;
+		}
+		if (queued && pend)
+			pend[(*npend)++] = i;
+	}
+	return 0;
+}
+
