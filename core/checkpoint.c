@@ -13,7 +13,7 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '5'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '6'};
 
 typedef struct hw {
 	FILE *f;
@@ -72,6 +72,9 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 	io(w, &s->n_strobe, sizeof s->n_strobe);
 	io(w, &s->n_energy, sizeof s->n_energy);
 	io(w, &s->next_energy_step, sizeof s->next_energy_step);
+	io(w, &s->n_contact, sizeof s->n_contact);
+	io(w, &s->next_contact_step, sizeof s->next_contact_step);
+	io(w, &s->max_contacts, sizeof s->max_contacts);
 	io(w, &s->loop_seconds, sizeof s->loop_seconds); /* a resumed run's CPU time is the sum */
 	io(w, &x->builds, sizeof x->builds);
 	io(w, &x->joff, sizeof x->joff);

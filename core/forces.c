@@ -170,6 +170,37 @@ void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist
 	*contacts = n;
 }
 
+long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, double inv_dt, double *out,
+		     long cap)
+{
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
+	long n = 0;
+	for (int p = 0; p < nl->nflat; p++) {
+		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
+		const double dx = x[i] - x[j], dy = y[i] - y[j], d = hypot(dx, dy);
+		if (i == j || !(d < r[i] + r[j]))
+			continue;
+		double fx, fy, ti, tj;
+		forces_pair(law, dx, dy, r[i], r[j], (st->q[C_X][1][i] - st->q[C_X][1][j]) * inv_dt,
+			    (st->q[C_Y][1][i] - st->q[C_Y][1][j]) * inv_dt, st->q[C_TH][1][i] * inv_dt,
+			    st->q[C_TH][1][j] * inv_dt, 1.0 / (st->inv_m[i] + st->inv_m[j]), &fx, &fy, &ti, &tj);
+		const double nx = dx / d, ny = dy / d;
+		if (n < cap) {
+			double *c = out + 8 * n;
+			c[0] = i;
+			c[1] = j;
+			c[2] = fx * nx + fy * ny;  /* F_N */
+			c[3] = -fx * ny + fy * nx; /* F_S, along t = (-n_y, n_x) */
+			c[4] = nx;
+			c[5] = ny;
+			c[6] = 0.5 * (x[i] + x[j]);
+			c[7] = 0.5 * (y[i] + y[j]);
+		}
+		n++;
+	}
+	return n;
+}
+
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
 {
 	double worst = 0;

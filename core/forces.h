@@ -39,6 +39,13 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
 			   double *max_overlap, long *contacts);
 
+/* Every current contact as (i, j, F_N, F_S, n_x, n_y, x, y): the list's indices, the
+ * normal force along n = (r_i - r_j)/d and the tangential one along t (the force on i
+ * is F_N n + F_S t), and the midpoint of the centres; velocities q1 * inv_dt. Writes at
+ * most cap contacts into out (8 doubles each) and returns how many there are. */
+long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, double inv_dt, double *out,
+		     long cap);
+
 /* Largest overlap / smaller radius over all current contacts, and which disks (a scan
  * of the list: for the overlap record and the stop's message). */
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);

@@ -243,6 +243,62 @@ static void write_energy(h5 *h, const dbuf *en, long T)
 	free(col);
 }
 
+/* The contact dump (contact_rate): frames of every contact, flattened - frame k's
+ * contacts are rows offset[k] .. offset[k] + count[k] of the per-contact datasets. */
+static void write_contacts(h5 *h, const dbuf *c, long F)
+{
+	static const char *const names[JR_CONTACT_COLS] = {"id_a", "id_b", "normal_force", "tangential_force",
+							   "normal_x", "normal_y", "x", "y_box"};
+	static const char *const units[JR_CONTACT_COLS] = {"1", "1", "dyn", "dyn", "1", "1", "cm", "cm"};
+	double *t = malloc(sizeof(double) * (size_t)(F ? F : 1)), *cnt = malloc(sizeof(double) * (size_t)(F ? F : 1)),
+	       *off = malloc(sizeof(double) * (size_t)(F ? F : 1));
+	size_t C = 0, pos = 0;
+	for (long k = 0; k < F && t && cnt && off; k++) { /* frame k: t, n, n x 8 values */
+		t[k] = c->d[pos];
+		cnt[k] = c->d[pos + 1];
+		off[k] = (double)C;
+		C += (size_t)cnt[k];
+		pos += 2 + JR_CONTACT_COLS * (size_t)cnt[k];
+	}
+	double *col = malloc(sizeof(double) * (C ? C : 1));
+	if (!t || !cnt || !off || !col) {
+		h->bad = 1;
+	} else {
+		hid_t go = H5Lexists(h->file, "/observables", H5P_DEFAULT) > 0 ? H5Gopen2(h->file, "/observables", H5P_DEFAULT)
+										   : group(h, "/observables");
+		hid_t g = H5Gcreate2(go, "contacts", H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
+		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, t);
+		dset(h, g, "count", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, cnt);
+		dset(h, g, "offset", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, off);
+		for (int k = 0; k < JR_CONTACT_COLS; k++) {
+			size_t row = 0;
+			pos = 0;
+			for (long fr = 0; fr < F; fr++) {
+				const size_t n = (size_t)cnt[fr];
+				for (size_t q = 0; q < n; q++)
+					col[row++] = c->d[pos + 2 + JR_CONTACT_COLS * q + (size_t)k];
+				pos += 2 + JR_CONTACT_COLS * n;
+			}
+			dset(h, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)C, 0, col);
+			hid_t d = H5Dopen2(g, names[k], H5P_DEFAULT);
+			if (d >= 0) {
+				attr_str(h, d, "unit", units[k]);
+				H5Dclose(d);
+			}
+		}
+		attr_str(h, g, "definition",
+			 "every contact at each sample: disks id_a, id_b; the force on id_a is normal_force n + "
+			 "tangential_force t with n = (r_a - r_b)/d = (normal_x, normal_y), t = n turned by +90 deg; "
+			 "x, y_box: midpoint of the centres (box frame); frame k is rows offset[k] .. offset[k] + count[k]");
+		H5Gclose(g);
+		H5Gclose(go);
+	}
+	free(t);
+	free(cnt);
+	free(off);
+	free(col);
+}
+
 static void write_ring(h5 *h, const sb_sim *s)
 {
 	const sb_obs *o = &s->obs;
@@ -298,11 +354,13 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 		cap = JR_TRAJ_COLS;
 	if (cap < JR_ENERGY_COLS)
 		cap = JR_ENERGY_COLS;
+	if (cap < 2 + JR_CONTACT_COLS * s->max_contacts)
+		cap = 2 + JR_CONTACT_COLS * s->max_contacts;
 	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
 		cap = obs_flux_len(&s->obs);
 	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
 		cap = obs_field_len(&s->obs);
-	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0};
+	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0}, contacts = {0};
 	double *times = malloc(sizeof(double) * (K ? K : 1));
 	double *buf = malloc(sizeof(double) * (size_t)cap);
 	if (!times || !buf) {
@@ -325,7 +383,7 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	sb_jreader r = {0};
 	long ks = 0;
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy) ? journal_reader_open(&r, s->journal_path, e)
+	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact) ? journal_reader_open(&r, s->journal_path, e)
 										    : 1;
 	while (!rc && !h->bad) {
 		int count = 0;
@@ -342,6 +400,8 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 			rc = dbuf_add(&field, buf, (size_t)count) ? SB_ENOMEM : 0;
 		else if (tag == JR_ENERGY)
 			rc = dbuf_add(&energy, buf, JR_ENERGY_COLS) ? SB_ENOMEM : 0;
+		else if (tag == JR_CONTACT)
+			rc = dbuf_add(&contacts, buf, (size_t)count) ? SB_ENOMEM : 0;
 		else if (tag == JR_SNAP && (hsize_t)ks < K) {
 			times[ks] = buf[0];
 			hsize_t start[2] = {(hsize_t)ks, 0};
@@ -392,10 +452,19 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld energy records, expected %ld", s->journal_path, ke, s->n_energy);
 	if (!rc && s->sc.energy_rate > 0)
 		write_energy(h, &energy, ke);
+	long kc = 0;
+	for (size_t pos = 0; pos + 2 <= contacts.n; kc++)
+		pos += 2 + JR_CONTACT_COLS * (size_t)contacts.d[pos + 1];
+	if (!rc && kc != s->n_contact)
+		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld contact frames, expected %ld", s->journal_path, kc,
+			     s->n_contact);
+	if (!rc && s->sc.contact_rate > 0)
+		write_contacts(h, &contacts, kc);
 	free(traj.d);
 	free(flux.d);
 	free(field.d);
 	free(energy.d);
+	free(contacts.d);
 	free(times);
 	free(buf);
 	return rc;

@@ -144,6 +144,9 @@ static const sb_param TABLE[] = {
 	{"energy_rate", REAL(energy_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
 	 "samples per second of the energy series (kinetic: translational and rotational, elastic, "
 	 "centre-of-mass height, largest overlap; /observables/energy; 0 = none)"},
+	{"contact_rate", REAL(contact_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
+	 "samples per second of the contact dump (every contact: the two disks, normal and tangential "
+	 "force, normal, place; /observables/contacts, for force chains; 0 = none)"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0"},
 	{"checkpoint_every", REAL(checkpoint_every), "s", "0", 0, 1e8, NULL, PF_OUT | PF_NOID,

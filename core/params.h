@@ -50,7 +50,7 @@ struct sb_scene {
 	/* recording and files */
 	char output[SB_STR_MAX];
 	double traj_rate;
-	double energy_rate;
+	double energy_rate, contact_rate;
 	int snapshots;
 	double checkpoint_every;
 	char checkpoint[SB_STR_MAX];

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "checkpoint.h"
 #include "clock.h"
@@ -89,6 +90,32 @@ static int record_energy(sb_sim *s, double t, sb_err *e)
 	return 0;
 }
 
+/* One frame of the contact dump: every contact of the corrected state, its disks by
+ * id (box frame). */
+static int record_contacts(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	const long cap = s->nl.nflat;
+	double *rec = malloc(sizeof(double) * (size_t)(2 + JR_CONTACT_COLS * (cap > 0 ? cap : 1)));
+	if (!rec)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");
+	const long n = forces_contacts(&s->law, st, &s->nl, 1.0 / s->sc.dt, rec + 2, cap);
+	rec[0] = t;
+	rec[1] = (double)n;
+	for (long k = 0; k < n; k++) { /* list indices -> the disks' ids */
+		double *c = rec + 2 + JR_CONTACT_COLS * k;
+		c[0] = st->id[(int)c[0]];
+		c[1] = st->id[(int)c[1]];
+	}
+	int rc = journal_record(&s->jr, JR_CONTACT, rec, (int)(2 + JR_CONTACT_COLS * n), e);
+	free(rec);
+	if (rc)
+		return rc;
+	s->max_contacts = n > s->max_contacts ? n : s->max_contacts;
+	s->n_contact++;
+	return 0;
+}
+
 static int record(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
@@ -102,6 +129,11 @@ static int record(sb_sim *s, sb_err *e)
 		if (record_energy(s, t, e))
 			return e->code;
 		s->next_energy_step = due_step(s->n_energy, 1.0 / sc->energy_rate, sc->dt);
+	}
+	if (sc->contact_rate > 0 && s->step >= s->next_contact_step) {
+		if (record_contacts(s, t, e))
+			return e->code;
+		s->next_contact_step = due_step(s->n_contact, 1.0 / sc->contact_rate, sc->dt);
 	}
 	if (strobe_due(s, s->step)) {
 		if (sc->snapshots && record_snap(s, t, e))
@@ -191,6 +223,7 @@ int sim_run(sb_sim *s, sb_err *e)
 		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) || ring ||
 				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
 				 (sc->energy_rate > 0 && n1 >= s->next_energy_step) ||
+				 (sc->contact_rate > 0 && n1 >= s->next_contact_step) ||
 				 strobe_due(s, n1);
 		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look,
 			      ring ? s->obs.fabs_sum : NULL, e))

@@ -42,8 +42,9 @@ typedef struct sb_sim {
 	int ov_track;            /* shaking: the kernel's overlap threshold is the record so
 				  * far (obs.ov_max), not the stop (sim.c) */
 	long n_traj, n_snap;     /* records written so far */
-	long n_flux, n_field, n_strobe, n_energy;
-	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt, next_energy_step;
+	long n_flux, n_field, n_strobe, n_energy, n_contact;
+	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt, next_energy_step, next_contact_step;
+	long max_contacts;       /* the largest contact record so far (the reader's buffer) */
 	sb_obs obs;
 	sb_journal jr;
 	char journal_path[4200];
