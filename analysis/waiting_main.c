@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "h5read.h"
 #include "km.h"
+#include "logrank.h"
 #include "tool.h"
 
 #define VERSION "2"
@@ -364,6 +365,42 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 	tool_store_acct(t, L, j);
 }
 
+/* The log-rank test of equal waiting-time distributions across the groups: printed
+ * with the runs it rests on, and stored as group "all groups" (no key columns). */
+static void logrank_out(an_tool *t, const wait_state *s)
+{
+	long n = 0;
+	for (int j = 0; j < t->ng; j++)
+		n += s->g[j].n;
+	double *tt = malloc(sizeof *tt * (size_t)(n ? n : 1));
+	int *ev = malloc(sizeof *ev * (size_t)(n ? n : 1)), *gg = malloc(sizeof *gg * (size_t)(n ? n : 1));
+	logrank r = {0, NAN, NAN, 0};
+	if (tt && ev && gg) {
+		long k = 0;
+		for (int j = 0; j < t->ng; j++)
+			for (int i = 0; i < s->g[j].n; i++, k++) {
+				tt[k] = s->g[j].t[i];
+				ev[k] = s->g[j].ev[i];
+				gg[k] = j;
+			}
+		logrank_test(tt, ev, gg, (size_t)n, t->ng, &r);
+	}
+	free(tt);
+	free(ev);
+	free(gg);
+	if (r.k < 2)
+		return; /* one group: nothing to compare */
+	if (isnan(r.p)) {
+		printf("# log-rank test across the %d groups (%ld runs): no test, no intruder rose\n", r.k, n);
+		return;
+	}
+	printf("# log-rank test of equal waiting-time distributions across the %d groups (%ld runs, censored ones "
+	       "included): chi2 = %.4g, df = %d, p = %.3g\n", r.k, n, r.chi2, r.df, r.p);
+	tool_store(t, -1, "all groups", "logrank_chi2", r.chi2, NAN, NAN, n);
+	tool_store(t, -1, "all groups", "logrank_df", (double)r.df, NAN, NAN, n);
+	tool_store(t, -1, "all groups", "logrank_p", r.p, NAN, NAN, n);
+}
+
 /* Per group: waiting_summary.csv, the table and the analysis table (storing begun
  * here, ended by the caller). */
 static int summary(an_tool *t, const wait_state *s)
@@ -379,6 +416,7 @@ static int summary(an_tool *t, const wait_state *s)
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
 	fclose(sum);
+	logrank_out(t, s);
 	return t->e.code;
 }
 

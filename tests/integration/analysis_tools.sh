@@ -74,6 +74,15 @@ rc=$?
 	ok waiting.table || fail waiting.table "$(cat waiting.out)"
 [ "$(tail -n +2 $A/waiting_runs.csv | wc -l)" = 6 ] && [ -s $A/waiting_km.csv ] && [ -s $A/waiting_hist.csv ] &&
 	ok waiting.csv || fail waiting.csv "$(ls $A)"
+# the log-rank test across the three groups, printed with the runs it rests on and
+# stored once - or, when no intruder rose (these short runs), said to be impossible
+lr=$(grep '^# log-rank' waiting.out)
+nlr=$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND grp = 'all groups' AND key IN ('logrank_chi2', 'logrank_p', 'logrank_df') AND n = 6")
+case "$lr" in
+"# log-rank test of equal waiting-time distributions across the 3 groups (6 runs"*"df = 2, p = "*) [ "$nlr" = 3 ] ;;
+"# log-rank test across the 3 groups (6 runs): no test, no intruder rose") [ "$nlr" = 0 ] ;;
+*) false ;;
+esac && ok waiting.logrank || fail waiting.logrank "'$lr', $nlr stored rows"
 png_ok $A/waiting_km.png && png_ok $A/waiting_hist.png && ok waiting.png || fail waiting.png "missing PNG"
 # each run's pair (waiting_time, risen) is the one in its output file
 id=$(q "SELECT id FROM runs WHERE radius_ratio = 2 ORDER BY id LIMIT 1")
