@@ -3,7 +3,8 @@
 # Called by `make deps`, and by `make check`/`make demo` on a fresh machine.
 set -euo pipefail
 PKGS=(build-essential pkg-config libgsl-dev libhdf5-dev hdf5-tools libsqlite3-dev sqlite3
-      libinih-dev parallel gnuplot-nox lammps openssh-server openssh-client rsync time)
+      libinih-dev parallel gnuplot-nox lammps openssh-server openssh-client rsync time
+      slurmctld slurmd slurm-client munge python3-h5py python3-mdanalysis)
 missing=()
 for p in "${PKGS[@]}"; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
