@@ -94,7 +94,7 @@ static void driver_owned(sb_scene *s, const char *output)
 
 /* ---- the campaign ---- */
 
-static int record(drv *d, sb_err *e)
+int driver_record(drv *d, sb_err *e)
 {
 	char now[32];
 	db_now(now, sizeof now);
@@ -121,6 +121,23 @@ static int record(drv *d, sb_err *e)
 static int by_str(const void *a, const void *b)
 {
 	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The argument file of a packing's job: run `first`'s preparation, settled and written
+ * out (duration 0), never resumed. */
+int driver_cache_args(drv *d, const char *key, long first, sb_err *e)
+{
+	sb_scene s;
+	grid_scene(&d->g, &d->g.runs[first], &s);
+	char args[PATHX], out[64];
+	layout_file(d->dir, 1, key, LAY_ARGS, args, sizeof args);
+	layout_file("", 1, key, LAY_OUTPUT, out, sizeof out);
+	driver_owned(&s, out);
+	s.duration = 0;
+	s.checkpoint_every = 0;
+	s.restart = TRI_NO;
+	layout_cache_particles("", key, s.write_particles, sizeof s.write_particles);
+	return write_args(args, &s, e);
 }
 
 /* The packing cache: preparation keys shared by two or more pending runs (or already
@@ -178,17 +195,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 		 * its packing is worth settling once from its first run on */
 		if (st[0] || count[k] < (d->adaptive ? 1 : 2))
 			continue;
-		sb_scene s;
-		grid_scene(&d->g, &d->g.runs[first[k]], &s);
-		char args[PATHX], out[64];
-		layout_file(d->dir, 1, keys[k], LAY_ARGS, args, sizeof args);
-		layout_file("", 1, keys[k], LAY_OUTPUT, out, sizeof out);
-		driver_owned(&s, out);
-		s.duration = 0;
-		s.checkpoint_every = 0;
-		s.restart = TRI_NO;
-		layout_cache_particles("", keys[k], s.write_particles, sizeof s.write_particles);
-		if (!write_args(args, &s, e))
+		if (!driver_cache_args(d, keys[k], first[k], e))
 			build[nb++] = keys[k];
 	}
 	if (nb && !e->code) {
@@ -212,7 +219,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	return e->code;
 }
 
-static int prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e)
+int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e)
 {
 	for (long i = 0; i < npend && !e->code; i++) {
 		const grid_run *r = &d->g.runs[pend[i]];
@@ -288,7 +295,7 @@ static int launch(drv *d, long npend, sb_err *e)
 	char **basefiles = NULL;
 	long nbase = 0;
 	if (!caches(d, d->pend, npend, &basefiles, &nbase, e) && !parallel_stopped() &&
-	    !prepare_jobs(d, d->pend, npend, d->names, e)) {
+	    !driver_prepare_jobs(d, d->pend, npend, d->names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
 		run_parallel(d, "run", d->names, npend, basefiles, nbase, e);
@@ -328,7 +335,7 @@ static int onset_pass(drv *d, int first, sb_err *e)
 		return e->code;
 	if (first && check_changes(d, e))
 		return e->code;
-	if (record(d, e) || (d->autorep ? sharpen_store(&d->shp, &d->db, e) : search_store(&d->srch, &d->db, e)))
+	if (driver_record(d, e) || (d->autorep ? sharpen_store(&d->shp, &d->db, e) : search_store(&d->srch, &d->db, e)))
 		return e->code;
 	return alloc_runs(d, e);
 }
@@ -461,7 +468,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
 	int rounds = d->adaptive || d->autorep; /* the grid grows pass by pass */
-	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || record(d, e))))
+	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 
 	parallel_signals();

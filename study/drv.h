@@ -45,6 +45,14 @@ static inline int exists(const char *p)
 
 int mkdir_p(const char *path, sb_err *e);
 
+/* driver.c, also for `study submit` (slurm.c), which prepares runs as `study run`
+ * does and hands them to Slurm: the campaign and its runs recorded; the argument
+ * file of a packing's job (key, settled from grid run `first`); the runs' argument
+ * files (from the packing where d->cache_ok says), their ids into names */
+int driver_record(drv *d, sb_err *e);
+int driver_cache_args(drv *d, const char *key, long first, sb_err *e);
+int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e);
+
 /* parallel.c: GNU parallel over the jobs, the workers' lines handed to ingest.c; the
  * driver's SIGINT/SIGTERM (no new jobs, running ones checkpoint) */
 int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase, sb_err *e);
