@@ -56,7 +56,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz portable
 all: $(SHAKE)
 
 help:
@@ -67,6 +67,7 @@ help:
 	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
+	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
 	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from the campaigns beside them (FIG_JOBS=2)"
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files against the sanitizer build"
@@ -133,8 +134,16 @@ tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
 check: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory all tests
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
-	$(Q)$(MAKE) --no-print-directory PORTABLE=1 build/port/bin/shake
+	$(Q)$(MAKE) --no-print-directory portable
 	$(Q)bash tests/run.sh
+
+# What travels to other hosts with `study run --sshloginfile` (study/README.md, "Across
+# hosts"): the baseline x86-64 build of the engine and of bin/study, which run on every
+# x86-64 host (the build above may use AVX-512) and give the same bits.
+portable: build/.deps-ok
+	$(Q)$(MAKE) --no-print-directory PORTABLE=1 build/port/bin/shake build/port/bin/study
+	$(Q)mkdir -p bin
+	$(Q)for b in shake study; do cp build/port/bin/$$b bin/$$b-portable.tmp && mv bin/$$b-portable.tmp bin/$$b-portable; done
 
 # Fault injection (I/O faults at random moments, damaged outputs, litter, a second
 # driver) against the sanitizer build; FAULT_ROUNDS rounds (make check runs one).

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "campaign.h"
@@ -23,6 +24,7 @@
 #include "safe.h"
 #include "search.h"
 #include "sharpen.h"
+#include "watch.h"
 #include "worker.h"
 
 void driver_db_path(const char *runs_dir, const char *db_path, char *out, size_t len)
@@ -279,14 +281,66 @@ static int alloc_runs(drv *d, sb_err *e)
 	free(d->cache_ok);
 	free(d->started);
 	free(d->logfrom);
+	free(d->transient);
+	free(d->outcome);
+	d->transient = calloc((size_t)d->g.n + 1, sizeof *d->transient);
+	d->outcome = calloc((size_t)d->g.n + 1, 1);
 	d->pend = calloc((size_t)d->g.n + 1, sizeof *d->pend);
 	d->names = calloc((size_t)d->g.n + 1, sizeof *d->names);
 	d->cache_ok = calloc((size_t)d->g.n + 1, 1);
 	d->started = calloc((size_t)d->g.n + 1, 1);
 	d->logfrom = calloc((size_t)d->g.n + 1, sizeof *d->logfrom);
-	if (!d->pend || !d->names || !d->cache_ok || !d->started || !d->logfrom)
+	if (!d->pend || !d->names || !d->cache_ok || !d->started || !d->logfrom || !d->transient || !d->outcome)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	return 0;
+}
+
+/* After a pass over names[0..n): the runs to run again. A run left pending by a pass
+ * that ran to its end without its outcome (no DONE line: parallel gave up on its
+ * hosts, or its output never came back) is recorded as lost. A run is run again while
+ * its killed, I/O-failed and lost attempts in this `study run` are at most --retries;
+ * after an I/O fault only the runs that hit it, as a probe: when they succeed the
+ * fault was transient and the launching goes on. Returns their number, ids in again;
+ * *io_probe says whether they are a probe. */
+static long retries_due(drv *d, char **names, long n, int halted, char **again, int *io_probe, sb_err *e)
+{
+	long m = 0;
+	*io_probe = d->io_fault;
+	for (long k = 0; k < n && !e->code; k++) {
+		const grid_run *r = grid_find(&d->g, names[k]);
+		if (!r)
+			continue;
+		long i = r - d->g.runs, att;
+		char st[16];
+		if (db_run_state(&d->db, d->c.name, r->id, st, sizeof st, &att, e))
+			break;
+		if (strcmp(st, "pending") && strcmp(st, "running"))
+			continue;
+		char path[PATHX];
+		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
+		if (exists(path))
+			continue; /* came back after its DONE line: the sweep ingests it */
+		if (d->outcome[i] == 0 && !halted) {
+			char now[32];
+			db_now(now, sizeof now);
+			d->outcome[i] = 'l';
+			d->transient[i]++;
+			if (db_begin(&d->db, e))
+				break;
+			if (db_attempt(&d->db, d->c.name, r->id, -1, "lost", "no outcome came back (host lost, output not returned)",
+				       "", now, "pending", e)) {
+				db_rollback(&d->db);
+				break;
+			}
+			db_commit(&d->db, e);
+		}
+		if (d->transient[i] > d->o->retries)
+			continue; /* exhausted: stays pending for the next `study run` */
+		if (*io_probe && d->outcome[i] != 'i')
+			continue;
+		again[m++] = (char *)r->id;
+	}
+	return e->code ? 0 : m;
 }
 
 /* Runs the pending runs: their packings, their argument files, GNU parallel. */
@@ -298,7 +352,37 @@ static int launch(drv *d, long npend, sb_err *e)
 	    !driver_prepare_jobs(d, d->pend, npend, d->names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
-		run_parallel(d, "run", d->names, npend, basefiles, nbase, e);
+		char **again = calloc((size_t)npend + 1, sizeof *again);
+		char **list = d->names;
+		long n = npend;
+		while (again && !e->code) {
+			for (long k = 0; k < n; k++) {
+				const grid_run *r = grid_find(&d->g, list[k]);
+				if (r)
+					d->outcome[r - d->g.runs] = 0;
+			}
+			run_parallel(d, "run", list, n, basefiles, nbase, e);
+			int halted = d->io_fault || parallel_stopped(), probe;
+			if (e->code || parallel_stopped())
+				break;
+			/* every run of this launch, not only the last pass's: a probe's success
+			 * puts the runs its fault halted back in the queue */
+			n = retries_due(d, d->names, npend, halted, again, &probe, e);
+			if (n == 0 || e->code)
+				break;
+			fprintf(stderr, "study: %s: running again %ld run%s %s (--retries %d)\n", d->c.name, n, n > 1 ? "s" : "",
+				probe ? "that hit an I/O fault, to see whether it passed" : "killed, failed on I/O or lost",
+				d->o->retries);
+			if (probe) {
+				/* a moment for a transient fault to pass */
+				struct timespec ts = {1, 0};
+				while (nanosleep(&ts, &ts) && !parallel_stopped())
+					;
+				d->io_fault = 0;
+			}
+			list = again;
+		}
+		free(again);
 	}
 	for (long i = 0; i < nbase; i++)
 		free(basefiles[i]);
@@ -472,6 +556,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 		goto out;
 
 	parallel_signals();
+	if (o->progress < 0 ? isatty(2) : o->progress) {
+		d->watch = malloc(sizeof *d->watch);
+		if (d->watch)
+			watch_init(d->watch, d->c.name, d->dir);
+		d->progress_tty = isatty(2);
+	}
 
 	long npend;
 	if (rounds) {
@@ -507,6 +597,14 @@ int driver_run(const driver_opts *o, sb_err *e)
 			"%s: I/O fault (%s): no further run was started; %ld runs are pending. Fix the cause (disk space, "
 			"permissions) and run the same command again",
 			d->c.name, d->io_msg, pending);
+	long exhausted = 0;
+	for (long i = 0; d->transient && i < d->g.n; i++)
+		exhausted += d->transient[i] > o->retries;
+	if (!e->code && !d->io_fault && !parallel_stopped() && exhausted)
+		sb_errf(e, DRV_INTERRUPTED,
+			"%s: %ld runs not complete, %ld of them killed or lost %d times in this run (--retries %d; study "
+			"status %s lists the attempts); run the same command again to resume",
+			d->c.name, pending, exhausted, o->retries + 1, o->retries, d->c.name);
 	else if (!e->code && (parallel_stopped() || pending))
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
@@ -519,6 +617,11 @@ out:
 	free(d->cache_ok);
 	free(d->started);
 	free(d->logfrom);
+	free(d->transient);
+	free(d->outcome);
+	if (d->watch)
+		watch_free(d->watch);
+	free(d->watch);
 	search_free(&d->srch);
 	sharpen_free(&d->shp);
 	db_close(&d->db);

@@ -17,7 +17,11 @@ typedef struct driver_opts {
 	int forget_old;            /* ... or delete their rows, move their files aside */
 	int use_cache;             /* packing cache on (default) */
 	int progress;              /* -1 auto (terminal), 0 no, 1 yes */
+	int retries;               /* a run killed, failed on I/O or lost with its host runs
+				    * again up to this many times in one `study run` */
 } driver_opts;
+
+#define DRIVER_RETRIES 2
 
 /* Driver exit codes (documented in study/README.md). */
 enum { DRV_OK = 0, DRV_USAGE = 1, DRV_IO = 2, DRV_FAILED = 3, DRV_BUSY = 4, DRV_INTERRUPTED = 7 };

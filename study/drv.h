@@ -36,6 +36,12 @@ typedef struct drv {
 	int jobs;
 	int io_fault;         /* a run failed on I/O: launch nothing more */
 	char io_msg[1200];
+	long *transient;      /* per grid run: attempts killed, failed on I/O or lost in this
+			       * `study run` (retried while at most o->retries) */
+	char *outcome;        /* per grid run, its last launch: 0 nothing heard, 'k' killed,
+			       * 'i' I/O, 'l' lost, 'h' stopped by the driver, 'r' recorded */
+	struct watch *watch;  /* the progress line's look; NULL: no progress line */
+	int progress_tty;     /* the progress line rewrites itself (stderr is a terminal) */
 } drv;
 
 static inline int exists(const char *p)
@@ -60,7 +66,8 @@ void parallel_signals(void);
 int parallel_stopped(void);
 void parallel_halt(void);
 
-/* ingest.c: a run's or a packing's outcome into the database */
+/* ingest.c: a run's or a packing's outcome into the database (and into d->outcome,
+ * d->transient for the retries) */
 int ingest_run(drv *d, const char *id, sb_err *e);
 int ingest_cache(drv *d, const char *key, sb_err *e);
 void cache_state(drv *d, const char *key, char *st, size_t len);

@@ -48,6 +48,9 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 		return e->code;
 	}
 	d->n_ingested++;
+	const grid_run *gr = grid_find(&d->g, id);
+	if (gr && d->outcome)
+		d->outcome[gr - d->g.runs] = 'r';
 	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
 		d->n_failed_now++;
 	return db_commit(&d->db, e);
@@ -123,9 +126,17 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
 	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
 	 * stays pending and no further run starts, since every one would fail the same way
-	 * and a queue emptied in seconds would be marked failed. Bad input (1) fails. */
+	 * and a queue emptied in seconds would be marked failed. Bad input (1) fails.
+	 * Killed and I/O-failed runs are transient: the driver runs them again (up to
+	 * --retries); an interruption the driver asked for (its signal, its halt after an
+	 * I/O fault) is not. */
 	int io = code == SB_EIO;
 	int resumable = code == SB_EINTR || code >= 128 || io;
+	long ix = r - d->g.runs;
+	int ours = code == SB_EINTR && (parallel_stopped() || d->io_fault);
+	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : 'k';
+	if (resumable && !ours)
+		d->transient[ix]++;
 	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : sb_code_name((int)code);
 	if (io && !d->io_fault) {
 		d->io_fault = 1;
@@ -193,11 +204,21 @@ void unreported(drv *d, sb_err *e)
 		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
 		 * no checkpoint yet, and it says so) */
 		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
+		/* not stopped by the driver: its worker died without a word (killed, or
+		 * its host lost): run again */
+		int lost = !parallel_stopped() && !d->io_fault;
+		d->outcome[i] = lost ? 'l' : 'h';
+		if (lost) {
+			d->transient[i]++;
+			intr = 0;
+		}
 		db_now(now, sizeof now);
 		if (db_begin(&d->db, e))
 			return;
-		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, "interrupted",
-			       msg[0] ? msg : "stopped with the driver", "", now, "pending", e))
+		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, lost ? "lost" : "interrupted",
+			       msg[0] && !lost ? msg : lost ? "the job ended without its outcome (worker killed or host lost)"
+							    : "stopped with the driver",
+			       "", now, "pending", e))
 			db_rollback(&d->db);
 		else
 			db_commit(&d->db, e);

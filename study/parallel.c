@@ -4,15 +4,20 @@
  * not the driver's (drv): a handler has no other way to speak. */
 #include <errno.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 
 #include "drv.h"
 #include "safe.h"
+#include "watch.h"
 #include "worker.h"
 
 static volatile sig_atomic_t g_stop;
@@ -44,6 +49,84 @@ void parallel_halt(void)
 {
 	if (g_parallel > 0)
 		kill((pid_t)g_parallel, SIGTERM);
+}
+
+/* Copy src to dst (temporary name, rename), executable. */
+static int copy_exe(const char *src, const char *dst, sb_err *e)
+{
+	char tmp[PATHX + 128];
+	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", dst, (long)getpid());
+	int in = open(src, O_RDONLY | O_CLOEXEC);
+	if (in < 0)
+		return sb_errf(e, SB_EUSAGE, "%s: %s: the binaries that travel to other hosts are built by `make portable`",
+			       src, strerror(errno));
+	int out = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0755);
+	char buf[65536];
+	ssize_t n = 0;
+	int bad = out < 0;
+	while (!bad && (n = read(in, buf, sizeof buf)) > 0)
+		bad = write(out, buf, (size_t)n) != n;
+	bad |= n < 0;
+	close(in);
+	if (out >= 0)
+		bad |= close(out) != 0;
+	if (bad || rename(tmp, dst)) {
+		unlink(tmp);
+		return sb_errf(e, SB_EIO, "%s: cannot write: %s", dst, strerror(errno));
+	}
+	return 0;
+}
+
+/* What travels to other hosts: the portable builds beside this binary
+ * (study-portable, shake-portable: -march=x86-64, no AVX), as NAME/.remote/study and
+ * .remote/shake, the names the worker looks for. The build for this machine may use
+ * AVX-512, which another host may lack (SIGILL mid-run); the portable engine gives the
+ * same bits (tests/integration/regression.sh, study_ssh.sh). */
+static int stage_remote(drv *d, char *dir, size_t len, sb_err *e)
+{
+	char bindir[PATHX], src[PATHX + 32], dst[PATHX + 32];
+	snprintf(bindir, sizeof bindir, "%s", d->o->self);
+	*strrchr(bindir, '/') = 0;
+	snprintf(dir, len, "%s/.remote", d->dir);
+	if (mkdir_p(dir, e))
+		return e->code;
+	static const char *const names[] = {"study", "shake"};
+	for (int i = 0; i < 2; i++) {
+		snprintf(src, sizeof src, "%s/%s-portable", bindir, names[i]);
+		snprintf(dst, sizeof dst, "%s/%s", dir, names[i]);
+		if (copy_exe(src, dst, e))
+			return e->code;
+	}
+	return 0;
+}
+
+/* The progress line of `study run` (watch.h): rewritten in place on a terminal, a
+ * line at a time otherwise. */
+static void progress_line(drv *d, int final)
+{
+	if (!d->watch)
+		return;
+	sb_err e = {0};
+	if (watch_poll(d->watch, &d->db, &e))
+		return;
+	char line[4096];
+	size_t width = sizeof line;
+	struct winsize ws;
+	if (d->progress_tty && ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 20 && ws.ws_col < sizeof line)
+		width = ws.ws_col; /* one screen line: "study: " and the look, cut */
+	memcpy(line, "study: ", 8);
+	watch_line(d->watch, line + 7, width - 7);
+	if (d->progress_tty)
+		fprintf(stderr, "\r%s\033[K%s", line, final ? "\n" : "");
+	else
+		fprintf(stderr, "%s\n", line);
+}
+
+static double mono(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int add_arg(char **argv, int *argc, int max, const char *fmt, const char *a, const char *b)
@@ -82,9 +165,6 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	const char *fixed[] = {"parallel", "--will-cite", "--jobs", njobs, "--joblog", joblog, "--arg-file", jobfile};
 	for (size_t i = 0; i < sizeof fixed / sizeof *fixed; i++)
 		add_arg(argv, &argc, MAXA, "%s%s", fixed[i], "");
-	int tty = d->o->progress < 0 ? isatty(2) : d->o->progress;
-	if (tty)
-		add_arg(argv, &argc, MAXA, "%s%s", "--bar", "");
 	char q1[PATHX], q2[PATHX];
 	if (d->o->sshloginfile) {
 		/* Remote: the binaries go once per host (--basefile), each job's argument file
@@ -92,9 +172,20 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		 * "/./" marks where the path relative to the remote work dir starts. Output is
 		 * grouped per job, so a DONE line arrives after its files are back. */
 		char bindir[PATHX];
-		snprintf(bindir, sizeof bindir, "%s", d->o->self);
-		*strrchr(bindir, '/') = 0;
-		char wd[PATHLEN];
+		if (stage_remote(d, bindir, sizeof bindir, e)) {
+			free(argv);
+			return e->code;
+		}
+		char wd[PATHLEN], tries[32];
+		/* hosts down at the start are left out; a job whose host dies under it (ssh
+		 * fails: no output, no DONE line) is tried again on another host. The worker
+		 * exits 0 whenever it reported, so a run's own failure is never tried again
+		 * here; killed and I/O-failed runs are the driver's to retry, attempt by
+		 * attempt (driver.c). */
+		snprintf(tries, sizeof tries, "%d", d->o->retries + 1);
+		add_arg(argv, &argc, MAXA, "--filter-hosts%s%s", "", "");
+		add_arg(argv, &argc, MAXA, "--retries%s%s", "", "");
+		add_arg(argv, &argc, MAXA, "%s%s", tries, "");
 		snprintf(wd, sizeof wd, ".shakebox/%s", d->c.name);
 		add_arg(argv, &argc, MAXA, "--sshloginfile%s%s", "", "");
 		add_arg(argv, &argc, MAXA, "%s%s", d->o->sshloginfile, "");
@@ -158,30 +249,60 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	}
 	g_parallel = pid;
 	close(pfd[1]);
-	FILE *in = fdopen(pfd[0], "r");
-	char *line = NULL;
-	size_t cap = 0;
-	ssize_t got;
-	while (in && ((got = getline(&line, &cap, in)) >= 0 || errno == EINTR)) {
-		if (got < 0) {
-			clearerr(in);
-			errno = 0;
+	/* the workers' lines as they come, and a look for the progress line every
+	 * interval in between */
+	double interval = d->progress_tty ? 1 : 5, next = mono() + interval;
+	size_t cap = 65536, have = 0;
+	char *buf = malloc(cap);
+	for (int open_ = buf != NULL; open_;) {
+		struct pollfd pf = {pfd[0], POLLIN, 0};
+		int ms = d->watch ? (int)((next - mono()) * 1000) : -1;
+		int pr = poll(&pf, 1, d->watch && ms < 0 ? 0 : ms);
+		if (d->watch && mono() >= next) {
+			progress_line(d, 0);
+			next = mono() + interval;
+		}
+		if (pr < 0 && errno != EINTR)
+			break;
+		if (pr <= 0)
+			continue;
+		if (have + 1 >= cap) { /* a line longer than the buffer: keep its head */
+			have = 0;
 			continue;
 		}
-		line[strcspn(line, "\n")] = 0;
-		sb_err le = {0};
-		if (!strncmp(line, WORKER_START "\t", sizeof WORKER_START))
-			on_start(d, line, &le);
-		else if (!strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE))
-			on_done(d, is_cache, line, &le);
-		else if (line[0])
-			fprintf(stderr, "%s\n", line);
-		if (le.code)
-			fprintf(stderr, "study: %s\n", le.msg); /* the final sweep repairs it */
+		ssize_t got = read(pfd[0], buf + have, cap - 1 - have);
+		if (got < 0 && errno == EINTR)
+			continue;
+		if (got <= 0) {
+			open_ = 0;
+			if (have == 0)
+				break;
+			buf[have++] = '\n'; /* the last line without its newline */
+		} else {
+			have += (size_t)got;
+		}
+		size_t from = 0;
+		for (char *nl; (nl = memchr(buf + from, '\n', have - from));) {
+			*nl = 0;
+			char *line = buf + from;
+			from = (size_t)(nl - buf) + 1;
+			sb_err le = {0};
+			if (!strncmp(line, WORKER_START "\t", sizeof WORKER_START))
+				on_start(d, line, &le);
+			else if (!strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE))
+				on_done(d, is_cache, line, &le);
+			else if (line[0])
+				fprintf(stderr, "%s%s\n", d->progress_tty ? "\r\033[K" : "", line);
+			if (le.code)
+				fprintf(stderr, "study: %s\n", le.msg); /* the final sweep repairs it */
+		}
+		memmove(buf, buf + from, have - from);
+		have -= from;
 	}
-	free(line);
-	if (in)
-		fclose(in);
+	free(buf);
+	close(pfd[0]);
+	if (!is_cache)
+		progress_line(d, 1);
 	int st = 0;
 	while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
 		;

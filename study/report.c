@@ -1,13 +1,18 @@
 /* report.c - status, list and export: readers of the database, never writers. */
 #include "report.h"
 
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "adapt.h"
 #include "db.h"
+#include "layout.h"
+#include "watch.h"
 
 static int open_ro(st_db *d, const char *path, sb_err *e)
 {
@@ -205,6 +210,45 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	return 0;
 }
 
+/* Why runs failed, by status (physics failures are never retried: the engine is
+ * deterministic), and what was run again automatically (killed, I/O, lost). */
+static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q,
+		    "SELECT COALESCE(s.status, (SELECT a.status FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id"
+		    " ORDER BY a.n DESC LIMIT 1)) AS why, COUNT(*) FROM run r LEFT JOIN result s ON s.campaign = r.campaign"
+		    " AND s.run = r.id WHERE r.campaign = ? AND r.state = 'failed' GROUP BY why ORDER BY why",
+		    "t", name))
+		return e->code;
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		fprintf(out, "%s %s %s", first ? "  failed runs by reason (not run again; --retry-failed does):" : ",",
+			col(q, 0), col(q, 1));
+		first = 0;
+	}
+	if (!first)
+		fputc('\n', out);
+	sqlite3_finalize(q);
+	if (db_exec(d, e, &q,
+		    "SELECT a.status, COUNT(*), SUM(r.state = 'done') FROM attempt a JOIN run r ON r.campaign = a.campaign"
+		    " AND r.id = a.run WHERE a.campaign = ? AND a.status IN ('killed', 'io', 'lost') GROUP BY a.status"
+		    " ORDER BY a.status",
+		    "t", name))
+		return e->code;
+	first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		fprintf(out, "%s %s %s (%s of their runs now done)",
+			first ? "  transient attempts (run again automatically up to --retries):" : ",", col(q, 0), col(q, 1),
+			col(q, 2));
+		first = 0;
+	}
+	if (!first)
+		fputc('\n', out);
+	sqlite3_finalize(q);
+	return 0;
+}
+
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -258,11 +302,12 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		if (first)
 			fprintf(out, "  unsuccessful attempts (run, attempt, exit code, status: message):\n");
 		first = 0;
+		const char *st = col(q, 5);
 		fprintf(out, "    %s #%s exit %s %s: %s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3), col(q, 4),
-			!strcmp(col(q, 5), "failed") ? "" : "  [resumable]");
+			!strcmp(st, "failed") ? "" : !strcmp(st, "done") ? "  [run again: done]" : "  [resumable]");
 	}
 	sqlite3_finalize(q);
-	return 0;
+	return failure_summary(d, name, out, e);
 }
 
 int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e)
@@ -296,14 +341,20 @@ int report_list(const char *db_path, FILE *out, sb_err *e)
 	sqlite3_stmt *q;
 	if (!db_exec(&d, e, &q,
 		     "SELECT c.name, COUNT(r.id), SUM(r.state = 'done'), SUM(r.state = 'failed'),"
-		     " SUM(r.state IN ('pending', 'running')), c.updated, c.axes, c.file"
+		     " SUM(r.state IN ('pending', 'running')), c.updated, c.axes, c.file,"
+		     /* the failed runs' reasons: "overlap:2 nan:1" */
+		     " (SELECT group_concat(why || ':' || n, ' ') FROM (SELECT COALESCE(s.status, (SELECT a.status FROM attempt a"
+		     "  WHERE a.campaign = f.campaign AND a.run = f.id ORDER BY a.n DESC LIMIT 1), 'failed') AS why,"
+		     "  COUNT(*) AS n FROM run f LEFT JOIN result s ON s.campaign = f.campaign AND s.run = f.id"
+		     "  WHERE f.campaign = c.name AND f.state = 'failed' GROUP BY why ORDER BY why))"
 		     " FROM campaign c LEFT JOIN run r ON r.campaign = c.name GROUP BY c.name ORDER BY c.name",
 		     "")) {
 		fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s\n", "campaign", "runs", "done", "failed", "pending",
-			"updated", "axes (file)");
+			"updated", "axes (file) [failed: reasons]");
 		while (sqlite3_step(q) == SQLITE_ROW)
-			fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s (%s)\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3),
-				col(q, 4), col(q, 5), col(q, 6), col(q, 7));
+			fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s (%s)%s%s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3),
+				col(q, 4), col(q, 5), col(q, 6), col(q, 7), col(q, 8)[0] ? " [failed: " : "", col(q, 8),
+				col(q, 8)[0] ? "]" : "");
 		sqlite3_finalize(q);
 	}
 	db_close(&d);
@@ -370,6 +421,86 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 		}
 		sqlite3_finalize(q);
 	}
+	db_close(&d);
+	return e->code;
+}
+
+/* Ctrl-C or SIGTERM ends a watch after the look it is at: the one flag a handler
+ * sets (a handler has no other way to speak). */
+static volatile sig_atomic_t g_watch_stop;
+
+static void on_watch_signal(int sig)
+{
+	(void)sig;
+	g_watch_stop = 1;
+}
+
+int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	long nw = 0;
+	watch *w = NULL;
+	sqlite3_stmt *q;
+	if (name) {
+		if (campaign_known(&d, name, e))
+			goto out;
+	}
+	if (db_exec(&d, e, &q, "SELECT name FROM campaign WHERE ?1 IS NULL OR name = ?1 ORDER BY name", "t", name))
+		goto out;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		watch *nwp = realloc(w, (size_t)(nw + 1) * sizeof *w);
+		if (!nwp)
+			break;
+		w = nwp;
+		char dir[4200];
+		layout_campaign(runs_dir ? runs_dir : "runs", col(q, 0), dir, sizeof dir);
+		watch_init(&w[nw++], col(q, 0), dir);
+	}
+	sqlite3_finalize(q);
+	struct sigaction sa, old_int, old_term;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_watch_signal; /* no SA_RESTART: the sleep ends at once */
+	sigaction(SIGINT, &sa, &old_int);
+	sigaction(SIGTERM, &sa, &old_term);
+	g_watch_stop = 0;
+	int tty = isatty(fileno(out));
+	for (;;) {
+		int over = 1;
+		for (long i = 0; i < nw && !e->code; i++) {
+			watch_poll(&w[i], &d, e);
+			over &= watch_over(&w[i]);
+		}
+		if (e->code)
+			break;
+		char stamp[32];
+		time_t now = time(NULL);
+		struct tm tm;
+		localtime_r(&now, &tm);
+		strftime(stamp, sizeof stamp, "%H:%M:%S", &tm);
+		if (tty)
+			fputs("\033[H\033[J", out); /* redraw in place */
+		fprintf(out, "%s%s\n", stamp, over ? "  (final)" : "");
+		for (long i = 0; i < nw; i++)
+			watch_print(&w[i], out);
+		if (!tty)
+			fputc('\n', out);
+		fflush(out);
+		if (over || g_watch_stop)
+			break;
+		struct timespec ts = {(time_t)interval, (long)((interval - floor(interval)) * 1e9)};
+		while (!g_watch_stop && nanosleep(&ts, &ts) && errno == EINTR)
+			;
+		if (g_watch_stop)
+			break;
+	}
+	sigaction(SIGINT, &old_int, NULL);
+	sigaction(SIGTERM, &old_term, NULL);
+out:
+	for (long i = 0; i < nw; i++)
+		watch_free(&w[i]);
+	free(w);
 	db_close(&d);
 	return e->code;
 }

@@ -9,6 +9,10 @@
 /* Counts per state, cache hits, failures with their reasons and an ETA; all
  * campaigns when name is NULL. */
 int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e);
+/* Live progress (watch.h) of one campaign (all when name is NULL), a look every
+ * interval seconds, until every run is finished, no driver runs it any more, or
+ * SIGINT/SIGTERM; runs_dir is where the runs' journals are. */
+int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval, FILE *out, sb_err *e);
 /* One line per campaign. */
 int report_list(const char *db_path, FILE *out, sb_err *e);
 /* CSV of the `runs` view (parameters + results), one row per run. */

@@ -29,8 +29,8 @@ static const char *USAGE =
 	"`study COMMAND --help` describes each command; study/README.md the schema.\n";
 
 static const char *HELP_RUN =
-	"usage: study run CAMPAIGN [--jobs N] [--sshloginfile FILE] [--retry-failed] [--no-cache]\n"
-	"                 [--progress | --no-progress] [--runs DIR] [--db FILE]\n\n"
+	"usage: study run CAMPAIGN [--jobs N] [--sshloginfile FILE] [--retries N] [--retry-failed]\n"
+	"                 [--no-cache] [--progress | --no-progress] [--runs DIR] [--db FILE]\n\n"
 	"Expands the campaign, checks every value, records the runs in the database and runs\n"
 	"each one that has no complete output yet (RUNS/NAME/RUN-ID.h5) with GNU parallel,\n"
 	"ingesting each as it finishes. Kill it at any moment and run it again: finished runs\n"
@@ -44,7 +44,13 @@ static const char *HELP_RUN =
 	"the answer is sharp\").\n\n"
 	"  --jobs N            parallel jobs (per host with --sshloginfile; default: cores)\n"
 	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
-	"                      ~/.shakebox/NAME on each host, outputs copied back\n"
+	"                      ~/.shakebox/NAME on each host, outputs copied back; the\n"
+	"                      portable engine (bin/shake-portable, make portable) travels;\n"
+	"                      hosts that are down are left out, a job lost with its host\n"
+	"                      is redone on another\n"
+	"  --retries N         a run killed by a signal, failed on I/O or lost with its host\n"
+	"                      is run again up to N times (default 2; every attempt is\n"
+	"                      recorded); physics failures and bad input never are\n"
 	"  --retry-failed      run failed runs again (their attempts stay recorded)\n"
 	"  --keep-old          the file changed and recorded runs are no longer in its grid:\n"
 	"                      keep them as an earlier version (current = 0; analysis tools\n"
@@ -52,19 +58,26 @@ static const char *HELP_RUN =
 	"  --forget-old        ... or delete their rows and move their files to NAME/forgotten/\n"
 	"                      (without either, study run refuses and says what changed)\n"
 	"  --no-cache          every run settles its own packing\n"
-	"  --progress          progress bar (default: when stderr is a terminal)\n\n"
+	"  --progress          a progress line: runs in flight with their swept values and\n"
+	"                      t/T, counts, ETA (default: when stderr is a terminal)\n\n"
 	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O (a run's I/O fault stops\n"
 	"the launching; the runs stay pending), 3 some runs failed (recorded; see study status),\n"
 	"4 another driver is running this campaign, 7 interrupted (run again to resume).\n";
 
 static const char *HELP_STATUS =
-	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--runs DIR] [--db FILE]\n\n"
+	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--watch [--interval S]] [--runs DIR]\n"
+	"                    [--db FILE]\n\n"
 	"Counts per state (pending, running, done, failed), packing-cache hits, every\n"
 	"unsuccessful attempt with its exit code and message, and an ETA from the mean\n"
 	"time of the finished runs spread over N jobs (default: cores). Without NAME: all.\n"
 	"For an [onset] campaign: per group the onset, its interval, the replicates and\n"
 	"runs so far, and every replicate's bracket. For a grid with replicates = auto: per\n"
-	"point the replicates and runs so far, the result's estimate and the interval reached.\n";
+	"point the replicates and runs so far, the result's estimate and the interval reached.\n\n"
+	"--watch: a look every S seconds (--interval, default 2): counts, every run in flight\n"
+	"with its swept values and the simulated time t/T it reached (from its journal; t ?\n"
+	"for runs on other hosts), and an ETA from the simulated seconds per second measured\n"
+	"over the runs in flight (else the last runs to finish). Ends when nothing is\n"
+	"pending or running, when no driver runs the campaign, or on Ctrl-C.\n";
 
 static const char *HELP_LIST =
 	"usage: study list [--runs DIR] [--db FILE]\n\n"
@@ -97,14 +110,19 @@ struct opts {
 	const char *runs, *db, *ssh, *outfile;
 	const char *pos[4];
 	int npos, jobs, retry, nocache, progress, keep_old, forget_old;
+	int retries, watch;  /* --retries N (-1: default), status --watch */
+	double interval;     /* status --watch --interval S */
 };
 
 static int parse(int argc, char **argv, struct opts *o, const char *help, int maxpos)
 {
 	memset(o, 0, sizeof *o);
 	o->progress = -1;
+	o->retries = -1;
+	o->interval = 2;
 	static const char *const known[] = {"--help", "--runs", "--db", "--sshloginfile", "--jobs", "--retry-failed",
-					    "--keep-old", "--forget-old", "--no-cache", "--progress", "--no-progress", NULL};
+					    "--keep-old", "--forget-old", "--no-cache", "--progress", "--no-progress",
+					    "--retries", "--watch", "--interval", NULL};
 	for (int i = 2; i < argc; i++) {
 		const char *a = argv[i];
 		/* --opt=value as well as --opt value */
@@ -136,6 +154,28 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 			i += !inl;
 			continue;
 		}
+		if (!strcmp(a, "--retries")) {
+			char *end;
+			long r = next ? strtol(next, &end, 10) : -1;
+			if (!next || *end || r < 0 || r > 100) {
+				fprintf(stderr, "study: --retries: expected an integer in [0, 100]\n");
+				return 1;
+			}
+			o->retries = (int)r;
+			i += !inl;
+			continue;
+		}
+		if (!strcmp(a, "--interval")) {
+			char *end;
+			double v = next ? strtod(next, &end) : 0;
+			if (!next || *end || !(v >= 0.1 && v <= 3600)) {
+				fprintf(stderr, "study: --interval: expected seconds in [0.1, 3600]\n");
+				return 1;
+			}
+			o->interval = v;
+			i += !inl;
+			continue;
+		}
 		if (inl) {
 			fprintf(stderr, "study: %s: %s takes no value (study %s --help)\n", argv[1], a, argv[1]);
 			return 1;
@@ -146,6 +186,7 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 		if (!strcmp(a, "--no-cache")) { o->nocache = 1; continue; }
 		if (!strcmp(a, "--progress")) { o->progress = 1; continue; }
 		if (!strcmp(a, "--no-progress")) { o->progress = 0; continue; }
+		if (!strcmp(a, "--watch")) { o->watch = 1; continue; }
 #undef VAL
 		if (a[0] == '-' && a[1]) {
 			const char *best = NULL;
@@ -317,7 +358,8 @@ int main(int argc, char **argv)
 		driver_opts d = {.campaign_file = o.pos[0], .runs_dir = o.runs, .db_path = o.db,
 				 .sshloginfile = o.ssh, .self = self, .jobs = o.jobs, .retry_failed = o.retry,
 				 .keep_old = o.keep_old, .forget_old = o.forget_old,
-				 .use_cache = !o.nocache, .progress = o.progress};
+				 .use_cache = !o.nocache, .progress = o.progress,
+				 .retries = o.retries < 0 ? DRIVER_RETRIES : o.retries};
 		if (driver_run(&d, &e)) {
 			fprintf(stderr, "study: %s\n", e.msg);
 			return e.code == DRV_FAILED || e.code == DRV_INTERRUPTED || e.code == DRV_BUSY ? e.code
@@ -360,7 +402,9 @@ int main(int argc, char **argv)
 		fprintf(stderr, "study: %s\n", e.msg);
 		return 1;
 	}
-	if (!strcmp(cmd, "status")) {
+	if (!strcmp(cmd, "status") && o.watch) {
+		report_watch(dbp, o.runs, o.npos ? name : NULL, o.interval, stdout, &e);
+	} else if (!strcmp(cmd, "status")) {
 		int jobs = o.jobs ? o.jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
 		report_status(dbp, o.npos ? name : NULL, jobs, stdout, &e);
 	} else if (!strcmp(cmd, "list")) {

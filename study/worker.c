@@ -87,7 +87,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		/* exit codes as the engine's: 1 a job that can never run (the driver marks it
 		 * failed), 2 an I/O fault (the run stays pending and the driver stops) */
 		report_done(name, 1, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
-		return 1;
+		return 0;
 	}
 	char args[600], log[600], out[600], lockp[600];
 	layout_file("", is_cache, name, LAY_ARGS, args, sizeof args);
@@ -104,7 +104,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	int lk = open(lockp, O_RDWR | O_CREAT, 0666);
 	if (lk < 0 || flock(lk, LOCK_EX) != 0) {
 		report_done(name, 2, host, 0, "exec: cannot lock the run");
-		return 2;
+		return 0;
 	}
 	if (access(out, F_OK) == 0) {
 		report_done(name, 0, host, 0, "already complete");
@@ -114,7 +114,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	FILE *f = fopen(args, "r");
 	if (!f) {
 		report_done(name, 2, host, 0, "exec: missing argument file");
-		return 2;
+		return 0;
 	}
 	char *argv[128];
 	int argc = 0;
@@ -143,7 +143,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		for (int i = 1; i < argc; i++)
 			free(argv[i]);
 		report_done(name, 1, host, 0, "exec: argument file has more than 126 parameters");
-		return 1;
+		return 0;
 	}
 
 	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND, 0666);
@@ -187,5 +187,5 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
 	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
 	close(lk);
-	return code;
+	return 0; /* reported: see worker.h */
 }

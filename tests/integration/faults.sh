@@ -101,7 +101,7 @@ rm -f "$R/f/${ids[1]}.h5"
 "$STUDY" run f.campaign --runs "$R" --jobs 2 --no-cache >dmg.log 2>&1
 rc=$?
 [ "$rc" = 0 ] && [ "$(q "$R/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'done'")" = 6 ] &&
-	[ -f "$R/f/damaged/${ids[0]}.attempt2.h5" ] || [ -f "$R/f/damaged/${ids[0]}.attempt1.h5" ] &&
+	[ -n "$(ls "$R/f/damaged/${ids[0]}".attempt*.h5 2>/dev/null)" ] && # numbered by its attempts (retries add some)
 	grep -q "was done but" dmg.log && ok damaged.rerun || fail damaged.rerun "exit $rc: $(tail -n 3 dmg.log)"
 "$STUDY" export f --runs "$R" >dmg.csv
 cmp -s <(strip ref.csv) <(strip dmg.csv) && ok damaged.export_equals_uninterrupted ||

@@ -108,10 +108,11 @@ same=0
 for f in REF/k/*.h5; do same_output "$f" "C/k/$(basename "$f")" && same=$((same + 1)); done
 [ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok ctrl_c.resumed_identical || fail ctrl_c.resumed_identical "exit $rc, $same of 6 identical"
 
-# a worker's engine killed (OOM killer, a node's admin) while the driver runs on: the
-# attempt is recorded as killed, the run stays pending (exit 7), and the next
-# `study run` continues it from its checkpoint to the same file
-"$STUDY" run k.campaign --runs "$TMP/W" --jobs 2 >w1.log 2>&1 &
+# a worker's engine killed (OOM killer, a node's admin) while the driver runs on, with
+# --retries 0 (study_retry.sh tests the retries): the attempt is recorded as killed, the
+# run stays pending (exit 7), and the next `study run` continues it from its checkpoint
+# to the same file
+"$STUDY" run k.campaign --runs "$TMP/W" --jobs 2 --retries 0 >w1.log 2>&1 &
 pid=$!
 victim=
 for i in $(seq 300); do

@@ -1,0 +1,339 @@
+/* watch.c - live progress of a campaign from the database and the journals of the
+ * runs in flight (see watch.h). */
+#include "watch.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <time.h>
+
+#include "jtail.h"
+#include "layout.h"
+#include "report.h"
+
+/* a rate is measured over at least this much wall time (the engine's journal reaches
+ * the disk in stdio buffers, so t advances in steps), and over the last this much at
+ * most, so that it follows a host that slows down */
+#define RATE_MIN_WALL 1.0
+#define RATE_WINDOW 30.0
+
+static double now_s(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static const char *col(sqlite3_stmt *q, int i)
+{
+	const unsigned char *t = sqlite3_column_text(q, i);
+	return t ? (const char *)t : "";
+}
+
+void watch_init(watch *w, const char *name, const char *dir)
+{
+	memset(w, 0, sizeof *w);
+	snprintf(w->name, sizeof w->name, "%s", name);
+	snprintf(w->dir, sizeof w->dir, "%s", dir);
+	w->eta = -1;
+	w->driver = -1;
+}
+
+void watch_free(watch *w)
+{
+	free(w->runs);
+	w->runs = NULL;
+	w->nruns = w->cap = 0;
+}
+
+/* Does a process hold the campaign's driver lock (an exclusive flock)? Read from
+ * /proc/locks, never by taking the lock: a watcher holding it even for a moment
+ * would turn a starting driver away. -1 when that cannot be known. */
+static int driver_alive(const char *dir)
+{
+	char lp[4400];
+	struct stat sb;
+	snprintf(lp, sizeof lp, "%s/.driver.lock", dir);
+	if (stat(lp, &sb))
+		return 0;
+	FILE *f = fopen("/proc/locks", "r");
+	if (!f)
+		return -1;
+	char line[256];
+	int found = 0;
+	while (!found && fgets(line, sizeof line, f)) {
+		char kind[16];
+		unsigned maj, min;
+		unsigned long ino;
+		/* "1: FLOCK  ADVISORY  WRITE 1234 fd:01:5678 0 EOF" (waiters have "->" first) */
+		const char *p = strstr(line, ": ");
+		if (p && sscanf(p + 2, "%15s %*s %*s %*d %x:%x:%lu", kind, &maj, &min, &ino) == 4 && !strcmp(kind, "FLOCK") &&
+		    ino == (unsigned long)sb.st_ino && maj == major(sb.st_dev) && min == minor(sb.st_dev) && !strstr(line, "->"))
+			found = 1;
+	}
+	fclose(f);
+	return found;
+}
+
+/* "frequency=2.8 radius_ratio=4 seed=3": the campaign's swept keys (its `axes`) with
+ * this run's values, and its replicate */
+static void run_label(st_db *db, const char *camp, const char *axes, const char *id, long replicate, char *out,
+		      size_t len)
+{
+	size_t l = 0;
+	out[0] = 0;
+	char keys[2048];
+	snprintf(keys, sizeof keys, "%s", axes);
+	for (char *sv, *k = strtok_r(keys, " ", &sv); k && l < len; k = strtok_r(NULL, " ", &sv)) {
+		if (!strcmp(k, "seed"))
+			continue; /* the replicate label, below */
+		sqlite3_stmt *q;
+		sb_err e = {0};
+		if (db_exec(db, &e, &q, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "ttt", camp, id,
+			    k))
+			continue;
+		if (sqlite3_step(q) == SQLITE_ROW) {
+			char v[64];
+			if (sqlite3_column_type(q, 0) == SQLITE_FLOAT)
+				report_number(sqlite3_column_double(q, 0), v, sizeof v);
+			else
+				snprintf(v, sizeof v, "%s", col(q, 0));
+			l += (size_t)snprintf(out + l, len - l, "%s%s=%s", l ? " " : "", k, v);
+		}
+		sqlite3_finalize(q);
+	}
+	if (l < len)
+		snprintf(out + l, len - l, "%sseed=%ld", l ? " " : "", replicate);
+}
+
+static watch_run *find_run(watch *w, const char *id)
+{
+	for (long i = 0; i < w->nruns; i++)
+		if (!strcmp(w->runs[i].id, id))
+			return &w->runs[i];
+	if (w->nruns == w->cap) {
+		long c = w->cap ? 2 * w->cap : 16;
+		watch_run *r = realloc(w->runs, (size_t)c * sizeof *r);
+		if (!r)
+			return NULL;
+		w->runs = r;
+		w->cap = c;
+	}
+	watch_run *r = &w->runs[w->nruns++];
+	memset(r, 0, sizeof *r);
+	snprintf(r->id, sizeof r->id, "%s", id);
+	r->t = r->rate = -1;
+	return r;
+}
+
+/* The journal's time, and the run's rate between this look and an earlier one. */
+static void sample(watch *w, watch_run *r, double now, double started, long attempts)
+{
+	char jp[4400];
+	int l = layout_file(w->dir, 0, r->id, LAY_OUTPUT, jp, sizeof jp - 16);
+	snprintf(jp + l, sizeof jp - (size_t)l, ".journal");
+	jtail j = {r->offset, r->ino, r->t};
+	int known = jtail_poll(&j, jp);
+	r->offset = j.offset;
+	r->ino = j.ino;
+	r->t = known ? j.t : -1;
+	if (!known)
+		return;
+	if (r->w_ref <= 0 || r->t < r->t_ref) { /* first look, or a restart went back */
+		r->t_ref = r->t_last = r->t;
+		r->w_ref = r->w_last = now;
+		/* until a second look: its pace since it started, when this attempt is its
+		 * first (a resumed run did not simulate its t since it started) */
+		if (attempts == 0 && started > 0 && now - started >= RATE_MIN_WALL && r->t > 0)
+			r->rate = r->t / (now - started);
+		return;
+	}
+	if (r->t > r->t_last) {
+		r->t_last = r->t;
+		r->w_last = now;
+	}
+	if (r->w_last - r->w_ref >= RATE_MIN_WALL)
+		r->rate = (r->t_last - r->t_ref) / (r->w_last - r->w_ref);
+	if (now - r->w_ref > RATE_WINDOW) { /* slide: measure from the last step on */
+		r->t_ref = r->t_last;
+		r->w_ref = r->w_last;
+	}
+}
+
+int watch_poll(watch *w, st_db *db, sb_err *e)
+{
+	double now = now_s();
+	sqlite3_stmt *q;
+	if (db_exec(db, e, &q,
+		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
+		    " SUM(state = 'running'), (SELECT axes FROM campaign WHERE name = ?1),"
+		    " (SELECT TOTAL(p.value) FROM run r2 JOIN param p ON p.campaign = r2.campaign AND p.run = r2.id"
+		    "  AND p.key = 'duration' WHERE r2.campaign = ?1 AND r2.current AND r2.state = 'pending')"
+		    " FROM run WHERE campaign = ?1 AND current",
+		    "t", w->name))
+		return e->code;
+	char axes[2048] = "";
+	double pending_T = 0;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		w->total = sqlite3_column_int64(q, 0);
+		w->done = sqlite3_column_int64(q, 1);
+		w->failed = sqlite3_column_int64(q, 2);
+		w->pending = sqlite3_column_int64(q, 3);
+		w->running = sqlite3_column_int64(q, 4);
+		snprintf(axes, sizeof axes, "%s", col(q, 5));
+		pending_T = sqlite3_column_double(q, 6);
+	}
+	sqlite3_finalize(q);
+
+	/* the speed of one run, from the last runs to finish: simulated time over the
+	 * shaking loop's wall time */
+	double speed = -1;
+	if (!db_exec(db, e, &q,
+		     "SELECT TOTAL(st), TOTAL(ws) FROM (SELECT s.status_time AS st, s.wall_seconds AS ws FROM result s"
+		     " JOIN run r ON r.campaign = s.campaign AND r.id = s.run WHERE s.campaign = ? AND s.status_time > 0"
+		     " AND s.wall_seconds > 0 ORDER BY r.finished DESC LIMIT 20)",
+		     "t", w->name)) {
+		if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_double(q, 1) > 0)
+			speed = sqlite3_column_double(q, 0) / sqlite3_column_double(q, 1);
+		sqlite3_finalize(q);
+	}
+	if (e->code)
+		return e->code;
+
+	for (long i = 0; i < w->nruns; i++)
+		w->runs[i].seen = 0;
+	if (db_exec(db, e, &q,
+		    "SELECT r.id, r.host, CAST(strftime('%s', r.started) AS INTEGER), r.replicate, r.attempts,"
+		    " (SELECT value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id AND p.key = 'duration')"
+		    " FROM run r WHERE r.campaign = ? AND r.current AND r.state = 'running' ORDER BY r.started, r.id",
+		    "t", w->name))
+		return e->code;
+	double inflight = 0, left = pending_T;
+	long measured = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		watch_run *r = find_run(w, col(q, 0));
+		if (!r)
+			break;
+		r->seen = 1;
+		snprintf(r->host, sizeof r->host, "%s", col(q, 1));
+		r->T = sqlite3_column_double(q, 5);
+		if (!r->label[0])
+			run_label(db, w->name, axes, r->id, (long)sqlite3_column_int64(q, 3), r->label, sizeof r->label);
+		double started = (double)sqlite3_column_int64(q, 2);
+		sample(w, r, now, started, (long)sqlite3_column_int64(q, 4));
+		double rate = r->rate > 0 ? r->rate : speed;
+		if (r->rate > 0)
+			measured++;
+		if (rate > 0)
+			inflight += rate;
+		/* what is left of it: from its journal, else what its pace would have done */
+		double t = r->t >= 0 ? r->t : rate > 0 && started > 0 ? rate * (now - started) : 0;
+		left += r->T > t ? r->T - t : 0;
+	}
+	sqlite3_finalize(q);
+	/* forget the runs no longer in flight */
+	long k = 0;
+	for (long i = 0; i < w->nruns; i++)
+		if (w->runs[i].seen)
+			w->runs[k++] = w->runs[i];
+	w->nruns = k;
+
+	w->remaining = left;
+	w->rate = 0;
+	w->basis = "";
+	if (w->nruns > 0 && inflight > 0) {
+		w->rate = inflight;
+		w->basis = measured ? "the runs in flight" : "the last runs' pace";
+	} else {
+		/* nothing in flight (between passes, or hosts whose output comes back
+		 * whole): simulated time finished per wall second by the last runs */
+		if (!db_exec(db, e, &q,
+			     "SELECT COUNT(*), TOTAL(st), (MAX(f) - MIN(s)) * 86400 FROM (SELECT s.status_time AS st,"
+			     " julianday(r.finished) AS f, julianday(r.started) AS s FROM result s JOIN run r"
+			     " ON r.campaign = s.campaign AND r.id = s.run WHERE s.campaign = ? AND r.started IS NOT NULL"
+			     " AND r.finished IS NOT NULL ORDER BY r.finished DESC LIMIT 20)",
+			     "t", w->name)) {
+			if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int64(q, 0) >= 1 && sqlite3_column_double(q, 2) > 0) {
+				w->rate = sqlite3_column_double(q, 1) / sqlite3_column_double(q, 2);
+				w->basis = "the last runs to finish";
+			}
+			sqlite3_finalize(q);
+		}
+	}
+	w->eta = w->rate > 0 ? w->remaining / w->rate : -1;
+	w->driver = driver_alive(w->dir);
+	return e->code;
+}
+
+int watch_over(const watch *w)
+{
+	return (w->pending == 0 && w->running == 0) || w->driver == 0;
+}
+
+static void fmt_dur(double s, char *buf, size_t len)
+{
+	if (s < 0)
+		snprintf(buf, len, "unknown");
+	else if (s < 120)
+		snprintf(buf, len, "%.0f s", s);
+	else if (s < 7200)
+		snprintf(buf, len, "%.1f min", s / 60);
+	else
+		snprintf(buf, len, "%.1f h", s / 3600);
+}
+
+static void run_state(const watch_run *r, char *buf, size_t len)
+{
+	char T[32];
+	report_number(r->T, T, sizeof T);
+	if (r->t >= 0)
+		snprintf(buf, len, "t %.3g/%s s", r->t, T);
+	else
+		snprintf(buf, len, "t ?/%s s", T);
+}
+
+static void head(const watch *w, char *buf, size_t len)
+{
+	char eta[32];
+	fmt_dur(w->eta, eta, sizeof eta);
+	long fin = w->done + w->failed;
+	int n = snprintf(buf, len, "%s: %ld/%ld finished (%.0f%%): %ld done, %ld failed, %ld pending, %ld running", w->name,
+			 fin, w->total, w->total ? 100.0 * (double)fin / (double)w->total : 100.0, w->done, w->failed,
+			 w->pending, w->running);
+	if ((w->pending || w->running) && n > 0 && (size_t)n < len)
+		snprintf(buf + n, len - (size_t)n, "; ETA %s%s%.3g simulated s per s%s%s", eta,
+			 w->rate > 0 ? " at " : "", w->rate > 0 ? w->rate : 0.0, w->rate > 0 ? " from " : "",
+			 w->rate > 0 ? w->basis : "");
+}
+
+void watch_print(const watch *w, FILE *out)
+{
+	char h[512];
+	head(w, h, sizeof h);
+	fprintf(out, "%s\n", h);
+	for (long i = 0; i < w->nruns; i++) {
+		const watch_run *r = &w->runs[i];
+		char st[64], rate[48] = "";
+		run_state(r, st, sizeof st);
+		if (r->rate > 0)
+			snprintf(rate, sizeof rate, "  %.3g simulated s per s", r->rate);
+		fprintf(out, "  %-40s %-18s %5.0f%%%s  %s (%s)\n", r->label, st,
+			r->t >= 0 && r->T > 0 ? 100 * fmin(r->t / r->T, 1) : 0.0, rate, r->host, r->id);
+	}
+	if (w->driver == 0 && (w->pending || w->running))
+		fprintf(out, "  no driver is running %s (study run resumes it)\n", w->name);
+}
+
+void watch_line(const watch *w, char *buf, size_t len)
+{
+	char h[512];
+	head(w, h, sizeof h);
+	size_t l = (size_t)snprintf(buf, len, "%s", h);
+	for (long i = 0; i < w->nruns && l < len; i++) {
+		char st[64];
+		run_state(&w->runs[i], st, sizeof st);
+		l += (size_t)snprintf(buf + l, len - l, " | %s %s", w->runs[i].label, st);
+	}
+}
