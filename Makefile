@@ -65,6 +65,8 @@ help:
 	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build)"
 	@echo "make bench      speed: shakebox vs LAMMPS gran/hooke on the paper scene, ns/particle-step"
 	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
+	@echo "make bench-study  what a study costs: the claims' questions by fixed grids and by stop rules, adaptive"
+	@echo "                search and auto replicates, CPU seconds and answers side by side (STUDY_QUICK=1, JOBS=2)"
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
