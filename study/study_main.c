@@ -12,6 +12,7 @@
 #include "report.h"
 #include "results.h"
 #include "search.h"
+#include "slurm.h"
 #include "sharpen.h"
 #include "worker.h"
 #include "words.h"
@@ -24,7 +25,8 @@ static const char *USAGE =
 	"  study list               the campaigns in the database\n"
 	"  study export NAME        CSV of every run: parameters and results\n"
 	"  study expand CAMPAIGN    check a campaign and print its grid (id, seed, values)\n"
-	"  study columns            the result columns: type, place in the run file, unit, definition\n\n"
+	"  study columns            the result columns: type, place in the run file, unit, definition\n"
+	"  study submit CAMPAIGN --slurm  submit the runs not done as a Slurm job array\n\n"
 	"Common options: --runs DIR (outputs; default runs), --db FILE (default DIR/study.db).\n"
 	"`study COMMAND --help` describes each command; study/README.md the schema.\n";
 
@@ -79,6 +81,36 @@ static const char *HELP_STATUS =
 	"over the runs in flight (else the last runs to finish). Ends when nothing is\n"
 	"pending or running, when no driver runs the campaign, or on Ctrl-C.\n";
 
+static const char *HELP_SUBMIT =
+	"usage: study submit CAMPAIGN --slurm [--throttle K] [--runs-per-task N] [--sbatch-args \"ARGS\"]\n"
+	"                    [--retry-failed] [--no-cache] [--keep-old | --forget-old] [--runs DIR] [--db FILE]\n\n"
+	"Prepares the runs of the campaign that are not done as study run would (checks, argument\n"
+	"files, shared packings) and submits them to Slurm as one job array (sbatch): array task\n"
+	"I runs the runs on line I + 1 of RUNS/NAME/slurm/tasks-N.txt with `study exec`, through\n"
+	"RUNS/NAME/slurm/array.sh. The database stays on this machine: study status, study run\n"
+	"and the next study submit read back what the tasks did (outputs, logs); every run's job\n"
+	"id and array index, per attempt, are in the table slurm_task. Run it again after tasks\n"
+	"were cancelled, killed or hit their time limit: only the runs that are not done, and not\n"
+	"still queued or running, are submitted, and a stopped run resumes from its checkpoint.\n"
+	"scancel sends SIGTERM: the engine writes a checkpoint and stops, and the task starts no\n"
+	"further run.\n\n"
+	"  --slurm             submit to Slurm (sbatch, squeue); the only scheduler so far\n"
+	"  --throttle K        at most K tasks of the array run at once (--array=...%K)\n"
+	"  --runs-per-task N   N runs one after the other in each task (default 1): fewer, longer\n"
+	"                      tasks for short runs\n"
+	"  --sbatch-args ARGS  more sbatch options, split at whitespace, no quoting, e.g.\n"
+	"                      \"--partition=short --time=02:00:00 --mem=1G\"; --array and\n"
+	"                      --output are study's own\n"
+	"  --retry-failed      submit failed runs again too (their attempts stay recorded)\n"
+	"  --no-cache          every run settles its own packing\n"
+	"  --keep-old, --forget-old  the campaign file changed: as for study run\n\n"
+	"Logs: RUNS/NAME/slurm/logs/JOB_INDEX.out (each task's), RUNS/NAME/logs/RUN.log (the\n"
+	"engine's). The runs directory and the study and shake binaries must be on a file\n"
+	"system the nodes see at the same path. [onset] searches and replicates = auto choose\n"
+	"their runs from the results: run them with study run.\n"
+	"Exit codes: 0 submitted (or nothing to submit), 1 bad campaign or usage, 2 sbatch,\n"
+	"squeue or I/O failed, 4 another driver holds the campaign.\n";
+
 static const char *HELP_LIST =
 	"usage: study list [--runs DIR] [--db FILE]\n\n"
 	"One line per campaign: runs, done, failed, pending, last update, swept axes.\n";
@@ -110,6 +142,8 @@ struct opts {
 	const char *runs, *db, *ssh, *outfile;
 	const char *pos[4];
 	int npos, jobs, retry, nocache, progress, keep_old, forget_old;
+	int slurm;                                   /* submit --slurm */
+	const char *throttle, *per_task, *sbatch_args; /* submit: checked there */
 	int retries, watch;  /* --retries N (-1: default), status --watch */
 	double interval;     /* status --watch --interval S */
 };
@@ -122,7 +156,8 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 	o->interval = 2;
 	static const char *const known[] = {"--help", "--runs", "--db", "--sshloginfile", "--jobs", "--retry-failed",
 					    "--keep-old", "--forget-old", "--no-cache", "--progress", "--no-progress",
-					    "--retries", "--watch", "--interval", NULL};
+					    "--retries", "--watch", "--interval", 
+					    "--slurm", "--throttle", "--runs-per-task", "--sbatch-args", NULL};
 	for (int i = 2; i < argc; i++) {
 		const char *a = argv[i];
 		/* --opt=value as well as --opt value */
@@ -143,6 +178,9 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 		VAL("--db", o->db)
 		VAL("--sshloginfile", o->ssh)
 		VAL("-o", o->outfile)
+		VAL("--throttle", o->throttle)
+		VAL("--runs-per-task", o->per_task)
+		VAL("--sbatch-args", o->sbatch_args)
 		if (!strcmp(a, "--jobs") || !strcmp(a, "-j")) {
 			char *end;
 			long j = next ? strtol(next, &end, 10) : 0;
@@ -186,6 +224,7 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 		if (!strcmp(a, "--no-cache")) { o->nocache = 1; continue; }
 		if (!strcmp(a, "--progress")) { o->progress = 1; continue; }
 		if (!strcmp(a, "--no-progress")) { o->progress = 0; continue; }
+		if (!strcmp(a, "--slurm")) { o->slurm = 1; continue; }
 		if (!strcmp(a, "--watch")) { o->watch = 1; continue; }
 #undef VAL
 		if (a[0] == '-' && a[1]) {
@@ -228,6 +267,42 @@ static int campaign_name(const char *arg, char *name, size_t len, sb_err *e)
 		return e->code;
 	}
 	snprintf(name, len, "%s", arg);
+	return 0;
+}
+
+/* A count option of study submit: an integer in [lo, hi], or 0 when not given. */
+static int count_opt(const char *name, const char *v, long lo, long hi, long *out)
+{
+	char *end;
+	*out = 0;
+	if (!v)
+		return 0;
+	long x = strtol(v, &end, 10);
+	if (!*v || *end || x < lo || x > hi) {
+		fprintf(stderr, "study: submit: %s: expected an integer in [%ld, %ld], got '%s'\n", name, lo, hi, v);
+		return 1;
+	}
+	*out = x;
+	return 0;
+}
+
+/* Before study run: what the campaign's Slurm tasks did, into the database; runs
+ * they still hold would run twice. 0, or the exit code (4) after saying why. */
+static int slurm_first(const char *arg, const char *runs, const char *db)
+{
+	char name[128], dbp[PATH_MAX + 32];
+	sb_err e = {0};
+	long active = 0;
+	if (campaign_name(arg, name, sizeof name, &e))
+		return 0; /* study run says what is wrong with the file */
+	driver_db_path(runs, db, dbp, sizeof dbp);
+	if (slurm_refresh(runs, dbp, name, &active, stderr, &e))
+		fprintf(stderr, "study: %s\n", e.msg);
+	if (active > 0) {
+		fprintf(stderr, "study: %s: %ld runs are queued or running in Slurm (study status %s); wait for them "
+			"or scancel their job before study run\n", name, active, name);
+		return DRV_BUSY;
+	}
 	return 0;
 }
 
@@ -360,11 +435,50 @@ int main(int argc, char **argv)
 				 .keep_old = o.keep_old, .forget_old = o.forget_old,
 				 .use_cache = !o.nocache, .progress = o.progress,
 				 .retries = o.retries < 0 ? DRIVER_RETRIES : o.retries};
+		if ((rc = slurm_first(o.pos[0], o.runs, o.db)))
+			return rc;
 		if (driver_run(&d, &e)) {
 			fprintf(stderr, "study: %s\n", e.msg);
 			return e.code == DRV_FAILED || e.code == DRV_INTERRUPTED || e.code == DRV_BUSY ? e.code
 			       : e.code == SB_EUSAGE                             ? DRV_USAGE
 										 : DRV_IO;
+		}
+		return 0;
+	}
+	if (!strcmp(cmd, "submit")) {
+		if ((rc = parse(argc, argv, &o, HELP_SUBMIT, 1)))
+			return rc < 0 ? 0 : 1;
+		if (o.npos != 1) {
+			fputs(HELP_SUBMIT, stderr);
+			return 1;
+		}
+		if (!o.slurm) {
+			fprintf(stderr, "study: submit: to which scheduler? --slurm (the only one so far)\n");
+			return 1;
+		}
+		slurm_opts so = {.sbatch_args = o.sbatch_args};
+		if (count_opt("--throttle", o.throttle, 1, 1000000, &so.throttle) ||
+		    count_opt("--runs-per-task", o.per_task, 1, 1000000, &so.runs_per_task))
+			return 1;
+		if (!so.runs_per_task)
+			so.runs_per_task = 1;
+		if (o.keep_old && o.forget_old) {
+			fprintf(stderr, "study: submit: --keep-old and --forget-old exclude each other\n");
+			return 1;
+		}
+		char self[PATH_MAX];
+		ssize_t l = readlink("/proc/self/exe", self, sizeof self - 1);
+		if (l <= 0) {
+			fprintf(stderr, "study: cannot find my own executable\n");
+			return 2;
+		}
+		self[l] = 0;
+		driver_opts d = {.campaign_file = o.pos[0], .runs_dir = o.runs, .db_path = o.db, .self = self,
+				 .retry_failed = o.retry, .keep_old = o.keep_old, .forget_old = o.forget_old,
+				 .use_cache = !o.nocache};
+		if (slurm_submit(&d, &so, &e)) {
+			fprintf(stderr, "study: %s\n", e.msg);
+			return e.code == DRV_BUSY ? DRV_BUSY : e.code == SB_EUSAGE ? DRV_USAGE : DRV_IO;
 		}
 		return 0;
 	}
@@ -406,7 +520,13 @@ int main(int argc, char **argv)
 		report_watch(dbp, o.runs, o.npos ? name : NULL, o.interval, stdout, &e);
 	} else if (!strcmp(cmd, "status")) {
 		int jobs = o.jobs ? o.jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
+		long active;
+		/* what Slurm tasks did, first (nothing without arrays recorded) */
+		if (slurm_refresh(o.runs, dbp, o.npos ? name : NULL, &active, stderr, &e))
+			fprintf(stderr, "study: %s\n", e.msg), e.code = 0;
 		report_status(dbp, o.npos ? name : NULL, jobs, stdout, &e);
+		if (!e.code)
+			slurm_report(dbp, o.npos ? name : NULL, stdout, &e);
 	} else if (!strcmp(cmd, "list")) {
 		report_list(dbp, stdout, &e);
 	} else {
