@@ -156,7 +156,7 @@ static int parse(int argc, char **argv, struct opts *o, const char *help, int ma
 	o->interval = 2;
 	static const char *const known[] = {"--help", "--runs", "--db", "--sshloginfile", "--jobs", "--retry-failed",
 					    "--keep-old", "--forget-old", "--no-cache", "--progress", "--no-progress",
-					    "--retries", "--watch", "--interval", 
+					    "--retries", "--watch", "--interval",
 					    "--slurm", "--throttle", "--runs-per-task", "--sbatch-args", NULL};
 	for (int i = 2; i < argc; i++) {
 		const char *a = argv[i];
