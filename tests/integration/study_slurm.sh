@@ -1,0 +1,261 @@
+#!/usr/bin/env bash
+# study_slurm.sh - `study submit --slurm` against a real Slurm: a one-node cluster
+# started here (scripts/slurm_local.sh: munged, slurmctld, slurmd under $TMP, own key,
+# socket and ports), a small campaign submitted as a job array (throttle, two runs per
+# task, extra sbatch arguments), one task cancelled with scancel while its run shakes
+# (the engine must checkpoint), `study submit` again (only the runs not done go, the
+# stopped one resumes), and the export equal to an uninterrupted local `study run`
+# of the same campaign, the run files bit-identical. Skips only where Slurm cannot
+# be installed.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+SLURM_LOCAL="$REPO/scripts/slurm_local.sh"
+T0=$SECONDS
+
+# --- the packages: installed by make deps; a machine that cannot install them skips ---
+have_slurm() {
+	local c
+	for c in munged slurmctld slurmd sbatch squeue scancel scontrol; do
+		command -v "$c" >/dev/null || [ -x "/usr/sbin/$c" ] || return 1
+	done
+}
+PATH="$PATH:/usr/sbin"
+if ! have_slurm; then
+	bash "$REPO/scripts/deps.sh" >"$TMP/deps.log" 2>&1
+	if ! have_slurm; then
+		echo "skip slurm: the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
+		exit 0
+	fi
+fi
+if [ "$(id -u)" -ne 0 ]; then
+	echo "skip slurm: slurmd must run as root to start jobs, and this is uid $(id -u)"
+	exit 0
+fi
+
+CL="$TMP/cluster"
+trap 'bash "$SLURM_LOCAL" stop "$CL" >/dev/null 2>&1; rm -rf "$TMP"' EXIT
+if ! bash "$SLURM_LOCAL" start "$CL" >"$TMP/start.out" 2>"$TMP/start.err"; then
+	fail slurm.cluster "scripts/slurm_local.sh start: $(tail -n 8 "$TMP/start.err")"
+	finish
+fi
+export SLURM_CONF="$CL/slurm.conf"
+[ "$(sinfo --noheader --format=%T)" = idle ] && grep -qx "export SLURM_CONF=$SLURM_CONF" "$TMP/start.out" &&
+	ok slurm.cluster || fail slurm.cluster "node state '$(sinfo --noheader --format=%T)'"
+echo "# cluster up after $((SECONDS - T0)) s"
+cd "$TMP" || exit 1
+
+q() { sqlite3 -batch -noheader "$1" "$2"; }
+# wait_for SECONDS COMMAND...: poll until the command succeeds
+wait_for() {
+	local end=$((SECONDS + $1))
+	shift
+	until "$@"; do
+		[ "$SECONDS" -lt "$end" ] || return 1
+		sleep 0.2
+	done
+}
+# the tasks of job $1 still known to the scheduler
+tasks_of() { squeue --noheader --array --jobs="$1" --format=%i 2>/dev/null; }
+drained() { [ -z "$(tasks_of "$1")" ]; }
+
+# Four runs of a few seconds (two frequencies x two replicates: two shared packings);
+# a checkpoint every tenth of the run.
+NAME=sl
+cat >s.campaign <<C
+[campaign]
+name = $NAME
+seed = 7
+replicates = 2
+[scene]
+n_grains = 50
+width = 20
+radius_ratio = 2
+settle_ke = 1
+settle_min = 0.2
+amplitude = 1
+duration = 6
+traj_rate = 20
+[grid]
+frequency = 3, 4
+C
+
+# --- the command line ---
+"$STUDY" submit --help >help.out 2>&1 && grep -q -- "--runs-per-task" help.out && grep -q -- "--throttle" help.out &&
+	grep -q -- "--sbatch-args" help.out && ok submit.help || fail submit.help "$(head -n 3 help.out)"
+"$STUDY" submit s.campaign --runs S >noslurm.out 2>&1
+[ $? -eq 1 ] && grep -q -- "--slurm" noslurm.out && ok submit.needs_slurm || fail submit.needs_slurm "$(cat noslurm.out)"
+"$STUDY" submit s.campaign --slurm --runs S --sbatch-args="--array=0-1" >bad.out 2>&1
+[ $? -eq 1 ] && grep -q "sets --array itself" bad.out && [ -z "$(squeue --noheader)" ] && ok submit.refuses_array ||
+	fail submit.refuses_array "$(cat bad.out)"
+"$STUDY" submit s.campaign --slurm --runs S --throttle 0 >bad.out 2>&1
+[ $? -eq 1 ] && grep -q "throttle" bad.out && ok submit.bad_throttle || fail submit.bad_throttle "$(cat bad.out)"
+
+# --- the reference: the same campaign, uninterrupted, here ---
+t=$SECONDS
+"$STUDY" run s.campaign --runs "$TMP/L" --jobs 2 >local.log 2>&1 || fail local.run "$(tail -c 400 local.log)"
+echo "# local study run: $((SECONDS - t)) s"
+
+# --- submit: 4 runs, 2 per task, at most 2 tasks at once, an extra sbatch option ---
+t=$SECONDS
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" --throttle 2 --runs-per-task 2 \
+	--sbatch-args="--comment=shakebox-test --time=10" >sub1.log 2>&1
+rc=$?
+DB=S/study.db
+J1=$(q $DB "SELECT job_id FROM slurm_job WHERE campaign = '$NAME'")
+[ "$rc" -eq 0 ] && [ -n "$J1" ] && grep -q "submitted 4 runs in 2 tasks as Slurm job $J1 (--array=0-1%2)" sub1.log &&
+	ok submit.first || fail submit.first "exit $rc: $(cat sub1.log)"
+# the array as Slurm has it: throttle, the extra options, the one script, the task file
+info=$(scontrol show job "$J1" 2>&1)
+echo "$info" | grep -q "ArrayTaskThrottle=2" && echo "$info" | grep -q "Comment=shakebox-test" &&
+	echo "$info" | grep -q "Command=$TMP/S/$NAME/slurm/array.sh $TMP/S/$NAME/slurm/tasks-1.txt" &&
+	ok submit.sbatch_options || fail submit.sbatch_options "$(echo "$info" | grep -E 'Throttle|Comment|Command')"
+[ "$(wc -l <S/$NAME/slurm/tasks-1.txt)" = 2 ] && [ "$(grep -o 'r:' S/$NAME/slurm/tasks-1.txt | wc -l)" = 4 ] &&
+	[ "$(q $DB "SELECT COUNT(*) || ' ' || COUNT(DISTINCT array_index) FROM slurm_task WHERE job_id = $J1")" = "4 2" ] &&
+	ok submit.two_per_task || fail submit.two_per_task "$(cat S/$NAME/slurm/tasks-1.txt)"
+# every run's argument file written here, before any node runs it
+[ "$(ls S/$NAME/jobs/*.args | wc -l)" = 4 ] && ok submit.args_written || fail submit.args_written "$(ls S/$NAME/jobs)"
+
+# --- scancel a task whose run is shaking: the engine must write a checkpoint ---
+# is_shaking ID: the run has written a checkpoint but no output yet
+is_shaking() { [ -e "S/$NAME/$1.h5.ckpt" ] && [ ! -e "S/$NAME/$1.h5" ]; }
+# first_shaking TASKFILE: "INDEX ID" of a task whose first run is shaking (so that the
+# task has a run after it to leave unstarted)
+first_shaking() {
+	local i=0 line id
+	while read -r line; do
+		id=$(echo "$line" | tr ' ' '\n' | sed -n 's/^r://p' | head -n 1)
+		is_shaking "$id" && { echo "$i $id"; return 0; }
+		i=$((i + 1))
+	done <"$1"
+	return 1
+}
+# interrupted JOB: the runs the job's tasks left interrupted
+interrupted() {
+	q $DB "SELECT s.run FROM slurm_task s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run
+		AND a.n = s.attempt WHERE s.job_id = $1 AND a.status = 'interrupted' AND a.exit_code = 7"
+}
+wait_for 60 first_shaking "S/$NAME/slurm/tasks-1.txt" >/dev/null
+read -r IDX busy < <(first_shaking "S/$NAME/slurm/tasks-1.txt")
+if [ -z "$busy" ]; then
+	fail scancel.setup "no task's first run reached a checkpoint within 60 s: $(squeue --array 2>&1 | tail -n 3)"
+	finish
+fi
+echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s: scancel ${J1}_$IDX"
+# as a user cancels: SIGTERM to every process of the task, SIGKILL after KillWait (30 s)
+scancel "${J1}_$IDX"
+# while the other task runs, study run refuses: it would run its runs a second time
+"$STUDY" run s.campaign --runs "$TMP/S" >busy.log 2>&1
+rc=$?
+if drained "$J1"; then
+	echo "# the array ended before study run was tried; its refusal is not checked"
+else
+	[ "$rc" -eq 4 ] && grep -q "queued or running in Slurm" busy.log && ok run.refuses_while_queued ||
+		fail run.refuses_while_queued "exit $rc: $(tail -n 3 busy.log)"
+fi
+wait_for 60 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
+
+# --- study status reads what the tasks did ---
+"$STUDY" status "$NAME" --runs "$TMP/S" >status1.out 2>&1 || fail status.exit "$(cat status1.out)"
+RID=$(interrupted "$J1")
+[ -n "$RID" ] && [ "$(echo "$RID" | wc -l)" = 1 ] &&
+	[ "$(q $DB "SELECT array_index || ' ' || attempt FROM slurm_task WHERE job_id = $J1 AND run = '$RID'")" = "$IDX 1" ] &&
+	q $DB "SELECT message FROM attempt WHERE run = '$RID' AND n = 1" | grep -q "checkpoint" &&
+	[ "$(q $DB "SELECT state FROM run WHERE id = '$RID'")" = pending ] &&
+	ok scancel.engine_checkpointed || fail scancel.engine_checkpointed "interrupted: '$RID'; $(q $DB "SELECT * FROM attempt")"
+grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID.log" && [ -e "S/$NAME/$RID.h5.ckpt" ] &&
+	ok scancel.checkpoint_file || fail scancel.checkpoint_file "$(tail -n 3 "S/$NAME/logs/$RID.log")"
+# the uncancelled task's runs are done, recorded from the nodes' files
+[ "$(q $DB "SELECT COUNT(*) FROM slurm_task s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run
+	AND a.n = s.attempt WHERE s.job_id = $J1 AND s.array_index <> $IDX AND s.state = 'ended' AND a.status = 'ok'")" = 2 ] &&
+	[ "$(q $DB "SELECT COUNT(*) FROM run WHERE state = 'done'")" -ge 2 ] && ok status.ingested ||
+	fail status.ingested "$(q $DB "SELECT * FROM slurm_task")"
+grep -q "slurm job $J1 (.*array 0-1%2, 4 runs in 2 tasks): tasks 0 queued, 0 running, 2 ended; runs [23] done, 0 failed, 1 stopped" status1.out &&
+	ok status.slurm_line || fail status.slurm_line "$(grep -A1 slurm status1.out)"
+# the cancelled task started no run after the stopped one (runs of a task go in order)
+other=$(q $DB "SELECT run FROM slurm_task WHERE job_id = $J1 AND array_index = $IDX AND run <> '$RID'")
+ost=$(q $DB "SELECT state FROM slurm_task WHERE job_id = $J1 AND run = '$other'")
+if [ "$ost" = unstarted ] || { [ "$ost" = ended ] && [ -e "S/$NAME/$other.h5" ] &&
+	[ "$(q $DB "SELECT MIN(n) FROM attempt WHERE run = '$other' AND status = 'ok'")" = 1 ]; }; then
+	ok scancel.rest_of_task_not_started
+else
+	fail scancel.rest_of_task_not_started "$(q $DB "SELECT * FROM slurm_task WHERE job_id = $J1")"
+fi
+
+# --- submit again: only what is not done, in a new array (one run per task this
+# time); the stopped run resumes ---
+t=$SECONDS
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub2.log 2>&1
+rc=$?
+J2=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
+left=$(q $DB "SELECT COUNT(*) FROM run WHERE state <> 'done'")
+[ "$rc" -eq 0 ] && [ "$J2" != "$J1" ] && grep -q "4 runs, $((4 - left)) done, 0 failed, 0 queued or running in Slurm, $left to submit" sub2.log &&
+	[ "$(q $DB "SELECT COUNT(*) FROM slurm_task WHERE job_id = $J2")" = "$left" ] &&
+	[ "$(q $DB "SELECT COUNT(*) FROM slurm_task WHERE job_id = $J2 AND run = '$RID'")" = 1 ] &&
+	[ "$(wc -l <S/$NAME/slurm/tasks-2.txt)" = "$left" ] && ok resubmit.only_not_done || fail resubmit.only_not_done "exit $rc: $(cat sub2.log)"
+# a signal to the task's shell alone (scancel --batch; what sbatch --signal=B:TERM@T
+# sends before a time limit) reaches the engine through the script's trap and the
+# worker: the run that never started in the first array, stopped once it shakes
+RID2=""
+if [ "$ost" = unstarted ]; then
+	if wait_for 60 is_shaking "$other"; then
+		RID2=$other
+		scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
+	else
+		fail scancel.batch_setup "run $other did not reach a checkpoint within 60 s"
+	fi
+fi
+wait_for 60 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
+"$STUDY" status "$NAME" --runs "$TMP/S" >status2.out 2>&1 || fail status2.exit "$(cat status2.out)"
+if [ -n "$RID2" ]; then
+	[ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
+		ok scancel.batch_signal_reaches_engine ||
+		fail scancel.batch_signal_reaches_engine "$(q $DB "SELECT * FROM attempt WHERE run = '$RID2'"; tail -n 2 "S/$NAME/logs/$RID2.log")"
+	"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub3.log 2>&1 && grep -q "1 to submit" sub3.log ||
+		fail resubmit.third "$(cat sub3.log)"
+	J3=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
+	wait_for 60 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
+	"$STUDY" status "$NAME" --runs "$TMP/S" >status3.out 2>&1 || fail status3.exit "$(cat status3.out)"
+else
+	echo "# the first array's cancelled task had finished its second run; the batch-shell signal is not checked"
+fi
+echo "# resubmitted arrays: $((SECONDS - t)) s"
+[ "$(q $DB "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok resubmit.all_done ||
+	fail resubmit.all_done "$(q $DB "SELECT id, state, attempts FROM run"; cat status2.out)"
+grep -q "resuming from .*$RID.h5.ckpt" "S/$NAME/logs/$RID.log" && ok resubmit.resumed_from_checkpoint ||
+	fail resubmit.resumed_from_checkpoint "$(tail -n 4 "S/$NAME/logs/$RID.log")"
+# per run and attempt: the job and the array index that made it
+[ "$(q $DB "SELECT group_concat(s.job_id || ':' || s.attempt || ':' || a.status, ' ') FROM (SELECT * FROM slurm_task
+	WHERE run = '$RID' ORDER BY job_id) s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run AND a.n = s.attempt")" = \
+	"$J1:1:interrupted $J2:2:ok" ] && ok db.job_and_index_per_attempt ||
+	fail db.job_and_index_per_attempt "$(q $DB "SELECT * FROM slurm_task WHERE run = '$RID'")"
+# nothing left: one more submit submits nothing, and study run finds every run done
+njobs=$(q $DB "SELECT COUNT(*) FROM slurm_job")
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub4.log 2>&1 && grep -q "0 to submit" sub4.log &&
+	[ "$(q $DB "SELECT COUNT(*) FROM slurm_job")" = "$njobs" ] && ok resubmit.nothing_left || fail resubmit.nothing_left "$(cat sub4.log)"
+"$STUDY" run s.campaign --runs "$TMP/S" >run_after.log 2>&1 && grep -q "4 runs, 0 to run" run_after.log &&
+	ok run.after_slurm || fail run.after_slurm "$(cat run_after.log)"
+
+# --- the same results as the uninterrupted local run ---
+# columns that say when, where and how often, not what: attempts (the stopped run has
+# two), host, started, finished, wall_seconds
+strip() {
+	python3 -c '
+import csv, sys
+drop = {"attempts", "host", "started", "finished", "wall_seconds"}
+r = csv.reader(open(sys.argv[1], newline=""))
+head = next(r)
+keep = [i for i, h in enumerate(head) if h not in drop]
+w = csv.writer(sys.stdout, lineterminator="\n")
+w.writerow([head[i] for i in keep])
+for row in sorted(r):
+    w.writerow([row[i] for i in keep])' "$1"
+}
+"$STUDY" export "$NAME" --runs "$TMP/L" >L.csv && "$STUDY" export "$NAME" --runs "$TMP/S" >S.csv &&
+	strip L.csv >L.cmp && strip S.csv >S.cmp && [ "$(wc -l <L.cmp)" = 5 ] && cmp -s L.cmp S.cmp &&
+	ok export.same_as_local || fail export.same_as_local "$(diff L.cmp S.cmp | head -n 4 | cut -c1-300)"
+same=0
+for f in L/$NAME/*.h5; do same_output "$f" "S/$NAME/$(basename "$f")" && same=$((same + 1)); done
+[ "$same" = 4 ] && ok files.bit_identical || fail files.bit_identical "$same of 4 run files identical to the local run's"
+echo "# study_slurm.sh: $((SECONDS - T0)) s"
+finish
