@@ -302,10 +302,17 @@ static int alloc_runs(drv *d, sb_err *e)
  * after an I/O fault only the runs that hit it, as a probe: when they succeed the
  * fault was transient and the launching goes on. Returns their number, ids in again;
  * *io_probe says whether they are a probe. */
-static long retries_due(drv *d, char **names, long n, int halted, char **again, int *io_probe, sb_err *e)
+static long retries_due(drv *d, char **names, long n, char **last, long nlast, int halted, char **again, int *io_probe,
+			sb_err *e)
 {
 	long m = 0;
 	*io_probe = d->io_fault;
+	/* the last pass's runs: heard of, or lost */
+	for (long k = 0; k < nlast && !halted; k++) {
+		const grid_run *r = grid_find(&d->g, last[k]);
+		if (r && !d->outcome[r - d->g.runs])
+			d->outcome[r - d->g.runs] = '?';
+	}
 	for (long k = 0; k < n && !e->code; k++) {
 		const grid_run *r = grid_find(&d->g, names[k]);
 		if (!r)
@@ -320,7 +327,7 @@ static long retries_due(drv *d, char **names, long n, int halted, char **again, 
 		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
 		if (exists(path))
 			continue; /* came back after its DONE line: the sweep ingests it */
-		if (d->outcome[i] == 0 && !halted) {
+		if (d->outcome[i] == '?') {
 			char now[32];
 			db_now(now, sizeof now);
 			d->outcome[i] = 'l';
@@ -367,11 +374,12 @@ static int launch(drv *d, long npend, sb_err *e)
 				break;
 			/* every run of this launch, not only the last pass's: a probe's success
 			 * puts the runs its fault halted back in the queue */
-			n = retries_due(d, d->names, npend, halted, again, &probe, e);
+			n = retries_due(d, d->names, npend, list, n, halted, again, &probe, e);
 			if (n == 0 || e->code)
 				break;
 			fprintf(stderr, "study: %s: running again %ld run%s %s (--retries %d)\n", d->c.name, n, n > 1 ? "s" : "",
-				probe ? "that hit an I/O fault, to see whether it passed" : "killed, failed on I/O or lost",
+				probe ? "that hit an I/O fault, to see whether it passed"
+				      : "killed, failed on I/O, lost, or held back by an I/O fault",
 				d->o->retries);
 			if (probe) {
 				/* a moment for a transient fault to pass */

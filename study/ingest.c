@@ -130,14 +130,17 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	 * Killed and I/O-failed runs are transient: the driver runs them again (up to
 	 * --retries); an interruption the driver asked for (its signal, its halt after an
 	 * I/O fault) is not. */
-	int io = code == SB_EIO;
-	int resumable = code == SB_EINTR || code >= 128 || io;
+	/* on another host, a job the worker could not start there (its argument file
+	 * never arrived: a host going away) is that host's fault, not this machine's */
+	int lost = d->o->sshloginfile && code == SB_EIO && !strncmp(msg, "exec: ", 6);
+	int io = code == SB_EIO && !lost;
+	int resumable = code == SB_EINTR || code >= 128 || io || lost;
 	long ix = r - d->g.runs;
 	int ours = code == SB_EINTR && (parallel_stopped() || d->io_fault);
-	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : 'k';
+	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
 	if (resumable && !ours)
 		d->transient[ix]++;
-	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : sb_code_name((int)code);
+	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : lost ? "lost" : sb_code_name((int)code);
 	if (io && !d->io_fault) {
 		d->io_fault = 1;
 		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);

@@ -251,7 +251,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	close(pfd[1]);
 	/* the workers' lines as they come, and a look for the progress line every
 	 * interval in between */
-	double interval = d->progress_tty ? 1 : 5, next = mono() + interval;
+	double interval = d->progress_tty ? 1 : 2, next = mono() + interval;
 	size_t cap = 65536, have = 0;
 	char *buf = malloc(cap);
 	for (int open_ = buf != NULL; open_;) {

@@ -104,7 +104,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	int lk = open(lockp, O_RDWR | O_CREAT, 0666);
 	if (lk < 0 || flock(lk, LOCK_EX) != 0) {
 		report_done(name, 2, host, 0, "exec: cannot lock the run");
-		return 0;
+		return 2; /* this host cannot run it: parallel --retries tries another */
 	}
 	if (access(out, F_OK) == 0) {
 		report_done(name, 0, host, 0, "already complete");
@@ -114,7 +114,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	FILE *f = fopen(args, "r");
 	if (!f) {
 		report_done(name, 2, host, 0, "exec: missing argument file");
-		return 0;
+		return 2; /* not transferred to this host: parallel --retries tries another */
 	}
 	char *argv[128];
 	int argc = 0;

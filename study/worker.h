@@ -9,10 +9,11 @@
 /* kind "run": args jobs/NAME.args, log logs/NAME.log, output NAME.h5;
  * kind "cache": args cache/NAME.args, log cache/NAME.log, output cache/NAME.h5.
  * Paths are relative to dir. The outcome (the engine's exit code, 128 + signal if
- * killed) is in the DONE line; the return value is 0 whenever that line was printed,
- * so that GNU parallel tries a job again (--retries) only when its worker never got
- * to report - its host died or the worker was killed - never for a run's own failure,
- * which the driver records and retries itself when it is transient. */
+ * killed) is in the DONE line; the return value is 0 whenever the engine ran, so that
+ * GNU parallel tries a job again on another host (--retries) only when this host could
+ * not run it (its argument file did not arrive, the run could not be locked: 2) or the
+ * worker never got to report (its host died, it was killed) - never for a run's own
+ * failure, which the driver records and retries itself when it is transient. */
 int worker_exec(const char *dir, const char *kind, const char *name, const char *self);
 
 /* The engine's message in its log from byte `from` on: the last "shake: " line,

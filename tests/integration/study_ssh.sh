@@ -2,11 +2,24 @@
 # study_ssh.sh - `study run --sshloginfile` for real: an OpenSSH server started here on
 # 127.0.0.1 (own host key, own authorized key), two sshlogin entries pointing at it;
 # the campaign runs through GNU parallel's --basefile/--transferfile/--return, the
-# database stays local, and the outputs equal a local run of the same campaign.
+# database stays local, and the outputs equal a local run of the same campaign. The
+# engine that travels is the portable build (bin/shake-portable, -march=x86-64): its
+# outputs are bit-identical to the local build's (AVX-512 here). Then hosts that die:
+# one down from the start (left out by --filter-hosts) and one whose ssh starts failing
+# mid-campaign, killing the job it was running; the campaign completes and its export
+# equals an uninterrupted local run's (timing and host columns aside).
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+for b in shake study; do
+	[ -x "$REPO/bin/$b-portable" ] || { fail setup "$REPO/bin/$b-portable is missing (make portable)"; finish; }
+done
 cd "$TMP" || exit 1
+# the driver finds what travels beside itself (study-portable, shake-portable), and
+# its local worker the engine beside itself: the binaries under test, plus the portable ones
+mkdir bin && cp "$STUDY" bin/study && cp "$SHAKE" bin/shake && cp "$REPO/bin/shake-portable" "$REPO/bin/study-portable" bin/ ||
+	{ fail setup "cannot copy the binaries"; finish; }
+STUDY="$TMP/bin/study"
 SSHD=$(command -v sshd || echo /usr/sbin/sshd)
 [ -x "$SSHD" ] || { fail ssh.setup "sshd is not installed (openssh-server; make deps)"; finish; }
 command -v rsync >/dev/null || { fail ssh.setup "rsync is not installed (GNU parallel needs it for --transferfile/--return; make deps)"; finish; }
@@ -31,7 +44,7 @@ PidFile $TMP/sshd.pid
 C
 mkdir -p /run/sshd
 "$SSHD" -f "$TMP/sshd_config" -E "$TMP/sshd.log" || { fail ssh.setup "sshd did not start: $(cat sshd.log)"; finish; }
-trap 'kill $(cat "$TMP/sshd.pid" 2>/dev/null) 2>/dev/null; rm -rf "$TMP" "$HOME/.shakebox/$NAME"' EXIT
+trap 'kill $(cat "$TMP/sshd.pid" 2>/dev/null) 2>/dev/null; rm -rf "$TMP" "$HOME/.shakebox/$NAME" "$HOME/.shakebox/${D:-none}"' EXIT
 cat >ssh_config <<C
 Host h1 h2
   HostName 127.0.0.1
@@ -84,4 +97,68 @@ echo "# campaign over ssh (4 runs + 2 packings, 2 logins): $((($(date +%s%N) - t
 same=0
 for f in L/$NAME/*.h5; do same_output "$f" "S/$NAME/$(basename "$f")" && same=$((same + 1)); done
 [ "$same" = 4 ] && ok ssh.same_as_local || fail ssh.same_as_local "$same of 4 outputs identical to the local run"
+# what ran remotely was the portable engine, and the local one is the build for this
+# machine: the identical files above are the portable and native builds agreeing
+cmp -s "$HOME/.shakebox/$NAME/shake" bin/shake-portable && ! cmp -s bin/shake-portable bin/shake &&
+	ok ssh.portable_engine_sent || fail ssh.portable_engine_sent "the remote engine is not bin/shake-portable"
+# the same through the database: the exports equal but for when, where and how often
+strip() {
+	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
+		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
+}
+"$STUDY" export "$NAME" --runs "$TMP/S" >ssh.csv && "$STUDY" export "$NAME" --runs "$TMP/L" >local.csv &&
+	[ "$(wc -l <ssh.csv)" = 5 ] && cmp -s <(strip ssh.csv) <(strip local.csv) && ok ssh.export_same_as_local ||
+	fail ssh.export_same_as_local "$(diff <(strip local.csv) <(strip ssh.csv) | head -n 4 | cut -c1-300)"
+
+# --- hosts that die ---
+# h3 is down from the start; h2 dies under the second run it is given: its worker and
+# engine are killed and its ssh cut (no output, no DONE line), and from then on every
+# connection to it fails, as when a machine goes away
+cat >down_ssh <<'W'
+#!/bin/sh
+exit 255
+W
+cat >dying_ssh <<W
+#!/bin/bash
+[ -e "$TMP/h2.dead" ] && exit 255
+# parallel sends its remote command hex-encoded: is it a run's job, and which run?
+cmd=\$(perl -e 'print pack("H*", join("", grep { /^[0-9a-f]{16,}\$/ } @ARGV))' -- "\$@" 2>/dev/null | tr -d '\\000')
+id=\$(printf '%s' "\$cmd" | grep -ao 'study exec \. run [0-9a-f]*' | head -n 1 | awk '{ print \$5 }')
+n=0
+[ -n "\$id" ] && n=\$((\$(cat "$TMP/h2.runs" 2>/dev/null || echo 0) + 1)) && echo \$n >"$TMP/h2.runs"
+ssh "\$@" 0<&0 & # (rsync speaks through stdin: not /dev/null)
+pid=\$!
+[ "\$n" -ge 2 ] || { wait \$pid; exit; }
+for i in \$(seq 100); do w=\$(pgrep -f "study exec . run \$id"); [ -n "\$w" ] && [ -n "\$(pgrep -P "\$w")" ] && break; sleep 0.02; done
+sleep 0.2
+touch "$TMP/h2.dead"
+for p in \$w; do kill -KILL \$(pgrep -P \$p) \$p 2>/dev/null; done
+kill -KILL \$pid
+echo "\$id" >>"$TMP/h2.cut"
+exit 255
+W
+chmod +x down_ssh dying_ssh
+printf '1/ssh -F %s h1\n1/%s -F %s h2\n1/%s -F %s h3\n' "$TMP/ssh_config" "$TMP/dying_ssh" "$TMP/ssh_config" \
+	"$TMP/down_ssh" "$TMP/ssh_config" >logins3
+D="dead$$"
+sed "s/^name = .*/name = $D/; s/^duration = .*/duration = 8/" s.campaign >d.campaign
+t0=$(date +%s%N)
+"$STUDY" run d.campaign --runs "$TMP/DL" --jobs 2 >dl.log 2>&1 || fail dead.local_reference "exit $?: $(tail -c 300 dl.log)"
+echo "# local reference (4 runs of 8 s, 2 jobs): $((($(date +%s%N) - t0) / 1000000)) ms"
+t0=$(date +%s%N)
+"$STUDY" run d.campaign --runs "$TMP/DS" --sshloginfile "$TMP/logins3" --jobs 1 >ds.log 2>&1
+rc=$?
+echo "# campaign over ssh, h2 dying under its second run, h3 down: $((($(date +%s%N) - t0) / 1000000)) ms"
+[ "$rc" -eq 0 ] && [ "$(sqlite3 DS/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok dead.completes ||
+	fail dead.completes "exit $rc: $(tail -c 600 ds.log)"
+# the run h2 died under was still running there (no output yet), and was redone on h1
+cut=$(head -n 1 h2.cut 2>/dev/null)
+[ -n "$cut" ] && grep -q "h1.*run $cut\$" "DS/$D/joblog.txt" && ok dead.h2_died_mid_job_redone_on_h1 ||
+	fail dead.h2_died_mid_job_redone_on_h1 "cut '$cut': $(cut -f2,9 "DS/$D/joblog.txt" | tr '\t' ' ')"
+# h3 ran nothing: --filter-hosts left it out
+! awk -F'\t' 'NR > 1 { print $2 }' "DS/$D/joblog.txt" | grep -q h3 && ok dead.down_host_filtered ||
+	fail dead.down_host_filtered "$(cut -f2 "DS/$D/joblog.txt" | sort | uniq -c)"
+"$STUDY" export "$D" --runs "$TMP/DS" >ds.csv && "$STUDY" export "$D" --runs "$TMP/DL" >dl.csv &&
+	[ "$(wc -l <ds.csv)" = 5 ] && cmp -s <(strip ds.csv) <(strip dl.csv) && ok dead.export_same_as_local ||
+	fail dead.export_same_as_local "$(diff <(strip dl.csv) <(strip ds.csv) | head -n 4 | cut -c1-300)"
 finish
