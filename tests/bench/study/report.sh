@@ -55,11 +55,12 @@ awk -F'\t' '
 	function hi_(x) { return x == "" ? 1e300 : x + 0 }
 	function wd(lo, hi) { return (lo == "" || hi == "") ? 1e300 : hi - lo }
 	NR == 1 { next }
-	{ c = $1; p = $2; w = $3; key = c SUBSEP p SUBSEP w
+	{ c = $1; p = $2; w = $3; if (c == 1) p = "onset (Hz)"; if ($8 != "") $8 = sprintf("%d", $8)
+	  key = c SUBSEP p SUBSEP w
 	  E[key] = $4; L[key] = $5; H[key] = $6; N[key] = $8; S[key] = $9
 	  if (!((c SUBSEP p) in havep)) { havep[c SUBSEP p] = 1; P[c, ++np[c]] = p } }
 	END {
-		printf "%-3s %-26s %-30s %-38s %-10s %s\n", "q", "point", "grid", "skip", "skip<=grid", "agree"
+		printf "%-2s %-30s %-30s %-40s %-10s %s\n", "q", "point", "grid", "skip", "skip<=grid", "agree"
 		for (c = 1; c <= 5; c++) {
 			if (c == 5) continue
 			for (i = 1; i <= np[c]; i++) {
@@ -69,41 +70,47 @@ awk -F'\t' '
 				ss = (s in E) ? sprintf("%s n=%s %s", iv(E[s], L[s], H[s]), N[s], S[s]) : "-"
 				nar = ((g in E) && (s in E)) ? (wd(L[s], H[s]) <= wd(L[g], H[g]) * (1 + 1e-9) ? "yes" : "NO") : "-"
 				ag = ((g in E) && (s in E)) ? ((lo_(L[s]) <= hi_(H[g]) && lo_(L[g]) <= hi_(H[s])) ? "yes" : "NO") : "-"
-				printf "%-3s %-26s %-30s %-38s %-10s %s\n", c, p, gs, ss, nar, ag
+				printf "%-2s %-30s %-30s %-40s %-10s %s\n", c, p, gs, ss, nar, ag
 				if (so in E)
-					printf "%-3s %-26s %-30s %-38s %-10s %s\n", "", "  (bin/onset on skip runs)", "", sprintf("%s n=%s", iv(E[so], L[so], H[so]), N[so]), (wd(L[so], H[so]) <= wd(L[g], H[g]) * (1 + 1e-9) ? "yes" : "NO"), ((lo_(L[so]) <= hi_(H[g]) && lo_(L[g]) <= hi_(H[so])) ? "yes" : "NO")
+					printf "%-2s %-30s %-30s %-40s %-10s %s\n", "", "  (bin/onset on skip runs)", "", sprintf("%s n=%s", iv(E[so], L[so], H[so]), N[so]), (wd(L[so], H[so]) <= wd(L[g], H[g]) * (1 + 1e-9) ? "yes" : "NO"), ((lo_(L[so]) <= hi_(H[g]) && lo_(L[g]) <= hi_(H[so])) ? "yes" : "NO")
 			}
 		}
-		# claim 5: the grid gives the rise fraction per frequency; its onset is where the
-		# fraction first reaches 1/2, bracketed by the grid frequency below
+		# claim 5: the grid gives the rise fraction per frequency (Clopper-Pearson); its onset
+		# is where the fraction first reaches 1/2, and its interval runs between the nearest
+		# frequencies on either side whose intervals exclude 1/2 (the tool intervals read
+		# off, nothing estimated here)
 		fl = ""; nf = 0
 		for (i = 1; i <= np[5]; i++) {
 			p = P[5, i]; g = 5 SUBSEP p SUBSEP "grid"
 			if (!(g in E)) { sk = p; continue }
 			f = p; sub(/.*frequency=/, "", f); sub(/ .*/, "", f)
-			nf++; F[nf] = f + 0; FE[nf] = E[g]; fl = fl sprintf(" %s:%.2f[%.2f,%.2f]", f, E[g], L[g], H[g])
+			nf++; F[nf] = f + 0; FE[nf] = E[g]; FL[nf] = L[g]; FH[nf] = H[g]
 			n5 = N[g]
 		}
 		if (nf || sk != "") {
-			# sort by frequency
-			for (i = 1; i <= nf; i++) for (j = i + 1; j <= nf; j++) if (F[j] < F[i]) { t = F[i]; F[i] = F[j]; F[j] = t; t = FE[i]; FE[i] = FE[j]; FE[j] = t }
+			for (i = 1; i <= nf; i++) for (j = i + 1; j <= nf; j++) if (F[j] < F[i]) {
+				t = F[i]; F[i] = F[j]; F[j] = t; t = FE[i]; FE[i] = FE[j]; FE[j] = t
+				t = FL[i]; FL[i] = FL[j]; FL[j] = t; t = FH[i]; FH[i] = FH[j]; FH[j] = t }
+			for (i = 1; i <= nf; i++) fl = fl sprintf(" %s:%.2f[%.2f,%.2f]", F[i], FE[i], FL[i], FH[i])
 			on = 0; for (i = 1; i <= nf; i++) if (FE[i] >= 0.5) { on = i; break }
+			top = on ? on : nf + 1
+			glo = -1e300; for (i = top - 1; i >= 1; i--) if (FH[i] < 0.5) { glo = F[i]; break }
+			ghi = 1e300;  for (i = (on ? on : nf + 1); i <= nf; i++) if (FL[i] > 0.5) { ghi = F[i]; break }
 			if (nf == 0) gs = "-"
-			else if (on == 0) gs = sprintf("above %.4g (no point >= 1/2) n=%s", F[nf], n5)
-			else if (on == 1) gs = sprintf("below %.4g (every point >= 1/2) n=%s", F[1], n5)
-			else gs = sprintf("in [%.4g, %.4g] n=%s", F[on - 1], F[on], n5)
-			glo = (on > 1) ? F[on - 1] : (on == 1 ? -1e300 : F[nf]); ghi = (on >= 1) ? F[on] : 1e300
+			else if (on == 0) gs = sprintf("above %.4g [%s, +inf] n=%s", F[nf], glo < -1e299 ? "-inf" : sprintf("%.4g", glo), n5)
+			else gs = sprintf("%s %.4g [%s, %s] n=%s", on == 1 ? "<=" : "~", on == 1 ? F[1] : (F[on - 1] + F[on]) / 2,
+			                  glo < -1e299 ? "-inf" : sprintf("%.4g", glo), ghi > 1e299 ? "+inf" : sprintf("%.4g", ghi), n5)
 			s = 5 SUBSEP sk SUBSEP "skip"
 			ss = (s in E) ? sprintf("%s n=%s %s", iv(E[s], L[s], H[s]), N[s], S[s]) : "-"
-			nar = (s in E) && nf ? (wd(L[s], H[s]) <= (F[2] - F[1]) * 2 + 1e-9 ? "yes*" : "no*") : "-"
+			nar = (s in E) && nf ? (wd(L[s], H[s]) <= (ghi - glo) * (1 + 1e-9) ? "yes" : "NO") : "-"
 			ag = (s in E) && nf ? ((lo_(L[s]) <= ghi && glo <= hi_(H[s])) ? "yes" : "NO") : "-"
-			printf "%-3s %-26s %-30s %-38s %-10s %s\n", 5, "onset of rise (Hz)", gs, ss, nar, ag
-			if (nf) printf "    grid rise fraction per frequency [Clopper-Pearson]:%s\n", fl
-			if (nf) print "    * claim 5: the grid has no interval of its onset; skip<=grid compares the skip interval with two grid spacings"
+			printf "%-2s %-30s %-30s %-40s %-10s %s\n", 5, "onset of rise (Hz)", gs, ss, nar, ag
+			if (nf) printf "   grid rise fraction per frequency [Clopper-Pearson]:%s\n", fl
+			if (nf) print "   (claim 5, grid: the crossing of 1/2 between two grid frequencies, its interval between the nearest\n    frequencies whose rise-fraction interval excludes 1/2)"
 		}
 	}' "$ANS"
 echo
-echo "skip<=grid: the skip way'"'"'s interval is at most as wide as the grid'"'"'s (its target was the grid'"'"'s width at the"
+echo "skip<=grid: the skip way's interval is at most as wide as the grid's (its target was the grid's width at the"
 echo "point; NO = max_replicates reached first). agree: the two intervals overlap."
 echo "Claim 1: grid = bin/onset --threshold 2 (threshold crossing of the mean flux, bootstrap over"
 echo "seeds); skip = the search's median switch over replicates with its order-statistic interval;"
