@@ -257,6 +257,11 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 	start_host(start, host, sizeof host);
 	layout_file(d->dir, 0, r->run, LAY_OUTPUT, path, sizeof path);
 	const char *qs = q ? sq_state(q, r->job, r->index) : "?";
+	/* a task runs its runs one after the other: a later run's START means this one's
+	 * worker is gone without a word, though the task goes on */
+	int passed = 0;
+	for (const tline *l = start ? start + 1 : NULL; l && l < t->l + t->n; l++)
+		passed |= l->kind == 1 && strcmp(l->name, r->run);
 	if (done) {
 		/* what the worker said; a run recorded meanwhile (a study run swept its
 		 * output) keeps its attempts: the task's is that one */
@@ -273,7 +278,7 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 	}
 	if (!open && !strcmp(r->state, "submitted") && !start)
 		return qs ? 0 : set_task(d, r, "unstarted", 0, "", e); /* done elsewhere meanwhile */
-	if (qs && start && !strcmp(r->state, "submitted")) {
+	if (qs && start && !passed && !strcmp(r->state, "submitted")) {
 		/* running now: the run shows as running in study status */
 		if (open) {
 			char *copy = strdup(start->text);
@@ -284,7 +289,7 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 		}
 		return e->code ? e->code : set_task(d, r, "started", 0, host, e);
 	}
-	if (qs)
+	if (qs && !passed)
 		return 0; /* queued or running: later */
 	if (!start)
 		return set_task(d, r, "unstarted", 0, "", e); /* cancelled while queued, or an earlier run of its task stopped it */
@@ -295,10 +300,14 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 	 * out of memory); the run resumes from its last checkpoint */
 	char now[32], msg[1200];
 	db_now(now, sizeof now);
-	snprintf(msg, sizeof msg,
-		 "Slurm task %ld_%ld ended before study exec reported (killed after KillWait, node failure, memory or "
-		 "time limit; see %s/logs/%ld_%ld.out)",
-		 r->job, r->index, SLURM_SUB, r->job, r->index);
+	if (passed)
+		snprintf(msg, sizeof msg, "study exec ended without a word in Slurm task %ld_%ld, which went on (killed; see "
+			 "%s/logs/%ld_%ld.out)", r->job, r->index, SLURM_SUB, r->job, r->index);
+	else
+		snprintf(msg, sizeof msg,
+			 "Slurm task %ld_%ld ended before study exec reported (killed after KillWait, node failure, memory "
+			 "or time limit; see %s/logs/%ld_%ld.out)",
+			 r->job, r->index, SLURM_SUB, r->job, r->index);
 	if (db_begin(&d->db, e))
 		return e->code;
 	if (db_attempt(&d->db, d->c.name, r->run, -1, "killed", msg, host, now, "pending", e)) {
@@ -468,7 +477,10 @@ int slurm_refresh(const char *runs_dir, const char *db_path, const char *name, l
 		driver_opts o = {.runs_dir = cs[i].root[0] ? cs[i].root : runs_dir, .db_path = db_path, .use_cache = 1};
 		sb_err ce = {0};
 		int lock = -1;
-		if (!slurm_drv_open(d, &o, cs[i].file, &ce)) {
+		const char *rd = o.runs_dir ? o.runs_dir : "runs";
+		if (access(rd, F_OK)) /* never made again by a status */
+			sb_errf(&ce, SB_EIO, "%s: %s", rd, strerror(errno));
+		else if (!slurm_drv_open(d, &o, cs[i].file, &ce)) {
 			char lp[PATHX];
 			snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
 			lock = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
@@ -506,7 +518,7 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 	int have_q = !sq_list(&q, &qe);
 	sqlite3_stmt *j;
 	if (db_exec(&db, e, &j,
-		    "SELECT campaign, job_id, array, tasks, runs, runs_per_task, submitted, dir FROM slurm_job"
+		    "SELECT campaign, job_id, array, tasks, runs, runs_per_task, submitted, dir, campaign_file FROM slurm_job"
 		    " WHERE ?1 IS NULL OR campaign = ?1 ORDER BY campaign, job_id",
 		    "t", name)) {
 		db_close(&db);
@@ -566,8 +578,9 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 			stopped, unstarted, open);
 		if (stopped + unstarted + failed)
 			fprintf(out, "  logs: %s/" SLURM_SUB "/logs/%ld_INDEX.out; runs not done go again with: study submit "
-				"CAMPAIGN --slurm%s\n",
-				(const char *)sqlite3_column_text(j, 7), job, failed ? " [--retry-failed]" : "");
+				"%s --slurm%s\n",
+				(const char *)sqlite3_column_text(j, 7), job, (const char *)sqlite3_column_text(j, 8),
+				failed ? " [--retry-failed]" : "");
 	}
 	sqlite3_finalize(j);
 	db_close(&db);
