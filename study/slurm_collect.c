@@ -278,16 +278,17 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 	}
 	if (!open && !strcmp(r->state, "submitted") && !start)
 		return qs ? 0 : set_task(d, r, "unstarted", 0, "", e); /* done elsewhere meanwhile */
-	if (qs && start && !passed && !strcmp(r->state, "submitted")) {
-		/* running now: the run shows as running in study status */
-		if (open) {
+	if (qs && start && !passed) {
+		/* running now: the run shows as running in study status (again after a
+		 * submit, which records every run of the campaign as not running) */
+		if (!strcmp(st, "pending")) {
 			char *copy = strdup(start->text);
 			if (!copy)
 				return sb_errf(e, SB_ENOMEM, "out of memory");
 			on_start(d, copy, e);
 			free(copy);
 		}
-		return e->code ? e->code : set_task(d, r, "started", 0, host, e);
+		return e->code || strcmp(r->state, "submitted") ? e->code : set_task(d, r, "started", 0, host, e);
 	}
 	if (qs && !passed)
 		return 0; /* queued or running: later */
