@@ -64,7 +64,8 @@ static const char *HELP_RUN =
 	"                      t/T, counts, ETA (default: when stderr is a terminal)\n\n"
 	"Exit codes: 0 all runs done, 1 bad campaign or usage, 2 I/O (a run's I/O fault stops\n"
 	"the launching; the runs stay pending), 3 some runs failed (recorded; see study status),\n"
-	"4 another driver is running this campaign, 7 interrupted (run again to resume).\n";
+	"4 another driver is running this campaign (or its Slurm tasks are queued or running:\n"
+	"study submit), 7 interrupted (run again to resume).\n";
 
 static const char *HELP_STATUS =
 	"usage: study status [NAME | CAMPAIGN-FILE] [--jobs N] [--watch [--interval S]] [--runs DIR]\n"
@@ -79,7 +80,10 @@ static const char *HELP_STATUS =
 	"with its swept values and the simulated time t/T it reached (from its journal; t ?\n"
 	"for runs on other hosts), and an ETA from the simulated seconds per second measured\n"
 	"over the runs in flight (else the last runs to finish). Ends when nothing is\n"
-	"pending or running, when no driver runs the campaign, or on Ctrl-C.\n";
+	"pending or running, when no driver runs the campaign, or on Ctrl-C.\n\n"
+	"A campaign submitted to Slurm (study submit): what its tasks did is read into the\n"
+	"database first, and one line per job array follows: its tasks queued, running and\n"
+	"ended, its runs done, failed, stopped and not started.\n";
 
 static const char *HELP_SUBMIT =
 	"usage: study submit CAMPAIGN --slurm [--throttle K] [--runs-per-task N] [--sbatch-args \"ARGS\"]\n"
