@@ -302,10 +302,12 @@ static void head(const watch *w, char *buf, size_t len)
 	int n = snprintf(buf, len, "%s: %ld/%ld finished (%.0f%%): %ld done, %ld failed, %ld pending, %ld running", w->name,
 			 fin, w->total, w->total ? 100.0 * (double)fin / (double)w->total : 100.0, w->done, w->failed,
 			 w->pending, w->running);
-	if ((w->pending || w->running) && n > 0 && (size_t)n < len)
-		snprintf(buf + n, len - (size_t)n, "; ETA %s%s%.3g simulated s per s%s%s", eta,
-			 w->rate > 0 ? " at " : "", w->rate > 0 ? w->rate : 0.0, w->rate > 0 ? " from " : "",
-			 w->rate > 0 ? w->basis : "");
+	if ((w->pending || w->running) && n > 0 && (size_t)n < len) {
+		if (w->rate > 0)
+			snprintf(buf + n, len - (size_t)n, "; ETA %s at %.3g simulated s per s from %s", eta, w->rate, w->basis);
+		else
+			snprintf(buf + n, len - (size_t)n, "; ETA unknown until a run has advanced");
+	}
 }
 
 void watch_print(const watch *w, FILE *out)

@@ -27,9 +27,13 @@ traj_rate = 100
 frequency = 3, 4
 C
 }
-# long enough that the watch looks at the runs several times (about 2 s a run here,
-# more with the sanitizer build)
-campaign w 20 >w.campaign
+# runs of about 2.5 s whatever the build (the sanitizer build is several times slower):
+# long enough that the watch looks at each several times, measured on one short run
+t0=$(date +%s%N)
+"$SHAKE" n_grains=60 width=20 radius_ratio=2 settle_ke=1 settle_min=0.2 amplitude=1 frequency=3 duration=2 \
+	traj_rate=100 output="$TMP/cal.h5" progress=no >cal.log 2>&1
+T=$(awk -v ms=$((($(date +%s%N) - t0) / 1000000)) 'BEGIN { d = 2 * 2500 / (ms > 1 ? ms : 1); d = d < 3 ? 3 : d > 40 ? 40 : d; printf "%d", d }')
+campaign w "$T" >w.campaign
 t0=$(date +%s%N)
 "$STUDY" run w.campaign --runs "$TMP/R" --jobs 2 --progress >run.log 2>&1 &
 pid=$!
@@ -45,8 +49,8 @@ rc=$?
 t_run=$(date +%s%N)
 echo "# campaign (4 runs, 2 jobs): $(((t_run - t0) / 1000000)) ms; $(grep -c '^[0-9][0-9]:' watch.out) looks"
 [ "$rc" -eq 0 ] && ok watch.campaign_ran || fail watch.campaign_ran "exit $rc: $(tail -c 300 run.log)"
-# in flight: "frequency=3 seed=1   t 2.34/20 s ..." with t > 0
-grep -Eq '^  frequency=[34] seed=[12] +t [0-9.e+-]+/20 s' watch.out &&
+# in flight: "frequency=3 seed=1   t 2.34/$T s ..." with t > 0
+grep -Eq "^  frequency=[34] seed=[12] +t [0-9.e+-]+/$T s" watch.out &&
 	awk '/^  frequency=/ && $3 == "t" { split($4, a, "/"); if (a[1] + 0 > 0) found = 1 } END { exit !found }' watch.out &&
 	ok watch.in_flight_values_and_t || fail watch.in_flight_values_and_t "$(head -n 12 watch.out)"
 # the ETA from what runs: simulated seconds per second measured over the runs in flight
@@ -57,11 +61,11 @@ grep -q 'ETA [0-9.]* \(s\|min\) at [0-9.e+-]* simulated s per s from the runs in
 	[ $(((t_watch - t_run) / 1000000)) -lt 1000 ] && ok watch.ends_with_campaign ||
 	fail watch.ends_with_campaign "exit $wrc, $(((t_watch - t_run) / 1000000)) ms from the campaign's end: $(tail -n 3 watch.out)"
 # study run --progress: the same look as lines (no terminal here), ending at 100%
-grep -q 'frequency=[34] seed=[12] t [0-9.e+-]*/20 s' run.log && grep -q 'w: 4/4 finished (100%)' run.log &&
+grep -q "frequency=[34] seed=[12] t [0-9.e+-]*/$T s" run.log && grep -q 'w: 4/4 finished (100%)' run.log &&
 	ok watch.run_progress_line || fail watch.run_progress_line "$(cat run.log)"
 
 # Ctrl-C: the watch stops at once, exit 0; the campaign is not disturbed
-campaign c 20 >c.campaign
+campaign c "$T" >c.campaign
 "$STUDY" run c.campaign --runs "$TMP/C" --jobs 2 >c.log 2>&1 &
 pid=$!
 for i in $(seq 400); do
