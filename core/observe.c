@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "crossing.h"
+
 static double *zalloc(size_t n, int *bad)
 {
 	double *p = calloc(n ? n : 1, sizeof(double));
@@ -37,8 +39,8 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 		o->hline = zalloc((size_t)o->nlines, &bad);
 		o->jtop = zalloc((size_t)o->nlines, &bad);
 		o->jbot = zalloc((size_t)o->nlines, &bad);
-		for (int l = 0; l < o->nlines && !bad; l++)
-			o->hline[l] = surface * (l + 0.5) / o->nlines;
+		if (!bad)
+			crossing_lines(surface, o->nlines, o->hline);
 		/* the stop rule's band: the lines within it (the nearest one when none is),
 		 * as the analysis tools choose their plane */
 		const double lo = sc->stop_flux_lo * surface, hi = sc->stop_flux_hi * surface;
@@ -108,32 +110,10 @@ void obs_free(sb_obs *o)
 int obs_flux_len(const sb_obs *o) { return 2 + 2 * o->nlines; }
 int obs_field_len(const sb_obs *o) { return 2 + 3 * o->nx * o->ny; }
 
-/* Crossings between the previous and this sample: a disk crosses line h upwards
- * when yp < h <= y, downwards when y < h <= yp. It counts for the centre when the
- * midpoint of its two sample positions lies within W/4 of the box centre. */
+/* Crossings between the previous and this sample (core/crossing.h). */
 static void flux_count(sb_obs *o, const double *x, const double *y)
 {
-	const double xc = 0.5 * (o->x0 + o->x1), quarter = 0.25 * (o->x1 - o->x0);
-	const double dh = o->surface / o->nlines;
-	for (int i = 0; i < o->nm; i++) {
-		double y0 = o->yp[i], y1 = y[i];
-		if (y0 == y1)
-			continue;
-		int up = y1 > y0;
-		double lo = up ? y0 : y1, hi = up ? y1 : y0;
-		/* lines l with lo < h_l <= hi (for up) or lo < h_l <= hi with roles swapped */
-		int l0 = (int)ceil(lo / dh - 0.5), l1 = (int)floor(hi / dh - 0.5);
-		if (l0 < 0)
-			l0 = 0;
-		if (l1 > o->nlines - 1)
-			l1 = o->nlines - 1;
-		double *j = fabs(0.5 * (o->xp[i] + x[i]) - xc) < quarter ? o->jtop : o->jbot;
-		for (int l = l0; l <= l1; l++) {
-			const double h = o->hline[l];
-			if (up ? (y0 < h && h <= y1) : (y1 < h && h <= y0))
-				j[l] += up ? 1 : -1;
-		}
-	}
+	crossing_count(o->nm, o->xp, o->yp, x, y, o->x0, o->x1, o->surface, o->nlines, o->hline, o->jtop, o->jbot);
 }
 
 static void field_add(sb_obs *o, const double *x, const double *y)
