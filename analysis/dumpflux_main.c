@@ -1,0 +1,316 @@
+/* dumpflux_main.c - bin/dumpflux: Phi(D) of a run from another code's position dump,
+ * counted by the engine's own crossing code, beside the engine's own; and the two
+ * codes compared over an ensemble of beds (tests/bench/validate_lammps.sh). Only this
+ * file prints and exits. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dumpflux.h"
+#include "flux.h"
+#include "pairdiff.h"
+
+static const char *HELP =
+	"usage: dumpflux run RUN.h5 [--skip FRAC] [--periods]\n"
+	"       dumpflux dump DUMP --like RUN.h5 --amplitude A --frequency F --dt DT\n"
+	"                [--skip FRAC] [--periods]\n"
+	"       dumpflux compare [--level L] A1.tsv ... -- B1.tsv ...\n\n"
+	"The flux Phi(D) (docs/model.md, \"Flux Phi(D)\") of one run as a profile: per height\n"
+	"line its time mean over the periods after the first FRAC of them (default 0.2, as\n"
+	"the analysis tools), in particles per period. Prints TSV: line, height (cm above the\n"
+	"floor), phi; with --periods one row per period instead: time, frequency, then phi of\n"
+	"every line.\n\n"
+	"  run    the engine's own record of a run file (flux = yes), read with flux_read.\n"
+	"  dump   a text dump (LAMMPS `dump custom` with id type x y radius) holding the\n"
+	"         positions at every stroboscopic sample (frame k at the first step at or\n"
+	"         after k/F; checked) of a run of the same bed as RUN.h5, an engine run with\n"
+	"         flux = yes whose settled surface height and lines are taken. The crossings\n"
+	"         are counted by the engine's code (core/crossing.c) after the box offset\n"
+	"         A sin(2 pi F step DT) is taken off the mobile disks' y. A comment line\n"
+	"         reports the frames, the wall faces, the largest offset taken off, and how\n"
+	"         the wall disks moved: wall_drive_dev (against the drive: ~0 for LAMMPS's\n"
+	"         moving walls) and wall_rest_dev (against rest: 0 for walls at rest).\n"
+	"  compare  the profiles A_b of one code and B_b of the other for the same beds b\n"
+	"         (paired in the order given), TSV per line: l, height (mean of A's), mean A\n"
+	"         and its interval half-width, mean B and half-width, mean difference A - B\n"
+	"         and half-width (Student t over the beds at level L, default 0.95), the\n"
+	"         difference's t, agree (1: the difference's interval holds 0); then\n"
+	"         '# key value' lines: beds, lines, disagree (lines), max_abs_t, chi2_per_line\n"
+	"         (mean t^2 over the lines with crossings), and their p-values from the exact\n"
+	"         sign-flip test over the beds (p_max_abs_t, p_chi2, perms).\n";
+
+static int usage(const char *msg)
+{
+	fprintf(stderr, "dumpflux: %s\n(dumpflux --help for the usage)\n", msg);
+	return 1;
+}
+
+static int num(const char *s, double *v)
+{
+	char *end;
+	errno = 0;
+	*v = strtod(s, &end);
+	return end != s && !*end && !errno && isfinite(*v);
+}
+
+static void print_flux(const flux_data *d, double skip, int periods, const char *what)
+{
+	if (periods) {
+		printf("# %s: %zu periods x %zu lines; time frequency phi[0..%zu]\n", what, d->P, d->L,
+		       d->L ? d->L - 1 : 0);
+		for (size_t p = 0; p < d->P; p++) {
+			printf("%.17g\t%.17g", d->t[p], d->f[p]);
+			for (size_t l = 0; l < d->L; l++)
+				printf("\t%.17g", d->phi[p * d->L + l]);
+			printf("\n");
+		}
+		return;
+	}
+	flux_opts fo = FLUX_OPTS_DEFAULT;
+	fo.skip = skip;
+	double *prof = malloc(sizeof *prof * (d->L ? d->L : 1));
+	if (!prof) {
+		fprintf(stderr, "dumpflux: out of memory\n");
+		exit(8);
+	}
+	flux_profile(d, &fo, prof);
+	const size_t p0 = flux_first(d, &fo);
+	printf("# %s: surface %.17g cm, %zu lines, periods %zu, averaged %zu (after the first %zu)\n", what,
+	       d->surface, d->L, d->P, d->P > p0 ? d->P - p0 : 0, p0);
+	printf("# line\theight\tphi\n");
+	for (size_t l = 0; l < d->L; l++)
+		printf("%zu\t%.17g\t%.17g\n", l, d->h[l], prof[l]);
+	free(prof);
+}
+
+static int cmd_run(int argc, char **argv)
+{
+	const char *run = NULL;
+	double skip = 0.2;
+	int periods = 0;
+	for (int i = 0; i < argc; i++) {
+		if (!strcmp(argv[i], "--skip") && i + 1 < argc) {
+			if (!num(argv[++i], &skip) || skip < 0 || skip >= 1)
+				return usage("--skip: expected a fraction in [0, 1)");
+		} else if (!strcmp(argv[i], "--periods"))
+			periods = 1;
+		else if (argv[i][0] == '-' || run)
+			return usage("run: unknown or extra argument");
+		else
+			run = argv[i];
+	}
+	if (!run)
+		return usage("run: which run file?");
+	flux_data d;
+	sb_err e = {0};
+	if (flux_read(run, &d, &e)) {
+		fprintf(stderr, "dumpflux: %s\n", e.msg);
+		return e.code;
+	}
+	print_flux(&d, skip, periods, run);
+	flux_free(&d);
+	return 0;
+}
+
+static int cmd_dump(int argc, char **argv)
+{
+	const char *dump = NULL, *like = NULL;
+	double skip = 0.2;
+	int periods = 0;
+	dumpflux_opts o = {.amplitude = NAN, .frequency = NAN, .dt = NAN};
+	for (int i = 0; i < argc; i++) {
+		const char *a = argv[i];
+		double *v = !strcmp(a, "--amplitude") ? &o.amplitude
+			    : !strcmp(a, "--frequency") ? &o.frequency
+			    : !strcmp(a, "--dt")        ? &o.dt
+			    : !strcmp(a, "--skip")      ? &skip
+							: NULL;
+		if (v && i + 1 < argc) {
+			if (!num(argv[++i], v))
+				return usage("expected a number after an option");
+		} else if (!strcmp(a, "--like") && i + 1 < argc)
+			like = argv[++i];
+		else if (!strcmp(a, "--periods"))
+			periods = 1;
+		else if (a[0] == '-' || dump)
+			return usage("dump: unknown or extra argument, or an option without its value");
+		else
+			dump = a;
+	}
+	if (!dump || !like || isnan(o.amplitude) || isnan(o.frequency) || isnan(o.dt))
+		return usage("dump: needs DUMP, --like RUN.h5, --amplitude, --frequency and --dt");
+	if (skip < 0 || skip >= 1)
+		return usage("--skip: expected a fraction in [0, 1)");
+	flux_data ref, d;
+	sb_err e = {0};
+	if (flux_read(like, &ref, &e)) {
+		fprintf(stderr, "dumpflux: %s\n", e.msg);
+		return e.code;
+	}
+	o.surface = ref.surface;
+	o.nlines = (int)ref.L;
+	dumpflux_info info;
+	int rc = dumpflux_read(dump, &o, &d, &info, &e);
+	if (!rc)
+		for (size_t l = 0; l < d.L; l++)
+			if (d.h[l] != ref.h[l]) {
+				rc = SB_EIO;
+				fprintf(stderr, "dumpflux: line %zu at %.17g cm, the engine's at %.17g cm (%s)\n", l, d.h[l],
+					ref.h[l], like);
+				break;
+			}
+	flux_free(&ref);
+	if (rc) {
+		if (e.code)
+			fprintf(stderr, "dumpflux: %s\n", e.msg);
+		return rc;
+	}
+	printf("# frames %ld mobile %ld walls %ld x0 %.17g x1 %.17g ybox_max %.6g wall_rest_dev %.6g wall_drive_dev %.6g\n",
+	       info.frames, info.mobile, info.walls, info.x0, info.x1, info.ybox_max, info.wall_rest_dev,
+	       info.wall_drive_dev);
+	print_flux(&d, skip, periods, dump);
+	flux_free(&d);
+	return 0;
+}
+
+/* A profile TSV (line, height, phi) into h[], phi[] (L values; *L set by the first). */
+static int read_profile(const char *path, size_t *L, double **h, double **phi)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "dumpflux: %s: cannot read: %s\n", path, strerror(errno));
+		return 2;
+	}
+	char line[512];
+	size_t n = 0, cap = 0;
+	double *hh = NULL, *pp = NULL;
+	int rc = 0;
+	while (fgets(line, sizeof line, f)) {
+		if (line[0] == '#' || line[0] == '\n')
+			continue;
+		size_t l;
+		double a, b;
+		if (sscanf(line, "%zu %lf %lf", &l, &a, &b) != 3 || l != n || !isfinite(a) || !isfinite(b)) {
+			fprintf(stderr, "dumpflux: %s: line %zu of the profile: expected 'l height phi'\n", path, n);
+			rc = 2;
+			break;
+		}
+		if (n == cap) {
+			cap = cap ? 2 * cap : 128;
+			double *x = realloc(hh, sizeof *x * cap), *y = x ? realloc(pp, sizeof *y * cap) : NULL;
+			if (x)
+				hh = x;
+			if (y)
+				pp = y;
+			if (!x || !y) {
+				rc = 8;
+				break;
+			}
+		}
+		hh[n] = a;
+		pp[n] = b;
+		n++;
+	}
+	fclose(f);
+	if (!rc && (n == 0 || (*L && n != *L))) {
+		fprintf(stderr, "dumpflux: %s: %zu lines, expected %zu\n", path, n, *L);
+		rc = 2;
+	}
+	if (rc) {
+		free(hh);
+		free(pp);
+		return rc;
+	}
+	*L = n;
+	*h = hh;
+	*phi = pp;
+	return 0;
+}
+
+static int cmd_compare(int argc, char **argv)
+{
+	double level = 0.95;
+	const char *fa[4096], *fb[4096];
+	size_t na = 0, nb = 0;
+	int side = 0;
+	for (int i = 0; i < argc; i++) {
+		if (!strcmp(argv[i], "--level") && i + 1 < argc) {
+			if (!num(argv[++i], &level) || !(level > 0 && level < 1))
+				return usage("--level: expected a number in (0, 1)");
+		} else if (!strcmp(argv[i], "--"))
+			side++;
+		else if (side == 0 && na < 4096)
+			fa[na++] = argv[i];
+		else if (side == 1 && nb < 4096)
+			fb[nb++] = argv[i];
+		else
+			return usage("compare: too many files or '--' twice");
+	}
+	if (na != nb || na < 2)
+		return usage("compare: give the same number (2 or more) of profiles on each side of '--'");
+	size_t L = 0;
+	double *A = NULL, *B = NULL, *H = NULL;
+	int rc = 0;
+	for (size_t k = 0; k < 2 * na && !rc; k++) {
+		double *h, *p;
+		rc = read_profile(k < na ? fa[k] : fb[k - na], &L, &h, &p);
+		if (rc)
+			break;
+		if (!A) {
+			A = calloc(na * L, sizeof *A);
+			B = calloc(na * L, sizeof *B);
+			H = calloc(L, sizeof *H);
+			if (!A || !B || !H)
+				rc = 8;
+		}
+		if (!rc) {
+			double *dst = k < na ? A + k * L : B + (k - na) * L;
+			memcpy(dst, p, sizeof *p * L);
+			if (k < na)
+				for (size_t l = 0; l < L; l++)
+					H[l] += h[l] / (double)na;
+		}
+		free(h);
+		free(p);
+	}
+	pd_result r;
+	sb_err e = {0};
+	if (!rc && pd_compare(na, L, A, B, level, &r, &e)) {
+		fprintf(stderr, "dumpflux: %s\n", e.msg);
+		rc = e.code;
+	}
+	if (!rc) {
+		printf("# l\theight\tmean_a\thalf_a\tmean_b\thalf_b\tmean_diff\thalf_diff\tt\tagree\n");
+		for (size_t l = 0; l < L; l++)
+			printf("%zu\t%.6f\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.4g\t%d\n", l, H[l], r.ma[l], r.ha[l], r.mb[l],
+			       r.hb[l], r.md[l], r.hd[l], r.t[l], r.agree[l]);
+		printf("# beds %zu\n# level %g\n# lines %zu\n# lines_with_crossings %zu\n# disagree %d\n", r.n, r.level, r.L,
+		       r.lines_used, r.ndis);
+		printf("# max_abs_t %.4g\n# chi2_per_line %.4g\n# p_max_abs_t %.4g\n# p_chi2 %.4g\n# perms %ld%s\n", r.maxt,
+		       r.chi2, r.p_maxt, r.p_chi2, r.perms, r.exact ? " (all sign patterns)" : " (random sign patterns)");
+		pd_free(&r);
+	}
+	free(A);
+	free(B);
+	free(H);
+	return rc;
+}
+
+int main(int argc, char **argv)
+{
+	if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+		fputs(HELP, stdout);
+		return 0;
+	}
+	if (argc < 2)
+		return usage("which command: run, dump or compare?");
+	if (!strcmp(argv[1], "run"))
+		return cmd_run(argc - 2, argv + 2);
+	if (!strcmp(argv[1], "dump"))
+		return cmd_dump(argc - 2, argv + 2);
+	if (!strcmp(argv[1], "compare"))
+		return cmd_compare(argc - 2, argv + 2);
+	return usage("unknown command (run, dump, compare)");
+}
