@@ -68,6 +68,8 @@ help:
 	@echo "make bench-study  what a study costs: the claims' questions by fixed grids and by stop rules, adaptive"
 	@echo "                search and auto replicates, CPU seconds and answers side by side (STUDY_QUICK=1, JOBS=2)"
 	@echo "make stress     numerical-stability stress tests (largest stable dt, long rest, violent driving)"
+	@echo "make validate-lammps  Phi(D) at 3.0 Hz of shakebox against LAMMPS gran/hooke over 10 settled beds"
+	@echo "                (docs/validate_lammps.md; ~30 min on 2 cores; VALIDATE_QUICK=1, JOBS=2)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
@@ -167,6 +169,7 @@ clean:
 -include study/study.mk
 -include analysis/analysis.mk
 -include tests/bench/bench.mk
+-include tests/bench/validate.mk
 -include tests/fuzz/fuzz.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)

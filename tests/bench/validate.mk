@@ -1,0 +1,14 @@
+# validate.mk - `make validate-lammps` (issue #16, point 4): Phi(D) at 3.0 Hz without
+# intruder from the same settled beds shaken by the engine and by LAMMPS gran/hooke,
+# both counted by the engine's crossing code, compared over the beds
+# (tests/bench/validate_lammps.sh). Writes docs/validate_lammps.md and its figure
+# (docs/validate_lammps.png, .pdf). Not part of `make check`
+# (tests/integration/validate_lammps_quick.sh runs the quick version there).
+# Knobs: VALIDATE_QUICK=1 (2 beds of 6 s into build/validate-quick/: the pipeline
+# only), VALIDATE_BEDS (10), VALIDATE_DURATION (80 s), JOBS (2).
+VALIDATE_QUICK ?= 0
+JOBS           ?= 2
+
+.PHONY: validate-lammps
+validate-lammps: build/.deps-ok all
+	$(Q)VALIDATE_QUICK=$(VALIDATE_QUICK) JOBS=$(JOBS) bash tests/bench/validate_lammps.sh
