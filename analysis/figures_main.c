@@ -73,7 +73,7 @@ static const char *HELP =
 	"            the panel's runs after the first FRAC of each (--skip, default 0.2),\n"
 	"            against the line height D above the bottom (/flux, flux = yes), both\n"
 	"            systems in one panel per frequency;\n"
-	"  fig4.png  Fig. 4: the intruder's height y(t) (/intruder/trajectory, lab frame) at\n"
+	"  fig4.png  Fig. 4: the intruder's height y(t) (/particles/intruder/position, lab frame) at\n"
 	"            the highest selected frequency, one panel per radius ratio > 0 (the\n"
 	"            run with the lowest replicate), with its settled height and the surface.\n"
 	"A figure without data is skipped with a note. A failed run is drawn with what it\n"
@@ -334,8 +334,8 @@ static void field_free(field *fl)
 static void field_sum(field *fl, hid_t h, const size_t d[3], const double *ux, const double *uy, const double *cn)
 {
 	double ci = 0, xi = 0;
-	h5r_attr_num(h, "/field", "cell", &ci);
-	h5r_attr_num(h, "/field", "x0", &xi);
+	h5r_attr_num(h, "/observables/field", "cell", &ci);
+	h5r_attr_num(h, "/observables/field", "x0", &xi);
 	if (!(ci > 0))
 		return;
 	if (!fl->runs) {
@@ -375,8 +375,9 @@ static void field_add(field *fl, const an_run *r)
 	double *ux = NULL, *uy = NULL, *cn = NULL;
 	size_t d1[3], d2[3], d3[3];
 	int rk;
-	if (h5r_exists(h, "/field") && !h5r_read(h, "/field/ux", &ux, &rk, d1, &he) &&
-	    !h5r_read(h, "/field/uy", &uy, &rk, d2, &he) && !h5r_read(h, "/field/count", &cn, &rk, d3, &he) && rk == 3 &&
+	if (h5r_exists(h, "/observables/field") && !h5r_read(h, "/observables/field/ux/value", &ux, &rk, d1, &he) &&
+	    !h5r_read(h, "/observables/field/uy/value", &uy, &rk, d2, &he) &&
+	    !h5r_read(h, "/observables/field/count/value", &cn, &rk, d3, &he) && rk == 3 &&
 	    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1))
 		field_sum(fl, h, d1, ux, uy, cn);
 	free(ux);
@@ -713,18 +714,23 @@ static int fig4_traj(const an_run *r, double ra, int p, FILE *f, double meta[3])
 	sb_err he = {0};
 	if (h5r_open(r->path, &h, &he))
 		return 0;
-	double *tr = NULL;
-	size_t dm[3];
-	int rk, ok = !h5r_read(h, "/intruder/trajectory", &tr, &rk, dm, &he) && rk == 2 && dm[1] >= 3 && dm[0] > 0;
+	double *tm = NULL, *pos = NULL;
+	size_t dt[3], dm[3];
+	int rt, rk;
+	int ok = h5r_exists(h, "/particles/intruder/position") &&
+		 !h5r_read(h, "/particles/intruder/position/time", &tm, &rt, dt, &he) &&
+		 !h5r_read(h, "/particles/intruder/position/value", &pos, &rk, dm, &he) && rk == 3 && dm[1] == 1 &&
+		 dm[2] == 2 && dm[0] > 0 && dt[0] == dm[0];
 	if (ok) {
 		for (size_t j = 0; j < dm[0]; j++)
-			fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", p, ra, r->id, tr[j * dm[1]], tr[j * dm[1] + 2]);
+			fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", p, ra, r->id, tm[j], pos[2 * j + 1]);
 		meta[0] = ra;
 		meta[1] = meta[2] = NAN;
 		h5r_attr_num(h, "/", "intruder_settled_y", &meta[1]);
 		h5r_attr_num(h, "/", "surface_height", &meta[2]);
 	}
-	free(tr);
+	free(tm);
+	free(pos);
 	h5r_close(h);
 	return ok;
 }

@@ -1,4 +1,4 @@
-/* flux.c - plane flux and profiles from a run's /flux group. */
+/* flux.c - plane flux and profiles from a run's /observables/flux group (H5MD elements). */
 #include "flux.h"
 
 #include <math.h>
@@ -16,13 +16,15 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 		return e->code;
 	int r;
 	size_t dt[3], df[3], dp[3], dh[3];
-	if (!h5r_exists(f, "/flux")) {
+	if (!h5r_exists(f, "/observables/flux")) {
 		h5r_close(f);
-		return sb_errf(e, SB_EIO, "%s: no /flux group (run with flux = yes)", path);
+		return sb_errf(e, SB_EIO, "%s: no /observables/flux group (run with flux = yes)", path);
 	}
 	sb_err re = {0};
-	if (h5r_read(f, "/flux/time", &d->t, &r, dt, &re) || h5r_read(f, "/flux/frequency", &d->f, &r, df, &re) ||
-	    h5r_read(f, "/flux/phi", &d->phi, &r, dp, &re) || h5r_read(f, "/flux/heights", &d->h, &r, dh, &re)) {
+	if (h5r_read(f, "/observables/flux/phi/time", &d->t, &r, dt, &re) ||
+	    h5r_read(f, "/observables/flux/frequency/value", &d->f, &r, df, &re) ||
+	    h5r_read(f, "/observables/flux/phi/value", &d->phi, &r, dp, &re) ||
+	    h5r_read(f, "/observables/flux/heights", &d->h, &r, dh, &re)) {
 		h5r_close(f);
 		flux_free(d);
 		return sb_errf(e, re.code, "%.500s: %.500s", path, re.msg);
@@ -32,10 +34,10 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 	if (df[0] != d->P || (d->P && (dp[0] != d->P || dp[1] != d->L))) {
 		h5r_close(f);
 		flux_free(d);
-		return sb_errf(e, SB_EIO, "%s: /flux datasets have inconsistent sizes", path);
+		return sb_errf(e, SB_EIO, "%s: /observables/flux datasets have inconsistent sizes", path);
 	}
 	d->surface = NAN;
-	if (h5r_attr_num(f, "/flux", "surface_height", &d->surface))
+	if (h5r_attr_num(f, "/observables/flux", "surface_height", &d->surface))
 		h5r_attr_num(f, "/", "surface_height", &d->surface);
 	if (!isfinite(d->surface) && d->L)
 		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */

@@ -11,7 +11,7 @@
 int h5r_open(const char *path, hid_t *f, sb_err *e);
 void h5r_close(hid_t f);
 int h5r_exists(hid_t f, const char *path);
-/* Attribute name of object obj ("/", "/flux", ...): 0 found, 1 missing (v untouched). */
+/* Attribute name of object obj ("/", "/observables/flux", ...): 0 found, 1 missing (v untouched). */
 int h5r_attr_num(hid_t f, const char *obj, const char *name, double *v);
 int h5r_attr_str(hid_t f, const char *obj, const char *name, char *buf, size_t len);
 /* The whole dataset as doubles (malloc'd, free by the caller), rank <= 3, dims[]. */

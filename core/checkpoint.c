@@ -13,7 +13,7 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '6'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '7'};
 
 typedef struct hw {
 	FILE *f;

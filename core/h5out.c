@@ -1,12 +1,21 @@
-/* h5out.c - the run's HDF5 file and its XDMF sidecar, assembled when the run ends:
- *   /            attributes: every scene parameter (typed), status, preparation results
- *   /provenance  attributes: git hash, dirty flag, compiler, flags, host, times
- *   /particles   id, kind (0 grain, 1 intruder, 2 wall), radius, mass
- *   /intruder/trajectory  [n x 6]: t, x, y, vx, vy, omega (lab frame)
- *   /snapshots/time [K], x, y, theta [K x n_mobile] (lab frame, phase 0 of each period)
- *   /final       x, y, vx, vy, omega, theta of every disk (lab frame)
- * Object time stamps are switched off so that two runs of the same scene give
- * identical files apart from /provenance. */
+/* h5out.c - the run's HDF5 file (H5MD 1.1; layout: README.md, "Output") and its XDMF
+ * sidecar, assembled from the journal and the final state when the run ends:
+ *   /             attributes: status, results (waiting time, overlap record, ...)
+ *   /h5md         version 1.1, author, creator
+ *   /parameters   attributes: every scene parameter (typed)
+ *   /particles/bed_xyz  the bed as a flat 3-D system (z = 0, virtual: no storage) for
+ *                       readers that know only three dimensions
+ *   /particles/bed      the mobile disks (grains, intruder; lab frame): id, species,
+ *                       mass, radius; box; position, velocity, angle at the snapshots
+ *   /particles/walls    the wall disks: id, species, mass, radius, position (at rest)
+ *   /particles/intruder the intruder at traj_rate: position, velocity, angular_velocity
+ *   /observables  energy, flux, field (time-dependent elements), contacts (frames)
+ *   /ring         the ring's time averages
+ *   /final        every disk at the end (lab frame): x, y, vx, vy, omega, theta and
+ *                 id, species, radius, mass
+ *   /provenance   git hash, compiler, flags, host, times
+ * Object time stamps are off, so two runs of one scene give identical files apart
+ * from /provenance. */
 #include <hdf5.h>
 #include <math.h>
 #include <stdlib.h>
@@ -14,70 +23,14 @@
 #include <unistd.h>
 
 #include "fsutil.h"
+#include "h5md.h"
 #include "h5out.h"
+#include "provenance.h"
 
-typedef struct h5 {
-	hid_t file, gcpl, dcpl;
-	int bad;
-} h5;
+/* The engine step of a recorded time (times are step * dt exactly). */
+static long step_of(const sb_sim *s, double t) { return lround(t / s->sc.dt); }
 
-static void attr_double(h5 *h, hid_t obj, const char *name, double v)
-{
-	hid_t sp = H5Screate(H5S_SCALAR);
-	hid_t a = H5Acreate2(obj, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
-	if (a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &v) < 0)
-		h->bad = 1;
-	H5Aclose(a);
-	H5Sclose(sp);
-}
-
-static void attr_long(h5 *h, hid_t obj, const char *name, long v)
-{
-	long long x = v;
-	hid_t sp = H5Screate(H5S_SCALAR);
-	hid_t a = H5Acreate2(obj, name, H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
-	if (a < 0 || H5Awrite(a, H5T_NATIVE_LLONG, &x) < 0)
-		h->bad = 1;
-	H5Aclose(a);
-	H5Sclose(sp);
-}
-
-static void attr_str(h5 *h, hid_t obj, const char *name, const char *v)
-{
-	hid_t t = H5Tcopy(H5T_C_S1);
-	H5Tset_size(t, strlen(v) + 1);
-	H5Tset_strpad(t, H5T_STR_NULLTERM);
-	hid_t sp = H5Screate(H5S_SCALAR);
-	hid_t a = H5Acreate2(obj, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-	if (a < 0 || H5Awrite(a, t, v) < 0)
-		h->bad = 1;
-	H5Aclose(a);
-	H5Sclose(sp);
-	H5Tclose(t);
-}
-
-static hid_t group(h5 *h, const char *name)
-{
-	hid_t g = H5Gcreate2(h->file, name, H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
-	if (g < 0)
-		h->bad = 1;
-	return g;
-}
-
-/* A 1-D or 2-D dataset written at once from memory. */
-static void dset(h5 *h, hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
-		 hsize_t d0, hsize_t d1, const void *data)
-{
-	hsize_t dims[2] = {d0, d1};
-	hid_t sp = H5Screate_simple(rank, dims, NULL);
-	hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
-	if (d < 0 || (d0 * (rank > 1 ? d1 : 1) > 0 && H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
-		h->bad = 1;
-	H5Dclose(d);
-	H5Sclose(sp);
-}
-
-static void write_params(h5 *h, const sb_scene *sc)
+static void write_params(h5w *h, hid_t g, const sb_scene *sc)
 {
 	size_t n;
 	const sb_param *t = params_table(&n);
@@ -85,11 +38,11 @@ static void write_params(h5 *h, const sb_scene *sc)
 		const char *base = (const char *)sc + t[i].offset;
 		char buf[SB_STR_MAX + 32];
 		switch (t[i].type) {
-		case PT_INT: attr_long(h, h->file, t[i].name, *(const long *)base); break;
-		case PT_REAL: attr_double(h, h->file, t[i].name, *(const double *)base); break;
+		case PT_INT: h5w_attr_long(h, g, t[i].name, *(const long *)base); break;
+		case PT_REAL: h5w_attr_double(h, g, t[i].name, *(const double *)base); break;
 		default:
 			params_format(sc, &t[i], buf, sizeof buf);
-			attr_str(h, h->file, t[i].name, buf);
+			h5w_attr_str(h, g, t[i].name, buf);
 		}
 	}
 }
@@ -117,20 +70,34 @@ static int dbuf_add(dbuf *b, const double *v, size_t n)
 	return 0;
 }
 
-static void write_flux(h5 *h, const sb_sim *s, const dbuf *fl)
+/* Records of len doubles, column c of each, and their steps (from column 0, time). */
+static int columns(const sb_sim *s, const dbuf *b, size_t len, size_t T, double **t, long **st)
+{
+	*t = malloc(sizeof(double) * (T ? T : 1));
+	*st = malloc(sizeof(long) * (T ? T : 1));
+	if (!*t || !*st)
+		return -1;
+	for (size_t k = 0; k < T; k++) {
+		(*t)[k] = b->d[k * len];
+		(*st)[k] = step_of(s, (*t)[k]);
+	}
+	return 0;
+}
+
+static void write_flux(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fl)
 {
 	const sb_obs *o = &s->obs;
 	const int nl = o->nlines, len = obs_flux_len(o);
-	const hsize_t P = (hsize_t)s->n_flux;
-	double *t = malloc(sizeof(double) * (P ? P : 1)), *f = malloc(sizeof(double) * (P ? P : 1));
+	const size_t P = (size_t)s->n_flux;
+	double *t = NULL, *f = malloc(sizeof(double) * (P ? P : 1));
+	long *st = NULL;
 	double *jt = malloc(sizeof(double) * (P ? P : 1) * nl), *jb = malloc(sizeof(double) * (P ? P : 1) * nl);
 	double *phi = malloc(sizeof(double) * (P ? P : 1) * nl);
-	if (!t || !f || !jt || !jb || !phi) {
+	if (columns(s, fl, (size_t)len, P, &t, &st) || !f || !jt || !jb || !phi) {
 		h->bad = 1;
 	} else {
-		for (hsize_t k = 0; k < P; k++) {
+		for (size_t k = 0; k < P; k++) {
 			const double *r = fl->d + k * len;
-			t[k] = r[0];
 			f[k] = r[1];
 			for (int l = 0; l < nl; l++) {
 				jt[k * nl + l] = r[2 + l];
@@ -138,42 +105,53 @@ static void write_flux(h5 *h, const sb_sim *s, const dbuf *fl)
 				phi[k * nl + l] = r[2 + l] - r[2 + nl + l];
 			}
 		}
-		hid_t g = group(h, "/flux");
-		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, P, 0, t);
-		dset(h, g, "frequency", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, P, 0, f);
-		dset(h, g, "j_top", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, jt);
-		dset(h, g, "j_bot", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, jb);
-		dset(h, g, "phi", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, P, (hsize_t)nl, phi);
-		dset(h, g, "heights", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)nl, 0, o->hline);
-		attr_str(h, g, "definition",
-			 "per period (between successive phase-0 samples): j_top = upward - downward crossings of "
-			 "each height line by disks whose mean x lies within W/4 of the box centre, j_bot the same "
-			 "outside; phi = j_top - j_bot (particles per period); heights in cm above the bottom");
-		attr_double(h, g, "surface_height", o->surface);
+		hid_t g = h5w_group(h, obs, "flux", 0);
+		const hsize_t tail = (hsize_t)nl;
+		h5elem e0, e;
+		h5w_elem_create(h, &e0, g, "phi", P, 1, &tail, "1", NULL);
+		h5w_elem_all(h, &e0, st, t, phi);
+		h5w_elem_create(h, &e, g, "j_top", P, 1, &tail, "1", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, jt);
+		h5w_elem_close(&e);
+		h5w_elem_create(h, &e, g, "j_bot", P, 1, &tail, "1", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, jb);
+		h5w_elem_close(&e);
+		h5w_elem_create(h, &e, g, "frequency", P, 0, NULL, "Hz", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, f);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		h5w_dset(h, g, "heights", 1, &tail, o->hline, "cm");
+		h5w_attr_str(h, g, "definition",
+			     "per period (between successive phase-0 samples; time and step: the period's end): j_top = "
+			     "upward - downward crossings of each height line by disks whose mean x lies within W/4 of the "
+			     "box centre, j_bot the same outside; phi = j_top - j_bot (particles per period); heights in "
+			     "cm above the bottom");
+		h5w_attr_double(h, g, "surface_height", o->surface);
 		H5Gclose(g);
 	}
 	free(t);
+	free(st);
 	free(f);
 	free(jt);
 	free(jb);
 	free(phi);
 }
 
-static void write_field(h5 *h, const sb_sim *s, const dbuf *fd)
+static void write_field(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fd)
 {
 	const sb_obs *o = &s->obs;
 	const size_t nc = (size_t)o->nx * o->ny;
 	const int len = obs_field_len(o);
-	const hsize_t B = (hsize_t)s->n_field;
-	double *t = malloc(sizeof(double) * (B ? B : 1));
+	const size_t B = (size_t)s->n_field;
+	double *t = NULL;
+	long *st = NULL;
 	double *ux = malloc(sizeof(double) * (B ? B : 1) * nc), *uy = malloc(sizeof(double) * (B ? B : 1) * nc);
 	double *cnt = malloc(sizeof(double) * (B ? B : 1) * nc);
-	if (!t || !ux || !uy || !cnt) {
+	if (columns(s, fd, (size_t)len, B, &t, &st) || !ux || !uy || !cnt) {
 		h->bad = 1;
 	} else {
-		for (hsize_t k = 0; k < B; k++) {
+		for (size_t k = 0; k < B; k++) {
 			const double *r = fd->d + k * len;
-			t[k] = r[0];
 			for (size_t c = 0; c < nc; c++) {
 				double n = r[2 + 2 * nc + c];
 				/* mean displacement per period of the disks that passed the cell */
@@ -182,70 +160,74 @@ static void write_field(h5 *h, const sb_sim *s, const dbuf *fd)
 				cnt[k * nc + c] = n;
 			}
 		}
-		hid_t g = group(h, "/field");
-		hsize_t dims[3] = {B, (hsize_t)o->ny, (hsize_t)o->nx};
-		const char *names[3] = {"ux", "uy", "count"};
-		double *data[3] = {ux, uy, cnt};
-		for (int q = 0; q < 3; q++) {
-			hid_t sp = H5Screate_simple(3, dims, NULL);
-			hid_t d = H5Dcreate2(g, names[q], H5T_IEEE_F64LE, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
-			if (d < 0 || (B && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data[q]) < 0))
-				h->bad = 1;
-			H5Dclose(d);
-			H5Sclose(sp);
-		}
-		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, B, 0, t);
-		attr_double(h, g, "cell", o->cell);
-		attr_double(h, g, "x0", o->x0);
-		attr_long(h, g, "periods_per_block", o->K);
-		attr_str(h, g, "definition",
-			 "[block, row, column]: cell (c, r) spans x0 + c*cell .. x0 + (c+1)*cell and r*cell .. (r+1)*cell "
-			 "above the bottom; ux, uy = mean displacement per period of the disks whose midpoint between "
-			 "successive phase-0 samples lies in the cell, over periods_per_block periods (cm); count = samples");
+		hid_t g = h5w_group(h, obs, "field", 0);
+		const hsize_t tail[2] = {(hsize_t)o->ny, (hsize_t)o->nx};
+		h5elem e0, e;
+		h5w_elem_create(h, &e0, g, "ux", B, 2, tail, "cm", NULL);
+		h5w_elem_all(h, &e0, st, t, ux);
+		h5w_elem_create(h, &e, g, "uy", B, 2, tail, "cm", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, uy);
+		h5w_elem_close(&e);
+		h5w_elem_create(h, &e, g, "count", B, 2, tail, "1", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, cnt);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		h5w_attr_double(h, g, "cell", o->cell);
+		h5w_attr_double(h, g, "x0", o->x0);
+		h5w_attr_long(h, g, "periods_per_block", o->K);
+		h5w_attr_str(h, g, "definition",
+			     "value[block][row][column]: cell (c, r) spans x0 + c*cell .. x0 + (c+1)*cell and r*cell .. "
+			     "(r+1)*cell above the bottom; ux, uy = mean displacement per period of the disks whose "
+			     "midpoint between successive phase-0 samples lies in the cell, over periods_per_block periods "
+			     "(cm); count = samples; time and step: the block's end");
 		H5Gclose(g);
 	}
 	free(t);
+	free(st);
 	free(ux);
 	free(uy);
 	free(cnt);
 }
 
-/* The energy series (energy_rate): one dataset per column, each with its unit. The
+/* The energy series (energy_rate): one element per column, sharing one clock. The
  * energies are the box frame's (the box's own motion is not the bed's). */
-static void write_energy(h5 *h, const dbuf *en, long T)
+static void write_energy(h5w *h, const sb_sim *s, hid_t obs, const dbuf *en, size_t T)
 {
 	static const char *const names[JR_ENERGY_COLS] = {"time", "kinetic_translational", "kinetic_rotational",
 							  "elastic", "com_height_box", "max_overlap", "contacts"};
 	static const char *const units[JR_ENERGY_COLS] = {"s", "erg", "erg", "erg", "cm", "1", "1"};
-	double *col = malloc(sizeof(double) * (size_t)(T ? T : 1));
-	if (!col) {
+	double *col = malloc(sizeof(double) * (T ? T : 1)), *t = NULL;
+	long *st = NULL;
+	if (!col || columns(s, en, JR_ENERGY_COLS, T, &t, &st)) {
 		h->bad = 1;
-		return;
-	}
-	hid_t go = group(h, "/observables");
-	hid_t g = H5Gcreate2(go, "energy", H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
-	for (int c = 0; c < JR_ENERGY_COLS; c++) {
-		for (long k = 0; k < T; k++)
-			col[k] = en->d[k * JR_ENERGY_COLS + c];
-		dset(h, g, names[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)T, 0, col);
-		hid_t d = H5Dopen2(g, names[c], H5P_DEFAULT);
-		if (d >= 0) {
-			attr_str(h, d, "unit", units[c]);
-			H5Dclose(d);
+	} else {
+		hid_t g = h5w_group(h, obs, "energy", 0);
+		h5elem e0 = {.g = -1}, e;
+		for (int c = 1; c < JR_ENERGY_COLS; c++) {
+			for (size_t k = 0; k < T; k++)
+				col[k] = en->d[k * JR_ENERGY_COLS + c];
+			h5elem *el = c == 1 ? &e0 : &e;
+			h5w_elem_create(h, el, g, names[c], T, 0, NULL, units[c], c == 1 ? NULL : &e0);
+			h5w_elem_all(h, el, st, t, col);
+			if (c > 1)
+				h5w_elem_close(&e);
 		}
+		h5w_elem_close(&e0);
+		h5w_attr_str(h, g, "definition",
+			     "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y xi^2 / 2 "
+			     "over the contacts; com_height_box = mass-weighted mean y of the mobile disks; max_overlap = "
+			     "largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")");
+		H5Gclose(g);
 	}
-	attr_str(h, g, "definition",
-		 "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y xi^2 / 2 over "
-		 "the contacts; com_height_box = mass-weighted mean y of the mobile disks; max_overlap = largest xi / "
-		 "min(R_i, R_j) at the sample (docs/model.md, \"Observables\")");
-	H5Gclose(g);
-	H5Gclose(go);
 	free(col);
+	free(t);
+	free(st);
 }
 
 /* The contact dump (contact_rate): frames of every contact, flattened - frame k's
- * contacts are rows offset[k] .. offset[k] + count[k] of the per-contact datasets. */
-static void write_contacts(h5 *h, const dbuf *c, long F)
+ * contacts are rows offset[k] .. offset[k] + count[k] of the per-contact datasets (a
+ * number of contacts that changes from frame to frame is not an H5MD element). */
+static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
 {
 	static const char *const names[JR_CONTACT_COLS] = {"id_a", "id_b", "normal_force", "tangential_force",
 							   "normal_x", "normal_y", "x", "y_box"};
@@ -264,12 +246,11 @@ static void write_contacts(h5 *h, const dbuf *c, long F)
 	if (!t || !cnt || !off || !col) {
 		h->bad = 1;
 	} else {
-		hid_t go = H5Lexists(h->file, "/observables", H5P_DEFAULT) > 0 ? H5Gopen2(h->file, "/observables", H5P_DEFAULT)
-										   : group(h, "/observables");
-		hid_t g = H5Gcreate2(go, "contacts", H5P_DEFAULT, h->gcpl, H5P_DEFAULT);
-		dset(h, g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, t);
-		dset(h, g, "count", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, cnt);
-		dset(h, g, "offset", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)F, 0, off);
+		hid_t g = h5w_group(h, obs, "contacts", 0);
+		const hsize_t nf = (hsize_t)F, nc = (hsize_t)C;
+		h5w_dset(h, g, "time", 1, &nf, t, "s");
+		h5w_dset(h, g, "count", 1, &nf, cnt, "1");
+		h5w_dset(h, g, "offset", 1, &nf, off, "1");
 		for (int k = 0; k < JR_CONTACT_COLS; k++) {
 			size_t row = 0;
 			pos = 0;
@@ -279,19 +260,13 @@ static void write_contacts(h5 *h, const dbuf *c, long F)
 					col[row++] = c->d[pos + 2 + JR_CONTACT_COLS * q + (size_t)k];
 				pos += 2 + JR_CONTACT_COLS * n;
 			}
-			dset(h, g, names[k], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, (hsize_t)C, 0, col);
-			hid_t d = H5Dopen2(g, names[k], H5P_DEFAULT);
-			if (d >= 0) {
-				attr_str(h, d, "unit", units[k]);
-				H5Dclose(d);
-			}
+			h5w_dset(h, g, names[k], 1, &nc, col, units[k]);
 		}
-		attr_str(h, g, "definition",
-			 "every contact at each sample: disks id_a, id_b; the force on id_a is normal_force n + "
-			 "tangential_force t with n = (r_a - r_b)/d = (normal_x, normal_y), t = n turned by +90 deg; "
-			 "x, y_box: midpoint of the centres (box frame); frame k is rows offset[k] .. offset[k] + count[k]");
+		h5w_attr_str(h, g, "definition",
+			     "every contact at each sample: disks id_a, id_b; the force on id_a is normal_force n + "
+			     "tangential_force t with n = (r_a - r_b)/d = (normal_x, normal_y), t = n turned by +90 deg; "
+			     "x, y_box: midpoint of the centres (box frame); frame k is rows offset[k] .. offset[k] + count[k]");
 		H5Gclose(g);
-		H5Gclose(go);
 	}
 	free(t);
 	free(cnt);
@@ -299,37 +274,35 @@ static void write_contacts(h5 *h, const dbuf *c, long F)
 	free(col);
 }
 
-static void write_ring(h5 *h, const sb_sim *s)
+static void write_ring(h5w *h, const sb_sim *s)
 {
 	const sb_obs *o = &s->obs;
-	hid_t g = group(h, "/ring");
+	hid_t g = h5w_group(h, h->file, "ring", 0);
 	double n = o->ring_samples ? (double)o->ring_samples : 1; /* no samples: zeros, never NaN */
-	attr_double(h, g, "inner", o->rin);
-	attr_double(h, g, "outer", o->rout);
-	attr_long(h, g, "samples", o->ring_samples);
-	attr_double(h, g, "mean_force", o->acc[0] / n);
-	attr_double(h, g, "mean_force_lower", o->acc[1] / n);
-	attr_double(h, g, "sum_force", o->acc[2] / n);
-	attr_double(h, g, "sum_force_lower", o->acc[3] / n);
-	attr_double(h, g, "temperature", o->acc[4] / n);
-	attr_double(h, g, "temperature_lower", o->acc[5] / n);
-	attr_double(h, g, "grains", o->acc[6] / n);
-	attr_double(h, g, "grains_lower", o->acc[7] / n);
-	attr_str(h, g, "definition",
-		 "time averages over samples every ring_every steps of grains whose centres lie inner..outer cm "
-		 "from the intruder centre (or ring_x, ring_y): mean_force = mean over grains of the sum of the "
-		 "magnitudes of their contact forces (dyn), sum_force = its sum over the ring, temperature = half "
-		 "the mean squared velocity fluctuation about the ring's mean velocity (cm^2/s^2); _lower: grains "
-		 "below the centre");
+	h5w_attr_double(h, g, "inner", o->rin);
+	h5w_attr_double(h, g, "outer", o->rout);
+	h5w_attr_long(h, g, "samples", o->ring_samples);
+	h5w_attr_double(h, g, "mean_force", o->acc[0] / n);
+	h5w_attr_double(h, g, "mean_force_lower", o->acc[1] / n);
+	h5w_attr_double(h, g, "sum_force", o->acc[2] / n);
+	h5w_attr_double(h, g, "sum_force_lower", o->acc[3] / n);
+	h5w_attr_double(h, g, "temperature", o->acc[4] / n);
+	h5w_attr_double(h, g, "temperature_lower", o->acc[5] / n);
+	h5w_attr_double(h, g, "grains", o->acc[6] / n);
+	h5w_attr_double(h, g, "grains_lower", o->acc[7] / n);
+	h5w_attr_str(h, g, "definition",
+		     "time averages over samples every ring_every steps of grains whose centres lie inner..outer cm "
+		     "from the intruder centre (or ring_x, ring_y): mean_force = mean over grains of the sum of the "
+		     "magnitudes of their contact forces (dyn), sum_force = its sum over the ring, temperature = half "
+		     "the mean squared velocity fluctuation about the ring's mean velocity (cm^2/s^2); _lower: grains "
+		     "below the centre");
 	H5Gclose(g);
 }
 
-/* Snapshots stream from the journal into [K x nm] datasets, one row at a time; the
- * other record types are small and gathered in memory first. */
 /* The intruder's height over the recorded trajectory rows in the box frame (the
  * trajectory holds lab-frame y; the box frame is the one its settled height and the
  * waiting time are measured in, so a rise never counts the box's own motion). */
-static void intruder_summary(h5 *h, const sb_sim *s, const double *traj, long T)
+static void intruder_summary(h5w *h, const sb_sim *s, const double *traj, long T)
 {
 	double ymax = -INFINITY, ymin = INFINITY, sum = 0, y = 0;
 	for (long k = 0; k < T; k++) {
@@ -339,17 +312,258 @@ static void intruder_summary(h5 *h, const sb_sim *s, const double *traj, long T)
 		ymin = y < ymin ? y : ymin;
 		sum += y;
 	}
-	attr_double(h, h->file, "intruder_final_y_box", y);
-	attr_double(h, h->file, "intruder_max_y_box", ymax);
-	attr_double(h, h->file, "intruder_min_y_box", ymin);
-	attr_double(h, h->file, "intruder_mean_y_box", sum / (double)T);
+	h5w_attr_double(h, h->file, "intruder_final_y_box", y);
+	h5w_attr_double(h, h->file, "intruder_max_y_box", ymax);
+	h5w_attr_double(h, h->file, "intruder_min_y_box", ymin);
+	h5w_attr_double(h, h->file, "intruder_mean_y_box", sum / (double)T);
 }
 
-static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
+/* An H5MD particle group's box: two dimensions, no periodic boundary. */
+static hid_t plain_box(h5w *h, hid_t g)
+{
+	hid_t b = h5w_group(h, g, "box", 0);
+	static const char *const none2[2] = {"none", "none"};
+	h5w_attr_long(h, b, "dimension", 2);
+	h5w_attr_strs(h, b, "boundary", none2, 2);
+	return b;
+}
+
+/* /particles/intruder: the intruder alone at traj_rate, as an H5MD particle group of
+ * one particle (lab frame). */
+static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *traj, long T)
+{
+	hid_t g = h5w_group(h, parts, "intruder", 0);
+	const size_t n = (size_t)T;
+	double *p = malloc(sizeof(double) * 2 * (n ? n : 1)), *v = malloc(sizeof(double) * 2 * (n ? n : 1));
+	double *w = malloc(sizeof(double) * (n ? n : 1)), *t = malloc(sizeof(double) * (n ? n : 1));
+	long *st = malloc(sizeof(long) * (n ? n : 1));
+	if (!p || !v || !w || !t || !st) {
+		h->bad = 1;
+	} else {
+		for (size_t k = 0; k < n; k++) {
+			const double *r = traj + k * JR_TRAJ_COLS; /* t x y vx vy omega */
+			t[k] = r[0];
+			st[k] = step_of(s, r[0]);
+			p[2 * k] = r[1];
+			p[2 * k + 1] = r[2];
+			v[2 * k] = r[3];
+			v[2 * k + 1] = r[4];
+			w[k] = r[5];
+		}
+		const hsize_t tail[2] = {1, 2}, one = 1;
+		h5elem e0, e;
+		h5w_elem_create(h, &e0, g, "position", n, 2, tail, "cm", NULL);
+		h5w_elem_all(h, &e0, st, t, p);
+		h5w_elem_create(h, &e, g, "velocity", n, 2, tail, "cm s-1", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, v);
+		h5w_elem_close(&e);
+		h5w_elem_create(h, &e, g, "angular_velocity", n, 1, &one, "rad s-1", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, w);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		const int id = s->st.id[s->intruder], sp = KIND_INTRUDER;
+		h5w_dset_int(h, g, "id", 1, &id, "1");
+		h5w_dset_int(h, g, "species", 1, &sp, "1");
+		H5Gclose(plain_box(h, g));
+		h5w_attr_long(h, g, "index", s->intruder);
+	}
+	free(p);
+	free(v);
+	free(w);
+	free(t);
+	free(st);
+	H5Gclose(g);
+}
+
+/* The box of /particles/bed: the side walls' inner faces and the highest wall disk's
+ * top (box frame), placed in the lab frame by a time-dependent offset. */
+static void box_size(const sb_sim *s, double *w, double *hgt)
+{
+	const sb_state *st = &s->st;
+	double top = 0;
+	for (int i = st->nm; i < st->n; i++)
+		top = fmax(top, st->q[C_Y][0][i] + st->r[i]);
+	*w = s->obs.x1 - s->obs.x0;
+	*hgt = top;
+}
+
+/* The snapshot elements of /particles/bed, streamed from the journal one frame at a
+ * time. */
+typedef struct snapw {
+	h5elem pos, vel, ang, off, offv;
+	double *p, *v;
+	hsize_t k;
+} snapw;
+
+static int snap_open(h5w *h, snapw *w, const sb_sim *s, hid_t bed, hid_t box, hsize_t K)
+{
+	const hsize_t nm = (hsize_t)s->st.nm, tail[2] = {nm, 2}, two = 2;
+	const hid_t ft = s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+	w->p = malloc(sizeof(double) * 2 * (nm ? nm : 1));
+	w->v = malloc(sizeof(double) * 2 * (nm ? nm : 1));
+	if (!w->p || !w->v)
+		return -1;
+	h5w_elem_create_as(h, &w->pos, bed, "position", K, 2, tail, "cm", NULL, ft);
+	h5w_elem_create_as(h, &w->vel, bed, "velocity", K, 2, tail, "cm s-1", &w->pos, ft);
+	h5w_elem_create_as(h, &w->ang, bed, "angle", K, 1, &nm, "rad", &w->pos, ft);
+	h5w_elem_create(h, &w->off, box, "offset", K, 1, &two, "cm", &w->pos);
+	h5w_elem_create(h, &w->offv, box, "offset_velocity", K, 1, &two, "cm s-1", &w->pos);
+	return h->bad ? -1 : 0;
+}
+
+/* rec: t, x[nm], y[nm], theta[nm], vx[nm], vy[nm] (lab frame) */
+static void snap_row(h5w *h, snapw *w, const sb_sim *s, const double *rec)
+{
+	const int nm = s->st.nm;
+	const double t = rec[0];
+	const double *x = rec + 1, *y = x + nm, *th = y + nm, *vx = th + nm, *vy = vx + nm;
+	for (int i = 0; i < nm; i++) {
+		w->p[2 * i] = x[i];
+		w->p[2 * i + 1] = y[i];
+		w->v[2 * i] = vx[i];
+		w->v[2 * i + 1] = vy[i];
+	}
+	const double off[2] = {s->obs.x0, sim_box_y(s, t)}, offv[2] = {0, sim_box_v(s, t)};
+	const long step = step_of(s, t);
+	h5w_elem_row(h, &w->pos, w->k, step, t, w->p);
+	h5w_elem_row(h, &w->vel, w->k, step, t, w->v);
+	h5w_elem_row(h, &w->ang, w->k, step, t, th);
+	h5w_elem_row(h, &w->off, w->k, step, t, off);
+	h5w_elem_row(h, &w->offv, w->k, step, t, offv);
+	w->k++;
+}
+
+static void snap_close(snapw *w)
+{
+	if (w->pos.g > 0) {
+		h5w_elem_close(&w->offv);
+		h5w_elem_close(&w->off);
+		h5w_elem_close(&w->ang);
+		h5w_elem_close(&w->vel);
+		h5w_elem_close(&w->pos);
+	}
+	free(w->p);
+	free(w->v);
+}
+
+/* /particles/bed_xyz: position and velocity of /particles/bed as [K][n][3] virtual
+ * datasets whose z is the fill value 0, and the same step and time (hard links).
+ * MDAnalysis' H5MD reader, for one, refuses a box of dimension 2. */
+static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t ftype)
+{
+	static const char *const names[2] = {"position", "velocity"};
+	static const char *const units[2] = {"cm", "cm s-1"};
+	for (int q = 0; q < 2; q++) {
+		hid_t g = h5w_group(h, xyz, names[q], 0);
+		hid_t src = H5Gopen2(bed, names[q], H5P_DEFAULT);
+		if (g < 0 || src < 0 || H5Lcreate_hard(src, "step", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
+		    H5Lcreate_hard(src, "time", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)
+			h->bad = 1;
+		H5Gclose(src);
+		hsize_t vd[3] = {K, n, 3}, sd[3] = {K, n, 2}, start[3] = {0, 0, 0};
+		hid_t vsp = H5Screate_simple(3, vd, NULL), ssp = H5Screate_simple(3, sd, NULL);
+		H5Sselect_hyperslab(vsp, H5S_SELECT_SET, start, NULL, sd, NULL);
+		hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+		const double zero = 0;
+		char path[64];
+		snprintf(path, sizeof path, "/particles/bed/%s/value", names[q]);
+		H5Pset_fill_value(p, H5T_NATIVE_DOUBLE, &zero);
+		H5Pset_obj_track_times(p, 0);
+		if (H5Pset_virtual(p, vsp, ".", path, ssp) < 0)
+			h->bad = 1;
+		H5Sselect_all(vsp);
+		hid_t d = H5Dcreate2(g, "value", ftype, vsp, H5P_DEFAULT, p, H5P_DEFAULT);
+		/* no unit attribute: MDAnalysis refuses units it does not know (cm) even when
+		 * told not to convert; the unit is that of the dataset this one shows */
+		if (d < 0)
+			h->bad = 1;
+		else
+			h5w_attr_str(h, d, "unit_of_source", units[q]);
+		H5Dclose(d);
+		H5Pclose(p);
+		H5Sclose(vsp);
+		H5Sclose(ssp);
+		H5Gclose(g);
+	}
+	hid_t b = h5w_group(h, xyz, "box", 0);
+	static const char *const none3[3] = {"none", "none", "none"};
+	h5w_attr_long(h, b, "dimension", 3);
+	h5w_attr_strs(h, b, "boundary", none3, 3);
+	H5Gclose(b);
+	h5w_attr_str(h, xyz, "description",
+		     "/particles/bed as a flat 3-D system (z = 0): virtual datasets, no storage of their own");
+}
+
+/* The per-disk constants of disks i0 .. i1 - 1 into group g. */
+static void disk_constants(h5w *h, const sb_state *st, hid_t g, int i0, int i1)
+{
+	const hsize_t n = (hsize_t)(i1 - i0);
+	int *ki = malloc(sizeof(int) * (n ? n : 1));
+	if (!ki) {
+		h->bad = 1;
+		return;
+	}
+	for (hsize_t i = 0; i < n; i++)
+		ki[i] = st->kind[i0 + (int)i];
+	h5w_dset_int(h, g, "id", n, st->id + i0, "1");
+	h5w_dset_int(h, g, "species", n, ki, "1");
+	h5w_dset(h, g, "radius", 1, &n, st->r + i0, "cm");
+	h5w_dset(h, g, "mass", 1, &n, st->m + i0, "g");
+	h5w_attr_str(h, g, "species_names", "0 grain, 1 intruder, 2 wall");
+	free(ki);
+}
+
+/* /particles/bed: the mobile disks' constants and their box. */
+static hid_t write_bed(h5w *h, const sb_sim *s, hid_t parts, hid_t *box)
+{
+	hid_t g = h5w_group(h, parts, "bed", 0);
+	disk_constants(h, &s->st, g, 0, s->st.nm);
+	h5w_attr_long(h, g, "n_mobile", s->st.nm);
+	*box = plain_box(h, g);
+	double wd, ht;
+	box_size(s, &wd, &ht);
+	const double edges[2] = {wd, ht};
+	const hsize_t two = 2;
+	h5w_dset(h, *box, "edges", 1, &two, edges, "cm");
+	h5w_attr_str(h, *box, "description",
+		     "edges: the side walls' inner faces apart and the highest wall disk's top above the bottom; "
+		     "offset: the lower left corner in the lab frame (the bottom moves with the drive), "
+		     "offset_velocity: its velocity (the walls')");
+	return g;
+}
+
+/* /particles/walls: the wall disks, fixed in the box. Their place at rest is their
+ * place in every snapshot (taken at phase 0, where the box is at rest); at time t
+ * they are shifted by the box's offset. */
+static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
+{
+	const sb_state *st = &s->st;
+	const hsize_t nw = (hsize_t)(st->n - st->nm), dims[2] = {nw, 2};
+	hid_t g = h5w_group(h, parts, "walls", 0);
+	disk_constants(h, st, g, st->nm, st->n);
+	double *p = malloc(sizeof(double) * 2 * (nw ? nw : 1));
+	if (!p) {
+		h->bad = 1;
+	} else {
+		for (hsize_t i = 0; i < nw; i++) {
+			p[2 * i] = st->q[C_X][0][st->nm + (int)i];
+			p[2 * i + 1] = st->q[C_Y][0][st->nm + (int)i];
+		}
+		h5w_dset(h, g, "position", 2, dims, p, "cm");
+	}
+	free(p);
+	H5Gclose(plain_box(h, g));
+	h5w_attr_str(h, g, "description",
+		     "position: the wall disks with the box at rest (lab frame at phase 0, where every snapshot is "
+		     "taken); at time t add /particles/bed/box/offset minus its value at rest");
+	H5Gclose(g);
+}
+
+static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t box, sb_err *e)
 {
 	const int nm = s->st.nm;
 	const hsize_t K = (hsize_t)s->n_snap, T = (hsize_t)s->n_traj;
-	long cap = 3L * nm + 1;
+	long cap = 5L * nm + 1;
 	if (cap < JR_TRAJ_COLS) /* an intruder and no grains: a trajectory row is longer */
 		cap = JR_TRAJ_COLS;
 	if (cap < JR_ENERGY_COLS)
@@ -361,30 +575,19 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
 		cap = obs_field_len(&s->obs);
 	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0}, contacts = {0};
-	double *times = malloc(sizeof(double) * (K ? K : 1));
 	double *buf = malloc(sizeof(double) * (size_t)cap);
-	if (!times || !buf) {
-		free(times);
+	snapw sw = {0};
+	sw.pos.g = -1;
+	if (!buf || (K > 0 && snap_open(h, &sw, s, bed, box, K))) {
 		free(buf);
+		snap_close(&sw);
 		return sb_errf(e, SB_ENOMEM, "out of memory writing the output");
 	}
-	hid_t gs = group(h, "/snapshots");
-	hsize_t dims[2] = {K, (hsize_t)nm};
-	hid_t sp = H5Screate_simple(2, dims, NULL);
-	const char *names[3] = {"x", "y", "theta"};
-	hid_t ds[3];
-	for (int c = 0; c < 3; c++) {
-		ds[c] = H5Dcreate2(gs, names[c], H5T_IEEE_F64LE, sp, H5P_DEFAULT, h->dcpl, H5P_DEFAULT);
-		if (ds[c] < 0)
-			h->bad = 1;
-	}
-	hsize_t row[2] = {1, (hsize_t)nm};
-	hid_t msp = H5Screate_simple(2, row, NULL);
 	sb_jreader r = {0};
-	long ks = 0;
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact) ? journal_reader_open(&r, s->journal_path, e)
-										    : 1;
+	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact)
+			 ? journal_reader_open(&r, s->journal_path, e)
+			 : 1;
 	while (!rc && !h->bad) {
 		int count = 0;
 		int tag = journal_next(&r, buf, cap, &count, e);
@@ -402,85 +605,71 @@ static int copy_journal(h5 *h, const sb_sim *s, sb_err *e)
 			rc = dbuf_add(&energy, buf, JR_ENERGY_COLS) ? SB_ENOMEM : 0;
 		else if (tag == JR_CONTACT)
 			rc = dbuf_add(&contacts, buf, (size_t)count) ? SB_ENOMEM : 0;
-		else if (tag == JR_SNAP && (hsize_t)ks < K) {
-			times[ks] = buf[0];
-			hsize_t start[2] = {(hsize_t)ks, 0};
-			for (int c = 0; c < 3; c++) {
-				hid_t fsp = H5Dget_space(ds[c]);
-				H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, row, NULL);
-				if (H5Dwrite(ds[c], H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, buf + 1 + (size_t)c * nm) < 0)
-					h->bad = 1;
-				H5Sclose(fsp);
-			}
-			ks++;
-		}
+		else if (tag == JR_SNAP && sw.k < K)
+			snap_row(h, &sw, s, buf);
 		if (rc == SB_ENOMEM)
 			rc = sb_errf(e, SB_ENOMEM, "out of memory reading the journal");
 	}
 	journal_reader_close(&r);
 	if (rc == 1)
 		rc = 0;
+	const long ks = (long)sw.k;
+	snap_close(&sw);
 	long kt = (long)(traj.n / JR_TRAJ_COLS);
 	long kf = s->obs.flux_on ? (long)(flux.n / obs_flux_len(&s->obs)) : 0;
 	long kd = s->obs.field_on ? (long)(field.n / obs_field_len(&s->obs)) : 0;
 	if (!rc && (kt != (long)T || ks != (long)K || kf != s->n_flux || kd != s->n_field))
 		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld/%ld/%ld/%ld trajectory/snapshot/flux/field records, expected %ld/%ld/%ld/%ld",
 			     s->journal_path, kt, ks, kf, kd, s->n_traj, s->n_snap, s->n_flux, s->n_field);
-	dset(h, gs, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, K, 0, times);
-	for (int c = 0; c < 3; c++)
-		H5Dclose(ds[c]);
-	H5Sclose(msp);
-	H5Sclose(sp);
-	H5Gclose(gs);
 	if (s->intruder >= 0) {
-		hid_t gi = group(h, "/intruder");
-		dset(h, gi, "trajectory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, T, JR_TRAJ_COLS, traj.d);
-		attr_str(h, gi, "columns", "t x y vx vy omega");
-		attr_long(h, gi, "index", s->intruder);
-		H5Gclose(gi);
+		write_intruder(h, s, parts, traj.d, (long)T);
 		if (!rc && T > 0)
 			intruder_summary(h, s, traj.d, (long)T);
 	}
-	if (!rc && s->obs.flux_on)
-		write_flux(h, s, &flux);
-	if (!rc && s->obs.field_on)
-		write_field(h, s, &field);
-	if (!rc && s->obs.ring_on)
-		write_ring(h, s);
 	long ke = (long)(energy.n / JR_ENERGY_COLS);
 	if (!rc && ke != s->n_energy)
 		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld energy records, expected %ld", s->journal_path, ke, s->n_energy);
-	if (!rc && s->sc.energy_rate > 0)
-		write_energy(h, &energy, ke);
 	long kc = 0;
 	for (size_t pos = 0; pos + 2 <= contacts.n; kc++)
 		pos += 2 + JR_CONTACT_COLS * (size_t)contacts.d[pos + 1];
 	if (!rc && kc != s->n_contact)
 		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld contact frames, expected %ld", s->journal_path, kc,
 			     s->n_contact);
-	if (!rc && s->sc.contact_rate > 0)
-		write_contacts(h, &contacts, kc);
+	const int any = s->obs.flux_on || s->obs.field_on || s->sc.energy_rate > 0 || s->sc.contact_rate > 0;
+	if (!rc && any) {
+		hid_t obs = h5w_group(h, h->file, "observables", 0);
+		if (s->obs.flux_on)
+			write_flux(h, s, obs, &flux);
+		if (s->obs.field_on)
+			write_field(h, s, obs, &field);
+		if (s->sc.energy_rate > 0)
+			write_energy(h, s, obs, &energy, (size_t)ke);
+		if (s->sc.contact_rate > 0)
+			write_contacts(h, obs, &contacts, kc);
+		H5Gclose(obs);
+	}
+	if (!rc && s->obs.ring_on)
+		write_ring(h, s);
 	free(traj.d);
 	free(flux.d);
 	free(field.d);
 	free(energy.d);
 	free(contacts.d);
-	free(times);
 	free(buf);
 	return rc;
 }
 
-static void write_final(h5 *h, const sb_sim *s, double t)
+static void write_final(h5w *h, const sb_sim *s, double t)
 {
 	const sb_state *st = &s->st;
-	size_t n = (size_t)st->n;
-	double *v = malloc(sizeof(double) * n * 6);
+	const hsize_t n = (hsize_t)st->n;
+	double *v = malloc(sizeof(double) * (n ? n : 1) * 6);
 	if (!v) {
 		h->bad = 1;
 		return;
 	}
 	double idt = 1.0 / s->sc.dt, yb = sim_box_y(s, t), vb = sim_box_v(s, t);
-	for (size_t i = 0; i < n; i++) {
+	for (hsize_t i = 0; i < n; i++) {
 		v[i] = st->q[C_X][0][i];
 		v[n + i] = st->q[C_Y][0][i] + yb;
 		v[2 * n + i] = st->q[C_X][1][i] * idt;
@@ -488,32 +677,37 @@ static void write_final(h5 *h, const sb_sim *s, double t)
 		v[4 * n + i] = st->q[C_TH][1][i] * idt;
 		v[5 * n + i] = st->q[C_TH][0][i];
 	}
-	hid_t g = group(h, "/final");
-	const char *names[6] = {"x", "y", "vx", "vy", "omega", "theta"};
+	hid_t g = h5w_group(h, h->file, "final", 0);
+	static const char *const names[6] = {"x", "y", "vx", "vy", "omega", "theta"};
+	static const char *const units[6] = {"cm", "cm", "cm s-1", "cm s-1", "rad s-1", "rad"};
 	for (int c = 0; c < 6; c++)
-		dset(h, g, names[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, v + c * n);
-	attr_double(h, g, "time", t);
+		h5w_dset(h, g, names[c], 1, &n, v + c * n, units[c]);
+	disk_constants(h, st, g, 0, st->n);
+	h5w_attr_double(h, g, "time", t);
+	h5w_attr_str(h, g, "description",
+		     "every disk at the end: the mobile ones (/particles/bed), then the walls (/particles/walls)");
 	H5Gclose(g);
-
-	int *ki = malloc(sizeof(int) * n);
-	if (ki) {
-		g = group(h, "/particles");
-		dset(h, g, "id", H5T_STD_I32LE, H5T_NATIVE_INT, 1, n, 0, st->id);
-		for (size_t i = 0; i < n; i++)
-			ki[i] = st->kind[i];
-		dset(h, g, "kind", H5T_STD_I32LE, H5T_NATIVE_INT, 1, n, 0, ki);
-		dset(h, g, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, st->r);
-		dset(h, g, "mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, n, 0, st->m);
-		attr_str(h, g, "kinds", "0 grain, 1 intruder, 2 wall");
-		attr_long(h, g, "n_mobile", st->nm);
-		H5Gclose(g);
-		free(ki);
-	} else
-		h->bad = 1;
 	free(v);
 }
 
-/* XDMF sidecar: ParaView reads the snapshots as a temporal collection of point sets. */
+/* XDMF sidecar: ParaView reads the snapshots as a temporal collection; each time is a
+ * spatial collection of the bed (its positions at that snapshot) and the walls (their
+ * place at rest, where the box is at every snapshot), with radius and species. */
+static void xdmf_points(FILE *f, const char *name, int n, const char *geometry, const char *base, const char *grp)
+{
+	fprintf(f, "    <Grid Name=\"%s\" GridType=\"Uniform\">\n", name);
+	fprintf(f, "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", n);
+	fputs(geometry, f);
+	fprintf(f,
+		"      <Attribute Name=\"radius\" Center=\"Node\">\n"
+		"        <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/%s/radius</DataItem>\n"
+		"      </Attribute>\n"
+		"      <Attribute Name=\"species\" Center=\"Node\">\n"
+		"        <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/particles/%s/species</DataItem>\n"
+		"      </Attribute>\n    </Grid>\n",
+		n, base, grp, n, base, grp);
+}
+
 static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 {
 	char path[4200];
@@ -526,42 +720,126 @@ static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 	if (fs_open_tmp(&out, path, e))
 		return e->code;
 	FILE *f = out.f;
-	int nm = s->st.nm;
+	const int nm = s->st.nm, nw = s->st.n - s->st.nm, prec = s->sc.snapshot_precision ? 4 : 8;
+	long K = s->n_snap;
 	fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
 		   "<Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
 	/* snapshot times are read back from the file so the sidecar matches it exactly */
 	hid_t fid = H5Fopen(h5path, H5F_ACC_RDONLY, H5P_DEFAULT);
-	double *times = malloc(sizeof(double) * (size_t)(s->n_snap ? s->n_snap : 1));
-	if (fid >= 0 && times) {
-		hid_t d = H5Dopen2(fid, "/snapshots/time", H5P_DEFAULT);
-		if (d >= 0 && s->n_snap)
-			H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times);
+	double *times = malloc(sizeof(double) * (size_t)(K ? K : 1));
+	if (fid >= 0 && times && K) {
+		hid_t d = H5Dopen2(fid, "/particles/bed/position/time", H5P_DEFAULT);
+		if (d < 0 || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, times) < 0)
+			K = 0;
 		H5Dclose(d);
 	}
 	if (fid >= 0)
 		H5Fclose(fid);
-	for (long k = 0; k < s->n_snap && times; k++) {
-		fprintf(f, "  <Grid Name=\"t%ld\" GridType=\"Uniform\">\n    <Time Value=\"%.9g\"/>\n", k, times[k]);
-		fprintf(f, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", nm);
-		fprintf(f, "    <Geometry GeometryType=\"X_Y\">\n");
-		for (int c = 0; c < 2; c++)
-			fprintf(f,
-				"      <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d\">\n"
-				"        <DataItem Dimensions=\"3 2\" Format=\"XML\">%ld 0 1 1 1 %d</DataItem>\n"
-				"        <DataItem Dimensions=\"%ld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshots/%s</DataItem>\n"
-				"      </DataItem>\n",
-				nm, k, nm, s->n_snap, nm, base, c ? "y" : "x");
-		fprintf(f, "    </Geometry>\n");
-		fprintf(f, "    <Attribute Name=\"radius\" Center=\"Node\">\n"
-			   "      <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\">\n"
-			   "        <DataItem Dimensions=\"3 1\" Format=\"XML\">0 1 %d</DataItem>\n"
-			   "        <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/radius</DataItem>\n"
-			   "      </DataItem>\n    </Attribute>\n  </Grid>\n",
-			nm, nm, s->st.n, base);
+	char geo[1024], wgeo[512];
+	snprintf(wgeo, sizeof wgeo,
+		 "      <Geometry GeometryType=\"XY\">\n"
+		 "        <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/walls/position</DataItem>\n"
+		 "      </Geometry>\n",
+		 nw, base);
+	for (long k = 0; k < K && times; k++) {
+		fprintf(f, "  <Grid Name=\"t%ld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n    <Time Value=\"%.9g\"/>\n",
+			k, times[k]);
+		snprintf(geo, sizeof geo,
+			 "      <Geometry GeometryType=\"XY\">\n"
+			 "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 2\">\n"
+			 "          <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 2</DataItem>\n"
+			 "          <DataItem Dimensions=\"%ld %d 2\" NumberType=\"Float\" Precision=\"%d\" Format=\"HDF\">%s:/particles/bed/position/value</DataItem>\n"
+			 "        </DataItem>\n      </Geometry>\n",
+			 nm, k, nm, K, nm, prec, base);
+		xdmf_points(f, "bed", nm, geo, base, "bed");
+		if (nw > 0)
+			xdmf_points(f, "walls", nw, wgeo, base, "walls");
+		fprintf(f, "  </Grid>\n");
 	}
 	free(times);
 	fprintf(f, "</Grid>\n</Domain>\n</Xdmf>\n");
 	return fs_commit(&out, e);
+}
+
+/* /h5md: the convention's version, who wrote the file and with what. */
+static void write_h5md(h5w *h)
+{
+	hid_t g = h5w_group(h, h->file, "h5md", 0);
+	static const int version[2] = {1, 1};
+	h5w_attr_ints(h, g, "version", version, 2);
+	hid_t a = h5w_group(h, g, "author", 0);
+	const char *user = getenv("USER");
+	h5w_attr_str(h, a, "name", user && *user ? user : "unknown");
+	H5Gclose(a);
+	hid_t c = h5w_group(h, g, "creator", 0);
+	h5w_attr_str(h, c, "name", "shakebox");
+	h5w_attr_str(h, c, "version", prov_version());
+	H5Gclose(c);
+	H5Gclose(g);
+}
+
+/* The run's status and results: attributes of the root. */
+static void write_results(h5w *h, const sb_sim *s, double t)
+{
+	const hid_t r = h->file;
+	h5w_attr_str(h, r, "format", "shakebox-run-2");
+	h5w_attr_str(h, r, "status", sb_code_name(s->status));
+	h5w_attr_long(h, r, "exit_code", s->status);
+	h5w_attr_str(h, r, "status_message", s->status_msg);
+	h5w_attr_double(h, r, "status_time", s->status ? s->status_time : t);
+	h5w_attr_long(h, r, "status_step", s->status ? s->status_step : s->step);
+	h5w_attr_long(h, r, "steps", s->step);
+	h5w_attr_long(h, r, "settle_steps", s->settle_steps);
+	h5w_attr_double(h, r, "settle_time", s->settle_time);
+	h5w_attr_double(h, r, "surface_height", s->surface0);
+	if (s->intruder >= 0) { /* no NaN placeholders: absent when there is no intruder */
+		h5w_attr_double(h, r, "intruder_settled_y", s->intruder_y0);
+		h5w_attr_double(h, r, "intruder_settled_depth", s->surface0 - s->intruder_y0);
+		h5w_attr_double(h, r, "intruder_radius", s->st.r[s->intruder]);
+	}
+	h5w_attr_long(h, r, "n_mobile", s->st.nm);
+	h5w_attr_long(h, r, "n_walls", s->st.n - s->st.nm);
+	h5w_attr_long(h, r, "neighbour_builds", s->nl.builds);
+	/* which stop rule ended the run (docs/model.md, "Stop rules"), and when */
+	sb_scene rs = s->sc;
+	rs.stop = s->obs.stop_rule;
+	char rule[32];
+	params_format(&rs, params_find("stop"), rule, sizeof rule);
+	h5w_attr_str(h, r, "stopped_by", rule);
+	if (s->obs.stop_rule)
+		h5w_attr_double(h, r, "stop_time", s->obs.stop_step * s->sc.dt);
+	/* the largest overlap of the shaking, and where (0 when nothing touched) */
+	h5w_attr_double(h, r, "overlap_max", s->obs.ov_max);
+	if (s->obs.ov_max > 0) {
+		h5w_attr_double(h, r, "overlap_max_time", s->obs.ov_t);
+		h5w_attr_long(h, r, "overlap_max_disk_a", s->obs.ov_i);
+		h5w_attr_long(h, r, "overlap_max_disk_b", s->obs.ov_j);
+		h5w_attr_double(h, r, "overlap_max_x", s->obs.ov_x);
+		h5w_attr_double(h, r, "overlap_max_y_box", s->obs.ov_y);
+	}
+	/* docs/model.md, "Waiting time": the first time the intruder's centre is one diameter
+	 * above its settled height. A run that ends first is right-censored: risen = 0 and
+	 * waiting_time = the time observed (the survival-analysis pair). */
+	if (s->intruder >= 0) {
+		h5w_attr_long(h, r, "risen", s->obs.risen);
+		h5w_attr_double(h, r, "waiting_time", s->obs.risen ? s->obs.wait_time : t);
+	}
+}
+
+static void write_provenance(h5w *h, const sb_sim *s)
+{
+	hid_t g = h5w_group(h, h->file, "provenance", 0);
+	sb_prov p = s->prov;
+	prov_now(p.end_time);
+	h5w_attr_str(h, g, "git_hash", p.git_hash);
+	h5w_attr_long(h, g, "git_dirty", p.git_dirty);
+	h5w_attr_str(h, g, "compiler", p.compiler);
+	h5w_attr_str(h, g, "cflags", p.cflags);
+	h5w_attr_str(h, g, "host", p.host);
+	h5w_attr_str(h, g, "start_time", p.start_time);
+	h5w_attr_str(h, g, "end_time", p.end_time);
+	h5w_attr_double(h, g, "loop_seconds", s->loop_seconds);
+	H5Gclose(g);
 }
 
 int h5out_write(const sb_sim *s, const char *path, sb_err *e)
@@ -569,87 +847,36 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	char tmp[4200];
 	fs_tmp_name(path, tmp, sizeof tmp);
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through sb_err */
-	h5 h = {0};
-	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-	H5Pset_obj_track_times(fcpl, 0);
-	h.gcpl = H5Pcreate(H5P_GROUP_CREATE);
-	H5Pset_obj_track_times(h.gcpl, 0);
-	h.dcpl = H5Pcreate(H5P_DATASET_CREATE);
-	H5Pset_obj_track_times(h.dcpl, 0);
-	h.file = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
-	H5Pclose(fcpl);
-	if (h.file < 0) {
-		H5Pclose(h.gcpl);
-		H5Pclose(h.dcpl);
+	h5w h;
+	if (h5w_create(&h, tmp, (int)s->sc.compression))
 		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file", tmp);
-	}
 	const double t = s->step * s->sc.dt;
-	attr_str(&h, h.file, "format", "shakebox-run-1");
-	write_params(&h, &s->sc);
-	attr_str(&h, h.file, "status", sb_code_name(s->status));
-	attr_long(&h, h.file, "exit_code", s->status);
-	attr_str(&h, h.file, "status_message", s->status_msg);
-	attr_double(&h, h.file, "status_time", s->status ? s->status_time : t);
-	attr_long(&h, h.file, "status_step", s->status ? s->status_step : s->step);
-	attr_long(&h, h.file, "steps", s->step);
-	attr_long(&h, h.file, "settle_steps", s->settle_steps);
-	attr_double(&h, h.file, "settle_time", s->settle_time);
-	attr_double(&h, h.file, "surface_height", s->surface0);
-	if (s->intruder >= 0) { /* no NaN placeholders: absent when there is no intruder */
-		attr_double(&h, h.file, "intruder_settled_y", s->intruder_y0);
-		attr_double(&h, h.file, "intruder_settled_depth", s->surface0 - s->intruder_y0);
-		attr_double(&h, h.file, "intruder_radius", s->st.r[s->intruder]);
-	}
-	attr_long(&h, h.file, "n_mobile", s->st.nm);
-	attr_long(&h, h.file, "n_walls", s->st.n - s->st.nm);
-	attr_long(&h, h.file, "neighbour_builds", s->nl.builds);
-	/* docs/model.md, "Waiting time": the waiting time is the first time the intruder's centre is one
-	 * diameter above its settled height. A run that ends first is right-censored:
-	 * risen = 0 and waiting_time = the time observed (the survival-analysis pair). */
-	/* which stop rule ended the run (docs/model.md, "Stop rules"), and when */
-	{
-		sb_scene r = s->sc;
-		r.stop = s->obs.stop_rule;
-		char rule[32];
-		params_format(&r, params_find("stop"), rule, sizeof rule);
-		attr_str(&h, h.file, "stopped_by", rule);
-		if (s->obs.stop_rule)
-			attr_double(&h, h.file, "stop_time", s->obs.stop_step * s->sc.dt);
-	}
-	/* the largest overlap of the shaking, and where (0 when nothing touched) */
-	attr_double(&h, h.file, "overlap_max", s->obs.ov_max);
-	if (s->obs.ov_max > 0) {
-		attr_double(&h, h.file, "overlap_max_time", s->obs.ov_t);
-		attr_long(&h, h.file, "overlap_max_disk_a", s->obs.ov_i);
-		attr_long(&h, h.file, "overlap_max_disk_b", s->obs.ov_j);
-		attr_double(&h, h.file, "overlap_max_x", s->obs.ov_x);
-		attr_double(&h, h.file, "overlap_max_y_box", s->obs.ov_y);
-	}
-	if (s->intruder >= 0) {
-		attr_long(&h, h.file, "risen", s->obs.risen);
-		attr_double(&h, h.file, "waiting_time", s->obs.risen ? s->obs.wait_time : t);
-	}
-
-	hid_t g = group(&h, "/provenance");
-	sb_prov p = s->prov;
-	prov_now(p.end_time);
-	attr_str(&h, g, "git_hash", p.git_hash);
-	attr_long(&h, g, "git_dirty", p.git_dirty);
-	attr_str(&h, g, "compiler", p.compiler);
-	attr_str(&h, g, "cflags", p.cflags);
-	attr_str(&h, g, "host", p.host);
-	attr_str(&h, g, "start_time", p.start_time);
-	attr_str(&h, g, "end_time", p.end_time);
-	attr_double(&h, g, "loop_seconds", s->loop_seconds);
+	write_h5md(&h);
+	hid_t g = h5w_group(&h, h.file, "parameters", 0);
+	write_params(&h, g, &s->sc);
 	H5Gclose(g);
+	write_results(&h, s, t);
+	write_provenance(&h, s);
 
-	int rc = copy_journal(&h, s, e);
+	/* /particles lists bed_xyz first: readers that take the first particle group and
+	 * know only 3-D (MDAnalysis) find the view they can read */
+	hid_t parts = h5w_group(&h, h.file, "particles", 1);
+	hid_t xyz = s->n_snap > 0 ? h5w_group(&h, parts, "bed_xyz", 0) : -1;
+	hid_t box = -1;
+	hid_t bed = write_bed(&h, s, parts, &box);
+	write_walls(&h, s, parts);
+	int rc = copy_journal(&h, s, parts, bed, box, e);
+	if (xyz >= 0) {
+		if (!rc)
+			write_xyz(&h, xyz, bed, (hsize_t)s->n_snap, (hsize_t)s->st.nm,
+				  s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE);
+		H5Gclose(xyz);
+	}
+	H5Gclose(box);
+	H5Gclose(bed);
+	H5Gclose(parts);
 	write_final(&h, s, t);
-	H5Pclose(h.gcpl);
-	H5Pclose(h.dcpl);
-	if (H5Fclose(h.file) < 0)
-		h.bad = 1;
-	if (!rc && h.bad)
+	if (h5w_close(&h) && !rc)
 		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed", tmp);
 	if (!rc)
 		rc = fs_fsync_path(tmp, e);

@@ -59,13 +59,14 @@ int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e)
 }
 
 int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
-		 sb_err *e)
+		 const double *vx, const double *vy, sb_err *e)
 {
 	size_t n = (size_t)j->nm;
-	if (put(j, JR_SNAP, (int32_t)(1 + 3 * n), e))
+	if (put(j, JR_SNAP, (int32_t)(1 + 5 * n), e))
 		return e->code;
 	if (fwrite(&t, sizeof t, 1, j->f) != 1 || fwrite(x, sizeof(double), n, j->f) != n ||
-	    fwrite(y, sizeof(double), n, j->f) != n || fwrite(th, sizeof(double), n, j->f) != n)
+	    fwrite(y, sizeof(double), n, j->f) != n || fwrite(th, sizeof(double), n, j->f) != n ||
+	    fwrite(vx, sizeof(double), n, j->f) != n || fwrite(vy, sizeof(double), n, j->f) != n)
 		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
 	return 0;
 }

@@ -25,9 +25,9 @@ int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e
 /* Any record: a tag and count doubles. */
 int journal_record(sb_journal *j, int tag, const double *data, int count, sb_err *e);
 int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e);
-/* Snapshot: time, then x, y, theta of the nm mobile disks. */
+/* Snapshot: time, then x, y, theta, vx, vy of the nm mobile disks (lab frame). */
 int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
-		 sb_err *e);
+		 const double *vx, const double *vy, sb_err *e);
 /* Flush and fsync; returns the durable length through *offset. */
 int journal_sync(sb_journal *j, long *offset, sb_err *e);
 void journal_close(sb_journal *j);

@@ -149,6 +149,11 @@ static const sb_param TABLE[] = {
 	 "force, normal, place; /observables/contacts, for force chains; 0 = none)"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0"},
+	{"snapshot_precision", ENUM(snapshot_precision), "", "single", 0, 0, "double|single", PF_OUT,
+	 "floating-point precision of the snapshots in the HDF5 file (single: half the size of double, 7 "
+	 "digits, what ParaView, OVITO and MDAnalysis hold; the engine and every other record are double)"},
+	{"compression", INT(compression), "", "4", 0, 9, NULL, PF_OUT | PF_NOID,
+	 "deflate level of the HDF5 file's large datasets, shuffled first (0 = none, 9 = smallest)"},
 	{"checkpoint_every", REAL(checkpoint_every), "s", "0", 0, 1e8, NULL, PF_OUT | PF_NOID,
 	 "write a checkpoint every this many simulated seconds (0 = never)"},
 	{"checkpoint", STR(checkpoint), "", "", 0, 0, NULL, PF_OUT | PF_DRIVER,

@@ -52,6 +52,8 @@ struct sb_scene {
 	double traj_rate;
 	double energy_rate, contact_rate;
 	int snapshots;
+	int snapshot_precision; /* 0 double, 1 single (the default) */
+	long compression;
 	double checkpoint_every;
 	char checkpoint[SB_STR_MAX];
 	int restart;         /* enum sb_tristate: auto = continue from the checkpoint if present */

@@ -37,12 +37,21 @@ static int record_traj(sb_sim *s, double t, sb_err *e)
 static int record_snap(sb_sim *s, double t, sb_err *e)
 {
 	sb_state *st = &s->st;
-	/* lab frame: shift y by y_box(t); f[C_Y] is free scratch between steps */
-	double yb = sim_box_y(s, t);
-	double *ylab = st->f[C_Y];
-	for (int i = 0; i < st->nm; i++)
+	/* lab frame: shift y by y_box(t) and vy by v_box(t) */
+	const double yb = sim_box_y(s, t), vb = sim_box_v(s, t), idt = 1.0 / s->sc.dt;
+	const size_t nm = (size_t)st->nm;
+	double *lab = malloc(sizeof(double) * 3 * (nm ? nm : 1));
+	if (!lab)
+		return sb_errf(e, SB_ENOMEM, "out of memory for a snapshot");
+	double *ylab = lab, *vx = lab + nm, *vy = lab + 2 * nm;
+	for (size_t i = 0; i < nm; i++) {
 		ylab[i] = st->q[C_Y][0][i] + yb;
-	if (journal_snap(&s->jr, t, st->q[C_X][0], ylab, st->q[C_TH][0], e))
+		vx[i] = st->q[C_X][1][i] * idt;
+		vy[i] = st->q[C_Y][1][i] * idt + vb;
+	}
+	int rc = journal_snap(&s->jr, t, st->q[C_X][0], ylab, st->q[C_TH][0], vx, vy, e);
+	free(lab);
+	if (rc)
 		return e->code;
 	s->n_snap++;
 	return 0;

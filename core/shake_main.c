@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "checkpoint.h"
+#include "clock.h"
 #include "h5out.h"
 #include "prep.h"
 #include "run.h"
@@ -157,7 +158,10 @@ int main(int argc, char **argv)
 		journal_close(&s->jr);
 	} else {
 		sb_err e2 = {0};
-		if (h5out_write_run(s, &e2)) {
+		const double w0 = sb_now();
+		const int wrc = h5out_write_run(s, &e2);
+		s->write_seconds = sb_now() - w0;
+		if (wrc) {
 			fprintf(stderr, "shake: %s\n", e2.msg);
 			/* a run that simulated to its end keeps that end as a checkpoint (where
 			 * the fault allows): run again, it only writes the file */
@@ -179,8 +183,8 @@ int main(int argc, char **argv)
 			s->step, s->nl.builds, s->nl.npairs + s->nl.nbig, s->nl.nbig);
 		for (int k = 0; k < PH_N; k++)
 			fprintf(stderr, "profile: %-10s %8.3f s\n", names[k], s->tphase[k]);
-		fprintf(stderr, "profile loop_seconds=%.6f steps=%ld mobile=%d walls=%d\n", s->loop_seconds,
-			s->step, s->st.nm, s->st.n - s->st.nm);
+		fprintf(stderr, "profile loop_seconds=%.6f steps=%ld mobile=%d walls=%d write_seconds=%.6f\n",
+			s->loop_seconds, s->step, s->st.nm, s->st.n - s->st.nm, s->write_seconds);
 	}
 	sim_free(s);
 	free(s);

@@ -61,6 +61,7 @@ typedef struct sb_sim {
 	int profile;
 	double tphase[PH_N];
 	double loop_seconds;
+	double write_seconds; /* assembling the HDF5 file at the end (--profile) */
 	volatile sig_atomic_t *stop;
 	int progress;
 } sb_sim;

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# traj.sh RUN.h5 - the intruder trajectory of a run as TSV: t x y vx vy omega.
+# traj.sh RUN.h5 - the intruder trajectory of a run as TSV: t x y vx vy omega (lab frame,
+# from the H5MD group /particles/intruder).
 set -euo pipefail
 [ $# -eq 1 ] || { echo "usage: traj.sh RUN.h5" >&2; exit 1; }
-tmp=$(mktemp)
-trap 'rm -f "$tmp"' EXIT
-h5dump -d /intruder/trajectory -m "%.17g" -y -o "$tmp" --ddl=/dev/null "$1" >/dev/null
+g=/particles/intruder
+h5dump -H -d $g/position/value "$1" >/dev/null 2>&1 || { echo "traj.sh: $1: no $g (a run with an intruder)" >&2; exit 1; }
+# a dataset's values, one per line (the first DATA block: the dataset's, not its attributes')
+col() { h5dump -m %.17g -d "$2" -y -w 0 "$1" | awk '/DATA \{/ && !done { on = 1; next } on && /\}/ { on = 0; done = 1 }
+	on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'; }
 echo -e "# t\tx\ty\tvx\tvy\tomega"
-tr -s ', \n' '\n' < "$tmp" | awk 'NF { v[n++ % 6] = $1; if (n % 6 == 0) print v[0] "\t" v[1] "\t" v[2] "\t" v[3] "\t" v[4] "\t" v[5] }'
+paste <(col "$1" $g/position/time) <(col "$1" $g/position/value | paste - -) <(col "$1" $g/velocity/value | paste - -) \
+	<(col "$1" $g/angular_velocity/value)

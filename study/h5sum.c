@@ -168,7 +168,12 @@ int h5sum_read(const char *path, h5sum *s, sb_err *e)
 	for (size_t i = 0; i < n; i++)
 		if (!(t[i].flags & RF_DERIVED))
 			read_column(f, &t[i], &s->v[i], &bad);
-	get_str(f, "particles", s->particles, sizeof s->particles, &bad);
+	/* the scene's parameters are attributes of /parameters (H5MD) */
+	if (H5Lexists(f, "parameters", H5P_DEFAULT) > 0) {
+		hid_t g = H5Gopen2(f, "parameters", H5P_DEFAULT);
+		get_str(g, "particles", s->particles, sizeof s->particles, &bad);
+		H5Gclose(g);
+	}
 	H5Fclose(f);
 	if (bad || !h5sum_text(s, "status")[0])
 		return sb_errf(e, SB_EIO, "%s: not a complete shakebox run file (missing or unreadable status)", path);

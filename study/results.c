@@ -53,7 +53,7 @@ static const rcol TABLE[] = {
 	{"n_mobile", RT_INT, "@n_mobile", "", "mobile disks (grains and intruder)", RF_NOVIEW},
 	{"n_walls", RT_INT, "@n_walls", "", "wall disks", RF_NOVIEW},
 	{"neighbour_builds", RT_INT, "@neighbour_builds", "", "neighbour-list builds while shaking", RF_NOVIEW},
-	{"traj_rows", RT_INT, "/intruder/trajectory#rows", "", "rows of the intruder trajectory", RF_NOVIEW},
+	{"traj_rows", RT_INT, "/particles/intruder/position/value#rows", "", "rows of the intruder trajectory", RF_NOVIEW},
 	{"wall_seconds", RT_REAL, "/provenance@loop_seconds", "s", "CPU wall time of the shaking loop", 0},
 	{"host", RT_TEXT, "/provenance@host", "", "machine that ran it", RF_NOVIEW},
 	{"git_hash", RT_TEXT, "/provenance@git_hash", "", "engine version", 0},

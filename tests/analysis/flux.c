@@ -41,11 +41,19 @@ int main(void)
 	for (int l = 0; l < L; l++)
 		h[l] = 40.0 * (l + 0.5) / L;
 	hid_t file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-	hid_t g = H5Gcreate2(file, "/flux", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-	dset(g, "time", 1, P, 0, t);
-	dset(g, "frequency", 1, P, 0, f);
-	dset(g, "phi", 2, P, L, phi);
+	/* the engine's layout: H5MD elements under /observables/flux */
+	hid_t go = H5Gcreate2(file, "/observables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t g = H5Gcreate2(go, "flux", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t gp = H5Gcreate2(g, "phi", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t gf = H5Gcreate2(g, "frequency", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	dset(gp, "time", 1, P, 0, t);
+	dset(gp, "value", 2, P, L, phi);
+	dset(gf, "time", 1, P, 0, t);
+	dset(gf, "value", 1, P, 0, f);
 	dset(g, "heights", 1, L, 0, h);
+	H5Gclose(gp);
+	H5Gclose(gf);
+	H5Gclose(go);
 	double s = 40;
 	hid_t sp = H5Screate(H5S_SCALAR);
 	hid_t a = H5Acreate2(g, "surface_height", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
@@ -100,7 +108,7 @@ int main(void)
 	file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
 	H5Fclose(file);
 	sb_err e2 = {0};
-	CHECK("flux.read.missing_group", flux_read(path, &d, &e2) == SB_EIO && strstr(e2.msg, "no /flux"), "rc %d: %s",
+	CHECK("flux.read.missing_group", flux_read(path, &d, &e2) == SB_EIO && strstr(e2.msg, "no /observables/flux"), "rc %d: %s",
 	      e2.code, e2.msg);
 	sb_err e3 = {0};
 	CHECK("flux.read.missing_file", flux_read("/nonexistent/x.h5", &d, &e3) == SB_EIO, "rc %d", e3.code);

@@ -120,7 +120,7 @@ echo "(b) paper scene, horizon $HORIZON s" >&2
 } | parallel -j "$JOBS" --colsep ' ' run_one {}
 
 # positions of the mobile disks at the horizon (lab frame), "x y kind" per line
-mobile_xy() { paste <(h5col "$1" /final/x) <(h5col "$1" /final/y) <(h5col "$1" /particles/kind) | awk '$3 != 2'; }
+mobile_xy() { paste <(h5col "$1" /final/x) <(h5col "$1" /final/y) <(h5col "$1" /final/species) | awk '$3 != 2'; }
 # bdiff A B : "rms_all max_all intruder" position differences (cm)
 bdiff() {
 	paste <(mobile_xy "$1") <(mobile_xy "$2") | awk '{ dx = $1 - $4; dy = $2 - $5; d2 = dx * dx + dy * dy; s += d2; n++
@@ -175,7 +175,7 @@ for st in $REF_C $CSET; do
 		wt=NA risen=NA prof=NA
 		if [ "$rcw" = 0 ]; then wt=$(attr_val "$w.h5" waiting_time); risen=$(attr_val "$w.h5" risen); fi
 		if [ "$rcf" = 0 ]; then
-			prof=$(h5col "$f.h5" /flux/phi | awk -v L=80 -v skip="$skip_periods" '
+			prof=$(h5col "$f.h5" /observables/flux/phi/value | awk -v L=80 -v skip="$skip_periods" '
 				{ p = int((NR - 1) / L); l = (NR - 1) % L; if (p >= skip) { s[l] += $1; if (l == 0) np++ } }
 				END { for (l = 0; l < L; l++) printf "%s%.6g", l ? "," : "", s[l] / np }')
 		fi

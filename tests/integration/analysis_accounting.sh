@@ -13,11 +13,7 @@
 analysis_tools_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
-# vals FILE DATASET : every value of a dataset, one per line (row-major, %.17g)
-vals() {
-	h5dump -m %.17g -y -w 0 -d "$2" "$1" 2>/dev/null | awk '/DATA \{/ { on = 1; next } on && /^ *\}/ { exit }
-		on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'
-}
+vals() { h5vals "$@"; } # lib.sh
 # close A B : |A - B| <= 1e-12 (1 + |B|)
 close() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= 1e-12 * (1 + m)) }'; }
 # param CAMPAIGN ID KEY : a run's parameter as the database has it
@@ -61,7 +57,7 @@ for id in $(q "SELECT id FROM run WHERE campaign = 's' AND state = 'failed'"); d
 	if [ -n "$(attr "$f" /risen)" ]; then
 		[ "$(attr "$f" /risen)" = 1 ] && need_risen=$((need_risen + 1)) || need_cens=$((need_cens + 1))
 	fi
-	P=$(dims "$f" /flux/time)
+	P=$(dims "$f" /observables/flux/phi/time)
 	p0=$(awk -v d="$(param s "$id" duration)" -v f="$(param s "$id" frequency)" 'BEGIN { print int(0.2 * int(d * f + 1e-9)) }')
 	[ "${P:-0}" -gt "$p0" ] && need_partly=$((need_partly + 1))
 done
@@ -106,7 +102,7 @@ expect_flux() {
 	case $st in pending | running) echo "$st"; return ;; esac
 	f=R/s/$id.h5
 	if [ ! -e "$f" ]; then [ "$st" = failed ] && echo unusable || echo unreadable; return; fi
-	P=$(dims "$f" /flux/time)
+	P=$(dims "$f" /observables/flux/phi/time)
 	[ -n "$P" ] || { echo unreadable; return; }
 	[ "$st" = done ] && { echo used; return; }
 	p0=$(awk -v d="$(param s "$id" duration)" -v f="$(param s "$id" frequency)" 'BEGIN { print int(0.2 * int(d * f + 1e-9)) }')
@@ -202,10 +198,10 @@ done < <(tail -n +2 $A/onset_accounting.csv)
 # of the run as planned (floor(0.2 * duration * f) periods), and it says how far it got
 plane_phi() { # FILE P0
 	local f=$1 P L S
-	set -- $(dims "$f" /flux/phi) "$2"
+	set -- $(dims "$f" /observables/flux/phi/value) "$2"
 	P=$1 L=$2
-	S=$(attr "$f" /flux/surface_height)
-	{ vals "$f" /flux/heights; vals "$f" /flux/phi; } | awk -v P="$P" -v L="$L" -v S="$S" -v p0="$3" '
+	S=$(attr "$f" /observables/flux/surface_height)
+	{ vals "$f" /observables/flux/heights; vals "$f" /observables/flux/phi/value; } | awk -v P="$P" -v L="$L" -v S="$S" -v p0="$3" '
 		NR <= L { h[NR - 1] = $1; next } { v[NR - 1 - L] = $1 }
 		END { n = 0; for (l = 0; l < L; l++) if (h[l] >= 0.4 * S && h[l] <= 0.6 * S) sel[n++] = l
 		      s = 0; for (p = p0; p < P; p++) { m = 0; for (i = 0; i < n; i++) m += v[p * L + sel[i]]; s += m / n }
@@ -218,7 +214,7 @@ while IFS=, read -r _ _ id _ _ _ _ _ phi use used_s; do
 	f=R/s/$id.h5
 	p0=$(awk -v d="$(param s "$id" duration)" -v fr="$(param s "$id" frequency)" 'BEGIN { print int(0.2 * int(d * fr + 1e-9)) }')
 	close "$phi" "$(plane_phi "$f" "$p0")" || { bad=1; echo "# $id: phi $phi, from the file $(plane_phi "$f" "$p0")"; }
-	close "$used_s" "$(vals "$f" /flux/time | tail -n 1)" || { bad=1; echo "# $id: used_s $used_s"; }
+	close "$used_s" "$(vals "$f" /observables/flux/phi/time | tail -n 1)" || { bad=1; echo "# $id: used_s $used_s"; }
 done < <(tail -n +2 $A/onset_runs.csv)
 [ "$bad" = 0 ] && [ "$n" -ge 2 ] && ok acc.onset.failed_runs_periods_used || fail acc.onset.failed_runs_periods_used "$n failed runs used"
 # the run of an earlier version is left out, and the table says so
@@ -308,8 +304,8 @@ ids=$(awk -F, '$2 == "\"f=8 radius_ratio=0\"" && ($8 == "used" || $8 == "failed_
 for id in $ids; do
 	f=R/s/$id.h5
 	p0=$(awk -v d="$(param s "$id" duration)" -v fr="$(param s "$id" frequency)" 'BEGIN { print int(0.2 * int(d * fr + 1e-9)) }')
-	set -- $(dims "$f" /flux/phi)
-	{ vals "$f" /flux/heights; vals "$f" /flux/phi; } | awk -v P="$1" -v L="$2" -v p0="$p0" '
+	set -- $(dims "$f" /observables/flux/phi/value)
+	{ vals "$f" /observables/flux/heights; vals "$f" /observables/flux/phi/value; } | awk -v P="$1" -v L="$2" -v p0="$p0" '
 		NR <= L { h[NR - 1] = $1; next } { v[NR - 1 - L] = $1 }
 		END { for (l = 0; l < L; l++) for (p = p0; p < P; p++) printf "%d %.17g %.17g\n", l, h[l], v[p * L + l] }'
 done | awk '{ D[$1] += $2; F[$1] += $3; n[$1]++ } END { for (l in D) printf "%d %.17g %.17g\n", l, D[l] / n[l], F[l] / n[l] }' |
@@ -337,7 +333,7 @@ nf=$(q "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'failed'")
 	ok acc.hysteresis.counts || fail acc.hysteresis.counts "$(cat $H/hysteresis_summary.csv)"
 bad=0
 for id in $(q "SELECT id FROM run WHERE campaign = 'h' AND state = 'failed'"); do
-	P=$(dims "R/h/$id.h5" /flux/time)
+	P=$(dims "R/h/$id.h5" /observables/flux/phi/time)
 	[ "$(awk -F, -v id="$id" '$3 == id && $10 == "failed_used"' $H/hysteresis_periods.csv | wc -l)" = "$P" ] ||
 		{ bad=1; echo "# $id: $P periods in the file, $(grep -c ",$id," $H/hysteresis_periods.csv) in the CSV"; }
 done

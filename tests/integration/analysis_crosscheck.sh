@@ -9,11 +9,7 @@
 analysis_tools_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
-# vals FILE DATASET : every value of a dataset, one per line (row-major, %.17g)
-vals() {
-	h5dump -m %.17g -y -w 0 -d "$2" "$1" | awk '/DATA \{/ { on = 1; next } on && /^ *\}/ { exit }
-		on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'
-}
+vals() { h5vals "$@"; } # lib.sh
 # close A B : |A - B| <= 1e-12 (1 + |B|)
 close() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= 1e-12 * (1 + m)) }'; }
 
@@ -42,10 +38,10 @@ A=R/c/analysis
 # plane_phi FILE : the mean over the periods p >= floor(0.2 P) of the mean of phi over the band's lines
 plane_phi() {
 	local f=$1 P L S
-	set -- $(dims "$f" /flux/phi)
+	set -- $(dims "$f" /observables/flux/phi/value)
 	P=$1 L=$2
-	S=$(attr "$f" /flux/surface_height)
-	{ vals "$f" /flux/heights; vals "$f" /flux/phi; } | awk -v P="$P" -v L="$L" -v S="$S" '
+	S=$(attr "$f" /observables/flux/surface_height)
+	{ vals "$f" /observables/flux/heights; vals "$f" /observables/flux/phi/value; } | awk -v P="$P" -v L="$L" -v S="$S" '
 		NR <= L { h[NR - 1] = $1; next } { v[NR - 1 - L] = $1 }
 		END { n = 0; for (l = 0; l < L; l++) if (h[l] >= 0.4 * S && h[l] <= 0.6 * S) sel[n++] = l
 		      p0 = int(0.2 * P); s = 0
@@ -78,8 +74,8 @@ done < <(tail -n +2 $A/onset_summary.csv)
 ids=$(q "SELECT id FROM runs WHERE campaign = 'c' AND radius_ratio = 2 AND frequency = 6 ORDER BY id")
 # time mean per line after the first 20 % of the periods, averaged over the panel's runs
 for id in $ids; do
-	set -- $(dims "R/c/$id.h5" /flux/phi)
-	{ vals "R/c/$id.h5" /flux/heights; vals "R/c/$id.h5" /flux/phi; } |
+	set -- $(dims "R/c/$id.h5" /observables/flux/phi/value)
+	{ vals "R/c/$id.h5" /observables/flux/heights; vals "R/c/$id.h5" /observables/flux/phi/value; } |
 		awk -v P="$1" -v L="$2" 'NR <= L { h[NR - 1] = $1; next } { v[NR - 1 - L] = $1 }
 			END { p0 = int(0.2 * P); for (l = 0; l < L; l++) { s = 0; for (p = p0; p < P; p++) s += v[p * L + l]
 			      printf "%d %.17g %.17g\n", l, h[l], s / (P - p0) } }'
@@ -93,19 +89,19 @@ paste -d' ' fig3.got fig3.want | awk '{ for (k = 2; k <= 3; k++) { d = $k - $(k 
 # the grid is one mean diameter of each run's grains, so the second run's cells go by
 # their centres into the first run's grid
 id1=$(echo "$ids" | head -n 1)
-set -- $(dims "R/c/$id1.h5" /field/count)
+set -- $(dims "R/c/$id1.h5" /observables/field/count/value)
 NY=$2 NX=$3
-CELL=$(attr "R/c/$id1.h5" /field/cell) X0=$(attr "R/c/$id1.h5" /field/x0)
+CELL=$(attr "R/c/$id1.h5" /observables/field/cell) X0=$(attr "R/c/$id1.h5" /observables/field/x0)
 for id in $ids; do
-	set -- $(dims "R/c/$id.h5" /field/count)
-	paste -d' ' <(vals "R/c/$id.h5" /field/count) <(vals "R/c/$id.h5" /field/ux) <(vals "R/c/$id.h5" /field/uy) |
-		awk -v ny="$2" -v nx="$3" -v ci="$(attr "R/c/$id.h5" /field/cell)" -v xi="$(attr "R/c/$id.h5" /field/x0)" \
+	set -- $(dims "R/c/$id.h5" /observables/field/count/value)
+	paste -d' ' <(vals "R/c/$id.h5" /observables/field/count/value) <(vals "R/c/$id.h5" /observables/field/ux/value) <(vals "R/c/$id.h5" /observables/field/uy/value) |
+		awk -v ny="$2" -v nx="$3" -v ci="$(attr "R/c/$id.h5" /observables/field/cell)" -v xi="$(attr "R/c/$id.h5" /observables/field/x0)" \
 			-v cell="$CELL" -v x0="$X0" -v NX="$NX" -v NY="$NY" '
 			{ k = (NR - 1) % (nx * ny); c = k % nx; r = int(k / nx)
 			  gx = int((xi + (c + 0.5) * ci - x0) / cell); gy = int((r + 0.5) * ci / cell)
 			  if ($1 > 0 && gx < NX && gy < NY) printf "%d %.17g %.17g %.17g\n", gy * NX + gx, $1, $1 * $2, $1 * $3 }'
 done | awk '{ n[$1] += $2; sx[$1] += $3; sy[$1] += $4 } END { for (c in n) if (n[c] > 0) printf "%d %.17g %.17g %.17g\n", c, n[c], sx[c] / n[c], sy[c] / n[c] }' >fig1.want
-[ "$(echo "$ids" | while read -r id; do attr "R/c/$id.h5" /field/cell; done | sort -u | wc -l)" = 2 ] &&
+[ "$(echo "$ids" | while read -r id; do attr "R/c/$id.h5" /observables/field/cell; done | sort -u | wc -l)" = 2 ] &&
 	ok figures.fig1_replicates_have_own_grids || fail figures.fig1_replicates_have_own_grids "the two runs share a grid: the regridding is not exercised"
 # the panel's rows (panel 2 r + sys: f = 6 Hz is row 1, the intruder system 1): arrows
 # are drawn centred on their cell, at most the common scale long, in the cell's direction
@@ -157,8 +153,8 @@ rc=$?
 H=R/r/analysis/hysteresis_periods.csv
 bad=0
 for id in $(q "SELECT id FROM runs WHERE campaign = 'r'"); do
-	P=$(dims "R/r/$id.h5" /flux/time)
-	nh=$(vals "R/r/$id.h5" /flux/time | awk '{ if ((prev + $1) / 2 < 0.5) n++; prev = $1 } END { print n + 0 }')
+	P=$(dims "R/r/$id.h5" /observables/flux/phi/time)
+	nh=$(vals "R/r/$id.h5" /observables/flux/phi/time | awk '{ if ((prev + $1) / 2 < 0.5) n++; prev = $1 } END { print n + 0 }')
 	got=$(awk -F, -v id="$id" '$3 == id { if (min == "" || $6 < min) min = $6; n++ } END { print min, n }' $H)
 	[ "$nh" -ge 1 ] && [ "$got" = "$nh $((P - nh))" ] || { bad=1; echo "# $id: hold periods $nh of $P, csv (first, rows) $got"; }
 done

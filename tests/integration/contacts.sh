@@ -6,16 +6,16 @@
 # the same moment, the datasets carry units, and without contact_rate there is no dump.
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
-col() { h5dump -m %.17g -d "$2" -y -w 0 "$1" 2>/dev/null | awk '/DATA \{/ && !done { on = 1; next } on && /\}/ { on = 0; done = 1 } on' | tr ',' '\n' | sed 's/^ *//; /^$/d'; }
+col() { h5vals "$@"; } # lib.sh
 C=/observables/contacts
 shake_run r.log n_grains=100 width=20 radius_ratio=2 depth=1 settle_ke=0.01 amplitude=0 duration=0.2 \
 	contact_rate=10 energy_rate=10 snapshots=no output=r.h5 || fail run "exit $?: $(tail -n 2 r.log)"
-[ "$(col r.h5 $C/count | tr '\n' ' ')" = "$(col r.h5 /observables/energy/contacts | tr '\n' ' ')" ] &&
+[ "$(col r.h5 $C/count | tr '\n' ' ')" = "$(col r.h5 /observables/energy/contacts/value | tr '\n' ' ')" ] &&
 	[ "$(col r.h5 $C/time | wc -l)" = 3 ] && ok frames_match_energy_series ||
-	fail frames_match_energy_series "counts $(col r.h5 $C/count | tr '\n' ' ') vs $(col r.h5 /observables/energy/contacts | tr '\n' ' ')"
+	fail frames_match_energy_series "counts $(col r.h5 $C/count | tr '\n' ' ') vs $(col r.h5 /observables/energy/contacts/value | tr '\n' ' ')"
 [ "$(attr r.h5 $C/normal_force/unit)" = dyn ] && [ "$(attr r.h5 $C/y_box/unit)" = cm ] && ok units ||
 	fail units "normal_force unit '$(attr r.h5 $C/normal_force/unit)'"
-paste <(col r.h5 /particles/id) <(col r.h5 /particles/kind) <(col r.h5 /particles/mass) >parts.tsv
+paste <(col r.h5 /final/id) <(col r.h5 /final/species) <(col r.h5 /final/mass) >parts.tsv
 n0=$(col r.h5 $C/count | head -n 1)
 paste <(col r.h5 $C/id_a) <(col r.h5 $C/id_b) <(col r.h5 $C/normal_force) <(col r.h5 $C/tangential_force) \
 	<(col r.h5 $C/normal_x) <(col r.h5 $C/normal_y) | head -n "$n0" >f0.tsv

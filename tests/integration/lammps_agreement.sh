@@ -48,8 +48,7 @@ fi
 ok lammps.run
 awk '/^ITEM: ATOMS/ { on = 1; next } on' lmp.dump >lmp.rows # id type x y vx vy omegaz
 
-h5col() { h5dump -m %.17g -d "$2" -y -w 0 "$1" | awk '/^ *DATA/ { on = 1; next } on && /}/ { on = 0 }
-	on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'; }
+h5col() { h5vals "$@"; } # lib.sh
 
 # engine ID args... : run the engine from the bed, write ID.rows (kind x y vx vy omega)
 engine() {
@@ -63,7 +62,7 @@ engine() {
 		return 1
 	fi
 	[ "$(attr "$id.h5" /steps)" = $STEPS ] || { fail "$id.run" "ran $(attr "$id.h5" /steps) steps, expected $STEPS"; return 1; }
-	paste -d' ' <(h5col "$id.h5" /particles/kind) <(h5col "$id.h5" /final/x) <(h5col "$id.h5" /final/y) \
+	paste -d' ' <(h5col "$id.h5" /final/species) <(h5col "$id.h5" /final/x) <(h5col "$id.h5" /final/y) \
 		<(h5col "$id.h5" /final/vx) <(h5col "$id.h5" /final/vy) <(h5col "$id.h5" /final/omega) >"$id.rows"
 }
 

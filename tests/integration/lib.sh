@@ -55,21 +55,52 @@ dims() {
 		s = $0; sub(/.*SIMPLE \{ \( */, "", s); sub(/ *\).*/, "", s); gsub(/,/, "", s); print s; exit }'
 }
 
+# h5vals FILE DATASET : every value of a dataset, one per line (%.17g), in storage
+# order (row-major: a [K][n][2] position dataset gives x, y of disk 0 at snapshot 0 first)
+h5vals() {
+	h5dump -m %.17g -d "$2" -y -w 0 "$1" 2>/dev/null | awk '/DATA \{/ && !done { on = 1; next } on && /\}/ { on = 0; done = 1 }
+		on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'
+}
+
+# h5param FILE KEY : a scene parameter of a run file (an attribute of /parameters)
+h5param() { attr "$1" "/parameters/$2"; }
+
+# h5traj FILE : the intruder's trajectory (H5MD group /particles/intruder) as rows
+# "t x y vx vy omega" (lab frame)
+h5traj() {
+	local g=/particles/intruder
+	paste -d' ' <(h5vals "$1" $g/position/time) <(h5vals "$1" $g/position/value | paste -d' ' - -) \
+		<(h5vals "$1" $g/velocity/value | paste -d' ' - -) <(h5vals "$1" $g/angular_velocity/value)
+}
+
+# h5snap FILE C : the snapshots' coordinate C (0 = x, 1 = y) of every mobile disk,
+# one snapshot per line (from /particles/bed/position)
+h5snap() {
+	local n
+	n=$(dims "$1" /particles/bed/id)
+	h5vals "$1" /particles/bed/position/value | awk -v c="$2" -v n="$n" '
+		(NR - 1) % 2 == c { row = row (row == "" ? "" : " ") $1; if (++k == n) { print row; row = ""; k = 0 } }'
+}
+
 # dump_noprov FILE [ATTR...] : the whole file as text (%.17g, exact for doubles), without the first
-# line (it names the file), without the /provenance group and without the named root
-# attributes (e.g. output, whose value is the path the run was given).
+# line (it names the file), without the /provenance group and without the named root or
+# /parameters attributes (e.g. output, whose value is the path the run was given).
 dump_noprov() {
 	local f=$1
 	shift
 	h5dump -m %.17g "$f" | awk -v skipattrs=" $* " 'NR == 1 { next }
-		/^   GROUP "provenance" \{/ { skip = 1; next }
-		/^   ATTRIBUTE "/ { a = $2; gsub(/"/, "", a); if (index(skipattrs, " " a " ")) { skip = 1; next } }
-		skip && /^   \}$/ { skip = 0; next }
+		/^   GROUP "provenance" \{/ { skip = 1; end = "^   }$"; next }
+		/^   GROUP "parameters" \{/ { inparams = 1 }
+		inparams && /^   }$/ { inparams = 0 }
+		!skip && /^   ATTRIBUTE "/ { a = $2; gsub(/"/, "", a); if (index(skipattrs, " " a " ")) { skip = 1; end = "^   }$"; next } }
+		!skip && inparams && /^      ATTRIBUTE "/ { a = $2; gsub(/"/, "", a); if (index(skipattrs, " " a " ")) { skip = 1; end = "^      }$"; next } }
+		skip && $0 ~ end { skip = 0; next }
 		!skip { print }'
 }
 
 # same_output A B [ATTR...] : the two run files are identical apart from /provenance (prints the
-# first differing lines on stderr when they differ); ATTRs are root attributes to ignore
+# first differing lines on stderr when they differ); ATTRs are root or /parameters
+# attributes to ignore
 same_output() {
 	local a=$1 b=$2
 	shift 2
@@ -81,13 +112,14 @@ same_output() {
 		diff "$da" "$db" | head -n 6 >&2
 		return 1
 	fi
-	# and h5diff agrees (every dataset and attribute, bar the ignored root attributes)
+	# and h5diff agrees (every dataset and attribute, bar the ignored attributes)
 	local out rc n
 	out=$(h5diff --exclude-path /provenance "$a" "$b" 2>&1)
 	rc=$?
 	[ "$rc" -le 1 ] || { echo "h5diff failed: $out" >&2; return 1; }
 	for n in "$@"; do
-		out=$(printf "%s\n" "$out" | grep -vF "attribute: <$n of </>> and <$n of </>>")
+		out=$(printf "%s\n" "$out" | grep -vF "attribute: <$n of </>> and <$n of </>>" |
+			grep -vF "attribute: <$n of </parameters>> and <$n of </parameters>>")
 	done
 	out=$(printf "%s\n" "$out" | grep -vE "^([0-9]+ differences? found)?\$")
 	[ -z "$out" ] || { printf "%s\n" "$out" | head -n 6 >&2; return 1; }

@@ -8,17 +8,22 @@ has() { h5dump -H -g "$2" "$1" >/dev/null 2>&1; }
 
 # off (the default): no group, and no other output changes
 shake_run off.log "${FAST[@]}" "${GENTLE[@]}" duration=1 output=off.h5 || fail off.run "$(head -c 200 off.log)"
-for g in /flux /field /ring; do
+for g in /observables/flux /observables/field /ring; do
 	has off.h5 $g && fail "off.no$g" "$g exists although it was not asked for" || ok "off.no$g"
 done
 
 # on: 1 s at 4 Hz = 4 periods -> 4 flux records, field blocks of 2 periods -> 2
 shake_run on.log "${FAST[@]}" "${GENTLE[@]}" duration=1 flux=yes flux_lines=20 field=yes field_periods=2 \
 	ring=yes ring_every=5 output=on.h5 || fail on.run "$(head -c 200 on.log)"
-[ "$(dims on.h5 /flux/phi)" = "4 20" ] && ok flux.shape || fail flux.shape "/flux/phi is $(dims on.h5 /flux/phi)"
-[ "$(dims on.h5 /flux/heights)" = "20" ] && ok flux.heights || fail flux.heights "$(dims on.h5 /flux/heights)"
-set -- $(dims on.h5 /field/ux)
-[ "${1:-}" = 2 ] && [ "${2:-0}" -gt 0 ] && [ "${3:-0}" -gt 0 ] && ok field.shape || fail field.shape "/field/ux is $*"
+F=/observables/flux
+[ "$(dims on.h5 $F/phi/value)" = "4 20" ] && ok flux.shape || fail flux.shape "$F/phi/value is $(dims on.h5 $F/phi/value)"
+[ "$(dims on.h5 $F/heights)" = "20" ] && ok flux.heights || fail flux.heights "$(dims on.h5 $F/heights)"
+# H5MD elements: one clock (step, time) shared by the flux series, each period's end (dt 5e-5)
+[ "$(h5vals on.h5 $F/phi/time | tr '\n' ' ')" = "$(h5vals on.h5 $F/j_top/time | tr '\n' ' ')" ] &&
+	[ "$(h5vals on.h5 $F/phi/step | tr '\n' ' ')" = "5000 10000 15000 20000 " ] && ok flux.clock ||
+	fail flux.clock "steps $(h5vals on.h5 $F/phi/step | tr '\n' ' ')"
+set -- $(dims on.h5 /observables/field/ux/value)
+[ "${1:-}" = 2 ] && [ "${2:-0}" -gt 0 ] && [ "${3:-0}" -gt 0 ] && ok field.shape || fail field.shape "/observables/field/ux/value is $*"
 s=$(attr on.h5 /ring/samples)
 [ "$s" = 4000 ] && ok ring.samples || fail ring.samples "samples $s, expected 20000 steps / 5"
 mf=$(attr on.h5 /ring/mean_force)
@@ -27,10 +32,8 @@ awk -v f="$mf" 'BEGIN { exit !(f > 0) }' && ok ring.force_positive || fail ring.
 h5diff -q off.h5 on.h5 /final /final >/dev/null 2>&1 && ok on.same_dynamics ||
 	fail on.same_dynamics "/final differs when observables are on"
 # flux records: phi = j_top - j_bot
-h5dump -m %.17g -d /flux/phi -d /flux/j_top -d /flux/j_bot -y -w 0 on.h5 | awk '
-	/DATASET "\/flux\/phi"/ { k = 0 } /DATASET "\/flux\/j_top"/ { k = 1 } /DATASET "\/flux\/j_bot"/ { k = 2 }
-	/^ *-?[0-9]/ { gsub(/,/, " "); for (i = 1; i <= NF; i++) v[k, n[k]++] = $i }
-	END { for (i = 0; i < n[0]; i++) if (v[0, i] != v[1, i] - v[2, i]) exit 1; exit !(n[0] == 80) }' &&
+paste -d' ' <(h5vals on.h5 $F/phi/value) <(h5vals on.h5 $F/j_top/value) <(h5vals on.h5 $F/j_bot/value) |
+	awk '{ if ($1 != $2 - $3) bad = 1 } END { exit bad || NR != 80 }' &&
 	ok flux.phi_is_top_minus_bot || fail flux.phi_is_top_minus_bot "phi != j_top - j_bot"
 
 # waiting time: not risen in 1 s -> censored at the end
@@ -47,8 +50,8 @@ shake_run noi2.log "${FAST[@]}" "${GENTLE[@]}" radius_ratio=0 ring=yes ring_y=3 
 # an updown ramp: flux records carry the frequency, which goes up and comes back
 shake_run ramp.log "${FAST[@]}" amplitude=1 duration=4 ramp=updown ramp_from=3 ramp_to=5 flux=yes \
 	output=ramp.h5 || fail ramp.run "$(head -c 200 ramp.log)"
-h5dump -m %.17g -d /flux/frequency -y -w 0 ramp.h5 | awk '/^ *[0-9]/ { gsub(/,/, " "); for (i = 1; i <= NF; i++) f[n++] = $i }
+h5dump -m %.17g -d /observables/flux/frequency/value -y -w 0 ramp.h5 | awk '/^ *[0-9]/ { gsub(/,/, " "); for (i = 1; i <= NF; i++) f[n++] = $i }
 	END { m = 0; for (i = 0; i < n; i++) if (f[i] > f[m]) m = i;
 	      exit !(n >= 14 && n <= 17 && f[m] > 4.8 && f[0] < 3.4 && f[n - 1] < 3.4 && m > 3 && m < n - 4) }' &&
-	ok ramp.frequency_up_and_down || fail ramp.frequency_up_and_down "$(h5dump -d /flux/frequency ramp.h5 | tail -4)"
+	ok ramp.frequency_up_and_down || fail ramp.frequency_up_and_down "$(h5dump -d /observables/flux/frequency/value ramp.h5 | tail -4)"
 finish

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # observables_rise.sh - the intruder's rise and settled depth against independent
 # computations from the run's own files: waiting_time against the first crossing in
-# /intruder/trajectory, intruder_settled_depth and surface_height against the settled
+# /particles/intruder, intruder_settled_depth and surface_height against the settled
 # particle file, and the direction in which the depth key moves the intruder.
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
@@ -26,8 +26,8 @@ shake_run rise.log "${RISE[@]}" write_particles=rise.txt output=rise.h5 ||
 
 wt=$(attr rise.h5 /waiting_time)
 y0=$(attr rise.h5 /intruder_settled_y)
-dur=$(attr rise.h5 /duration)
-rate=$(attr rise.h5 /traj_rate)
+dur=$(h5param rise.h5 duration)
+rate=$(h5param rise.h5 traj_rate)
 [ "$(attr rise.h5 /risen)" = 1 ] && awk -v w="$wt" -v d="$dur" 'BEGIN { exit !(w > 0 && w < d) }' &&
 	ok rise.risen || fail rise.risen "risen '$(attr rise.h5 /risen)' waiting_time '$wt' (duration $dur): the scene no longer rises"
 
@@ -35,7 +35,7 @@ rate=$(attr rise.h5 /traj_rate)
 
 # The tolerance below is one sample interval, so check that the samples are that far
 # apart (1/traj_rate, to within one time step of the integer schedule).
-awk -v rate="$rate" -v dt="$(attr rise.h5 /dt)" '!/^#/ { if (n++ && ($1 - p > 1 / rate + dt || $1 - p < 1 / rate - dt)) bad = 1; p = $1 }
+awk -v rate="$rate" -v dt="$(h5param rise.h5 dt)" '!/^#/ { if (n++ && ($1 - p > 1 / rate + dt || $1 - p < 1 / rate - dt)) bad = 1; p = $1 }
 	END { exit !(n > 1 && !bad) }' traj.tsv && ok rise.trajectory_sampled_at_traj_rate ||
 	fail rise.trajectory_sampled_at_traj_rate "sample spacing is not 1/traj_rate = $(awk -v r="$rate" 'BEGIN { print 1 / r }') s"
 
@@ -59,8 +59,8 @@ set -- $t0y
 # interval after the step at which the engine saw the crossing (and the engine tests the
 # predicted position of a step, the trajectory the corrected one: the same sample up to
 # rounding, far inside the interval).
-first=$(awk -v y0="$y0" -v rr="$(attr rise.h5 /radius_ratio)" -v rmin="$(attr rise.h5 /r_min)" \
-	-v rmax="$(attr rise.h5 /r_max)" -v A="$(attr rise.h5 /amplitude)" -v f="$(attr rise.h5 /frequency)" '
+first=$(awk -v y0="$y0" -v rr="$(h5param rise.h5 radius_ratio)" -v rmin="$(h5param rise.h5 r_min)" \
+	-v rmax="$(h5param rise.h5 r_max)" -v A="$(h5param rise.h5 amplitude)" -v f="$(h5param rise.h5 frequency)" '
 	BEGIN { pi = atan2(0, -1); dia = 2 * rr * 0.5 * (rmin + rmax) }
 	!/^#/ && $3 - A * sin(2 * pi * f * $1) - y0 > dia { printf "%.17g\n", $1; exit }' traj.tsv)
 [ -n "$first" ] && within "$wt" "$first" "$(awk -v r="$rate" 'BEGIN { printf "%.17g", 1 / r }')" &&

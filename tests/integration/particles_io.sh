@@ -49,9 +49,8 @@ paste -d' ' F.rows G.atoms G.vel | awk '
 	  else if ($16 != $5 || $17 != $6 || $21 != $7) bad = "row " NR ": velocity differs" }
 	END { if (bad) { print bad; exit 1 } }' >same.err && ok formats.same_state || fail formats.same_state "$(cat same.err)"
 # and the writing run's state at t = 0: positions exactly, kinds and radii
-h5col() { h5dump -m %.17g -d "$2" -y -w 0 "$1" | awk '/^ *DATA/ { on = 1; next } on && /}/ { on = 0 }
-	on { gsub(/,/, " "); for (i = 1; i <= NF; i++) print $i }'; }
-paste -d' ' <(h5col prep.h5 /final/x) <(h5col prep.h5 /final/y) <(h5col prep.h5 /particles/radius) <(h5col prep.h5 /particles/kind) F.rows |
+h5col() { h5vals "$@"; } # lib.sh
+paste -d' ' <(h5col prep.h5 /final/x) <(h5col prep.h5 /final/y) <(h5col prep.h5 /final/radius) <(h5col prep.h5 /final/species) F.rows |
 	awk '{ k = ($8 == "grain") ? 0 : ($8 == "intruder") ? 1 : 2
 	  if ($1 != $5 || $2 != $6 || $3 != $7 || $4 != k) { print "row " NR ": h5 " $1 " " $2 " " $3 " " $4 " file " $5 " " $6 " " $7 " " $8; exit 1 } }
 	END { if (NR != '"$n"') { print NR " rows"; exit 1 } }' >h5.err &&
@@ -68,7 +67,7 @@ if [ "$rcF" -ne 0 ] || [ "$rcG" -ne 0 ]; then
 	finish
 fi
 ok runs
-for g in /final /particles /snapshots /intruder; do
+for g in /final /particles/bed /particles/walls /particles/intruder; do
 	if h5diff fromF.h5 fromG.h5 "$g" "$g" >diff.out 2>&1; then ok "same_run.$g"; else
 		fail "same_run.$g" "runs from the text and the LAMMPS file differ in $g: $(head -n 3 diff.out | tr '\n' ' ')"; fi
 done

@@ -114,7 +114,7 @@ physics_checks() { # ID OUT : called while the interrupted run's checkpoint exis
 	"$SHAKE" "${SCENE[@]}" frequency=4.1 restart=no duration=0.5 output="$TMP/fresh.h5" \
 		checkpoint="$out.ckpt" >"$TMP/fresh.log" 2>&1
 	rc=$?
-	[ "$rc" -eq 0 ] && [ "$(attr "$TMP/fresh.h5" /status)" = ok ] && [ "$(attr "$TMP/fresh.h5" /frequency)" = 4.0999999999999996 ] &&
+	[ "$rc" -eq 0 ] && [ "$(attr "$TMP/fresh.h5" /status)" = ok ] && [ "$(h5param "$TMP/fresh.h5" frequency)" = 4.0999999999999996 ] &&
 		[ "$(attr "$TMP/fresh.h5" /steps)" = 10000 ] && ok restart_no.ignores_checkpoint ||
 		fail restart_no.ignores_checkpoint "exit $rc, status $(attr "$TMP/fresh.h5" /status), steps $(attr "$TMP/fresh.h5" /steps): $(head -c 300 "$TMP/fresh.log")"
 	# (that run removes the checkpoint it was pointed at when it ends: put it back)

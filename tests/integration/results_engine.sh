@@ -65,7 +65,7 @@ fi
 ALL=(flux=yes field=yes ring=yes snapshots=yes traj_rate=100 duration=0.3 "${GENTLE[@]}" progress=no)
 shake_run d0.log n_grains=0 width=12 radius_ratio=2 "${ALL[@]}" output=d0.h5
 rc=$?
-[ "$rc" = 0 ] && [ "$(attr d0.h5 /status)" = ok ] && [ "$(dims d0.h5 /intruder/trajectory | cut -d' ' -f1)" -gt 10 ] &&
+[ "$rc" = 0 ] && [ "$(attr d0.h5 /status)" = ok ] && [ "$(dims d0.h5 /particles/intruder/position/value | cut -d' ' -f1)" -gt 10 ] &&
 	ok degenerate.no_grains || fail degenerate.no_grains "exit $rc: $(tail -n 2 d0.log)"
 shake_run d1.log n_grains=1 width=12 radius_ratio=2 "${ALL[@]}" output=d1.h5
 rc=$?

@@ -62,13 +62,13 @@ for ig in gear5 gear4 verlet; do
 	awk -v k="$ke" 'BEGIN { exit !(k < 1e-3) }' && ok "stress.rest.$ig.no_heating" ||
 		fail "stress.rest.$ig.no_heating" "kinetic energy per disk after 1e5 steps $ke erg >= 1e-3 (settled at < 1e-2)"
 	# creep: mean height of the grains between t = 1 s and 5 s, intruder height over 5 s
-	read -r y1 y5 <<<"$(h5col "rest_$ig.h5" /snapshots/y | awk -v n="$n" '
+	read -r y1 y5 <<<"$(snap_mobile_y "rest_$ig.h5" | awk -v n="$n" '
 		{ s += $1; c++; if (c == n) { m[k++] = s / n; s = c = 0 } }
 		END { printf "%.10g %.10g\n", m[1], m[k - 1] }')"
 	awk -v a="$y1" -v b="$y5" 'BEGIN { d = b - a; if (d < 0) d = -d; exit !(d < 1e-3) }' &&
 		ok "stress.rest.$ig.no_creep.mean_height" ||
 		fail "stress.rest.$ig.no_creep.mean_height" "mean height moved from $y1 to $y5 cm (>= 1e-3 cm) between t = 1 and 5 s"
-	read -r dyi <<<"$(h5col "rest_$ig.h5" /intruder/trajectory | awk 'NR % 6 == 3 {
+	read -r dyi <<<"$(intruder_rows "rest_$ig.h5" | awk 'NR % 6 == 3 {
 		if (!c++) lo = hi = $1; if ($1 < lo) lo = $1; if ($1 > hi) hi = $1 } END { printf "%.6g\n", hi - lo }')"
 	awk -v d="$dyi" 'BEGIN { exit !(d < 1e-2) }' && ok "stress.rest.$ig.no_creep.intruder" ||
 		fail "stress.rest.$ig.no_creep.intruder" "the intruder's height varied by $dyi cm (>= 1e-2) at rest"

@@ -93,10 +93,9 @@ done < <(tail -n +3 cols.md)
 nchk=0 nbad=0
 for id in $(q $DB "SELECT id FROM runs WHERE campaign = 'rise' AND risen = 1"); do
 	f=R/rise/$id.h5
-	y0=$(attr "$f" /intruder_settled_y) r=$(attr "$f" /intruder_radius) A=$(attr "$f" /amplitude) fr=$(attr "$f" /frequency)
+	y0=$(attr "$f" /intruder_settled_y) r=$(attr "$f" /intruder_radius) A=$(h5param "$f" amplitude) fr=$(h5param "$f" frequency)
 	wt=$(q $DB "SELECT printf('%.17g', waiting_time) FROM result WHERE campaign = 'rise' AND run = '$id'")
-	first=$(h5dump -m %.17g -d /intruder/trajectory -y -w 1000 "$f" | awk '/DATA \{/ { on = 1; next } /\}/ { on = 0 } on' |
-		tr -d ' ' | tr ',' '\n' | sed '/^$/d' | paste -d' ' - - - - - - |
+	first=$(h5traj "$f" |
 		awk -v y0="$y0" -v r="$r" -v A="$A" -v f="$fr" '{ yb = $3 - A * sin(2 * 3.141592653589793 * f * $1);
 			if (yb - y0 > 2 * r) { print $1; exit } }')
 	nchk=$((nchk + 1))

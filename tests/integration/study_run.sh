@@ -48,8 +48,8 @@ cmp -s ids.expand ids.db && cmp -s ids.db ids.files && ok run.ids || fail run.id
 	ok run.params || fail run.params "$(q $DB "SELECT frequency, n_grains FROM runs")"
 # the output's own attributes agree with the recorded parameters
 id=$(head -n 1 ids.db)
-[ "$(attr R/t/$id.h5 /frequency)" = "$(q $DB "SELECT printf('%.17g', frequency) FROM runs WHERE id = '$id'")" ] &&
-	[ "$(attr R/t/$id.h5 /seed)" = "$(q $DB "SELECT seed FROM run WHERE id = '$id'")" ] &&
+[ "$(h5param R/t/$id.h5 frequency)" = "$(q $DB "SELECT printf('%.17g', frequency) FROM runs WHERE id = '$id'")" ] &&
+	[ "$(h5param R/t/$id.h5 seed)" = "$(q $DB "SELECT seed FROM run WHERE id = '$id'")" ] &&
 	ok run.params_match_output || fail run.params_match_output "frequency/seed differ between $id.h5 and the database"
 
 # --- packing cache: one settle per replicate, shared by both frequencies ---

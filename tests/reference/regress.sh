@@ -13,13 +13,25 @@ REGRESS_SCENE=(n_grains=150 width=24 radius_ratio=2.5 depth=1 settle_ke=1 settle
 REGRESS_CASES=(gear5 gear4 verlet)
 
 # regress_reduce FILE.h5 : the final state of every disk and the intruder trajectory, as text
+# (the trajectory as rows t x y vx vy omega, the layout of the references, gathered from
+# the H5MD group /particles/intruder)
 regress_reduce() {
 	local f=$1 d
-	for d in /final/x /final/y /final/vx /final/vy /final/omega /final/theta /intruder/trajectory; do
+	for d in /final/x /final/y /final/vx /final/vy /final/omega /final/theta; do
 		echo "# $d"
-		h5dump -m %.17g -d "$d" -y -w 100000 "$f" | awk '/^ *DATA \{/ { on = 1; next } /^ *\}/ { on = 0 } on' |
-			tr ',' '\n' | sed 's/^ *//; /^$/d'
+		regress_vals "$f" "$d"
 	done
+	echo "# /intruder/trajectory"
+	local g=/particles/intruder
+	paste -d' ' <(regress_vals "$f" $g/position/time) <(regress_vals "$f" $g/position/value | paste -d' ' - -) \
+		<(regress_vals "$f" $g/velocity/value | paste -d' ' - -) <(regress_vals "$f" $g/angular_velocity/value) |
+		tr ' ' '\n'
+}
+
+# regress_vals FILE DATASET : its values, one per line, %.17g
+regress_vals() {
+	h5dump -m %.17g -d "$2" -y -w 100000 "$1" | awk '/^ *DATA \{/ && !done { on = 1; next } on && /^ *\}/ { on = 0; done = 1 } on' |
+		tr ',' '\n' | sed 's/^ *//; /^$/d'
 }
 
 # regress_run SHAKE CASE OUT.h5 : run one case (integrator CASE at its own preset dt)

@@ -16,9 +16,9 @@ h5col() {
 final_stats() {
 	local f=$1 d
 	d=$(mktemp -d "${TMPDIR:-/tmp}/fstat.XXXXXX")
-	h5col "$f" /particles/kind >"$d/k"
-	h5col "$f" /particles/mass >"$d/m"
-	h5col "$f" /particles/radius >"$d/r"
+	h5col "$f" /final/species >"$d/k"
+	h5col "$f" /final/mass >"$d/m"
+	h5col "$f" /final/radius >"$d/r"
 	h5col "$f" /final/y >"$d/y"
 	h5col "$f" /final/vx >"$d/vx"
 	h5col "$f" /final/vy >"$d/vy"
@@ -28,6 +28,20 @@ final_stats() {
 			  sy += $4; s = sqrt($5 * $5 + $6 * $6); if (s > vm) vm = s }
 		END { if (n) printf "%d %.6g %.10g %.6g\n", n, ke / n, sy / n, vm; else print "0 nan nan nan" }'
 	rm -rf "$d"
+}
+
+# snap_mobile_y FILE : y of the mobile disks at each snapshot, one per line, snapshot
+# after snapshot (from /particles/bed/position)
+snap_mobile_y() {
+	h5col "$1" /particles/bed/position/value | awk 'NR % 2 == 0'
+}
+
+# intruder_rows FILE : the intruder trajectory flattened as t, x, y, vx, vy, omega of
+# each sample, one value per line (from /particles/intruder)
+intruder_rows() {
+	local g=/particles/intruder
+	paste -d' ' <(h5col "$1" $g/position/time) <(h5col "$1" $g/position/value | paste -d' ' - -) \
+		<(h5col "$1" $g/velocity/value | paste -d' ' - -) <(h5col "$1" $g/angular_velocity/value) | tr ' ' '\n'
 }
 
 # file_mean_y PARTICLE_FILE : mean y of the mobile disks of a text particle file

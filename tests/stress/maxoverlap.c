@@ -1,13 +1,11 @@
 /* maxoverlap.c - the largest overlap (as a fraction of the smaller radius) in the
  * recorded states of a run file: /final (every disk, walls included) and each
- * stroboscopic snapshot (mobile disks from /snapshots, walls from /final moved back to
- * the box's rest position: snapshots are taken at phase 0, where y_box = 0, and the
- * bottom row of a generated box has its centres at y = -wall_radius, so the shift is
- * the lowest wall centre in /final plus its radius).
+ * stroboscopic snapshot (/particles/bed/position, lab frame, with the walls of
+ * /particles/walls where they stand at every snapshot: phase 0, the box at rest).
  *
  * usage: maxoverlap RUN.h5  ->  "final F snapshots S n_snapshots K n_disks N pair I J"
  * F, S are the largest overlaps / smaller radius (0 when nothing touches); I J the
- * pair (indices into /particles) of the larger of the two. A cell grid one largest
+ * pair (indices into /final) of the larger of the two. A cell grid one largest
  * diameter wide makes it O(N) for 1e5 disks; the intruder is checked against all. */
 #include <hdf5.h>
 #include <math.h>
@@ -23,11 +21,13 @@ static double *read_ds(hid_t f, const char *name, hsize_t *d0, hsize_t *d1)
 	if (ds < 0)
 		return NULL;
 	hid_t sp = H5Dget_space(ds);
-	hsize_t dims[2] = {0, 1};
+	hsize_t dims[3] = {0, 1, 1};
 	int nd = H5Sget_simple_extent_ndims(sp);
 	H5Sget_simple_extent_dims(sp, dims, NULL);
 	if (nd == 1)
 		dims[1] = 1;
+	if (nd == 3) /* [K][n][2]: n x 2 values per row */
+		dims[1] *= dims[2];
 	*d0 = dims[0];
 	*d1 = dims[1];
 	size_t n = (size_t)(dims[0] * dims[1]);
@@ -134,43 +134,30 @@ int main(int argc, char **argv)
 		return 2;
 	}
 	hsize_t n, one, k = 0, nm = 0;
-	double *r = read_ds(f, "/particles/radius", &n, &one);
+	double *r = read_ds(f, "/final/radius", &n, &one);
 	double *kind = NULL, *x = read_ds(f, "/final/x", &n, &one), *y = read_ds(f, "/final/y", &n, &one);
 	hsize_t nk;
 	{ /* kind is an integer dataset: read it as double */
-		kind = read_ds(f, "/particles/kind", &nk, &one);
+		kind = read_ds(f, "/final/species", &nk, &one);
 	}
 	if (!r || !x || !y || !kind || nk != n) {
-		fprintf(stderr, "maxoverlap: '%s' lacks /particles or /final\n", argv[1]);
+		fprintf(stderr, "maxoverlap: '%s' lacks /final\n", argv[1]);
 		return 2;
 	}
 	int *wall = malloc(n * sizeof *wall);
-	int nmob = 0;
-	double wymin = INFINITY, wr = 0;
-	for (hsize_t i = 0; i < n; i++) {
+	for (hsize_t i = 0; i < n; i++)
 		wall[i] = kind[i] == 2;
-		nmob += !wall[i];
-		if (wall[i] && y[i] < wymin) {
-			wymin = y[i];
-			wr = r[i];
-		}
-	}
 	best bf = scan((int)n, x, y, r, wall), bs = {0, -1, -1};
-	double *sx = read_ds(f, "/snapshots/x", &k, &nm), *sy = read_ds(f, "/snapshots/y", &k, &nm);
-	if (sx && sy && k > 0 && nm == (hsize_t)nmob) {
+	hsize_t nw = 0, two = 0;
+	double *sp = read_ds(f, "/particles/bed/position/value", &k, &nm);
+	double *wp = read_ds(f, "/particles/walls/position", &nw, &two);
+	if (sp && k > 0 && nm / 2 + (wp ? nw : 0) == n) {
 		double *tx = malloc(n * sizeof *tx), *ty = malloc(n * sizeof *ty);
-		double shift = isfinite(wymin) ? wymin + wr : 0;
+		const hsize_t nmob = nm / 2;
 		for (hsize_t s = 0; s < k; s++) {
-			hsize_t m = 0;
 			for (hsize_t i = 0; i < n; i++) {
-				if (wall[i]) {
-					tx[i] = x[i];
-					ty[i] = y[i] - shift;
-				} else {
-					tx[i] = sx[s * nm + m];
-					ty[i] = sy[s * nm + m];
-					m++;
-				}
+				tx[i] = i < nmob ? sp[s * nm + 2 * i] : wp[2 * (i - nmob)];
+				ty[i] = i < nmob ? sp[s * nm + 2 * i + 1] : wp[2 * (i - nmob) + 1];
 			}
 			best b = scan((int)n, tx, ty, r, wall);
 			if (b.f > bs.f)
@@ -184,5 +171,12 @@ int main(int argc, char **argv)
 	printf("final %.6f snapshots %.6f n_snapshots %llu n_disks %llu pair %d %d\n", bf.f, bs.f,
 	       (unsigned long long)k, (unsigned long long)n, w.i, w.j);
 	H5Fclose(f);
+	free(sp);
+	free(wp);
+	free(wall);
+	free(kind);
+	free(r);
+	free(x);
+	free(y);
 	return 0;
 }

@@ -164,11 +164,11 @@ for ig in gear5 gear4 verlet; do
 	fi
 	ok "stress.rest.$ig.runs"
 	read -r n ke ybar vmax <<<"$(final_stats "rest_$ig.h5")"
-	read -r y1 yl step <<<"$(h5col "rest_$ig.h5" /snapshots/y | awk -v n="$n" '
+	read -r y1 yl step <<<"$(snap_mobile_y "rest_$ig.h5" | awk -v n="$n" '
 		{ s += $1; c++; if (c == n) { m[k++] = s / n; s = c = 0 } }
 		END { for (i = 2; i < k; i++) { d = m[i] - m[i - 1]; if (d < 0) d = -d; if (d > mx) mx = d }
 		      printf "%.9f %.9f %.3e\n", m[0], m[k - 1], mx }')"
-	read -r irange ivmax <<<"$(h5col "rest_$ig.h5" /intruder/trajectory | awk '{ c = (NR - 1) % 6; v[c] = $1
+	read -r irange ivmax <<<"$(intruder_rows "rest_$ig.h5" | awk '{ c = (NR - 1) % 6; v[c] = $1
 		if (c == 5) { if (!k++) lo = hi = v[2]; if (v[2] < lo) lo = v[2]; if (v[2] > hi) hi = v[2]
 		s = sqrt(v[3] * v[3] + v[4] * v[4]); if (s > vm) vm = s } } END { printf "%.3e %.3e\n", hi - lo, vm }')"
 	cpu=$(attr_val "rest_$ig.h5" provenance/loop_seconds)
@@ -212,7 +212,7 @@ for tag in $(for n in $DEEP_N; do echo "wide$n"; done) $(for n in $COLUMN_N; do 
 	s0=- f1=- s1=-
 	[ "$rc0" = 0 ] && s0=$("$OVL" "deep_${tag}_settled.h5" | awk '{ print $2 }')
 	[ -s "deep_${tag}_shaken.h5" ] && read -r f1 s1 <<<"$("$OVL" "deep_${tag}_shaken.h5" | awk '{ print $2, $4 }')"
-	n=$(attr_val "deep_${tag}_settled.h5" n_grains) w=$(attr_val "deep_${tag}_settled.h5" width)
+	n=$(attr_val "deep_${tag}_settled.h5" parameters/n_grains) w=$(attr_val "deep_${tag}_settled.h5" parameters/width)
 	# The load decides how far soft disks overlap: the bottom contacts of a column of
 	# height h carry its weight, W = (2 phi h / (pi R)) m g per column one diameter wide
 	# (area fraction phi = 0.82, mean radius R), on two contacts at 30 deg from the
@@ -221,9 +221,9 @@ for tag in $(for n in $DEEP_N; do echo "wide$n"; done) $(for n in $COLUMN_N; do 
 	# 3.2 - 4.8 times), so the settled bed's largest overlap must stay below
 	# max(0.3, 5 xi / r_min); shaken, below the engine's default stop (0.6).
 	hyd=$(awk -v h="$(attr_val "deep_${tag}_settled.h5" surface_height)" \
-		-v Y="$(attr_val "deep_${tag}_settled.h5" stiffness)" -v g="$(attr_val "deep_${tag}_settled.h5" gravity)" \
-		-v a="$(attr_val "deep_${tag}_settled.h5" r_min)" -v b="$(attr_val "deep_${tag}_settled.h5" r_max)" \
-		-v mf="$(attr_val "deep_${tag}_settled.h5" mass_factor)" -v rho="$(attr_val "deep_${tag}_settled.h5" density)" \
+		-v Y="$(attr_val "deep_${tag}_settled.h5" parameters/stiffness)" -v g="$(attr_val "deep_${tag}_settled.h5" parameters/gravity)" \
+		-v a="$(attr_val "deep_${tag}_settled.h5" parameters/r_min)" -v b="$(attr_val "deep_${tag}_settled.h5" parameters/r_max)" \
+		-v mf="$(attr_val "deep_${tag}_settled.h5" parameters/mass_factor)" -v rho="$(attr_val "deep_${tag}_settled.h5" parameters/density)" \
 		'BEGIN { R = (a + b) / 2; m = mf * rho * (a * a + a * b + b * b) / 3
 			 W = 2 * 0.82 * h / (3.141592653589793 * R) * m * g
 			 printf "%.4f", W / (2 * cos(3.141592653589793 / 6) * Y) / a }')

@@ -1,0 +1,301 @@
+/* h5md.c - HDF5 writing in the H5MD 1.1 conventions (see h5md.h). */
+#include "h5md.h"
+
+#include <string.h>
+
+/* Rows below this many bytes stay contiguous: chunking and compressing a few
+ * hundred doubles costs more than it saves. */
+#define BIG_BYTES 4096
+
+int h5w_create(h5w *h, const char *path, int deflate_level)
+{
+	memset(h, 0, sizeof *h);
+	h->level = deflate_level;
+	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+	H5Pset_obj_track_times(fcpl, 0);
+	/* the root lists h5md first, as readers that take the first group expect */
+	H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+	h->gcpl = H5Pcreate(H5P_GROUP_CREATE);
+	H5Pset_obj_track_times(h->gcpl, 0);
+	h->ogcpl = H5Pcreate(H5P_GROUP_CREATE);
+	H5Pset_obj_track_times(h->ogcpl, 0);
+	H5Pset_link_creation_order(h->ogcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+	h->file = H5Fcreate(path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+	H5Pclose(fcpl);
+	if (h->file < 0) {
+		H5Pclose(h->gcpl);
+		H5Pclose(h->ogcpl);
+		return -1;
+	}
+	return 0;
+}
+
+int h5w_close(h5w *h)
+{
+	H5Pclose(h->gcpl);
+	H5Pclose(h->ogcpl);
+	if (H5Fclose(h->file) < 0)
+		h->bad = 1;
+	return h->bad ? -1 : 0;
+}
+
+static void attr_write(h5w *h, hid_t obj, const char *name, hid_t ftype, hid_t mtype, hid_t sp, const void *v)
+{
+	hid_t a = H5Acreate2(obj, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT);
+	if (a < 0 || H5Awrite(a, mtype, v) < 0)
+		h->bad = 1;
+	H5Aclose(a);
+	H5Sclose(sp);
+}
+
+void h5w_attr_double(h5w *h, hid_t obj, const char *name, double v)
+{
+	attr_write(h, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5Screate(H5S_SCALAR), &v);
+}
+
+void h5w_attr_long(h5w *h, hid_t obj, const char *name, long v)
+{
+	long long x = v;
+	attr_write(h, obj, name, H5T_STD_I64LE, H5T_NATIVE_LLONG, H5Screate(H5S_SCALAR), &x);
+}
+
+void h5w_attr_ints(h5w *h, hid_t obj, const char *name, const int *v, int n)
+{
+	hsize_t d = (hsize_t)n;
+	attr_write(h, obj, name, H5T_STD_I32LE, H5T_NATIVE_INT, H5Screate_simple(1, &d, NULL), v);
+}
+
+void h5w_attr_str(h5w *h, hid_t obj, const char *name, const char *v)
+{
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, strlen(v) + 1);
+	H5Tset_strpad(t, H5T_STR_NULLTERM);
+	attr_write(h, obj, name, t, t, H5Screate(H5S_SCALAR), v);
+	H5Tclose(t);
+}
+
+void h5w_attr_strs(h5w *h, hid_t obj, const char *name, const char *const *v, int n)
+{
+	size_t w = 1;
+	for (int i = 0; i < n; i++)
+		w = strlen(v[i]) + 1 > w ? strlen(v[i]) + 1 : w;
+	char buf[8][32];
+	if (n > 8 || w > sizeof buf[0]) {
+		h->bad = 1;
+		return;
+	}
+	memset(buf, 0, sizeof buf);
+	for (int i = 0; i < n; i++)
+		memcpy(buf[i], v[i], strlen(v[i]));
+	char packed[8 * 32];
+	for (int i = 0; i < n; i++)
+		memcpy(packed + (size_t)i * w, buf[i], w);
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, w);
+	H5Tset_strpad(t, H5T_STR_NULLTERM);
+	hsize_t d = (hsize_t)n;
+	attr_write(h, obj, name, t, t, H5Screate_simple(1, &d, NULL), packed);
+	H5Tclose(t);
+}
+
+hid_t h5w_group(h5w *h, hid_t loc, const char *name, int ordered)
+{
+	hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, ordered ? h->ogcpl : h->gcpl, H5P_DEFAULT);
+	if (g < 0)
+		h->bad = 1;
+	return g;
+}
+
+hid_t h5w_group_get(h5w *h, hid_t loc, const char *name)
+{
+	if (H5Lexists(loc, name, H5P_DEFAULT) > 0)
+		return H5Gopen2(loc, name, H5P_DEFAULT);
+	return h5w_group(h, loc, name, 0);
+}
+
+/* The creation properties of a dataset of this shape: large ones are chunked by
+ * rows (one first-dimension index at a time, the unit readers slice by) and, when a
+ * level is set, shuffled and deflated. */
+static hid_t dcpl_for(const h5w *h, int rank, const hsize_t *dims, size_t elem)
+{
+	hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+	H5Pset_obj_track_times(p, 0);
+	hsize_t row = elem, total = dims[0];
+	for (int r = 1; r < rank; r++) {
+		row *= dims[r];
+		total *= dims[r];
+	}
+	if (dims[0] > 0 && total * elem >= BIG_BYTES) {
+		hsize_t chunk[4];
+		chunk[0] = 1;
+		for (int r = 1; r < rank; r++)
+			chunk[r] = dims[r] ? dims[r] : 1;
+		/* short rows: gather several into one chunk of ~16 KiB */
+		if (row < 16384) {
+			hsize_t k = 16384 / (row ? row : 1);
+			chunk[0] = k < dims[0] ? k : dims[0];
+		}
+		H5Pset_chunk(p, rank, chunk);
+		if (h->level > 0) {
+			H5Pset_shuffle(p);
+			H5Pset_deflate(p, (unsigned)h->level);
+		}
+	}
+	return p;
+}
+
+/* Units are variable-length UTF-8 strings, as h5py writes them: readers in Python
+ * (MDAnalysis) compare them with str and would see bytes in a fixed-length one. */
+void h5w_attr_unit(h5w *h, hid_t obj, const char *unit)
+{
+	if (!unit || obj < 0)
+		return;
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, H5T_VARIABLE);
+	H5Tset_cset(t, H5T_CSET_UTF8);
+	attr_write(h, obj, "unit", t, t, H5Screate(H5S_SCALAR), &unit);
+	H5Tclose(t);
+}
+
+static void unit_attr(h5w *h, hid_t d, const char *unit) { h5w_attr_unit(h, d, unit); }
+
+void h5w_dset(h5w *h, hid_t loc, const char *name, int rank, const hsize_t *dims, const double *data,
+	      const char *unit)
+{
+	hid_t sp = H5Screate_simple(rank, dims, NULL);
+	hid_t p = dcpl_for(h, rank, dims, sizeof(double));
+	hid_t d = H5Dcreate2(loc, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, p, H5P_DEFAULT);
+	hsize_t total = 1;
+	for (int r = 0; r < rank; r++)
+		total *= dims[r];
+	if (d < 0 || (total > 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+		h->bad = 1;
+	unit_attr(h, d, unit);
+	H5Dclose(d);
+	H5Pclose(p);
+	H5Sclose(sp);
+}
+
+void h5w_dset_int(h5w *h, hid_t loc, const char *name, hsize_t n, const int *data, const char *unit)
+{
+	hid_t sp = H5Screate_simple(1, &n, NULL);
+	hid_t p = dcpl_for(h, 1, &n, sizeof(int));
+	hid_t d = H5Dcreate2(loc, name, H5T_STD_I32LE, sp, H5P_DEFAULT, p, H5P_DEFAULT);
+	if (d < 0 || (n > 0 && H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+		h->bad = 1;
+	unit_attr(h, d, unit);
+	H5Dclose(d);
+	H5Pclose(p);
+	H5Sclose(sp);
+}
+
+static hid_t clock_dset(h5w *h, hid_t g, const char *name, hid_t type, hsize_t T)
+{
+	hid_t sp = H5Screate_simple(1, &T, NULL);
+	hid_t p = dcpl_for(h, 1, &T, 8);
+	hid_t d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, p, H5P_DEFAULT);
+	if (d < 0)
+		h->bad = 1;
+	H5Pclose(p);
+	H5Sclose(sp);
+	return d;
+}
+
+int h5w_elem_create(h5w *h, h5elem *el, hid_t loc, const char *name, hsize_t T, int tail_rank,
+		    const hsize_t *tail, const char *unit, const h5elem *clock)
+{
+	return h5w_elem_create_as(h, el, loc, name, T, tail_rank, tail, unit, clock, H5T_IEEE_F64LE);
+}
+
+int h5w_elem_create_as(h5w *h, h5elem *el, hid_t loc, const char *name, hsize_t T, int tail_rank,
+		       const hsize_t *tail, const char *unit, const h5elem *clock, hid_t ftype)
+{
+	memset(el, 0, sizeof *el);
+	el->step = el->time = el->value = -1;
+	el->rank = 1 + tail_rank;
+	el->dims[0] = T;
+	for (int r = 0; r < tail_rank; r++)
+		el->dims[1 + r] = tail[r];
+	el->g = h5w_group(h, loc, name, 0);
+	if (el->g < 0)
+		return -1;
+	if (clock) {
+		if (H5Lcreate_hard(clock->g, "step", el->g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
+		    H5Lcreate_hard(clock->g, "time", el->g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)
+			h->bad = 1;
+	} else {
+		el->own_clock = 1;
+		el->step = clock_dset(h, el->g, "step", H5T_STD_I64LE, T);
+		el->time = clock_dset(h, el->g, "time", H5T_IEEE_F64LE, T);
+		unit_attr(h, el->time, "s");
+	}
+	hid_t sp = H5Screate_simple(el->rank, el->dims, NULL);
+	hid_t p = dcpl_for(h, el->rank, el->dims, H5Tget_size(ftype));
+	el->value = H5Dcreate2(el->g, "value", ftype, sp, H5P_DEFAULT, p, H5P_DEFAULT);
+	H5Pclose(p);
+	H5Sclose(sp);
+	if (el->value < 0)
+		h->bad = 1;
+	unit_attr(h, el->value, unit);
+	return h->bad ? -1 : 0;
+}
+
+/* Write count rows starting at k of one dataset from memory. */
+static void rows_write(h5w *h, hid_t d, hid_t mtype, int rank, const hsize_t *dims, hsize_t k, hsize_t count,
+		       const void *data)
+{
+	if (d < 0 || count == 0)
+		return;
+	hsize_t start[4] = {k, 0, 0, 0}, cnt[4];
+	cnt[0] = count;
+	for (int r = 1; r < rank; r++)
+		cnt[r] = dims[r];
+	hid_t fsp = H5Dget_space(d);
+	hid_t msp = H5Screate_simple(rank, cnt, NULL);
+	if (H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, cnt, NULL) < 0 ||
+	    H5Dwrite(d, mtype, msp, fsp, H5P_DEFAULT, data) < 0)
+		h->bad = 1;
+	H5Sclose(msp);
+	H5Sclose(fsp);
+}
+
+void h5w_elem_row(h5w *h, h5elem *el, hsize_t k, long step, double t, const double *row)
+{
+	if (el->own_clock) {
+		long long s = step;
+		rows_write(h, el->step, H5T_NATIVE_LLONG, 1, el->dims, k, 1, &s);
+		rows_write(h, el->time, H5T_NATIVE_DOUBLE, 1, el->dims, k, 1, &t);
+	}
+	rows_write(h, el->value, H5T_NATIVE_DOUBLE, el->rank, el->dims, k, 1, row);
+}
+
+void h5w_elem_all(h5w *h, h5elem *el, const long *steps, const double *times, const double *values)
+{
+	const hsize_t T = el->dims[0];
+	if (el->own_clock && T > 0) {
+		long long *s = H5allocate_memory(sizeof(long long) * T, 0);
+		if (!s) {
+			h->bad = 1;
+			return;
+		}
+		for (hsize_t k = 0; k < T; k++)
+			s[k] = steps[k];
+		rows_write(h, el->step, H5T_NATIVE_LLONG, 1, el->dims, 0, T, s);
+		rows_write(h, el->time, H5T_NATIVE_DOUBLE, 1, el->dims, 0, T, times);
+		H5free_memory(s);
+	}
+	rows_write(h, el->value, H5T_NATIVE_DOUBLE, el->rank, el->dims, 0, T, values);
+}
+
+void h5w_elem_close(h5elem *el)
+{
+	if (el->own_clock) {
+		H5Dclose(el->step);
+		H5Dclose(el->time);
+	}
+	if (el->value >= 0)
+		H5Dclose(el->value);
+	if (el->g >= 0)
+		H5Gclose(el->g);
+	el->g = el->value = el->step = el->time = -1;
+}
