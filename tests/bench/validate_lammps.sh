@@ -25,7 +25,10 @@
 # nothing about agreement), VALIDATE_BEDS, VALIDATE_DURATION (s), VALIDATE_SKIP
 # (fraction), VALIDATE_FREQ (Hz), JOBS (parallel runs, default 2), VALIDATE_WORK (run
 # directory, default build/validate[-quick]), VALIDATE_OUT (where the .md and the
-# figure go: docs for the full run, the run directory for the quick one).
+# figure go: docs for the full run, the run directory for the quick one),
+# VALIDATE_REPORT=1 (steps 3 and 4 only, from the runs already in the run directory
+# and the times they recorded: to redraw the report without running again).
+# The runs are started under nice -n 5 here; run the script (or make) without nice.
 # Exit status: 0 done (whatever the verdict: the fragment states it), 1 a step failed.
 set -euo pipefail
 REPO=$(cd "$(dirname "$0")/../.." && pwd)
@@ -61,9 +64,18 @@ DT=$(awk '$1 == "timestep" { print $2; exit }' "$DECK")
 STEPS=$(awk -v d="$DURATION" -v dt="$DT" 'BEGIN { s = d / dt; r = int(s + 0.5); if (s - r > 1e-6 || r - s > 1e-6) exit 1; print r }') ||
 	die "DURATION $DURATION s is not a whole number of steps of $DT s"
 
+REPORT=${VALIDATE_REPORT:-0}
 mkdir -p "$WORK/bin" "$OUT"
 WORK=$(cd "$WORK" && pwd)
-rm -f "$WORK"/*.h5 "$WORK"/*.dump "$WORK"/*.tsv "$WORK"/*.log "$WORK"/jobs "$WORK"/*.sec
+SEEDS=$(seq 101 $((100 + BEDS)))
+if [ "$REPORT" = 1 ]; then
+	[ -s "$WORK/times" ] || die "VALIDATE_REPORT=1: no runs recorded in $WORK (run without it first)"
+	for s in $SEEDS; do
+		[ -s "$WORK/shake_$s.h5" ] && [ -s "$WORK/lmp_$s.dump" ] || die "VALIDATE_REPORT=1: bed $s's runs are missing in $WORK"
+	done
+else
+	rm -f "$WORK"/*.h5 "$WORK"/*.dump "$WORK"/*.tsv "$WORK"/*.log "$WORK"/jobs "$WORK"/*.sec "$WORK"/times
+fi
 # the binaries copied first: others may rebuild bin/ while the runs go on
 cp "$SHAKE" "$WORK/bin/shake" && cp "$DUMPFLUX" "$WORK/bin/dumpflux" || die "cannot copy the binaries"
 SHAKE=$WORK/bin/shake DUMPFLUX=$WORK/bin/dumpflux
@@ -73,9 +85,9 @@ awk 'FNR == NR { frag = frag $0 "\n"; next } /^run \$\{steps\}[ \t]*$/ { printf 
 	END { if (n != 1) exit 1 }' "$STROBE" "$DECK" >"$WORK/validate.in" ||
 	die "$DECK: expected exactly one 'run \${steps}' line to insert the dump before"
 
-SEEDS=$(seq 101 $((100 + BEDS)))
 echo "validate_lammps: $BEDS beds, $DURATION s at $FREQ Hz (A = $AMP cm), transient $SKIP of the periods, $JOBS jobs, in $WORK" >&2
 
+if [ "$REPORT" != 1 ]; then
 # 1. the beds (settled by the engine; frequency and amplitude only set the wall
 #    velocities the data file carries for t = 0)
 for s in $SEEDS; do
@@ -85,7 +97,8 @@ for s in $SEEDS; do
 done
 T1=$(date +%s)
 
-# 2. the runs, LAMMPS's first (the longer ones), JOBS at a time; each records its wall time
+# 2. the runs, LAMMPS's first (the longer ones), JOBS at a time; each records its wall
+#    and CPU (user, system) seconds
 {
 	for s in $SEEDS; do
 		printf 'lmp %s\n' "$s"
@@ -95,26 +108,28 @@ T1=$(date +%s)
 	done
 } >"$WORK/jobs"
 job() { # CODE SEED
-	local code=$1 s=$2 t0 t1 rc=0
-	t0=$(date +%s.%N)
+	local code=$1 s=$2 rc=0 TIMEFORMAT='%R %U %S'
 	if [ "$code" = lmp ]; then
-		OMP_NUM_THREADS=1 nice -n 5 "$LMP" -in "$WORK/validate.in" -log none -screen none -nocite \
+		{ time OMP_NUM_THREADS=1 nice -n 5 "$LMP" -in "$WORK/validate.in" -log none -screen none -nocite \
 			-var data "$WORK/bed_$s.data" -var steps "$STEPS" -var freq "$FREQ" -var amp "$AMP" \
-			-var strobe "$WORK/lmp_$s.dump" >"$WORK/lmp_$s.log" 2>&1 || rc=$?
+			-var strobe "$WORK/lmp_$s.dump" >"$WORK/lmp_$s.log" 2>&1; } 2>"$WORK/lmp_$s.sec" || rc=$?
 	else
-		nice -n 5 "$SHAKE" particles="$WORK/bed_$s.data" settle=no radius_ratio=0 frequency="$FREQ" \
+		{ time nice -n 5 "$SHAKE" particles="$WORK/bed_$s.data" settle=no radius_ratio=0 frequency="$FREQ" \
 			amplitude=$AMP duration="$DURATION" flux=yes snapshots=no traj_rate=0 progress=no \
-			output="$WORK/shake_$s.h5" >"$WORK/shake_$s.log" 2>&1 || rc=$?
+			output="$WORK/shake_$s.h5" >"$WORK/shake_$s.log" 2>&1; } 2>"$WORK/shake_$s.sec" || rc=$?
 	fi
-	t1=$(date +%s.%N)
-	awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f\n", b - a }' >"$WORK/${code}_$s.sec"
-	echo "validate_lammps: $code bed $s: exit $rc, $(cat "$WORK/${code}_$s.sec") s" >&2
+	echo "validate_lammps: $code bed $s: exit $rc, $(awk '{ printf "%.0f s (CPU %.0f s)", $1, $2 + $3 }' "$WORK/${code}_$s.sec")" >&2
 	return $rc
 }
 export -f job
 export WORK LMP SHAKE STEPS FREQ AMP DURATION
 xargs -P "$JOBS" -L 1 bash -c 'job "$0" "$1"' <"$WORK/jobs" || die "a run failed (logs in $WORK)"
 T2=$(date +%s)
+# what the report states about the runs: start, preparation and runs wall seconds, jobs
+echo "$(date -u -d @"$T0" '+%Y-%m-%d %H:%M UTC') $((T1 - T0)) $((T2 - T1)) $JOBS" >"$WORK/times"
+fi
+T2=$(date +%s)
+read -r STARTD STARTT STARTZ PREP_S RUNS_S RUN_JOBS <"$WORK/times"
 
 # 3. the profiles; the frame check of the LAMMPS dumps: the walls moved by the drive's
 #    A sin(2 pi f t) (fix move wiggle), which dumpflux takes off the mobile disks
@@ -146,17 +161,26 @@ FIG=validate_lammps
 awk '!/^#/' "$WORK/compare.tsv" >"$WORK/plot.tsv"
 cat >"$WORK/plot.gp" <<GP
 do for [fmt in "png pdf"] {
-  if (fmt eq "png") { set terminal pngcairo size 900,650 font ",11"; set output "$OUT/$FIG.png" } \
-  else { set terminal pdfcairo size 6.5in,4.7in font ",10"; set output "$OUT/$FIG.pdf" }
-  set title "Φ(D) at $FREQ Hz, A = $AMP cm, no intruder: $BEDS beds in each code (mean ± 95 % interval over beds)"
-  set xlabel "D: height above the floor (cm)"
-  set ylabel "Φ (particles per period)"
-  set key top left
+  if (fmt eq "png") { set terminal pngcairo size 900,900 font ",11"; set output "$OUT/$FIG.png" } \
+  else { set terminal pdfcairo size 6.5in,6.5in font ",10"; set output "$OUT/$FIG.pdf" }
+  set multiplot layout 2,1 title "Φ(D) at $FREQ Hz, A = $AMP cm, no intruder: the same $BEDS beds shaken by each code"
   set grid
-  set zeroaxis
-  plot "$WORK/plot.tsv" using (\$2-0.06):3:4 with yerrorbars pt 7 ps 0.6 lc rgb "#1f77b4" title "shakebox (gear5)", \
-       "" using (\$2+0.06):5:6 with yerrorbars pt 5 ps 0.6 lc rgb "#d62728" title "LAMMPS gran/hooke", \
-       "" using 2:7:8 with yerrorbars pt 1 ps 0.5 lc rgb "#555555" title "difference shakebox − LAMMPS"
+  set key top left
+  set ylabel "Φ (particles per period)"
+  set format x ""
+  set xlabel ""
+  set lmargin 10
+  set title "mean over the beds ± 95 % interval"
+  plot "$WORK/plot.tsv" using (\$2-0.08):3:4 with yerrorbars pt 7 ps 0.5 lc rgb "#1f77b4" title "shakebox (gear5)", \
+       "" using (\$2+0.08):5:6 with yerrorbars pt 5 ps 0.5 lc rgb "#d62728" title "LAMMPS gran/hooke"
+  set format x "%g"
+  set xlabel "D: height above the floor (cm)"
+  set ylabel "ΔΦ (particles per period)"
+  set title "paired difference shakebox − LAMMPS ± 95 % interval (filled: interval misses 0)"
+  set key off
+  plot "$WORK/plot.tsv" using 2:7:8 with yerrorbars pt 6 ps 0.5 lc rgb "#333333", \
+       "" using 2:(\$10 == 0 ? \$7 : 1/0) with points pt 7 ps 0.8 lc rgb "#d62728", 0 with lines lc rgb "black" lw 1
+  unset multiplot
 }
 GP
 gnuplot "$WORK/plot.gp" || die "gnuplot failed"
@@ -164,7 +188,9 @@ gnuplot "$WORK/plot.gp" || die "gnuplot failed"
 T3=$(date +%s)
 
 val() { awk -v k="$1" '$1 == "#" && $2 == k { print $3; exit }' "$WORK/compare.tsv"; }
-sumsec() { cat "$WORK"/"$1"_*.sec | awk '{ t += $1 } END { printf "%.0f", t }'; }
+# summed over a code's runs: wall seconds, CPU seconds ("?" when not recorded)
+sumsec() { cat "$WORK"/"$1"_*.sec | awk '{ t += $1; c += $2 + $3; if (NF < 3) u = 1 } END { printf "%.0f", t }'; }
+sumcpu() { cat "$WORK"/"$1"_*.sec | awk '{ c += $2 + $3; if (NF < 3) u = 1 } END { if (u) printf "?"; else printf "%.0f", c }'; }
 ndis=$(val disagree) nl=$(val lines) nused=$(val lines_with_crossings)
 maxt=$(val max_abs_t) chi2=$(val chi2_per_line) pmax=$(val p_max_abs_t) pchi=$(val p_chi2)
 perms=$(awk '$1 == "#" && $2 == "perms" { $1 = $2 = ""; sub(/^ +/, ""); print; exit }' "$WORK/compare.tsv")
@@ -178,9 +204,12 @@ cmd="make validate-lammps"
 	echo "<!-- generated by tests/bench/validate_lammps.sh ($cmd); do not edit -->"
 	echo "## Validation against LAMMPS: Φ(D) over an ensemble of beds"
 	echo
-	echo "Generated $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')$(git diff --quiet HEAD -- core analysis tests/bench 2>/dev/null || echo ' (with uncommitted changes)') by \`$cmd\` in $(($(date +%s) - T0)) s of wall time on $(nproc) cores"
-	echo "(runs $((T2 - T1)) s with $JOBS at a time: LAMMPS $(sumsec lmp) s, shakebox $(sumsec shake) s summed over the runs;"
-	echo "preparation $((T1 - T0)) s, analysis $((T3 - T2)) s). LAMMPS: $("$LMP" -h 2>/dev/null | awk 'NF { print; exit }' | sed 's/^ *//')."
+	total=$((PREP_S + RUNS_S + T3 - T2))
+	echo "Generated $(date -u '+%Y-%m-%d %H:%M UTC') at commit $(git rev-parse --short HEAD 2>/dev/null || echo '?')$(git diff --quiet HEAD -- core analysis tests/bench 2>/dev/null || echo ' (with uncommitted changes)') by \`$cmd\`"
+	echo "(runs started $STARTD $STARTT $STARTZ). **Run time: $total s** of wall time ($((total / 60)) min) on a shared $(nproc)-core machine:"
+	echo "preparation $PREP_S s, the $((2 * BEDS)) runs $RUNS_S s with $RUN_JOBS at a time, analysis $((T3 - T2)) s. Summed over the runs, LAMMPS"
+	echo "$(sumsec lmp) s of wall time ($(sumcpu lmp) s CPU), shakebox $(sumsec shake) s ($(sumcpu shake) s CPU)$(awk -v a="$(sumcpu lmp)" -v b="$(sumcpu shake)" -v j="$RUN_JOBS" -v p="$PREP_S" 'BEGIN { if (a != "?" && b != "?") printf ": on %d idle cores the whole would take about %.0f min", j, ((a + b) / j + p) / 60 }')."
+	echo "LAMMPS: $("$LMP" -h 2>/dev/null | awk 'NF { print; exit }' | sed 's/^ *//')."
 	echo
 	echo "**Setup.** $BEDS settled beds without intruder (seeds $(echo $SEEDS | awk '{ print $1 }')…$(echo $SEEDS | awk '{ print $NF }'); 950 grains, width 60 cm, the paper's"
 	echo "contact law), prepared by the engine and written as LAMMPS data files (\`write_lammps\`); each"
@@ -219,11 +248,11 @@ cmd="make validate-lammps"
 	echo
 	echo "Per bed: free-surface height and Φ through the plane (mean over the lines at 0.4–0.6 of the surface height)."
 	echo
-	echo "| seed | surface (cm) | Φ plane shakebox | Φ plane LAMMPS | shakebox run (s) | LAMMPS run (s) |"
+	echo "| seed | surface (cm) | Φ plane shakebox | Φ plane LAMMPS | shakebox run, wall (s) | LAMMPS run, wall (s) |"
 	echo "|---:|---:|---:|---:|---:|---:|"
 	for s in $SEEDS; do
 		sf=$(surface "$WORK/shake_$s.tsv")
-		echo "| $s | $(printf '%.2f' "$sf") | $(plane "$WORK/shake_$s.tsv" "$sf") | $(plane "$WORK/lmp_$s.tsv" "$sf") | $(cat "$WORK/shake_$s.sec") | $(cat "$WORK/lmp_$s.sec") |"
+		echo "| $s | $(printf '%.2f' "$sf") | $(plane "$WORK/shake_$s.tsv" "$sf") | $(plane "$WORK/lmp_$s.tsv" "$sf") | $(awk '{ printf "%.0f", $1 }' "$WORK/shake_$s.sec") | $(awk '{ printf "%.0f", $1 }' "$WORK/lmp_$s.sec") |"
 	done
 	echo
 	echo "Per line (D: mean height over the beds; Φ in particles per period; ± the 95 % half-width):"
