@@ -126,13 +126,16 @@ static void test_engine(const char *dir)
 	}
 	/* 150 grains at 3 Hz, A = 2 cm: convection and crossings at every line; the fast
 	 * preset's dt = 2e-4 s puts the samples a third of a step past k/f, so the box
-	 * offset at the samples is not zero */
+	 * offset at the samples is not zero; the snapshots in double precision (the
+	 * default single precision would move a disk by up to ~1e-6 of its height, and
+	 * one that close to a line would cross it or not: the check is for exact equality) */
 	char cmd[2048], run_h5[512], dump[512];
 	snprintf(run_h5, sizeof run_h5, "%s/run.h5", dir);
 	snprintf(dump, sizeof dump, "%s/run.dump", dir);
 	snprintf(cmd, sizeof cmd,
 		 "'%s' n_grains=150 width=30 radius_ratio=0 seed=3 preset=fast frequency=3 amplitude=2 duration=5 "
-		 "flux=yes snapshots=yes traj_rate=0 progress=no output='%s' >'%s/run.log' 2>&1 && "
+		 "flux=yes snapshots=yes snapshot_precision=double traj_rate=0 progress=no output='%s' >'%s/run.log' "
+		 "2>&1 && "
 		 "bash scripts/dump_lammps.sh '%s' >'%s' 2>'%s/dump.err'",
 		 shake, run_h5, dir, run_h5, dump, dir);
 	int rc = run(cmd);

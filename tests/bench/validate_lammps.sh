@@ -76,8 +76,12 @@ if [ "$REPORT" = 1 ]; then
 else
 	rm -f "$WORK"/*.h5 "$WORK"/*.dump "$WORK"/*.tsv "$WORK"/*.log "$WORK"/jobs "$WORK"/*.sec "$WORK"/times
 fi
-# the binaries copied first: others may rebuild bin/ while the runs go on
-cp "$SHAKE" "$WORK/bin/shake" && cp "$DUMPFLUX" "$WORK/bin/dumpflux" || die "cannot copy the binaries"
+# the binaries copied first: others may rebuild bin/ while the runs go on; a report
+# from recorded runs reads their files with the binaries they were made with
+if [ "$REPORT" != 1 ]; then
+	cp "$SHAKE" "$WORK/bin/shake" && cp "$DUMPFLUX" "$WORK/bin/dumpflux" || die "cannot copy the binaries"
+fi
+[ -x "$WORK/bin/dumpflux" ] || die "no $WORK/bin/dumpflux"
 SHAKE=$WORK/bin/shake DUMPFLUX=$WORK/bin/dumpflux
 
 # the LAMMPS input: the deck with the strobe dump before its one `run ${steps}` line
