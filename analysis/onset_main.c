@@ -12,6 +12,7 @@
 #include "flux.h"
 #include "onsetfit.h"
 #include "tool.h"
+#include "xopt.h"
 
 #define VERSION "2"
 
@@ -21,7 +22,7 @@
 static const char *HELP =
 	"usage: onset CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
 	"             [--skip FRAC] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
-	"             [--all-versions] [--no-plot] [--no-store]\n\n"
+	"             [--sensitivity] [--all-versions] [--no-plot] [--no-store]\n\n"
 	"Onset of convection. For every run at a fixed frequency (ramp = none) with flux =\n"
 	"yes: Phi through the plane = the mean of Phi over the height lines that\n"
 	"lie in the band LO..HI of the settled surface height (default 0.4:0.6, the middle\n"
@@ -48,6 +49,15 @@ static const char *HELP =
 	"  --by KEYS        group by these parameters (comma separated)\n"
 	"  --boot N         bootstrap replicates (default 1000); --seed S its seed (default 1)\n"
 	"  --level L        confidence level (default 0.95)\n"
+	"  --sensitivity    also how the onset depends on the measuring band and on the sampled\n"
+	"                   frequency range: both estimates again for the bands 0.2:0.4, 0.4:0.6\n"
+	"                   and 0.6:0.8 of the surface height and for the sampled range without\n"
+	"                   its lowest and without its highest frequency (the same bootstrap),\n"
+	"                   and the spread (largest - smallest) over these and the main estimate,\n"
+	"                   printed beside the main estimate's interval; onset_sensitivity.csv,\n"
+	"                   stored keys sens_spread_threshold_f, sens_spread_sigmoid_f0 and per\n"
+	"                   variant sens_threshold_f_V and sens_sigmoid_f0_V (lo, hi), V one of\n"
+	"                   band_0.2_0.4, band_0.4_0.6, band_0.6_0.8, no_lowest_f, no_highest_f\n"
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current\n"
 	"                   = 0, kept by study run --keep-old); by default the current grid's\n"
 	"  --no-plot        no figures;  --no-store  nothing written to the database\n\n"
@@ -260,6 +270,153 @@ static int estimate(an_tool *t, onset_state *s)
 	return t->e.code;
 }
 
+/* ---- --sensitivity: the onset again for other bands and a trimmed frequency range ---- */
+
+enum { NBAND = 3, NVAR = NBAND + 3 };
+static const double BANDS[NBAND][2] = {{0.2, 0.4}, {0.4, 0.6}, {0.6, 0.8}};
+static const char *const VNAME[NVAR] = {"main", "band_0.2_0.4", "band_0.4_0.6", "band_0.6_0.8", "no_lowest_f",
+					"no_highest_f"};
+
+/* Phi through each of the bands of every used run (NaN for the others), read again. */
+static int band_phis(an_tool *t, const onset_state *s, double *pb)
+{
+	for (int i = 0; i < t->k; i++) {
+		for (int b = 0; b < NBAND; b++)
+			pb[b * t->k + i] = NAN;
+		flux_data fd;
+		if (!USED(&t->runs[i]) || flux_load(&t->runs[i], &fd))
+			continue; /* classified usable: only a file changed since could fail */
+		for (int b = 0; b < NBAND; b++) {
+			const flux_opts fo = {BANDS[b][0], BANDS[b][1], s->fo.skip};
+			pb[b * t->k + i] = flux_summary(&fd, &fo);
+		}
+		flux_free(&fd);
+	}
+	return 0;
+}
+
+/* Group j's points of variant v (1..NBAND: a band; NBAND + 1, + 2: the main band without
+ * the lowest or the highest sampled frequency of the group) into xs, ys, us. */
+static size_t variant_points(const an_tool *t, onset_state *s, const double *pb, int j, int v)
+{
+	double flo = INFINITY, fhi = -INFINITY;
+	for (int i = 0; i < t->k; i++)
+		if (t->runs[i].group == j && USED(&t->runs[i])) {
+			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
+			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
+		}
+	size_t np = 0;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		const double f = an_num(r, "frequency", NAN);
+		if (r->group != j || !USED(r) || (v == NBAND + 1 && f == flo) || (v == NBAND + 2 && f == fhi))
+			continue;
+		const double y = v >= 1 && v <= NBAND ? pb[(v - 1) * t->k + i] : s->phi[i];
+		if (!isfinite(y))
+			continue;
+		s->xs[np] = f;
+		s->ys[np] = y;
+		s->us[np++] = r->replicate;
+	}
+	return np;
+}
+
+/* largest - smallest of the finite v[0..n); NaN when fewer than 2 */
+static double spread(const double *v, int n)
+{
+	double lo = INFINITY, hi = -INFINITY;
+	int m = 0;
+	for (int i = 0; i < n; i++)
+		if (isfinite(v[i])) {
+			lo = fmin(lo, v[i]);
+			hi = fmax(hi, v[i]);
+			m++;
+		}
+	return m >= 2 ? hi - lo : NAN;
+}
+
+/* One group's variants: table rows, CSV rows, stored rows; the spreads. */
+static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE *f)
+{
+	const an_opts *o = t->o;
+	const char *L = t->labels[j];
+	double thr[NVAR], f0[NVAR];
+	for (int v = 0; v < NVAR; v++) {
+		const size_t np = variant_points(t, s, pb, j, v);
+		onset_res r = {0};
+		if (np && onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0), o->seed,
+					 o->level, &r))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+		if (!np)
+			r.thr = r.thr_lo = r.thr_hi = r.fit_lo = r.fit_hi = NAN;
+		thr[v] = r.thr;
+		f0[v] = r.fit.ok ? r.fit.x0 : NAN;
+		const double blo = v >= 1 && v <= NBAND ? BANDS[v - 1][0] : o->band_lo;
+		const double bhi = v >= 1 && v <= NBAND ? BANDS[v - 1][1] : o->band_hi;
+		double flo = INFINITY, fhi = -INFINITY;
+		for (size_t p = 0; p < np; p++) {
+			flo = fmin(flo, s->xs[p]);
+			fhi = fmax(fhi, s->xs[p]);
+		}
+		char c1[64], c2[64], what[64];
+		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", r.thr, r.thr_lo, r.thr_hi);
+		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", f0[v], r.fit_lo, r.fit_hi);
+		if (v)
+			snprintf(what, sizeof what, "%s", VNAME[v]);
+		else
+			snprintf(what, sizeof what, "main (band %g:%g)", blo, bhi);
+		printf("%-30s %-22s %5.2f-%-5.2f %4zu %22s %22s\n", v ? "" : L, what, np ? flo : NAN, np ? fhi : NAN, np, c1,
+		       c2);
+		fprintf(f, "%d,", j);
+		csv_str(f, L);
+		fprintf(f, ",%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g\n", VNAME[v], blo, bhi,
+			np ? flo : NAN, np ? fhi : NAN, np, r.thr, r.thr_lo, r.thr_hi, r.fit.ok, f0[v], r.fit_lo, r.fit_hi);
+		if (v) {
+			char k1[64], k2[64];
+			snprintf(k1, sizeof k1, "sens_threshold_f_%s", VNAME[v]);
+			snprintf(k2, sizeof k2, "sens_sigmoid_f0_%s", VNAME[v]);
+			tool_store(t, j, L, k1, r.thr, r.thr_lo, r.thr_hi, (long)np);
+			tool_store(t, j, L, k2, f0[v], r.fit_lo, r.fit_hi, (long)np);
+		}
+		onset_res_free(&r);
+	}
+	const double st = spread(thr, NVAR), sf = spread(f0, NVAR);
+	const onset_res *m = &s->R[j];
+	const long n = (long)acct_used(&t->A[j]);
+	printf("%-30s spread over the %d variants: threshold f %.3f Hz (main interval %.3f Hz wide), sigmoid f0 %.3f Hz"
+	       " (main interval %.3f Hz wide)\n", "", NVAR, st, m->thr_hi - m->thr_lo, sf, m->fit_hi - m->fit_lo);
+	tool_store(t, j, L, "sens_spread_threshold_f", st, NAN, NAN, n);
+	tool_store(t, j, L, "sens_spread_sigmoid_f0", sf, NAN, NAN, n);
+	return 0;
+}
+
+/* --sensitivity: onset_sensitivity.csv and the table (rows stored beside the main ones). */
+static int sensitivity(an_tool *t, onset_state *s)
+{
+	char path[1400];
+	double *pb = malloc(sizeof *pb * (size_t)(NBAND * (t->k ? t->k : 1)));
+	FILE *f = pb ? cli_fopen(t->o, "onset_sensitivity.csv", path, sizeof path, &t->e) : NULL;
+	if (!pb)
+		sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if (!f) {
+		free(pb);
+		return t->e.code;
+	}
+	band_phis(t, s, pb);
+	fprintf(f, "group_index,group,variant,band_lo,band_hi,f_lo,f_hi,runs,threshold_f,threshold_f_lo,threshold_f_hi,"
+		   "sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi\n");
+	printf("\n# sensitivity of the onset: the measuring band (fraction of the surface height) and the sampled frequency"
+	       " range (without its lowest or highest frequency); %ld bootstrap replicates each\n", t->o->boot);
+	printf("%-30s %-22s %11s %4s %22s %22s\n", "group", "variant", "f range", "runs", "threshold f [CI] (Hz)",
+	       "sigmoid f0 [CI] (Hz)");
+	for (int j = 0; j < t->ng && !t->e.code; j++)
+		if (acct_used(&t->A[j]))
+			sens_group(t, s, pb, j, f);
+	fclose(f);
+	free(pb);
+	return t->e.code;
+}
+
 /* The transition a figure marks for group j: the sigmoid's f0 when it was accepted,
  * else the threshold crossing; its interval; 0 when neither exists. */
 static int onset_mark(const onset_res *r, double *f, double *lo, double *hi, const char **name)
@@ -341,7 +498,8 @@ static int plot(an_tool *t, const onset_state *s)
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "onset", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " by band skip threshold boot seed level ", stdout, stderr);
+	xopt x[] = {{"sensitivity", 0, NULL, 0}};
+	int pr = xopt_args(&o, argc, argv, HELP, " by band skip threshold boot seed level ", x, 1, stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;
@@ -350,13 +508,13 @@ int main(int argc, char **argv)
 		goto out;
 	if (cli_outdir(&o, &t.e) || runs_csv(&t, &s) || tool_accounting_csv(&t))
 		goto out;
-	if (estimate(&t, &s) || tool_store_end(&t))
+	if (estimate(&t, &s) || (x[0].set && sensitivity(&t, &s)) || tool_store_end(&t))
 		goto out;
 	tool_report(&t, stdout, "the periods they recorded before the failure (after the transient of the run as"
 				" planned): one point each, like a finished run");
 	if (!o.no_plot && plot(&t, &s))
 		goto out;
-	printf("# csv: %s/onset_{runs,seeds,summary,accounting}.csv\n", o.out);
+	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s}.csv\n", o.out, x[0].set ? ",sensitivity" : "");
 out:
 	state_free(&t, &s);
 	return tool_close(&t, stderr);
