@@ -13,7 +13,7 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '7'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '8'};
 
 typedef struct hw {
 	FILE *f;

@@ -9,8 +9,8 @@
  *                       mass, radius; box; position, velocity, angle at the snapshots
  *   /particles/walls    the wall disks: id, species, mass, radius, position (at rest)
  *   /particles/intruder the intruder at traj_rate: position, velocity, angular_velocity
- *   /observables  energy, flux, field (time-dependent elements), contacts (frames)
- *   /ring         the ring's time averages
+ *   /observables  energy, flux, field, ring (time-dependent elements), contacts (frames)
+ *   /ring         the ring's averages: over the run and before the rise
  *   /final        every disk at the end (lab frame): x, y, vx, vy, omega, theta and
  *                 id, species, radius, mass
  *   /provenance   git hash, compiler, flags, host, times
@@ -274,28 +274,100 @@ static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
 	free(col);
 }
 
-static void write_ring(h5w *h, const sb_sim *s)
+/* The ring's series (docs/model.md, "Ring force"): one row per sample, every quantity
+ * an element sharing the first one's clock; centre is [T][2] (box frame). */
+static void write_ring_series(h5w *h, const sb_sim *s, hid_t obs, const dbuf *rg, size_t T)
+{
+	static const char *const names[JR_RING_COLS] = {"time", "mean_force", "net_force", "temperature", "grains"};
+	static const char *const units[JR_RING_COLS] = {"s", "dyn", "dyn", "cm2 s-2", "1"};
+	double *col = malloc(sizeof(double) * 2 * (T ? T : 1)), *t = NULL;
+	long *st = NULL;
+	if (!col || columns(s, rg, JR_RING_COLS, T, &t, &st)) {
+		h->bad = 1;
+	} else {
+		hid_t g = h5w_group(h, obs, "ring", 0);
+		h5elem e0, e;
+		for (int c = OBS_RR_MEAN; c <= OBS_RR_N; c++) {
+			for (size_t k = 0; k < T; k++)
+				col[k] = rg->d[k * JR_RING_COLS + c];
+			h5elem *el = c == OBS_RR_MEAN ? &e0 : &e;
+			h5w_elem_create(h, el, g, names[c], T, 0, NULL, units[c], c == OBS_RR_MEAN ? NULL : &e0);
+			h5w_elem_all(h, el, st, t, col);
+			if (c != OBS_RR_MEAN)
+				h5w_elem_close(&e);
+		}
+		for (size_t k = 0; k < T; k++) {
+			col[2 * k] = rg->d[k * JR_RING_COLS + OBS_RR_CX];
+			col[2 * k + 1] = rg->d[k * JR_RING_COLS + OBS_RR_CY];
+		}
+		const hsize_t two = 2;
+		h5w_elem_create(h, &e, g, "centre", T, 1, &two, "cm", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, col);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		h5w_attr_str(h, g, "definition",
+			     "one row per ring sample, over the grains whose centres lie inner..outer cm (/ring) from "
+			     "centre (box frame): mean_force = mean over them of the sum of the magnitudes of each grain's "
+			     "contact forces (dyn); net_force = mean of the magnitude of each grain's net force, contact "
+			     "forces plus weight, lab frame (dyn); temperature = half the mean squared velocity "
+			     "fluctuation about their mean velocity (cm^2/s^2); grains = how many (0: the means are 0)");
+		H5Gclose(g);
+	}
+	free(col);
+	free(t);
+	free(st);
+}
+
+/* The ring's averages (/ring attributes): over every sample, and over the window
+ * before the rise (ring_from <= t < min(ring_until, the waiting time)). No sample:
+ * zeros, never NaN. */
+static void write_ring(h5w *h, const sb_sim *s, double t_end)
 {
 	const sb_obs *o = &s->obs;
 	hid_t g = h5w_group(h, h->file, "ring", 0);
-	double n = o->ring_samples ? (double)o->ring_samples : 1; /* no samples: zeros, never NaN */
+	double n = o->ring_samples ? (double)o->ring_samples : 1;
 	h5w_attr_double(h, g, "inner", o->rin);
 	h5w_attr_double(h, g, "outer", o->rout);
 	h5w_attr_long(h, g, "samples", o->ring_samples);
-	h5w_attr_double(h, g, "mean_force", o->acc[0] / n);
-	h5w_attr_double(h, g, "mean_force_lower", o->acc[1] / n);
-	h5w_attr_double(h, g, "sum_force", o->acc[2] / n);
-	h5w_attr_double(h, g, "sum_force_lower", o->acc[3] / n);
-	h5w_attr_double(h, g, "temperature", o->acc[4] / n);
-	h5w_attr_double(h, g, "temperature_lower", o->acc[5] / n);
-	h5w_attr_double(h, g, "grains", o->acc[6] / n);
-	h5w_attr_double(h, g, "grains_lower", o->acc[7] / n);
+	h5w_attr_double(h, g, "mean_force", o->acc[OBS_RA_MEAN] / n);
+	h5w_attr_double(h, g, "mean_force_lower", o->acc[OBS_RA_MEAN_LO] / n);
+	h5w_attr_double(h, g, "sum_force", o->acc[OBS_RA_SUM] / n);
+	h5w_attr_double(h, g, "sum_force_lower", o->acc[OBS_RA_SUM_LO] / n);
+	h5w_attr_double(h, g, "net_force", o->acc[OBS_RA_NET] / n);
+	h5w_attr_double(h, g, "net_force_lower", o->acc[OBS_RA_NET_LO] / n);
+	h5w_attr_double(h, g, "temperature", o->acc[OBS_RA_T] / n);
+	h5w_attr_double(h, g, "temperature_lower", o->acc[OBS_RA_T_LO] / n);
+	h5w_attr_double(h, g, "grains", o->acc[OBS_RA_N] / n);
+	h5w_attr_double(h, g, "grains_lower", o->acc[OBS_RA_N_LO] / n);
+	h5w_attr_str(h, g, "centre", o->ring_follow ? "intruder"
+				     : s->sc.ring_centre == RING_SETTLED && s->intruder >= 0 ? "settled" : "fixed");
+	if (!o->ring_follow) {
+		h5w_attr_double(h, g, "centre_x", o->ring_x);
+		h5w_attr_double(h, g, "centre_y", o->ring_y);
+	}
+	/* the window before the rise */
+	double to = t_end;
+	if (s->intruder >= 0 && o->risen && o->wait_time < to)
+		to = o->wait_time;
+	if (o->ring_until > 0 && o->ring_until < to)
+		to = o->ring_until;
+	const double nb = o->ring_before ? (double)o->ring_before : 1;
+	h5w_attr_long(h, g, "samples_before", o->ring_before);
+	h5w_attr_double(h, g, "before_from", o->ring_from);
+	h5w_attr_double(h, g, "before_to", to);
+	h5w_attr_double(h, g, "mean_force_before", o->before[OBS_RB_MEAN] / nb);
+	h5w_attr_double(h, g, "net_force_before", o->before[OBS_RB_NET] / nb);
+	h5w_attr_double(h, g, "temperature_before", o->before[OBS_RB_T] / nb);
+	h5w_attr_double(h, g, "grains_before", o->before[OBS_RB_N] / nb);
+	h5w_attr_double(h, g, "sum_force_before", o->before[OBS_RB_SUM] / nb);
 	h5w_attr_str(h, g, "definition",
-		     "time averages over samples every ring_every steps of grains whose centres lie inner..outer cm "
-		     "from the intruder centre (or ring_x, ring_y): mean_force = mean over grains of the sum of the "
-		     "magnitudes of their contact forces (dyn), sum_force = its sum over the ring, temperature = half "
-		     "the mean squared velocity fluctuation about the ring's mean velocity (cm^2/s^2); _lower: grains "
-		     "below the centre");
+		     "averages over the ring samples (/observables/ring) of grains whose centres lie inner..outer cm "
+		     "from the centre (the intruder's, sample by sample, or fixed: centre_x, centre_y, box frame): "
+		     "mean_force = mean over the grains of the sum of the magnitudes of their contact forces (dyn), "
+		     "sum_force = its sum over the ring, net_force = mean magnitude of the grains' net force (contact "
+		     "forces plus weight, lab frame; dyn), temperature = half the mean squared velocity fluctuation "
+		     "about the ring's mean velocity (cm^2/s^2); _lower: grains below the centre; _before: the "
+		     "samples at before_from <= t < before_to, before the intruder rose (docs/model.md, \"Ring force\")");
 	H5Gclose(g);
 }
 
@@ -568,13 +640,15 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		cap = JR_TRAJ_COLS;
 	if (cap < JR_ENERGY_COLS)
 		cap = JR_ENERGY_COLS;
+	if (cap < JR_RING_COLS)
+		cap = JR_RING_COLS;
 	if (cap < 2 + JR_CONTACT_COLS * s->max_contacts)
 		cap = 2 + JR_CONTACT_COLS * s->max_contacts;
 	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
 		cap = obs_flux_len(&s->obs);
 	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
 		cap = obs_field_len(&s->obs);
-	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0}, contacts = {0};
+	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0}, contacts = {0}, ring = {0};
 	double *buf = malloc(sizeof(double) * (size_t)cap);
 	snapw sw = {0};
 	sw.pos.g = -1;
@@ -585,7 +659,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	}
 	sb_jreader r = {0};
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact)
+	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact || s->obs.ring_samples)
 			 ? journal_reader_open(&r, s->journal_path, e)
 			 : 1;
 	while (!rc && !h->bad) {
@@ -605,6 +679,8 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			rc = dbuf_add(&energy, buf, JR_ENERGY_COLS) ? SB_ENOMEM : 0;
 		else if (tag == JR_CONTACT)
 			rc = dbuf_add(&contacts, buf, (size_t)count) ? SB_ENOMEM : 0;
+		else if (tag == JR_RING)
+			rc = dbuf_add(&ring, buf, JR_RING_COLS) ? SB_ENOMEM : 0;
 		else if (tag == JR_SNAP && sw.k < K)
 			snap_row(h, &sw, s, buf);
 		if (rc == SB_ENOMEM)
@@ -635,7 +711,12 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	if (!rc && kc != s->n_contact)
 		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld contact frames, expected %ld", s->journal_path, kc,
 			     s->n_contact);
-	const int any = s->obs.flux_on || s->obs.field_on || s->sc.energy_rate > 0 || s->sc.contact_rate > 0;
+	long kr = (long)(ring.n / JR_RING_COLS);
+	if (!rc && kr != s->obs.ring_samples)
+		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld ring samples, expected %ld", s->journal_path, kr,
+			     s->obs.ring_samples);
+	const int any = s->obs.flux_on || s->obs.field_on || s->sc.energy_rate > 0 || s->sc.contact_rate > 0 ||
+			s->obs.ring_on;
 	if (!rc && any) {
 		hid_t obs = h5w_group(h, h->file, "observables", 0);
 		if (s->obs.flux_on)
@@ -646,15 +727,18 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			write_energy(h, s, obs, &energy, (size_t)ke);
 		if (s->sc.contact_rate > 0)
 			write_contacts(h, obs, &contacts, kc);
+		if (s->obs.ring_on)
+			write_ring_series(h, s, obs, &ring, (size_t)kr);
 		H5Gclose(obs);
 	}
 	if (!rc && s->obs.ring_on)
-		write_ring(h, s);
+		write_ring(h, s, s->step * s->sc.dt);
 	free(traj.d);
 	free(flux.d);
 	free(field.d);
 	free(energy.d);
 	free(contacts.d);
+	free(ring.d);
 	free(buf);
 	return rc;
 }

@@ -7,6 +7,8 @@
 
 #include "crossing.h"
 
+_Static_assert(OBS_RING_COLS == JR_RING_COLS, "a ring sample's row is a JR_RING record");
+
 static double *zalloc(size_t n, int *bad)
 {
 	double *p = calloc(n ? n : 1, sizeof(double));
@@ -79,13 +81,31 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 		o->cnt = zalloc(nc, &bad);
 	}
 	if (o->ring_on) {
+		/* the centre (docs/model.md, "Ring force"): the intruder's, sample by sample;
+		 * or fixed in the box, where the intruder settled (this is t = 0: the state is
+		 * the settled one; a restart takes the centre from the checkpoint) or at
+		 * (ring_x, ring_y) */
+		const int mode = sc->ring_centre == RING_AUTO ? (sc->ring_y >= 0 ? RING_FIXED : RING_INTRUDER)
+							       : sc->ring_centre;
 		o->rin = sc->ring_inner;
 		o->rout = sc->ring_outer;
 		o->ring_every = (int)sc->ring_every;
+		o->ring_interval = 1.0 / sc->ring_rate;
+		o->ring_dt = sc->dt;
+		o->ring_from = sc->ring_from;
+		o->ring_until = sc->ring_until;
+		o->gravity = sc->gravity;
 		o->ring_x = sc->ring_x >= 0 ? sc->ring_x : 0.5 * (x0 + x1);
 		o->ring_y = sc->ring_y;
-		if (o->ring_y < 0 && intruder < 0)
-			return sb_errf(e, SB_EUSAGE, "ring: without an intruder the ring needs a centre (ring_y >= 0)");
+		o->ring_follow = mode == RING_INTRUDER;
+		if (mode == RING_SETTLED && intruder >= 0) {
+			o->ring_x = st->q[C_X][0][intruder];
+			o->ring_y = st->q[C_Y][0][intruder];
+		}
+		if (o->ring_follow ? intruder < 0 : o->ring_y < 0)
+			return sb_errf(e, SB_EUSAGE, "ring: %s", o->ring_follow ? "ring_centre = intruder, but there is no intruder"
+									  : "without an intruder the ring needs a centre (ring_y >= 0)");
+		o->ring_before_end = NAN;
 		o->fabs_sum = zalloc((size_t)st->n, &bad);
 	}
 	if (bad)
@@ -208,12 +228,25 @@ int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr
 	return 0;
 }
 
-void obs_ring(sb_obs *o, const sb_state *st, int intruder, double inv_dt)
+/* First step at or after time k * interval (run.c's schedule). */
+static long ring_step(const sb_obs *o, long k)
 {
-	const double cx = o->ring_y >= 0 ? o->ring_x : st->q[C_X][0][intruder];
-	const double cy = o->ring_y >= 0 ? o->ring_y : st->q[C_Y][0][intruder];
+	return (long)ceil(k * o->ring_interval / o->ring_dt - 1e-6);
+}
+
+int obs_ring_due(const sb_obs *o, long n)
+{
+	if (!o->ring_on)
+		return 0;
+	return o->ring_every > 0 ? n % o->ring_every == 0 : n >= ring_step(o, o->ring_samples + 1);
+}
+
+void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, double *row)
+{
+	const double cx = o->ring_follow ? st->q[C_X][0][intruder] : o->ring_x;
+	const double cy = o->ring_follow ? st->q[C_Y][0][intruder] : o->ring_y;
 	const double r2in = o->rin * o->rin, r2out = o->rout * o->rout;
-	double sf[2] = {0, 0}, n[2] = {0, 0}, vx[2] = {0, 0}, vy[2] = {0, 0}, v2[2] = {0, 0};
+	double sf[2] = {0, 0}, nf[2] = {0, 0}, n[2] = {0, 0}, vx[2] = {0, 0}, vy[2] = {0, 0}, v2[2] = {0, 0};
 	for (int i = 0; i < st->nm; i++) {
 		if (st->kind[i] != KIND_GRAIN)
 			continue;
@@ -221,29 +254,65 @@ void obs_ring(sb_obs *o, const sb_state *st, int intruder, double inv_dt)
 		if (d2 < r2in || d2 > r2out)
 			continue;
 		double ux = st->q[C_X][1][i] * inv_dt, uy = st->q[C_Y][1][i] * inv_dt;
+		/* the net force in the lab frame: the contact forces and the weight (the box's
+		 * acceleration is not a force on the grain, it is the frame's) */
+		double fx = st->f[C_X][i], fy = st->f[C_Y][i] - st->m[i] * o->gravity;
+		double net = sqrt(fx * fx + fy * fy);
 		for (int h = 0; h < 2; h++) { /* h = 0: whole ring, 1: lower half */
 			if (h == 1 && dy >= 0)
 				break;
 			sf[h] += o->fabs_sum[i];
+			nf[h] += net;
 			n[h] += 1;
 			vx[h] += ux;
 			vy[h] += uy;
 			v2[h] += ux * ux + uy * uy;
 		}
 	}
+	/* per sample: means over the ring's grains (0 when it holds none) */
+	double mean[2] = {0, 0}, mnet[2] = {0, 0}, temp[2] = {0, 0};
 	for (int h = 0; h < 2; h++) {
 		if (n[h] > 0) {
 			/* granular temperature: half the mean squared velocity fluctuation
 			 * about the ring's mean velocity (2D, per degree of freedom) */
 			double mx = vx[h] / n[h], my = vy[h] / n[h];
-			o->acc[h] += sf[h] / n[h];
-			o->acc[4 + h] += 0.5 * (v2[h] / n[h] - mx * mx - my * my);
+			mean[h] = sf[h] / n[h];
+			mnet[h] = nf[h] / n[h];
+			temp[h] = 0.5 * (v2[h] / n[h] - mx * mx - my * my);
 		}
-		o->acc[2 + h] += sf[h];
-		o->acc[6 + h] += n[h];
+		o->acc[OBS_RA_MEAN + h] += mean[h];
+		o->acc[OBS_RA_NET + h] += mnet[h];
+		o->acc[OBS_RA_T + h] += temp[h];
+		o->acc[OBS_RA_SUM + h] += sf[h];
+		o->acc[OBS_RA_N + h] += n[h];
 	}
 	o->ring_samples++;
+	/* the window before the rise: from ring_from, up to ring_until, while the intruder
+	 * has not risen (the rise is seen at the start of a step, before its sample) */
+	if (!o->risen && t >= o->ring_from && (o->ring_until <= 0 || t < o->ring_until)) {
+		o->before[OBS_RB_MEAN] += mean[0];
+		o->before[OBS_RB_NET] += mnet[0];
+		o->before[OBS_RB_T] += temp[0];
+		o->before[OBS_RB_N] += n[0];
+		o->before[OBS_RB_SUM] += sf[0];
+		o->ring_before++;
+		o->ring_before_end = t;
+	}
+	row[OBS_RR_TIME] = t;
+	row[OBS_RR_MEAN] = mean[0];
+	row[OBS_RR_NET] = mnet[0];
+	row[OBS_RR_T] = temp[0];
+	row[OBS_RR_N] = n[0];
+	row[OBS_RR_CX] = cx;
+	row[OBS_RR_CY] = cy;
 	memset(o->fabs_sum, 0, sizeof(double) * (size_t)st->n);
+}
+
+int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, sb_journal *jr, sb_err *e)
+{
+	double row[OBS_RING_COLS];
+	obs_ring_sample(o, st, intruder, t, inv_dt, row);
+	return journal_record(jr, JR_RING, row, OBS_RING_COLS, e);
 }
 
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
@@ -280,5 +349,10 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 	if (o->ring_on) {
 		io(ctx, o->acc, sizeof o->acc);
 		io(ctx, &o->ring_samples, sizeof o->ring_samples);
+		io(ctx, o->before, sizeof o->before);
+		io(ctx, &o->ring_before, sizeof o->ring_before);
+		io(ctx, &o->ring_before_end, sizeof o->ring_before_end);
+		io(ctx, &o->ring_x, sizeof o->ring_x); /* a settled centre is the t = 0 state's */
+		io(ctx, &o->ring_y, sizeof o->ring_y);
 	}
 }

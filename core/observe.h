@@ -4,8 +4,10 @@
  *             the central half, j_bot in the outer half, per period (Fig. 3, ramps);
  *   field     per-disk displacement between samples averaged on a grid of cells one
  *             mean diameter wide over blocks of field_periods periods (Fig. 1);
- *   ring      time average of sum |F| on grains 4.5-8 cm from the intruder (or a fixed
- *             point), all and lower half, and the granular temperature there;
+ *   ring      grains 4.5-8 cm from the intruder (or a fixed point, box frame), sampled
+ *             at ring_rate: mean sum |F| of the contact forces, mean |net force|,
+ *             granular temperature, count and centre as a series (one journal record
+ *             per sample), averaged over the run and over the window before the rise;
  *   waiting   time until the intruder first rises one diameter above its settled
  *             height (always on when there is an intruder; one compare per step).
  * An observable that is off allocates nothing and is never called. */
@@ -16,6 +18,17 @@
 #include "journal.h"
 #include "params.h"
 #include "state.h"
+
+/* The ring's sums over its samples: of the per-sample mean over the ring's grains of
+ * sum |F| (MEAN), of the sum over the ring (SUM), of the granular temperature (T), of
+ * the grain count (N), of the mean |net force| (NET); _LO: the grains below the centre. */
+enum { OBS_RA_MEAN, OBS_RA_MEAN_LO, OBS_RA_SUM, OBS_RA_SUM_LO, OBS_RA_T, OBS_RA_T_LO, OBS_RA_N, OBS_RA_N_LO,
+       OBS_RA_NET, OBS_RA_NET_LO, OBS_RING_ACC };
+/* ... and over the samples of the window before the rise (whole ring only) */
+enum { OBS_RB_MEAN, OBS_RB_NET, OBS_RB_T, OBS_RB_N, OBS_RB_SUM, OBS_RING_BEFORE };
+/* A sample's series row (journal record JR_RING): time, mean sum |F|, mean |net force|,
+ * temperature, grains, centre x, centre y (box frame). */
+enum { OBS_RR_TIME, OBS_RR_MEAN, OBS_RR_NET, OBS_RR_T, OBS_RR_N, OBS_RR_CX, OBS_RR_CY, OBS_RING_COLS };
 
 typedef struct sb_obs {
 	int flux_on, field_on, ring_on;
@@ -29,13 +42,17 @@ typedef struct sb_obs {
 	/* field */
 	int nx, ny, K, kdone;
 	double cell, *sx, *sy, *cnt;
-	/* ring */
-	double rin, rout, ring_x, ring_y;
-	int ring_every;
+	/* ring (docs/model.md, "Ring force") */
+	double rin, rout, ring_x, ring_y; /* the centre (box frame) unless it follows */
+	int ring_follow;             /* 1: the centre is the intruder's, sample by sample */
+	int ring_every;              /* > 0: a sample every this many steps, else at ring_rate */
+	double ring_interval, ring_dt; /* 1 / ring_rate, the time step */
+	double ring_from, ring_until, gravity;
 	double *fabs_sum;            /* sum |F| per disk, filled by the force kernel */
-	double acc[8];               /* time sums: mean|F|, mean|F| lower, sum|F|, sum|F| lower,
-				      * T, T lower, grains, grains lower */
-	long ring_samples;
+	double acc[OBS_RING_ACC];    /* sums over every sample (OBS_RA_*) */
+	double before[OBS_RING_BEFORE]; /* sums over the samples before the rise (OBS_RB_*) */
+	long ring_samples, ring_before; /* samples (= series rows), and those before the rise */
+	double ring_before_end;      /* time of the last sample before the rise */
 	/* waiting time */
 	int risen;
 	double wait_time, rise_height;
@@ -73,9 +90,14 @@ int obs_field_len(const sb_obs *o);  /* t, periods, sx[ny*nx], sy[..], cnt[..] *
 int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
 	       long *nfield, sb_err *e);
 
-/* Ring average over the disks' |F| sums in o->fabs_sum (then cleared), intruder
- * position (box frame) if any. */
-void obs_ring(sb_obs *o, const sb_state *st, int intruder, double inv_dt);
+/* Is a ring sample due at step n? */
+int obs_ring_due(const sb_obs *o, long n);
+
+/* A ring sample at time t from the disks' |F| sums in o->fabs_sum (then cleared) and
+ * their contact forces in st->f (the step's, unfused): added to the averages, its
+ * series row in row[OBS_RING_COLS]. obs_ring also journals the row (JR_RING). */
+void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, double *row);
+int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, sb_journal *jr, sb_err *e);
 
 /* Serialise the accumulators for a checkpoint: io(ctx, pointer, bytes) per field. */
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t));

@@ -15,6 +15,8 @@ enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
+/* where the ring observable is centred (docs/model.md, "Ring force") */
+enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
 struct sb_scene {
@@ -67,6 +69,8 @@ struct sb_scene {
 	long field_periods;
 	int ring;
 	double ring_inner, ring_outer, ring_x, ring_y;
+	int ring_centre;     /* enum sb_ring_centre */
+	double ring_rate, ring_from, ring_until;
 	long ring_every;
 	/* where each key was last set ("FILE:LINE", "command line"; empty: its default),
 	 * for the errors that only a combination of keys shows (params_validate) */

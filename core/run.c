@@ -227,7 +227,7 @@ int sim_run(sb_sim *s, sb_err *e)
 		}
 		const long n1 = s->step + 1;
 		const double t1 = n1 * dt;
-		const int ring = s->obs.ring_on && n1 % s->obs.ring_every == 0;
+		const int ring = obs_ring_due(&s->obs, n1);
 		/* fuse unless this step's corrected state is recorded, checkpointed or final */
 		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) || ring ||
 				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
@@ -238,8 +238,8 @@ int sim_run(sb_sim *s, sb_err *e)
 			      ring ? s->obs.fabs_sum : NULL, e))
 			break;
 		s->step = n1;
-		if (ring)
-			obs_ring(&s->obs, &s->st, s->intruder, 1.0 / dt);
+		if (ring && obs_ring(&s->obs, &s->st, s->intruder, t1, 1.0 / dt, &s->jr, e))
+			break;
 		TIC(PH_RECORD);
 		if (record(s, e))
 			break;

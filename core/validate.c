@@ -52,9 +52,17 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->ring && s->ring_inner >= s->ring_outer)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_inner (%g) must be smaller than ring_outer (%g, %s)",
 			       W("ring_inner"), s->ring_inner, s->ring_outer, W("ring_outer"));
+	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_centre == RING_INTRUDER)
+		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = intruder, but there is no intruder (radius_ratio = 0)",
+			       W("ring_centre"));
 	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_y < 0)
 		return sb_errf(e, SB_EUSAGE, "%s: ring: without an intruder (radius_ratio = 0) set the ring centre height ring_y",
 			       W("ring"));
+	if (s->ring && s->ring_centre == RING_FIXED && s->ring_y < 0)
+		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = fixed needs the centre's height ring_y", W("ring_centre"));
+	if (s->ring && s->ring_until > 0 && s->ring_until <= s->ring_from)
+		return sb_errf(e, SB_EUSAGE, "%s: ring_until (%g s) must be after ring_from (%g s, %s), or 0",
+			       W("ring_until"), s->ring_until, s->ring_from, W("ring_from"));
 	if (!s->particles[0]) { /* the lightest disk of a generated scene is a grain of r_min */
 		char warn[8];
 		if (dtguard_check(s, s->mass_factor * s->density * s->r_min * s->r_min, warn, sizeof warn, e))

@@ -163,8 +163,22 @@ static void test_ring(void)
 	/* velocities (v dt with inv_dt = 1): two of the ring grains move, one rests */
 	st.q[C_X][1][2] = 2;
 	st.q[C_Y][1][3] = -2;
-	obs_ring(&o, &st, 0, 1.0);
+	/* contact forces (the net force adds the weight -m g) */
+	st.f[C_X][2] = 3;
+	st.f[C_Y][2] = 4 + st.m[2] * sc.gravity; /* net (3, 4): 5 */
+	st.f[C_Y][3] = st.m[3] * sc.gravity;     /* at rest: 0 */
+	st.f[C_Y][4] = st.m[4] * sc.gravity - 6; /* net (0, -6): 6 */
+	double row[OBS_RING_COLS];
+	obs_ring_sample(&o, &st, 0, 0.5, 1.0, row);
 	/* ring grains: 2 (|F| 10, v (2,0), lower), 3 (20, (0,0), upper), 4 (30, (0,-2), lower) */
+	CHECK_REL("observe.ring.net_force", o.acc[OBS_RA_NET], 11.0 / 3, 1e-12);
+	CHECK_REL("observe.ring.net_force_lower", o.acc[OBS_RA_NET_LO], 5.5, 1e-12);
+	CHECK("observe.ring.row", row[OBS_RR_TIME] == 0.5 && row[OBS_RR_MEAN] == 20 && row[OBS_RR_N] == 3 &&
+		      row[OBS_RR_CX] == 30 && row[OBS_RR_CY] == 10 && fabs(row[OBS_RR_NET] - 11.0 / 3) < 1e-12,
+	      "row t %g mean %g n %g centre (%g, %g) net %g", row[0], row[1], row[4], row[5], row[6], row[2]);
+	/* before the rise (no rise yet, ring_from 0): the sample is in the window */
+	CHECK("observe.ring.before", o.ring_before == 1 && o.before[OBS_RB_MEAN] == 20 && o.ring_before_end == 0.5,
+	      "before %ld mean %g end %g", o.ring_before, o.before[OBS_RB_MEAN], o.ring_before_end);
 	CHECK_REL("observe.ring.mean_force", o.acc[0], 20.0, 1e-15);
 	CHECK_REL("observe.ring.mean_force_lower", o.acc[1], 20.0, 1e-15);
 	CHECK_REL("observe.ring.sum_force", o.acc[2], 60.0, 1e-15);
@@ -173,6 +187,20 @@ static void test_ring(void)
 	/* T = 0.5 (<v^2> - <v>^2): v = (2,0), (0,0), (0,-2): <v^2> = 8/3, <v> = (2/3, -2/3) */
 	CHECK_REL("observe.ring.temperature", o.acc[4], 0.5 * (8.0 / 3 - 8.0 / 9), 1e-14);
 	CHECK("observe.ring.cleared", o.fabs_sum[0] == 0 && o.fabs_sum[5] == 0, "fabs_sum not cleared");
+	/* after the rise: in the averages, not in the window */
+	o.risen = 1;
+	memcpy(o.fabs_sum, fa, sizeof fa);
+	obs_ring_sample(&o, &st, 0, 0.6, 1.0, row);
+	CHECK("observe.ring.after_rise", o.ring_samples == 2 && o.ring_before == 1 && o.acc[OBS_RA_MEAN] == 40,
+	      "samples %ld before %ld", o.ring_samples, o.ring_before);
+	obs_free(&o);
+	/* ring_centre = settled: the centre stays where the intruder was at t = 0 */
+	sc.ring_centre = RING_SETTLED;
+	obs_init(&o, &sc, &st, 0, 20, 0, 60, &e);
+	st.q[C_Y][0][0] = 14;
+	obs_ring_sample(&o, &st, 0, 0.1, 1.0, row);
+	CHECK("observe.ring.settled_centre", !o.ring_follow && row[OBS_RR_CX] == 30 && row[OBS_RR_CY] == 10,
+	      "centre (%g, %g)", row[OBS_RR_CX], row[OBS_RR_CY]);
 	obs_free(&o);
 	state_free(&st);
 }
