@@ -12,6 +12,7 @@
 #include "adapt.h"
 #include "db.h"
 #include "layout.h"
+#include "slurm.h"
 #include "watch.h"
 
 static int open_ro(st_db *d, const char *path, sb_err *e)
@@ -468,6 +469,14 @@ int report_watch(const char *db_path, const char *runs_dir, const char *name, do
 	int tty = isatty(fileno(out));
 	for (;;) {
 		int over = 1;
+		/* what Slurm tasks did since the last look, into the database (the runs they
+		 * started show as running, with their journals beside them on the shared file
+		 * system); nothing without arrays recorded */
+		for (long i = 0; i < nw; i++) {
+			sb_err se = {0};
+			if (slurm_refresh(runs_dir, db_path, w[i].name, &w[i].slurm, stderr, &se))
+				fprintf(stderr, "study: %s\n", se.msg);
+		}
 		for (long i = 0; i < nw && !e->code; i++) {
 			watch_poll(&w[i], &d, e);
 			over &= watch_over(&w[i]);

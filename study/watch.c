@@ -269,7 +269,8 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 
 int watch_over(const watch *w)
 {
-	return (w->pending == 0 && w->running == 0) || w->driver == 0;
+	/* a campaign on Slurm has no driver: its tasks keep it going */
+	return (w->pending == 0 && w->running == 0) || (w->driver == 0 && w->slurm == 0);
 }
 
 static void fmt_dur(double s, char *buf, size_t len)
@@ -324,8 +325,12 @@ void watch_print(const watch *w, FILE *out)
 		fprintf(out, "  %-40s %-18s %5.0f%%%s  %s (%s)\n", r->label, st,
 			r->t >= 0 && r->T > 0 ? 100 * fmin(r->t / r->T, 1) : 0.0, rate, r->host, r->id);
 	}
-	if (w->driver == 0 && (w->pending || w->running))
-		fprintf(out, "  no driver is running %s (study run resumes it)\n", w->name);
+	if (w->driver == 0 && w->slurm > 0)
+		fprintf(out, "  Slurm tasks queued or running hold %ld of its runs\n", w->slurm);
+	else if (w->driver == 0 && w->slurm < 0)
+		fprintf(out, "  no driver is running %s; squeue cannot say whether Slurm tasks are\n", w->name);
+	else if (w->driver == 0 && (w->pending || w->running))
+		fprintf(out, "  no driver is running %s (study run or study submit resumes it)\n", w->name);
 }
 
 void watch_line(const watch *w, char *buf, size_t len)

@@ -37,6 +37,7 @@ typedef struct watch {
 	double remaining;  /* simulated s still to run */
 	double eta;        /* wall s; < 0 unknown */
 	int driver;        /* a driver holds the campaign's lock */
+	long slurm;        /* runs whose Slurm tasks are queued or running (-1: squeue cannot say) */
 } watch;
 
 /* name: the campaign; dir: its directory under the runs root. */
@@ -44,7 +45,7 @@ void watch_init(watch *w, const char *name, const char *dir);
 void watch_free(watch *w);
 /* One look at the database and the journals. */
 int watch_poll(watch *w, st_db *db, sb_err *e);
-/* Nothing pending or running, or nobody running it any more. */
+/* Nothing pending or running, or nobody running it any more (no driver, no Slurm task). */
 int watch_over(const watch *w);
 /* The look as lines (status --watch), or as one line cut to len - 1 characters
  * (study run's progress line). */

@@ -193,6 +193,11 @@ left=$(q $DB "SELECT COUNT(*) FROM run WHERE state <> 'done'")
 	[ "$(q $DB "SELECT COUNT(*) FROM slurm_task WHERE job_id = $J2")" = "$left" ] &&
 	[ "$(q $DB "SELECT COUNT(*) FROM slurm_task WHERE job_id = $J2 AND run = '$RID'")" = 1 ] &&
 	[ "$(wc -l <S/$NAME/slurm/tasks-2.txt)" = "$left" ] && ok resubmit.only_not_done || fail resubmit.only_not_done "exit $rc: $(cat sub2.log)"
+# live progress of the array: no driver runs this campaign, its Slurm tasks do; the watch
+# shows their runs in flight (swept values, t/T from the journals on the shared file
+# system) and ends by itself when the tasks have ended
+"$STUDY" status "$NAME" --runs "$TMP/S" --watch --interval 0.5 >watch.out 2>watch.err &
+WPID=$!
 # a signal to the task's shell alone (scancel --batch; what sbatch --signal=B:TERM@T
 # sends before a time limit) reaches the engine through the script's trap and the
 # worker: the run that never started in the first array, stopped once it shakes
@@ -206,6 +211,13 @@ if [ "$ost" = unstarted ]; then
 	fi
 fi
 wait_for 60 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
+wait_for 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
+wait $WPID
+wrc=$?
+grep -Eq "^  frequency=[34] seed=[12] +t [0-9.e+-]+/6 s" watch.out && grep -q "Slurm tasks queued or running hold" watch.out &&
+	[ "$wrc" -eq 0 ] && tail -n 4 watch.out | grep -q '(final)' &&
+	ok watch.slurm_runs_in_flight_and_end ||
+	fail watch.slurm_runs_in_flight_and_end "exit $wrc: $(grep -c '^[0-9][0-9]:' watch.out) looks; $(tail -n 4 watch.out | tr '\n' '|') $(head -c 200 watch.err)"
 "$STUDY" status "$NAME" --runs "$TMP/S" >status2.out 2>&1 || fail status2.exit "$(cat status2.out)"
 if [ -n "$RID2" ]; then
 	[ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
