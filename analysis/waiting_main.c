@@ -13,6 +13,8 @@
 #include "km.h"
 #include "logrank.h"
 #include "tool.h"
+#include "traj.h"
+#include "xopt.h"
 
 #define VERSION "2"
 
@@ -21,7 +23,7 @@
 
 static const char *HELP =
 	"usage: waiting CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--level L]\n"
-	"               [--bins N] [--all-versions] [--no-plot] [--no-store]\n\n"
+	"               [--bins N] [--fraction Q] [--all-versions] [--no-plot] [--no-store]\n\n"
 	"Waiting time of the intruder's rise (docs/model.md: first time its centre is one intruder\n"
 	"diameter above its settled height; a run that ends first is right-censored at the\n"
 	"time it observed), read from the root attributes `risen` and `waiting_time` of each\n"
@@ -32,6 +34,17 @@ static const char *HELP =
 	"Per group of runs: Kaplan-Meier survival S(t), the median (first t with S <= 0.5)\n"
 	"with its Brookmeyer-Crowley interval (Greenwood errors, plain band), the fraction\n"
 	"risen by the end, and a histogram of the observed waiting times.\n\n"
+	"A second definition, beside the engine's (which a small intruder's slow creep of one\n"
+	"diameter trips): the first time the intruder's centre has covered the fraction Q\n"
+	"(--fraction, default 0.5) of the way from its settled height to the settled surface,\n"
+	"in the box frame, read off the recorded trajectory (/particles/intruder/position, lab\n"
+	"frame, less the box motion A sin(phi(t))) and interpolated between its samples. A run\n"
+	"whose trajectory ends first is censored at its last sample: at the end of the run,\n"
+	"its failure, or its stop (stop = risen ends a run stop_after seconds after the\n"
+	"engine's rise, which may come before the fraction; the output counts them). A run\n"
+	"without a trajectory (traj_rate = 0) has no second waiting time: counted, not used.\n"
+	"Both definitions side by side: per group the runs, risen, censored and the median with\n"
+	"its interval, and the log-rank test across the groups for each.\n\n"
 	"No run is dropped silently: per group the table, waiting_summary.csv and the stored\n"
 	"rows count the runs used, the failed ones by status (used up to the failure, or\n"
 	"unusable: without an output file, or failed before the shaking began), the unreadable\n"
@@ -45,6 +58,8 @@ static const char *HELP =
 	"                and every swept axis of the campaign)\n"
 	"  --level L     confidence level (default 0.95)\n"
 	"  --bins N      histogram bins over [0, longest observation] (default 10)\n"
+	"  --fraction Q  the second definition's fraction of the way to the surface (0 < Q <= 1,\n"
+	"                default 0.5)\n"
 	"  --all-versions  also the runs of earlier versions of the campaign file\n"
 	"                (run.current = 0, kept by study run --keep-old); by default the\n"
 	"                current grid's\n"
@@ -54,7 +69,11 @@ static const char *HELP =
 	"confidence band), waiting_hist.png/.pdf; stores per group in the\n"
 	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen, median (lo,\n"
 	"hi), t_max, s_end (lo, hi), and the accounting (runs_failed, runs_failed_used, ...,\n"
-	"as onset --help lists).\n"
+	"as onset --help lists). The second definition: waiting_way_runs.csv (both times of\n"
+	"every used run), waiting_way_km.csv, waiting_way_summary.csv, waiting_way.png/.pdf\n"
+	"(both definitions' Kaplan-Meier curves); keys way_fraction, way_runs, way_risen,\n"
+	"way_censored, way_median (lo, hi), way_no_trajectory, way_stop_censored, and as group\n"
+	"'all groups' way_logrank_chi2, way_logrank_df, way_logrank_p.\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
 	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
@@ -114,6 +133,14 @@ typedef struct wait_state {
 	double tmax;        /* the longest observation of all groups */
 	double bw;          /* histogram bin width */
 	long f_ev, f_cens;  /* failed runs used: risen before the failure, censored at it */
+	/* the second definition (traj.h): the fraction q of the way to the surface */
+	double q;
+	grp *g2;            /* [ng] the used runs with a trajectory: times and events */
+	km_curve *km2;      /* [ng] */
+	double *way_t;      /* [k] its time (NaN: no trajectory) */
+	int *way_ev;        /* [k] 1 reached, 0 censored */
+	long *no_traj;      /* [ng] used runs without a trajectory */
+	long *stop_cens;    /* [ng] runs stopped by stop = risen before reaching the fraction */
 } wait_state;
 
 static void state_free(const an_tool *t, wait_state *s)
@@ -125,10 +152,23 @@ static void state_free(const an_tool *t, wait_state *s)
 		if (s->km)
 			km_free(&s->km[j]);
 	}
+	for (int j = 0; s->g2 && j < t->ng; j++) {
+		free(s->g2[j].t);
+		free(s->g2[j].ev);
+		free(s->g2[j].run);
+		if (s->km2)
+			km_free(&s->km2[j]);
+	}
 	free(s->g);
 	free(s->km);
 	free(s->wt);
 	free(s->risen);
+	free(s->g2);
+	free(s->km2);
+	free(s->way_t);
+	free(s->way_ev);
+	free(s->no_traj);
+	free(s->stop_cens);
 }
 
 /* Reads run r's rise (*rs: risen, *w: waiting time) and says what of it the statistic
@@ -367,20 +407,20 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 
 /* The log-rank test of equal waiting-time distributions across the groups: printed
  * with the runs it rests on, and stored as group "all groups" (no key columns). */
-static void logrank_out(an_tool *t, const wait_state *s)
+static void logrank_out(an_tool *t, const grp *g, const char *prefix, const char *what)
 {
 	long n = 0;
 	for (int j = 0; j < t->ng; j++)
-		n += s->g[j].n;
+		n += g[j].n;
 	double *tt = malloc(sizeof *tt * (size_t)(n ? n : 1));
 	int *ev = malloc(sizeof *ev * (size_t)(n ? n : 1)), *gg = malloc(sizeof *gg * (size_t)(n ? n : 1));
 	logrank r = {0, NAN, NAN, 0};
 	if (tt && ev && gg) {
 		long k = 0;
 		for (int j = 0; j < t->ng; j++)
-			for (int i = 0; i < s->g[j].n; i++, k++) {
-				tt[k] = s->g[j].t[i];
-				ev[k] = s->g[j].ev[i];
+			for (int i = 0; i < g[j].n; i++, k++) {
+				tt[k] = g[j].t[i];
+				ev[k] = g[j].ev[i];
 				gg[k] = j;
 			}
 		logrank_test(tt, ev, gg, (size_t)n, t->ng, &r);
@@ -391,14 +431,18 @@ static void logrank_out(an_tool *t, const wait_state *s)
 	if (r.k < 2)
 		return; /* one group: nothing to compare */
 	if (isnan(r.p)) {
-		printf("# log-rank test across the %d groups (%ld runs): no test, no intruder rose\n", r.k, n);
+		printf("# %slog-rank test across the %d groups (%ld runs): no test, no intruder rose\n", what, r.k, n);
 		return;
 	}
-	printf("# log-rank test of equal waiting-time distributions across the %d groups (%ld runs, censored ones "
-	       "included): chi2 = %.4g, df = %d, p = %.3g\n", r.k, n, r.chi2, r.df, r.p);
-	tool_store(t, -1, "all groups", "logrank_chi2", r.chi2, NAN, NAN, n);
-	tool_store(t, -1, "all groups", "logrank_df", (double)r.df, NAN, NAN, n);
-	tool_store(t, -1, "all groups", "logrank_p", r.p, NAN, NAN, n);
+	printf("# %slog-rank test of equal waiting-time distributions across the %d groups (%ld runs, censored ones "
+	       "included): chi2 = %.4g, df = %d, p = %.3g\n", what, r.k, n, r.chi2, r.df, r.p);
+	char key[64];
+	snprintf(key, sizeof key, "%slogrank_chi2", prefix);
+	tool_store(t, -1, "all groups", key, r.chi2, NAN, NAN, n);
+	snprintf(key, sizeof key, "%slogrank_df", prefix);
+	tool_store(t, -1, "all groups", key, (double)r.df, NAN, NAN, n);
+	snprintf(key, sizeof key, "%slogrank_p", prefix);
+	tool_store(t, -1, "all groups", key, r.p, NAN, NAN, n);
 }
 
 /* Per group: waiting_summary.csv, the table and the analysis table (storing begun
@@ -416,8 +460,200 @@ static int summary(an_tool *t, const wait_state *s)
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
 	fclose(sum);
-	logrank_out(t, s);
+	logrank_out(t, s->g, "", "");
 	return t->e.code;
+}
+
+/* ---- the second definition: the fraction q of the way to the surface (traj.h) ---- */
+
+/* Each used run's time from its trajectory, the groups' curves. */
+static int way(an_tool *t, wait_state *s)
+{
+	const size_t ng = (size_t)(t->ng > 0 ? t->ng : 1), k = (size_t)(t->k ? t->k : 1);
+	s->g2 = calloc(ng, sizeof *s->g2);
+	s->km2 = calloc(ng, sizeof *s->km2);
+	s->no_traj = calloc(ng, sizeof *s->no_traj);
+	s->stop_cens = calloc(ng, sizeof *s->stop_cens);
+	s->way_t = calloc(k, sizeof *s->way_t);
+	s->way_ev = calloc(k, sizeof *s->way_ev);
+	if (!s->g2 || !s->km2 || !s->no_traj || !s->stop_cens || !s->way_t || !s->way_ev)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		s->way_t[i] = NAN;
+		if (!USED(r))
+			continue;
+		traj tr;
+		sb_err e = {0};
+		const int rc = traj_read(r->path, &tr, &e);
+		double w = NAN;
+		const int ev = rc == 0 ? traj_fraction(&tr, s->q, &w) : -1;
+		if (rc > 1)
+			fprintf(stderr, "waiting: warning: %s (no second waiting time: counted as without a trajectory)\n", e.msg);
+		if (ev < 0)
+			s->no_traj[r->group]++;
+		else {
+			s->way_t[i] = w;
+			s->way_ev[i] = ev;
+			s->stop_cens[r->group] += !ev && !strcmp(tr.stopped_by, "risen");
+			if (push(&s->g2[r->group], w, ev, i)) {
+				traj_free(&tr);
+				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			}
+		}
+		traj_free(&tr);
+	}
+	for (int j = 0; j < t->ng; j++)
+		if (km_fit(s->g2[j].t, s->g2[j].ev, (size_t)s->g2[j].n, &s->km2[j]))
+			return sb_errf(&t->e, SB_EIO, "group %s: bad second waiting times", t->labels[j]);
+	return 0;
+}
+
+/* waiting_way_runs.csv (both definitions of every used run) and waiting_way_km.csv */
+static int way_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_way_runs.csv", path, sizeof path, &t->e), *k = NULL;
+	if (f)
+		k = cli_fopen(t->o, "waiting_way_km.csv", path, sizeof path, &t->e);
+	if (!k) {
+		if (f)
+			fclose(f);
+		return t->e.code;
+	}
+	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,way_time,way_risen,trajectory,use\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < t->k; i++) {
+			const an_run *r = &t->runs[i];
+			if (r->group != j || !USED(r))
+				continue;
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->wt[i], s->risen[i],
+				s->way_t[i], isnan(s->way_t[i]) ? 0 : s->way_ev[i], isnan(s->way_t[i]) ? "no" : "yes",
+				acct_use_name(r->use));
+		}
+	fclose(f);
+	fprintf(k, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		const km_curve *km = &s->km2[j];
+		fprintf(k, "%d,", j);
+		csv_str(k, t->labels[j]);
+		fprintf(k, ",0,%ld,0,0,1,0,1,1\n", km->n);
+		for (size_t i = 0; i < km->m; i++) {
+			fprintf(k, "%d,", j);
+			csv_str(k, t->labels[j]);
+			fprintf(k, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
+				km->s[i], km->se[i], fmax(0, km->s[i] - s->z * km->se[i]), fmin(1, km->s[i] + s->z * km->se[i]));
+		}
+	}
+	fclose(k);
+	return 0;
+}
+
+/* "12.345 [1.234, >6]" into b: a median and its interval, limits not reached as >t_max */
+static void med_ci(char *b, size_t n, double med, double lo, double hi, double tm)
+{
+	char m[32], l[32], h[32];
+	snprintf(m, sizeof m, isnan(med) ? ">%.3g" : "%.3f", isnan(med) ? tm : med);
+	snprintf(l, sizeof l, isnan(lo) ? ">%.3g" : "%.3f", isnan(lo) ? tm : lo);
+	snprintf(h, sizeof h, isnan(hi) ? ">%.3g" : "%.3f", isnan(hi) ? tm : hi);
+	snprintf(b, n, "%s [%s, %s]", m, l, h);
+}
+
+static double tmax_of(const grp *g)
+{
+	double tm = 0;
+	for (int i = 0; i < g->n; i++)
+		tm = fmax(tm, g->t[i]);
+	return tm;
+}
+
+/* Both definitions side by side: the table, waiting_way_summary.csv, the stored rows,
+ * the second log-rank test. */
+static int way_summary(an_tool *t, const wait_state *s)
+{
+	FILE *sum = tool_summary_csv(t, "waiting_way_summary.csv",
+				     "group,fraction,runs,risen,censored,median,median_lo,median_hi,way_runs,way_risen,"
+				     "way_censored,way_median,way_median_lo,way_median_hi,way_no_trajectory,way_stop_censored");
+	if (!sum)
+		return t->e.code;
+	printf("\n# both definitions: one diameter above the settled height (the engine's) | %g of the way from the"
+	       " settled height to the surface (box frame, from the trajectory)\n", s->q);
+	printf("%-36s %5s %5s %5s %26s | %5s %5s %5s %26s %7s %9s\n", "group", "used", "risen", "cens", "median_s [CI]",
+	       "used", "risen", "cens", "median_s [CI]", "no_traj", "stop_cens");
+	long stop = 0, none = 0;
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		const km_curve *a = &s->km[j], *b = &s->km2[j];
+		double l1, h1, l2, h2;
+		const double m1 = km_median(a, s->z, &l1, &h1), m2 = km_median(b, s->z, &l2, &h2);
+		char c1[112], c2[112];
+		med_ci(c1, sizeof c1, m1, l1, h1, tmax_of(&s->g[j]));
+		med_ci(c2, sizeof c2, m2, l2, h2, tmax_of(&s->g2[j]));
+		printf("%-36s %5ld %5ld %5ld %26s | %5ld %5ld %5ld %26s %7ld %9ld\n", t->labels[j], a->n, a->events,
+		       a->n - a->events, c1, b->n, b->events, b->n - b->events, c2, s->no_traj[j], s->stop_cens[j]);
+		csv_str(sum, t->labels[j]);
+		fprintf(sum, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld", s->q, a->n,
+			a->events, a->n - a->events, m1, l1, h1, b->n, b->events, b->n - b->events, m2, l2, h2, s->no_traj[j],
+			s->stop_cens[j]);
+		tool_summary_acct(t, sum, j);
+		const char *L = t->labels[j];
+		const long n = b->n;
+		tool_store(t, j, L, "way_fraction", s->q, NAN, NAN, n);
+		tool_store(t, j, L, "way_runs", (double)n, NAN, NAN, n);
+		tool_store(t, j, L, "way_risen", (double)b->events, NAN, NAN, n);
+		tool_store(t, j, L, "way_censored", (double)(n - b->events), NAN, NAN, n);
+		tool_store(t, j, L, "way_median", m2, l2, h2, n);
+		tool_store(t, j, L, "way_no_trajectory", (double)s->no_traj[j], NAN, NAN, a->n);
+		tool_store(t, j, L, "way_stop_censored", (double)s->stop_cens[j], NAN, NAN, n);
+		stop += s->stop_cens[j];
+		none += s->no_traj[j];
+	}
+	fclose(sum);
+	logrank_out(t, s->g2, "way_", "second definition: ");
+	if (none)
+		printf("# %ld used run%s without a trajectory (traj_rate = 0, or none recorded): no second waiting time, left"
+		       " out of the second definition only\n", none, none == 1 ? "" : "s");
+	if (stop)
+		printf("# %ld run%s stopped by stop = risen (stop_after seconds after the engine's rise) before covering %g of"
+		       " the way: censored at their end, which the second definition's median takes as a lower limit\n",
+		       stop, stop == 1 ? "" : "s", s->q);
+	return t->e.code;
+}
+
+/* waiting_way.png and .pdf: per group both definitions' survival curves */
+static int plot_way(an_tool *t, const wait_state *s)
+{
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "waiting_way", 900, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Intruder waiting time, two definitions: Kaplan–Meier survival\\n%s%ssolid: one intruder "
+		   "diameter above the settled height; dashed: %g of the way to the surface; ×: censored\"\n"
+		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
+		   "set yrange [0:1.05]\nset xrange [0:*]\nplot ", set, *set ? "; " : "", s->q);
+	int np = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (!acct_used(&t->A[j]))
+			continue;
+		char leg[512], l2[600];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		snprintf(l2, sizeof l2, "%s%sone diameter", leg, *leg ? ": " : "");
+		fprintf(f, "%s'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lt %d title ", np++ ? ", \\\n  " : "",
+			j, j + 1);
+		gp_str(f, l2);
+		if (s->km2[j].n) {
+			snprintf(l2, sizeof l2, "%s%s%g of the way", leg, *leg ? ": " : "", s->q);
+			fprintf(f, ", \\\n  'waiting_way_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 dt 2 lt %d title ",
+				j, j + 1);
+			gp_str(f, l2);
+			fprintf(f, ", \\\n  'waiting_way_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lt %d notitle",
+				j, j + 1);
+		}
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
 }
 
 /* The closing lines, and how the failed runs used entered. */
@@ -499,24 +735,31 @@ static int plot_hist(an_tool *t, const wait_state *s)
 int main(int argc, char **argv)
 {
 	an_opts o = {.tool = "waiting", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " by level bins ", stdout, stderr);
+	xopt x[] = {{"fraction", 1, NULL, 0}};
+	int pr = xopt_args(&o, argc, argv, HELP, " by level bins ", x, 1, stdout, stderr);
 	if (pr)
 		return pr < 0 ? 0 : 1;
 	an_tool t;
 	wait_state s = {0};
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || fit(&t, &s))
+	sb_err xe = {0};
+	if (xopt_num(&x[0], 1e-6, 1, 0.5, &s.q, &xe)) {
+		fprintf(stderr, "waiting: %s\n", xe.msg);
+		return 1;
+	}
+	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || fit(&t, &s) ||
+	    way(&t, &s))
 		goto out;
-	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || km_csv(&t, &s) || hist_csv(&t, &s))
+	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || km_csv(&t, &s) || hist_csv(&t, &s) || way_csv(&t, &s))
 		goto out;
-	if (summary(&t, &s) || tool_store_end(&t))
+	if (summary(&t, &s) || way_summary(&t, &s) || tool_store_end(&t))
 		goto out;
 	report(&t, &s);
 	if (!o.no_plot) {
-		if (plot_km(&t) || plot_hist(&t, &s))
+		if (plot_km(&t) || plot_hist(&t, &s) || plot_way(&t, &s))
 			goto out;
-		printf("# figures: %s/waiting_{km,hist}.{png,pdf}\n", o.out);
+		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", o.out);
 	}
-	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting}.csv\n", o.out);
+	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary}.csv\n", o.out);
 out:
 	state_free(&t, &s);
 	return tool_close(&t, stderr);
