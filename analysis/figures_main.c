@@ -13,8 +13,9 @@
 #include "h5read.h"
 #include "label.h"
 #include "tool.h"
+#include "traj.h"
 
-#define VERSION "3"
+#define VERSION "4"
 
 /* a run whose records are drawn: finished, or failed and used up to the failure */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
@@ -73,13 +74,17 @@ static const char *HELP =
 	"            the panel's runs after the first FRAC of each (--skip, default 0.2),\n"
 	"            against the line height D above the bottom (/flux, flux = yes), both\n"
 	"            systems in one panel per frequency;\n"
-	"  fig4.png  Fig. 4: the intruder's height y(t) (/particles/intruder/position, lab frame) at\n"
-	"            the highest selected frequency, one panel per radius ratio > 0 (the\n"
-	"            run with the lowest replicate), with its settled height and the surface.\n"
+	"  fig4.png  Fig. 4: the intruder's height y(t) above the box floor\n"
+	"            (/particles/intruder/position less the box motion A sin(2 pi f t)) at\n"
+	"            the highest selected frequency, one panel per radius ratio > 0: every\n"
+	"            replicate as a thin line, and thick the representative, the run whose\n"
+	"            waiting time is the panel's median (risen runs ordered by waiting time,\n"
+	"            then the censored ones by the time observed; the lower middle of an even\n"
+	"            count), with its settled height and the surface.\n"
 	"A figure without data is skipped with a note. A failed run is drawn with what it\n"
 	"recorded before its failure (Fig. 3: its periods after the transient of the run as\n"
-	"planned, pooled with the other runs' periods; Fig. 1: its samples); Fig. 4 draws a\n"
-	"finished run when the panel has one. Per panel (frequency, radius ratio) the output,\n"
+	"planned, pooled with the other runs' periods; Fig. 1: its samples; Fig. 4: its\n"
+	"trajectory up to the failure). Per panel (frequency, radius ratio) the output,\n"
 	"figures_accounting.csv and the stored rows count the runs used, failed (by status;\n"
 	"used up to the failure or unusable), unreadable, pending and running.\n\n"
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
@@ -690,71 +695,139 @@ static int fig3(an_tool *t, const panels *P)
 
 /* ---- Fig. 4: intruder height ---- */
 
-/* The run drawn at frequency f4 and radius ratio ra: the finished one with the lowest
- * replicate, a failed one only when none finished; -1 when there is none. */
-static int fig4_run(const an_tool *t, double f4, double ra)
+#define MAXREP 64
+
+/* One panel of Fig. 4: the runs drawn (every replicate), their waiting times, and the
+ * representative. */
+typedef struct f4panel {
+	double ra;
+	int run[MAXREP], n;
+	double wt[MAXREP];  /* the engine's waiting time, or the time observed when not risen */
+	int risen[MAXREP];
+	int rep;            /* index into run[] of the representative */
+	double y0, surface; /* the representative's settled height and surface (box frame) */
+} f4panel;
+
+/* order of runs for the representative: risen ones by waiting time, then the censored
+ * ones by the time observed; ties by replicate */
+static const f4panel *f4_sort_panel;
+static const an_tool *f4_sort_tool;
+static int f4_cmp(const void *a, const void *b)
 {
-	int best = -1;
-	for (int i = 0; i < t->k; i++) {
+	const f4panel *P = f4_sort_panel;
+	const int i = *(const int *)a, j = *(const int *)b;
+	if (P->risen[i] != P->risen[j])
+		return P->risen[j] - P->risen[i];
+	if (P->wt[i] != P->wt[j])
+		return P->wt[i] < P->wt[j] ? -1 : 1;
+	const long ri = f4_sort_tool->runs[P->run[i]].replicate, rj = f4_sort_tool->runs[P->run[j]].replicate;
+	return (ri > rj) - (ri < rj);
+}
+
+/* Panel ra at f4: every used run (finished or failed up to its failure) with a
+ * trajectory, and the representative: the run whose waiting time is the group's median
+ * (the runs ordered by waiting time, the censored ones after every risen one; the
+ * lower middle one of an even count). 0 when the panel has no run. */
+static int fig4_panel(const an_tool *t, double f4, double ra, f4panel *P)
+{
+	memset(P, 0, sizeof *P);
+	P->ra = ra;
+	for (int i = 0; i < t->k && P->n < MAXREP; i++) {
 		const an_run *r = &t->runs[i];
 		if (!USED(r) || !near(an_num(r, "frequency", NAN), f4) || !near(an_num(r, "radius_ratio", 0), ra))
 			continue;
-		const int done = r->use == AN_USED, best_done = best >= 0 && t->runs[best].use == AN_USED;
-		if (best < 0 || done > best_done || (done == best_done && r->replicate < t->runs[best].replicate))
-			best = i;
+		hid_t h;
+		sb_err he = {0};
+		double rs = 0, w = NAN;
+		if (h5r_open(r->path, &h, &he))
+			continue;
+		const int has = h5r_exists(h, "/particles/intruder/position");
+		h5r_attr_num(h, "/", "risen", &rs);
+		h5r_attr_num(h, "/", "waiting_time", &w);
+		h5r_close(h);
+		if (!has)
+			continue;
+		P->run[P->n] = i;
+		P->risen[P->n] = rs != 0;
+		P->wt[P->n++] = isfinite(w) ? w : INFINITY;
 	}
-	return best;
+	if (!P->n)
+		return 0;
+	int ord[MAXREP];
+	for (int k = 0; k < P->n; k++)
+		ord[k] = k;
+	f4_sort_panel = P;
+	f4_sort_tool = t;
+	qsort(ord, (size_t)P->n, sizeof *ord, f4_cmp);
+	P->rep = ord[(P->n - 1) / 2];
+	return 1;
 }
 
-/* Run r's intruder trajectory into f as panel p, its settled height and the surface
- * into meta; 1 when it has one. */
-static int fig4_traj(const an_run *r, double ra, int p, FILE *f, double meta[3])
+/* Panel p's trajectories into f (lab frame and box frame); the representative's
+ * settled height and surface into P. 1 when the representative's was read. */
+static int fig4_traj(const an_tool *t, f4panel *P, int p, FILE *f)
 {
-	hid_t h;
-	sb_err he = {0};
-	if (h5r_open(r->path, &h, &he))
-		return 0;
-	double *tm = NULL, *pos = NULL;
-	size_t dt[3], dm[3];
-	int rt, rk;
-	int ok = h5r_exists(h, "/particles/intruder/position") &&
-		 !h5r_read(h, "/particles/intruder/position/time", &tm, &rt, dt, &he) &&
-		 !h5r_read(h, "/particles/intruder/position/value", &pos, &rk, dm, &he) && rk == 3 && dm[1] == 1 &&
-		 dm[2] == 2 && dm[0] > 0 && dt[0] == dm[0];
-	if (ok) {
-		for (size_t j = 0; j < dm[0]; j++)
-			fprintf(f, "%d,%.17g,%s,%.17g,%.17g\n", p, ra, r->id, tm[j], pos[2 * j + 1]);
-		meta[0] = ra;
-		meta[1] = meta[2] = NAN;
-		h5r_attr_num(h, "/", "intruder_settled_y", &meta[1]);
-		h5r_attr_num(h, "/", "surface_height", &meta[2]);
+	int ok = 0;
+	for (int k = 0; k < P->n; k++) {
+		const an_run *r = &t->runs[P->run[k]];
+		traj tr;
+		sb_err e = {0};
+		if (traj_read(r->path, &tr, &e)) {
+			traj_free(&tr);
+			continue;
+		}
+		for (size_t j = 0; j < tr.n; j++)
+			fprintf(f, "%d,%.17g,%s,%ld,%d,%.17g,%.17g,%.17g,%d\n", p, P->ra, r->id, r->replicate, k, tr.t[j], tr.y[j],
+				tr.ybox[j], k == P->rep);
+		if (k == P->rep) {
+			P->y0 = tr.y0;
+			P->surface = tr.surface;
+			ok = 1;
+		}
+		traj_free(&tr);
 	}
-	free(tm);
-	free(pos);
-	h5r_close(h);
 	return ok;
 }
 
-static int fig4_plot(an_tool *t, double f4, double meta[][3], int drawn)
+static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "fig4", 800, 270 * drawn + 90, script, png, sizeof script, &t->e);
+	FILE *f = gp_open(t->o, "fig4", 800, 290 * drawn + 110, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\"\n"
-		   "set xlabel 't (s)'\nset ylabel 'y (cm, lab frame)'\n", drawn, f4, *set ? ", " : "", set);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\\n"
+		   "every replicate (thin); thick: the run whose waiting time is the median of its panel\"\n"
+		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, f4, *set ? ", " : "", set);
 	for (int p = 0; p < drawn; p++) {
-		char v[64], w[96];
-		snprintf(v, sizeof v, "%.17g", meta[p][0]);
+		const f4panel *P = &F[p];
+		const an_run *rep = &t->runs[P->run[P->rep]];
+		char v[64], w[96], lr[256], le[64];
+		snprintf(v, sizeof v, "%.17g", P->ra);
 		label_param(w, sizeof w, "radius_ratio", v);
-		/* one legend, below the last panel: the lines mean the same in every panel */
-		fprintf(f, "%s", p + 1 < drawn ? "unset key\n" : "set key below height 1\n");
-		fprintf(f, "set title ");
+		snprintf(le, sizeof le, "each replicate (%d runs)", P->n);
+		if (P->risen[P->rep])
+			snprintf(lr, sizeof lr, "median run: replicate %ld, rose at %.3g s", rep->replicate, P->wt[P->rep]);
+		else
+			snprintf(lr, sizeof lr, "median run: replicate %ld, not risen in %.3g s", rep->replicate, P->wt[P->rep]);
+		fprintf(f, "set key below height 1\nset title ");
 		gp_str(f, w);
-		fprintf(f, "\nplot 'fig4_traj.csv' skip 1 using 4:($1==%d?$5:1/0) with lines lt 1 title 'intruder centre', \\\n"
-			   "  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' title 'free surface (t = 0)'\n",
-			p, meta[p][1], meta[p][2]);
+		fprintf(f, "\nplot ");
+		for (int k = 0; k < P->n; k++) {
+			fprintf(f, "%s'fig4_traj.csv' skip 1 using 6:($1==%d&&$5==%d?$8:1/0) with lines lw 0.7 lc rgb '#909cc8' ",
+				k ? ", \\\n  " : "", p, k);
+			if (k)
+				fprintf(f, "notitle");
+			else {
+				fprintf(f, "title ");
+				gp_str(f, le);
+			}
+		}
+		fprintf(f, ", \\\n  'fig4_traj.csv' skip 1 using 6:($1==%d&&$9==1?$8:1/0) with lines lw 2 lc rgb '#1f4e9c' title ",
+			p);
+		gp_str(f, lr);
+		fprintf(f, ", \\\n  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' "
+			   "title 'free surface (t = 0)'\n", P->y0, P->surface);
 	}
 	fprintf(f, "unset multiplot\n");
 	if (tool_plot(t, f, script, png))
@@ -764,27 +837,33 @@ static int fig4_plot(an_tool *t, double f4, double meta[][3], int drawn)
 }
 
 /* fig4_traj.csv and fig4.png: one panel per radius ratio > 0 of the campaign (at most
- * 8), at the highest row's frequency */
+ * 8), at the highest row's frequency, every replicate */
 static int fig4(an_tool *t, const panels *P)
 {
 	char path[1400];
 	FILE *f = cli_fopen(t->o, "fig4_traj.csv", path, sizeof path, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "panel,radius_ratio,run,t,y\n");
+	fprintf(f, "panel,radius_ratio,run,replicate,index,t,y,y_box,representative\n");
 	const double f4 = P->nf ? P->freqs[P->nf - 1] : NAN;
-	double meta[8][3];
+	f4panel F[8];
 	int drawn = 0;
-	for (int q = 0; q < P->nra && drawn < 8; q++) {
-		const int best = fig4_run(t, f4, P->ratios[q]);
-		if (best >= 0 && fig4_traj(&t->runs[best], P->ratios[q], drawn, f, meta[drawn]))
+	for (int q = 0; q < P->nra && drawn < 8; q++)
+		if (fig4_panel(t, f4, P->ratios[q], &F[drawn]) && fig4_traj(t, &F[drawn], drawn, f))
 			drawn++;
-	}
 	fclose(f);
 	if (!drawn)
 		printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
-	else if (!t->o->no_plot)
-		return fig4_plot(t, f4, meta, drawn);
+	else {
+		printf("# fig4: %g Hz, every replicate; the representative is the run whose waiting time is its panel's median"
+		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", f4);
+		for (int p = 0; p < drawn; p++)
+			printf("%s 𝓡 = %g: replicate %ld of %d runs", p ? ";" : "", F[p].ra, t->runs[F[p].run[F[p].rep]].replicate,
+			       F[p].n);
+		printf("\n");
+		if (!t->o->no_plot)
+			return fig4_plot(t, f4, F, drawn);
+	}
 	return 0;
 }
 

@@ -629,8 +629,8 @@ static int plot_way(an_tool *t, const wait_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set title \"Intruder waiting time, two definitions: Kaplan–Meier survival\\n%s%ssolid: one intruder "
-		   "diameter above the settled height; dashed: %g of the way to the surface; ×: censored\"\n"
+	fprintf(f, "set title \"Intruder waiting time, two definitions: Kaplan–Meier survival\\n%s%s×: censored\\nsolid: one "
+		   "intruder diameter above the settled height; dashed: %g of the way to the surface\"\n"
 		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
 		   "set yrange [0:1.05]\nset xrange [0:*]\nplot ", set, *set ? "; " : "", s->q);
 	int np = 0;
