@@ -480,9 +480,13 @@ static int plot(an_tool *t, const ring_state *s)
 		"set arrow from graph 0, first 1 to graph 1, first 1 nohead lc rgb 'gray50' lw 1\n"
 		"set arrow from graph 0, first 1.15 to graph 1, first 1.15 nohead lc rgb 'black' dt 2 lw 1.5\n"
 		"set label 'paper: +15 %%' at graph 0.01, first 1.15 offset 0, 0.6 font ',9'\n"
-		"set label 'no change' at graph 0.01, first 1 offset 0, -0.8 font ',9' tc rgb 'gray40'\nplot ",
+		"set label 'no change' at graph 0.01, first 1 offset 0, -0.8 font ',9' tc rgb 'gray40'\n",
 		rin, rout, set, *set ? "; " : "", 100 * t->o->level, flo - 0.15 * span, fhi + 0.15 * span,
 		ylo - 0.05 * (yhi - ylo), yhi + 0.08 * (yhi - ylo));
+	double A, g;
+	if (tool_gamma(t, &A, &g))
+		gp_gamma_axis(f, A, g, flo - 0.15 * span, fhi + 0.15 * span);
+	fputs("plot ", f);
 	static const int pt[NQ] = {7, 5, 9};
 	int np = 0;
 	for (int c = 0; c < s->ncurve; c++) {
