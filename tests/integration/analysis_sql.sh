@@ -58,7 +58,7 @@ done
 [ "$(q "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
 	WHERE campaign = 'sweep' AND tool = 'onset'")" = 'real integer null' ] &&
 	[ "$(q "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
-	WHERE campaign = 'sweep' AND tool = 'waiting'")" = 'real integer real' ] &&
+	WHERE campaign = 'sweep' AND tool = 'waiting' AND grp <> 'all groups'")" = 'real integer real' ] &&
 	[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'sweep' AND tool = 'onset' AND key = 'runs'
 	AND grp = printf('radius_ratio=%g depth=%d', radius_ratio, depth)")" = 4 ] &&
 	ok sql.columns.typed_and_null || fail sql.columns.typed_and_null "$(q "SELECT tool, grp, typeof(radius_ratio), typeof(depth),
