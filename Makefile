@@ -56,7 +56,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz portable
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz portable reproduce
 all: $(SHAKE)
 
 help:
@@ -71,6 +71,8 @@ help:
 	@echo "make validate-lammps  Phi(D) at 3.0 Hz of shakebox against LAMMPS gran/hooke over 10 settled beds"
 	@echo "                (docs/validate_lammps.md; ~30 min on 2 cores; VALIDATE_QUICK=1, JOBS=2)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
+	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
+	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"
 	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
 	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from the campaigns beside them (FIG_JOBS=2)"
@@ -161,6 +163,12 @@ bench: build/.deps-ok all
 
 demo: build/.deps-ok all
 	$(Q)bash scripts/demo.sh
+
+# The paper claim by claim: campaigns/reproduce/, then REPRODUCTION.md and
+# docs/reproduction/ from the database (resumes; nothing to simulate when nothing changed).
+REPRODUCE_QUICK ?= 0
+reproduce: build/.deps-ok all
+	$(Q)JOBS=$(JOBS) REPRODUCE_QUICK=$(REPRODUCE_QUICK) bash scripts/reproduce.sh
 
 clean:
 	rm -rf build bin
