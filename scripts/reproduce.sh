@@ -11,6 +11,7 @@
 #                       its REPRODUCTION.md goes there too, never over the real one
 #   JOBS=2              runs at a time;  REPRODUCE_NICE=5  their nice level
 #   REPRODUCE_RUNS=DIR  where the runs and study.db go (default runs/reproduce)
+#   REPRODUCE_WORK=DIR  QUICK only: the work directory (default build/reproduce-quick)
 #   REPRODUCE_CLAIMS="1 2 3 4 5"   which claims to run and report
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,7 +22,7 @@ JOBS=${JOBS:-2}
 NICE=${REPRODUCE_NICE:-5}
 CLAIMS=${REPRODUCE_CLAIMS:-1 2 3 4 5}
 if [ "$QUICK" = 1 ]; then
-	W=build/reproduce-quick
+	W=${REPRODUCE_WORK:-build/reproduce-quick}
 	RUNS=${REPRODUCE_RUNS:-$W/runs}
 	OUT=$W/REPRODUCTION.md
 	FIG=$W/figures
