@@ -156,8 +156,8 @@ echo "the full shipped question; claim 3 has no skip way: its grid at 16 seeds, 
 awk -F'\t' -v costs="$COSTS" -v rp="${RP:-}" -v jobs="$JOBS" '
 	BEGIN {
 		while ((getline l < costs) > 0) { split(l, a, "\t"); if (a[2] == "skip") cpu[a[1]] += a[6] }
-		full[1] = 1;  what[1] = "1 group (no intruder), search 2.5-3.2 Hz"
-		full[2] = 6;  what[2] = "6 points (2.6, 2.8, 3.0 Hz x R = 0, 4)"
+		full[1] = 1;  what[1] = "1 group (no intruder)"
+		full[2] = 6;  what[2] = "6 points (2.6-3.0 Hz x R = 0, 4)"
 		full[4] = 12; what[4] = "12 points (R = 2 ... 8)"
 		full[5] = 8;  what[5] = "8 groups (R = 3, 4 x depth 0 ... 3)"
 	}
@@ -177,4 +177,6 @@ awk -F'\t' -v costs="$COSTS" -v rp="${RP:-}" -v jobs="$JOBS" '
 		}
 		printf "%-6s %-42s %12s %14.0f  = %.1f CPU h, %.0f min wall on %d cores if they stay busy%s\n", "all", "", "", tot, tot / 3600, tot / 60 / jobs, jobs, miss ? " (claims not run left out)" : ""
 	}' "$ANS"
-echo "(claim 1 hysteresis - ramps, no skip way - is not in these five questions: see the grid table.)"
+echo "(CPU s/rep is what the subset measured: claim 1 over its range, claim 2 at 2.8 Hz, claim 4 the mean of its"
+echo "ratios, claim 5 its group and search - a full question has ranges, frequencies and groups that cost more"
+echo "or less per replicate. Claim 1's hysteresis ramps - no skip way - are not among these five questions.)"
