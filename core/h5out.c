@@ -15,7 +15,7 @@
  *                 id, species, radius, mass
  *   /provenance   git hash, compiler, flags, host, times
  * Object time stamps are off, so two runs of one scene give identical files apart
- * from /provenance. */
+ * from /provenance and /h5md (who ran it - the environment's USER - and which build). */
 #include <hdf5.h>
 #include <math.h>
 #include <stdlib.h>

@@ -83,13 +83,15 @@ h5snap() {
 }
 
 # dump_noprov FILE [ATTR...] : the whole file as text (%.17g, exact for doubles), without the first
-# line (it names the file), without the /provenance group and without the named root or
-# /parameters attributes (e.g. output, whose value is the path the run was given).
+# line (it names the file), without the /provenance and /h5md groups (who ran it, where,
+# with which build: /h5md/author is the user, whom ssh and a login shell name differently)
+# and without the named root or /parameters attributes (e.g. output, whose value is the
+# path the run was given).
 dump_noprov() {
 	local f=$1
 	shift
 	h5dump -m %.17g "$f" | awk -v skipattrs=" $* " 'NR == 1 { next }
-		/^   GROUP "provenance" \{/ { skip = 1; end = "^   }$"; next }
+		/^   GROUP "(provenance|h5md)" \{/ { skip = 1; end = "^   }$"; next }
 		/^   GROUP "parameters" \{/ { inparams = 1 }
 		inparams && /^   }$/ { inparams = 0 }
 		!skip && /^   ATTRIBUTE "/ { a = $2; gsub(/"/, "", a); if (index(skipattrs, " " a " ")) { skip = 1; end = "^   }$"; next } }
@@ -98,7 +100,7 @@ dump_noprov() {
 		!skip { print }'
 }
 
-# same_output A B [ATTR...] : the two run files are identical apart from /provenance (prints the
+# same_output A B [ATTR...] : the two run files are identical apart from /provenance and /h5md (prints the
 # first differing lines on stderr when they differ); ATTRs are root or /parameters
 # attributes to ignore
 same_output() {
@@ -114,7 +116,7 @@ same_output() {
 	fi
 	# and h5diff agrees (every dataset and attribute, bar the ignored attributes)
 	local out rc n
-	out=$(h5diff --exclude-path /provenance "$a" "$b" 2>&1)
+	out=$(h5diff --exclude-path /provenance --exclude-path /h5md "$a" "$b" 2>&1)
 	rc=$?
 	[ "$rc" -le 1 ] || { echo "h5diff failed: $out" >&2; return 1; }
 	for n in "$@"; do
