@@ -13,7 +13,7 @@
 #
 #   claim 1  onset frequency of the flux, no intruder    bin/onset --threshold 2 | [onset] flux
 #   claim 2  mean flux through mid-bed with/without R=4  auto twin mean_flux     | stop=flux + auto
-#   claim 3  ring force with/without intruder            (no tool reads /ring)   | (no skip way)
+#   claim 3  ring force with/without intruder            (cost only)             | (no skip way)
 #   claim 4  median waiting time per radius ratio        auto twin median_wait   | stop=risen + auto
 #   claim 5  onset of the rise near onset, one depth     auto twin rise_fraction | [onset] rise
 #
