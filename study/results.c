@@ -54,7 +54,7 @@ static const rcol TABLE[] = {
 	{"n_walls", RT_INT, "@n_walls", "", "wall disks", RF_NOVIEW},
 	{"neighbour_builds", RT_INT, "@neighbour_builds", "", "neighbour-list builds while shaking", RF_NOVIEW},
 	{"traj_rows", RT_INT, "/particles/intruder/position/value#rows", "", "rows of the intruder trajectory", RF_NOVIEW},
-	{"wall_seconds", RT_REAL, "/provenance@loop_seconds", "s", "CPU wall time of the shaking loop", 0},
+	{"wall_seconds", RT_REAL, "/provenance@loop_seconds", "s", "wall-clock time of the shaking loop (not CPU time: on a loaded machine it is longer)", 0},
 	{"host", RT_TEXT, "/provenance@host", "", "machine that ran it", RF_NOVIEW},
 	{"git_hash", RT_TEXT, "/provenance@git_hash", "", "engine version", 0},
 	{"git_dirty", RT_INT, "/provenance@git_dirty", "", "1 when built from a modified tree", 0},
