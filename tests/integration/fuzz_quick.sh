@@ -11,7 +11,7 @@ FUZZ="${FUZZ_BIN:-$REPO/build/fuzz/fuzz}"
 for b in "$STUDY" "$FUZZ"; do
 	[ -x "$b" ] || { fail setup "$b is not an executable (run make tests)"; finish; }
 done
-N="${FUZZ_QUICK_INPUTS:-500}"
+N="${FUZZ_QUICK_INPUTS:-300}"
 SEED="${FUZZ_QUICK_SEED:-11}"
 OUT="$REPO/build/fuzz/quick"
 # Findings that others are fixing: "kind<TAB>target<TAB>signature<TAB>why" lines; a
