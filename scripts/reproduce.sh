@@ -13,6 +13,8 @@
 #   REPRODUCE_RUNS=DIR  where the runs and study.db go (default runs/reproduce)
 #   REPRODUCE_WORK=DIR  QUICK only: the work directory (default build/reproduce-quick)
 #   REPRODUCE_CLAIMS="1 2 3 4 5"   which claims to run and report
+#   REPRODUCE_REPORT_ONLY=1   write REPRODUCTION.md from what the database and the tools'
+#                       last outputs hold, running no campaign and no tool
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root" || exit 1
@@ -21,6 +23,7 @@ QUICK=${REPRODUCE_QUICK:-0}
 JOBS=${JOBS:-2}
 NICE=${REPRODUCE_NICE:-5}
 CLAIMS=${REPRODUCE_CLAIMS:-1 2 3 4 5}
+REPORT_ONLY=${REPRODUCE_REPORT_ONLY:-0}
 if [ "$QUICK" = 1 ]; then
 	W=${REPRODUCE_WORK:-build/reproduce-quick}
 	RUNS=${REPRODUCE_RUNS:-$W/runs}
@@ -77,6 +80,7 @@ done_runs() { q "SELECT COUNT(*) FROM run WHERE state IN ('done', 'failed')"; }
 n0=$(done_runs); n0=${n0:-0}
 declare -A WALL
 for k in $CLAIMS; do
+	[ "$REPORT_ONLY" = 1 ] && break
 	for c in $(campaigns_of "$k"); do
 		t=$(date +%s)
 		log "claim $k: study run ${FILE[$c]}"
@@ -91,6 +95,7 @@ T_RUN=$(( $(date +%s) - T0 ))
 # --- the analysis -------------------------------------------------------------------------
 tool() { # TOOL CAMPAIGN OPTIONS... : a tool's figures and CSVs under $ANA/CAMPAIGN
 	local t=$1 n=$2; shift 2
+	[ "$REPORT_ONLY" = 1 ] && return 0
 	nice -n "$NICE" "bin/$t" "$n" --db "$DB" --runs "$RUNS" --out "$ANA/$n" "$@" >"$ANA/$n.$t.txt" 2>&1 ||
 		log "bin/$t $n: exit $? (see $ANA/$n.$t.txt)"
 }
@@ -150,6 +155,8 @@ runs_phi() {
 	echo "\`$DB\`: every number below is computed from the runs, none is typed in. The paper's"
 	echo "statements are those of docs/model.md, \"The paper's claims\"."
 	[ "$QUICK" = 1 ] && echo && echo "**QUICK MODE: 2 replicates, 8 s runs - a check of the pipeline, not of the physics.**"
+	missing=$(for k in 1 2 3 4 5; do want "$k" || printf '%s ' "$k"; done)
+	[ -n "$missing" ] && echo && echo "**Not in this report: claim(s) ${missing% } (their campaigns have not been run to the end; \`make reproduce\` resumes them).**"
 	echo
 	echo "| | |"
 	echo "|---|---|"
@@ -268,13 +275,16 @@ runs_phi() {
 		echo
 		echo "Runs: $(counts "$n")."
 		echo
-		read -r rv rlo rhi _ <<<"$(val "$n" ring ratio_force "frequency = 2.8 AND radius_ratio = 4")"
-		read -r nv nlo nhi _ <<<"$(val "$n" ring ratio_net_force "frequency = 2.8 AND radius_ratio = 4")"
+		# the paper's numbers: +15 % at 2.8 Hz, +5 % at 2.6 Hz (the force ratio's interval
+		# must hold them)
+		read -r _ rlo rhi _ <<<"$(val "$n" ring ratio_force "frequency = 2.8 AND radius_ratio = 4")"
+		read -r _ slo shi _ <<<"$(val "$n" ring ratio_force "frequency = 2.6 AND radius_ratio = 4")"
 		in15=$(awk -v l="${rlo:--}" -v h="${rhi:--}" 'BEGIN { print (l + 0 == l && l <= 1.15 && h >= 1.15) ? 1 : 0 }')
-		above=$(awk -v l="${rlo:--}" -v a="${nlo:--}" 'BEGIN { print ((l + 0 == l && l > 1) || (a + 0 == a && a > 1)) ? 1 : 0 }')
-		if [ "$in15" = 1 ]; then verdict reproduced "At 2.8 Hz the force ratio's interval [$rlo, $rhi] contains 1.15."
-		elif [ "$above" = 1 ]; then verdict partly "At 2.8 Hz a ratio lies above 1 (Σ|F|: [${rlo:-?}, ${rhi:-?}], net force: [${nlo:-?}, ${nhi:-?}]) but the force ratio's interval does not contain 1.15."
-		else verdict "not reproduced" "At 2.8 Hz neither ratio lies above 1 (Σ|F|: [${rlo:-?}, ${rhi:-?}], net force: [${nlo:-?}, ${nhi:-?}])."; fi
+		in5=$(awk -v l="${slo:--}" -v h="${shi:--}" 'BEGIN { print (l + 0 == l && l <= 1.05 && h >= 1.05) ? 1 : 0 }')
+		what="force ratio at 2.8 Hz [${rlo:-?}, ${rhi:-?}] (paper 1.15), at 2.6 Hz [${slo:-?}, ${shi:-?}] (paper 1.05)"
+		if [ "$in15" = 1 ] && [ "$in5" = 1 ]; then verdict reproduced "Both intervals hold the paper's numbers: $what."
+		elif [ "$in15" = 1 ] || [ "$in5" = 1 ]; then verdict partly "One interval holds the paper's number: $what."
+		else verdict "not reproduced" "Neither interval holds the paper's number: $what."; fi
 		echo
 		echo
 		echo "$(fig "$ANA/$n/ring.png" claim3_ring.png)"
