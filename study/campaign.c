@@ -235,6 +235,7 @@ int campaign_axis_parse(cp_axis *a, const char *key, const char *text, const cha
 	free(copy);
 	if (!rc && !any)
 		rc = sb_errf(e, SB_EUSAGE, "%s: %s: no values", where, key);
+	a->given = a->n;
 	if (!rc)
 		rc = axis_dedup(a, e);
 	return rc;
@@ -248,7 +249,7 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 	int over = 0;  /* the product does not fit a long */
 	for (int a = 0; a < c->naxes; a++) {
 		long n = c->axes[a].n;
-		if (n < 1)
+		if (n < 1 || c->axes[a].zipped_to)
 			continue;
 		if (!over && total > LONG_MAX / n)
 			over = 1;
@@ -263,8 +264,9 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 	char sizes[400] = "";
 	size_t l = 0;
 	for (int a = 0; a < c->naxes && l < sizeof sizes; a++)
-		l += (size_t)snprintf(sizes + l, sizeof sizes - l, "%s%s %ld", a ? " x " : "", c->axes[a].key,
-				      c->axes[a].n);
+		if (!c->axes[a].zipped_to)
+			l += (size_t)snprintf(sizes + l, sizeof sizes - l, "%s%s %ld", l ? " x " : "", c->axes[a].key,
+					      c->axes[a].n);
 	if (l >= sizeof sizes)
 		memcpy(sizes + sizeof sizes - 4, "...", 4);
 	const cp_axis *ax = &c->axes[past];
@@ -480,6 +482,11 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 				       where, CP_MAX_VALUES, value);
 		c->replicates = n;
 		c->replicates_line = r->line;
+	} else if (!strcmp(name, "zip")) {
+		if (strlen(value) >= sizeof c->zip)
+			return sb_errf(e, SB_EUSAGE, "%s: zip: at most %zu characters", where, sizeof c->zip - 1);
+		snprintf(c->zip, sizeof c->zip, "%s", value);
+		c->zip_line = r->line;
 	} else if (!strcmp(name, "max_runs")) {
 		char *end;
 		errno = 0;
@@ -491,7 +498,7 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		c->max_runs_line = r->line;
 	} else {
 		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [campaign] "
-			       "(name, description, scene, seed, seeds, replicates, max_runs; with replicates = auto: "
+			       "(name, description, scene, seed, seeds, replicates, max_runs, zip; with replicates = auto: "
 			       "result, target, batch, max_replicates, level)", where, name);
 	}
 	return 0;
@@ -744,6 +751,52 @@ static int autorep_finish(campaign *c, sb_err *e)
 	return 0;
 }
 
+/* zip = KEY KEY ...: [grid] axes that advance together, value k of each with value k of
+ * the others (a sweep of the stiffness at a fixed restitution moves gamma_n and dt with
+ * it; a sweep of the width at a fixed bed height moves n_grains). The first key's axis
+ * keeps its place in the grid's order; the others follow its value index. */
+static int zip_finish(campaign *c, sb_err *e)
+{
+	char buf[sizeof c->zip];
+	snprintf(buf, sizeof buf, "%s", c->zip);
+	const char *p = c->path;
+	int idx[CP_MAX_KEYS], nkeys = 0, lead = -1;
+	for (char *save = NULL, *k = strtok_r(buf, " \t,", &save); k; k = strtok_r(NULL, " \t,", &save)) {
+		int a = -1;
+		for (int i = 0; i < c->naxes; i++)
+			if (!strcmp(c->axes[i].key, k))
+				a = i;
+		if (a < 0)
+			return sb_errf(e, SB_EUSAGE, "%s:%d: zip: '%s' is not a [grid] axis of this file (zip names axes "
+				       "that advance together)", p, c->zip_line, k);
+		for (int j = 0; j < nkeys; j++)
+			if (idx[j] == a)
+				return sb_errf(e, SB_EUSAGE, "%s:%d: zip: '%s' named twice", p, c->zip_line, k);
+		const cp_axis *ax = &c->axes[a];
+		/* removing a repeated value would shift the tuples against each other */
+		if (ax->given != ax->n)
+			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: a zipped axis needs distinct values (%ld given, %ld "
+				       "distinct): value k goes with value k of the other zipped axes", p, ax->line, k,
+				       ax->given, ax->n);
+		if (nkeys && ax->n != c->axes[idx[0]].n)
+			return sb_errf(e, SB_EUSAGE, "%s:%d: zip: %s has %ld values, %s has %ld: zipped axes need as "
+				       "many values each", p, c->zip_line, k, ax->n, c->axes[idx[0]].key, c->axes[idx[0]].n);
+		if (c->onset.line && !strcmp(k, "frequency"))
+			return sb_errf(e, SB_EUSAGE, "%s:%d: zip: frequency is the [onset] search's", p, c->zip_line);
+		idx[nkeys++] = a;
+		if (lead < 0 || a < lead)
+			lead = a;
+	}
+	if (nkeys < 2)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: zip: expected at least two [grid] axes, got '%s'", p, c->zip_line,
+			       c->zip);
+	/* the axis first in the file leads: the grid's order computes its digit first */
+	for (int j = 0; j < nkeys; j++)
+		if (idx[j] != lead)
+			c->axes[idx[j]].zipped_to = lead + 1;
+	return 0;
+}
+
 static int cp_handler(void *user, const char *section, const char *name, const char *value)
 {
 	struct rd *r = user;
@@ -858,6 +911,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 	if (c->onset.line && onset_finish(c, c->replicates ? c->replicates_line : 0, e))
 		return e->code;
 	if (autorep_finish(c, e))
+		return e->code;
+	if (c->zip_line && zip_finish(c, e))
 		return e->code;
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)

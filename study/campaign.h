@@ -61,6 +61,9 @@ typedef struct cp_axis {
 	int line;
 	long n;
 	char **values;  /* canonical text (params_format), duplicates removed, file order */
+	long given;     /* values before duplicates were removed */
+	int zipped_to;  /* 1 + the index of the axis whose value index this one follows
+			 * ([campaign] zip); 0 = an axis of its own */
 } cp_axis;
 
 typedef struct cp_fixed {
@@ -80,6 +83,8 @@ typedef struct campaign {
 	int replicates_line;
 	long max_runs;                  /* 0 = not given: CP_MAX_RUNS_DEFAULT */
 	int max_runs_line;
+	char zip[512];                  /* [campaign] zip = KEY KEY ...: axes advanced together */
+	int zip_line;
 	int nfixed, naxes;
 	cp_fixed fixed[CP_MAX_KEYS];
 	cp_axis axes[CP_MAX_KEYS];

@@ -67,10 +67,18 @@ static void scene_point(const campaign *c, long point, sb_scene *s)
 {
 	*s = c->base;
 	sb_err e = {0};
-	/* mixed radix, first axis fastest */
+	/* mixed radix, first axis fastest; a zipped axis takes its leader's digit (the
+	 * leader comes first in the file order, so its digit is known) */
+	long digit[CP_MAX_KEYS];
 	for (int a = 0; a < c->naxes; a++) {
-		long k = point % c->axes[a].n;
-		point /= c->axes[a].n;
+		long k;
+		if (c->axes[a].zipped_to) {
+			k = digit[c->axes[a].zipped_to - 1];
+		} else {
+			k = point % c->axes[a].n;
+			point /= c->axes[a].n;
+		}
+		digit[a] = k;
 		char where[SB_STR_MAX + 32];
 		snprintf(where, sizeof where, "%s:%d", c->path, c->axes[a].line);
 		params_set(s, c->axes[a].key, c->axes[a].values[k], where, &e);

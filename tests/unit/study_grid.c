@@ -266,6 +266,60 @@ static void test_bounds(void)
 	axis_refused("study.grid.bounds.axis_values", "depth", "0..100000", many);
 }
 
+/* zip = KEY KEY: the zipped axes advance together (value k with value k), the leader
+ * keeps its place in the order; mismatched sizes, repeated values, unknown keys and a
+ * single key are refused with the line. */
+static void test_zip(void)
+{
+	campaign c;
+	grid g;
+	sb_err e;
+	/* gamma_n named first but written after stiffness in [grid]: the file order leads */
+	int rc = sf_expand("[campaign]\nname = z\nseed = 1\nzip = gamma_n stiffness\nreplicates = 2\n[grid]\n"
+			   "stiffness = 3e6, 4e6, 5e6\nfrequency = 2.8, 3\ngamma_n = 100, 316, 1000\n", &c, &g, &e);
+	CHECK("study.grid.zip.expands", !rc, "%s", e.msg);
+	if (rc)
+		return;
+	long points = 0;
+	campaign_points(&c, &points, &e);
+	int tuples = 1, seen[3] = {0};
+	for (long i = 0; i < g.n; i++) {
+		sb_scene s;
+		grid_scene(&g, &g.runs[i], &s);
+		int k = s.stiffness == 3e6 ? 0 : s.stiffness == 4e6 ? 1 : 2;
+		const double want[] = {100, 316, 1000};
+		if (s.gamma_n != want[k])
+			tuples = 0;
+		seen[k]++;
+	}
+	CHECK("study.grid.zip.size", points == 12 && g.n == 12, "%ld points, %ld runs; want 3 tuples x 2 x 2 = 12",
+	      points, g.n);
+	CHECK("study.grid.zip.tuples", tuples && seen[0] == 4 && seen[1] == 4 && seen[2] == 4,
+	      "a run pairs stiffness with another gamma_n than its own (%d %d %d)", seen[0], seen[1], seen[2]);
+	sf_free(&c, &g);
+	static const struct {
+		const char *id, *text, *word;
+	} bad[] = {
+		{"study.grid.zip.sizes_differ", "zip = stiffness gamma_n\n[grid]\nstiffness = 3e6, 3e7\ngamma_n = 1, 2, 3\n",
+		 "as many values"},
+		{"study.grid.zip.repeated_value", "zip = stiffness gamma_n\n[grid]\nstiffness = 3e6, 3e7\ngamma_n = 1, 1\n",
+		 "distinct"},
+		{"study.grid.zip.not_an_axis", "zip = stiffness mu\n[grid]\nstiffness = 3e6, 3e7\n[scene]\nmu = 0.3\n",
+		 "not a [grid] axis"},
+		{"study.grid.zip.one_key", "zip = stiffness\n[grid]\nstiffness = 3e6, 3e7\n", "at least two"},
+		{"study.grid.zip.twice", "zip = stiffness stiffness\n[grid]\nstiffness = 3e6, 3e7\n", "twice"},
+	};
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+		char text[512];
+		snprintf(text, sizeof text, "[campaign]\nname = z\nseed = 1\n%s", bad[i].text);
+		memset(&e, 0, sizeof e);
+		rc = sf_load(text, &c, &e);
+		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word) && strstr(e.msg, ".campaign:"),
+		      "rc %d '%s' (want a message with the file, line and '%s')", rc, e.msg, bad[i].word);
+		campaign_free(&c);
+	}
+}
+
 int main(void)
 {
 	if (sf_init()) {
@@ -277,6 +331,7 @@ int main(void)
 	test_ranges();
 	test_point_duplicates();
 	test_bounds();
+	test_zip();
 	sf_cleanup();
 	return tl_done();
 }
