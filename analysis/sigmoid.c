@@ -12,8 +12,14 @@ double sig_eval(const sig_fit *s, double x)
 	return s->b + s->a / (1 + exp(-(x - s->x0) / s->w));
 }
 
+/* The fit runs on the distinct x with the mean y and the count there as a weight:
+ * sum_i (f(x_i) - y_i)^2 = sum_x [n_x (f(x) - mean_x)^2] + the spread within each x,
+ * which does not depend on the parameters, so the minimiser, the Jacobian's normal
+ * matrix and hence the solver's steps are the raw points' (up to rounding) at the cost
+ * of the distinct x: the seeds of a ramp share their frequencies, and a bootstrap
+ * resample of 16 seeds costs what one seed does. */
 struct pts {
-	const double *x, *y;
+	const double *x, *y, *sw; /* sw: square root of the count at x */
 	size_t n;
 };
 
@@ -28,7 +34,7 @@ static int f_res(const gsl_vector *p, void *ctx, gsl_vector *r)
 	double b = gsl_vector_get(p, 0), a = gsl_vector_get(p, 1), x0 = gsl_vector_get(p, 2);
 	double w = exp(gsl_vector_get(p, 3));
 	for (size_t i = 0; i < d->n; i++)
-		gsl_vector_set(r, i, b + a * logistic((d->x[i] - x0) / w) - d->y[i]);
+		gsl_vector_set(r, i, d->sw[i] * (b + a * logistic((d->x[i] - x0) / w) - d->y[i]));
 	return GSL_SUCCESS;
 }
 
@@ -37,11 +43,11 @@ static int f_jac(const gsl_vector *p, void *ctx, gsl_matrix *J)
 	const struct pts *d = ctx;
 	double a = gsl_vector_get(p, 1), x0 = gsl_vector_get(p, 2), w = exp(gsl_vector_get(p, 3));
 	for (size_t i = 0; i < d->n; i++) {
-		double u = (d->x[i] - x0) / w, s = logistic(u), ds = s * (1 - s);
-		gsl_matrix_set(J, i, 0, 1);
-		gsl_matrix_set(J, i, 1, s);
-		gsl_matrix_set(J, i, 2, -a * ds / w);
-		gsl_matrix_set(J, i, 3, -a * ds * u);
+		double u = (d->x[i] - x0) / w, s = logistic(u), ds = s * (1 - s), q = d->sw[i];
+		gsl_matrix_set(J, i, 0, q);
+		gsl_matrix_set(J, i, 1, q * s);
+		gsl_matrix_set(J, i, 2, -q * a * ds / w);
+		gsl_matrix_set(J, i, 3, -q * a * ds * u);
 	}
 	return GSL_SUCCESS;
 }
@@ -52,7 +58,10 @@ static int cmp_xy(const void *a, const void *b)
 	return (p[0] > q[0]) - (p[0] < q[0]);
 }
 
-size_t sig_means(const double *x, const double *y, size_t n, double *ux, double *uy)
+/* The distinct finite x (ascending) with the mean y there; with cnt, also the count
+ * and with ss the sum of squared deviations from the mean within each x. */
+static size_t means_counts(const double *x, const double *y, size_t n, double *ux, double *uy, double *cnt,
+			   double *ss)
 {
 	double *xy = malloc(sizeof *xy * 2 * (n ? n : 1));
 	if (!xy)
@@ -71,12 +80,26 @@ size_t sig_means(const double *x, const double *y, size_t n, double *ux, double 
 		double s = 0;
 		while (j < k && xy[2 * j] == xy[2 * i])
 			s += xy[2 * j++ + 1];
+		const double mean = s / (double)(j - i);
+		if (cnt)
+			cnt[m] = (double)(j - i);
+		if (ss) {
+			double q = 0;
+			for (size_t t = i; t < j; t++)
+				q += (xy[2 * t + 1] - mean) * (xy[2 * t + 1] - mean);
+			*ss += q;
+		}
 		ux[m] = xy[2 * i];
-		uy[m++] = s / (double)(j - i);
+		uy[m++] = mean;
 		i = j;
 	}
 	free(xy);
 	return m;
+}
+
+size_t sig_means(const double *x, const double *y, size_t n, double *ux, double *uy)
+{
+	return means_counts(x, y, n, ux, uy, NULL, NULL);
 }
 
 static double crossing(const double *ux, const double *uy, size_t m, double thr)
@@ -148,17 +171,38 @@ int sig_fit_data(const double *x, const double *y, size_t n, sig_fit *s)
 	s->b = s->a = s->x0 = s->w = s->chisq = NAN;
 	gsl_set_error_handler_off();
 	double *ux = malloc(sizeof *ux * (n ? n : 1)), *uy = malloc(sizeof *uy * (n ? n : 1));
-	size_t m = ux && uy ? sig_means(x, y, n, ux, uy) : 0;
-	if (m < 3 || n < 5) { /* four parameters need more than four points and three x */
+	double *sw = malloc(sizeof *sw * (n ? n : 1)), within = 0;
+	size_t m = ux && uy && sw ? means_counts(x, y, n, ux, uy, sw, &within) : 0;
+	size_t nf = 0; /* the finite points */
+	for (size_t i = 0; i < m; i++) {
+		nf += (size_t)sw[i];
+		sw[i] = sqrt(sw[i]);
+	}
+	if (m < 3 || nf < 5) { /* four parameters need more than four points and three x */
 		free(ux);
 		free(uy);
+		free(sw);
 		return 0;
 	}
 	double xlo = ux[0], xhi = ux[m - 1], range = xhi - xlo;
 	double x0 = crossing(ux, uy, m, NAN);
 	if (!isfinite(x0))
 		x0 = 0.5 * (xlo + xhi);
-	struct pts d = {x, y, n};
+	struct pts d = {ux, uy, sw, m};
+	double *ones = NULL;
+	if (m < 4) { /* fewer residuals than parameters: the solver wants the raw points */
+		ones = malloc(sizeof *ones * n);
+		if (!ones) {
+			free(ux);
+			free(uy);
+			free(sw);
+			return 0;
+		}
+		for (size_t i = 0; i < n; i++)
+			ones[i] = 1;
+		d = (struct pts){x, y, ones, n};
+		within = 0;
+	}
 	double best = INFINITY, bp[4] = {0};
 	static const double widths[] = {0.02, 0.1, 0.3};
 	for (int k = 0; k < 3; k++) {
@@ -171,8 +215,11 @@ int sig_fit_data(const double *x, const double *y, size_t n, sig_fit *s)
 	}
 	free(ux);
 	free(uy);
+	free(sw);
+	free(ones);
 	if (!isfinite(best))
 		return 0;
+	best += within; /* the raw points' sum of squares */
 	s->b = bp[0];
 	s->a = bp[1];
 	s->x0 = bp[2];
