@@ -1,6 +1,7 @@
 /* waiting_main.c - bin/waiting: waiting times of the intruder's rise per group of runs
  * (Kaplan-Meier with right-censoring, median with its Brookmeyer-Crowley interval,
  * fraction risen, histogram). Only this file prints and exits. */
+#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,8 +68,8 @@ static const char *HELP =
 	"Writes waiting_runs.csv, waiting_km.csv, waiting_summary.csv, waiting_hist.csv,\n"
 	"waiting_accounting.csv, waiting_km_band.csv, waiting_km.png/.pdf (with the\n"
 	"confidence band), waiting_hist.png/.pdf; stores per group in the\n"
-	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen, median (lo,\n"
-	"hi), t_max, s_end (lo, hi), and the accounting (runs_failed, runs_failed_used, ...,\n"
+	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen (Clopper-Pearson\n"
+	"lo, hi), median (lo, hi), t_max, s_end (lo, hi), and the accounting (runs_failed, runs_failed_used, ...,\n"
 	"as onset --help lists). The second definition: waiting_way_runs.csv (both times of\n"
 	"every used run), waiting_way_km.csv, waiting_way_summary.csv, waiting_way.png/.pdf\n"
 	"(both definitions' Kaplan-Meier curves); keys way_fraction, way_runs, way_risen,\n"
@@ -398,7 +399,11 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 	const long n = km->n;
 	tool_store(t, j, L, "runs", (double)n, NAN, NAN, n);
 	tool_store(t, j, L, "risen", (double)km->events, NAN, NAN, n);
-	tool_store(t, j, L, "fraction_risen", frac, NAN, NAN, n);
+	/* Clopper-Pearson: exact for a binomial count, what claim 5 compares between depths */
+	const double al = 1 - t->o->level, k = (double)km->events;
+	const double f_lo = km->events ? gsl_cdf_beta_Pinv(al / 2, k, (double)n - k + 1) : 0;
+	const double f_hi = km->events < n ? gsl_cdf_beta_Pinv(1 - al / 2, k + 1, (double)n - k) : 1;
+	tool_store(t, j, L, "fraction_risen", frac, n ? f_lo : NAN, n ? f_hi : NAN, n);
 	tool_store(t, j, L, "median", med, lo, hi, n);
 	tool_store(t, j, L, "t_max", tm, NAN, NAN, n);
 	tool_store(t, j, L, "s_end", s_end, s_lo, s_hi, n);

@@ -13,6 +13,8 @@
 #   REPRODUCE_RUNS=DIR  where the runs and study.db go (default runs/reproduce)
 #   REPRODUCE_WORK=DIR  QUICK only: the work directory (default build/reproduce-quick)
 #   REPRODUCE_CLAIMS="1 2 3 4 5"   which claims to run and report
+#   REPRODUCE_QUESTIONS="1 2 3 4 5"   which open questions to run and report (default all;
+#                       none with REPRODUCE_QUICK unless given)
 #   REPRODUCE_REPORT_ONLY=1   write REPRODUCTION.md from what the database and the tools'
 #                       last outputs hold, running no campaign and no tool
 set -uo pipefail
@@ -24,6 +26,9 @@ JOBS=${JOBS:-2}
 NICE=${REPRODUCE_NICE:-5}
 CLAIMS=${REPRODUCE_CLAIMS:-1 2 3 4 5}
 REPORT_ONLY=${REPRODUCE_REPORT_ONLY:-0}
+# the questions the paper left open (scripts/reproduce_questions.sh); none in QUICK mode
+# unless asked for
+if [ "$QUICK" = 1 ]; then QUESTIONS=${REPRODUCE_QUESTIONS:-}; else QUESTIONS=${REPRODUCE_QUESTIONS-1 2 3 4 5}; fi
 if [ "$QUICK" = 1 ]; then
 	W=${REPRODUCE_WORK:-build/reproduce-quick}
 	RUNS=${REPRODUCE_RUNS:-$W/runs}
@@ -38,7 +43,7 @@ fi
 DB=$RUNS/study.db
 ANA=$W/analysis
 STUDY=$root/bin/study
-for b in study shake onset hysteresis waiting figures rolls ring; do
+for b in study shake onset hysteresis waiting figures rolls ring whale; do
 	[ -x "bin/$b" ] || { echo "reproduce: bin/$b missing (make)" >&2; exit 1; }
 done
 mkdir -p "$W/campaigns" "$ANA" "$FIG" "$RUNS" || exit 1
@@ -89,6 +94,9 @@ for k in $CLAIMS; do
 		WALL[$c]=$(( $(date +%s) - t ))
 	done
 done
+# shellcheck source=scripts/reproduce_questions.sh
+. "$root/scripts/reproduce_questions.sh"
+[ "$REPORT_ONLY" = 1 ] || questions_run
 n1=$(done_runs); n1=${n1:-0}
 T_RUN=$(( $(date +%s) - T0 ))
 
@@ -105,6 +113,7 @@ want 2 && { tool onset "${NAME[claim2_rolls]}" --by radius_ratio,frequency; tool
 want 3 && tool ring "${NAME[claim3_ring]}"
 want 4 && { tool waiting "${NAME[claim4_waiting]}"; tool figures "${NAME[claim4_waiting]}"; }
 want 5 && tool waiting "${NAME[claim5_depth]}"
+questions_tools
 T_ALL=$(( $(date +%s) - T0 ))
 
 # --- REPRODUCTION.md ----------------------------------------------------------------------
@@ -345,16 +354,25 @@ runs_phi() {
 		echo
 		# the claim: at some frequency a deeper start lowers the fraction risen, beyond the
 		# intervals (the deeper group's upper bound below the shallower group's lower bound)
-		drop=$(q "SELECT COUNT(*) FROM analysis a JOIN analysis b ON a.campaign = b.campaign AND a.tool = b.tool
-			  AND a.key = b.key AND a.frequency = b.frequency AND b.depth = a.depth + 1
-			  WHERE a.campaign = '$n' AND a.tool = 'waiting' AND a.key = 'fraction_risen' AND b.hi < a.lo")
-		if [ "${drop:-0}" -gt 0 ]; then verdict reproduced "At $drop (frequency, depth) pair(s) one row deeper lowers the fraction risen beyond both intervals."
+		pairs() { # CONDITION on a (one depth) and b (one row deeper): the pairs, as "f Hz: a/b"
+			q "SELECT GROUP_CONCAT(a.frequency || ' Hz, depth ' || a.depth || ' → ' || b.depth || ': '
+				  || printf('%.2f', a.value) || ' → ' || printf('%.2f', b.value), '; ')
+			   FROM analysis a JOIN analysis b ON a.campaign = b.campaign AND a.tool = b.tool AND a.key = b.key
+			   AND a.frequency = b.frequency AND b.depth = a.depth + 1
+			   WHERE a.campaign = '$n' AND a.tool = 'waiting' AND a.key = 'fraction_risen' AND $1"
+		}
+		drop=$(pairs "b.hi < a.lo") more=$(pairs "b.lo > a.hi")
+		echo "Fraction risen: Clopper–Pearson 95 % intervals; two neighbouring depths differ when their intervals separate."
+		echo
+		if [ -n "$drop" ]; then verdict reproduced "One row deeper lowers the fraction risen beyond both intervals at: $drop.${more:+ But at $more a deeper start rises more often.}"
+		elif [ -n "$more" ]; then verdict "not reproduced" "The opposite: one row deeper *raises* the fraction risen beyond both intervals at $more; nowhere does it lower it beyond the intervals."
 		else verdict "not reproduced" "No pair of neighbouring depths at one frequency has fraction-risen intervals that separate."; fi
 		echo
 		echo
 		echo "$(fig "$ANA/$n/waiting_km.png" claim5_km.png)"
 		echo
 	fi
+	questions_report
 	echo "## What this run cost"
 	echo
 	echo "| campaign | runs | simulated s | engine loop s | wall s of this invocation |"
@@ -365,6 +383,14 @@ runs_phi() {
 				"$(q "SELECT COUNT(*) FROM runs WHERE campaign = '${NAME[$c]}'")" \
 				"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '${NAME[$c]}'")" \
 				"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '${NAME[$c]}'")" "${WALL[$c]:-0}"
+		done
+	done
+	for k in $QUESTIONS; do
+		for c in $(campaigns_of_question "$k"); do
+			printf '| %s | %s | %s | %s | %s |\n' "${QNAME[$c]}" \
+				"$(q "SELECT COUNT(*) FROM runs WHERE campaign = '${QNAME[$c]}'")" \
+				"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '${QNAME[$c]}'")" \
+				"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '${QNAME[$c]}'")" "${QWALL[$c]:-0}"
 		done
 	done
 } >"$OUT.tmp" && mv "$OUT.tmp" "$OUT"

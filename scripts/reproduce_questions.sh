@@ -1,0 +1,269 @@
+# reproduce_questions.sh - sourced by scripts/reproduce.sh: the questions the paper left
+# open (campaigns/reproduce/q*.campaign). Three functions, called where reproduce.sh runs
+# the claims' campaigns, their tools and writes their sections:
+#   questions_run      run the questions' campaigns (resumable, like the claims')
+#   questions_tools    run the analysis tools on them
+#   questions_report   print their sections of REPRODUCTION.md (markdown on stdout)
+# It uses reproduce.sh's helpers (q, val, iv, fig, counts, tool, campaign, cname, log) and
+# its variables (QUESTIONS, STUDY, RUNS, JOBS, NICE, W, ANA, FIG, REPORT_ONLY).
+# Every number is computed here from the database or the tools' outputs.
+
+declare -A QFILE QNAME QWALL
+for c in q1_stiffness q2_width_onset q2_width_rise q3_periodic q4_large q5_long; do
+	QFILE[$c]=$(campaign "$c.campaign")
+	QNAME[$c]=$(cname "${QFILE[$c]}")
+done
+qwant() { case " $QUESTIONS " in *" $1 "*) return 0 ;; esac; return 1; }
+campaigns_of_question() {
+	case $1 in
+	1) echo q1_stiffness ;; 2) echo q2_width_onset q2_width_rise ;; 3) echo q3_periodic ;;
+	4) echo q4_large ;; 5) echo q5_long ;;
+	esac
+}
+
+questions_run() {
+	local k c t
+	for k in $QUESTIONS; do
+		for c in $(campaigns_of_question "$k"); do
+			t=$(date +%s)
+			log "question $k: study run ${QFILE[$c]}"
+			nice -n "$NICE" "$STUDY" run "${QFILE[$c]}" --runs "$RUNS" --jobs "$JOBS" --no-progress >>"$W/study.log" 2>&1 ||
+				log "question $k: study run ${QFILE[$c]} exited $? (see $W/study.log)"
+			QWALL[$c]=$(( $(date +%s) - t ))
+		done
+	done
+}
+
+questions_tools() {
+	qwant 2 && tool waiting "${QNAME[q2_width_rise]}"
+	qwant 3 && { tool onset "${QNAME[q3_periodic]}" --by sides; tool figures "${QNAME[q3_periodic]}"; }
+	qwant 4 && tool waiting "${QNAME[q4_large]}"
+	qwant 5 && { tool waiting "${QNAME[q5_long]}"; tool whale "${QNAME[q5_long]}"; }
+	return 0
+}
+
+# onset_rows CAMPAIGN -> per [onset] group: grp estimate lo hi replicates runs found below above state
+onset_rows() {
+	q "SELECT grp, $(num estimate), $(num ci_lo), $(num ci_hi), replicates, runs, found, below, above, state
+	   FROM onset_group WHERE campaign = '$1' ORDER BY point"
+}
+# key=value out of an onset group's label ("stiffness=3000000 gamma_n=100 dt=0.0002")
+grp_get() { tr ' ' '\n' <<<"$1" | awk -F= -v k="$2" '$1 == k { print $2 }'; }
+# Gamma = A (2 pi f)^2 / g of a frequency (A, g of the paper's scene)
+gam() { awk -v f="$1" -v a="$2" -v g="$3" 'BEGIN { if (f + 0 == f) printf "%.3g", a * (6.283185307 * f) ^ 2 / g; else print "-" }'; }
+# the mean of column COL of a tool's per-run CSV over the rows whose columns match
+# "k=v k=v", with a Student-t 95 % interval: "mean lo hi n"
+csv_mean() {
+	local f=$1 col=$2 where=$3
+	[ -f "$f" ] || { echo "- - - 0"; return; }
+	awk -F, -v col="$col" -v where="$where" '
+		NR == 1 { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); c[h] = i }
+			  nw = split(where, w, " "); next }
+		{ ok = 1
+		  for (j = 1; j <= nw; j++) { split(w[j], kv, "="); v = $c[kv[1]]; gsub(/"/, "", v)
+			if (!(kv[1] in c) || (v != kv[2] && v + 0 != kv[2] + 0)) ok = 0 }
+		  x = $c[col]; if (ok && x != "" && x != "nan") { n++; s += x; ss += x * x } }
+		END { if (n < 2) { printf "%s - - %d\n", n ? s : "-", n; exit }
+		      split("12.706 4.303 3.182 2.776 2.571 2.447 2.365 2.306 2.262 2.228 2.201 2.179 2.160 2.145 " \
+			    "2.131 2.120 2.110 2.101 2.093 2.086 2.080 2.074 2.069 2.064 2.060 2.056 2.052 2.048 2.045 2.042", tq, " ")
+		      m = s / n; sd = sqrt((ss - n * m * m) / (n - 1)); t = n - 1 <= 30 ? tq[n - 1] : 1.96
+		      printf "%.4g %.4g %.4g %d\n", m, m - t * sd / sqrt(n), m + t * sd / sqrt(n), n }' "$f"
+}
+# a gnuplot figure (PNG and PDF) from a script body: GPFIG OUTBASE <<'EOF' ... EOF
+gpfig() {
+	local base=$1 body
+	body=$(cat)
+	command -v gnuplot >/dev/null || return 0
+	{ echo "set terminal pngcairo size 900,560 font 'sans,11'; set output '$base.png'"; echo "$body"
+	  echo "set terminal pdfcairo size 6in,3.7in font 'sans,9'; set output '$base.pdf'; replot"; } |
+		gnuplot >/dev/null 2>&1 || log "gnuplot failed for $base"
+}
+
+q_stiffness() {
+	local n=${QNAME[q1_stiffness]} A G rows
+	echo "## Open question 1: is the convection below Γ = 1 an effect of the soft contacts?"
+	echo
+	echo "Experiments and hard-contact simulations of vibrated beds convect only above Γ ≈ 1; the"
+	echo "paper's model convects at Γ ≈ 0.6. Here the contact stiffness Y goes from the paper's"
+	echo "3·10⁶ to 3·10⁸ g/s² at a fixed restitution coefficient (γ_N ∝ √Y: at a fixed γ_N a stiffer"
+	echo "contact is also more elastic) and Δt ∝ 1/√Y (\`zip = stiffness gamma_n dt\`), and the onset"
+	echo "of convection without intruder is searched as in claim 1 (flux ≥ 2 particles/period"
+	echo "through 0.4–0.6 of the bed, bisection per replicate)."
+	echo
+	A=$(q "SELECT DISTINCT amplitude FROM runs WHERE campaign = '$n' LIMIT 1"); A=${A:-2}
+	G=$(q "SELECT DISTINCT gravity FROM runs WHERE campaign = '$n' LIMIT 1"); G=${G:-981}
+	rows=$(onset_rows "$n")
+	if [ -z "$rows" ]; then echo "*Not run yet.*"; echo; return; fi
+	echo "The bed's lowest elastic frequency f_el is an estimate, not a measurement: a column of"
+	echo "N = n_grains · 2r̄ / width rows of grains of mass m = 2πρr̄², each on two below it at ±30°"
+	echo "(vertical stiffness 1.5 Y), fixed at the floor and free at the top:"
+	echo "f_el = (1/π) √(1.5 Y/m) sin(π / (2(2N + 1)))."
+	echo
+	echo "| Y (g/s²) | γ_N (1/s) | Δt (s) | onset f (Hz), 95 % interval | onset Γ | replicates (runs) | below / above the range | f_el (Hz) | drive / f_el at onset |"
+	echo "|---|---|---|---|---|---|---|---|---|"
+	: >"$ANA/q1_stiffness.dat"
+	local grp est lo hi rep runs found below above state Y gn dt fel
+	while IFS=$'\t' read -r grp est lo hi rep runs found below above state; do
+		Y=$(grp_get "$grp" stiffness) gn=$(grp_get "$grp" gamma_n) dt=$(grp_get "$grp" dt)
+		fel=$(q "SELECT printf('%.3g', (1 / 3.141592653589793) * sqrt(1.5 * $Y / (mass_factor * density * 0.25 * (r_min + r_max) * (r_min + r_max)))
+			 * sin(3.141592653589793 / (2 * (2 * n_grains * (r_min + r_max) / width + 1))))
+			 FROM runs WHERE campaign = '$n' AND stiffness = $Y LIMIT 1")
+		printf '| %s | %s | %s | %s | %s [%s, %s] | %s (%s) | %s / %s | %s | %s |\n' "$Y" "$gn" "$dt" "$(iv "$est $lo $hi")" \
+			"$(gam "$est" "$A" "$G")" "$(gam "$lo" "$A" "$G")" "$(gam "$hi" "$A" "$G")" "$rep" "$runs" "$below" "$above" \
+			"${fel:--}" "$(awk -v f="$est" -v e="${fel:-x}" 'BEGIN { if (f + 0 == f && e + 0 == e && e > 0) printf "%.2f", f / e; else print "-" }')"
+		echo "$Y $est $lo $hi $(gam "$est" "$A" "$G") $(gam "$lo" "$A" "$G") $(gam "$hi" "$A" "$G") ${fel:-nan}" >>"$ANA/q1_stiffness.dat"
+	done <<<"$rows"
+	echo
+	echo "Runs: $(counts "$n")."
+	echo
+	gpfig "$ANA/q1_stiffness" <<EOF
+set logscale x; set xlabel 'contact stiffness Y (g/s^2)'; set ylabel 'onset {/Symbol G} = A(2{/Symbol p}f)^2/g'
+set key top left; set grid; set yrange [0:*]; set xrange [1e6:1e9]
+plot '$ANA/q1_stiffness.dat' u 1:5:6:7 w yerrorlines lw 2 pt 7 t 'onset of convection (95 % interval)', \
+     1 w l dt 2 lw 2 t '{/Symbol G} = 1'
+EOF
+	# the answer, by rule: the onset moves to Gamma >= 1 when the stiffest interval's lower
+	# bound reaches 1; it is a soft-contact effect in part when the onsets' intervals of the
+	# softest and stiffest beds separate; else stiffness does not move it
+	local first last
+	first=$(head -1 "$ANA/q1_stiffness.dat") last=$(tail -1 "$ANA/q1_stiffness.dat")
+	set -- $first; local g0=${5:-} g0hi=${7:-}
+	set -- $last; local g1=${5:-} g1lo=${6:-} y1=${1:-}
+	local ans
+	ans=$(awk -v a="${g0hi:-x}" -v b="${g1lo:-x}" 'BEGIN { if (!(a + 0 == a && b + 0 == b)) print "none";
+		else if (b >= 1) print "hard"; else if (b > a) print "part"; else print "no" }')
+	case $ans in
+	hard) echo "**Answer: yes.** At Y = $y1 the onset lies at Γ ≥ 1 (Γ = $g1, interval from $g1lo): the convection below Γ = 1 is an effect of the soft contacts." ;;
+	part) echo "**Answer: in part.** The onset rises with the stiffness (Γ = $g0 at the paper's Y, $g1 at Y = $y1; the intervals separate) but stays below Γ = 1." ;;
+	no) echo "**Answer: no, not in this range.** The onset at Y = $y1 (Γ = $g1) is not above the paper's (Γ = $g0) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between 3·10⁶ and $y1 g/s² at a fixed restitution." ;;
+	*) echo "**Answer: none yet** (the searches have not found the onsets)." ;;
+	esac
+	echo
+	echo "$(fig "$ANA/q1_stiffness.png" q1_stiffness.png)"
+	echo
+}
+
+q_width() {
+	local n=${QNAME[q2_width_onset]} r=${QNAME[q2_width_rise]} rows
+	echo "## Open question 2: the box width"
+	echo
+	echo "The paper does not give its box width; ours is 60 cm, a bed about as high as wide. Widths from"
+	echo "40 to 160 cm at a fixed bed height (\`zip = width n_grains\`, 950 grains per 60 cm): the onset of"
+	echo "convection without intruder (searched as in claim 1), and the rise of 𝓡 = 4 placed one row"
+	echo "above the floor in the middle of the box at 3.2 Hz within 180 s."
+	echo
+	rows=$(onset_rows "$n")
+	echo "| width (cm) | grains | onset f (Hz), 95 % interval | replicates (runs) | below / above | runs with 𝓡 = 4 | risen | fraction risen | median wait |"
+	echo "|---|---|---|---|---|---|---|---|---|"
+	local grp est lo hi rep runs found below above state wd ng w
+	while IFS=$'\t' read -r grp est lo hi rep runs found below above state; do
+		[ -n "$grp" ] || continue
+		wd=$(grp_get "$grp" width) ng=$(grp_get "$grp" n_grains)
+		w="width = $wd"
+		printf '| %s | %s | %s | %s (%s) | %s / %s | %s | %s | %s | %s s |\n' "$wd" "$ng" "$(iv "$est $lo $hi")" "$rep" "$runs" \
+			"$below" "$above" "$(val "$r" waiting runs "$w" | cut -f1)" "$(val "$r" waiting risen "$w" | cut -f1)" \
+			"$(iv "$(val "$r" waiting fraction_risen "$w")")" "$(iv "$(val "$r" waiting median "$w")")"
+	done <<<"$rows"
+	[ -n "$rows" ] || echo "| *not run yet* | | | | | | | | |"
+	echo
+	local lr
+	lr=$(q "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$r' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
+	echo "Log-rank test of equal waiting times across the widths: p = ${lr:-not computed}."
+	echo "Runs: onset $(counts "$n"); rise $(counts "$r")."
+	echo
+	echo "$(fig "$ANA/$r/waiting_km.png" q2_width_km.png)"
+	echo
+}
+
+q_periodic() {
+	local n=${QNAME[q3_periodic]} csv
+	csv=$ANA/$n/onset_runs.csv
+	echo "## Open question 3: periodic side boundaries"
+	echo
+	echo "Without side walls (\`sides = periodic\`: the bottom row closes on itself and grains cross"
+	echo "x = 0 / x = W), does the bed still convect? No intruder; Φ through 0.4–0.6 of the bed"
+	echo "(bin/onset's per-run mean after the first 20 % of the periods), mean over replicates with a"
+	echo "95 % t interval."
+	echo
+	if [ ! -f "$csv" ]; then echo "*Not run yet.*"; echo; return; fi
+	echo "| frequency | Φ with walls | Φ periodic | runs |"
+	echo "|---|---|---|---|"
+	local f a b any=0 ok=0
+	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
+		a=$(csv_mean "$csv" phi "sides=walls frequency=$f") b=$(csv_mean "$csv" phi "sides=periodic frequency=$f")
+		set -- $a; local wm=$1 wl=$2 wh=$3 wn=$4
+		set -- $b; local pm=$1 pl=$2 ph=$3 pn=$4
+		printf '| %s Hz | %s [%s, %s] | %s [%s, %s] | %s + %s |\n' "$f" "$wm" "$wl" "$wh" "$pm" "$pl" "$ph" "$wn" "$pn"
+		# convection: the interval of the mean flux lies above claim 1's threshold, 2/period
+		awk -v l="$wl" 'BEGIN { exit !(l + 0 == l && l >= 2) }' && any=1
+		awk -v l="$pl" 'BEGIN { exit !(l + 0 == l && l >= 2) }' && ok=1
+	done
+	echo
+	echo "Runs: $(counts "$n")."
+	echo
+	if [ $ok = 1 ]; then echo "**Answer: yes.** Without side walls the flux's interval lies above 2 particles/period at some frequency: convection survives."
+	elif [ $any = 1 ]; then echo "**Answer: no.** With walls the bed convects (interval above 2 particles/period), without them at no frequency here: the walls drive the rolls."
+	else echo "**Answer: none.** Neither bed convects beyond the threshold at these frequencies."; fi
+	echo
+	echo "$(fig "$ANA/$n/onset.png" q3_periodic_flux.png) $(fig "$ANA/$n/fig3.png" q3_periodic_fig3.png)"
+	echo
+}
+
+q_large() {
+	local n=${QNAME[q4_large]} r w lr
+	echo "## Open question 4: large intruders"
+	echo
+	echo "𝓡 from 4 to 12 at 3.2 Hz, one row above the floor, within 180 s (the literature predicts a"
+	echo "critical size ratio above which the intruder always rises)."
+	echo
+	echo "| 𝓡 | runs | risen | fraction risen | median wait (one diameter) | median wait (half way) |"
+	echo "|---|---|---|---|---|---|"
+	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
+		w="radius_ratio = $r"
+		printf '| %s | %s | %s | %s | %s s | %s s |\n' "$r" "$(val "$n" waiting runs "$w" | cut -f1)" \
+			"$(val "$n" waiting risen "$w" | cut -f1)" "$(iv "$(val "$n" waiting fraction_risen "$w")")" \
+			"$(iv "$(val "$n" waiting median "$w")")" "$(iv "$(val "$n" waiting way_median "$w")")"
+	done
+	echo
+	lr=$(q "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
+	echo "Log-rank test of equal waiting times across 𝓡: p = ${lr:-not computed}. Runs: $(counts "$n")."
+	echo
+	echo "$(fig "$ANA/$n/waiting_km.png" q4_large_km.png)"
+	echo
+}
+
+q_long() {
+	local n=${QNAME[q5_long]} r w
+	echo "## Open question 5: long times, the whale oscillation"
+	echo
+	echo "600 s at 3.2 Hz for 𝓡 = 2 … 8: after its rise the intruder dives into the bed and comes back"
+	echo "(bin/whale: a dive is a drop below the run's top level by more than a threshold, see"
+	echo "analysis/README.md; period = mean time between dives; depth = top level − lowest point of a dive)."
+	echo
+	echo "| 𝓡 | runs | risen | runs with ≥ 2 dives | period (s) | dive depth (cm) | dives per minute |"
+	echo "|---|---|---|---|---|---|---|"
+	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
+		w="radius_ratio = $r"
+		printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$r" "$(val "$n" whale runs "$w" | cut -f1)" \
+			"$(val "$n" whale risen "$w" | cut -f1)" "$(val "$n" whale runs_oscillating "$w" | cut -f1)" \
+			"$(iv "$(val "$n" whale period "$w")")" "$(iv "$(val "$n" whale depth "$w")")" \
+			"$(iv "$(val "$n" whale dives_per_min "$w")")"
+	done
+	echo
+	local tr
+	tr=$(q "SELECT printf('%.3g', value) || ' (p = ' || printf('%.3g', lo) || ', n = ' || n || ')' FROM analysis
+		WHERE campaign = '$n' AND tool = 'whale' AND key = 'trend_spearman' LIMIT 1")
+	echo "Trend of the period with 𝓡 (Spearman's rank correlation over runs): ${tr:-not computed}. Runs: $(counts "$n")."
+	echo
+	echo "$(fig "$ANA/$n/whale.png" q5_whale.png)"
+	echo
+}
+
+questions_report() {
+	qwant 1 && q_stiffness
+	qwant 2 && q_width
+	qwant 3 && q_periodic
+	qwant 4 && q_large
+	qwant 5 && q_long
+	return 0
+}
