@@ -237,23 +237,30 @@ q_long() {
 	echo "## Open question 5: long times, the whale oscillation"
 	echo
 	echo "600 s at 3.2 Hz for 𝓡 = 2 … 8: after its rise the intruder dives into the bed and comes back"
-	echo "(bin/whale: a dive is a drop below the run's top level by more than a threshold, see"
-	echo "analysis/README.md; period = mean time between dives; depth = top level − lowest point of a dive)."
+	echo "(bin/whale, definitions in analysis/README.md: the height averaged over each drive period, from"
+	echo "20 s after the rise; a dive starts below the top level (90th percentile) minus one intruder"
+	echo "radius and ends back above half that; period = mean time between dive starts, depth = top"
+	echo "level − lowest point of a dive; means over runs with bootstrap 95 % intervals)."
 	echo
-	echo "| 𝓡 | runs | risen | runs with ≥ 2 dives | period (s) | dive depth (cm) | dives per minute |"
-	echo "|---|---|---|---|---|---|---|"
+	echo "| 𝓡 | runs | risen | with a period (≥ 2 dives) | period (s) | spectral period (s) | dive depth (cm) | dives per minute |"
+	echo "|---|---|---|---|---|---|---|---|"
 	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
 		w="radius_ratio = $r"
-		printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$r" "$(val "$n" whale runs "$w" | cut -f1)" \
-			"$(val "$n" whale risen "$w" | cut -f1)" "$(val "$n" whale runs_oscillating "$w" | cut -f1)" \
-			"$(iv "$(val "$n" whale period "$w")")" "$(iv "$(val "$n" whale depth "$w")")" \
-			"$(iv "$(val "$n" whale dives_per_min "$w")")"
+		printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$r" "$(val "$n" whale runs "$w" | cut -f1)" \
+			"$(val "$n" whale risen "$w" | cut -f1)" "$(val "$n" whale with_period "$w" | cut -f1)" \
+			"$(iv "$(val "$n" whale period "$w")")" "$(iv "$(val "$n" whale spec_period "$w")")" \
+			"$(iv "$(val "$n" whale depth "$w")")" "$(iv "$(val "$n" whale rate "$w")")"
 	done
 	echo
-	local tr
-	tr=$(q "SELECT printf('%.3g', value) || ' (p = ' || printf('%.3g', lo) || ', n = ' || n || ')' FROM analysis
-		WHERE campaign = '$n' AND tool = 'whale' AND key = 'trend_spearman' LIMIT 1")
-	echo "Trend of the period with 𝓡 (Spearman's rank correlation over runs): ${tr:-not computed}. Runs: $(counts "$n")."
+	local tp td
+	tp=$(q "SELECT printf('%.2f', value) || ' (p = ' || (SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n'
+		AND tool = 'whale' AND key = 'trend_period_p' LIMIT 1) || ', ' || n || ' runs)' FROM analysis
+		WHERE campaign = '$n' AND tool = 'whale' AND key = 'trend_period_rho' LIMIT 1")
+	td=$(q "SELECT printf('%.2f', value) || ' (p = ' || (SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n'
+		AND tool = 'whale' AND key = 'trend_depth_p' LIMIT 1) || ', ' || n || ' runs)' FROM analysis
+		WHERE campaign = '$n' AND tool = 'whale' AND key = 'trend_depth_rho' LIMIT 1")
+	echo "Trend with 𝓡, Spearman's rank correlation over runs (permutation p): period ${tp:-not computed}; depth ${td:-not computed}."
+	echo "Runs: $(counts "$n")."
 	echo
 	echo "$(fig "$ANA/$n/whale.png" q5_whale.png)"
 	echo
