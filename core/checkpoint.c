@@ -13,7 +13,10 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '8'};
+/* 09: the scene hash covers the key sides (periodic side boundaries), so an 08
+ * checkpoint would be refused as "other parameters"; the version says why instead and
+ * restart = auto starts over. The seam pairs are rebuilt from xref like the list. */
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '9'};
 
 typedef struct hw {
 	FILE *f;

@@ -14,6 +14,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "periodic.h"
+
 static inline __attribute__((always_inline)) void contact(
 	const double Y, const double gn, const double gs, const double mu, const int clip,
 	const double dx, const double dy, const double d, const double inv, const double ri,
@@ -148,17 +150,69 @@ int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb
 	return law->clip ? kernel_clip(law, st, nl, ks, inv_dt) : kernel_plain(law, st, nl, ks, inv_dt);
 }
 
+int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
+		double *fsum)
+{
+	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
+		     mo = law->max_overlap, W = nl->period;
+	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
+	const int ps = io->ps, fs = io->fs;
+	int bad = 0;
+	for (int k = 0; k < nl->nseam; k++) {
+		const int i = nl->si[k], j = nl->sj[k];
+		const double dx = (io->x[i * ps] + W) - io->x[j * ps], dy = io->y[i * ps] - io->y[j * ps],
+			     rs = r[i] + r[j], d2 = dx * dx + dy * dy;
+		if (!(d2 < rs * rs))
+			continue;
+		const double d = sqrt(d2), ri = r[i], rj = r[j];
+		double fx, fy, f_s, xi;
+		contact(Y, gn, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
+			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi);
+		bad |= xi > mo * (ri < rj ? ri : rj);
+		if (fsum) {
+			const double fa = sqrt(fx * fx + fy * fy);
+			fsum[i] += fa;
+			fsum[j] += fa;
+		}
+		io->fx[i * fs] += fx;
+		io->fy[i * fs] += fy;
+		io->t[i * fs] -= ri * f_s;
+		io->fx[j * fs] -= fx;
+		io->fy[j * fs] -= fy;
+		io->t[j * fs] -= rj * f_s;
+	}
+	return bad;
+}
+
+/* Pair p of the flat list (p < nflat) or seam pair p - nflat: its disks and the
+ * x distance of i's centre (or image) from j's; 0 for the flat list's padding. */
+static inline int pair_at(const sb_state *st, const sb_nlist *nl, int p, int *i, int *j, double *dx)
+{
+	const double *x = st->q[C_X][0];
+	if (p < nl->nflat) {
+		*i = nl->pi[p] >> nl->pshift;
+		*j = nl->pj[p] >> nl->pshift;
+		*dx = x[*i] - x[*j];
+		return *i != *j;
+	}
+	*i = nl->si[p - nl->nflat];
+	*j = nl->sj[p - nl->nflat];
+	*dx = (x[*i] + nl->period) - x[*j];
+	return 1;
+}
+
 void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
 			   double *max_overlap, long *contacts)
 {
-	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
+	const double *y = st->q[C_Y][0], *r = st->r;
 	double el = 0, worst = 0;
 	long n = 0;
-	for (int p = 0; p < nl->nflat; p++) {
-		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
-		if (i == j) /* the list's padding */
+	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
+		int i, j;
+		double dx;
+		if (!pair_at(st, nl, p, &i, &j, &dx)) /* the list's padding */
 			continue;
-		const double xi = r[i] + r[j] - hypot(x[i] - x[j], y[i] - y[j]);
+		const double xi = r[i] + r[j] - hypot(dx, y[i] - y[j]);
 		if (xi <= 0)
 			continue;
 		el += 0.5 * law->Y * xi * xi;
@@ -175,10 +229,12 @@ long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, 
 {
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
 	long n = 0;
-	for (int p = 0; p < nl->nflat; p++) {
-		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
-		const double dx = x[i] - x[j], dy = y[i] - y[j], d = hypot(dx, dy);
-		if (i == j || !(d < r[i] + r[j]))
+	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
+		int i, j;
+		double dx;
+		const int real = pair_at(st, nl, p, &i, &j, &dx);
+		const double dy = y[i] - y[j], d = hypot(dx, dy);
+		if (!real || !(d < r[i] + r[j]))
 			continue;
 		double fx, fy, ti, tj;
 		forces_pair(law, dx, dy, r[i], r[j], (st->q[C_X][1][i] - st->q[C_X][1][j]) * inv_dt,
@@ -193,7 +249,7 @@ long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, 
 			c[3] = -fx * ny + fy * nx; /* F_S, along t = (-n_y, n_x) */
 			c[4] = nx;
 			c[5] = ny;
-			c[6] = 0.5 * (x[i] + x[j]);
+			c[6] = p < nl->nflat ? 0.5 * (x[i] + x[j]) : periodic_wrap(x[j] + 0.5 * dx, nl->period);
 			c[7] = 0.5 * (y[i] + y[j]);
 		}
 		n++;
@@ -204,10 +260,12 @@ long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, 
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)
 {
 	double worst = 0;
-	const double *x = st->q[C_X][0], *y = st->q[C_Y][0], *r = st->r;
-	for (int p = 0; p < nl->nflat; p++) {
-		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
-		const double f = (r[i] + r[j] - hypot(x[i] - x[j], y[i] - y[j])) / fmin(r[i], r[j]);
+	const double *y = st->q[C_Y][0], *r = st->r;
+	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
+		int i, j;
+		double dx;
+		pair_at(st, nl, p, &i, &j, &dx);
+		const double f = (r[i] + r[j] - hypot(dx, y[i] - y[j])) / fmin(r[i], r[j]);
 		if (f > worst) {
 			worst = f;
 			*wi = i;

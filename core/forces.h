@@ -27,13 +27,33 @@ typedef struct sb_kscratch {
 int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb_kscratch *ks, double inv_dt,
 		   double *fabs_sum);
 
+/* Where the seam loop finds disk i's x, y and scaled velocities (at [i * ps] from
+ * x, y, vx, vy) and adds its force and torque (at [i * fs] from fx, fy, t): the
+ * state's arrays (ps = fs = 1) or the AVX-512 kernel's records and accumulators. */
+typedef struct sb_seam_io {
+	const double *x, *y, *vx, *vy;
+	double *fx, *fy, *t;
+	int ps, fs;
+} sb_seam_io;
+
+/* The contact law over the seam pairs of periodic sides (nlist.h; none with walls):
+ * disk i's image at x_i + period against disk j, the kernels' arithmetic to the bit
+ * (scaled velocities, 1/dt in the damping), forces added after those of the flat
+ * list in the list's order. fabs_sum as forces_compute. Returns 1 if some overlap
+ * exceeded max_overlap, else 0. */
+int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
+		double *fabs_sum);
+
 /* The force on disk i from disk j for given relative geometry; the unit of every
  * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
 void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		 double dvx, double dvy, double wi, double wj, double meff,
 		 double *fx, double *fy, double *ti, double *tj);
 
-/* The elastic energy of the contacts, sum of Y xi^2 / 2, the largest overlap as a
+/* The scans below cover the seam pairs too (their normal and midpoint through the
+ * minimum image, the midpoint wrapped into the period).
+ *
+ * The elastic energy of the contacts, sum of Y xi^2 / 2, the largest overlap as a
  * fraction of the smaller radius, and the number of contacts (a scan of the list, for
  * the energy series). */
 void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,

@@ -390,13 +390,25 @@ static void intruder_summary(h5w *h, const sb_sim *s, const double *traj, long T
 	h5w_attr_double(h, h->file, "intruder_mean_y_box", sum / (double)T);
 }
 
-/* An H5MD particle group's box: two dimensions, no periodic boundary. */
-static hid_t plain_box(h5w *h, hid_t g)
+static void box_size(const sb_sim *s, double *w, double *hgt);
+
+/* An H5MD particle group's box: two dimensions, no periodic boundary with walls;
+ * with periodic sides x is periodic (y is not) and the box has its edges (H5MD
+ * needs them for a periodic dimension), which edges = 1 asks for with walls too. */
+static hid_t plain_box(h5w *h, const sb_sim *s, hid_t g, int edges)
 {
 	hid_t b = h5w_group(h, g, "box", 0);
-	static const char *const none2[2] = {"none", "none"};
+	static const char *const none2[2] = {"none", "none"}, *const px2[2] = {"periodic", "none"};
+	const int periodic = s->nl.period > 0;
 	h5w_attr_long(h, b, "dimension", 2);
-	h5w_attr_strs(h, b, "boundary", none2, 2);
+	h5w_attr_strs(h, b, "boundary", periodic ? px2 : none2, 2);
+	if (edges || periodic) {
+		double wd, ht;
+		box_size(s, &wd, &ht);
+		const double e2[2] = {wd, ht};
+		const hsize_t two = 2;
+		h5w_dset(h, b, "edges", 1, &two, e2, "cm");
+	}
 	return b;
 }
 
@@ -436,7 +448,7 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 		const int id = s->st.id[s->intruder], sp = KIND_INTRUDER;
 		h5w_dset_int(h, g, "id", 1, &id, "1");
 		h5w_dset_int(h, g, "species", 1, &sp, "1");
-		H5Gclose(plain_box(h, g));
+		H5Gclose(plain_box(h, s, g, 0));
 		h5w_attr_long(h, g, "index", s->intruder);
 	}
 	free(p);
@@ -448,7 +460,9 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 }
 
 /* The box of /particles/bed: the side walls' inner faces and the highest wall disk's
- * top (box frame), placed in the lab frame by a time-dependent offset. */
+ * top (box frame), placed in the lab frame by a time-dependent offset. With periodic
+ * sides: the period, and twice the settled surface (no side wall sets a height; it is
+ * what the side walls would have by default). */
 static void box_size(const sb_sim *s, double *w, double *hgt)
 {
 	const sb_state *st = &s->st;
@@ -456,7 +470,7 @@ static void box_size(const sb_sim *s, double *w, double *hgt)
 	for (int i = st->nm; i < st->n; i++)
 		top = fmax(top, st->q[C_Y][0][i] + st->r[i]);
 	*w = s->obs.x1 - s->obs.x0;
-	*hgt = top;
+	*hgt = s->nl.period > 0 ? 2 * s->surface0 : top;
 }
 
 /* The snapshot elements of /particles/bed, streamed from the journal one frame at a
@@ -521,7 +535,7 @@ static void snap_close(snapw *w)
 /* /particles/bed_xyz: position and velocity of /particles/bed as [K][n][3] virtual
  * datasets whose z is the fill value 0, and the same step and time (hard links).
  * MDAnalysis' H5MD reader, for one, refuses a box of dimension 2. */
-static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t ftype)
+static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t ftype, int periodic)
 {
 	static const char *const names[2] = {"position", "velocity"};
 	static const char *const units[2] = {"cm", "cm s-1"};
@@ -558,9 +572,11 @@ static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t 
 		H5Gclose(g);
 	}
 	hid_t b = h5w_group(h, xyz, "box", 0);
-	static const char *const none3[3] = {"none", "none", "none"};
+	/* no edges: MDAnalysis reads box/edges as a time series (edges/value) and would
+	 * take a fixed one for a broken file; /particles/bed/box has them */
+	static const char *const none3[3] = {"none", "none", "none"}, *const px3[3] = {"periodic", "none", "none"};
 	h5w_attr_long(h, b, "dimension", 3);
-	h5w_attr_strs(h, b, "boundary", none3, 3);
+	h5w_attr_strs(h, b, "boundary", periodic ? px3 : none3, 3);
 	H5Gclose(b);
 	h5w_attr_str(h, xyz, "description",
 		     "/particles/bed as a flat 3-D system (z = 0): virtual datasets, no storage of their own");
@@ -591,16 +607,17 @@ static hid_t write_bed(h5w *h, const sb_sim *s, hid_t parts, hid_t *box)
 	hid_t g = h5w_group(h, parts, "bed", 0);
 	disk_constants(h, &s->st, g, 0, s->st.nm);
 	h5w_attr_long(h, g, "n_mobile", s->st.nm);
-	*box = plain_box(h, g);
-	double wd, ht;
-	box_size(s, &wd, &ht);
-	const double edges[2] = {wd, ht};
-	const hsize_t two = 2;
-	h5w_dset(h, *box, "edges", 1, &two, edges, "cm");
+	*box = plain_box(h, s, g, 1);
 	h5w_attr_str(h, *box, "description",
-		     "edges: the side walls' inner faces apart and the highest wall disk's top above the bottom; "
-		     "offset: the lower left corner in the lab frame (the bottom moves with the drive), "
-		     "offset_velocity: its velocity (the walls')");
+		     s->nl.period > 0
+			     ? "periodic in x (sides = periodic): edges: the period and twice the settled surface height; "
+			       "positions are as the engine holds them, wrapped into [0, period) at neighbour-list "
+			       "builds only, so a disk may stand up to a skin outside; "
+			       "offset: the lower left corner in the lab frame (the bottom moves with the drive), "
+			       "offset_velocity: its velocity (the bottom wall's)"
+			     : "edges: the side walls' inner faces apart and the highest wall disk's top above the bottom; "
+			       "offset: the lower left corner in the lab frame (the bottom moves with the drive), "
+			       "offset_velocity: its velocity (the walls')");
 	return g;
 }
 
@@ -624,7 +641,7 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 		h5w_dset(h, g, "position", 2, dims, p, "cm");
 	}
 	free(p);
-	H5Gclose(plain_box(h, g));
+	H5Gclose(plain_box(h, s, g, 0));
 	h5w_attr_str(h, g, "description",
 		     "position: the wall disks with the box at rest (lab frame at phase 0, where every snapshot is "
 		     "taken); at time t add /particles/bed/box/offset minus its value at rest");
@@ -953,7 +970,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	if (xyz >= 0) {
 		if (!rc)
 			write_xyz(&h, xyz, bed, (hsize_t)s->n_snap, (hsize_t)s->st.nm,
-				  s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE);
+				  s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE, s->nl.period > 0);
 		H5Gclose(xyz);
 	}
 	H5Gclose(box);

@@ -481,6 +481,19 @@ double kernel_y(const sb_kernel *k, const sb_state *st, int i)
 	return k->stale ? k->rec[8 * (size_t)i + 1] : st->q[C_Y][0][i];
 }
 
+/* The flat list's kernel (one instantiation per case) */
+static int kernel_flat(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
+		       int keep, double *fabs_sum, int packed)
+{
+	if (fabs_sum)
+		return kernel_track(k, law, st, nl, inv_dt, fabs_sum);
+	if (k->prefetch)
+		return law->clip ? kernel_clip_pf(k, law, st, nl, inv_dt, packed, keep)
+				 : kernel_plain_pf(k, law, st, nl, inv_dt, packed, keep);
+	return law->clip ? kernel_clip(k, law, st, nl, inv_dt, packed, keep)
+			 : kernel_plain(k, law, st, nl, inv_dt, packed, keep);
+}
+
 int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		  int keep, double *fabs_sum, sb_err *e)
 {
@@ -491,13 +504,21 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	k->packed = 0;
 	if (!packed)
 		kernel_sync(k, st);
-	if (fabs_sum)
-		return kernel_track(k, law, st, nl, inv_dt, fabs_sum);
-	if (k->prefetch)
-		return law->clip ? kernel_clip_pf(k, law, st, nl, inv_dt, packed, keep)
-				 : kernel_plain_pf(k, law, st, nl, inv_dt, packed, keep);
-	return law->clip ? kernel_clip(k, law, st, nl, inv_dt, packed, keep)
-			 : kernel_plain(k, law, st, nl, inv_dt, packed, keep);
+	int bad = kernel_flat(k, law, st, nl, inv_dt, keep, fabs_sum, packed);
+	if (nl->nseam) { /* periodic sides only: the records hold this state either way */
+		const double *rec = k->rec;
+		const sb_seam_io io = keep ? (sb_seam_io){rec, rec + 1, rec + 2, rec + 3, k->facc, k->facc + 1,
+							  k->facc + 2, 8, 4}
+					   : (sb_seam_io){rec, rec + 1, rec + 2, rec + 3, st->f[C_X], st->f[C_Y],
+							  st->f[C_TH], 8, 1};
+		bad |= forces_seam(law, st, nl, &io, inv_dt, fabs_sum);
+	}
+	return bad;
+}
+
+void kernel_state_changed(sb_kernel *k)
+{
+	k->packed = 0;
 }
 
 void kernel_correct_predict(sb_kernel *k, const sb_integ *in, sb_state *st, double gy, const sb_nlist *nl,
@@ -564,7 +585,18 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	(void)keep; /* the portable corrector reads st->f */
 	if (scratch(k, st, nl, e))
 		return -1;
-	return forces_compute(law, st, nl, &k->ks, inv_dt, fabs_sum);
+	int bad = forces_compute(law, st, nl, &k->ks, inv_dt, fabs_sum);
+	if (nl->nseam) { /* periodic sides only */
+		const sb_seam_io io = {st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1],
+				       st->f[C_X], st->f[C_Y], st->f[C_TH], 1, 1};
+		bad |= forces_seam(law, st, nl, &io, inv_dt, fabs_sum);
+	}
+	return bad;
+}
+
+void kernel_state_changed(sb_kernel *k)
+{
+	(void)k; /* the portable kernel reads st itself */
 }
 
 void kernel_correct_predict(sb_kernel *k, const sb_integ *in, sb_state *st, double gy, const sb_nlist *nl,

@@ -2,7 +2,8 @@
  * knows the AVX-512 kernel's per-disk records and the scaling of the pair list's
  * indices. Its interface is what a step needs: forces (into the state, or kept for
  * the fused corrector), the fused corrector, the sync of the state, the height of a
- * disk wherever it lives. In a build without AVX-512 the same calls run the portable
+ * disk wherever it lives. The seam pairs of periodic sides (nlist.h) go through the
+ * scalar law (forces_seam) after the flat list, in both builds alike. In a build without AVX-512 the same calls run the portable
  * kernel (forces.c) and correctors (integrate.c); both builds give the same numbers to
  * the bit (tests/integration/regression.sh).
  *
@@ -57,6 +58,11 @@ void kernel_correct_predict(sb_kernel *k, const sb_integ *in, sb_state *st, doub
 /* Bring st's x, y, vx, vy up to date (they may live in the records after a fused
  * corrector): before anything else reads them. */
 void kernel_sync(sb_kernel *k, sb_state *st);
+
+/* The state's positions were changed outside the kernel (wrapped into the period at
+ * a list build, periodic.h), after a kernel_sync: the next force evaluation packs its
+ * records from st instead of trusting the fused corrector's. */
+void kernel_state_changed(sb_kernel *k);
 
 /* y of disk i, wherever it lives now (no sync needed). */
 double kernel_y(const sb_kernel *k, const sb_state *st, int i);

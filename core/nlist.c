@@ -147,8 +147,15 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err
 	return 0;
 }
 
+void nlist_set_period(sb_nlist *nl, double W)
+{
+	nl->period = W > 0 ? W : 0;
+}
+
 void nlist_free(sb_nlist *nl)
 {
+	free(nl->si);
+	free(nl->sj);
 	free(nl->cell_start);
 	free(nl->cell_pos);
 	free(nl->cell_idx);
@@ -177,6 +184,82 @@ static inline int cell_coord(double v, double v0, double inv, int n)
 	if (c > n - 1)
 		return n - 1;
 	return (int)c;
+}
+
+static int seam_push(sb_nlist *nl, int i, int j, sb_err *e)
+{
+	if (nl->nseam == nl->scap) {
+		const int cap = nl->scap ? 2 * nl->scap : 256;
+		int *a = realloc(nl->si, sizeof(int) * (size_t)cap);
+		if (a)
+			nl->si = a;
+		int *b = a ? realloc(nl->sj, sizeof(int) * (size_t)cap) : NULL;
+		if (!b)
+			return sb_errf(e, SB_ENOMEM, "out of memory in the neighbour list");
+		nl->sj = b;
+		nl->scap = cap;
+	}
+	nl->si[nl->nseam] = i;
+	nl->sj[nl->nseam++] = j;
+	return 0;
+}
+
+/* The ordinary disks (in the cells) within reach of disk a's image at x_a + shift:
+ * as seam pairs (a, b) for shift = +W, (b, a) for shift = -W (b's image at x_b + W
+ * meets a). The image may lie beyond the grid: cell_coord clamps, which is safe. */
+static int seam_scan(sb_nlist *nl, const sb_state *st, int a, double shift, double reach, sb_err *e)
+{
+	const double *x = nl->xref, *y = nl->yref, *r = st->r;
+	const double px = x[a] + shift, py = y[a], skin = nl->skin;
+	/* most disks are far from the seam: their image misses the grid */
+	if (px - reach >= nl->x0 + nl->ncx * nl->cell || px + reach < nl->x0)
+		return 0;
+	const int cx0 = cell_coord(px - reach, nl->x0, nl->inv_cell, nl->ncx),
+		  cx1 = cell_coord(px + reach, nl->x0, nl->inv_cell, nl->ncx),
+		  cy0 = cell_coord(py - reach, nl->y0, nl->inv_cell, nl->ncy),
+		  cy1 = cell_coord(py + reach, nl->y0, nl->inv_cell, nl->ncy);
+	const int awall = st->kind[a] == KIND_WALL;
+	for (int yy = cy0; yy <= cy1; yy++)
+		for (int xx = cx0; xx <= cx1; xx++) {
+			const int cc = yy * nl->ncx + xx;
+			for (int k = nl->cell_start[cc]; k < nl->cell_start[cc + 1]; k++) {
+				const int b = nl->cell_idx[k];
+				if (b == a || (awall && st->kind[b] == KIND_WALL))
+					continue;
+				const double ddx = px - x[b], ddy = py - y[b], rc = r[a] + r[b] + skin;
+				if (ddx * ddx + ddy * ddy < rc * rc &&
+				    (shift > 0 ? seam_push(nl, a, b, e) : seam_push(nl, b, a, e)))
+					return e->code;
+			}
+		}
+	return 0;
+}
+
+/* The seam pairs (nlist.h), from the grid of the build: every ordinary disk's image
+ * at x + W against the cells; every large disk's images at x + W and x - W against
+ * the cells and at x + W against the other large disks. Each ordered pair (i, j) with
+ * i's image at x_i + W near j is found once. */
+static int seam_build(sb_nlist *nl, const sb_state *st, sb_err *e)
+{
+	const double W = nl->period, skin = nl->skin, *x = nl->xref, *y = nl->yref, *r = st->r;
+	for (int a = 0; a < st->n; a++)
+		if (!nl->large[a] && seam_scan(nl, st, a, W, r[a] + nl->r_small + skin, e))
+			return e->code;
+	for (int k = 0; k < nl->nlarge; k++) {
+		const int L = nl->large_list[k];
+		const double reach = r[L] + nl->r_small + skin;
+		if (seam_scan(nl, st, L, W, reach, e) || seam_scan(nl, st, L, -W, reach, e))
+			return e->code;
+		for (int m = 0; m < nl->nlarge; m++) {
+			const int M = nl->large_list[m];
+			if (M == L || (st->kind[L] == KIND_WALL && st->kind[M] == KIND_WALL))
+				continue;
+			const double ddx = x[L] + W - x[M], ddy = y[L] - y[M], rc = r[L] + r[M] + skin;
+			if (ddx * ddx + ddy * ddy < rc * rc && seam_push(nl, L, M, e))
+				return e->code;
+		}
+	}
+	return 0;
 }
 
 int nlist_build(sb_nlist *nl, const sb_state *st, sb_err *e)
@@ -335,7 +418,8 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 	for (int p = nf; p < ((nf + 7) & ~7); p++)
 		nl->pi[p] = nl->pj[p] = 0;
 	nl->nflat = nf;
-	return 0;
+	nl->nseam = 0;
+	return nl->period > 0 ? seam_build(nl, st, e) : 0;
 }
 
 long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap)
@@ -347,6 +431,26 @@ long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap)
 			if (st->kind[i] == KIND_WALL && st->kind[j] == KIND_WALL)
 				continue;
 			double dx = x[i] - x[j], dy = y[i] - y[j], rc = st->r[i] + st->r[j] + skin;
+			if (dx * dx + dy * dy < rc * rc) {
+				if (pi && np < cap) {
+					pi[np] = i;
+					pj[np] = j;
+				}
+				np++;
+			}
+		}
+	return np;
+}
+
+long nlist_brute_seam(const sb_state *st, double skin, double W, int *pi, int *pj, long cap)
+{
+	long np = 0;
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
+	for (int i = 0; i < st->n; i++)
+		for (int j = 0; j < st->n; j++) {
+			if (i == j || (st->kind[i] == KIND_WALL && st->kind[j] == KIND_WALL))
+				continue;
+			double dx = x[i] + W - x[j], dy = y[i] - y[j], rc = st->r[i] + st->r[j] + skin;
 			if (dx * dx + dy * dy < rc * rc) {
 				if (pi && np < cap) {
 					pi[np] = i;

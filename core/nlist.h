@@ -25,6 +25,14 @@ typedef struct sb_nlist {
 	int pshift;                 /* the force kernel's choice (kernel_pair_shift) */
 	int npairs, nbig;
 	int nflat, fcap;            /* npairs + nbig; padded with pairs (0, 0) to a multiple of 8 */
+	/* Periodic sides (period > 0, else 0: walls, and nseam stays 0): the pairs that
+	 * meet across x = 0 / period, kept apart from the flat list so that the kernel
+	 * over it is the walls case's. Seam pair k is (si[k], sj[k]) with disk si's image
+	 * at x + period within reach of disk sj (plain indices, no pshift; each pair of
+	 * images once). */
+	double period;
+	int *si, *sj;
+	int nseam, scap;
 	/* which disks are large; fixed at setup */
 	unsigned char *large;
 	int *large_list, nlarge;
@@ -38,6 +46,9 @@ typedef struct sb_nlist {
 /* Classify disks (large = radius above 1.5x the mean) and allocate; the list will
  * hold i << pshift for disk i (the force kernel's addressing, kernel.h). */
 int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err *e);
+/* Periodic sides of period W (> 0) from the next build on: the seam pairs are listed
+ * too. The positions must lie in [0, W) at a build (periodic_wrap_state). */
+void nlist_set_period(sb_nlist *nl, double W);
 void nlist_free(sb_nlist *nl);
 
 /* Build from the given reference positions (normally the current ones, copied into
@@ -48,5 +59,8 @@ int nlist_build(sb_nlist *nl, const sb_state *st, sb_err *e);
 /* Brute-force O(N^2) list of pairs within r_i + r_j + skin, for tests: returns the
  * number of pairs, fills (pi, pj) with pi < pj when they are non-NULL. */
 long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap);
+/* The same for the pairs across the seam of period W: (i, j) with i's image at
+ * x_i + W within r_i + r_j + skin of j, every ordered pair with i != j. */
+long nlist_brute_seam(const sb_state *st, double skin, double W, int *pi, int *pj, long cap);
 
 #endif

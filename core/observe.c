@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "crossing.h"
+#include "periodic.h"
 
 _Static_assert(OBS_RING_COLS == JR_RING_COLS, "a ring sample's row is a JR_RING record");
 
@@ -27,6 +28,7 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 	o->x0 = x0;
 	o->x1 = x1;
 	o->surface = surface;
+	o->period = sc->sides == SIDES_PERIODIC ? x1 - x0 : 0;
 	o->nm = st->nm;
 	o->wait_time = NAN;
 	o->rise_height = intruder >= 0 ? 2 * st->r[intruder] : NAN;
@@ -41,6 +43,8 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 		o->hline = zalloc((size_t)o->nlines, &bad);
 		o->jtop = zalloc((size_t)o->nlines, &bad);
 		o->jbot = zalloc((size_t)o->nlines, &bad);
+		if (o->period > 0)
+			o->xmid = zalloc((size_t)st->nm, &bad);
 		if (!bad)
 			crossing_lines(surface, o->nlines, o->hline);
 		/* the stop rule's band: the lines within it (the nearest one when none is),
@@ -120,6 +124,7 @@ void obs_free(sb_obs *o)
 	free(o->hline);
 	free(o->jtop);
 	free(o->jbot);
+	free(o->xmid);
 	free(o->sx);
 	free(o->sy);
 	free(o->cnt);
@@ -130,21 +135,33 @@ void obs_free(sb_obs *o)
 int obs_flux_len(const sb_obs *o) { return 2 + 2 * o->nlines; }
 int obs_field_len(const sb_obs *o) { return 2 + 3 * o->nx * o->ny; }
 
-/* Crossings between the previous and this sample (core/crossing.h). */
+/* Crossings between the previous and this sample (core/crossing.h). With periodic
+ * sides a disk's x midpoint is taken through the minimum image and wrapped into the
+ * period (a disk that crossed the seam is near it, not at the box centre); given as
+ * both samples' x, crossing_count's midpoint is that number exactly. */
 static void flux_count(sb_obs *o, const double *x, const double *y)
 {
-	crossing_count(o->nm, o->xp, o->yp, x, y, o->x0, o->x1, o->surface, o->nlines, o->hline, o->jtop, o->jbot);
+	const double *xa = o->xp, *xb = x;
+	if (o->period > 0) {
+		for (int i = 0; i < o->nm; i++)
+			o->xmid[i] = periodic_mid(o->xp[i], x[i], o->period);
+		xa = xb = o->xmid;
+	}
+	crossing_count(o->nm, xa, o->yp, xb, y, o->x0, o->x1, o->surface, o->nlines, o->hline, o->jtop, o->jbot);
 }
 
+/* With periodic sides the displacement is the minimum image and the midpoint is
+ * wrapped into the period (periodic.h); with walls both are the plain ones. */
 static void field_add(sb_obs *o, const double *x, const double *y)
 {
 	for (int i = 0; i < o->nm; i++) {
-		double mx = 0.5 * (o->xp[i] + x[i]) - o->x0, my = 0.5 * (o->yp[i] + y[i]);
+		const double ux = periodic_image(x[i] - o->xp[i], o->period);
+		double mx = periodic_mid(o->xp[i], x[i], o->period) - o->x0, my = 0.5 * (o->yp[i] + y[i]);
 		int cx = (int)floor(mx / o->cell), cy = (int)floor(my / o->cell);
 		if (cx < 0 || cx >= o->nx || cy < 0 || cy >= o->ny)
 			continue;
 		size_t c = (size_t)cy * o->nx + cx;
-		o->sx[c] += x[i] - o->xp[i];
+		o->sx[c] += ux;
 		o->sy[c] += y[i] - o->yp[i];
 		o->cnt[c] += 1;
 	}
@@ -250,7 +267,9 @@ void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, doub
 	for (int i = 0; i < st->nm; i++) {
 		if (st->kind[i] != KIND_GRAIN)
 			continue;
-		double dx = st->q[C_X][0][i] - cx, dy = st->q[C_Y][0][i] - cy, d2 = dx * dx + dy * dy;
+		/* the minimum image with periodic sides: the ring reaches across the seam */
+		double dx = periodic_image(st->q[C_X][0][i] - cx, o->period), dy = st->q[C_Y][0][i] - cy,
+		       d2 = dx * dx + dy * dy;
 		if (d2 < r2in || d2 > r2out)
 			continue;
 		double ux = st->q[C_X][1][i] * inv_dt, uy = st->q[C_Y][1][i] * inv_dt;

@@ -33,6 +33,8 @@ enum { OBS_RR_TIME, OBS_RR_MEAN, OBS_RR_NET, OBS_RR_T, OBS_RR_N, OBS_RR_CX, OBS_
 typedef struct sb_obs {
 	int flux_on, field_on, ring_on;
 	double x0, x1, surface;      /* inner box faces and free surface at t = 0 */
+	double period;               /* periodic sides: x0 = 0, x1 = period; 0: walls */
+	double *xmid;                /* periodic flux: each disk's x midpoint between samples */
 	double *xp, *yp;             /* previous stroboscopic sample (box frame) */
 	int have_prev, nm;
 	/* flux */

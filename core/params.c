@@ -59,6 +59,10 @@ static const sb_param TABLE[] = {
 	 "centre distance of neighbouring wall disks (at most 2 wall_radius)"},
 	{"wall_height", REAL(wall_height), "cm", "0", 0, 1e7, NULL, PF_PREP,
 	 "height of the side walls above the bottom (0 = twice the loose bed height)"},
+	{"sides", ENUM(sides), "", "walls", 0, 0, "walls|periodic", PF_PREP | PF_DYN,
+	 "side boundaries: walls = columns of wall disks at x = 0 and width; periodic = no side walls, "
+	 "x wraps with period width (disks interact across x = 0 / width by the minimum image; the bottom "
+	 "row tiles [0, width))"},
 	{"density", REAL(density), "g/cm^3", "1", 0, 1e6, NULL, PF_PREP | PF_MINX,
 	 "material density rho"},
 	{"mass_factor", REAL(mass_factor), "cm", "6.283185307179586", 0, 1e6, NULL, PF_PREP | PF_MINX,

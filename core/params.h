@@ -14,6 +14,8 @@
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
+/* the side boundaries (docs/model.md, "Periodic side boundaries") */
+enum sb_sides { SIDES_WALLS, SIDES_PERIODIC };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 /* where the ring observable is centred (docs/model.md, "Ring force") */
 enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
@@ -27,6 +29,7 @@ struct sb_scene {
 	long depth;
 	double width;
 	double wall_radius, wall_spacing, wall_height;
+	int sides;           /* enum sb_sides */
 	double density, mass_factor;
 	long seed;
 	char particles[SB_STR_MAX];

@@ -13,6 +13,7 @@
 
 #include "fsutil.h"
 #include "guard.h"
+#include "periodic.h"
 #include "prepare.h"
 
 /* What a particle file may hold. A line is at most PF_LINE_MAX characters (the
@@ -431,8 +432,10 @@ static int check_span(const dlist *l, const char *path, sb_err *e)
  * is left to the run, which stops at its first step naming the disk that left the box
  * (exit code 5) as it would at any later step; one farther away than the box is large
  * (a grain at y = 1e6 cm over a 50 cm box) is no state of this box but a slip of units
- * or a typo, and is refused with its line. Without walls there is no box (main warns). */
-static int check_far(const dlist *l, const char *path, sb_err *e)
+ * or a typo, and is refused with its line. Without walls there is no box (main warns).
+ * With periodic sides the walls are the bottom row only: the box has no height of its
+ * own, and only x and the floor are measured. */
+static int check_far(const sb_scene *sc, const dlist *l, const char *path, sb_err *e)
 {
 	double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
 	for (int i = 0; i < l->n; i++) {
@@ -451,7 +454,8 @@ static int check_far(const dlist *l, const char *path, sb_err *e)
 		const disk *d = &l->d[i];
 		if (d->kind == KIND_WALL)
 			continue;
-		const double off = fmax(fmax(x0 - d->x, d->x - x1), fmax(y0 - d->y, d->y - y1));
+		const double above = sc->sides == SIDES_PERIODIC ? -INFINITY : d->y - y1;
+		const double off = fmax(fmax(x0 - d->x, d->x - x1), fmax(y0 - d->y, above));
 		if (off > size)
 			return sb_errf(e, SB_EUSAGE,
 				       "%s:%ld: %s at (%g, %g) cm lies %g cm outside the box of the walls ([%g, %g] x [%g, %g] cm), "
@@ -641,7 +645,7 @@ static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 	if (!err)
 		err = check_span(l, path, e);
 	if (!err)
-		err = check_far(l, path, e);
+		err = check_far(sc, l, path, e);
 	if (!err)
 		err = check_overlaps(sc, l, path, e);
 	return err;
@@ -713,7 +717,7 @@ int pfile_write_text(const sb_state *st, const char *path, double inv_dt, double
 }
 
 int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, double yshift,
-		       double vshift, sb_err *e)
+		       double vshift, double period, sb_err *e)
 {
 	double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
 	for (int i = 0; i < st->n; i++) {
@@ -722,6 +726,12 @@ int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, doub
 		xhi = fmax(xhi, st->q[C_X][0][i] + st->r[i]);
 		ylo = fmin(ylo, y - st->r[i]);
 		yhi = fmax(yhi, y + st->r[i]);
+	}
+	/* periodic sides: the box in x is the period, and the atoms are wrapped into it
+	 * (a whole period is no change of the state; read_data wants them inside) */
+	if (period > 0) {
+		xlo = 0;
+		xhi = period;
 	}
 	/* room above for grains thrown up and below for the box's swing */
 	double h = yhi - ylo;
@@ -732,7 +742,8 @@ int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, doub
 		return e->code;
 	FILE *f = out.f;
 	fprintf(f, "# shakebox state (cgs, lab frame); types 1 grain, 2 intruder, 3 wall; "
-		   "density column = 3 m / (4 pi R^3) so that LAMMPS gets m\n\n");
+		   "density column = 3 m / (4 pi R^3) so that LAMMPS gets m%s\n\n",
+		period > 0 ? "; periodic in x: boundary p f p" : "");
 	fprintf(f, "%d atoms\n3 atom types\n\n", st->n);
 	fprintf(f, "%.17g %.17g xlo xhi\n%.17g %.17g ylo yhi\n-0.5 0.5 zlo zhi\n\n", xlo, xhi, ylo, yhi);
 	fprintf(f, "Atoms # sphere\n\n");
@@ -741,7 +752,7 @@ int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, doub
 		/* LAMMPS read_data computes 4/3 pi r^3 density even in 2D */
 		double rho = 3.0 * st->m[i] / (4.0 * 3.14159265358979323846 * r * r * r);
 		fprintf(f, "%d %d %.17g %.17g %.17g %.17g 0\n", i + 1, st->kind[i] + 1, 2 * r, rho,
-			st->q[C_X][0][i], st->q[C_Y][0][i] + yshift);
+			periodic_wrap(st->q[C_X][0][i], period), st->q[C_Y][0][i] + yshift);
 	}
 	fprintf(f, "\nVelocities\n\n");
 	for (int i = 0; i < st->n; i++) {

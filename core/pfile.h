@@ -21,7 +21,9 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e);
  * via a temporary file and rename. */
 int pfile_write_text(const sb_state *st, const char *path, double inv_dt, double yshift,
 		     double vshift, sb_err *e);
+/* period > 0 (periodic sides): the box's x is [0, period), the atoms are wrapped into
+ * it, and the header says the boundary is p f p (the input script's `boundary`). */
 int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, double yshift,
-		       double vshift, sb_err *e);
+		       double vshift, double period, sb_err *e);
 
 #endif

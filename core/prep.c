@@ -136,7 +136,7 @@ int sim_prepare(sb_sim *s, sb_err *e)
 	if (sc->write_particles[0] &&
 	    pfile_write_text(&s->st, sc->write_particles, 1.0 / sc->dt, 0, vbox0, e))
 		return e->code;
-	if (sc->write_lammps[0] && pfile_write_lammps(&s->st, sc->write_lammps, 1.0 / sc->dt, 0, vbox0, e))
+	if (sc->write_lammps[0] && pfile_write_lammps(&s->st, sc->write_lammps, 1.0 / sc->dt, 0, vbox0, s->nl.period, e))
 		return e->code;
 
 	/* Canonical state at t = 0: exactly what a particle file of this state holds, so

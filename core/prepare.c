@@ -84,10 +84,14 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 			       ncol, W, filled + 1);
 	/* The walls are counted before the placement too (it may take seconds), with the
 	 * side walls no lower than the rows n_grains fill at least. */
-	const double nb = n_span(-rw, W + rw, sc->wall_spacing);
+	/* Periodic sides: the bottom row closes on itself, a whole number of disks over
+	 * the period no farther apart than wall_spacing, and there are no side columns
+	 * (ns = 1 below: no disks above the bottom row). */
+	const int periodic = sc->sides == SIDES_PERIODIC;
+	const double nb = periodic ? ceil(W / sc->wall_spacing - 1e-9) : n_span(-rw, W + rw, sc->wall_spacing);
 	const double rows = ncol > 0 ? ceil((double)sc->n_grains / ncol) : 0;
 	const double H0 = sc->wall_height > 0 ? sc->wall_height : 2 * fmax(0, rows - 0.5) * pitch;
-	if (check_walls(sc, nb, H0, H0 > 0 ? n_span(-rw, H0, sc->wall_spacing) : 1, e))
+	if (check_walls(sc, nb, H0, H0 > 0 && !periodic ? n_span(-rw, H0, sc->wall_spacing) : 1, e))
 		return e->code;
 	const double xoff = 0.5 * (W - ncol * pitch) + 0.5 * pitch;
 	const double jit = 0.5 * pitch - sc->r_max; /* free play of a grain in its site */
@@ -129,16 +133,20 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 		return err;
 
 	/* Walls: a bottom row with centres at y = -rw (its top touches y = 0) and two side
-	 * columns at x = -rw and W + rw, so the inner box is [0, W] x [0, height]. */
+	 * columns at x = -rw and W + rw, so the inner box is [0, W] x [0, height]. With
+	 * periodic sides the bottom row's centres sit at (k + 1/2) W / nb, k < nb, evenly
+	 * round the period (the seam between the last and the first is a spacing like
+	 * any other), and the columns are not built. */
 	const double H = sc->wall_height > 0 ? sc->wall_height : 2 * top;
-	const double ns = n_span(-rw, H, sc->wall_spacing);
+	const double ns = periodic ? 1 : n_span(-rw, H, sc->wall_spacing);
 	if (check_walls(sc, nb, H, ns, e))
 		return e->code;
 	const int inb = (int)nb, ins = (int)ns;
 	for (int k = 0; k < inb && !err; k++) {
 		if (k % 65536 == 65535 && guard_stopped())
 			return sb_errf(e, SB_EINTR, "interrupted while placing the walls");
-		err = prepare_push(sc, st, -rw + (W + 2 * rw) * k / (inb - 1), -rw, rw, KIND_WALL, e);
+		const double x = periodic ? W * (k + 0.5) / inb : -rw + (W + 2 * rw) * k / (inb - 1);
+		err = prepare_push(sc, st, x, -rw, rw, KIND_WALL, e);
 	}
 	for (int k = 1; k < ins && !err; k++) {
 		if (k % 65536 == 0 && guard_stopped())

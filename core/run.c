@@ -104,7 +104,7 @@ static int record_energy(sb_sim *s, double t, sb_err *e)
 static int record_contacts(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
-	const long cap = s->nl.nflat;
+	const long cap = (long)s->nl.nflat + s->nl.nseam; /* every pair of the list may touch */
 	double *rec = malloc(sizeof(double) * (size_t)(2 + JR_CONTACT_COLS * (cap > 0 ? cap : 1)));
 	if (!rec)
 		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");

@@ -65,6 +65,17 @@ static void set_bounds(sb_sim *s)
 	s->ylo = -INFINITY;
 	if (st->n == st->nm)
 		return;
+	if (s->nl.period > 0) {
+		/* periodic sides: x is wrapped at each list build, and between builds a disk
+		 * moves less than a skin; half a period beyond is a blow-up, not a crossing */
+		const double W = s->nl.period;
+		s->xlo = -0.5 * W;
+		s->xhi = 1.5 * W;
+		s->ylo = INFINITY;
+		for (int i = st->nm; i < st->n; i++)
+			s->ylo = fmin(s->ylo, st->q[C_Y][0][i]);
+		return;
+	}
 	s->xlo = INFINITY;
 	s->xhi = -INFINITY;
 	s->ylo = INFINITY;
@@ -89,17 +100,38 @@ int sim_derive(sb_sim *s, sb_err *e)
 		}
 	s->rmean = ng ? rs / ng : 0.5 * (s->sc.r_min + s->sc.r_max);
 	s->intruder = state_find_intruder(&s->st);
-	set_bounds(s);
 	if (kernel_init(&s->kern, &s->st, e))
 		return e->code;
-	return nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e);
+	if (nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e))
+		return e->code;
+	if (s->sc.sides == SIDES_PERIODIC) {
+		/* no disk may reach its own image, nor a pair meet both ways round (the seam
+		 * list finds each pair of images once); params_validate checked the scene's
+		 * keys, this checks the disks, also those of a particle file */
+		const double W = s->sc.width;
+		int big = 0;
+		for (int i = 1; i < s->st.n; i++)
+			big = s->st.r[i] > s->st.r[big] ? i : big;
+		if (!(W > 2 * s->st.r[big] + s->sc.skin))
+			return sb_errf(e, SB_EUSAGE,
+				       "%s%ssides = periodic (%s): width %g cm (%s) is the period, and disk %d of radius %g cm "
+				       "would meet its own image: the period must exceed its diameter plus the skin (%g cm)",
+				       s->sc.particles[0] ? s->sc.particles : "", s->sc.particles[0] ? ": " : "",
+				       params_where(&s->sc, "sides"), W, params_where(&s->sc, "width"), s->st.id[big],
+				       s->st.r[big], s->sc.skin);
+		nlist_set_period(&s->nl, W);
+	}
+	set_bounds(s);
+	return 0;
 }
 
 /* The inner faces of the side walls: the hull of the wall disks less their radii
- * (x = 0 and width for a generated scene). */
+ * (x = 0 and width for a generated scene); with periodic sides 0 and the period. */
 int sim_obs_init(sb_sim *s, sb_err *e)
 {
 	const sb_state *st = &s->st;
+	if (s->nl.period > 0) /* periodic sides: the period is the box */
+		return obs_init(&s->obs, &s->sc, st, s->intruder, s->surface0, 0, s->nl.period, e);
 	double x0 = INFINITY, x1 = -INFINITY;
 	for (int i = st->nm; i < st->n; i++) {
 		x0 = fmin(x0, st->q[C_X][0][i] + st->r[i]);

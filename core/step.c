@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "clock.h"
+#include "periodic.h"
 
 typedef struct scan {
 	int rebuild, bad_num, out;
@@ -87,7 +88,7 @@ static void new_overlap_record(sb_sim *s, double f, int a, int b, double t)
 		s->obs.ov_t = t;
 		s->obs.ov_i = st->id[a];
 		s->obs.ov_j = st->id[b];
-		s->obs.ov_x = 0.5 * (st->q[C_X][0][a] + st->q[C_X][0][b]);
+		s->obs.ov_x = periodic_mid(st->q[C_X][0][a], st->q[C_X][0][b], s->nl.period);
 		s->obs.ov_y = 0.5 * (st->q[C_Y][0][a] + st->q[C_Y][0][b]);
 	}
 	step_arm_overlap(s);
@@ -131,9 +132,15 @@ static void watch_rise(sb_sim *s, double t, long step)
 	}
 }
 
+/* With periodic sides the mobile disks are wrapped back into [0, W) here, at a
+ * build only: the list's reference positions are the wrapped ones, so the
+ * displacement since the build never sees a jump of W (docs/model.md, "Periodic side
+ * boundaries"). With walls nothing moves. */
 static int neighbours(sb_sim *s, sb_err *e)
 {
 	kernel_sync(s->kern, &s->st);
+	if (s->nl.period > 0 && periodic_wrap_state(&s->st, s->nl.period))
+		kernel_state_changed(s->kern);
 	return nlist_build(&s->nl, &s->st, e);
 }
 
@@ -255,7 +262,7 @@ int sim_step(sb_sim *s, double gy, sb_err *e)
 /* Forces at the current state and the integrator's acceleration term from them. */
 int sim_start(sb_sim *s, double gy, sb_err *e)
 {
-	if (nlist_build(&s->nl, &s->st, e))
+	if (neighbours(s, e))
 		return e->code;
 	if (kernel_forces(s->kern, &s->law, &s->st, &s->nl, 1.0 / s->sc.dt, 0, NULL, e) < 0)
 		return e->code;

@@ -34,6 +34,19 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->wall_spacing > 2 * s->wall_radius)
 		return sb_errf(e, SB_EUSAGE, "%s: wall_spacing (%g) must be at most 2 wall_radius (%g, %s): grains would fall through",
 			       W("wall_spacing"), s->wall_spacing, 2 * s->wall_radius, W("wall_radius"));
+	/* Periodic sides: the period must hold more than a grain's reach, so that no disk
+	 * touches its own image and the images of a pair never meet both ways round
+	 * (docs/model.md, "Periodic side boundaries"). */
+	if (s->sides == SIDES_PERIODIC && s->width < 4 * s->r_max)
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: sides = periodic (%s) needs a period of at least two grains: width %g < 4 r_max = %g (r_max %s)",
+			       W("width"), W("sides"), s->width, 4 * s->r_max, W("r_max"));
+	const double r1 = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
+	if (s->sides == SIDES_PERIODIC && !s->particles[0] && 2 * r1 > s->width - 2 * s->r_max)
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: sides = periodic (%s): radius_ratio %g gives an intruder of diameter %g cm, wider than the "
+			       "period width %g (%s) less a grain diameter: it would meet its own image",
+			       W("radius_ratio"), W("sides"), s->radius_ratio, 2 * r1, s->width, W("width"));
 	if (!s->particles[0] && s->width < 4 * s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: width (%g) must hold at least two grains (4 r_max = %g, r_max %s)",
 			       W("width"), s->width, 4 * s->r_max, W("r_max"));
