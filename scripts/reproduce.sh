@@ -43,7 +43,7 @@ fi
 DB=$RUNS/study.db
 ANA=$W/analysis
 STUDY=$root/bin/study
-for b in study shake onset hysteresis waiting figures rolls ring whale; do
+for b in study shake onset hysteresis waiting figures rolls ring whale convect; do
 	[ -x "bin/$b" ] || { echo "reproduce: bin/$b missing (make)" >&2; exit 1; }
 done
 mkdir -p "$W/campaigns" "$ANA" "$FIG" "$RUNS" || exit 1
@@ -84,14 +84,19 @@ campaigns_of() {
 done_runs() { q "SELECT COUNT(*) FROM run WHERE state IN ('done', 'failed')"; }
 n0=$(done_runs); n0=${n0:-0}
 declare -A WALL
+# run_campaign LABEL KEY FILE: study run (resumes), its wall time into WALL[KEY]
+run_campaign() {
+	local t
+	t=$(date +%s)
+	log "$1: study run $3"
+	nice -n "$NICE" "$STUDY" run "$3" --runs "$RUNS" --jobs "$JOBS" --no-progress >>"$W/study.log" 2>&1 ||
+		log "$1: study run $3 exited $? (see $W/study.log)"
+	WALL[$2]=$(( $(date +%s) - t ))
+}
 for k in $CLAIMS; do
 	[ "$REPORT_ONLY" = 1 ] && break
 	for c in $(campaigns_of "$k"); do
-		t=$(date +%s)
-		log "claim $k: study run ${FILE[$c]}"
-		nice -n "$NICE" "$STUDY" run "${FILE[$c]}" --runs "$RUNS" --jobs "$JOBS" --no-progress >>"$W/study.log" 2>&1 ||
-			log "claim $k: study run ${FILE[$c]} exited $? (see $W/study.log)"
-		WALL[$c]=$(( $(date +%s) - t ))
+		run_campaign "claim $k" "$c" "${FILE[$c]}"
 	done
 done
 # shellcheck source=scripts/reproduce_questions.sh
@@ -377,21 +382,16 @@ runs_phi() {
 	echo
 	echo "| campaign | runs | simulated s | engine loop s | wall s of this invocation |"
 	echo "|---|---|---|---|---|"
+	cost_row() { # CAMPAIGN-NAME KEY
+		printf '| %s | %s | %s | %s | %s |\n' "$1" "$(q "SELECT COUNT(*) FROM runs WHERE campaign = '$1'")" \
+			"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '$1'")" \
+			"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '$1'")" "${WALL[$2]:-0}"
+	}
 	for k in $CLAIMS; do
-		for c in $(campaigns_of "$k"); do
-			printf '| %s | %s | %s | %s | %s |\n' "${NAME[$c]}" \
-				"$(q "SELECT COUNT(*) FROM runs WHERE campaign = '${NAME[$c]}'")" \
-				"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '${NAME[$c]}'")" \
-				"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '${NAME[$c]}'")" "${WALL[$c]:-0}"
-		done
+		for c in $(campaigns_of "$k"); do cost_row "${NAME[$c]}" "$c"; done
 	done
 	for k in $QUESTIONS; do
-		for c in $(campaigns_of_question "$k"); do
-			printf '| %s | %s | %s | %s | %s |\n' "${QNAME[$c]}" \
-				"$(q "SELECT COUNT(*) FROM runs WHERE campaign = '${QNAME[$c]}'")" \
-				"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '${QNAME[$c]}'")" \
-				"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '${QNAME[$c]}'")" "${QWALL[$c]:-0}"
-		done
+		for c in $(campaigns_of_question "$k"); do cost_row "${QNAME[$c]}" "$c"; done
 	done
 } >"$OUT.tmp" && mv "$OUT.tmp" "$OUT"
 log "wrote $OUT ($((n1 - n0)) runs simulated, $T_ALL s)"

@@ -4,11 +4,11 @@
 #   questions_run      run the questions' campaigns (resumable, like the claims')
 #   questions_tools    run the analysis tools on them
 #   questions_report   print their sections of REPRODUCTION.md (markdown on stdout)
-# It uses reproduce.sh's helpers (q, val, iv, fig, counts, tool, campaign, cname, log) and
-# its variables (QUESTIONS, STUDY, RUNS, JOBS, NICE, W, ANA, FIG, REPORT_ONLY).
+# It uses reproduce.sh's helpers (q, val, iv, fig, counts, tool, campaign, cname, log,
+# run_campaign) and its variables (QUESTIONS, W, ANA).
 # Every number is computed here from the database or the tools' outputs.
 
-declare -A QFILE QNAME QWALL
+declare -A QFILE QNAME
 for c in q1_stiffness q2_width_onset q2_width_rise q3_periodic q4_large q5_long; do
 	QFILE[$c]=$(campaign "$c.campaign")
 	QNAME[$c]=$(cname "${QFILE[$c]}")
@@ -22,21 +22,15 @@ campaigns_of_question() {
 }
 
 questions_run() {
-	local k c t
+	local k c
 	for k in $QUESTIONS; do
-		for c in $(campaigns_of_question "$k"); do
-			t=$(date +%s)
-			log "question $k: study run ${QFILE[$c]}"
-			nice -n "$NICE" "$STUDY" run "${QFILE[$c]}" --runs "$RUNS" --jobs "$JOBS" --no-progress >>"$W/study.log" 2>&1 ||
-				log "question $k: study run ${QFILE[$c]} exited $? (see $W/study.log)"
-			QWALL[$c]=$(( $(date +%s) - t ))
-		done
+		for c in $(campaigns_of_question "$k"); do run_campaign "question $k" "$c" "${QFILE[$c]}"; done
 	done
 }
 
 questions_tools() {
 	qwant 2 && tool waiting "${QNAME[q2_width_rise]}"
-	qwant 3 && { tool onset "${QNAME[q3_periodic]}" --by sides; tool figures "${QNAME[q3_periodic]}"; }
+	qwant 3 && { tool onset "${QNAME[q3_periodic]}" --by sides; tool convect "${QNAME[q3_periodic]}"; }
 	qwant 4 && tool waiting "${QNAME[q4_large]}"
 	qwant 5 && { tool waiting "${QNAME[q5_long]}"; tool whale "${QNAME[q5_long]}"; }
 	return 0
@@ -181,31 +175,50 @@ q_periodic() {
 	echo "## Open question 3: periodic side boundaries"
 	echo
 	echo "Without side walls (\`sides = periodic\`: the bottom row closes on itself and grains cross"
-	echo "x = 0 / x = W), does the bed still convect? No intruder; Φ through 0.4–0.6 of the bed"
-	echo "(bin/onset's per-run mean after the first 20 % of the periods), mean over replicates with a"
-	echo "95 % t interval."
+	echo "x = 0 / x = W), does the bed still convect? No intruder. Two measures per run, means over"
+	echo "replicates with 95 % intervals:"
 	echo
-	if [ ! -f "$csv" ]; then echo "*Not run yet.*"; echo; return; fi
-	echo "| frequency | Φ with walls | Φ periodic | runs |"
-	echo "|---|---|---|---|"
-	local f a b any=0 ok=0
+	echo "- the roll strength S (bin/convect): the count-weighted rms over the cells of 0.3–0.7 of the"
+	echo "  bed of the vertical displacement per period, averaged over blocks of 10 periods — it does"
+	echo "  not depend on where the rolls sit; 2.5 Hz, below the onset with walls, gives its noise floor;"
+	echo "- the flux Φ through 0.4–0.6 of the bed (claim 1's, bin/onset): it counts upward crossings"
+	echo "  near the box centre against those near the sides, so without walls, where nothing pins"
+	echo "  the rolls, its sign depends on where they settle and its mean can vanish while the bed convects."
+	echo
+	if [ ! -f "$csv" ] && [ -z "$(val "$n" convect strength "sides = 'walls'")" ]; then echo "*Not run yet.*"; echo; return; fi
+	echo "| frequency | S with walls (cm/period) | S periodic | Φ with walls | Φ periodic | runs |"
+	echo "|---|---|---|---|---|---|"
+	local f a b wm wl wh wn pm pl ph pn sw sp
 	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
 		a=$(csv_mean "$csv" phi "sides=walls frequency=$f") b=$(csv_mean "$csv" phi "sides=periodic frequency=$f")
-		set -- $a; local wm=$1 wl=$2 wh=$3 wn=$4
-		set -- $b; local pm=$1 pl=$2 ph=$3 pn=$4
-		printf '| %s Hz | %s [%s, %s] | %s [%s, %s] | %s + %s |\n' "$f" "$wm" "$wl" "$wh" "$pm" "$pl" "$ph" "$wn" "$pn"
-		# convection: the interval of the mean flux lies above claim 1's threshold, 2/period
-		awk -v l="$wl" 'BEGIN { exit !(l + 0 == l && l >= 2) }' && any=1
-		awk -v l="$pl" 'BEGIN { exit !(l + 0 == l && l >= 2) }' && ok=1
+		set -- $a; wm=$1 wl=$2 wh=$3 wn=$4
+		set -- $b; pm=$1 pl=$2 ph=$3 pn=$4
+		sw=$(val "$n" convect strength "sides = 'walls' AND frequency = $f")
+		sp=$(val "$n" convect strength "sides = 'periodic' AND frequency = $f")
+		printf '| %s Hz | %s | %s | %s [%s, %s] | %s [%s, %s] | %s + %s |\n' "$f" "$(iv "$sw")" "$(iv "$sp")" \
+			"$wm" "$wl" "$wh" "$pm" "$pl" "$ph" "$wn" "$pn"
 	done
 	echo
 	echo "Runs: $(counts "$n")."
 	echo
-	if [ $ok = 1 ]; then echo "**Answer: yes.** Without side walls the flux's interval lies above 2 particles/period at some frequency: convection survives."
-	elif [ $any = 1 ]; then echo "**Answer: no.** With walls the bed convects (interval above 2 particles/period), without them at no frequency here: the walls drive the rolls."
-	else echo "**Answer: none.** Neither bed convects beyond the threshold at these frequencies."; fi
+	# the answer, by rule: a bed convects at a frequency when the interval of its S lies
+	# above the interval of its own S at the lowest frequency (below the onset)
+	local f0 conv_w="" conv_p="" lo0 hi0 lo hi s
+	f0=$(q "SELECT MIN(frequency) FROM runs WHERE campaign = '$n'")
+	for s in walls periodic; do
+		read -r _ lo0 hi0 _ <<<"$(val "$n" convect strength "sides = '$s' AND frequency = ${f0:-0}")"
+		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND frequency > ${f0:-0} ORDER BY frequency"); do
+			read -r _ lo hi _ <<<"$(val "$n" convect strength "sides = '$s' AND frequency = $f")"
+			if awk -v l="${lo:-x}" -v h0="${hi0:-x}" 'BEGIN { exit !(l + 0 == l && h0 + 0 == h0 && l > h0) }'; then
+				[ $s = walls ] && conv_w="$conv_w $f" || conv_p="$conv_p $f"
+			fi
+		done
+	done
+	if [ -n "$conv_p" ]; then echo "**Answer: yes.** Without side walls the roll strength rises above its ${f0} Hz floor at${conv_p} Hz (with walls at${conv_w:- no frequency}): convection survives without walls."
+	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the roll strength rises above its ${f0} Hz floor at${conv_w} Hz, without walls at none: the walls drive the rolls."
+	else echo "**Answer: none.** Neither bed's roll strength rises above its ${f0:-lowest} Hz floor beyond the intervals."; fi
 	echo
-	echo "$(fig "$ANA/$n/onset.png" q3_periodic_flux.png) $(fig "$ANA/$n/fig3.png" q3_periodic_fig3.png)"
+	echo "$(fig "$ANA/$n/convect.png" q3_periodic_strength.png) $(fig "$ANA/$n/onset.png" q3_periodic_flux.png)"
 	echo
 }
 

@@ -51,34 +51,7 @@ static void synth(double *t, double *y, size_t n, const double *s, size_t ns, do
 	}
 }
 
-static void attr_d(hid_t o, const char *name, double v)
-{
-	hid_t sp = H5Screate(H5S_SCALAR);
-	hid_t a = H5Acreate2(o, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
-	H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
-	H5Aclose(a);
-	H5Sclose(sp);
-}
-
-static void attr_s(hid_t o, const char *name, const char *v)
-{
-	hid_t sp = H5Screate(H5S_SCALAR), ty = H5Tcopy(H5T_C_S1);
-	H5Tset_size(ty, strlen(v) + 1);
-	hid_t a = H5Acreate2(o, name, ty, sp, H5P_DEFAULT, H5P_DEFAULT);
-	H5Awrite(a, ty, v);
-	H5Aclose(a);
-	H5Tclose(ty);
-	H5Sclose(sp);
-}
-
-static void dset(hid_t g, const char *name, int rank, const hsize_t *dims, const double *v)
-{
-	hid_t sp = H5Screate_simple(rank, dims, NULL);
-	hid_t d = H5Dcreate2(g, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-	H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
-	H5Dclose(d);
-	H5Sclose(sp);
-}
+#include "h5synth.h"
 
 /* A run file like the engine's: /parameters (amplitude, frequency, duration, ramp),
  * the root attributes of the rise and the intruder, and the lab-frame trajectory
