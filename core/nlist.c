@@ -422,15 +422,17 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 	return nl->period > 0 ? seam_build(nl, st, e) : 0;
 }
 
-long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap)
+/* The pairs within reach by the brute force of all pairs: i's position shifted by
+ * `shift` in x (0: the box; W: i's image across the seam, then i and j in either order). */
+static long brute(const sb_state *st, double skin, double shift, int *pi, int *pj, long cap)
 {
 	long np = 0;
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
 	for (int i = 0; i < st->n; i++)
-		for (int j = i + 1; j < st->n; j++) {
-			if (st->kind[i] == KIND_WALL && st->kind[j] == KIND_WALL)
+		for (int j = shift != 0 ? 0 : i + 1; j < st->n; j++) {
+			if (i == j || (st->kind[i] == KIND_WALL && st->kind[j] == KIND_WALL))
 				continue;
-			double dx = x[i] - x[j], dy = y[i] - y[j], rc = st->r[i] + st->r[j] + skin;
+			double dx = x[i] + shift - x[j], dy = y[i] - y[j], rc = st->r[i] + st->r[j] + skin;
 			if (dx * dx + dy * dy < rc * rc) {
 				if (pi && np < cap) {
 					pi[np] = i;
@@ -442,22 +444,12 @@ long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap)
 	return np;
 }
 
+long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap)
+{
+	return brute(st, skin, 0, pi, pj, cap);
+}
+
 long nlist_brute_seam(const sb_state *st, double skin, double W, int *pi, int *pj, long cap)
 {
-	long np = 0;
-	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
-	for (int i = 0; i < st->n; i++)
-		for (int j = 0; j < st->n; j++) {
-			if (i == j || (st->kind[i] == KIND_WALL && st->kind[j] == KIND_WALL))
-				continue;
-			double dx = x[i] + W - x[j], dy = y[i] - y[j], rc = st->r[i] + st->r[j] + skin;
-			if (dx * dx + dy * dy < rc * rc) {
-				if (pi && np < cap) {
-					pi[np] = i;
-					pj[np] = j;
-				}
-				np++;
-			}
-		}
-	return np;
+	return brute(st, skin, W, pi, pj, cap);
 }
