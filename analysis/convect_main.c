@@ -286,8 +286,8 @@ static void ci_text(char *b, size_t n, double mean, double lo, double hi, size_t
 		snprintf(b, n, "%.4f [%.4f, %.4f] (%zu)", mean, lo, hi, k);
 }
 
-/* Group j: its table row, summary and plot rows, stored rows. */
-static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum, FILE *pts)
+/* Group j: its table row, summary row, stored rows. */
+static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum)
 {
 	const cgroup *g = &s->g[j];
 	const char *L = t->labels[j];
@@ -305,8 +305,6 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum, FILE
 		g->tu.sd, g->tu.lo, g->tu.hi, g->bu.lo, g->bu.hi, s->cfg.band_lo, s->cfg.band_hi, s->cfg.skip,
 		t->o->level);
 	tool_summary_acct(t, sum, j);
-	fprintf(pts, "%d,%d,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", j, g->curve, g->f, g->t.n, g->t.mean,
-		g->t.lo, g->t.hi, g->tu.mean, g->tu.lo, g->tu.hi);
 	const long n = (long)g->t.n;
 	tool_store(t, j, L, "runs", (double)n, NAN, NAN, n);
 	tool_store(t, j, L, "strength", g->t.mean, g->t.lo, g->t.hi, n);
@@ -318,6 +316,31 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum, FILE
 	tool_store(t, j, L, "band_lo", s->cfg.band_lo, NAN, NAN, n);
 	tool_store(t, j, L, "band_hi", s->cfg.band_hi, NAN, NAN, n);
 	tool_store_acct(t, L, j);
+}
+
+/* convect_points.csv: per curve its groups by frequency, so that a curve's rows are
+ * together (gnuplot joins the rows of a curve; a row it skips between them would break
+ * the line) */
+static void points(const an_tool *t, const convect_state *s, FILE *pts)
+{
+	for (int c = 0; c < s->ncurve; c++) {
+		double last = -INFINITY;
+		for (;;) { /* the next frequency of curve c, in increasing order */
+			int j = -1;
+			for (int h = 0; h < t->ng; h++)
+				if (s->g[h].curve == c && s->g[h].f > last && (j < 0 || s->g[h].f < s->g[j].f))
+					j = h;
+			if (j < 0)
+				break;
+			for (int h = 0; h < t->ng; h++) { /* groups of one curve at one f (--by without frequency) */
+				const cgroup *g = &s->g[h];
+				if (g->curve == c && g->f == s->g[j].f)
+					fprintf(pts, "%d,%d,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", h, g->curve, g->f,
+						g->t.n, g->t.mean, g->t.lo, g->t.hi, g->tu.mean, g->tu.lo, g->tu.hi);
+			}
+			last = s->g[j].f;
+		}
+	}
 }
 
 /* convect_summary.csv, convect_points.csv, the table and the stored rows */
@@ -345,7 +368,8 @@ static int summary(an_tool *t, const convect_state *s)
 	       "S [bootstrap CI] (n)", "S_u cm [t CI] (n)", "failed", "unfinished");
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
-		group_out(t, s, j, sum, pts);
+		group_out(t, s, j, sum);
+	points(t, s, pts);
 	fclose(sum);
 	fclose(pts);
 	return t->e.code;
