@@ -1,8 +1,8 @@
 # analysis.mk - the analysis tools bin/onset, bin/hysteresis, bin/waiting, bin/figures, bin/rolls,
-# bin/ring, bin/whale
+# bin/ring, bin/whale, bin/convect
 # and their tests (included by the top-level Makefile). Shared modules go into
 # $(BUILD)/analysis/libanalysis.a; each tool is one *_main.c.
-AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale
+AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale convect
 AN_SRC    = $(filter-out %_main.c,$(wildcard analysis/*.c))
 # and study/layout.o: the runs directory's layout is bin/study's
 AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o) $(BUILD)/study/layout.o
