@@ -37,26 +37,7 @@ static void fill(double *ux, double *uy, double *n, double A, double B, double p
 		}
 }
 
-static void attr_d(hid_t o, const char *name, double v)
-{
-	hid_t sp = H5Screate(H5S_SCALAR);
-	hid_t a = H5Acreate2(o, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
-	H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
-	H5Aclose(a);
-	H5Sclose(sp);
-}
-
-static void dset(hid_t f, const char *name, int rank, const hsize_t *dims, const double *v)
-{
-	hid_t lc = H5Pcreate(H5P_LINK_CREATE);
-	H5Pset_create_intermediate_group(lc, 1);
-	hid_t sp = H5Screate_simple(rank, dims, NULL);
-	hid_t d = H5Dcreate2(f, name, H5T_IEEE_F64LE, sp, lc, H5P_DEFAULT, H5P_DEFAULT);
-	H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v);
-	H5Dclose(d);
-	H5Sclose(sp);
-	H5Pclose(lc);
-}
+#include "h5synth.h"
 
 int main(void)
 {
