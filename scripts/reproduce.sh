@@ -377,6 +377,20 @@ runs_phi() {
 		echo "$(fig "$ANA/$n/waiting_km.png" claim5_km.png)"
 		echo
 	fi
+	echo "## Validation against LAMMPS"
+	echo
+	if [ -f docs/validate_lammps.md ]; then
+		# the result as make validate-lammps wrote it (its own run: about 50 minutes)
+		echo "From \`make validate-lammps\` ($(sed -n 's/^Generated \([0-9-]* [0-9:]* UTC\).*/\1/p' docs/validate_lammps.md); the setup, statistics and per-bed table"
+		echo "are in [docs/validate_lammps.md](docs/validate_lammps.md)): Φ(D) at 3.0 Hz without intruder over"
+		echo "the same settled beds shaken by shakebox and by LAMMPS \`gran/hooke\`, counted by the engine's own flux code."
+		echo
+		awk '/^\*\*Result/ { on = 1 } on && /^!\[/ { exit } on' docs/validate_lammps.md
+		echo "![Φ(D), shakebox and LAMMPS](docs/validate_lammps.png)"
+	else
+		echo "*Not run: \`make validate-lammps\` writes docs/validate_lammps.md.*"
+	fi
+	echo
 	questions_report
 	echo "## What this run cost"
 	echo
