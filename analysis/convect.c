@@ -33,10 +33,30 @@ void convect_strength(const double *ux, const double *uy, const double *n, size_
 	out->Su = w > 0 ? sqrt(su / w) : NAN;
 }
 
+double convect_cov(const double *uya, const double *na, const double *uyb, const double *nb, size_t ny, size_t nx,
+		   double cell, double ylo, double yhi)
+{
+	double w = 0, s = 0;
+	for (size_t r = 0; r < ny; r++) {
+		const double yc = ((double)r + 0.5) * cell;
+		if (yc < ylo || yc > yhi)
+			continue;
+		for (size_t c = 0; c < nx; c++) {
+			const size_t q = r * nx + c;
+			if (!(na[q] > 0) || !(nb[q] > 0) || !isfinite(uya[q]) || !isfinite(uyb[q]))
+				continue;
+			const double wq = fmin(na[q], nb[q]);
+			w += wq;
+			s += wq * uya[q] * uyb[q];
+		}
+	}
+	return w > 0 ? s / w : NAN;
+}
+
 int convect_summary(const convect_field *f, const convect_cfg *c, size_t planned, convect_run *r)
 {
 	memset(r, 0, sizeof *r);
-	r->S = r->Su = NAN;
+	r->S = r->Su = r->C = NAN;
 	r->blocks = f->B;
 	const double ylo = c->band_lo * f->surface, yhi = c->band_hi * f->surface;
 	for (size_t q = 0; q < f->ny; q++) {
@@ -63,6 +83,17 @@ int convect_summary(const convect_field *f, const convect_cfg *c, size_t planned
 		su += k.Su;
 		r->used++;
 	}
+	double cs = 0;
+	for (size_t b = r->first; b + 1 < f->B; b++) {
+		const double v = convect_cov(f->uy + b * cells, f->n + b * cells, f->uy + (b + 1) * cells,
+					     f->n + (b + 1) * cells, f->ny, f->nx, f->cell, ylo, yhi);
+		if (isfinite(v)) {
+			cs += v;
+			r->pairs++;
+		}
+	}
+	if (r->pairs)
+		r->C = cs / (double)r->pairs;
 	if (!r->used)
 		return 1;
 	r->S = s / (double)r->used;

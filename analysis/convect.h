@@ -15,7 +15,14 @@
  *
  * Per run: the mean of S over the blocks after the first floor(skip * blocks) (of a
  * failed run, the blocks its duration was to hold: a failure does not shorten the
- * transient); blocks whose band holds no sample are left out and counted. */
+ * transient); blocks whose band holds no sample are left out and counted.
+ *
+ * Persistence, the measure without the noise floor: C = the mean over neighbouring
+ * blocks b, b+1 (both after the transient) of sum w uy_b uy_b+1 / sum w over the band's
+ * cells with samples in both, w = min(n_b, n_b+1). The sampling noise of two blocks is
+ * independent, so it averages out of C, while a roll that outlives a block contributes
+ * its mean square: C estimates the square of the part of the flow that persists from
+ * one block to the next (0 without rolls, A^2/2 for a steady roll uy = A sin). */
 #ifndef AN_CONVECT_H
 #define AN_CONVECT_H
 
@@ -62,7 +69,15 @@ typedef struct convect_run {
 	size_t empty;   /* blocks after it without */
 	size_t rows;    /* rows of the grid in the band */
 	double S, Su;   /* means over the used blocks; NaN when none */
+	double C;       /* persistence (cm^2 per period^2); NaN without a pair of blocks */
+	size_t pairs;   /* neighbouring block pairs C rests on */
 } convect_run;
+
+/* The covariance of uy between two blocks [ny * nx] over the rows whose centre lies in
+ * [ylo, yhi]: sum w uy_a uy_b / sum w, w = min(n_a, n_b), over the cells with samples
+ * in both; NaN when there are none. */
+double convect_cov(const double *uya, const double *na, const double *uyb, const double *nb, size_t ny, size_t nx,
+		   double cell, double ylo, double yhi);
 
 /* Summary of field f; planned = the blocks the whole run was to record (0: f->B), for a
  * run stopped by a failure. Returns 0, or 1 when no block is used (S = Su = NaN). */

@@ -56,7 +56,13 @@ static const char *HELP =
 	"field_periods.\n"
 	"Every fixed-frequency run (ramp = none) is considered; runs without a field (field =\n"
 	"no), failed, pending, running or with an unreadable file are counted per group and\n"
-	"listed with why (convect_accounting.csv); every number says how many runs it rests on.\n\n"
+	"listed with why (convect_accounting.csv); every number says how many runs it rests on.\n"
+	"S carries each cell's sampling noise (a floor that grows with the bed's agitation).\n"
+	"Persistent flow P = sqrt(C), C = per run the mean over neighbouring blocks b, b+1 of\n"
+	"sum w uy_b uy_b+1 / sum w over the band's cells with samples in both, w = min(n_b,\n"
+	"n_b+1): the noise of two blocks is independent and averages out, a roll that outlives a\n"
+	"block stays (C = A^2/2 for a steady uy = A sin); per group the mean of C with its\n"
+	"Student-t interval, P and its bounds their square roots (of max(0, .)).\n\n"
 	"  --db FILE     campaign database (default RUNS/study.db)\n"
 	"  --runs DIR    where outputs are, as RUNS/CAMPAIGN/RUN-ID.h5 (default: the\n"
 	"                database's directory, or runs)\n"
@@ -70,19 +76,20 @@ static const char *HELP =
 	"  --all-versions  also the runs of earlier versions of the campaign file\n"
 	"  --no-plot     no figure;  --no-store  nothing written to the database\n\n"
 	"Writes convect_runs.csv (per considered run: id, replicate, the grouping keys, use,\n"
-	"blocks recorded and used, S, S_u), convect_summary.csv (per group), convect_points.csv\n"
+	"blocks recorded and used, S, S_u, C, block pairs), convect_summary.csv (per group), convect_points.csv\n"
 	"(the figure's), convect_accounting.csv and convect.png/.pdf (S and S_u against the\n"
 	"frequency, one curve per value of the other keys, bars the Student-t interval).\n"
 	"Stores per group in the table `analysis` (tool 'convect'): runs (used), strength and\n"
 	"strength_u (Student-t lo, hi; n = runs), strength_boot and strength_u_boot (the\n"
-	"bootstrap interval), blocks (blocks used, summed over runs), band_lo, band_hi, and\n"
+	"bootstrap interval), persistence_c (C; n = runs with a pair of blocks), persistent\n"
+	"(P), blocks (blocks used, summed over runs), band_lo, band_hi, and\n"
 	"the accounting rows (onset --help).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE.\n"
 	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
 
 typedef struct cgroup {
 	double f;              /* the group's frequency (its key's value, else its runs' mean) */
-	rolls_mean t, tu;      /* S, S_u: mean with Student-t interval */
+	rolls_mean t, tu, tc;  /* S, S_u, C: mean with Student-t interval */
 	whale_ci b, bu;        /* ... with bootstrap interval */
 	long blocks;           /* blocks used over its runs */
 	long nofield;          /* runs without a field */
@@ -109,7 +116,7 @@ static void state_free(convect_state *s)
 static void classify(an_run *r, const convect_cfg *c, convect_run *cr, int *nofield)
 {
 	memset(cr, 0, sizeof *cr);
-	cr->S = cr->Su = NAN;
+	cr->S = cr->Su = cr->C = NAN;
 	*nofield = 0;
 	if (acct_classify(r))
 		return;
@@ -192,10 +199,12 @@ static int groups(an_tool *t, convect_state *s)
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	if (tool_tally(t, stdout, "its %d fixed-frequency runs", t->k))
 		return t->e.code;
-	double *v = malloc(sizeof *v * (size_t)(t->k ? t->k : 1)), *vu = malloc(sizeof *vu * (size_t)(t->k ? t->k : 1));
-	if (!v || !vu) {
+	const size_t nk = (size_t)(t->k ? t->k : 1);
+	double *v = malloc(sizeof *v * nk), *vu = malloc(sizeof *vu * nk), *vc = malloc(sizeof *vc * nk);
+	if (!v || !vu || !vc) {
 		free(v);
 		free(vu);
+		free(vc);
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	}
 	const an_opts *o = t->o;
@@ -214,12 +223,20 @@ static int groups(an_tool *t, convect_state *s)
 			if (!USED(r))
 				continue;
 			v[m] = s->cr[i].S;
+			vc[m] = s->cr[i].C;
 			vu[m++] = s->cr[i].Su;
 			g->blocks += (long)s->cr[i].used;
 		}
 		g->f = s->kf >= 0 ? strtod(t->gval[j * t->nk + s->kf], NULL) : nf ? fs / (double)nf : NAN;
 		rolls_mean_ci(v, m, o->level, &g->t);
 		rolls_mean_ci(vu, m, o->level, &g->tu);
+		{ /* C: the runs with a pair of blocks */
+			size_t mc = 0;
+			for (size_t q = 0; q < m; q++)
+				if (isfinite(vc[q]))
+					vc[mc++] = vc[q];
+			rolls_mean_ci(vc, mc, o->level, &g->tc);
+		}
 		if (whale_mean_ci(v, m, (size_t)o->boot, o->seed, o->level, &g->b) ||
 		    whale_mean_ci(vu, m, (size_t)o->boot, o->seed, o->level, &g->bu))
 			sb_errf(&t->e, SB_ENOMEM, "out of memory");
@@ -237,6 +254,7 @@ static int groups(an_tool *t, convect_state *s)
 	}
 	free(v);
 	free(vu);
+	free(vc);
 	return t->e.code;
 }
 
@@ -252,7 +270,8 @@ static int runs_csv(an_tool *t, const convect_state *s)
 		fputc(',', f);
 		csv_str(f, t->keys[k]);
 	}
-	fprintf(f, ",field,blocks,first_block,blocks_used,blocks_empty,band_rows,strength,strength_u\n");
+	fprintf(f, ",field,blocks,first_block,blocks_used,blocks_empty,band_rows,strength,strength_u,persistence_c,"
+		   "block_pairs\n");
 	for (int i = 0; i < t->k; i++) {
 		const an_run *r = &t->runs[i];
 		const convect_run *c = &s->cr[i];
@@ -266,10 +285,10 @@ static int runs_csv(an_tool *t, const convect_state *s)
 		}
 		fprintf(f, ",%s", s->nofield[i] ? "no" : "yes");
 		if (USED(r))
-			fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.17g,%.17g\n", c->blocks, c->first, c->used, c->empty, c->rows, c->S,
-				c->Su);
+			fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.17g,%.17g,%.17g,%zu\n", c->blocks, c->first, c->used, c->empty,
+				c->rows, c->S, c->Su, c->C, c->pairs);
 		else
-			fprintf(f, ",,,,,,nan,nan\n");
+			fprintf(f, ",,,,,,nan,nan,nan,\n");
 	}
 	fclose(f);
 	return 0;
@@ -292,11 +311,14 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum)
 	const cgroup *g = &s->g[j];
 	const char *L = t->labels[j];
 	const an_acct *a = &t->A[j];
-	char c1[80], c2[80], c3[80];
+	char c1[80], c2[80], c3[80], c4[80];
+	/* P = sqrt(C): the persisting flow's rms in cm per period, its interval from C's */
+	const double P = sqrt(fmax(0, g->tc.mean)), Plo = sqrt(fmax(0, g->tc.lo)), Phi = sqrt(fmax(0, g->tc.hi));
+	ci_text(c4, sizeof c4, isnan(g->tc.mean) ? NAN : P, isnan(g->tc.lo) ? NAN : Plo, Phi, g->tc.n);
 	ci_text(c1, sizeof c1, g->t.mean, g->t.lo, g->t.hi, g->t.n);
 	ci_text(c2, sizeof c2, g->b.mean, g->b.lo, g->b.hi, g->b.n);
 	ci_text(c3, sizeof c3, g->tu.mean, g->tu.lo, g->tu.hi, g->tu.n);
-	printf("%-30s %4zu %6ld %7ld %31s %31s %31s %6ld %6ld\n", L, g->t.n, g->blocks, g->nofield, c1, c2, c3,
+	printf("%-30s %4zu %6ld %7ld %31s %31s %31s %31s %6ld %6ld\n", L, g->t.n, g->blocks, g->nofield, c1, c2, c3, c4,
 	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
 	csv_str(sum, L);
 	fprintf(sum, ",%.17g,%zu,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
@@ -311,6 +333,9 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum)
 	tool_store(t, j, L, "strength_boot", g->b.mean, g->b.lo, g->b.hi, n);
 	tool_store(t, j, L, "strength_u", g->tu.mean, g->tu.lo, g->tu.hi, n);
 	tool_store(t, j, L, "strength_u_boot", g->bu.mean, g->bu.lo, g->bu.hi, n);
+	tool_store(t, j, L, "persistence_c", g->tc.mean, g->tc.lo, g->tc.hi, (long)g->tc.n);
+	tool_store(t, j, L, "persistent", isnan(g->tc.mean) ? NAN : P, isnan(g->tc.lo) ? NAN : Plo,
+		   isnan(g->tc.hi) ? NAN : Phi, (long)g->tc.n);
 	tool_store(t, j, L, "blocks", (double)g->blocks, NAN, NAN, n);
 	tool_store(t, j, L, "no_field", (double)g->nofield, NAN, NAN, g->nofield);
 	tool_store(t, j, L, "band_lo", s->cfg.band_lo, NAN, NAN, n);
@@ -364,8 +389,11 @@ static int summary(an_tool *t, const convect_state *s)
 	       "block of field_periods periods (cm per period); per run the mean over the blocks after the first %g of "
 	       "them; intervals at %g %%: Student t over runs, bootstrap percentile over runs (%ld replicates); (n) = the "
 	       "runs each number rests on\n", s->cfg.band_lo, s->cfg.band_hi, s->cfg.skip, 100 * t->o->level, t->o->boot);
-	printf("%-30s %4s %6s %7s %31s %31s %31s %6s %6s\n", "group", "used", "blocks", "nofield", "S cm [t CI] (n)",
-	       "S [bootstrap CI] (n)", "S_u cm [t CI] (n)", "failed", "unfinished");
+	printf("# persistent flow P = sqrt(C), C = the mean over neighbouring blocks of sum w uy_b uy_b+1 / sum w: the "
+	       "sampling noise of two blocks is independent and averages out, a roll that outlives a block stays; "
+	       "interval from C's Student t\n");
+	printf("%-30s %4s %6s %7s %31s %31s %31s %31s %6s %6s\n", "group", "used", "blocks", "nofield", "S cm [t CI] (n)",
+	       "S [bootstrap CI] (n)", "S_u cm [t CI] (n)", "P cm [t CI] (n)", "failed", "unfinished");
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);

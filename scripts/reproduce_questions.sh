@@ -191,48 +191,48 @@ q_periodic() {
 	echo "## Open question 3: periodic side boundaries"
 	echo
 	echo "Without side walls (\`sides = periodic\`: the bottom row closes on itself and grains cross"
-	echo "x = 0 / x = W), does the bed still convect? No intruder. Two measures per run, means over"
-	echo "replicates with 95 % intervals:"
+	echo "x = 0 / x = W), does the bed still convect? No intruder. Three measures per run, means over"
+	echo "replicates with 95 % Student-t intervals:"
 	echo
-	echo "- the roll strength S (bin/convect): the count-weighted rms over the cells of 0.3–0.7 of the"
-	echo "  bed of the vertical displacement per period, averaged over blocks of 10 periods — it does"
-	echo "  not depend on where the rolls sit; 2.5 Hz, below the onset with walls, gives its noise floor;"
+	echo "- the persistent flow P (bin/convect): from the displacement field averaged over blocks of"
+	echo "  10 periods, P² = the mean over neighbouring blocks of the product of their vertical"
+	echo "  displacements, cell by cell, in 0.3–0.7 of the bed. The sampling noise of two blocks is"
+	echo "  independent and averages out; a roll that outlives a block stays. It does not depend on"
+	echo "  where the rolls sit. A bed convects when P's interval lies above 0."
+	echo "- the roll strength S: the rms of the same vertical displacements block by block; it"
+	echo "  carries the sampling noise too, so it is > 0 without rolls and grows with the agitation;"
 	echo "- the flux Φ through 0.4–0.6 of the bed (claim 1's, bin/onset): it counts upward crossings"
 	echo "  near the box centre against those near the sides, so without walls, where nothing pins"
-	echo "  the rolls, its sign depends on where they settle and its mean can vanish while the bed convects."
+	echo "  the rolls, its sign depends on where they settle."
 	echo
 	if [ ! -f "$csv" ] && [ -z "$(val "$n" convect strength "sides = 'walls'")" ]; then echo "*Not run yet.*"; echo; return; fi
-	echo "| frequency | S with walls (cm/period) | S periodic | Φ with walls | Φ periodic | runs |"
-	echo "|---|---|---|---|---|---|"
-	local f a b wm wl wh wn pm pl ph pn sw sp
+	echo "| frequency | P with walls (cm/period) | P periodic | S with walls | S periodic | Φ with walls | Φ periodic | runs |"
+	echo "|---|---|---|---|---|---|---|---|"
+	local f a b wm wl wh wn pm pl ph pn conv_w="" conv_p="" s lo
 	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
 		a=$(csv_mean "$csv" phi "sides=walls frequency=$f") b=$(csv_mean "$csv" phi "sides=periodic frequency=$f")
 		set -- $a; wm=$1 wl=$2 wh=$3 wn=$4
 		set -- $b; pm=$1 pl=$2 ph=$3 pn=$4
-		sw=$(val "$n" convect strength "sides = 'walls' AND frequency = $f")
-		sp=$(val "$n" convect strength "sides = 'periodic' AND frequency = $f")
-		printf '| %s Hz | %s | %s | %s [%s, %s] | %s [%s, %s] | %s + %s |\n' "$f" "$(iv "$sw")" "$(iv "$sp")" \
+		printf '| %s Hz | %s | %s | %s | %s | %s [%s, %s] | %s [%s, %s] | %s + %s |\n' "$f" \
+			"$(iv "$(val "$n" convect persistent "sides = 'walls' AND frequency = $f")")" \
+			"$(iv "$(val "$n" convect persistent "sides = 'periodic' AND frequency = $f")")" \
+			"$(iv "$(val "$n" convect strength "sides = 'walls' AND frequency = $f")")" \
+			"$(iv "$(val "$n" convect strength "sides = 'periodic' AND frequency = $f")")" \
 			"$wm" "$wl" "$wh" "$pm" "$pl" "$ph" "$wn" "$pn"
-	done
-	echo
-	echo "Runs: $(counts "$n")."
-	echo
-	# the answer, by rule: a bed convects at a frequency when the interval of its S lies
-	# above the interval of its own S at the lowest frequency (below the onset)
-	local f0 conv_w="" conv_p="" lo0 hi0 lo hi s
-	f0=$(q "SELECT MIN(frequency) FROM runs WHERE campaign = '$n'")
-	for s in walls periodic; do
-		read -r _ lo0 hi0 _ <<<"$(val "$n" convect strength "sides = '$s' AND frequency = ${f0:-0}")"
-		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND frequency > ${f0:-0} ORDER BY frequency"); do
-			read -r _ lo hi _ <<<"$(val "$n" convect strength "sides = '$s' AND frequency = $f")"
-			if awk -v l="${lo:-x}" -v h0="${hi0:-x}" 'BEGIN { exit !(l + 0 == l && h0 + 0 == h0 && l > h0) }'; then
+		# the rule: a bed convects at f when the lower bound of its C (P squared) is above 0
+		for s in walls periodic; do
+			read -r _ lo _ _ <<<"$(val "$n" convect persistence_c "sides = '$s' AND frequency = $f")"
+			if awk -v l="${lo:-x}" 'BEGIN { exit !(l + 0 == l && l > 0) }'; then
 				[ $s = walls ] && conv_w="$conv_w $f" || conv_p="$conv_p $f"
 			fi
 		done
 	done
-	if [ -n "$conv_p" ]; then echo "**Answer: yes.** Without side walls the roll strength rises above its ${f0} Hz floor at${conv_p} Hz (with walls at${conv_w:- no frequency}): convection survives without walls."
-	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the roll strength rises above its ${f0} Hz floor at${conv_w} Hz, without walls at none: the walls drive the rolls."
-	else echo "**Answer: none.** Neither bed's roll strength rises above its ${f0:-lowest} Hz floor beyond the intervals."; fi
+	echo
+	echo "Runs: $(counts "$n")."
+	echo
+	if [ -n "$conv_p" ]; then echo "**Answer: yes.** Without side walls the bed has a persistent flow (P's interval above 0) at${conv_p} Hz; with walls at${conv_w:- no frequency}."
+	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the bed convects steadily at${conv_w} Hz (P's interval above 0); without walls at no frequency here, although its S (the grains' agitation) grows with the frequency: in this model the side walls drive the rolls."
+	else echo "**Answer: none.** Neither bed has a persistent flow beyond its interval at these frequencies."; fi
 	echo
 	echo "$(fig "$ANA/$n/convect.png" q3_periodic_strength.png) $(fig "$ANA/$n/onset.png" q3_periodic_flux.png)"
 	echo

@@ -2,7 +2,8 @@
  * synthetic fields whose answer is known: a sine of uy across the band gives A/sqrt(2)
  * wherever the pattern sits in x, the count weights, cells outside the band and cells
  * without samples carry no weight, the transient and empty blocks of a run, a run that
- * failed within its transient, and a synthetic run file read end to end. */
+ * failed within its transient, the persistence of a steady roll under noise and of noise
+ * alone, and a synthetic run file read end to end. */
 #include <hdf5.h>
 #include <math.h>
 #include <stdlib.h>
@@ -143,6 +144,34 @@ int main(void)
 	      "first %zu, S %g", r.first, r.S);
 	CHECK("convect.run.failed_after_transient", convect_summary(&f, &cfg, 12, &r) == 0 && r.first == 2 &&
 	      fabs(r.S - want) < 1e-12, "first %zu, S %g", r.first, r.S);
+
+	/* persistence: a steady roll uy = A sin under independent noise of sd sigma per block
+	 * gives C = A^2/2, pure noise C = 0 while S sits at the noise floor. The noise
+	 * terms of C have sd about sigma^2 / sqrt(cells * pairs) = 1/86 here and the cross
+	 * terms about A sigma / sqrt(cells * pairs / 2) = 1/61: 0.08 is five of them. */
+	for (int roll = 0; roll < 2; roll++) {
+		const double A = roll ? 1 : 0, sig = 1;
+		convect_field g = {.B = 40, .ny = NY, .nx = NX, .cell = CELL, .surface = SURF, .K = 10};
+		g.ux = calloc(C * g.B, sizeof *g.ux);
+		g.uy = calloc(C * g.B, sizeof *g.uy);
+		g.n = calloc(C * g.B, sizeof *g.n);
+		for (size_t k = 0; k < g.B; k++) {
+			fill(g.ux + k * C, g.uy + k * C, g.n + k * C, A, 0, 0, 3, &seed);
+			for (size_t q = 0; q < C; q++) /* uniform noise of sd sig */
+				g.uy[k * C + q] += sig * sqrt(12.0) * (rand_r(&seed) / (double)RAND_MAX - 0.5);
+		}
+		convect_run pr;
+		convect_summary(&g, &cfg, 0, &pr);
+		if (roll)
+			CHECK("convect.persistence.steady_roll", pr.pairs == 31 && fabs(pr.C - 0.5) < 0.08 && pr.S > 1.1,
+			      "C %g (want 0.5), S %g, %zu pairs", pr.C, pr.S, pr.pairs);
+		else
+			CHECK("convect.persistence.noise_only", fabs(pr.C) < 0.08 && pr.S > 0.8,
+			      "C %g (want 0), S %g (the noise floor, about 1)", pr.C, pr.S);
+		free(g.ux);
+		free(g.uy);
+		free(g.n);
+	}
 
 	/* a run file like the engine's, read end to end */
 	char path[] = "/tmp/convect-test-XXXXXX";

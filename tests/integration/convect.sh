@@ -60,8 +60,14 @@ bad=""
 while IFS=, read -r g m; do
 	s=$(q "SELECT printf('%.17g', value) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = 'strength' AND grp = '$g'")
 	rel "$s" "$m" 1e-12 || bad="$bad $g: stored $s, runs $m;"
-done < <(awk -F, 'NR > 1 && $7 == "used" { gsub(/"/, "", $2); s[$2] += $(NF - 1); n[$2]++ } END { for (g in s) printf "%s,%.17g\n", g, s[g] / n[g] }' $A/convect_runs.csv)
+done < <(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "strength") k = i; next }
+	$7 == "used" { gsub(/"/, "", $2); s[$2] += $k; n[$2]++ } END { for (g in s) printf "%s,%.17g\n", g, s[g] / n[g] }' $A/convect_runs.csv)
 [ -z "$bad" ] && ok store.mean_of_runs || fail store.mean_of_runs "$bad"
+# the persistence: stored per group on the runs with a pair of blocks; P = sqrt(max(0, C))
+[ "$(q "SELECT COUNT(*) FROM analysis a JOIN analysis b ON a.grp = b.grp AND a.campaign = b.campaign AND a.tool = b.tool
+	WHERE a.campaign = 'cv' AND a.tool = 'convect' AND a.key = 'persistent' AND b.key = 'persistence_c' AND a.n = 3
+	AND abs(a.value - sqrt(max(0, b.value))) < 1e-12")" = 4 ] && ok store.persistence ||
+	fail store.persistence "$(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' AND key GLOB 'persist*'")"
 
 # ---- each used run's S recomputed from its file ----
 nchk=0 bad=""
