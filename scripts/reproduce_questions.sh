@@ -231,7 +231,7 @@ q_periodic() {
 	echo "Runs: $(counts "$n")."
 	echo
 	if [ -n "$conv_p" ]; then echo "**Answer: yes.** Without side walls the bed has a persistent flow (P's interval above 0) at${conv_p} Hz; with walls at${conv_w:- no frequency}."
-	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the bed convects steadily at${conv_w} Hz (P's interval above 0); without walls at no frequency here, although its S (the grains' agitation) grows with the frequency: in this model the side walls drive the rolls."
+	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the bed convects steadily at${conv_w} Hz (P's interval above 0); without walls at no frequency here: in this model the side walls drive the rolls."
 	else echo "**Answer: none.** Neither bed has a persistent flow beyond its interval at these frequencies."; fi
 	echo
 	echo "$(fig "$ANA/$n/convect.png" q3_periodic_strength.png) $(fig "$ANA/$n/onset.png" q3_periodic_flux.png)"
