@@ -102,7 +102,11 @@ q_stiffness() {
 		fel=$(q "SELECT printf('%.3g', (1 / 3.141592653589793) * sqrt(1.5 * $Y / (mass_factor * density * 0.25 * (r_min + r_max) * (r_min + r_max)))
 			 * sin(3.141592653589793 / (2 * (2 * n_grains * (r_min + r_max) / width + 1))))
 			 FROM runs WHERE campaign = '$n' AND stiffness = $Y LIMIT 1")
-		printf '| %s | %s | %s | %s | %s [%s, %s] | %s (%s) | %s / %s | %s | %s |\n' "$Y" "$gn" "$dt" "$(iv "$est $lo $hi")" \
+		local ftxt
+		ftxt=$(iv "$est $lo $hi")
+		[ "$est" = - ] && [ "${above:-0}" -gt 0 ] && ftxt="above the range for $above of $rep replicates; from $lo"
+		[ "$est" = - ] && [ "${below:-0}" -gt 0 ] && ftxt="below the range for $below of $rep replicates; up to $hi"
+		printf '| %s | %s | %s | %s | %s [%s, %s] | %s (%s) | %s / %s | %s | %s |\n' "$Y" "$gn" "$dt" "$ftxt" \
 			"$(gam "$est" "$A" "$G")" "$(gam "$lo" "$A" "$G")" "$(gam "$hi" "$A" "$G")" "$rep" "$runs" "$below" "$above" \
 			"${fel:--}" "$(awk -v f="$est" -v e="${fel:-x}" 'BEGIN { if (f + 0 == f && e + 0 == e && e > 0) printf "%.2f", f / e; else print "-" }')"
 		echo "$Y $est $lo $hi $(gam "$est" "$A" "$G") $(gam "$lo" "$A" "$G") $(gam "$hi" "$A" "$G") ${fel:-nan}" >>"$ANA/q1_stiffness.dat"
@@ -132,7 +136,7 @@ EOF
 	[ "${ndone:-0}" = "${ngrp:-x}" ] || ans=running
 	case $ans in
 	running) echo "**Answer: not yet.** ${ndone:-0} of ${ngrp:-0} searches are done; \`make reproduce\` resumes them." ;;
-	hard) echo "**Answer: yes.** At Y = $y1 g/s² the onset lies at Γ ≥ 1 (Γ = $g1, interval from $g1lo), at the paper's Y = $y0 at Γ = $g0 (up to $g0hi): with stiffer contacts at the same restitution the bed convects only above Γ ≈ 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper's Y the bed's estimated lowest elastic frequency is only $ratio0 times the drive's at the onset." ;;
+	hard) echo "**Answer: yes.** At Y = $y1 g/s² the onset lies at Γ ≥ 1 ($([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")), at the paper's Y = $y0 at Γ = $g0 (up to $g0hi): with stiffer contacts at the same restitution the bed convects only above Γ ≈ 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper's Y the bed's estimated lowest elastic frequency is only $ratio0 times the drive's at the onset." ;;
 	part) echo "**Answer: in part.** The onset rises with the stiffness (Γ = $g0 at the paper's Y, $g1 at Y = $y1; the intervals separate) but stays below Γ = 1." ;;
 	no) echo "**Answer: no, not in this range.** The onset at Y = $y1 (Γ = $g1) is not above the paper's (Γ = $g0) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between $y0 and $y1 g/s² at a fixed restitution." ;;
 	*) echo "**Answer: none** (the searches found no onset to compare)." ;;
