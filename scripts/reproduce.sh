@@ -121,6 +121,25 @@ want 5 && tool waiting "${NAME[claim5_depth]}"
 questions_tools
 T_ALL=$(( $(date +%s) - T0 ))
 
+# What the campaigns cost a quiet machine: the engine's CPU seconds per step of the
+# paper's bed (950 grains), measured here for each integrator as the difference of two
+# runs (so settling drops out), kept in $W/calibration for later invocations (a second
+# call simulates nothing); a run's cost is then its steps times that, scaled with its
+# grains. The engine loop's wall time (the table's) counts the waiting for a busy CPU too.
+calibrate() { # INTEGRATOR-PRESET -> CPU seconds per step of the paper's bed
+	local cpu d out=$W/calibration.$1
+	[ -s "$out" ] && { cat "$out"; return; }
+	for d in 0.5 2.5; do
+		/usr/bin/time -f '%U %S' -o "$W/calib.time" bin/shake scenes/paper.scene preset="$1" radius_ratio=0 \
+			duration=$d snapshots=no traj_rate=0 output="$W/calib.h5" >/dev/null 2>&1 || return
+		cpu[${d%.*}]=$(awk '{ print $1 + $2 }' "$W/calib.time")
+	done
+	rm -f "$W/calib.h5" "$W/calib.xmf" "$W/calib.time"
+	awk -v a="${cpu[0]}" -v b="${cpu[2]}" -v dt="$([ "$1" = fast ] && echo 2e-4 || echo 5e-5)" \
+		'BEGIN { printf "%.4g\n", (b - a) / (2 / dt) }' | tee "$out"
+}
+C_FAST=$(calibrate fast) C_PAPER=$(calibrate paper)
+
 # --- REPRODUCTION.md ----------------------------------------------------------------------
 # a value from the analysis table: VAL CAMPAIGN TOOL KEY [WHERE] -> "value lo hi n"
 # (a missing value or bound is "-": none was computed, e.g. a median never reached)
@@ -394,18 +413,31 @@ runs_phi() {
 	questions_report
 	echo "## What this run cost"
 	echo
-	echo "| campaign | runs | simulated s | engine loop s | wall s of this invocation |"
-	echo "|---|---|---|---|---|"
-	cost_row() { # CAMPAIGN-NAME KEY
-		printf '| %s | %s | %s | %s | %s |\n' "$1" "$(q "SELECT COUNT(*) FROM runs WHERE campaign = '$1'")" \
-			"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '$1'")" \
-			"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '$1'")" "${WALL[$2]:-0}"
+	echo "CPU seconds a quiet core spends: each run's steps × the engine's CPU time per step of the paper's"
+	echo "bed measured at the start (fast preset ${C_FAST:-?} s, paper preset ${C_PAPER:-?} s per step of 950 grains),"
+	echo "scaled with the run's grains; settling and the tools are not in it. The engine loop's wall time"
+	echo "also counts the waiting for a busy CPU."
+	echo
+	echo "| campaign | runs | simulated s | CPU s (estimate) | engine loop wall s | wall s of this invocation |"
+	echo "|---|---|---|---|---|---|"
+	local_cpu() { # CAMPAIGN -> the estimate
+		q "SELECT printf('%.0f', TOTAL(steps * n_grains / 950.0 * CASE WHEN integrator = 'verlet' THEN ${C_FAST:-0}
+			ELSE ${C_PAPER:-0} END)) FROM runs WHERE campaign = '$1' AND current"
 	}
+	cost_row() { # CAMPAIGN-NAME KEY
+		printf '| %s | %s | %s | %s | %s | %s |\n' "$1" "$(q "SELECT COUNT(*) FROM runs WHERE campaign = '$1' AND current")" \
+			"$(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs WHERE campaign = '$1' AND current")" \
+			"$(local_cpu "$1")" \
+			"$(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs WHERE campaign = '$1' AND current")" "${WALL[$2]:-0}"
+	}
+	tot_c=0 tot_q=0
 	for k in $CLAIMS; do
-		for c in $(campaigns_of "$k"); do cost_row "${NAME[$c]}" "$c"; done
+		for c in $(campaigns_of "$k"); do cost_row "${NAME[$c]}" "$c"; tot_c=$((tot_c + $(local_cpu "${NAME[$c]}"))); done
 	done
 	for k in $QUESTIONS; do
-		for c in $(campaigns_of_question "$k"); do cost_row "${QNAME[$c]}" "$c"; done
+		for c in $(campaigns_of_question "$k"); do cost_row "${QNAME[$c]}" "$c"; tot_q=$((tot_q + $(local_cpu "${QNAME[$c]}"))); done
 	done
+	echo
+	echo "On $(nproc) quiet cores: the claims about $((tot_c / 60 / $(nproc))) min of CPU, the open questions about $((tot_q / 60 / $(nproc))) min (estimates as above, without settling and tools)."
 } >"$OUT.tmp" && mv "$OUT.tmp" "$OUT"
 log "wrote $OUT ($((n1 - n0)) runs simulated, $T_ALL s)"
