@@ -208,7 +208,7 @@ runs_phi() {
 		search=$(q "SELECT $(num estimate), $(num ci_lo), $(num ci_hi), replicates, runs, state FROM onset_group WHERE campaign = '$n' LIMIT 1")
 		read -r se slo shi srep sruns sstate <<<"$(echo "$search" | tr '\t' ' ')"
 		thr=$(val "$n" onset threshold_f); sd=$(val "$n" onset threshold_seed_sd); sig=$(val "$n" onset sigmoid_f0)
-		durs=$(q "SELECT DISTINCT duration FROM runs WHERE campaign = '$h' ORDER BY duration")
+		durs=$(q "SELECT DISTINCT duration FROM runs WHERE campaign = '$h' AND current ORDER BY duration")
 		echo "| quantity | ours (95 % interval) | test |"
 		echo "|---|---|---|"
 		echo "| onset, adaptive search (bisection per replicate, flux ≥ 2 particles/period through 0.4–0.6 of the bed) | $(iv "${se:-} ${slo:-} ${shi:-}") Hz, ${srep:-0} replicates, ${sruns:-0} runs (${sstate:-not run}) | order statistics of the replicates' onsets |"
@@ -258,7 +258,7 @@ runs_phi() {
 		echo
 		echo "| frequency | Φ through mid-bed without | with 𝓡 = 4 |"
 		echo "|---|---|---|"
-		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
+		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND current ORDER BY frequency"); do
 			printf '| %s Hz | %s | %s |\n' "$f" "$(runs_phi "$n" "$f" 0)" "$(runs_phi "$n" "$f" 4)"
 		done
 		echo
@@ -269,7 +269,7 @@ runs_phi() {
 		echo
 		echo "| frequency | reach without | reach with 𝓡 = 4 | difference | lines whose Φ differs |"
 		echo "|---|---|---|---|---|"
-		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
+		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND current ORDER BY frequency"); do
 			g="frequency = $f"
 			printf '| %s Hz | %s cm | %s cm | %s cm | %s |\n' "$f" "$(iv "$(val "$n" rolls reach "$g AND radius_ratio = 0")")" \
 				"$(iv "$(val "$n" rolls reach "$g AND radius_ratio = 4")")" "$(iv "$(val "$n" rolls reach_diff "$g AND radius_ratio = 4")")" \
@@ -300,7 +300,7 @@ runs_phi() {
 		echo
 		echo "| frequency | Σ\|F\| per grain | net force \|ΣF + mg\| | granular temperature |"
 		echo "|---|---|---|---|"
-		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
+		for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND current ORDER BY frequency"); do
 			g="frequency = $f AND radius_ratio = 4"
 			printf '| %s Hz | %s | %s | %s |\n' "$f" "$(iv "$(val "$n" ring ratio_force "$g")")" \
 				"$(iv "$(val "$n" ring ratio_net_force "$g")")" "$(iv "$(val "$n" ring ratio_temperature "$g")")"
@@ -332,7 +332,7 @@ runs_phi() {
 		echo
 		echo "| 𝓡 | runs | risen | median wait (one diameter) | median wait (half way to the surface) |"
 		echo "|---|---|---|---|---|"
-		for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
+		for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' AND current ORDER BY radius_ratio"); do
 			w="radius_ratio = $r"
 			printf '| %s | %s | %s | %s s | %s s |\n' "$r" "$(val "$n" waiting runs "$w" | cut -f1)" \
 				"$(val "$n" waiting risen "$w" | cut -f1)" "$(iv "$(val "$n" waiting median "$w")")" \
@@ -365,7 +365,7 @@ runs_phi() {
 		echo
 		echo "| frequency | depth (rows) | runs | risen | fraction risen | median wait |"
 		echo "|---|---|---|---|---|---|"
-		q "SELECT DISTINCT frequency, depth FROM runs WHERE campaign = '$n' ORDER BY frequency, depth" |
+		q "SELECT DISTINCT frequency, depth FROM runs WHERE campaign = '$n' AND current ORDER BY frequency, depth" |
 			while IFS=$'\t' read -r f d; do
 				w="frequency = $f AND depth = $d"
 				printf '| %s Hz | %s | %s | %s | %s | %s s |\n' "$f" "$d" "$(val "$n" waiting runs "$w" | cut -f1)" \

@@ -54,8 +54,14 @@ csv_mean() {
 		NR == 1 { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); c[h] = i }
 			  nw = split(where, w, " "); next }
 		{ ok = 1
-		  for (j = 1; j <= nw; j++) { split(w[j], kv, "="); v = $c[kv[1]]; gsub(/"/, "", v)
-			if (!(kv[1] in c) || (v != kv[2] && v + 0 != kv[2] + 0)) ok = 0 }
+		  for (j = 1; j <= nw; j++) { split(w[j], kv, "=")
+			if (!(kv[1] in c)) { # a grouping key the CSV has only in its group label
+				gl = " " $c["group"] " "; gsub(/"/, "", gl)
+				if (index(gl, " " w[j] " ") == 0) ok = 0
+				continue }
+			v = $c[kv[1]]; gsub(/"/, "", v)
+			num = v ~ /^[-+.0-9eE]+$/ && kv[2] ~ /^[-+.0-9eE]+$/
+			if (v != kv[2] && !(num && v + 0 == kv[2] + 0)) ok = 0 }
 		  x = $c[col]; if (ok && x != "" && x != "nan") { n++; s += x; ss += x * x } }
 		END { if (n < 2) { printf "%s - - %d\n", n ? s : "-", n; exit }
 		      split("12.706 4.303 3.182 2.776 2.571 2.447 2.365 2.306 2.262 2.228 2.201 2.179 2.160 2.145 " \
@@ -84,8 +90,8 @@ q_stiffness() {
 	echo "of convection without intruder is searched as in claim 1 (flux ≥ 2 particles/period"
 	echo "through 0.4–0.6 of the bed, bisection per replicate)."
 	echo
-	A=$(q "SELECT DISTINCT amplitude FROM runs WHERE campaign = '$n' LIMIT 1"); A=${A:-2}
-	G=$(q "SELECT DISTINCT gravity FROM runs WHERE campaign = '$n' LIMIT 1"); G=${G:-981}
+	A=$(q "SELECT DISTINCT amplitude FROM runs WHERE campaign = '$n' AND current LIMIT 1"); A=${A:-2}
+	G=$(q "SELECT DISTINCT gravity FROM runs WHERE campaign = '$n' AND current LIMIT 1"); G=${G:-981}
 	rows=$(onset_rows "$n")
 	if [ -z "$rows" ]; then echo "*Not run yet.*"; echo; return; fi
 	echo "The bed's lowest elastic frequency f_el is an estimate, not a measurement: a column of"
@@ -136,7 +142,7 @@ EOF
 	[ "${ndone:-0}" = "${ngrp:-x}" ] || ans=running
 	case $ans in
 	running) echo "**Answer: not yet.** ${ndone:-0} of ${ngrp:-0} searches are done; \`make reproduce\` resumes them." ;;
-	hard) echo "**Answer: yes.** At Y = $y1 g/s² the onset lies at Γ ≥ 1 ($([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")), at the paper's Y = $y0 at Γ = $g0 (up to $g0hi): with stiffer contacts at the same restitution the bed convects only above Γ ≈ 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper's Y the bed's estimated lowest elastic frequency is only $ratio0 times the drive's at the onset." ;;
+	hard) echo "**Answer: yes.** At Y = $y1 g/s² the onset lies at Γ ≥ 1 ($([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")), at the paper's Y = $y0 at Γ = $g0 (up to $g0hi): with stiffer contacts at the same restitution the bed convects only above Γ = 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper's Y the bed's estimated lowest elastic frequency is only $ratio0 times the drive's at the onset." ;;
 	part) echo "**Answer: in part.** The onset rises with the stiffness (Γ = $g0 at the paper's Y, $g1 at Y = $y1; the intervals separate) but stays below Γ = 1." ;;
 	no) echo "**Answer: no, not in this range.** The onset at Y = $y1 (Γ = $g1) is not above the paper's (Γ = $g0) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between $y0 and $y1 g/s² at a fixed restitution." ;;
 	*) echo "**Answer: none** (the searches found no onset to compare)." ;;
@@ -213,7 +219,7 @@ q_periodic() {
 	echo "| frequency | P with walls (cm/period) | P periodic | S with walls | S periodic | Φ with walls | Φ periodic | runs |"
 	echo "|---|---|---|---|---|---|---|---|"
 	local f a b wm wl wh wn pm pl ph pn conv_w="" conv_p="" s lo
-	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' ORDER BY frequency"); do
+	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND current ORDER BY frequency"); do
 		a=$(csv_mean "$csv" phi "sides=walls frequency=$f") b=$(csv_mean "$csv" phi "sides=periodic frequency=$f")
 		set -- $a; wm=$1 wl=$2 wh=$3 wn=$4
 		set -- $b; pm=$1 pl=$2 ph=$3 pn=$4
@@ -251,7 +257,7 @@ q_large() {
 	echo
 	echo "| 𝓡 | runs | risen | fraction risen | median wait (one diameter) | median wait (half way) |"
 	echo "|---|---|---|---|---|---|"
-	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
+	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' AND current ORDER BY radius_ratio"); do
 		w="radius_ratio = $r"
 		printf '| %s | %s | %s | %s | %s s | %s s |\n' "$r" "$(val "$n" waiting runs "$w" | cut -f1)" \
 			"$(val "$n" waiting risen "$w" | cut -f1)" "$(iv "$(val "$n" waiting fraction_risen "$w")")" \
@@ -260,6 +266,19 @@ q_large() {
 	echo
 	lr=$(q "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
 	echo "Log-rank test of equal waiting times across 𝓡: p = ${lr:-not computed}. Runs: $(counts "$n")."
+	echo
+	# the answer: a critical size ratio shows as an R below which some intruders stay down
+	# and above which all rise
+	local notall allr
+	notall=$(q "SELECT GROUP_CONCAT(radius_ratio, ', ') FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
+		    AND key = 'fraction_risen' AND value < 1")
+	allr=$(q "SELECT MIN(radius_ratio) || '–' || MAX(radius_ratio) FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
+		  AND key = 'fraction_risen' AND value = 1")
+	if [ -z "$notall" ] && [ -n "$allr" ]; then
+		echo "**Answer: no critical size ratio in this range.** Every intruder of 𝓡 = $allr rose within the run at 3.2 Hz; the waits $(awk -v p="${lr:-1}" 'BEGIN { print (p + 0 == p && p < 0.05) ? "differ across 𝓡 (log-rank p < 0.05)" : "do not differ across 𝓡 beyond chance (log-rank p ≥ 0.05)" }')."
+	else
+		echo "**Answer:** not every intruder rose at 𝓡 = ${notall:-?}; all did at 𝓡 = ${allr:-none}."
+	fi
 	echo
 	echo "$(fig "$ANA/$n/waiting_km.png" q4_large_km.png)"
 	echo
@@ -277,7 +296,7 @@ q_long() {
 	echo
 	echo "| 𝓡 | runs | risen | with a period (≥ 2 dives) | period (s) | spectral period (s) | dive depth (cm) | dives per minute |"
 	echo "|---|---|---|---|---|---|---|---|"
-	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' ORDER BY radius_ratio"); do
+	for r in $(q "SELECT DISTINCT radius_ratio FROM runs WHERE campaign = '$n' AND current ORDER BY radius_ratio"); do
 		w="radius_ratio = $r"
 		printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$r" "$(val "$n" whale runs "$w" | cut -f1)" \
 			"$(val "$n" whale risen "$w" | cut -f1)" "$(val "$n" whale with_period "$w" | cut -f1)" \
@@ -294,6 +313,21 @@ q_long() {
 		WHERE campaign = '$n' AND tool = 'whale' AND key = 'trend_depth_rho' LIMIT 1")
 	echo "Trend with 𝓡, Spearman's rank correlation over runs (permutation p): period ${tp:-not computed}; depth ${td:-not computed}."
 	echo "Runs: $(counts "$n")."
+	echo
+	# the answer: a trend is one whose permutation p is below 0.05, its sign the rho's
+	trend() { # KEY WORD
+		local rho p
+		read -r rho p <<<"$(q "SELECT a.value, b.value FROM analysis a JOIN analysis b ON a.campaign = b.campaign AND a.tool = b.tool
+			AND a.grp = b.grp WHERE a.campaign = '$n' AND a.tool = 'whale' AND a.key = 'trend_$1_rho' AND b.key = 'trend_$1_p' LIMIT 1" | tr '\t' ' ')"
+		awk -v r="${rho:-x}" -v p="${p:-x}" -v w="$2" 'BEGIN { if (!(r + 0 == r && p + 0 == p)) print "the " w " has no trend computed";
+			else if (p >= 0.05) print "the " w " shows no trend with 𝓡 beyond chance";
+			else print "the " w (r < 0 ? " decreases" : " increases") " with 𝓡" }'
+	}
+	local nr np
+	read -r nr np <<<"$(q "SELECT CAST(SUM(CASE WHEN key = 'risen' THEN value END) AS INTEGER),
+		CAST(SUM(CASE WHEN key = 'with_period' THEN value END) AS INTEGER)
+		FROM analysis WHERE campaign = '$n' AND tool = 'whale'" | tr '\t' ' ')"
+	echo "**Answer:** ${np:-?} of the ${nr:-?} runs whose intruder rose dived at least twice after it; $(trend depth "dives' depth"), and $(trend period "period")."
 	echo
 	echo "$(fig "$ANA/$n/whale.png" q5_whale.png)"
 	echo
