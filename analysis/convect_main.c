@@ -77,7 +77,7 @@ static const char *HELP =
 	"  --no-plot     no figure;  --no-store  nothing written to the database\n\n"
 	"Writes convect_runs.csv (per considered run: id, replicate, the grouping keys, use,\n"
 	"blocks recorded and used, S, S_u, C, block pairs), convect_summary.csv (per group), convect_points.csv\n"
-	"(the figure's), convect_accounting.csv and convect.png/.pdf (S and S_u against the\n"
+	"(the figure's), convect_accounting.csv and convect.png/.pdf (S and P against the\n"
 	"frequency, one curve per value of the other keys, bars the Student-t interval).\n"
 	"Stores per group in the table `analysis` (tool 'convect'): runs (used), strength and\n"
 	"strength_u (Student-t lo, hi; n = runs), strength_boot and strength_u_boot (the\n"
@@ -343,6 +343,12 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum)
 	tool_store_acct(t, L, j);
 }
 
+/* P from C: the square root of max(0, C), NaN stays NaN */
+static double root(double c)
+{
+	return isnan(c) ? NAN : sqrt(fmax(0, c));
+}
+
 /* convect_points.csv: per curve its groups by frequency, so that a curve's rows are
  * together (gnuplot joins the rows of a curve; a row it skips between them would break
  * the line) */
@@ -360,8 +366,9 @@ static void points(const an_tool *t, const convect_state *s, FILE *pts)
 			for (int h = 0; h < t->ng; h++) { /* groups of one curve at one f (--by without frequency) */
 				const cgroup *g = &s->g[h];
 				if (g->curve == c && g->f == s->g[j].f)
-					fprintf(pts, "%d,%d,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", h, g->curve, g->f,
-						g->t.n, g->t.mean, g->t.lo, g->t.hi, g->tu.mean, g->tu.lo, g->tu.hi);
+					fprintf(pts, "%d,%d,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", h,
+						g->curve, g->f, g->t.n, g->t.mean, g->t.lo, g->t.hi, g->tu.mean, g->tu.lo, g->tu.hi,
+						root(g->tc.mean), root(g->tc.lo), root(g->tc.hi));
 			}
 			last = s->g[j].f;
 		}
@@ -384,7 +391,7 @@ static int summary(an_tool *t, const convect_state *s)
 		return t->e.code;
 	}
 	fprintf(pts, "group_index,curve,frequency,runs,strength,strength_lo,strength_hi,strength_u,strength_u_lo,"
-		     "strength_u_hi\n");
+		     "strength_u_hi,persistent,persistent_lo,persistent_hi\n");
 	printf("# roll strength S = sqrt(sum n uy^2 / sum n) over the cells in %g..%g of the settled surface height, per "
 	       "block of field_periods periods (cm per period); per run the mean over the blocks after the first %g of "
 	       "them; intervals at %g %%: Student t over runs, bootstrap percentile over runs (%ld replicates); (n) = the "
@@ -479,7 +486,7 @@ static void panel(FILE *f, const an_tool *t, const convect_state *s, int col, co
 	fputc('\n', f);
 }
 
-/* convect.png and .pdf: S and S_u against the frequency */
+/* convect.png and .pdf: S and P against the frequency */
 static int plot(an_tool *t, const convect_state *s)
 {
 	char script[1400], png[1400], set[512];
@@ -503,7 +510,7 @@ static int plot(an_tool *t, const convect_state *s)
 	if (isfinite(flo) && fhi > flo && tool_gamma(t, &A, &g))
 		gp_gamma_axis(f, A, g, flo - pad, fhi + pad);
 	panel(f, t, s, 5, "S: rms of the vertical mean displacement per period", "S (cm per period)");
-	panel(f, t, s, 8, "S_u: rms of the mean displacement per period", "S_u (cm per period)");
+	panel(f, t, s, 11, "P: the flow that persists from one block to the next (no noise floor)", "P (cm per period)");
 	fprintf(f, "unset multiplot\n");
 	return tool_plot(t, f, script, png);
 }

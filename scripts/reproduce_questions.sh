@@ -122,9 +122,13 @@ q_stiffness() {
 	echo
 	gpfig "$ANA/q1_stiffness" <<EOF
 set logscale x; set xlabel 'contact stiffness Y (g/s^2)'; set ylabel 'onset {/Symbol G} = A(2{/Symbol p}f)^2/g'
-set key top left; set grid; set yrange [0:*]; set xrange [1e6:1e9]
-plot '$ANA/q1_stiffness.dat' u 1:5:6:7 w yerrorlines lw 2 pt 7 t 'onset of convection (95 % interval)', \
-     1 w l dt 2 lw 2 t '{/Symbol G} = 1'
+set grid; set yrange [0:1.8]; set xrange [1e6:1e9]
+set key bottom right box opaque; set datafile missing '-'
+# column 5: the onset's Gamma (missing above the searched range), 6 and 7 its interval
+# (7 missing when some replicates lay above the range: the bar then ends at the point)
+plot '$ANA/q1_stiffness.dat' u 1:5:6:(\$7 == \$7 ? \$7 : \$5) w yerrorbars lw 2 pt 7 ps 1.3 lc rgb '#9400d3' t 'onset of convection (95 % interval)', \
+     '' u 1:(\$5 == \$5 ? 1/0 : \$6) w p pt 9 ps 2 lc rgb '#9400d3' t 'onset above the searched range: its lower bound', \
+     1 w l dt 2 lw 2 lc rgb '#009e73' t '{/Symbol G} = 1'
 EOF
 	# the answer, by rule, once every search is done: yes when the stiffest bed's onset
 	# interval lies at Gamma >= 1; in part when it lies above the softest bed's interval;
