@@ -448,26 +448,7 @@ static void report(const an_tool *t, const convect_state *s)
  * the curves; "" when none. */
 static void curve_words(const an_tool *t, const convect_state *s, int c, char *buf, size_t n)
 {
-	char keys[AN_MAXKEYS][48];
-	const char *vals[AN_MAXKEYS * 16];
-	int nk = 0, first[16];
-	buf[0] = 0;
-	if (s->ncurve > 16)
-		return;
-	for (int k = 0; k < t->nk; k++)
-		if (k != s->kf)
-			memcpy(keys[nk++], t->keys[k], 48);
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int j = 0; j < t->ng; j++)
-			if (s->g[j].curve == cc) {
-				first[cc] = j;
-				break;
-			}
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int k = 0, m = 0; k < t->nk; k++)
-			if (k != s->kf)
-				vals[cc * nk + m++] = t->gval[first[cc] * t->nk + k];
-	label_group(buf, n, keys, nk, vals, s->ncurve, c, 1);
+	tool_curve_legend(t, &s->g[0].curve, sizeof s->g[0], s->ncurve, "frequency", c, 1, buf, n);
 }
 
 /* One panel: a quantity (columns col, col+1, col+2 of convect_points.csv) against f,

@@ -419,26 +419,9 @@ static int ratios_csv(an_tool *t, const ring_state *s)
  * between the curves ("" with one curve). */
 static void curve_legend(const an_tool *t, const ring_state *s, int c, char *buf, size_t n)
 {
-	char keys[AN_MAXKEYS][48];
-	const char *vals[AN_MAXKEYS * 16];
-	int nk = 0, first[16];
 	buf[0] = 0;
-	if (s->ncurve < 2 || s->ncurve > 16)
-		return;
-	for (int k = 0; k < t->nk; k++)
-		if (strcmp(t->keys[k], "frequency"))
-			memcpy(keys[nk++], t->keys[k], 48);
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int j = 0; j < t->ng; j++)
-			if (s->curve[j] == cc) {
-				first[cc] = j;
-				break;
-			}
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int k = 0, m = 0; k < t->nk; k++)
-			if (strcmp(t->keys[k], "frequency"))
-				vals[cc * nk + m++] = t->gval[first[cc] * t->nk + k];
-	label_group(buf, n, keys, nk, vals, s->ncurve, c, 1);
+	if (s->ncurve >= 2)
+		tool_curve_legend(t, s->curve, sizeof *s->curve, s->ncurve, "frequency", c, 1, buf, n);
 }
 
 /* ring.png and .pdf: the three ratios against the frequency with their intervals

@@ -96,6 +96,31 @@ void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n)
 	label_group(buf, n, t->keys, t->nk, (const char *const *)t->gval, t->ng, j, vary);
 }
 
+void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int ncurve, const char *along, int c,
+		       int vary, char *buf, size_t n)
+{
+	char keys[AN_MAXKEYS][48];
+	const char *vals[AN_MAXKEYS * 16];
+	int nk = 0, first[16] = {0};
+	buf[0] = 0;
+	if (ncurve > 16)
+		return;
+	for (int k = 0; k < t->nk; k++)
+		if (strcmp(t->keys[k], along))
+			memcpy(keys[nk++], t->keys[k], 48);
+	for (int cc = 0; cc < ncurve; cc++)
+		for (int j = 0; j < t->ng; j++)
+			if (*(const int *)((const char *)curve + (size_t)j * stride) == cc) {
+				first[cc] = j;
+				break;
+			}
+	for (int cc = 0; cc < ncurve; cc++)
+		for (int k = 0, m = 0; k < t->nk; k++)
+			if (strcmp(t->keys[k], along))
+				vals[cc * nk + m++] = t->gval[first[cc] * t->nk + k];
+	label_group(buf, n, keys, nk, vals, ncurve, c, vary);
+}
+
 /* 1 when every considered run has key and the same value of it, copied to v */
 static int shared(const an_tool *t, const char *key, char *v, size_t n)
 {

@@ -64,6 +64,14 @@ int tool_value(an_tool *t, int j, int k, const char *v);
  * 0: for the title); "" when there are none. */
 void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n);
 
+/* The legend of curve c of ncurve, a curve being the groups alike in every grouping key
+ * but `along` (the figure's x): the other keys whose values differ between the curves
+ * (vary = 1) or those they share (vary = 0); "" with more than 16 curves. Group j's
+ * curve is the int at (const char *)curve + j * stride (an array, or a member of an
+ * array of structs). */
+void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int ncurve, const char *along, int c,
+		       int vary, char *buf, size_t n);
+
 /* The setting every considered run shares, in words for a title: the values of the
  * keys that every run has alike (of N, W, A) and the grouping keys that every group
  * shares, joined by ", "; "" when none. */

@@ -392,26 +392,7 @@ static void group_out(an_tool *t, const whale_state *s, int j, FILE *sum, FILE *
  * the curves, or (vary = 0) those they share; "" when none. */
 static void curve_words(const an_tool *t, const whale_state *s, int c, int vary, char *buf, size_t n)
 {
-	char keys[AN_MAXKEYS][48];
-	const char *vals[AN_MAXKEYS * 16];
-	int nk = 0, first[16];
-	buf[0] = 0;
-	if (s->ncurve > 16)
-		return;
-	for (int k = 0; k < t->nk; k++)
-		if (k != s->kr)
-			memcpy(keys[nk++], t->keys[k], 48);
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int j = 0; j < t->ng; j++)
-			if (s->g[j].curve == cc) {
-				first[cc] = j;
-				break;
-			}
-	for (int cc = 0; cc < s->ncurve; cc++)
-		for (int k = 0, m = 0; k < t->nk; k++)
-			if (k != s->kr)
-				vals[cc * nk + m++] = t->gval[first[cc] * t->nk + k];
-	label_group(buf, n, keys, nk, vals, s->ncurve, c, vary);
+	tool_curve_legend(t, &s->g[0].curve, sizeof s->g[0], s->ncurve, "radius_ratio", c, vary, buf, n);
 }
 
 /* The trend lines: printed with their n, whale_trend.csv, stored under 'trend ...'. */
