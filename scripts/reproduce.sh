@@ -164,21 +164,36 @@ counts() { # CAMPAIGN -> "N runs: D done, F failed (reasons)"
 	printf '%s runs: %s done, %s failed%s' "${n:-0}" "${d:-0}" "${f:-0}" "${why:+ ($why)}"
 }
 verdict() { printf '**Verdict: %s.** %s' "$1" "$2"; }
-# runs_phi CAMPAIGN FREQUENCY RADIUS_RATIO : mean [95 % t interval] of the runs' Phi through
-# mid-bed (bin/onset's onset_runs.csv), and how many runs
-runs_phi() {
-	local f=$ANA/$1/onset_runs.csv
-	[ -f "$f" ] || { printf 'not computed'; return; }
-	awk -F, -v fr="$2" -v rr="$3" '
-		NR == 1 { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); c[h] = i }; next }
-		{ g = $0; v = $c["phi"]; ff = $c["frequency"]; r = $c["radius_ratio"]; gsub(/"/, "", ff); gsub(/"/, "", r)
-		  if (ff + 0 == fr + 0 && r + 0 == rr + 0 && v != "" && v != "nan") { n++; s += v; ss += v * v } }
-		END { if (n < 2) { printf "%d run(s)", n; exit }
-		      # Student t, 97.5 % quantile, df = 1 .. 30 (then 1.96 is within 2 %)
+# the mean of column COL of a tool's per-run CSV over the rows whose columns match
+# "k=v k=v", with a Student-t 95 % interval: "mean lo hi n"
+csv_mean() {
+	local f=$1 col=$2 where=$3
+	[ -f "$f" ] || { echo "- - - 0"; return; }
+	awk -F, -v col="$col" -v where="$where" '
+		NR == 1 { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); c[h] = i }
+			  nw = split(where, w, " "); next }
+		{ ok = 1
+		  for (j = 1; j <= nw; j++) { split(w[j], kv, "=")
+			if (!(kv[1] in c)) { # a grouping key the CSV has only in its group label
+				gl = " " $c["group"] " "; gsub(/"/, "", gl)
+				if (index(gl, " " w[j] " ") == 0) ok = 0
+				continue }
+			v = $c[kv[1]]; gsub(/"/, "", v)
+			num = v ~ /^[-+.0-9eE]+$/ && kv[2] ~ /^[-+.0-9eE]+$/
+			if (v != kv[2] && !(num && v + 0 == kv[2] + 0)) ok = 0 }
+		  x = $c[col]; if (ok && x != "" && x != "nan") { n++; s += x; ss += x * x } }
+		END { if (n < 2) { printf "%s - - %d\n", n ? s : "-", n; exit }
 		      split("12.706 4.303 3.182 2.776 2.571 2.447 2.365 2.306 2.262 2.228 2.201 2.179 2.160 2.145 " \
 			    "2.131 2.120 2.110 2.101 2.093 2.086 2.080 2.074 2.069 2.064 2.060 2.056 2.052 2.048 2.045 2.042", tq, " ")
 		      m = s / n; sd = sqrt((ss - n * m * m) / (n - 1)); t = n - 1 <= 30 ? tq[n - 1] : 1.96
-		      printf "%.3g [%.3g, %.3g] (%d runs)", m, m - t * sd / sqrt(n), m + t * sd / sqrt(n), n }' "$f"
+		      printf "%.4g %.4g %.4g %d\n", m, m - t * sd / sqrt(n), m + t * sd / sqrt(n), n }' "$f"
+}
+# runs_phi CAMPAIGN FREQUENCY RADIUS_RATIO : mean [95 % t interval] of the runs' Phi through
+# mid-bed (bin/onset's onset_runs.csv), and how many runs
+runs_phi() {
+	[ -f "$ANA/$1/onset_runs.csv" ] || { printf 'not computed'; return; }
+	set -- $(csv_mean "$ANA/$1/onset_runs.csv" phi "frequency=$2 radius_ratio=$3")
+	[ "${4:-0}" -ge 2 ] && printf '%s [%s, %s] (%s runs)' "$1" "$2" "$3" "$4" || printf '%s run(s)' "${4:-0}"
 }
 
 {

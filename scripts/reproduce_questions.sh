@@ -45,30 +45,6 @@ onset_rows() {
 grp_get() { tr ' ' '\n' <<<"$1" | awk -F= -v k="$2" '$1 == k { print $2 }'; }
 # Gamma = A (2 pi f)^2 / g of a frequency (A, g of the paper's scene)
 gam() { awk -v f="$1" -v a="$2" -v g="$3" 'BEGIN { if (f + 0 == f) printf "%.3g", a * (6.283185307 * f) ^ 2 / g; else print "-" }'; }
-# the mean of column COL of a tool's per-run CSV over the rows whose columns match
-# "k=v k=v", with a Student-t 95 % interval: "mean lo hi n"
-csv_mean() {
-	local f=$1 col=$2 where=$3
-	[ -f "$f" ] || { echo "- - - 0"; return; }
-	awk -F, -v col="$col" -v where="$where" '
-		NR == 1 { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); c[h] = i }
-			  nw = split(where, w, " "); next }
-		{ ok = 1
-		  for (j = 1; j <= nw; j++) { split(w[j], kv, "=")
-			if (!(kv[1] in c)) { # a grouping key the CSV has only in its group label
-				gl = " " $c["group"] " "; gsub(/"/, "", gl)
-				if (index(gl, " " w[j] " ") == 0) ok = 0
-				continue }
-			v = $c[kv[1]]; gsub(/"/, "", v)
-			num = v ~ /^[-+.0-9eE]+$/ && kv[2] ~ /^[-+.0-9eE]+$/
-			if (v != kv[2] && !(num && v + 0 == kv[2] + 0)) ok = 0 }
-		  x = $c[col]; if (ok && x != "" && x != "nan") { n++; s += x; ss += x * x } }
-		END { if (n < 2) { printf "%s - - %d\n", n ? s : "-", n; exit }
-		      split("12.706 4.303 3.182 2.776 2.571 2.447 2.365 2.306 2.262 2.228 2.201 2.179 2.160 2.145 " \
-			    "2.131 2.120 2.110 2.101 2.093 2.086 2.080 2.074 2.069 2.064 2.060 2.056 2.052 2.048 2.045 2.042", tq, " ")
-		      m = s / n; sd = sqrt((ss - n * m * m) / (n - 1)); t = n - 1 <= 30 ? tq[n - 1] : 1.96
-		      printf "%.4g %.4g %.4g %d\n", m, m - t * sd / sqrt(n), m + t * sd / sqrt(n), n }' "$f"
-}
 # a gnuplot figure (PNG and PDF) from a script body: GPFIG OUTBASE <<'EOF' ... EOF
 gpfig() {
 	local base=$1 body
