@@ -59,17 +59,19 @@ campaign() {
 	local dst=$W/campaigns/$1
 	# fewer replicates, short runs, a coarse search; a separate name, so that a quick
 	# database is never mistaken for the real one
+	# (claim 1's slow ramp, 516 s, becomes 16 s: twice the fast ramp's 8 s)
 	sed -E -e 's/^(replicates *= *)[0-9]+/\12/' -e 's/^(duration *= *)[0-9]+ *, *[0-9]+/\18, 16/' \
+		-e 's/^(duration *= *)516$/\1@SLOW@/' \
 		-e 's/^(duration *= *)[0-9]+([^,0-9]|$)/\18\2/' \
 		-e 's/^(name *= *)(.*)/\1q\2/' -e 's/^(tolerance *= *).*/\10.2/' -e 's/^(stop_skip *= *).*/\12/' \
 		-e 's/^(stop_after *= *).*/\11/' -e 's/^(field_periods *= *).*/\15/' \
-		-e 's|^scene *= *\.\./\.\./|scene = '"$root"'/|' "$src" >"$dst"
+		-e 's/@SLOW@/16/' -e 's|^scene *= *\.\./\.\./|scene = '"$root"'/|' "$src" >"$dst"
 	printf '%s\n' "$dst"
 }
 cname() { awk -F'=' '/^name[ \t]*=/ { gsub(/[ \t]|#.*/, "", $2); print $2; exit }' "$1"; }
 
 declare -A FILE NAME
-for c in claim1_onset claim1_hysteresis claim2_rolls claim3_ring claim4_waiting claim5_depth; do
+for c in claim1_onset claim1_hysteresis claim1_hysteresis_slow claim2_rolls claim3_ring claim4_waiting claim5_depth; do
 	FILE[$c]=$(campaign "$c.campaign")
 	NAME[$c]=$(cname "${FILE[$c]}")
 done
@@ -93,11 +95,35 @@ run_campaign() {
 		log "$1: study run $3 exited $? (see $W/study.log)"
 	WALL[$2]=$(( $(date +%s) - t ))
 }
+tool() { # TOOL CAMPAIGN OPTIONS... : a tool's figures and CSVs under $ANA/CAMPAIGN
+	local t=$1 n=$2; shift 2
+	[ "$REPORT_ONLY" = 1 ] && return 0
+	nice -n "$NICE" "bin/$t" "$n" --db "$DB" --runs "$RUNS" --out "$ANA/$n" "$@" >"$ANA/$n.$t.txt" 2>&1 ||
+		log "bin/$t $n: exit $? (see $ANA/$n.$t.txt)"
+}
+has_runs() { [ "$(q "SELECT COUNT(*) FROM run WHERE campaign = '$1' AND current")" -gt 0 ] 2>/dev/null; }
+# The slow ramp answers only one question: is a split of the branches a lag of the bed
+# behind the ramp (halves at half the speed) or hysteresis (stays)? Without a split
+# (the fast ramp's up - down interval holds 0) there is nothing to tell apart: it runs
+# when the fast ramp splits, or when an earlier invocation started it.
+slow_needed() {
+	has_runs "${NAME[claim1_hysteresis_slow]}" && return 0
+	tool hysteresis "${NAME[claim1_hysteresis]}" && HYST_DONE=1
+	local lo hi
+	read -r _ lo hi _ <<<"$(q "SELECT value, lo, hi, n FROM analysis WHERE campaign = '${NAME[claim1_hysteresis]}'
+		AND tool = 'hysteresis' AND key = 'diff_threshold' LIMIT 1" | tr '\t' ' ')"
+	[ -n "${lo:-}" ] && [ -n "${hi:-}" ] || { log "claim 1: no up - down interval of the fast ramp; the slow ramp runs"; return 0; }
+	awk -v l="$lo" -v h="$hi" 'BEGIN { exit !(l > 0 || h < 0) }' &&
+		{ log "claim 1: the fast ramp splits (up - down in [$lo, $hi] Hz): the slow ramp runs"; return 0; }
+	log "claim 1: the fast ramp does not split (up - down in [$lo, $hi] Hz): no slow ramp"
+	return 1
+}
 for k in $CLAIMS; do
 	[ "$REPORT_ONLY" = 1 ] && break
 	for c in $(campaigns_of "$k"); do
 		run_campaign "claim $k" "$c" "${FILE[$c]}"
 	done
+	[ "$k" = 1 ] && slow_needed && run_campaign "claim 1" claim1_hysteresis_slow "${FILE[claim1_hysteresis_slow]}"
 done
 # shellcheck source=scripts/reproduce_questions.sh
 . "$root/scripts/reproduce_questions.sh"
@@ -106,13 +132,8 @@ n1=$(done_runs); n1=${n1:-0}
 T_RUN=$(( $(date +%s) - T0 ))
 
 # --- the analysis -------------------------------------------------------------------------
-tool() { # TOOL CAMPAIGN OPTIONS... : a tool's figures and CSVs under $ANA/CAMPAIGN
-	local t=$1 n=$2; shift 2
-	[ "$REPORT_ONLY" = 1 ] && return 0
-	nice -n "$NICE" "bin/$t" "$n" --db "$DB" --runs "$RUNS" --out "$ANA/$n" "$@" >"$ANA/$n.$t.txt" 2>&1 ||
-		log "bin/$t $n: exit $? (see $ANA/$n.$t.txt)"
-}
-want 1 && { tool onset "${NAME[claim1_onset]}"; tool hysteresis "${NAME[claim1_hysteresis]}"; }
+want 1 && { tool onset "${NAME[claim1_onset]}"; [ "${HYST_DONE:-0}" = 1 ] || tool hysteresis "${NAME[claim1_hysteresis]}"
+	has_runs "${NAME[claim1_hysteresis_slow]}" && tool hysteresis "${NAME[claim1_hysteresis_slow]}"; }
 want 2 && { tool onset "${NAME[claim2_rolls]}" --by radius_ratio,frequency; tool figures "${NAME[claim2_rolls]}"
 	tool rolls "${NAME[claim2_rolls]}"; }
 want 3 && tool ring "${NAME[claim3_ring]}"
@@ -214,7 +235,8 @@ runs_phi() {
 	echo "| engine | $(q "SELECT DISTINCT git_hash FROM runs LIMIT 3" | tr '\n' ' ') |"
 	echo
 	if want 1; then
-		n=${NAME[claim1_onset]} h=${NAME[claim1_hysteresis]}
+		n=${NAME[claim1_onset]} h=${NAME[claim1_hysteresis]} hs=${NAME[claim1_hysteresis_slow]}
+		ramps=$h; has_runs "$hs" && ramps="$h $hs"
 		echo "## Claim 1: a sharp onset of convection, without hysteresis"
 		echo
 		echo "*Paper:* without the intruder, convection rolls exist only above an onset frequency; runs"
@@ -223,37 +245,40 @@ runs_phi() {
 		search=$(q "SELECT $(num estimate), $(num ci_lo), $(num ci_hi), replicates, runs, state FROM onset_group WHERE campaign = '$n' LIMIT 1")
 		read -r se slo shi srep sruns sstate <<<"$(echo "$search" | tr '\t' ' ')"
 		thr=$(val "$n" onset threshold_f); sd=$(val "$n" onset threshold_seed_sd); sig=$(val "$n" onset sigmoid_f0)
-		durs=$(q "SELECT DISTINCT duration FROM runs WHERE campaign = '$h' AND current ORDER BY duration")
+		# a ramp campaign's duration and its range (one of each per campaign)
+		ramp_of() { q "SELECT printf('%g %g-%g', MIN(duration), MIN(ramp_from), MIN(ramp_to)) FROM runs WHERE campaign = '$1' AND current"; }
 		echo "| quantity | ours (95 % interval) | test |"
 		echo "|---|---|---|"
 		echo "| onset, adaptive search (bisection per replicate, flux ≥ 2 particles/period through 0.4–0.6 of the bed) | $(iv "${se:-} ${slo:-} ${shi:-}") Hz, ${srep:-0} replicates, ${sruns:-0} runs (${sstate:-not run}) | order statistics of the replicates' onsets |"
 		echo "| onset, threshold crossing of the mean flux (bin/onset) | $(iv "$thr") Hz | bootstrap over seeds |"
 		echo "| onset, sigmoid midpoint | $(iv "$sig") Hz | nonlinear least squares, bootstrap |"
 		echo "| spread of the replicates' onsets (sd) | $(iv "$sd") Hz | |"
-		for d in $durs; do
-			g="duration = $d"
-			echo "| ramp over $d s, up: onset | $(iv "$(val "$h" hysteresis up_threshold_f "$g")") Hz | bin/hysteresis |"
-			echo "| ramp over $d s, down: onset | $(iv "$(val "$h" hysteresis down_threshold_f "$g")") Hz | |"
-			echo "| ramp over $d s, up − down | $(iv "$(val "$h" hysteresis diff_threshold "$g")") Hz | bootstrap over seeds |"
+		for r in $ramps; do
+			read -r d range <<<"$(ramp_of "$r")"
+			echo "| ramp $range Hz over $d s, up: onset | $(iv "$(val "$r" hysteresis up_threshold_f)") Hz | bin/hysteresis |"
+			echo "| ramp $range Hz over $d s, down: onset | $(iv "$(val "$r" hysteresis down_threshold_f)") Hz | |"
+			echo "| ramp $range Hz over $d s, up − down | $(iv "$(val "$r" hysteresis diff_threshold)") Hz | bootstrap over seeds |"
 		done
 		echo
-		echo "Runs: onset search $(counts "$n"); ramps $(counts "$h")."
+		echo "Runs: onset search $(counts "$n"); ramps $(counts "$h")$(has_runs "$hs" && printf '; slow ramps %s' "$(counts "$hs")")."
+		has_runs "$hs" || { echo; echo "The ramp twice as slow did not run: it is needed only when the up − down interval excludes 0 (a lag of the bed behind the ramp halves with the speed, hysteresis does not; both make up > down, so without a split there is neither)."; }
 		echo
 		read -r sdv _ <<<"$sd"
 		sharp=$(awk -v s="${sdv:--}" 'BEGIN { print (s + 0 == s && s < 0.05) ? 1 : 0 }')
 		# no hysteresis: at the slowest ramp the branches agree (the difference's interval
 		# holds 0), or the difference is a lag of the bed behind the ramp: it scales with
-		# the ramp speed (the slowest ramp's interval holds the fastest ramp's difference
-		# times the speed ratio)
-		dfast=${durs%%$'\n'*} dslow=${durs##*$'\n'}
-		read -r fv _ _ _ <<<"$(val "$h" hysteresis diff_threshold "duration = ${dfast:-0}")"
-		read -r sv slo shi _ <<<"$(val "$h" hysteresis diff_threshold "duration = ${dslow:-0}")"
+		# the ramp speed (the slow ramp's interval holds the fast ramp's difference times
+		# the speed ratio)
+		slowest=${ramps##* }
+		read -r dfast _ <<<"$(ramp_of "$h")"; read -r dslow _ <<<"$(ramp_of "$slowest")"
+		read -r fv _ _ _ <<<"$(val "$h" hysteresis diff_threshold)"
+		read -r sv slo shi _ <<<"$(val "$slowest" hysteresis diff_threshold)"
 		nohyst=$(awk -v l="${slo:--}" -v h="${shi:--}" -v f="${fv:--}" -v a="${dfast:-0}" -v b="${dslow:-0}" 'BEGIN {
 			if (!(l + 0 == l)) { print 0; exit }
 			if (l <= 0 && h >= 0) { print 1; exit }
 			lag = (f + 0 == f && b > a) ? f * a / b : "x"
 			print (lag != "x" && l <= lag && h >= lag) ? 2 : 0 }')
-		why0="the up − down interval of the slowest ramp ($dslow s) contains 0"
+		why0="the up − down interval of the $([ "$slowest" = "$h" ] && echo ramp || echo "slower ramp") ($dslow s) contains 0"
 		why2="the branches differ by a lag of the bed behind the ramp: the difference shrinks with the ramp speed as a lag does (slow ramp [$slo, $shi] Hz holds the fast ramp's ${fv:-?} Hz × $dfast/$dslow)"
 		why=$([ "$nohyst" = 1 ] && echo "$why0" || echo "$why2")
 		if [ "$sharp" = 1 ] && [ "$nohyst" != 0 ]; then verdict reproduced "The replicates' onsets spread by less than 0.05 Hz, and $why."
@@ -261,7 +286,7 @@ runs_phi() {
 		else verdict "not reproduced" "The replicates' onsets spread by ${sdv:-?} Hz (≥ 0.05), and the slowest ramp's up − down interval [${slo:-?}, ${shi:-?}] Hz neither holds 0 nor scales like a lag."; fi
 		echo
 		echo
-		echo "$(fig "$ANA/$n/onset.png" claim1_onset.png) $(fig "$ANA/$h/hysteresis.png" claim1_hysteresis.png)"
+		echo "$(fig "$ANA/$n/onset.png" claim1_onset.png) $(fig "$ANA/$h/hysteresis.png" claim1_hysteresis.png)$(has_runs "$hs" && printf ' %s' "$(fig "$ANA/$hs/hysteresis.png" claim1_hysteresis_slow.png)")"
 		echo
 	fi
 	if want 2; then
