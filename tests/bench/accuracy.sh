@@ -15,10 +15,13 @@
 #      accurate when both are statistically indistinguishable from the reference
 #      (|z| < 2 on the means, unpaired standard errors, and chi^2 / n of the Phi(D)
 #      profile below its 95 % point); the cheapest accurate setting is the proposed
-#      `fast` preset.
+#      `fast` preset;
+#  (d) the ring observables of claim 3 (contact forces around the intruder), preset fast
+#      against preset paper on the claim's own campaign: tests/bench/accuracy_ring.sh.
 # Cost is CPU seconds (user + sys of the whole process, from /usr/bin/time) per
 # simulated second: robust when another job shares the machine, unlike wall time.
-# Knobs: ACC_QUICK=1 (a few minutes), ACC_SEEDS, JOBS (default 2), ACC_OUT.
+# Knobs: ACC_QUICK=1 (a few minutes), ACC_SEEDS, JOBS (default 2), ACC_OUT, ACC_PARTS (the
+# parts to run, default "a b c d"; e.g. ACC_PARTS=d), ACC_RING_REPS (replicates of (d)).
 set -u
 cd "$(dirname "$0")/../.."
 REPO=$PWD
@@ -27,6 +30,9 @@ ACC_COLL=${ACC_COLL:-$REPO/build/rel/tests/bench/accuracy_collision}
 QUICK=${ACC_QUICK:-0}
 JOBS=${JOBS:-2}
 OUT=${ACC_OUT:-$REPO/build/bench/accuracy}
+PARTS=${ACC_PARTS:-a b c d}
+part() { case " $PARTS " in *" $1 "*) return 0 ;; esac; return 1; }
+for p in $PARTS; do case $p in a | b | c | d) ;; *) echo "ACC_PARTS: unknown part '$p' (a b c d)" >&2; exit 1 ;; esac; done
 . "$REPO/tests/stress/lib.sh"
 mkdir -p "$OUT/runs" "$OUT/beds"
 cd "$OUT" || exit 2
@@ -54,11 +60,12 @@ REF_B=3.125e-6 REF_B2=1.5625e-6
 	echo "shakebox accuracy benchmark  $(date '+%Y-%m-%d %H:%M:%S')"
 	echo "  engine   $SHAKE ($("$SHAKE" --version 2>/dev/null | head -n 1))"
 	echo "  machine  $(nproc) cores; load average at start $(cut -d' ' -f1-3 /proc/loadavg)"
-	echo "  settings ACC_QUICK=$QUICK seeds=$SEEDS JOBS=$JOBS"
+	echo "  settings ACC_QUICK=$QUICK seeds=$SEEDS JOBS=$JOBS parts=$PARTS"
 	echo
 } >"$REPORT"
 
 # ---------------------------------------------------------------- (a) collisions
+if part a; then
 echo "(a) two-disk collisions" >&2
 "$ACC_COLL" $COLL_ARG >collision.tsv || { echo "accuracy_collision failed" >&2; exit 1; }
 {
@@ -84,8 +91,10 @@ echo "(a) two-disk collisions" >&2
 awk -F'\t' 'NR > 2 && !/^#/ { k = $1 "\t" $2; if ($13 != "ok") bad[k] = 1; else { m = $10 > $11 ? $10 : $11; if (m > e[k]) e[k] = m }
 	if ($3 == "disk_disk_head_on") s[k] = $4 }
 	END { for (k in s) if (!bad[k]) print k "\t" s[k] "\t" e[k] }' collision.tsv | sort -k1,1 -k2,2g >collision_wp.tsv
+fi
 
 # ---------------------------------------------------------------- beds
+if part b || part c; then
 echo "settling $SEEDS beds" >&2
 settle_bed() { # seed
 	local b=$OUT/beds/seed$1.txt
@@ -95,6 +104,7 @@ settle_bed() { # seed
 export -f settle_bed
 seq 1 "$SEEDS" | parallel -j "$JOBS" settle_bed
 for s in $(seq 1 "$SEEDS"); do [ -s "beds/seed$s.txt" ] || { echo "settling seed $s failed" >&2; exit 1; }; done
+fi
 
 # run_one NAME INTEG DT args... : runs, records "exit cpu_seconds" in runs/NAME.res
 run_one() {
@@ -110,6 +120,7 @@ run_one() {
 export -f run_one
 
 # ---------------------------------------------------------------- (b) short horizon
+if part b; then
 echo "(b) paper scene, horizon $HORIZON s" >&2
 {
 	echo "b_ref gear5 $REF_B particles=$OUT/beds/seed1.txt settle=no duration=$HORIZON traj_rate=2000"
@@ -152,8 +163,10 @@ read -r fl_rms fl_max fl_int <<<"$(bdiff runs/b_ref.h5 runs/b_ref2.h5)"
 	done; done
 	echo
 } >>"$REPORT"
+fi
 
 # ---------------------------------------------------------------- (c) ensembles
+if part c; then
 echo "(c) ensembles: $SEEDS seeds x ($REF_C $CSET)" >&2
 {
 	for s in $(seq 1 "$SEEDS"); do for st in $REF_C $CSET; do
@@ -233,8 +246,10 @@ awk -v rig="$REF_IG" -v rdt="$REF_DT" -v dw="$DUR_W" -v df="$DUR_F" -v pw="$OUT/
 	grep -v '^BEST' ensemble.txt
 	echo
 } >>"$REPORT"
+fi
 
 # ---------------------------------------------------------------- plot + conclusion
+if part c; then
 gnuplot <<EOF 2>/dev/null
 set terminal pngcairo size 1500,480 font ',10'
 set output '$OUT/work_precision.png'
@@ -274,4 +289,12 @@ EOF
 	echo "    The ensemble test only resolves differences larger than ~2 standard errors of $SEEDS seeds; see the"
 	echo "    z columns for how close each setting is. Plot: $OUT/work_precision.png"
 } >>"$REPORT"
+fi
+
+# ---------------------------------------------------------------- (d) ring force
+if part d; then
+	echo "(d) ring force: preset fast against paper (tests/bench/accuracy_ring.sh)" >&2
+	ACC_QUICK=$QUICK JOBS=$JOBS ACC_OUT=$PWD ACC_REPORT=$REPORT bash "$REPO/tests/bench/accuracy_ring.sh" ||
+		{ cat "$REPORT"; echo "accuracy: (d) ring force failed" >&2; exit 1; }
+fi
 cat "$REPORT"
