@@ -116,6 +116,8 @@ echo "Claim 1: grid = bin/onset --threshold 2 (threshold crossing of the mean fl
 echo "seeds); skip = the search's median switch over replicates with its order-statistic interval;"
 echo "the extra line is bin/onset on the search's own runs (the grid's statistic). Claims 2, 4: the"
 echo "driver's mean_flux (Student t) and median_wait (Kaplan-Meier, order statistics) both ways."
+echo "Claim 3: bin/ring's ratio of the ring force with/without the intruder (bootstrap) both ways;"
+echo "n = the runs with the intruder (as many without)."
 echo
 
 # --- the full shipped grids, computed ---
@@ -152,12 +154,13 @@ echo
 # --- all five questions at 16 replicates per point, the skip way, computed ---
 echo "All five questions at 16 replicates per point the skip way (COMPUTED from this invocation's"
 echo "skip runs: measured CPU s per replicate of a point or search group x 16 x the points or groups of"
-echo "the full shipped question; claim 3 has no skip way: its grid at 16 seeds, paper rate):"
-awk -F'\t' -v costs="$COSTS" -v rp="${RP:-}" -v jobs="$JOBS" '
+echo "the full shipped question):"
+awk -F'\t' -v costs="$COSTS" -v jobs="$JOBS" '
 	BEGIN {
 		while ((getline l < costs) > 0) { split(l, a, "\t"); if (a[2] == "skip") cpu[a[1]] += a[6] }
 		full[1] = 1;  what[1] = "1 group (no intruder)"
 		full[2] = 6;  what[2] = "6 points (2.6-3.0 Hz x R = 0, 4)"
+		full[3] = 3;  what[3] = "3 frequencies (2.6-3.0 Hz), R = 0 and 4"
 		full[4] = 12; what[4] = "12 points (R = 2 ... 8)"
 		full[5] = 8;  what[5] = "8 groups (R = 3, 4 x depth 0 ... 3)"
 	}
@@ -166,17 +169,13 @@ awk -F'\t' -v costs="$COSTS" -v rp="${RP:-}" -v jobs="$JOBS" '
 		tot = 0
 		printf "%-6s %-42s %12s %14s\n", "claim", "full question", "CPU s/rep", "CPU s at 16"
 		for (c = 1; c <= 5; c++) {
-			if (c == 3) {
-				if (rp == "") { printf "%-6s %-42s %12s %14s\n", 3, "6 points x 100 s, no skip way", "-", "n/a"; continue }
-				x = 6 * 16 * 100 * rp; tot += x
-				printf "%-6s %-42s %12.1f %14.0f\n", 3, "6 points x 100 s, grid, paper preset", 100 * rp, x; continue
-			}
 			if (!(c in cpu) || reps[c] == 0) { printf "%-6s %-42s %12s %14s\n", c, what[c], "-", "not run"; miss = 1; continue }
 			per = cpu[c] / reps[c]; x = per * 16 * full[c]; tot += x
 			printf "%-6s %-42s %12.1f %14.0f\n", c, what[c], per, x
 		}
 		printf "%-6s %-42s %12s %14.0f  = %.1f CPU h, %.0f min wall on %d cores if they stay busy%s\n", "all", "", "", tot, tot / 3600, tot / 60 / jobs, jobs, miss ? " (claims not run left out)" : ""
 	}' "$ANS"
-echo "(CPU s/rep is what the subset measured: claim 1 over its range, claim 2 at 2.8 Hz, claim 4 the mean of its"
+echo "(CPU s/rep is what the subset measured: claim 1 over its range, claim 2 at 2.8 Hz, claim 3 at 2.8 Hz (both"
+echo "systems), claim 4 the mean of its"
 echo "ratios, claim 5 its group and search - a full question has ranges, frequencies and groups that cost more"
 echo "or less per replicate. Claim 1's hysteresis ramps - no skip way - are not among these five questions.)"
