@@ -13,6 +13,7 @@
 #include "h5read.h"
 #include "km.h"
 #include "logrank.h"
+#include "lowerrow.h"
 #include "tool.h"
 #include "traj.h"
 #include "xopt.h"
@@ -34,7 +35,9 @@ static const char *HELP =
 	"says how many runs it concerns).\n"
 	"Per group of runs: Kaplan-Meier survival S(t), the median (first t with S <= 0.5)\n"
 	"with its Brookmeyer-Crowley interval (Greenwood errors, plain band), the fraction\n"
-	"risen by the end, and a histogram of the observed waiting times.\n\n"
+	"risen by the end, and a histogram of the observed waiting times. When `depth` is a\n"
+	"grouping key, each group against the same start one row lower (depth - 1, docs/model.md):\n"
+	"both fractions risen, their difference and the two-sided Fisher exact test.\n\n"
 	"A second definition, beside the engine's (which a small intruder's slow creep of one\n"
 	"diameter trips): the first time the intruder's centre has covered the fraction Q\n"
 	"(--fraction, default 0.5) of the way from its settled height to the settled surface,\n"
@@ -70,7 +73,9 @@ static const char *HELP =
 	"confidence band), waiting_hist.png/.pdf; stores per group in the\n"
 	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen (Clopper-Pearson\n"
 	"lo, hi), median (lo, hi), t_max, s_end (lo, hi), and the accounting (runs_failed,\n"
-	"runs_failed_used, ..., as onset --help lists). The second definition:\n"
+	"runs_failed_used, ..., as onset --help lists); a group with a start one row lower:\n"
+	"lower_fraction_diff (that start's fraction_risen less the group's), lower_fisher_p\n"
+	"(n: the runs of both) and lower_risen (n: its runs). The second definition:\n"
 	"waiting_way_runs.csv (both times of every used run), waiting_way_km.csv,\n"
 	"waiting_way_summary.csv, waiting_way.png/.pdf\n"
 	"(both definitions' Kaplan-Meier curves); keys way_fraction, way_runs, way_risen,\n"
@@ -451,8 +456,39 @@ static void logrank_out(an_tool *t, const grp *g, const char *prefix, const char
 	tool_store(t, -1, "all groups", key, r.p, NAN, NAN, n);
 }
 
-/* Per group: waiting_summary.csv, the table and the analysis table (storing begun
- * here, ended by the caller). */
+/* Each group j that has a start one row lower i (lowerrow.h): the fractions risen of
+ * both, the difference frac(i) - frac(j) and the two-sided Fisher exact test, printed
+ * and stored as group j's (its key columns, its depth) lower_fraction_diff and
+ * lower_fisher_p (n the runs of both) and lower_risen (the lower start's risen, n its
+ * runs), so that no reader has to pair the depths again. Nothing when no group has one. */
+static void lower_out(an_tool *t, const wait_state *s)
+{
+	int np = 0;
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		const int i = lowerrow_partner(t, j);
+		if (i < 0)
+			continue;
+		const km_curve *a = &s->km[j], *b = &s->km[i];
+		const double fa = a->n ? (double)a->events / (double)a->n : NAN;
+		const double fb = b->n ? (double)b->events / (double)b->n : NAN;
+		const double p = lowerrow_fisher_p(b->events, b->n, a->events, a->n), d = fb - fa;
+		const long n = a->n + b->n;
+		if (!np++)
+			printf("\n# one row lower (depth - 1, docs/model.md): fraction risen starting one row lower minus at"
+			       " the group's depth d, two-sided Fisher exact test\n%-36s %14s %14s %8s %9s %5s\n",
+			       "group (depth d)", "risen/runs d", "risen/runs d-1", "diff", "fisher_p", "runs");
+		char ra[48], rb[48];
+		snprintf(ra, sizeof ra, "%ld/%ld", a->events, a->n);
+		snprintf(rb, sizeof rb, "%ld/%ld", b->events, b->n);
+		printf("%-36s %14s %14s %+8.3f %9.3g %5ld\n", t->labels[j], ra, rb, d, p, n);
+		tool_store(t, j, t->labels[j], "lower_fraction_diff", d, NAN, NAN, n);
+		tool_store(t, j, t->labels[j], "lower_fisher_p", p, NAN, NAN, n);
+		tool_store(t, j, t->labels[j], "lower_risen", (double)b->events, NAN, NAN, b->n);
+	}
+}
+
+/* Per group: waiting_summary.csv, the table, the comparison one row lower and the
+ * analysis table (storing begun here, ended by the caller). */
 static int summary(an_tool *t, const wait_state *s)
 {
 	FILE *sum = tool_summary_csv(t, "waiting_summary.csv",
@@ -467,6 +503,7 @@ static int summary(an_tool *t, const wait_state *s)
 		group_out(t, s, j, sum);
 	fclose(sum);
 	logrank_out(t, s->g, "", "");
+	lower_out(t, s);
 	return t->e.code;
 }
 
