@@ -5,7 +5,7 @@
 #   questions_tools    run the analysis tools on them
 #   questions_report   print their sections of REPRODUCTION.md (markdown on stdout)
 # It uses reproduce.sh's helpers (q, val, iv, fig, counts, tool, campaign, cname, log,
-# run_campaign) and its variables (QUESTIONS, W, ANA).
+# run_campaign, integrator) and its variables (QUESTIONS, W, ANA).
 # Every number is computed here from the database or the tools' outputs.
 
 declare -A QFILE QNAME
@@ -58,6 +58,8 @@ gpfig() {
 q_stiffness() {
 	local n=${QNAME[q1_stiffness]} A G rows
 	echo "## Open question 1: is the convection below Γ = 1 an effect of the soft contacts?"
+	echo
+	integrator "${QNAME[q1_stiffness]}" "${QFILE[q1_stiffness]}"
 	echo
 	echo "Experiments and hard-contact simulations of vibrated beds convect only above Γ ≈ 1; the"
 	echo "paper's model convects at Γ ≈ 0.6. Here the contact stiffness Y goes from the paper's"
@@ -136,6 +138,9 @@ q_width() {
 	local n=${QNAME[q2_width_onset]} r=${QNAME[q2_width_rise]} rows
 	echo "## Open question 2: the box width"
 	echo
+	integrator "${QNAME[q2_width_onset]}" "${QFILE[q2_width_onset]}"
+	integrator "${QNAME[q2_width_rise]}" "${QFILE[q2_width_rise]}"
+	echo
 	echo "The paper does not give its box width; ours is 60 cm, a bed about as high as wide. Widths from"
 	echo "40 to 160 cm at a fixed bed height (\`zip = width n_grains\`, 950 grains per 60 cm): the onset of"
 	echo "convection without intruder (searched as in claim 1), and the rise of 𝓡 = 4 placed one row"
@@ -179,6 +184,8 @@ q_periodic() {
 	local n=${QNAME[q3_periodic]} csv
 	csv=$ANA/$n/onset_runs.csv
 	echo "## Open question 3: periodic side boundaries"
+	echo
+	integrator "${QNAME[q3_periodic]}" "${QFILE[q3_periodic]}"
 	echo
 	echo "Without side walls (\`sides = periodic\`: the bottom row closes on itself and grains cross"
 	echo "x = 0 / x = W), does the bed still convect? No intruder. Three measures per run, means over"
@@ -232,6 +239,8 @@ q_large() {
 	local n=${QNAME[q4_large]} r w lr
 	echo "## Open question 4: large intruders"
 	echo
+	integrator "${QNAME[q4_large]}" "${QFILE[q4_large]}"
+	echo
 	echo "𝓡 from 4 to 12 at 3.2 Hz, one row above the floor, within 180 s (the literature predicts a"
 	echo "critical size ratio above which the intruder always rises)."
 	echo
@@ -267,6 +276,8 @@ q_large() {
 q_long() {
 	local n=${QNAME[q5_long]} r w
 	echo "## Open question 5: long times, the whale oscillation"
+	echo
+	integrator "${QNAME[q5_long]}" "${QFILE[q5_long]}"
 	echo
 	echo "600 s at 3.2 Hz for 𝓡 = 2 … 8: after its rise the intruder dives into the bed and comes back"
 	echo "(bin/whale, definitions in analysis/README.md: the height averaged over each drive period, from"

@@ -19,7 +19,12 @@ fi
 grep -q '^## Claim 4: the waiting time at 3.2 Hz' "$R" && ok claim4.section || fail claim4.section "$(head -n 20 "$R")"
 # one row per radius ratio of the campaign (2, 2.5, 3, 3.5, 4), each with its runs counted
 [ "$(grep -cE '^\| [234](\.[05])? \| 2 \| [0-2] \|' "$R")" = 5 ] && ok claim4.table_rows || fail claim4.table_rows "$(grep '^| [0-9]' "$R")"
-grep -qE '^\*\*Verdict: (reproduced|partly|not reproduced)\.\*\*' "$R" && ok claim4.verdict || fail claim4.verdict "$(grep Verdict "$R")"
+grep -qE '^\*\*Verdict: (reproduced|partly|not reproduced|not decided)\*\* \([0-4] of 4 parts hold' "$R" && ok claim4.verdict || fail claim4.verdict "$(grep Verdict "$R")"
+# its parts, each judged, and the integrator its runs used with the campaign's reason
+[ "$(grep -cE '^\| 4[abcd] \| .* \| (holds|fails|opposite|open) \|$' "$R")" = 4 ] && ok claim4.parts ||
+	fail claim4.parts "$(grep -E '^\| 4' "$R")"
+grep -qE '^\*Integrator:\* preset fast \(verlet, Δt = 0.0002 s\)\. fast\. make bench-accuracy' "$R" && ok claim4.integrator ||
+	fail claim4.integrator "$(grep Integrator "$R")"
 grep -qE 'Log-rank test .*p = [0-9.e-]+ \(one diameter\)' "$R" && ok claim4.logrank || fail claim4.logrank "$(grep Log-rank "$R")"
 grep -q '10 runs: 10 done, 0 failed' "$R" && ok claim4.accounting || fail claim4.accounting "$(grep 'Runs:' "$R")"
 grep -q '| this invocation | .* 10 runs simulated |' "$R" && ok first.counts_runs || fail first.counts_runs "$(grep invocation "$R")"
