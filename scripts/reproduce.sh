@@ -233,7 +233,7 @@ integrator() {
 		|| integrator || ', Δt = ' || printf('%g', dt) || ' s)' AS x FROM runs WHERE campaign = '$1' AND current)")
 	why=$(awk '/^# preset:/ { on = 1; sub(/^# preset: */, ""); printf "%s", $0; next }
 		on && /^#   / { sub(/^# */, " "); printf "%s", $0; next } { on = 0 }' "$2")
-	printf '*Integrator:* %s. %s\n' "${what:-no runs yet}" "$why"
+	printf '*Integrator* (%s): %s. The campaign file on the preset: "%s"\n' "$1" "${what:-no runs yet}" "$why"
 }
 # render : the verdict lines of scripts/verdicts.sh as a table of parts and the verdict
 render() {
@@ -314,7 +314,7 @@ runs_phi() {
 		if [ -z "$F_ON" ]; then echo "*Not evaluated: claim 1's onset search is not done.*"; echo; return 1; fi
 		if ! has_runs "${NAME[$1_on]}"; then echo "*Not run yet* (\`make reproduce\` runs ${NAME[$1_on]} at ${REL_F[$1]} Hz)."; echo; return 1; fi
 		echo "f_on = $F_ON Hz here, $PAPER_ONSET Hz in the paper: the paper's frequencies shifted by f_on − $PAPER_ONSET Hz,"
-		echo "${REL_F[$1]// /, } Hz, with 8 replicates."
+		echo "${REL_F[$1]// /, } Hz, with $(q "SELECT MAX(replicate) FROM run WHERE campaign = '${NAME[$1_on]}' AND current") replicates."
 		echo
 		integrator "${NAME[$1_on]}" "${FILE[$1_on]}"
 		echo
@@ -502,6 +502,10 @@ runs_phi() {
 	tot_c=0 tot_q=0
 	for k in $CLAIMS; do
 		for c in $(campaigns_of "$k"); do cost_row "${NAME[$c]}" "$c"; tot_c=$((tot_c + $(local_cpu "${NAME[$c]}"))); done
+	done
+	for c in claim2_rolls_on claim3_ring_on claim5_depth_on; do
+		[ -n "${NAME[$c]:-}" ] && has_runs "${NAME[$c]}" || continue
+		cost_row "${NAME[$c]}" "$c"; tot_c=$((tot_c + $(local_cpu "${NAME[$c]}")))
 	done
 	for k in $QUESTIONS; do
 		for c in $(campaigns_of_question "$k"); do cost_row "${QNAME[$c]}" "$c"; tot_q=$((tot_q + $(local_cpu "${QNAME[$c]}"))); done

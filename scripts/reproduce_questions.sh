@@ -108,27 +108,10 @@ plot '$ANA/q1_stiffness.dat' u 1:5:6:(\$7 == \$7 ? \$7 : \$5) w yerrorbars lw 2 
      '' u 1:(\$5 == \$5 ? 1/0 : \$6) w p pt 9 ps 2 lc rgb '#9400d3' t 'onset above the searched range: its lower bound', \
      1 w l dt 2 lw 2 lc rgb '#009e73' t '{/Symbol G} = 1'
 EOF
-	# the answer, by rule, once every search is done: yes when the stiffest bed's onset
-	# interval lies at Gamma >= 1; in part when it lies above the softest bed's interval;
-	# else no. An onset above the searched range counts with its lower bound.
+	# the answer, by the rule of scripts/verdicts.sh, once every search is done
 	local ndone ngrp
 	read -r ndone ngrp <<<"$(q "SELECT SUM(state = 'done'), COUNT(*) FROM onset_group WHERE campaign = '$n'" | tr '\t' ' ')"
-	local first last
-	first=$(head -1 "$ANA/q1_stiffness.dat") last=$(tail -1 "$ANA/q1_stiffness.dat")
-	set -- $first; local y0=${1:-} g0=${5:-} g0hi=${7:-} ratio0
-	ratio0=$(awk -v f="${2:-x}" -v e="${8:-x}" 'BEGIN { if (f + 0 == f && e + 0 == e && f > 0) printf "%.1f", e / f; else print "?" }')
-	set -- $last; local g1=${5:-} g1lo=${6:-} y1=${1:-}
-	local ans
-	ans=$(awk -v a="${g0hi:-x}" -v b="${g1lo:-x}" 'BEGIN { if (!(a + 0 == a && b + 0 == b)) print "none";
-		else if (b >= 1) print "hard"; else if (b > a) print "part"; else print "no" }')
-	[ "${ndone:-0}" = "${ngrp:-x}" ] || ans=running
-	case $ans in
-	running) echo "**Answer: not yet.** ${ndone:-0} of ${ngrp:-0} searches are done; \`make reproduce\` resumes them." ;;
-	hard) echo "**Answer: yes.** At Y = $y1 g/s² the onset lies at Γ ≥ 1 ($([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")), at the paper's Y = $y0 at Γ = $g0 (up to $g0hi): with stiffer contacts at the same restitution the bed convects only above Γ = 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper's Y the bed's estimated lowest elastic frequency is only $ratio0 times the drive's at the onset." ;;
-	part) echo "**Answer: in part.** The onset rises with the stiffness (Γ = $g0 at the paper's Y, $g1 at Y = $y1; the intervals separate) but stays below Γ = 1." ;;
-	no) echo "**Answer: no, not in this range.** The onset at Y = $y1 (Γ = $g1) is not above the paper's (Γ = $g0) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between $y0 and $y1 g/s² at a fixed restitution." ;;
-	*) echo "**Answer: none** (the searches found no onset to compare)." ;;
-	esac
+	answer_q1 "$ANA/q1_stiffness.dat" "${ndone:-0}" "${ngrp:-0}" | answer_md
 	echo
 	echo "$(fig "$ANA/q1_stiffness.png" q1_stiffness.png)"
 	echo
@@ -160,19 +143,11 @@ q_width() {
 	done <<<"$rows"
 	[ -n "$rows" ] || echo "| *not run yet* | | | | | | | | |"
 	echo
-	local lr sep
+	local lr
 	lr=$(q "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$r' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
 	echo "Log-rank test of equal waiting times across the widths: p = ${lr:-not computed}."
-	# do the onsets depend on the width: two widths whose intervals do not overlap
-	sep=$(q "SELECT GROUP_CONCAT(a.grp || ' vs ' || b.grp, '; ') FROM onset_group a JOIN onset_group b
-		 ON a.campaign = b.campaign AND a.point < b.point
-		 WHERE a.campaign = '$n' AND a.state = 'done' AND b.state = 'done' AND (a.ci_hi < b.ci_lo OR b.ci_hi < a.ci_lo)")
-	local nd ng
-	read -r nd ng <<<"$(q "SELECT SUM(state = 'done'), COUNT(*) FROM onset_group WHERE campaign = '$n'" | tr '\t' ' ')"
 	echo
-	if [ "${nd:-0}" != "${ng:-x}" ]; then echo "**Answer: not yet** (${nd:-0} of ${ng:-0} onset searches done)."
-	elif [ -n "$sep" ]; then echo "**Answer: the onset depends on the width**: the intervals separate for $sep."
-	else echo "**Answer: the onset does not depend on the width** between 40 and 160 cm within the intervals (every pair overlaps)."; fi
+	answer_q2 "$n" | answer_md
 	echo "The rise: the log-rank p above tests equal waiting-time distributions across the widths."
 	echo "Runs: onset $(counts "$n"); rise $(counts "$r")."
 	echo
@@ -205,7 +180,7 @@ q_periodic() {
 	if [ ! -f "$csv" ] && [ -z "$(val "$n" convect strength "sides = 'walls'")" ]; then echo "*Not run yet.*"; echo; return; fi
 	echo "| frequency | P with walls (cm/period) | P periodic | S with walls | S periodic | Φ with walls | Φ periodic | runs |"
 	echo "|---|---|---|---|---|---|---|---|"
-	local f a b wm wl wh wn pm pl ph pn conv_w="" conv_p="" s lo
+	local f a b wm wl wh wn pm pl ph pn
 	for f in $(q "SELECT DISTINCT frequency FROM runs WHERE campaign = '$n' AND current ORDER BY frequency"); do
 		a=$(csv_mean "$csv" phi "sides=walls frequency=$f") b=$(csv_mean "$csv" phi "sides=periodic frequency=$f")
 		set -- $a; wm=$1 wl=$2 wh=$3 wn=$4
@@ -216,20 +191,11 @@ q_periodic() {
 			"$(iv "$(val "$n" convect strength "sides = 'walls' AND frequency = $f")")" \
 			"$(iv "$(val "$n" convect strength "sides = 'periodic' AND frequency = $f")")" \
 			"$wm" "$wl" "$wh" "$pm" "$pl" "$ph" "$wn" "$pn"
-		# the rule: a bed convects at f when the lower bound of its C (P squared) is above 0
-		for s in walls periodic; do
-			read -r _ lo _ _ <<<"$(val "$n" convect persistence_c "sides = '$s' AND frequency = $f")"
-			if awk -v l="${lo:-x}" 'BEGIN { exit !(l + 0 == l && l > 0) }'; then
-				[ $s = walls ] && conv_w="$conv_w $f" || conv_p="$conv_p $f"
-			fi
-		done
 	done
 	echo
 	echo "Runs: $(counts "$n")."
 	echo
-	if [ -n "$conv_p" ]; then echo "**Answer: yes.** Without side walls the bed has a persistent flow (P's interval above 0) at${conv_p} Hz; with walls at${conv_w:- no frequency}."
-	elif [ -n "$conv_w" ]; then echo "**Answer: no.** With walls the bed convects steadily at${conv_w} Hz (P's interval above 0); without walls at no frequency here: in this model the side walls drive the rolls."
-	else echo "**Answer: none.** Neither bed has a persistent flow beyond its interval at these frequencies."; fi
+	answer_q3 "$n" | answer_md
 	echo
 	echo "$(fig "$ANA/$n/convect.png" q3_periodic_strength.png) $(fig "$ANA/$n/onset.png" q3_periodic_flux.png)"
 	echo
@@ -256,18 +222,7 @@ q_large() {
 	lr=$(q "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
 	echo "Log-rank test of equal waiting times across 𝓡: p = ${lr:-not computed}. Runs: $(counts "$n")."
 	echo
-	# the answer: a critical size ratio shows as an R below which some intruders stay down
-	# and above which all rise
-	local notall allr
-	notall=$(q "SELECT GROUP_CONCAT(radius_ratio, ', ') FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
-		    AND key = 'fraction_risen' AND value < 1")
-	allr=$(q "SELECT MIN(radius_ratio) || '–' || MAX(radius_ratio) FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
-		  AND key = 'fraction_risen' AND value = 1")
-	if [ -z "$notall" ] && [ -n "$allr" ]; then
-		echo "**Answer: no critical size ratio in this range.** Every intruder of 𝓡 = $allr rose within the run at 3.2 Hz; the waits $(awk -v p="${lr:-1}" 'BEGIN { print (p + 0 == p && p < 0.05) ? "differ across 𝓡 (log-rank p < 0.05)" : "do not differ across 𝓡 beyond chance (log-rank p ≥ 0.05)" }')."
-	else
-		echo "**Answer:** not every intruder rose at 𝓡 = ${notall:-?}; all did at 𝓡 = ${allr:-none}."
-	fi
+	answer_q4 "$n" | answer_md
 	echo
 	echo "$(fig "$ANA/$n/waiting_km.png" q4_large_km.png)"
 	echo
@@ -305,20 +260,7 @@ q_long() {
 	echo "Trend with 𝓡, Spearman's rank correlation over runs (permutation p): period ${tp:-not computed}; depth ${td:-not computed}."
 	echo "Runs: $(counts "$n")."
 	echo
-	# the answer: a trend is one whose permutation p is below 0.05, its sign the rho's
-	trend() { # KEY WORD
-		local rho p
-		read -r rho p <<<"$(q "SELECT a.value, b.value FROM analysis a JOIN analysis b ON a.campaign = b.campaign AND a.tool = b.tool
-			AND a.grp = b.grp WHERE a.campaign = '$n' AND a.tool = 'whale' AND a.key = 'trend_$1_rho' AND b.key = 'trend_$1_p' LIMIT 1" | tr '\t' ' ')"
-		awk -v r="${rho:-x}" -v p="${p:-x}" -v w="$2" 'BEGIN { if (!(r + 0 == r && p + 0 == p)) print "the " w " has no trend computed";
-			else if (p >= 0.05) print "the " w " shows no trend with 𝓡 beyond chance";
-			else print "the " w (r < 0 ? " decreases" : " increases") " with 𝓡" }'
-	}
-	local nr np
-	read -r nr np <<<"$(q "SELECT CAST(SUM(CASE WHEN key = 'risen' THEN value END) AS INTEGER),
-		CAST(SUM(CASE WHEN key = 'with_period' THEN value END) AS INTEGER)
-		FROM analysis WHERE campaign = '$n' AND tool = 'whale'" | tr '\t' ' ')"
-	echo "**Answer:** ${np:-?} of the ${nr:-?} runs whose intruder rose dived at least twice after it; $(trend depth "dives' depth"), and $(trend period "period")."
+	answer_q5 "$n" | answer_md
 	echo
 	echo "$(fig "$ANA/$n/whale.png" q5_whale.png)"
 	echo

@@ -167,30 +167,36 @@ verdict_claim4() {
 	local n=$1 wh=$2 m lo hi st rows bad lr nr np
 	# 4a: R = 4 rises at once: its median wait's interval lies below 5 s (a period of
 	# the drive is 0.3 s; the intruder needs about a second to rise one diameter)
+	# (a median never reached is beyond the longest run, t_max)
+	local tm
 	read -r m lo hi _ <<<"$(val "$n" waiting median "radius_ratio = 4")"
-	if isnum "$hi" && vtest 'h <= 5' h="$hi"; then st=holds
-	elif isnum "$lo" && vtest 'l > 5' l="$lo"; then st=fails
-	elif isnum "$m" && ! isnum "$lo" && vtest 'x > 5' x="$m"; then st=fails
+	read -r tm _ <<<"$(val "$n" waiting t_max "radius_ratio = 4")"
+	if isnum "${hi:-}" && vtest 'h <= 5' h="$hi"; then st=holds
+	elif isnum "${lo:-}" && vtest 'l > 5' l="$lo"; then st=fails
+	elif ! isnum "${m:-}" && vtest 't > 5' t="${tm:-x}"; then st=fails
 	else st=open; fi
-	vpart 4a "$st" "𝓡 = 4 rises at once (median wait ≤ 5 s)" "median $(iv "$m ${lo:--} ${hi:--}") s"
+	vpart 4a "$st" "𝓡 = 4 rises at once (median wait ≤ 5 s)" "median $(isnum "${m:-}" && iv "$m ${lo:--} ${hi:--}" || echo "not reached within ${tm:-?}") s"
 	# 4b: R < 4 first wait of the order of 30 s: every median's interval meets 10-90 s
 	# (30 s within a factor of 3) and none lies outside it
-	rows=$(vq "SELECT radius_ratio, $(num value), $(num lo), $(num hi) FROM analysis WHERE campaign = '$n'
-		AND tool = 'waiting' AND key = 'median' AND radius_ratio < 4 ORDER BY radius_ratio")
+	# (a median never reached lies beyond the group's longest run, t_max)
+	rows=$(vq "SELECT m.radius_ratio, $(num m.value), $(num m.lo), $(num m.hi), $(num t.value) FROM analysis m
+		LEFT JOIN analysis t ON t.campaign = m.campaign AND t.tool = m.tool AND t.grp = m.grp AND t.key = 't_max'
+		WHERE m.campaign = '$n' AND m.tool = 'waiting' AND m.key = 'median' AND m.radius_ratio < 4 ORDER BY m.radius_ratio")
 	if [ -z "$rows" ]; then st=open
 	else
-		bad=$(awk -F'\t' '{ lo = $3 == "-" ? $2 : $3; hi = $4 == "-" ? 1e300 : $4
-			if ($2 == "-" && $3 == "-") { u++; next }
+		bad=$(awk -F'\t' '{ if ($2 == "-") { if ($5 != "-" && $5 + 0 > 90) b++; else u++; next }
+			lo = $3 == "-" ? $2 : $3; hi = $4 == "-" ? 1e300 : $4
 			if (hi < 10 || lo > 90) b++ } END { print b ? "fails" : u ? "open" : "holds" }' <<<"$rows")
 		st=$bad
 	fi
-	vpart 4b "$st" "𝓡 < 4 first wait of the order of 30 s" "medians $(awk -F'\t' '{ printf "%s𝓡 %s: %s [%s, %s] s", (NR > 1 ? "; " : ""), $1, $2, $3, $4 }' <<<"$rows"); of the order: 10–90 s"
+	vpart 4b "$st" "𝓡 < 4 first wait of the order of 30 s" "medians $(awk -F'\t' '{ printf "%s𝓡 %s: ", (NR > 1 ? "; " : ""), $1
+		if ($2 == "-") printf "not reached within %s s", $5; else printf "%s [%s, %s] s", $2, $3, $4 }' <<<"$rows"); of the order: 10–90 s"
 	# 4c: the waits of R < 4 do not depend on R: their medians' intervals share a point
 	if [ -z "$rows" ]; then st=open
 	else st=$(awk -F'\t' '$3 == "-" || $4 == "-" { u++; next } { if (!n++ || $3 > L) L = $3; if (n == 1 || $4 < H) H = $4 }
 		END { print u || n < 2 ? "open" : L <= H ? "holds" : "fails" }' <<<"$rows"); fi
 	lr=$(vq "SELECT printf('%.3g', value) FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
-	vpart 4c "$st" "the waits of 𝓡 < 4 hardly depend on 𝓡" "the medians' intervals $([ "$st" = holds ] && echo share || echo "do not share") a point; log-rank over every 𝓡: p = ${lr:-not computed}"
+	vpart 4c "$st" "the waits of 𝓡 < 4 hardly depend on 𝓡" "the medians' intervals $(case $st in holds) echo share a point ;; fails) echo do not share a point ;; *) echo "are not all computed" ;; esac); log-rank over every 𝓡: p = ${lr:-not computed}"
 	# 4d: the whale effect: after the rise the intruder goes up and down at the top: at
 	# least half of the risen intruders of the long runs dive at least twice
 	if [ -n "$wh" ]; then
@@ -223,5 +229,112 @@ verdict_claim5() {
 	# 5b: ... altogether: at a pair of 5a the lower start's intruders all stayed down
 	none=$(awk -F'\t' '$4 + 0 < 0.05 && $3 + 0 < 0 && $5 != "" && $5 + 0 == 0 { printf "%s%s Hz one row below depth %s", n++ ? "; " : "", $1, $2 }' <<<"$rows")
 	if [ -z "$rows" ]; then st=open; elif [ -n "$none" ]; then st=holds; else st=fails; fi
-	vpart 5b "$st" "… altogether (no intruder rises from the lower start)" "${none:+none rose at $none}$([ -z "$none" ] && [ -n "$rows" ] && echo "some intruders rose from every lower start")"
+	vpart 5b "$st" "… altogether (no intruder rises from the lower start)" "${none:+none rose at $none}$([ -z "$none" ] && [ -n "$drop" ] && echo "some intruders rose from every lower start that rises less")$([ -n "$rows" ] && [ -z "$drop" ] && echo "no lower start rises less (5a)")"
 }
+
+# ---- the open questions' answers ------------------------------------------------------------
+# Each prints one line: answer <TAB> WORD <TAB> TEXT, WORD one of the words named below.
+
+# answer_q1 DATFILE NDONE NGROUPS: is the convection below Gamma = 1 an effect of the soft
+# contacts? DATFILE has a row per stiffness, softest first: Y f lo hi Gamma Gamma_lo
+# Gamma_hi f_el ("-" where missing; an onset above the searched range has Gamma "-" and
+# its lower bound in Gamma_lo). yes: the stiffest bed's onset interval lies at Gamma >= 1;
+# part: it lies above the softest bed's interval but below 1; no: it does not; running:
+# some search is not done; none: nothing to compare.
+answer_q1() {
+	local dat=$1 nd=$2 ng=$3 y0 g0 g0hi y1 g1 g1lo ratio0 ans
+	[ "$nd" = "$ng" ] || { printf 'answer\trunning\t%s of %s searches are done; `make reproduce` resumes them.\n' "${nd:-0}" "${ng:-0}"; return; }
+	[ -s "$dat" ] || { printf 'answer\tnone\tthe searches found no onset to compare.\n'; return; }
+	set -- $(head -1 "$dat"); y0=${1:-} g0=${5:-} g0hi=${7:-}
+	ratio0=$(awk -v f="${2:-x}" -v e="${8:-x}" 'BEGIN { if (f + 0 == f && e + 0 == e && f > 0) printf "%.1f", e / f; else print "?" }')
+	set -- $(tail -1 "$dat"); y1=${1:-} g1=${5:-} g1lo=${6:-}
+	ans=$(awk -v a="${g0hi:-x}" -v b="${g1lo:-x}" 'BEGIN { if (!(a + 0 == a && b + 0 == b)) print "none";
+		else if (b >= 1) print "yes"; else if (b > a) print "part"; else print "no" }')
+	case $ans in
+	yes) printf 'answer\tyes\tAt Y = %s g/s² the onset lies at Γ ≥ 1 (%s), at the paper'"'"'s Y = %s at Γ = %s (up to %s): with stiffer contacts at the same restitution the bed convects only above Γ = 1, as experiments and hard-contact simulations do. The convection below Γ = 1 is an effect of the soft contacts: at the paper'"'"'s Y the bed'"'"'s estimated lowest elastic frequency is only %s times the drive'"'"'s at the onset.\n' \
+		"$y1" "$([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")" "$y0" "$g0" "$g0hi" "$ratio0" ;;
+	part) printf 'answer\tpart\tThe onset rises with the stiffness (Γ = %s at the paper'"'"'s Y, %s at Y = %s; the intervals separate) but stays below Γ = 1.\n' "$g0" "$g1" "$y1" ;;
+	no) printf 'answer\tno\tThe onset at Y = %s (Γ = %s) is not above the paper'"'"'s (Γ = %s) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between %s and %s g/s² at a fixed restitution.\n' "$y1" "$g1" "$g0" "$y0" "$y1" ;;
+	*) printf 'answer\tnone\tthe searches found no onset to compare.\n' ;;
+	esac
+}
+
+# answer_q2 ONSET_CAMPAIGN: does the onset depend on the box width? depends: two widths'
+# onset intervals separate; no: every pair overlaps; running: a search is not done
+answer_q2() {
+	local n=$1 nd ng sep
+	read -r nd ng <<<"$(vq "SELECT SUM(state = 'done'), COUNT(*) FROM onset_group WHERE campaign = '$n'" | tr '\t' ' ')"
+	sep=$(vq "SELECT GROUP_CONCAT(a.grp || ' vs ' || b.grp, '; ') FROM onset_group a JOIN onset_group b
+		 ON a.campaign = b.campaign AND a.point < b.point
+		 WHERE a.campaign = '$n' AND a.state = 'done' AND b.state = 'done' AND (a.ci_hi < b.ci_lo OR b.ci_hi < a.ci_lo)")
+	if [ "${ng:-0}" = 0 ] || [ "${nd:-0}" != "${ng:-x}" ]; then printf 'answer\trunning\t%s of %s onset searches done.\n' "${nd:-0}" "${ng:-0}"
+	elif [ -n "$sep" ]; then printf 'answer\tdepends\tthe onset depends on the width: the intervals separate for %s.\n' "$sep"
+	else printf 'answer\tno\tthe onset does not depend on the width within the intervals (every pair overlaps).\n'; fi
+}
+
+# answer_q3 CAMPAIGN: do the beds convect without side walls? A bed convects at a
+# frequency when the lower bound of its persistence C (bin/convect, P squared) is above 0.
+# yes: the periodic bed does somewhere; no: only the walled one does; none: neither.
+answer_q3() {
+	local n=$1 f s lo cw="" cp=""
+	for f in $(vq "SELECT DISTINCT frequency FROM analysis WHERE campaign = '$n' AND tool = 'convect' AND frequency IS NOT NULL ORDER BY frequency"); do
+		for s in walls periodic; do
+			read -r _ lo _ _ <<<"$(val "$n" convect persistence_c "sides = '$s' AND frequency = $f")"
+			if vtest 'l > 0' l="${lo:-x}"; then [ $s = walls ] && cw="$cw $f" || cp="$cp $f"; fi
+		done
+	done
+	if [ -n "$cp" ]; then printf 'answer\tyes\tWithout side walls the bed has a persistent flow (P'"'"'s interval above 0) at%s Hz; with walls at%s.\n' "$cp" "${cw:- no frequency}"
+	elif [ -n "$cw" ]; then printf 'answer\tno\tWith walls the bed convects steadily at%s Hz (P'"'"'s interval above 0); without walls at no frequency here: in this model the side walls drive the rolls.\n' "$cw"
+	else printf 'answer\tnone\tNeither bed has a persistent flow beyond its interval at these frequencies.\n'; fi
+}
+
+# answer_q4 CAMPAIGN: a critical size ratio shows as an R below which some intruders stay
+# down. none_critical: every intruder of every R rose; some_stay: not all did at some R
+answer_q4() {
+	local n=$1 notall allr lr
+	notall=$(vq "SELECT GROUP_CONCAT(radius_ratio, ', ') FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
+		    AND key = 'fraction_risen' AND value < 1")
+	allr=$(vq "SELECT MIN(radius_ratio) || '–' || MAX(radius_ratio) FROM analysis WHERE campaign = '$n' AND tool = 'waiting'
+		  AND key = 'fraction_risen' AND value = 1")
+	lr=$(vq "SELECT value FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
+	if [ -z "$notall" ] && [ -n "$allr" ]; then
+		printf 'answer\tnone_critical\tNo critical size ratio in this range. Every intruder of 𝓡 = %s rose within the run at 3.2 Hz; the waits %s.\n' "$allr" \
+			"$(vtest 'p < 0.05' p="${lr:-x}" && echo "differ across 𝓡 (log-rank p < 0.05)" || echo "do not differ across 𝓡 beyond chance (log-rank p ≥ 0.05)")"
+	elif [ -n "$notall" ]; then printf 'answer\tsome_stay\tnot every intruder rose at 𝓡 = %s; all did at 𝓡 = %s.\n' "$notall" "${allr:-none}"
+	else printf 'answer\tnone\tnot computed.\n'; fi
+}
+
+# answer_q5 CAMPAIGN: the whale oscillation's trend with R (bin/whale's Spearman rho and
+# permutation p): a trend is one with p < 0.05, its sign the rho's. The word is the
+# dives' depth's trend (the paper: smaller R dip deeper, so "decreases"): decreases,
+# increases, no_trend or open
+answer_q5() {
+	local n=$1 nr np
+	trend() { # KEY WORD
+		local rho p
+		read -r rho p <<<"$(vq "SELECT a.value, b.value FROM analysis a JOIN analysis b ON a.campaign = b.campaign AND a.tool = b.tool
+			AND a.grp = b.grp WHERE a.campaign = '$n' AND a.tool = 'whale' AND a.key = 'trend_$1_rho' AND b.key = 'trend_$1_p' LIMIT 1" | tr '\t' ' ')"
+		awk -v r="${rho:-x}" -v p="${p:-x}" -v w="$2" 'BEGIN { if (!(r + 0 == r && p + 0 == p)) print "the " w " has no trend computed";
+			else if (p >= 0.05) print "the " w " shows no trend with 𝓡 beyond chance";
+			else print "the " w (r < 0 ? " decreases" : " increases") " with 𝓡" }'
+	}
+	read -r nr np <<<"$(vq "SELECT CAST(SUM(CASE WHEN key = 'risen' THEN value END) AS INTEGER),
+		CAST(SUM(CASE WHEN key = 'with_period' THEN value END) AS INTEGER)
+		FROM analysis WHERE campaign = '$n' AND tool = 'whale'" | tr '\t' ' ')"
+	local word
+	word=$(trend depth "dives' depth" | awk '/no trend computed/ { print "open"; exit } /no trend with/ { print "no_trend"; exit }
+		/decreases/ { print "decreases"; exit } /increases/ { print "increases"; exit }')
+	printf 'answer\t%s\t%s of the %s runs whose intruder rose dived at least twice after it; %s, and %s.\n' "$word" "${np:-?}" "${nr:-?}" \
+		"$(trend depth "dives' depth")" "$(trend period "period")"
+}
+# the bold label of an answer word, for the report
+answer_label() {
+	case $1 in
+	yes) echo "yes." ;; part) echo "in part." ;; no) echo "no." ;; running) echo "not yet." ;; none) echo "none." ;;
+	depends) echo "it depends on the width." ;; none_critical) echo "no critical size ratio in this range." ;;
+	some_stay) echo "not every intruder rose." ;; decreases | increases | no_trend | open) echo "" ;; *) echo "$1" ;;
+	esac
+}
+# answer_md: an answer line as the report's "**Answer: ...** text"
+answer_md() { awk -F'\t' '$1 == "answer" { print $2 "\t" $3 }' | while IFS=$'\t' read -r w t; do
+	l=$(answer_label "$w"); printf '**Answer:%s** %s\n' "${l:+ $l}" "$t"; done; }

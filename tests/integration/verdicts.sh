@@ -13,8 +13,11 @@ newdb() {
 	VDB=$TMP/$1.db
 	rm -f "$VDB"
 	sqlite3 "$VDB" "CREATE TABLE analysis(campaign TEXT, tool TEXT, version TEXT, grp TEXT, key TEXT, value REAL,
-		lo REAL, hi REAL, n INTEGER, created TEXT, frequency REAL, radius_ratio REAL, depth REAL,
+		lo REAL, hi REAL, n INTEGER, created TEXT, frequency REAL, radius_ratio REAL, depth REAL, sides TEXT,
 		PRIMARY KEY (campaign, tool, grp, key));
+		CREATE TABLE onset_group(campaign TEXT, grp TEXT, point INTEGER, replicates INTEGER, searching INTEGER,
+		found INTEGER, below INTEGER, above INTEGER, blocked INTEGER, nonmonotone INTEGER, runs INTEGER,
+		estimate REAL, ci_lo REAL, ci_hi REAL, width REAL, state TEXT);
 		CREATE TABLE onset_replicate(campaign TEXT, grp TEXT, replicate INTEGER, state TEXT, lo REAL, hi REAL,
 		lo_run INTEGER, hi_run INTEGER, next REAL, runs INTEGER, nonmonotone INTEGER)"
 }
@@ -115,6 +118,10 @@ newdb c4n; waits 30 22 41 "" "" ""; row r4 waiting median 150 "" "" "" 4 2>/dev/
 sqlite3 "$VDB" "UPDATE analysis SET value = NULL WHERE radius_ratio = 4"; c4
 expect verdicts.c4.r4_never_open 4a open; expect verdicts.c4.whale_not_run_open 4d open
 newdb c4w; waits 30 22 41 6 4 9; c4; expect verdicts.c4.r4_straddles_open 4a open
+# medians never reached within 180 s runs: R = 4 did not rise at once, R < 4 waited longer than 90 s
+newdb c4t; waits 30 22 41 "" "" ""; sqlite3 "$VDB" "UPDATE analysis SET value = NULL WHERE radius_ratio IN (3, 4)"
+row r4 waiting t_max 180 "" "" "" 4; row r4 waiting t_max 180 "" "" "" 3; c4
+expect verdicts.c4.r4_censored_fails 4a fails; expect verdicts.c4.censored_long_fails 4b fails
 
 # ---- claim 5 ------------------------------------------------------------------------------
 # bin/waiting's rows under the higher start's group: lower_fraction_diff (lower − this),
@@ -137,6 +144,47 @@ newdb c5n; c5; expect verdicts.c5.nothing_open 5a open
 # rule takes the direction from bin/waiting's rows alone
 grep -q 'depth *[-+] *1' "$REPO/scripts/verdicts.sh" && fail verdicts.c5.direction_in_one_place \
 	"scripts/verdicts.sh restates the depth direction" || ok verdicts.c5.direction_in_one_place
+
+# ---- the open questions ----------------------------------------------------------------------
+answer() { awk -F'\t' '$1 == "answer" { print $2 }' "$TMP/out"; }
+expect_answer() { # ID WORD
+	local got
+	got=$(answer)
+	[ "$got" = "$2" ] && ok "$1" || fail "$1" "expected $2, got '$got': $(cat "$TMP/out")"
+}
+# q1: rows Y f lo hi Gamma Gamma_lo Gamma_hi f_el, softest first
+printf '3e6 2.68 2.65 2.69 0.58 0.57 0.59 9\n3e8 4.5 4.4 4.6 1.6 1.55 1.7 90\n' >q1.dat
+answer_q1 q1.dat 2 2 >"$TMP/out"; expect_answer verdicts.q1.yes yes
+printf '3e6 2.68 2.65 2.69 0.58 0.57 0.59 9\n3e8 3 2.9 3.1 0.72 0.68 0.77 90\n' >q1.dat
+answer_q1 q1.dat 2 2 >"$TMP/out"; expect_answer verdicts.q1.part part
+printf '3e6 2.68 2.65 2.69 0.58 0.57 0.59 9\n3e8 2.6 2.5 2.7 0.54 0.5 0.59 90\n' >q1.dat
+answer_q1 q1.dat 2 2 >"$TMP/out"; expect_answer verdicts.q1.no no
+answer_q1 q1.dat 1 2 >"$TMP/out"; expect_answer verdicts.q1.running running
+# an onset above the searched range: Gamma "-", its lower bound above 1
+printf '3e6 2.68 2.65 2.69 0.58 0.57 0.59 9\n3e8 - 6 - - 1.2 - 90\n' >q1.dat
+answer_q1 q1.dat 2 2 >"$TMP/out"; expect_answer verdicts.q1.above_range_yes yes
+# q2: onset intervals per width
+og() { sqlite3 "$VDB" "INSERT INTO onset_group(campaign, grp, point, estimate, ci_lo, ci_hi, state) VALUES ('q2', '$1', $2, $3, $4, $5, '${6:-done}')"; }
+newdb q2d; og width=40 0 2.6 2.55 2.63; og width=160 1 2.75 2.7 2.8; answer_q2 q2 >"$TMP/out"; expect_answer verdicts.q2.depends depends
+newdb q2n; og width=40 0 2.6 2.55 2.7; og width=160 1 2.65 2.6 2.7; answer_q2 q2 >"$TMP/out"; expect_answer verdicts.q2.no no
+newdb q2r; og width=40 0 2.6 2.55 2.7; og width=160 1 2.65 2.6 2.7 searching; answer_q2 q2 >"$TMP/out"; expect_answer verdicts.q2.running running
+# q3: persistence C per side and frequency
+pc() { sqlite3 "$VDB" "INSERT INTO analysis(campaign, tool, grp, key, value, lo, hi, frequency, sides)
+	VALUES ('q3', 'convect', 's=$1 f=$2', 'persistence_c', $3, $4, $5, $2, '$1')"; }
+newdb q3y; pc walls 3 1 0.5 1.5; pc periodic 3 0.5 0.1 0.9; answer_q3 q3 >"$TMP/out"; expect_answer verdicts.q3.yes yes
+newdb q3n; pc walls 3 1 0.5 1.5; pc periodic 3 0.1 -0.2 0.4; answer_q3 q3 >"$TMP/out"; expect_answer verdicts.q3.no no
+newdb q3z; pc walls 3 0.1 -0.1 0.3; pc periodic 3 0.1 -0.2 0.4; answer_q3 q3 >"$TMP/out"; expect_answer verdicts.q3.none none
+# q4: fraction risen per R
+newdb q4a; row q4 waiting fraction_risen 1 "" "" "" 4; row q4 waiting fraction_risen 1 "" "" "" 8
+answer_q4 q4 >"$TMP/out"; expect_answer verdicts.q4.none_critical none_critical
+newdb q4s; row q4 waiting fraction_risen 0.5 "" "" "" 4; row q4 waiting fraction_risen 1 "" "" "" 8
+answer_q4 q4 >"$TMP/out"; expect_answer verdicts.q4.some_stay some_stay
+# q5: the depth's trend with R
+tr5() { row q5 whale trend_depth_rho "$1"; sqlite3 "$VDB" "INSERT INTO analysis(campaign, tool, grp, key, value) VALUES ('q5', 'whale', 'f= r= d=', 'trend_depth_p', $2)"; }
+newdb q5d; tr5 -0.6 0.001; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.decreases decreases
+newdb q5i; tr5 0.6 0.001; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.increases increases
+newdb q5n; tr5 -0.1 0.6; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.no_trend no_trend
+newdb q5o; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.open open
 
 # ---- one list of parts: docs/model.md's table names exactly the parts the rules judge ----------
 doc=$(grep -oE '^\| [0-9][a-z] \|' "$REPO/docs/model.md" | tr -d '| ' | sort | tr '\n' ' ')

@@ -1,0 +1,45 @@
+/* twocode.h - the exact small-sample statistics of the two-code validation
+ * (tests/bench/validate_lammps.sh, parts B-D): the same beds shaken by the engine and
+ * by LAMMPS, compared bed by bed (bin/dumpflux stats). Binomial counts get the exact
+ * Clopper-Pearson interval; paired outcomes the exact sign test (McNemar's exact test on
+ * the discordant beds is the same test); paired numbers the exact sign-flip test of the
+ * mean difference and the exact Wilcoxon signed-rank test; and the power of McNemar's
+ * test, to say what difference a given number of beds can see. */
+#ifndef AN_TWOCODE_H
+#define AN_TWOCODE_H
+
+#include <stddef.h>
+
+#include "err.h"
+
+/* Clopper-Pearson interval of k of n at level (0 < level < 1): [0, hi] at k = 0,
+ * [lo, 1] at k = n. NaN when n < 1 or k is out of range. */
+void tc_clopper_pearson(long k, long n, double level, double *lo, double *hi);
+
+/* Two-sided exact binomial test of k of n at probability 1/2 (the sign test; McNemar's
+ * exact test with k = the discordant pairs one way, n = all discordant pairs):
+ * min(1, 2 min(P(X <= k), P(X >= k))). 1 when n = 0, NaN when k is out of range. */
+double tc_sign_p(long k, long n);
+
+/* The exact sign-flip (permutation) test of paired differences d[n]: under "no
+ * difference" each d is as likely to have either sign. rank = 0: the statistic is
+ * |sum d| (the mean difference); rank = 1: Wilcoxon's signed-rank statistic
+ * |W+ - m(m+1)/4| over the m nonzero d ranked by |d| (ties get their mean rank). The
+ * p-value is the fraction of sign patterns whose statistic is at least the observed
+ * one: all 2^m of them for m <= 20 (*exact = 1), else 2^20 random ones (MT19937, seed 1;
+ * *exact = 0). p = 1 when every d is 0. */
+int tc_flip_p(const double *d, size_t n, int rank, double *p, int *exact, sb_err *e);
+
+/* The power of McNemar's exact test at level alpha (two-sided, p < alpha) over n beds
+ * whose outcome is 1 with probability pa in one code and pb in the other, the two
+ * independent given the bed (the least favourable case for a paired test: a shared bed
+ * that makes the outcomes agree more only adds power). Exact: the sum over the
+ * discordant counts (b, c), trinomial with probabilities pa(1 - pb), pb(1 - pa). */
+double tc_mcnemar_power(long n, double pa, double pb, double alpha);
+
+/* The smallest difference delta (in steps of 0.001) such that pb = p0 + dir * delta
+ * (dir = +1 or -1, pb within [0, 1]) is detected with at least `power`; NaN when no
+ * such pb exists. */
+double tc_mcnemar_detect(long n, double p0, int dir, double alpha, double power);
+
+#endif
