@@ -1,8 +1,10 @@
 /* dumpflux_main.c - bin/dumpflux: Phi(D) of a run from another code's position dump,
  * counted by the engine's own crossing code, beside the engine's own; and the two
- * codes compared over an ensemble of beds (tests/bench/validate_lammps.sh). Only this
- * file prints and exits. */
+ * codes compared over an ensemble of beds (tests/bench/validate_lammps.sh); and the
+ * exact small-sample statistics of that script's parts B-D (stats: analysis/twocode.h).
+ * Only this file prints and exits. */
 #include <errno.h>
+#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,13 +12,17 @@
 
 #include "dumpflux.h"
 #include "flux.h"
+#include "lowerrow.h"
 #include "pairdiff.h"
+#include "twocode.h"
 
 static const char *HELP =
 	"usage: dumpflux run RUN.h5 [--skip FRAC] [--periods]\n"
 	"       dumpflux dump DUMP --like RUN.h5 --amplitude A --frequency F --dt DT\n"
 	"                [--skip FRAC] [--periods]\n"
-	"       dumpflux compare [--level L] A1.tsv ... -- B1.tsv ...\n\n"
+	"       dumpflux compare [--level L] A1.tsv ... -- B1.tsv ...\n"
+	"       dumpflux stats binom K N | fisher K1 N1 K2 N2 | sign K N | paired FILE |\n"
+	"                power N P0 [--level L]\n\n"
 	"The flux Phi(D) (docs/model.md, \"Flux Phi(D)\") of one run as a profile: per height\n"
 	"line its time mean over the periods after the first FRAC of them (default 0.2, as\n"
 	"the analysis tools), in particles per period. Prints TSV: line, height (cm above the\n"
@@ -298,6 +304,180 @@ static int cmd_compare(int argc, char **argv)
 	return rc;
 }
 
+/* a whole number >= 0 */
+static int count(const char *s, long *v)
+{
+	double x;
+	if (!num(s, &x) || x < 0 || x > 1e9 || x != floor(x))
+		return 0;
+	*v = (long)x;
+	return 1;
+}
+
+static double tq(double level, size_t n)
+{
+	return n > 1 ? gsl_cdf_tdist_Pinv(0.5 + 0.5 * level, (double)(n - 1)) : NAN;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* mean, Student-t half-width, sd and median of v[n] (v is sorted) */
+static void describe(double *v, size_t n, double level, double *mean, double *half, double *sd, double *median)
+{
+	double s = 0, q = 0;
+	for (size_t i = 0; i < n; i++)
+		s += v[i];
+	*mean = s / (double)n;
+	for (size_t i = 0; i < n; i++)
+		q += (v[i] - *mean) * (v[i] - *mean);
+	*sd = n > 1 ? sqrt(q / (double)(n - 1)) : NAN;
+	*half = tq(level, n) * *sd / sqrt((double)n);
+	qsort(v, n, sizeof *v, cmp_double);
+	*median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static int stats_paired(const char *path, double level)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "dumpflux: %s: cannot read: %s\n", path, strerror(errno));
+		return 2;
+	}
+	char line[512];
+	size_t n = 0, cap = 0, row = 0;
+	double *a = NULL, *b = NULL, *d = NULL;
+	int rc = 0;
+	while (fgets(line, sizeof line, f)) {
+		row++;
+		if (line[0] == '#' || line[strspn(line, " \t\r\n")] == 0)
+			continue;
+		double x, y;
+		char extra;
+		if (sscanf(line, "%lf %lf %c", &x, &y, &extra) != 2 || !isfinite(x) || !isfinite(y)) {
+			fprintf(stderr, "dumpflux: %s:%zu: expected two numbers 'a b'\n", path, row);
+			rc = 2;
+			break;
+		}
+		if (n == cap) {
+			cap = cap ? 2 * cap : 64;
+			double *na = realloc(a, sizeof *na * cap);
+			if (na)
+				a = na;
+			double *nb = realloc(b, sizeof *nb * cap);
+			if (nb)
+				b = nb;
+			double *nd = realloc(d, sizeof *nd * cap);
+			if (nd)
+				d = nd;
+			if (!na || !nb || !nd) {
+				rc = 8;
+				break;
+			}
+		}
+		a[n] = x;
+		b[n] = y;
+		d[n] = y - x;
+		n++;
+	}
+	fclose(f);
+	if (!rc && n < 2) {
+		fprintf(stderr, "dumpflux: %s: %zu pairs, need 2 or more\n", path, n);
+		rc = 2;
+	}
+	if (!rc) {
+		long pos = 0, neg = 0;
+		for (size_t i = 0; i < n; i++) {
+			pos += d[i] > 0;
+			neg += d[i] < 0;
+		}
+		double pf, pw;
+		int ex1, ex2;
+		sb_err e = {0};
+		if (tc_flip_p(d, n, 0, &pf, &ex1, &e) || tc_flip_p(d, n, 1, &pw, &ex2, &e)) {
+			fprintf(stderr, "dumpflux: %s: %s\n", path, e.msg);
+			rc = e.code;
+		} else {
+			double m, h, sd, med;
+			printf("# n %zu\n# level %g\n", n, level);
+			describe(a, n, level, &m, &h, &sd, &med);
+			printf("# mean_a %.6g\n# half_a %.6g\n# median_a %.6g\n", m, h, med);
+			describe(b, n, level, &m, &h, &sd, &med);
+			printf("# mean_b %.6g\n# half_b %.6g\n# median_b %.6g\n", m, h, med);
+			describe(d, n, level, &m, &h, &sd, &med);
+			const double det = (tq(level, n) + gsl_cdf_tdist_Pinv(0.8, (double)(n - 1))) * sd / sqrt((double)n);
+			printf("# mean_d %.6g\n# half_d %.6g\n# sd_d %.6g\n# median_d %.6g\n# detect80 %.6g\n", m, h, sd,
+			       med, det);
+			printf("# pos %ld\n# neg %ld\n# zero %ld\n# p_sign %.6g\n# p_flip %.6g\n# p_wilcoxon %.6g\n"
+			       "# exact %d\n",
+			       pos, neg, (long)n - pos - neg, tc_sign_p(pos < neg ? pos : neg, pos + neg), pf, pw, ex1 && ex2);
+		}
+	}
+	free(a);
+	free(b);
+	free(d);
+	return rc;
+}
+
+static int cmd_stats(int argc, char **argv)
+{
+	double level = 0.95;
+	const char *arg[8];
+	int na = 0;
+	for (int i = 0; i < argc; i++) {
+		if (!strcmp(argv[i], "--level") && i + 1 < argc) {
+			if (!num(argv[++i], &level) || !(level > 0 && level < 1))
+				return usage("--level: expected a number in (0, 1)");
+		} else if (na < 8)
+			arg[na++] = argv[i];
+		else
+			return usage("stats: too many arguments");
+	}
+	long v[4];
+	const char *what = na ? arg[0] : "";
+	const int want = !strcmp(what, "binom") || !strcmp(what, "sign") ? 2
+			 : !strcmp(what, "fisher")                     ? 4
+			 : !strcmp(what, "paired")                     ? -1
+			 : !strcmp(what, "power")                      ? -2
+								       : 0;
+	if (!want)
+		return usage("stats: which statistic: binom, fisher, sign, paired or power?");
+	if (want == -1)
+		return na == 2 ? stats_paired(arg[1], level) : usage("stats paired: one file of rows 'a b'");
+	if (want == -2) {
+		double p0;
+		if (na != 3 || !count(arg[1], &v[0]) || v[0] < 1 || !num(arg[2], &p0) || p0 < 0 || p0 > 1)
+			return usage("stats power: N (beds, >= 1) and P0 (a fraction)");
+		printf("%.3f\t%.3f\n", tc_mcnemar_detect(v[0], p0, 1, 1 - level, 0.8),
+		       tc_mcnemar_detect(v[0], p0, -1, 1 - level, 0.8));
+		return 0;
+	}
+	if (na != want + 1)
+		return usage("stats: binom K N, sign K N, fisher K1 N1 K2 N2");
+	for (int i = 0; i < want; i++)
+		if (!count(arg[i + 1], &v[i]))
+			return usage("stats: counts are whole numbers >= 0");
+	if (v[0] > v[1] || (want == 4 && v[2] > v[3]))
+		return usage("stats: a count K is larger than its N");
+	if (!strcmp(what, "binom")) {
+		double lo, hi;
+		if (v[1] < 1)
+			return usage("stats binom: N >= 1");
+		tc_clopper_pearson(v[0], v[1], level, &lo, &hi);
+		printf("%ld\t%ld\t%.6g\t%.6g\t%.6g\n", v[0], v[1], (double)v[0] / (double)v[1], lo, hi);
+	} else if (!strcmp(what, "sign"))
+		printf("%.6g\n", tc_sign_p(v[0], v[1]));
+	else {
+		if (v[1] < 1 || v[3] < 1)
+			return usage("stats fisher: N1, N2 >= 1");
+		printf("%.6g\n", lowerrow_fisher_p(v[0], v[1], v[2], v[3]));
+	}
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
 	if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
@@ -305,12 +485,14 @@ int main(int argc, char **argv)
 		return 0;
 	}
 	if (argc < 2)
-		return usage("which command: run, dump or compare?");
+		return usage("which command: run, dump, compare or stats?");
 	if (!strcmp(argv[1], "run"))
 		return cmd_run(argc - 2, argv + 2);
 	if (!strcmp(argv[1], "dump"))
 		return cmd_dump(argc - 2, argv + 2);
 	if (!strcmp(argv[1], "compare"))
 		return cmd_compare(argc - 2, argv + 2);
-	return usage("unknown command (run, dump, compare)");
+	if (!strcmp(argv[1], "stats"))
+		return cmd_stats(argc - 2, argv + 2);
+	return usage("unknown command (run, dump, compare, stats)");
 }
