@@ -45,7 +45,28 @@ static const char *HELP =
 	"         difference's t, agree (1: the difference's interval holds 0); then\n"
 	"         '# key value' lines: beds, lines, disagree (lines), max_abs_t, chi2_per_line\n"
 	"         (mean t^2 over the lines with crossings), and their p-values from the exact\n"
-	"         sign-flip test over the beds (p_max_abs_t, p_chi2, perms).\n";
+	"         sign-flip test over the beds (p_max_abs_t, p_chi2, perms).\n"
+	"  stats  exact small-sample statistics of two codes run on the same beds\n"
+	"         (analysis/twocode.h; tests/bench/validate_lammps.sh, parts B-D), at level L\n"
+	"         (default 0.95):\n"
+	"         binom K N    'k n fraction lo hi': K of N with its Clopper-Pearson interval;\n"
+	"         fisher K1 N1 K2 N2  the two-sided Fisher exact p of K1 of N1 against K2 of N2;\n"
+	"         sign K N     the two-sided exact binomial p of K of N at 1/2 (the sign test;\n"
+	"                      McNemar's exact test with K the discordant beds one way, N all\n"
+	"                      discordant beds);\n"
+	"         paired FILE  rows 'a b', one bed each ('#' comments), as '# key value' lines:\n"
+	"                      n, level; mean_a, half_a, median_a and the same of b: each\n"
+	"                      column's mean, its Student-t half-width and median; of the\n"
+	"                      difference d = b - a: mean_d, half_d, sd_d, median_d, detect80\n"
+	"                      (the mean difference a two-sided paired t-test at 1 - L detects\n"
+	"                      with 80 % power at this sd), pos, neg, zero (the signs of d),\n"
+	"                      p_sign (sign test), p_flip (exact sign-flip test of the mean\n"
+	"                      d), p_wilcoxon (exact signed-rank test), exact (1: all 2^m sign\n"
+	"                      patterns of the m nonzero d; 0: 2^20 random ones);\n"
+	"         power N P0   'up down': the smallest differences up and down from the\n"
+	"                      fraction P0 that McNemar's exact test at 1 - L detects with\n"
+	"                      80 % power over N beds, the codes' outcomes independent given\n"
+	"                      the bed (nan: none within [0, 1]).\n";
 
 static int usage(const char *msg)
 {
