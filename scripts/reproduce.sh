@@ -490,9 +490,15 @@ runs_phi() {
 		echo "to LAMMPS's output (its crossing code for the flux, its rise rule for the waiting time). The setup,"
 		echo "statistics and per-bed tables are in [docs/validate_lammps.md](docs/validate_lammps.md)."
 		echo
-		awk '/^\| part \| question/ { on = 1 } on && !/^\|/ { exit } on' "$VAL"
+		if grep -q '^| part | question' "$VAL"; then
+			awk '/^\| part \| question/ { on = 1 } on && !/^\|/ { exit } on' "$VAL"
+		else # a fragment from before the parts: Phi(D) at 3.0 Hz alone
+			echo "Φ(D) at 3.0 Hz without intruder (the onset and claims 4 and 5 are not in this fragment):"
+			echo
+			awk '/^\*\*Result/ { on = 1 } on && /^!\[/ { exit } on' "$VAL"
+		fi
 		echo
-		echo "![Φ(D), shakebox and LAMMPS](docs/validate_lammps.png) ![the onset in both codes](docs/validate_lammps_onset.png)"
+		echo "![Φ(D), shakebox and LAMMPS](docs/validate_lammps.png)$([ -f docs/validate_lammps_onset.png ] && echo " ![the onset in both codes](docs/validate_lammps_onset.png)")"
 	else
 		echo "*Not run: \`make validate-lammps\` writes docs/validate_lammps.md.*"
 	fi
