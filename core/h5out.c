@@ -947,10 +947,15 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 {
 	char tmp[4200];
 	fs_tmp_name(path, tmp, sizeof tmp);
+	h5w_init();
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through sb_err */
 	h5w h;
-	if (h5w_create(&h, tmp, (int)s->sc.compression))
-		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file", tmp);
+	if (h5w_create(&h, tmp, (int)s->sc.compression)) {
+		char why[256];
+		h5w_last_error(why, sizeof why);
+		unlink(tmp); /* HDF5 may have made it before it failed (a full disk) */
+		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file%s%s", tmp, why[0] ? ": " : "", why);
+	}
 	const double t = s->step * s->sc.dt;
 	write_h5md(&h);
 	hid_t g = h5w_group(&h, h.file, "parameters", 0);
@@ -977,8 +982,11 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	H5Gclose(bed);
 	H5Gclose(parts);
 	write_final(&h, s, t);
-	if (h5w_close(&h) && !rc)
-		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed", tmp);
+	if (h5w_close(&h) && !rc) {
+		char why[256];
+		h5w_last_error(why, sizeof why);
+		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed%s%s", tmp, why[0] ? ": " : "", why);
+	}
 	if (!rc)
 		rc = fs_fsync_path(tmp, e);
 	if (!rc)
