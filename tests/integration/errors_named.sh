@@ -4,6 +4,8 @@
 #     the system's word for it, never a crash at exit (HDF5 1.10 closes a file whose
 #     close failed a second time in its exit handler: core/h5md.c, h5w_init), and no
 #     temporary file is left;
+#   * a read-only runs directory is an I/O fault of `study run` (exit 2, the lock file
+#     and why), not "another study driver" (exit 4, which only a held lock is);
 # The file-system cases need tmpfs mounts (root); without them they are skipped, said so.
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
@@ -43,6 +45,36 @@ if tmpfs full size=48k; then
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
 else
 	echo "skip full_disk: cannot mount a tmpfs here (not root?)"
+fi
+
+# --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---
+cat >c.campaign <<'EOF'
+[campaign]
+name = c
+seed = 1
+[scene]
+n_grains = 40
+width = 20
+radius_ratio = 2
+settle_ke = 1
+settle_min = 0.2
+duration = 0.1
+[grid]
+frequency = 4
+EOF
+if tmpfs ro size=1m; then
+	mkdir -p ro/c/jobs ro/c/logs ro/c/cache ro/c/failed
+	if mount -o remount,ro ro 2>/dev/null; then
+		"$STUDY" run c.campaign --runs "$TMP/ro" --db "$TMP/ro.db" --jobs 1 >ro.log 2>&1
+		rc=$?
+		[ "$rc" = 2 ] && grep -q "ro/c/.driver.lock: cannot open the campaign's driver lock: Read-only file system" ro.log &&
+			! grep -q "another study driver" ro.log && ok read_only.io_not_busy ||
+			fail read_only.io_not_busy "exit $rc: $(tail -n 2 ro.log)"
+	else
+		echo "skip read_only: cannot remount a tmpfs read-only here"
+	fi
+else
+	echo "skip read_only: cannot mount a tmpfs here (not root?)"
 fi
 
 finish
