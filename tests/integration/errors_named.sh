@@ -6,6 +6,8 @@
 #     temporary file is left;
 #   * a read-only runs directory is an I/O fault of `study run` (exit 2, the lock file
 #     and why), not "another study driver" (exit 4, which only a held lock is);
+#   * an engine that crashes (SIGSEGV, SIGABRT) has failed - recorded with its signal,
+#     never run again - where one killed from outside is retried (study_retry.sh).
 # The file-system cases need tmpfs mounts (root); without them they are skipped, said so.
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
@@ -77,4 +79,28 @@ else
 	echo "skip read_only: cannot mount a tmpfs here (not root?)"
 fi
 
+# --- a crashing engine: failed with its signal, not run again ---
+# `study exec` runs the engine that sits next to it: a copy of bin/study beside an
+# engine that kills itself with the signal its campaign names in its seed's place
+mkdir bin && cp "$STUDY" bin/study || { fail setup "cannot copy $STUDY"; finish; }
+cat >bin/shake <<'W'
+#!/bin/sh
+ulimit -c 0
+echo "shake: about to crash" >&2
+kill -"$CRASH_SIGNAL" $$
+W
+chmod +x bin/shake
+for sig in SEGV ABRT; do
+	sed "s/^name = c/name = k$sig/" c.campaign >k$sig.campaign
+	CRASH_SIGNAL=$sig bin/study run k$sig.campaign --runs "$TMP/K" --no-cache --jobs 1 --retries 2 >k$sig.log 2>&1
+	rc=$?
+	num=$(kill -l $sig)
+	rows=$(q K/study.db "SELECT r.state || ' ' || r.attempts || ' ' || (SELECT group_concat(a.status || ':' || a.exit_code
+		|| ':' || a.message, ',') FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id) FROM run r
+		WHERE r.campaign = 'k$sig'")
+	[ "$rc" = 3 ] && [[ "$rows" == "failed 1 crashed:$((128 + num)):crashed by signal $num ("* ]] && ! grep -q "running again" k$sig.log &&
+		ok "crash.$sig.failed_not_retried" || fail "crash.$sig.failed_not_retried" "exit $rc, '$rows': $(tail -n 2 k$sig.log)"
+done
+"$STUDY" status kSEGV --runs "$TMP/K" >k.status 2>&1
+grep -q "crashed by signal 11" k.status && ok crash.status_says_so || fail crash.status_says_so "$(cat k.status)"
 finish
