@@ -812,9 +812,7 @@ static void xdmf_points(FILE *f, const char *name, int n, const char *geometry, 
 static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 {
 	char path[4200];
-	snprintf(path, sizeof path, "%.*s.xmf",
-		 (int)(strlen(h5path) > 3 && !strcmp(h5path + strlen(h5path) - 3, ".h5") ? strlen(h5path) - 3 : strlen(h5path)),
-		 h5path);
+	sim_xmf_path(h5path, path, sizeof path);
 	const char *base = strrchr(h5path, '/');
 	base = base ? base + 1 : h5path;
 	sb_file out;

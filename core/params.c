@@ -142,7 +142,8 @@ static const sb_param TABLE[] = {
 	 "stop = flux: upper edge of the band"},
 	/* --- recording --- */
 	{"output", STR(output), "", "run.h5", 0, 0, NULL, PF_OUT | PF_DRIVER,
-	 "HDF5 output file (an XDMF sidecar .xmf is written beside it)"},
+	 "HDF5 output file (an XDMF sidecar .xmf is written beside it; a path where something other than a "
+	 "regular file stands is refused); none = no run file, no journal, no checkpoint (a file named none: ./none)"},
 	{"traj_rate", REAL(traj_rate), "Hz", "100", 0, 1e6, NULL, PF_OUT,
 	 "samples per second of the intruder trajectory (0 = none)"},
 	{"energy_rate", REAL(energy_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
@@ -207,6 +208,11 @@ static const sb_param TABLE[] = {
 
 #define NTABLE (sizeof TABLE / sizeof TABLE[0])
 _Static_assert(NTABLE <= SB_NKEYS, "sb_scene.src needs a row per key: raise SB_NKEYS");
+
+int params_no_output(const sb_scene *s)
+{
+	return !strcmp(s->output, SB_OUTPUT_NONE);
+}
 
 const char *params_where(const sb_scene *s, const char *key)
 {

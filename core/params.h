@@ -81,6 +81,12 @@ struct sb_scene {
 };
 typedef struct sb_scene sb_scene;
 
+/* output = none: a run without a run file (README, "Output"), for a preparation that
+ * only writes write_particles / write_lammps or a run whose exit code is all that is
+ * wanted. Never what the study driver passes: it reads every run's file. */
+#define SB_OUTPUT_NONE "none"
+int params_no_output(const sb_scene *s);
+
 /* Where key was last set (FILE:LINE, "command line"), or "default". */
 const char *params_where(const sb_scene *s, const char *key);
 
