@@ -78,6 +78,9 @@ struct sb_scene {
 	/* where each key was last set ("FILE:LINE", "command line"; empty: its default),
 	 * for the errors that only a combination of keys shows (params_validate) */
 	char src[SB_NKEYS][64];
+	/* 1: the key holds a preset's value (set where src says, by a preset there): a
+	 * later preset replaces it, an explicit key always does (params.c, presets) */
+	unsigned char by_preset[SB_NKEYS];
 };
 typedef struct sb_scene sb_scene;
 
