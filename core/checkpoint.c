@@ -136,7 +136,7 @@ int ckpt_write(sb_sim *s, sb_err *e)
 int ckpt_load(sb_sim *s, sb_err *e)
 {
 	const char *path = s->ckpt_path;
-	if (access(path, F_OK) != 0) {
+	if (!path[0] || access(path, F_OK) != 0) { /* "": no run file to resume into */
 		if (s->sc.restart == TRI_YES)
 			return sb_errf(e, SB_EUSAGE, "%s: restart = yes but there is no checkpoint", path);
 		return 0;

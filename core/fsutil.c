@@ -1,16 +1,42 @@
 /* fsutil.c - temporary-name-then-rename file writing. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* renameat2 and RENAME_NOREPLACE (glibc 2.28) */
 #include "fsutil.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 void fs_tmp_name(const char *path, char *out, size_t len)
 {
 	snprintf(out, len, "%s.tmp.%ld", path, (long)getpid());
+}
+
+const char *fs_kind(unsigned mode)
+{
+	switch (mode & S_IFMT) {
+	case S_IFREG: return "a regular file";
+	case S_IFDIR: return "a directory";
+	case S_IFLNK: return "a symbolic link";
+	case S_IFCHR: return "a character device";
+	case S_IFBLK: return "a block device";
+	case S_IFIFO: return "a FIFO";
+	case S_IFSOCK: return "a socket";
+	}
+	return "not a regular file";
+}
+
+int fs_replaceable(const char *path, const char **kind)
+{
+	struct stat st;
+	*kind = NULL;
+	/* lstat: a symbolic link is judged itself, never what it points to */
+	if (lstat(path, &st) != 0 || S_ISREG(st.st_mode))
+		return 1; /* nothing there (or nothing to see: the write will say why) */
+	*kind = fs_kind((unsigned)st.st_mode);
+	return 0;
 }
 
 int fs_open_tmp(sb_file *o, const char *path, sb_err *e)
@@ -35,10 +61,44 @@ int fs_fsync_path(const char *path, sb_err *e)
 	return 0;
 }
 
-int fs_rename_durable(const char *tmp, const char *path, sb_err *e)
+/* The rename into place replaces only a regular file: a device, FIFO, socket,
+ * directory or link that stands at the path (README, "Output"; bin/shake refuses those
+ * before it runs, this is for one that appeared meanwhile) is left alone and the write
+ * fails. Where nothing stands, RENAME_NOREPLACE takes the name only if it is still
+ * free. Where a regular file stands, a window of microseconds remains between lstat
+ * and rename in which someone could put a device there; doing that takes write access
+ * to the directory (and root, for a device) at that instant, and this guard is against
+ * mistakes - a path typed wrong, a fuzzed scene - not against someone who can already
+ * replace the directory's files. */
+static int rename_regular(const char *tmp, const char *path, sb_err *e)
 {
+	for (int tries = 0; tries < 3; tries++) {
+		struct stat st;
+		if (lstat(path, &st) == 0) {
+			if (!S_ISREG(st.st_mode))
+				return sb_errf(e, SB_EIO, "%s: %s stands there, not a regular file: not replaced", path,
+					       fs_kind((unsigned)st.st_mode));
+			break; /* a regular file: replaced by rename below */
+		}
+		if (errno != ENOENT)
+			break; /* nothing to see: rename says why */
+		if (!renameat2(AT_FDCWD, tmp, AT_FDCWD, path, RENAME_NOREPLACE))
+			return 0;
+		if (errno == EEXIST)
+			continue; /* something took the name meanwhile: look at it */
+		if (errno != EINVAL && errno != ENOSYS)
+			return sb_errf(e, SB_EIO, "%s: cannot rename into place: %s", path, strerror(errno));
+		break; /* a file system without RENAME_NOREPLACE */
+	}
 	if (rename(tmp, path))
 		return sb_errf(e, SB_EIO, "%s: cannot rename into place: %s", path, strerror(errno));
+	return 0;
+}
+
+int fs_rename_durable(const char *tmp, const char *path, sb_err *e)
+{
+	if (rename_regular(tmp, path, e))
+		return e->code;
 	char dir[4096];
 	snprintf(dir, sizeof dir, "%s", path);
 	return fs_fsync_path(dirname(dir), e);
@@ -54,7 +114,10 @@ int fs_commit(sb_file *o, sb_err *e)
 		unlink(o->tmp);
 		return sb_errf(e, SB_EIO, "%s: write failed: %s", o->path, strerror(saved ? saved : errno));
 	}
-	return fs_rename_durable(o->tmp, o->path, e);
+	int rc = fs_rename_durable(o->tmp, o->path, e);
+	if (rc)
+		unlink(o->tmp); /* still there when the rename failed; gone when it did not */
+	return rc;
 }
 
 void fs_abort(sb_file *o)

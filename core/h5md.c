@@ -1,11 +1,50 @@
 /* h5md.c - HDF5 writing in the H5MD 1.1 conventions (see h5md.h). */
 #include "h5md.h"
 
+#include <stdio.h>
 #include <string.h>
 
 /* Rows below this many bytes stay contiguous: chunking and compressing a few
  * hundred doubles costs more than it saves. */
 #define BIG_BYTES 4096
+
+void h5w_init(void)
+{
+	/* HDF5 1.10 frees a file's structures when H5Fclose fails (a full disk while it
+	 * flushes) but keeps the id, and its exit handler then closes that id a second
+	 * time: a segfault in H5F__close_cb at exit, which the study driver would take for
+	 * a killed engine (exit 2 is what an I/O fault must give: README, "Exit codes").
+	 * Without the handler nothing touches the stale id; every file is closed by its
+	 * writer anyway. Only effective before the library's first use, hence called
+	 * first (a second call, or one after some other use, fails harmlessly). HDF5's
+	 * own fix: HDFGroup/hdf5 pull request 2291 (1.14.1). */
+	H5dont_atexit();
+}
+
+/* What HDF5 said at the innermost failed call, for the message of a failed write: the
+ * system's word when it quotes one (a failed write's description holds "error message
+ * = 'No space left on device'" among time, file descriptor and buffer), else its
+ * first line. */
+static herr_t innermost(unsigned n, const H5E_error2_t *err, void *data)
+{
+	if (n == 0 && err->desc)
+		snprintf(data, 1024, "%s", err->desc);
+	return 0;
+}
+
+void h5w_last_error(char *buf, size_t len)
+{
+	char d[1024] = "";
+	buf[0] = 0;
+	if (H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, d) < 0 || !d[0])
+		return;
+	static const char key[] = "error message = '";
+	const char *m = strstr(d, key), *q = m ? strchr(m + sizeof key - 1, '\'') : NULL;
+	if (q)
+		snprintf(buf, len, "%.*s", (int)(q - m - (sizeof key - 1)), m + sizeof key - 1);
+	else
+		snprintf(buf, len, "%.*s", (int)strcspn(d, "\n"), d);
+}
 
 int h5w_create(h5w *h, const char *path, int deflate_level)
 {

@@ -16,6 +16,12 @@ typedef struct h5w {
 	int level;   /* deflate level of the large datasets (0: none) */
 } h5w;
 
+/* Call before any other HDF5 call of the process: no library exit handler, which
+ * would close a file whose H5Fclose failed a second time (h5md.c). */
+void h5w_init(void);
+/* The innermost message on HDF5's error stack ("" when there is none). */
+void h5w_last_error(char *buf, size_t len);
+
 /* Open a new file (truncating) with the property lists above; < 0 on failure. */
 int h5w_create(h5w *h, const char *path, int deflate_level);
 /* Close everything; returns -1 when any call failed on the way. */

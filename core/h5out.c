@@ -812,9 +812,7 @@ static void xdmf_points(FILE *f, const char *name, int n, const char *geometry, 
 static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 {
 	char path[4200];
-	snprintf(path, sizeof path, "%.*s.xmf",
-		 (int)(strlen(h5path) > 3 && !strcmp(h5path + strlen(h5path) - 3, ".h5") ? strlen(h5path) - 3 : strlen(h5path)),
-		 h5path);
+	sim_xmf_path(h5path, path, sizeof path);
 	const char *base = strrchr(h5path, '/');
 	base = base ? base + 1 : h5path;
 	sb_file out;
@@ -947,10 +945,15 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 {
 	char tmp[4200];
 	fs_tmp_name(path, tmp, sizeof tmp);
+	h5w_init();
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through sb_err */
 	h5w h;
-	if (h5w_create(&h, tmp, (int)s->sc.compression))
-		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file", tmp);
+	if (h5w_create(&h, tmp, (int)s->sc.compression)) {
+		char why[256];
+		h5w_last_error(why, sizeof why);
+		unlink(tmp); /* HDF5 may have made it before it failed (a full disk) */
+		return sb_errf(e, SB_EIO, "%s: cannot create HDF5 file%s%s", tmp, why[0] ? ": " : "", why);
+	}
 	const double t = s->step * s->sc.dt;
 	write_h5md(&h);
 	hid_t g = h5w_group(&h, h.file, "parameters", 0);
@@ -977,8 +980,11 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	H5Gclose(bed);
 	H5Gclose(parts);
 	write_final(&h, s, t);
-	if (h5w_close(&h) && !rc)
-		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed", tmp);
+	if (h5w_close(&h) && !rc) {
+		char why[256];
+		h5w_last_error(why, sizeof why);
+		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed%s%s", tmp, why[0] ? ": " : "", why);
+	}
 	if (!rc)
 		rc = fs_fsync_path(tmp, e);
 	if (!rc)

@@ -19,9 +19,11 @@ typedef struct sb_journal {
 	FILE *f;
 	char path[4200];
 	int nm;
+	int discard; /* opened with an empty path: records go nowhere (output = none) */
 } sb_journal;
 
-/* offset < 0: create anew; else reopen and truncate to offset. */
+/* offset < 0: create anew; else reopen and truncate to offset. An empty path: a
+ * journal that drops its records (a run without a run file has nothing to assemble). */
 int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e);
 /* Any record: a tag and count doubles. */
 int journal_record(sb_journal *j, int tag, const double *data, int count, sb_err *e);

@@ -110,7 +110,8 @@ static const sb_param TABLE[] = {
 	 "clip the normal force at zero (no attraction at the end of a contact)"},
 	{"preset", ENUM(preset), "", "paper", 0, 0, "paper|fast", PF_PREP | PF_DYN,
 	 "sets integrator and dt: paper = gear5, 5e-5 s; fast = verlet, 2e-4 s (make bench-accuracy: "
-	 "statistically indistinguishable observables at 1/3 of the cost); keys after it override it"},
+	 "statistically indistinguishable observables at 1/3 of the cost); applied first: integrator and dt given "
+	 "explicitly win wherever they appear"},
 	{"integrator", ENUM(integrator), "", "gear5", 0, 0, "gear5|gear4|verlet", PF_PREP | PF_DYN,
 	  "gear5 (6-value, paper), gear4 (5-value) or velocity verlet"},
 	{"dt", REAL(dt), "s", "5e-05", 0, 0.01, NULL, PF_PREP | PF_DYN | PF_MINX,
@@ -142,7 +143,8 @@ static const sb_param TABLE[] = {
 	 "stop = flux: upper edge of the band"},
 	/* --- recording --- */
 	{"output", STR(output), "", "run.h5", 0, 0, NULL, PF_OUT | PF_DRIVER,
-	 "HDF5 output file (an XDMF sidecar .xmf is written beside it)"},
+	 "HDF5 output file (an XDMF sidecar .xmf is written beside it; a path where something other than a "
+	 "regular file stands is refused); none = no run file, no journal, no checkpoint (a file named none: ./none)"},
 	{"traj_rate", REAL(traj_rate), "Hz", "100", 0, 1e6, NULL, PF_OUT,
 	 "samples per second of the intruder trajectory (0 = none)"},
 	{"energy_rate", REAL(energy_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
@@ -207,6 +209,11 @@ static const sb_param TABLE[] = {
 
 #define NTABLE (sizeof TABLE / sizeof TABLE[0])
 _Static_assert(NTABLE <= SB_NKEYS, "sb_scene.src needs a row per key: raise SB_NKEYS");
+
+int params_no_output(const sb_scene *s)
+{
+	return !strcmp(s->output, SB_OUTPUT_NONE);
+}
 
 const char *params_where(const sb_scene *s, const char *key)
 {
@@ -287,9 +294,30 @@ int params_set(sb_scene *s, const char *key, const char *value, const char *wher
 {
 	const int rc = set_value(s, key, value, where, e);
 	const sb_param *p = params_find(key);
-	if (!rc && p) /* defaults leave no trace: "default" is what an empty source says */
+	if (!rc && p) { /* defaults leave no trace: "default" is what an empty source says */
 		snprintf(s->src[p - TABLE], sizeof s->src[0], "%s", strcmp(where, "default") ? where : "");
+		s->by_preset[p - TABLE] = 0;
+	}
 	return rc;
+}
+
+/* docs/model.md, "Units and the paper's values": a preset is applied first and the keys
+ * given explicitly win wherever they appear - before it or after it, in a scene file, on
+ * the command line, in a campaign's [scene] or [grid]. So a preset sets only the keys
+ * that hold their default or another preset's value; "dt = 1e-5" then "preset = fast"
+ * runs verlet at 1e-5, as "preset = fast" then "dt = 1e-5" does. This is the one place
+ * the rule lives: scene files, key=value and campaigns all set keys through params_set. */
+static int apply_preset(sb_scene *s, int k, const char *where, sb_err *e)
+{
+	for (const char *const *kv = PRESETS[k].set; *kv; kv += 2) {
+		const size_t i = (size_t)(params_find(kv[0]) - TABLE);
+		if (s->src[i][0] && !s->by_preset[i])
+			continue; /* explicit: it stays */
+		if (params_set(s, kv[0], kv[1], where, e))
+			return e->code;
+		s->by_preset[i] = strcmp(where, "default") != 0;
+	}
+	return 0;
 }
 
 static int set_value(sb_scene *s, const char *key, const char *value, const char *where, sb_err *e)
@@ -350,10 +378,8 @@ static int set_value(sb_scene *s, const char *key, const char *value, const char
 			return sb_errf(e, SB_EUSAGE, "%s: %s: expected one of %s, got '%s'",
 				       where, key, p->choices, v);
 		*(int *)base = k;
-		if (!strcmp(key, "preset")) /* its values, applied where it stands: later keys override them */
-			for (const char *const *kv = PRESETS[k].set; *kv; kv += 2)
-				if (params_set(s, kv[0], kv[1], where, e))
-					return e->code;
+		if (!strcmp(key, "preset"))
+			return apply_preset(s, k, where, e);
 		return 0;
 	}
 	case PT_STR:

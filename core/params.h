@@ -78,8 +78,17 @@ struct sb_scene {
 	/* where each key was last set ("FILE:LINE", "command line"; empty: its default),
 	 * for the errors that only a combination of keys shows (params_validate) */
 	char src[SB_NKEYS][64];
+	/* 1: the key holds a preset's value (set where src says, by a preset there): a
+	 * later preset replaces it, an explicit key always does (params.c, presets) */
+	unsigned char by_preset[SB_NKEYS];
 };
 typedef struct sb_scene sb_scene;
+
+/* output = none: a run without a run file (README, "Output"), for a preparation that
+ * only writes write_particles / write_lammps or a run whose exit code is all that is
+ * wanted. Never what the study driver passes: it reads every run's file. */
+#define SB_OUTPUT_NONE "none"
+int params_no_output(const sb_scene *s);
 
 /* Where key was last set (FILE:LINE, "command line"), or "default". */
 const char *params_where(const sb_scene *s, const char *key);

@@ -202,7 +202,7 @@ int sim_run(sb_sim *s, sb_err *e)
 	const sb_scene *sc = &s->sc;
 	const double dt = sc->dt;
 	const int resumed = s->step > 0 || s->n_traj > 0 || s->n_strobe > 0;
-	if (!s->jr.f && journal_open(&s->jr, s->journal_path, s->st.nm, -1, e))
+	if (!s->jr.f && !s->jr.discard && journal_open(&s->jr, s->journal_path, s->st.nm, -1, e))
 		return e->code;
 	if (!resumed) {
 		s->n_ckpt = 0;

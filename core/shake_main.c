@@ -83,12 +83,13 @@ int main(int argc, char **argv)
 	}
 
 	/* A run must not find out at its end that it cannot write its output. */
+	const int no_output = params_no_output(&sc);
 	char dir[SB_STR_MAX];
 	snprintf(dir, sizeof dir, "%s", sc.output);
 	char *slash = strrchr(dir, '/');
 	if (slash)
 		*slash = 0;
-	if (access(slash ? (dir[0] ? dir : "/") : ".", W_OK) != 0) {
+	if (!no_output && access(slash ? (dir[0] ? dir : "/") : ".", W_OK) != 0) {
 		fprintf(stderr, "shake: output: cannot write in directory '%s': %s\n", slash ? dir : ".",
 			strerror(errno));
 		return SB_EIO;
@@ -106,6 +107,13 @@ int main(int argc, char **argv)
 		return SB_ENOMEM;
 	}
 	sim_init(s, &sc, &e);
+	/* ... nor that its end would be renamed over a device, a FIFO or a directory */
+	if (sim_check_outputs(s, &e)) {
+		fprintf(stderr, "shake: %s\n", e.msg);
+		sim_free(s);
+		free(s);
+		return e.code;
+	}
 	s->stop = &g_stop;
 	s->profile = profile;
 	s->progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
@@ -156,6 +164,9 @@ int main(int argc, char **argv)
 			fprintf(stderr, "shake: %s; checkpoint %s written, run again to resume\n", s->status_msg,
 				s->ckpt_path);
 		journal_close(&s->jr);
+	} else if (no_output) {
+		if (code)
+			fprintf(stderr, "shake: %s (output = none: not recorded)\n", s->status_msg);
 	} else {
 		sb_err e2 = {0};
 		const double w0 = sb_now();

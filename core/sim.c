@@ -9,6 +9,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fsutil.h"
+
 double sim_box_y(const sb_sim *s, double t) { return drive_y(&s->drive, t); }
 double sim_box_v(const sb_sim *s, double t) { return drive_v(&s->drive, t); }
 double sim_box_a(const sb_sim *s, double t) { return drive_a(&s->drive, t); }
@@ -24,11 +26,16 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 			      sc->duration - sc->ramp_hold, sc->ramp_hold};
 	s->intruder = -1;
 	s->nsteps = llround(sc->duration / sc->dt);
-	snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);
-	if (sc->checkpoint[0])
-		snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s", sc->checkpoint);
-	else
-		snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s.ckpt", sc->output);
+	/* output = none: no run file, hence no journal to assemble it from and no
+	 * checkpoint to resume into it (params_validate refuses asking for one) */
+	if (!params_no_output(sc)) {
+		snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);
+		sim_xmf_path(sc->output, s->xmf_path, sizeof s->xmf_path);
+		if (sc->checkpoint[0])
+			snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s", sc->checkpoint);
+		else
+			snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s.ckpt", sc->output);
+	}
 	prov_init(&s->prov);
 	(void)e;
 	return 0;
@@ -148,9 +155,50 @@ int sim_obs_init(sb_sim *s, sb_err *e)
 	return obs_init(&s->obs, &s->sc, st, s->intruder, s->surface0, x0, x1, e);
 }
 
+void sim_xmf_path(const char *h5path, char *out, size_t len)
+{
+	size_t l = strlen(h5path);
+	snprintf(out, len, "%.*s.xmf", (int)(l > 3 && !strcmp(h5path + l - 3, ".h5") ? l - 3 : l), h5path);
+}
+
+int sim_check_outputs(const sb_sim *s, sb_err *e)
+{
+	const sb_scene *sc = &s->sc;
+	const int ck = sc->checkpoint[0] != 0;
+	const struct {
+		const char *key, *path, *what;
+	} out[] = {
+		{"output", sc->output, ""},
+		{"output", s->xmf_path, " (its XDMF sidecar)"},
+		{"output", s->journal_path, " (its journal)"},
+		{ck ? "checkpoint" : "output", s->ckpt_path, ck ? "" : " (its checkpoint)"},
+		{"write_particles", sc->write_particles, ""},
+		{"write_lammps", sc->write_lammps, ""},
+	};
+	for (size_t k = 0; k < sizeof out / sizeof *out; k++) {
+		const char *kind;
+		if (!out[k].path[0] || (k == 0 && params_no_output(sc)) || fs_replaceable(out[k].path, &kind))
+			continue;
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: %s: '%s'%s is %s, not a regular file: a run writes its files under a temporary "
+			       "name and renames them into place, which would replace it%s",
+			       params_where(sc, out[k].key), out[k].key, out[k].path, out[k].what, kind,
+			       k == 0 ? " (output = none runs without a run file)" : "");
+	}
+	return 0;
+}
+
+/* Only regular files: what else stands there now is not the run's (fsutil.c). */
+static void remove_regular(const char *path)
+{
+	const char *kind;
+	if (path[0] && fs_replaceable(path, &kind))
+		unlink(path);
+}
+
 void sim_cleanup_files(sb_sim *s)
 {
 	journal_close(&s->jr);
-	unlink(s->journal_path);
-	unlink(s->ckpt_path);
+	remove_regular(s->journal_path);
+	remove_regular(s->ckpt_path);
 }

@@ -47,8 +47,9 @@ typedef struct sb_sim {
 	long max_contacts;       /* the largest contact record so far (the reader's buffer) */
 	sb_obs obs;
 	sb_journal jr;
-	char journal_path[4200];
-	char ckpt_path[4200];
+	char journal_path[4200]; /* "" without a run file (output = none) */
+	char ckpt_path[4200];    /* the same */
+	char xmf_path[4200];     /* the XDMF sidecar of the run file (the same) */
 
 	char warning[512];       /* for main to print, e.g. a dt close to its limit */
 	/* how it ended */
@@ -74,8 +75,15 @@ void sim_free(sb_sim *s);
 int sim_derive(sb_sim *s, sb_err *e);
 /* Set up the observables for the state at t = 0 (also after a restart). */
 int sim_obs_init(sb_sim *s, sb_err *e);
-/* Remove journal and checkpoint after the output is in place. */
+/* Remove journal and checkpoint after the output is in place (regular files only). */
 void sim_cleanup_files(sb_sim *s);
+/* Before anything runs: every path the run will write (output, its sidecar, journal
+ * and checkpoint, write_particles, write_lammps) holds nothing or a regular file; a
+ * device, FIFO, socket, directory or symbolic link there is refused, naming the key,
+ * where it was set and what stands there (the rename at the end would replace it). */
+int sim_check_outputs(const sb_sim *s, sb_err *e);
+/* The XDMF sidecar of a run file: RUN.h5 -> RUN.xmf, else PATH.xmf. */
+void sim_xmf_path(const char *h5path, char *out, size_t len);
 
 /* Box motion y_box = A sin(omega t) and its derivatives. */
 double sim_box_y(const sb_sim *s, double t);

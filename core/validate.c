@@ -84,6 +84,14 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->settle_min > s->settle_max)
 		return sb_errf(e, SB_EUSAGE, "%s: settle_min (%g) must not exceed settle_max (%g, %s)", W("settle_min"),
 			       s->settle_min, s->settle_max, W("settle_max"));
+	/* a checkpoint holds the journal's length and resumes into the run file: a run
+	 * without one (output = none) has neither */
+	static const char *const ck[] = {"checkpoint_every", "checkpoint", "restart"};
+	const int asks[] = {s->checkpoint_every > 0, s->checkpoint[0] != 0, s->restart == TRI_YES};
+	for (int k = 0; k < 3 && params_no_output(s); k++)
+		if (asks[k])
+			return sb_errf(e, SB_EUSAGE, "%s: %s: a checkpoint resumes a run into its run file, and output = none "
+				       "(%s) has none", W(ck[k]), ck[k], W("output"));
 	if (s->restart == TRI_YES && s->checkpoint_every <= 0 && !s->checkpoint[0])
 		return sb_errf(e, SB_EUSAGE, "%s: restart = yes needs a checkpoint file (checkpoint or checkpoint_every)",
 			       W("restart"));

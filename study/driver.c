@@ -47,6 +47,29 @@ int mkdir_p(const char *path, sb_err *e)
 	return 0;
 }
 
+int driver_lock(const drv *d, sb_err *e)
+{
+	char lp[PATHX];
+	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
+	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+	if (fd < 0) {
+		sb_errf(e, SB_EIO, "%s: cannot open the campaign's driver lock: %s", lp, strerror(errno));
+		return -1;
+	}
+	if (flock(fd, LOCK_EX | LOCK_NB)) {
+		/* only a lock held elsewhere is another driver; any other failure is the file
+		 * system's (flock(2): EWOULDBLOCK is the one "held by another") */
+		const int err = errno;
+		close(fd);
+		if (err == EWOULDBLOCK)
+			sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
+		else
+			sb_errf(e, SB_EIO, "%s: cannot lock the campaign's driver lock: %s", lp, strerror(err));
+		return -1;
+	}
+	return fd;
+}
+
 /* ---- job files ---- */
 
 /* Every parameter as key=value, one per line: the worker passes the lines to
@@ -546,13 +569,8 @@ int driver_run(const driver_opts *o, sb_err *e)
 		if (mkdir_p(p, e))
 			goto out;
 	}
-	char lp[PATHX];
-	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
-	lock = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-	if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB)) {
-		sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
+	if ((lock = driver_lock(d, e)) < 0)
 		goto out;
-	}
 	if (d->adaptive)
 		search_init(&d->srch, &d->c, d->dir);
 	if (d->autorep)

@@ -51,6 +51,12 @@ static inline int exists(const char *p)
 
 int mkdir_p(const char *path, sb_err *e);
 
+/* driver.c, also for `study submit`: the campaign's lock (an exclusive flock on
+ * DIR/.driver.lock, held while the driver works), its descriptor; -1 with e set:
+ * DRV_BUSY when another driver holds it, an I/O error when the lock cannot be made
+ * or taken (a read-only or full runs directory), naming the file and why. */
+int driver_lock(const drv *d, sb_err *e);
+
 /* driver.c, also for `study submit` (slurm.c), which prepares runs as `study run`
  * does and hands them to Slurm: the campaign and its runs recorded; the argument
  * file of a packing's job (key, settled from grid run `first`); the runs' argument

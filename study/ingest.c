@@ -101,7 +101,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	char path[PATHX];
 	if (is_cache) {
 		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
-		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128)) {
+		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128) || worker_crashed(code)) {
 			if (db_begin(&d->db, e))
 				return e->code;
 			if (exists(path))
@@ -134,13 +134,19 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	 * never arrived: a host going away) is that host's fault, not this machine's */
 	int lost = d->o->sshloginfile && code == SB_EIO && !strncmp(msg, "exec: ", 6);
 	int io = code == SB_EIO && !lost;
-	int resumable = code == SB_EINTR || code >= 128 || io || lost;
+	/* a crash (SIGSEGV, SIGABRT, ...) is the engine's own and would repeat: failed */
+	const int crashed = worker_crashed(code);
+	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || io || lost;
 	long ix = r - d->g.runs;
 	int ours = code == SB_EINTR && (parallel_stopped() || d->io_fault);
 	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
 	if (resumable && !ours)
 		d->transient[ix]++;
-	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : lost ? "lost" : sb_code_name((int)code);
+	const char *status = code == SB_EINTR ? "interrupted"
+			     : crashed         ? "crashed"
+			     : code >= 128     ? "killed"
+			     : lost            ? "lost"
+					       : sb_code_name((int)code);
 	if (io && !d->io_fault) {
 		d->io_fault = 1;
 		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include "changes.h"
@@ -387,13 +386,8 @@ int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
 		if (mkdir_p(p, e))
 			goto out;
 	}
-	char lp[PATHX];
-	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
-	lock = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-	if (lock < 0 || flock(lock, LOCK_EX | LOCK_NB)) {
-		sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
+	if ((lock = driver_lock(d, e)) < 0)
 		goto out;
-	}
 	submit(d, so, uargs, nu, e);
 out:
 	if (lock >= 0)

@@ -218,7 +218,8 @@ static int set_task(drv *d, const trow *r, const char *state, int link, const ch
 
 /* A DONE line of a run that left no output, classified as study run's on_done does
  * (ingest.c): interrupted (7), killed by a signal (128 + n) and I/O faults (2) are
- * resumable and leave the run pending; bad input (1) fails it. */
+ * resumable and leave the run pending; bad input (1) and a crash (worker_crashed)
+ * fail it. */
 static int record_done(drv *d, const char *id, const char *text, sb_err *e)
 {
 	char *copy = strdup(text), *f[6] = {0};
@@ -232,8 +233,12 @@ static int record_done(drv *d, const char *id, const char *text, sb_err *e)
 		free(copy);
 		return 0;
 	}
-	int resumable = code == SB_EINTR || code >= 128 || code == SB_EIO;
-	const char *status = code == SB_EINTR ? "interrupted" : code >= 128 ? "killed" : sb_code_name((int)code);
+	const int crashed = worker_crashed(code);
+	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || code == SB_EIO;
+	const char *status = code == SB_EINTR ? "interrupted"
+			     : crashed         ? "crashed"
+			     : code >= 128     ? "killed"
+					       : sb_code_name((int)code);
 	char now[32];
 	db_now(now, sizeof now);
 	if (!db_begin(&d->db, e)) {

@@ -68,6 +68,14 @@ void worker_last_message(const char *log, long from, char *out, size_t len)
 	fclose(f);
 }
 
+int worker_crashed(long code)
+{
+	if (code <= 128)
+		return 0;
+	const long sig = code - 128;
+	return sig == SIGSEGV || sig == SIGBUS || sig == SIGILL || sig == SIGABRT || sig == SIGFPE;
+}
+
 static void report_done(const char *name, int code, const char *host, double secs, const char *msg)
 {
 	char m[1024];
@@ -183,7 +191,10 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		close(lf);
 	char msg[1024];
 	worker_last_message(log, from, msg, sizeof msg);
-	if (code >= 128) /* whatever it said last (e.g. "resuming from ...") is not why it stopped */
+	/* whatever it said last (e.g. "resuming from ...") is not why it stopped */
+	if (worker_crashed(code))
+		snprintf(msg, sizeof msg, "crashed by signal %d (%s)", code - 128, strsignal(code - 128));
+	else if (code >= 128)
 		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
 	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
 	close(lk);

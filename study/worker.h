@@ -20,6 +20,14 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
  * else the last non-empty line; "" when there is none. */
 void worker_last_message(const char *log, long from, char *out, size_t len);
 
+/* An engine's end by a signal (exit code 128 + n in the DONE line) that is a crash of
+ * its own (SIGSEGV, SIGBUS, SIGILL, SIGABRT, SIGFPE): a bug or a broken binary, which a
+ * second attempt repeats, so the run is failed, never retried; any other signal
+ * (SIGKILL of the OOM killer, SIGTERM of an admin or a scheduler) is a transient kill
+ * (study/README.md, "Retry what is transient"). The one classification of
+ * `study run` and of the Slurm tasks' results. */
+int worker_crashed(long code);
+
 #define WORKER_START "STUDY-START"
 #define WORKER_DONE "STUDY-DONE"
 

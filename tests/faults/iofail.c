@@ -39,6 +39,7 @@ typedef int (*open_fn)(const char *, int, ...);
 typedef int (*openat_fn)(int, const char *, int, ...);
 typedef FILE *(*fopen_fn)(const char *, const char *);
 typedef int (*rename_fn)(const char *, const char *);
+typedef int (*renameat2_fn)(int, const char *, int, const char *, unsigned);
 /* the next definition of name (libc's), looked up once */
 #define REAL(name, type) \
 	static type real_##name; \
@@ -112,4 +113,13 @@ int rename(const char *from, const char *to)
 	if (armed(from) || armed(to))
 		return -1;
 	return real_rename(from, to);
+}
+
+/* the engine's rename into a free name (core/fsutil.c) */
+int renameat2(int fd1, const char *from, int fd2, const char *to, unsigned flags)
+{
+	REAL(renameat2, renameat2_fn);
+	if (armed(from) || armed(to))
+		return -1;
+	return real_renameat2(fd1, from, fd2, to, flags);
 }

@@ -85,6 +85,49 @@ static void test_presets(void)
 	CHECK("params.preset.later_key_overrides", f.dt == 1e-4 && f.integrator == INTEG_VERLET, "dt %g", f.dt);
 }
 
+/* docs/model.md: the preset is applied first, keys given explicitly win wherever they
+ * appear - in a scene file, on the command line, across the two; a later preset
+ * replaces an earlier preset's values, never an explicit key's. */
+static void test_preset_explicit_wins(void)
+{
+	sb_scene s;
+	sb_err e;
+	char path[512];
+	int rc = load("pre_after.scene", "dt = 1e-5\npreset = fast\n", &s, &e, path, sizeof path);
+	CHECK("params.preset.scene.explicit_before_wins", !rc && s.dt == 1e-5 && s.integrator == INTEG_VERLET,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+	rc = load("pre_before.scene", "preset = fast\ndt = 1e-5\n", &s, &e, path, sizeof path);
+	CHECK("params.preset.scene.explicit_after_wins", !rc && s.dt == 1e-5 && s.integrator == INTEG_VERLET,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+	/* the preset's values say where they were set: the preset's line */
+	rc = load("pre_where.scene", "\ndt = 1e-5\npreset = fast\n", &s, &e, path, sizeof path);
+	char want[600];
+	snprintf(want, sizeof want, "%s:3", path);
+	CHECK("params.preset.scene.where", !rc && !strcmp(params_where(&s, "integrator"), want) &&
+	      !strncmp(params_where(&s, "dt"), path, strlen(path)) && strstr(params_where(&s, "dt"), ":2"),
+	      "integrator at %s, dt at %s", params_where(&s, "integrator"), params_where(&s, "dt"));
+
+	params_defaults(&s);
+	memset(&e, 0, sizeof e);
+	rc = params_override(&s, "integrator=gear4", &e) || params_override(&s, "preset=fast", &e);
+	CHECK("params.preset.cli.explicit_before_wins", !rc && s.integrator == INTEG_GEAR4 && s.dt == 2e-4,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+
+	/* across a scene file and the command line, both ways */
+	rc = load("pre_cli.scene", "dt = 1e-5\n", &s, &e, path, sizeof path);
+	rc = rc || params_override(&s, "preset=fast", &e);
+	CHECK("params.preset.file_then_cli.explicit_wins", !rc && s.dt == 1e-5 && s.integrator == INTEG_VERLET,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+	rc = load("pre_cli2.scene", "preset = paper\n", &s, &e, path, sizeof path);
+	rc = rc || params_override(&s, "preset=fast", &e);
+	CHECK("params.preset.later_preset_replaces_preset", !rc && s.dt == 2e-4 && s.integrator == INTEG_VERLET,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+	rc = load("pre_cli3.scene", "preset = fast\n", &s, &e, path, sizeof path);
+	rc = rc || params_override(&s, "dt=1e-4", &e) || params_override(&s, "preset=paper", &e);
+	CHECK("params.preset.later_preset_keeps_explicit", !rc && s.dt == 1e-4 && s.integrator == INTEG_GEAR5,
+	      "rc %d (%s): dt %g integrator %d", rc, e.msg, s.dt, s.integrator);
+}
+
 /* A mistyped key is answered with the nearest known one; another word is not. */
 static void test_nearest(void)
 {
@@ -340,8 +383,12 @@ int main(void)
 	rc = params_load_file(&f, path, &e);
 	CHECK("params.ini.missing_file", rc == SB_EUSAGE && strstr(e.msg, path), "rc %d msg '%s'", rc, e.msg);
 
+	test_preset_explicit_wins();
+
 	/* clean up */
-	const char *names[] = {"ok.ini", "top.ini", "unknown.ini", "range.ini", "malformed.ini", "section.ini", "first.ini", "indent.ini", "indent2.ini"};
+	const char *names[] = {"ok.ini", "top.ini", "unknown.ini", "range.ini", "malformed.ini", "section.ini", "first.ini",
+			       "indent.ini", "indent2.ini", "pre_after.scene", "pre_before.scene", "pre_where.scene",
+			       "pre_cli.scene", "pre_cli2.scene", "pre_cli3.scene"};
 	for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
 		snprintf(path, sizeof path, "%s/%s", tmpdir, names[i]);
 		unlink(path);

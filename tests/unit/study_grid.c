@@ -219,14 +219,14 @@ static void test_ranges(void)
 	axis_refused("study.grid.range.refused.value_out_of_range", "frequency", "999:1001:1", freq);
 }
 
-/* Two grid points with the same parameters are one run: a preset axis after a dt axis
- * sets dt at every point. */
+/* Two grid points with the same parameters are one run: an axis of a key that is no
+ * part of a run's identity (compression: how the file is stored, not what it holds). */
 static void test_point_duplicates(void)
 {
 	campaign c;
 	grid g;
 	sb_err e;
-	int rc = sf_expand("[campaign]\nname = p\nseed = 1\n[grid]\ndt = 0.0001, 0.0002\npreset = fast\n", &c, &g, &e);
+	int rc = sf_expand("[campaign]\nname = p\nseed = 1\n[grid]\ncompression = 1, 4\n", &c, &g, &e);
 	long points = 0;
 	if (!rc)
 		campaign_points(&c, &points, &e);
@@ -234,6 +234,70 @@ static void test_point_duplicates(void)
 	      rc, e.msg, points, rc ? 0 : g.n);
 	if (!rc)
 		sf_free(&c, &g);
+}
+
+/* docs/model.md: a preset is applied first, keys given explicitly win wherever they
+ * appear - a dt axis before or after a preset axis, a fixed dt under a preset axis, a
+ * base scene's preset under the campaign's own. */
+static void preset_grid(const char *id, const char *text, long want_runs, const char *want)
+{
+	campaign c;
+	grid g;
+	sb_err e;
+	int rc = sf_expand(text, &c, &g, &e);
+	char got[512] = "";
+	size_t l = 0;
+	long n = rc ? 0 : g.n;
+	/* every run's integrator and dt, in the grid's order (by id), sorted as text */
+	char *rows[16];
+	for (long i = 0; i < n && i < 16; i++) {
+		sb_scene s;
+		grid_scene(&g, &g.runs[i], &s);
+		char ig[32];
+		params_format(&s, params_find("integrator"), ig, sizeof ig);
+		rows[i] = malloc(64);
+		snprintf(rows[i], 64, "%s@%g", ig, s.dt);
+	}
+	for (long i = 0; i < n && i < 16; i++) /* a few rows: insertion sort */
+		for (long k = i; k > 0 && strcmp(rows[k - 1], rows[k]) > 0; k--) {
+			char *t = rows[k];
+			rows[k] = rows[k - 1];
+			rows[k - 1] = t;
+		}
+	for (long i = 0; i < n && i < 16; i++) {
+		l += (size_t)snprintf(got + l, sizeof got - l, "%s%s", i ? " " : "", rows[i]);
+		free(rows[i]);
+	}
+	CHECK(id, !rc && n == want_runs && !strcmp(got, want), "rc %d (%s): %ld runs '%s', want %ld '%s'", rc, e.msg, n,
+	      got, want_runs, want);
+	if (!rc)
+		sf_free(&c, &g);
+}
+
+static void test_preset_explicit_wins(void)
+{
+	preset_grid("study.grid.preset.dt_axis_before_wins",
+		    "[campaign]\nname = p\nseed = 1\n[grid]\ndt = 0.0001, 0.0002\npreset = fast\n", 2,
+		    "verlet@0.0001 verlet@0.0002");
+	preset_grid("study.grid.preset.dt_axis_after_wins",
+		    "[campaign]\nname = p\nseed = 1\n[grid]\npreset = fast\ndt = 0.0001, 0.0002\n", 2,
+		    "verlet@0.0001 verlet@0.0002");
+	preset_grid("study.grid.preset.fixed_dt_stays",
+		    "[campaign]\nname = p\nseed = 1\n[scene]\ndt = 1e-5\n[grid]\npreset = paper, fast\n", 2,
+		    "gear5@1e-05 verlet@1e-05");
+	preset_grid("study.grid.preset.fixed_integrator_stays",
+		    "[campaign]\nname = p\nseed = 1\n[grid]\npreset = paper, fast\n[scene]\nintegrator = gear4\n", 2,
+		    "gear4@0.0002 gear4@5e-05");
+	/* the campaign's preset replaces its base scene's (scenes/paper.scene says preset =
+	 * paper): what campaigns/reproduce/ do */
+	char scene[256];
+	sf_write("preset.scene", "preset = paper\nn_grains = 40\n", scene, sizeof scene);
+	char text[600];
+	snprintf(text, sizeof text, "[campaign]\nname = p\nseed = 1\nscene = %s\n[scene]\npreset = fast\n", scene);
+	preset_grid("study.grid.preset.replaces_the_scene_files_preset", text, 1, "verlet@0.0002");
+	sf_write("dt.scene", "dt = 1e-5\n", scene, sizeof scene);
+	snprintf(text, sizeof text, "[campaign]\nname = p\nseed = 1\nscene = %s\n[scene]\npreset = fast\n", scene);
+	preset_grid("study.grid.preset.keeps_the_scene_files_dt", text, 1, "verlet@1e-05");
 }
 
 /* The grid's size is known before any point is made, and bounded: CP_MAX_RUNS_DEFAULT,
@@ -330,6 +394,7 @@ int main(void)
 	test_axis_values();
 	test_ranges();
 	test_point_duplicates();
+	test_preset_explicit_wins();
 	test_bounds();
 	test_zip();
 	sf_cleanup();

@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# errors_named.sh - errors are named for what they are:
+#   * a full disk while the engine writes its HDF5 file is an I/O fault, exit 2 with
+#     the system's word for it, never a crash at exit (HDF5 1.10 closes a file whose
+#     close failed a second time in its exit handler: core/h5md.c, h5w_init), and no
+#     temporary file is left;
+#   * a read-only runs directory is an I/O fault of `study run` (exit 2, the lock file
+#     and why), not "another study driver" (exit 4, which only a held lock is);
+#   * an engine that crashes (SIGSEGV, SIGABRT) has failed - recorded with its signal,
+#     never run again - where one killed from outside is retried (study_retry.sh).
+# The file-system cases need tmpfs mounts (root); without them they are skipped, said so.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+cd "$TMP" || exit 1
+q() { sqlite3 -batch -noheader "$1" "$2"; }
+MOUNTS=()
+# unmounted before lib.sh's trap removes TMP (rm -rf must not meet a mount)
+trap 'for m in "${MOUNTS[@]}"; do umount "$m" 2>/dev/null; done; rm -rf "$TMP"' EXIT
+# tmpfs DIR OPTIONS : a tmpfs at DIR (made), remembered for the unmount; fails without root
+tmpfs() {
+	mkdir -p "$1" && mount -t tmpfs -o "$2" tmpfs "$1" 2>/dev/null && MOUNTS+=("$1")
+}
+
+# --- a full disk while the HDF5 file is written: exit 2, said so, nothing left ---
+# The run's journal (~40 KB) fits every size; its HDF5 file (~115 KB uncompressed) fits
+# none, so the write fails at different places: creating the file, writing datasets,
+# flushing at H5Fclose (the place of the crash at exit).
+if tmpfs full size=48k; then
+	umount full && MOUNTS=()
+	bad=""
+	for size in 48k 64k 80k 96k 112k; do
+		tmpfs full "size=$size" || { bad="$bad $size:mount"; continue; }
+		# the sanitizer build: HDF5 leaks what it allocated for a file whose close failed
+		# (its failure path, not ours), so the leak check is off for these runs
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=2 compression=0 \
+			snapshot_precision=double output="$TMP/full/r.h5" >"full.$size.log" 2>&1
+		rc=$?
+		left=$(cd full && ls -d ./*.tmp.* 2>/dev/null | tr '\n' ' ')
+		if [ "$rc" != 2 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)' "full.$size.log" ||
+			[ -n "$left" ]; then
+			bad="$bad $size:exit=$rc,left=[$left],$(grep -m1 -E 'shake: |SEGV|Sanitizer' "full.$size.log" | cut -c1-160)"
+		fi
+		umount full
+		MOUNTS=()
+	done
+	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
+else
+	echo "skip full_disk: cannot mount a tmpfs here (not root?)"
+fi
+
+# --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---
+cat >c.campaign <<'EOF'
+[campaign]
+name = c
+seed = 1
+[scene]
+n_grains = 40
+width = 20
+radius_ratio = 2
+settle_ke = 1
+settle_min = 0.2
+duration = 0.1
+[grid]
+frequency = 4
+EOF
+if tmpfs ro size=1m; then
+	mkdir -p ro/c/jobs ro/c/logs ro/c/cache ro/c/failed
+	if mount -o remount,ro ro 2>/dev/null; then
+		"$STUDY" run c.campaign --runs "$TMP/ro" --db "$TMP/ro.db" --jobs 1 >ro.log 2>&1
+		rc=$?
+		[ "$rc" = 2 ] && grep -q "ro/c/.driver.lock: cannot open the campaign's driver lock: Read-only file system" ro.log &&
+			! grep -q "another study driver" ro.log && ok read_only.io_not_busy ||
+			fail read_only.io_not_busy "exit $rc: $(tail -n 2 ro.log)"
+	else
+		echo "skip read_only: cannot remount a tmpfs read-only here"
+	fi
+else
+	echo "skip read_only: cannot mount a tmpfs here (not root?)"
+fi
+
+# --- a crashing engine: failed with its signal, not run again ---
+# `study exec` runs the engine that sits next to it: a copy of bin/study beside an
+# engine that kills itself with the signal its campaign names in its seed's place
+mkdir bin && cp "$STUDY" bin/study || { fail setup "cannot copy $STUDY"; finish; }
+cat >bin/shake <<'W'
+#!/bin/sh
+ulimit -c 0
+echo "shake: about to crash" >&2
+kill -"$CRASH_SIGNAL" $$
+W
+chmod +x bin/shake
+for sig in SEGV ABRT; do
+	sed "s/^name = c/name = k$sig/" c.campaign >k$sig.campaign
+	CRASH_SIGNAL=$sig bin/study run k$sig.campaign --runs "$TMP/K" --no-cache --jobs 1 --retries 2 >k$sig.log 2>&1
+	rc=$?
+	num=$(kill -l $sig)
+	rows=$(q K/study.db "SELECT r.state || ' ' || r.attempts || ' ' || (SELECT group_concat(a.status || ':' || a.exit_code
+		|| ':' || a.message, ',') FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id) FROM run r
+		WHERE r.campaign = 'k$sig'")
+	[ "$rc" = 3 ] && [[ "$rows" == "failed 1 crashed:$((128 + num)):crashed by signal $num ("* ]] && ! grep -q "running again" k$sig.log &&
+		ok "crash.$sig.failed_not_retried" || fail "crash.$sig.failed_not_retried" "exit $rc, '$rows': $(tail -n 2 k$sig.log)"
+done
+"$STUDY" status kSEGV --runs "$TMP/K" >k.status 2>&1
+grep -q "crashed by signal 11" k.status && ok crash.status_says_so || fail crash.status_says_so "$(cat k.status)"
+finish
