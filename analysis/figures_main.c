@@ -219,7 +219,7 @@ static int pooled_axis(an_tool *t)
 /* What of a run the figures can draw (acct.h): with flux = yes its periods after the
  * transient (a failed run's up to the failure; none when it failed within the
  * transient), else its file up to its status time. */
-static void classify(an_run *r, const flux_opts *fo)
+static void classify_data(an_run *r, const flux_opts *fo)
 {
 	if (acct_classify(r)) {
 		if (r->use == AN_UNREADABLE)
@@ -263,6 +263,31 @@ static void classify(an_run *r, const flux_opts *fo)
 		acct_set(r, AN_PARTLY, st, dur, "failed at t = %g s (%s): used up to it", st, r->status);
 	else
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+}
+
+/* ... and what Fig. 1 reads of it later is checked now, as the accounting is printed
+ * before it is drawn: a displacement field whose shape the file cannot hold makes the
+ * run unreadable. */
+static void classify(an_run *r, const flux_opts *fo)
+{
+	static const char *const FIELD[] = {"/observables/field/ux/value", "/observables/field/uy/value",
+					    "/observables/field/count/value", NULL};
+	classify_data(r, fo);
+	if (r->use != AN_USED && r->use != AN_PARTLY)
+		return;
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return; /* classify_data read it */
+	int rank;
+	size_t dims[8], n;
+	for (int k = 0; FIELD[k] && h5r_exists(h, "/observables/field"); k++)
+		if (h5r_shape(h, FIELD[k], &rank, dims, &n, &he)) {
+			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: %s", r->path, he.msg);
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			break;
+		}
+	h5r_close(h);
 }
 
 /* The rows (--freq, else the campaign's frequencies, at most MAXROWS), the systems
