@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# hostile_runs.sh - run files that are not what they claim are read by every tool and
-# by bin/study without a crash or a hang (docs/inputs.md, "Files", "Run files"): a
-# dataset whose shape the file cannot hold (its element count wrapping to 0 in 64 bits)
-# and an array where one value belongs make the run unreadable, with the dataset and
-# the reason; a FIFO where a run file belongs is refused at once.
+# hostile_runs.sh - run files and campaign databases that are not what they claim are
+# read by every tool and by bin/study without a crash, a hang or a number made of them
+# (docs/inputs.md, "Files", "Numbers", "Run files"): a dataset whose shape the file
+# cannot hold (its element count wrapping to 0 in 64 bits) and an array where one value
+# belongs make the run unreadable, with the dataset and the reason; a FIFO where a run
+# file belongs is refused at once; NaN in Φ, the heights, risen or waiting_time, and a
+# parameter that is no number in the database, make the run unusable with the reason;
+# a run whose grouping key is missing or no number makes the tool refuse the campaign.
 # The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
@@ -71,6 +74,19 @@ refused() {
 	[ -z "$why" ] && ok "$id" || fail "$id" "$why: $(head -c 300 "$d/$t.err") $(head -c 200 "$d/$t.out")"
 }
 
+# ingested ID DIR NEEDLE: bin/study ingests DIR's file of run $ID (made pending): it
+# exits 3 with the run failed, NEEDLE in the attempt's message, no sanitizer report
+ingested() {
+	local id=$1 d=$2 needle=$3 rc st msg
+	q "$d" "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
+	timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs "$d" --jobs 1 --no-progress >"$d.study.log" 2>&1
+	rc=$?
+	st=$(q "$d" "SELECT state FROM run WHERE id = '$ID'")
+	msg=$(q "$d" "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")
+	[ "$rc" -eq 3 ] && [ "$st" = failed ] && grep -qF -- "$needle" <<<"$msg" && ! grep -q Sanitizer "$d.study.log" &&
+		ok "$id" || fail "$id" "exit $rc, state '$st', message '$msg': $(tail -c 300 "$d.study.log")"
+}
+
 # ---- sizes: a shape is a claim, checked before anything is allocated ----
 # the displacement field of (1, 2^32, 2^32): its count wrapped to 0, and convect
 # crashed and figures wrote past its buffer
@@ -89,21 +105,10 @@ counted size.array_attribute.waiting waiting W3 "$ID" unreadable "no valid root 
 counted size.array_attribute.whale whale W3 "$ID" unreadable "no valid root attributes"
 # bin/study reads the same way (h5sum.c): a run whose file claims 2^32 x 2^32
 # trajectory rows, or has an array for its status, is a damaged output, not a result
-for c in rows array; do
-	if [ $c = rows ]; then
-		fresh S_$c "$ID" --shape /particles/intruder/position/value 4294967296,4294967296,2
-	else
-		fresh S_$c "$ID" --attr-array / exit_code 2000
-	fi
-	q S_$c "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
-	timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs S_$c --jobs 1 --no-progress >S_$c.log 2>&1
-	rc=$?
-	st=$(q S_$c "SELECT state FROM run WHERE id = '$ID'")
-	msg=$(q S_$c "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")
-	want=$([ $c = rows ] && echo "element count overflows" || echo "exit_code: not one integer")
-	[ "$rc" -eq 3 ] && [ "$st" = failed ] && grep -qF "$want" <<<"$msg" && ! grep -q Sanitizer S_$c.log &&
-		ok size.study_$c || fail size.study_$c "exit $rc, state '$st', message '$msg': $(tail -c 300 S_$c.log)"
-done
+fresh S1 "$ID" --shape /particles/intruder/position/value 4294967296,4294967296,2
+ingested size.study_rows S1 "element count overflows"
+fresh S2 "$ID" --attr-array / exit_code 2000
+ingested size.study_array S2 "exit_code: not one integer"
 
 # ---- a FIFO where a run file belongs: every reader opened it and waited for a writer ----
 fresh F && rm F/fz/"$ID".h5 && mkfifo F/fz/"$ID".h5
@@ -119,12 +124,35 @@ counted fifo.hysteresis hysteresis F "$IDR" unreadable "not a regular file"
 # bin/study: the pending run's FIFO is ingested as a failure (the done run's file is
 # back, or the driver would run it again)
 rm F/fz/"$IDR".h5 && cp R/fz/"$IDR".h5 F/fz/
-q F "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
-timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs F --jobs 1 --no-progress >F.study.log 2>&1
-rc=$?
-[ "$rc" -eq 3 ] && [ "$(q F "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")" != "" ] &&
-	grep -q 'not a regular file' <<<"$(q F "SELECT message FROM attempt WHERE run = '$ID'")" && ok fifo.study ||
-	fail fifo.study "exit $rc: $(tail -c 300 F.study.log)"
+ingested fifo.study F "not a regular file"
+
+# ---- values that are no number: the run is unusable, with the reason ----
+fresh N1 "$ID" --set /observables/flux/phi/value 3 nan
+counted nan.phi.onset onset N1 "$ID" unusable "phi/value[3] = nan"
+counted nan.phi.rolls rolls N1 "$ID" unusable "phi/value[3] = nan"
+counted nan.phi.figures figures N1 "$ID" unusable "phi/value[3] = nan"
+fresh N2 "$ID" --set /observables/flux/heights 2 inf
+counted nan.heights.onset onset N2 "$ID" unusable "heights[2] = inf"
+fresh N3 "$ID" --attr / waiting_time nan
+counted nan.waiting_time.waiting waiting N3 "$ID" unusable "waiting_time = nan"
+counted nan.waiting_time.figures figures N3 "$ID" unusable "waiting_time = nan"
+counted nan.waiting_time.whale whale N3 "$ID" unusable "waiting_time = nan"
+fresh N4 "$ID" --attr / risen nan
+counted nan.risen.ring ring N4 "$ID" unusable "risen = nan"
+# bin/study records no result with a value that is no number (an Inf waiting time
+# entered the median of replicates = auto as a time)
+fresh S3 "$ID" --attr / waiting_time inf
+ingested nan.waiting_time.study S3 "waiting_time = inf"
+fresh N5 && q N5 "UPDATE param SET value = 'nan' WHERE run = '$ID' AND key = 'frequency'"
+counted nan.param.onset onset N5 "$ID" unusable "frequency = 'nan'"
+# a group whose key is missing or no number is refused (figures pooled the run with
+# an intruder among those without one: radius_ratio read as 0)
+fresh M && q M "DELETE FROM param WHERE run = '$ID' AND key = 'radius_ratio'"
+for t in onset waiting figures; do
+	refused group.missing_key.$t $t M "run $ID" "radius_ratio: no row in the param table"
+done
+fresh M2 && q M2 "UPDATE param SET value = 'abc' WHERE run = '$ID' AND key = 'radius_ratio'"
+refused group.not_a_number.onset onset M2 "run $ID" "radius_ratio = 'abc'"
 
 # and the unchanged runs are used by every tool
 fresh U
