@@ -113,7 +113,7 @@ FORCE:
 
 $(LIB): $(CORE_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")
-	$(Q)ar rcs $@ $^
+	$(Q)rm -f $@ && ar rcs $@ $^
 
 $(SHAKE): $(BUILD)/core/shake_main.o $(LIB)
 	@mkdir -p $(dir $@)

@@ -39,6 +39,11 @@ int acct_classify(an_run *r)
 			 strcmp(r->state, "pending") && strcmp(r->state, "running") ? "state '%s'" : NULL, r->state);
 		return 1;
 	}
+	if (r->bad[0]) {
+		/* its parameters say nothing sure about what it ran: no value of it is used */
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", r->bad);
+		return 1;
+	}
 	if (access(r->path, F_OK)) {
 		/* a run that failed on bad input or I/O has no file: its status says why */
 		if (failed)

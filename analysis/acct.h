@@ -44,9 +44,10 @@ void acct_set(an_run *r, int use, double used_s, double planned_s, const char *f
 	__attribute__((format(printf, 5, 6)));
 
 /* The classification every tool shares, before reading anything: a pending or running
- * run (returns 1); a run whose output file does not exist: unusable when it failed
- * (bad input or I/O: the engine wrote nothing), unreadable when it is done (returns
- * 1); else 0: the tool reads the file and decides. */
+ * run (returns 1); a run whose parameters are unusable (r->bad: unusable, returns 1);
+ * a run whose output file does not exist: unusable when it failed (bad input or I/O:
+ * the engine wrote nothing), unreadable when it is done (returns 1); else 0: the tool
+ * reads the file and decides. */
 int acct_classify(an_run *r);
 
 /* An earlier version's run (current = 0) is counted in *nold and left out unless all

@@ -2,6 +2,8 @@
 #include "adb.h"
 
 #include "layout.h"
+#include "num.h"
+#include "params.h"
 
 #include <errno.h>
 #include <math.h>
@@ -86,6 +88,62 @@ int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e)
 	return 0;
 }
 
+const char *an_str(const an_run *r, const char *key)
+{
+	for (int i = 0; i < r->nparam; i++)
+		if (!strcmp(r->key[i], key))
+			return r->val[i];
+	return NULL;
+}
+
+double an_num(const an_run *r, const char *key, double dflt)
+{
+	const char *s = an_str(r, key);
+	double v;
+	if (!s)
+		return dflt;
+	return num_real(s, &v) ? NAN : v;
+}
+
+/* a number key of the engine's table: its value must be a number */
+static int numeric_key(const char *key)
+{
+	const sb_param *p = params_find(key);
+	return p && (p->type == PT_INT || p->type == PT_REAL);
+}
+
+int an_known(const an_run *r, const char *key, char *why, size_t n)
+{
+	const char *s = an_str(r, key);
+	double v;
+	if (!s) {
+		snprintf(why, n, "%s: no row in the param table", key);
+		return 1;
+	}
+	if (numeric_key(key) && num_real(s, &v)) {
+		snprintf(why, n, "%s = '%.60s' in the param table: not a finite number", key, s);
+		return 1;
+	}
+	return 0;
+}
+
+/* The keys every run has recorded since the first bin/study (the campaign keys of the
+ * README's scene contract, numbers all): a run without one was not written by it, and
+ * a default in its place would put it in another run's group (radius_ratio 0: no
+ * intruder). */
+static const char *const EVERY_RUN[] = {"n_grains", "width", "radius_ratio", "depth", "amplitude", "frequency",
+					"duration", NULL};
+
+/* r->bad: the first parameter the tools cannot use (adb.h). */
+static void check_params(an_run *r)
+{
+	r->bad[0] = 0;
+	for (int i = 0; EVERY_RUN[i] && !r->bad[0]; i++)
+		an_known(r, EVERY_RUN[i], r->bad, sizeof r->bad);
+	for (int i = 0; i < r->nparam && !r->bad[0]; i++)
+		an_known(r, r->key[i], r->bad, sizeof r->bad);
+}
+
 int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e)
 {
 	*out = NULL;
@@ -168,6 +226,7 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		sqlite3_reset(ps);
 		if (e->code)
 			break;
+		check_params(x);
 	}
 	if (!e->code && rc != SQLITE_DONE && rc != SQLITE_ROW)
 		dberr(d, e);
@@ -210,24 +269,6 @@ int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_
 	}
 	sqlite3_finalize(st);
 	return 0;
-}
-
-const char *an_str(const an_run *r, const char *key)
-{
-	for (int i = 0; i < r->nparam; i++)
-		if (!strcmp(r->key[i], key))
-			return r->val[i];
-	return NULL;
-}
-
-double an_num(const an_run *r, const char *key, double dflt)
-{
-	const char *s = an_str(r, key);
-	if (!s || !*s)
-		return dflt;
-	char *end;
-	double v = strtod(s, &end);
-	return *end ? dflt : v;
 }
 
 /* ---- grouping ---- */

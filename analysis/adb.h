@@ -28,6 +28,9 @@ typedef struct an_run {
 	double used_s;      /* a failed run used up to its failure: the seconds used */
 	double planned_s;   /* ... of the seconds it was to run (duration) */
 	char why[400];      /* why it is not used (unreadable, unusable); "" otherwise */
+	char bad[200];      /* why its parameters are unusable (a number key whose value is
+			     * not a finite number, a key every run has that is missing);
+			     * "" when they are fine: set by adb_runs */
 } an_run;
 
 #define AN_ADB_MAXKEYS 32
@@ -45,7 +48,9 @@ void adb_close(adb *d);
 
 /* Every run of campaign whatever its state or version (ordered by id): state, current,
  * status, its parameters from the param table and output path runs_dir/campaign/id.h5.
- * Databases without run.current or a result table are read too. Returns 0 or an error
+ * Databases without run.current or a result table are read too. A run whose numeric
+ * parameter is not a finite number, or that lacks one of the keys every run records,
+ * gets the reason in bad (acct_classify counts it unusable). Returns 0 or an error
  * code; *n may be 0. */
 int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, int *n, sb_err *e);
 void adb_runs_free(an_run *r, int n);
@@ -56,8 +61,13 @@ int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e);
 /* The campaign's swept axes (campaign.axes, space separated); *n = 0 when unknown. */
 int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_err *e);
 
-/* A parameter as a number (dflt when missing or not numeric) or as text (NULL). */
+/* A parameter as a number: dflt when the run has no such key, NaN when its value is no
+ * finite decimal number (num.h: never a silent default), or as text (NULL). */
 double an_num(const an_run *r, const char *key, double dflt);
+/* 0 when the run has key and, for a number key of the engine's table, a finite number
+ * as its value; else 1 with the reason in why ("radius_ratio: no row in the param
+ * table", "frequency = 'nan': not a finite number"). */
+int an_known(const an_run *r, const char *key, char *why, size_t n);
 const char *an_str(const an_run *r, const char *key);
 
 /* Group runs by the values of keys[0..nk): sets r[i].group, returns the number of

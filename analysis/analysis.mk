@@ -13,9 +13,10 @@ AN_TBIN   = $(AN_TSRC:%.c=$(BUILD)/%)
 
 $(BUILD)/analysis/%.o: ALLCFLAGS += -Ianalysis -Istudy
 
+# made afresh (as libshake.a): a module moved elsewhere must not stay in the archive
 $(AN_LIB): $(AN_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")
-	$(Q)ar rcs $@ $^
+	$(Q)rm -f $@ && ar rcs $@ $^
 
 $(AN_BIN): $(BIN)/%: $(BUILD)/analysis/%_main.o $(AN_LIB) $(LIB)
 	@mkdir -p $(dir $@)

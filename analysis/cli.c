@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #include "layout.h"
+#include "num.h"
 #include "words.h"
 
 #include <errno.h>
@@ -74,10 +75,8 @@ const char *cli_nearest(const char *name, const char *allowed)
 
 static int num(sb_err *e, const char *opt, const char *s, double lo, double hi, double *v)
 {
-	char *end;
-	errno = 0;
-	double x = strtod(s, &end);
-	if (!*s || *end || errno || !(x >= lo && x <= hi))
+	double x;
+	if (num_real(s, &x) || !(x >= lo && x <= hi))
 		return sb_errf(e, SB_EUSAGE, "--%s: expected a number in [%g, %g], got '%s'", opt, lo, hi, s);
 	*v = x;
 	return 0;

@@ -134,6 +134,10 @@ static void classify(an_run *r, const convect_cfg *c, convect_run *cr, int *nofi
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", e.msg);
 		return;
 	}
+	if (rc == SB_ENAN) {
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", e.msg);
+		return;
+	}
 	if (rc) {
 		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
 		fprintf(stderr, "convect: warning: %s (counted as unreadable)\n", r->why);

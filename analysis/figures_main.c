@@ -12,6 +12,7 @@
 #include "flux.h"
 #include "h5read.h"
 #include "label.h"
+#include "num.h"
 #include "tool.h"
 #include "traj.h"
 
@@ -156,9 +157,8 @@ static int where_ok(const an_opts *o, const an_run *r)
 		const char *v = an_str(r, o->where_key[w]);
 		if (!v)
 			return 0;
-		char *e1, *e2;
-		const double a = strtod(v, &e1), b = strtod(o->where_val[w], &e2);
-		const int numeric = e1 != v && !*e1 && e2 != o->where_val[w] && !*e2;
+		double a, b;
+		const int numeric = !num_real(v, &a) && !num_real(o->where_val[w], &b);
 		if (numeric ? !near(a, b) : strcmp(v, o->where_val[w]) != 0)
 			return 0;
 	}
@@ -185,6 +185,9 @@ static int consider(an_tool *t, panels *P)
 		if ((ramp && strcmp(ramp, "none")) || !where_ok(o, &t->runs[i]) || tool_old(t, &t->runs[i]))
 			continue;
 		const an_run *r = &t->runs[tool_keep(t, i)];
+		/* the panels are its groups */
+		if (tool_key_known(t, r, "frequency") || tool_key_known(t, r, "radius_ratio"))
+			return t->e.code;
 		const double fr = an_num(r, "frequency", NAN), ra = an_num(r, "radius_ratio", 0);
 		add_value(P->freqs, &P->nf, fr, isfinite(fr));
 		add_value(P->ratios, &P->nra, ra, ra > 0);
@@ -219,7 +222,7 @@ static int pooled_axis(an_tool *t)
 /* What of a run the figures can draw (acct.h): with flux = yes its periods after the
  * transient (a failed run's up to the failure; none when it failed within the
  * transient), else its file up to its status time. */
-static void classify(an_run *r, const flux_opts *fo)
+static void classify_data(an_run *r, const flux_opts *fo)
 {
 	if (acct_classify(r)) {
 		if (r->use == AN_UNREADABLE)
@@ -232,7 +235,8 @@ static void classify(an_run *r, const flux_opts *fo)
 	if (fl && !strcmp(fl, "yes")) {
 		flux_data fd;
 		if (flux_load(r, &fd)) {
-			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			if (r->use == AN_UNREADABLE)
+				fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
 			return;
 		}
 		size_t p0 = flux_first(&fd, fo);
@@ -263,6 +267,36 @@ static void classify(an_run *r, const flux_opts *fo)
 		acct_set(r, AN_PARTLY, st, dur, "failed at t = %g s (%s): used up to it", st, r->status);
 	else
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+}
+
+/* ... and what Fig. 1 and Fig. 4 read of it later is checked now, as the accounting
+ * is printed before they are drawn: a displacement field whose shape the file cannot
+ * hold makes the run unreadable, and a run with an intruder whose rise is no number
+ * (Fig. 4 orders the runs by it) unusable. */
+static void classify(an_run *r, const flux_opts *fo)
+{
+	static const char *const FIELD[] = {"/observables/field/ux/value", "/observables/field/uy/value",
+					    "/observables/field/count/value", NULL};
+	classify_data(r, fo);
+	if (r->use != AN_USED && r->use != AN_PARTLY)
+		return;
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return; /* classify_data read it */
+	int rank;
+	size_t dims[8], n;
+	for (int k = 0; FIELD[k] && h5r_exists(h, "/observables/field"); k++)
+		if (h5r_shape(h, FIELD[k], &rank, dims, &n, &he)) {
+			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: %s", r->path, he.msg);
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			break;
+		}
+	double rs, w;
+	if ((r->use == AN_USED || r->use == AN_PARTLY) && an_num(r, "radius_ratio", 0) > 0 &&
+	    traj_rise(h, r->path, &rs, &w, &he) == SB_ENAN)
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", he.msg);
+	h5r_close(h);
 }
 
 /* The rows (--freq, else the campaign's frequencies, at most MAXROWS), the systems
@@ -742,8 +776,9 @@ static int fig4_panel(const an_tool *t, double f4, double ra, f4panel *P)
 		if (h5r_open(r->path, &h, &he))
 			continue;
 		const int has = h5r_exists(h, "/particles/intruder/position");
-		h5r_attr_num(h, "/", "risen", &rs);
-		h5r_attr_num(h, "/", "waiting_time", &w);
+		sb_err re = {0};
+		if (traj_rise(h, r->path, &rs, &w, &re)) /* not risen, observed for an unknown time */
+			rs = 0, w = NAN;
 		h5r_close(h);
 		if (!has)
 			continue;

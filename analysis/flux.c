@@ -36,6 +36,24 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 		flux_free(d);
 		return sb_errf(e, SB_EIO, "%s: /observables/flux datasets have inconsistent sizes", path);
 	}
+	/* a NaN or Inf would become a mean and an interval printed as numbers; the engine
+	 * writes none (README, "Exit codes"), so a file that has one is refused
+	 * (docs/inputs.md, "Run files") */
+	const struct {
+		const char *name;
+		const double *v;
+		size_t n;
+	} series[] = {{"phi/time", d->t, d->P}, {"frequency/value", d->f, d->P}, {"phi/value", d->phi, d->P * d->L},
+		      {"heights", d->h, d->L}};
+	for (size_t k = 0; k < sizeof series / sizeof *series; k++)
+		for (size_t i = 0; i < series[k].n; i++)
+			if (!isfinite(series[k].v[i])) {
+				h5r_close(f);
+				sb_errf(e, SB_ENAN, "%s: /observables/flux/%s[%zu] = %g: not a finite number", path,
+					series[k].name, i, series[k].v[i]);
+				flux_free(d);
+				return e->code;
+			}
 	d->surface = NAN;
 	if (h5r_attr_num(f, "/observables/flux", "surface_height", &d->surface))
 		h5r_attr_num(f, "/", "surface_height", &d->surface);
@@ -52,7 +70,8 @@ int flux_load(an_run *r, flux_data *d)
 		return 1;
 	sb_err e = {0};
 	if (flux_read(r->path, d, &e)) {
-		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
+		/* a value that is no number is there to read, and unusable */
+		acct_set(r, e.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", e.msg);
 		return 1;
 	}
 	const char *ramp = an_str(r, "ramp");

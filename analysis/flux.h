@@ -28,9 +28,11 @@ typedef struct flux_data {
 				   * caller for a run stopped by a failure, which holds fewer */
 } flux_data;
 
+/* SB_ENAN when a time, frequency, Phi or height is not a finite number. */
 int flux_read(const char *path, flux_data *d, sb_err *e);
 /* A run's flux for a statistic (acct.h): returns 1 when there is nothing to read
- * (pending, running, no file, unreadable file: r->use and r->why say which), else 0
+ * (pending, running, no file, unreadable file, unusable values: r->use and r->why say
+ * which), else 0
  * with d read; for a failed run d->planned is the number of periods its duration
  * holds at its frequency (fixed frequency), so that its transient is the planned one. */
 int flux_load(an_run *r, flux_data *d);

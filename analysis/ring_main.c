@@ -132,11 +132,13 @@ static void classify(an_run *r, rrun *x)
 	for (int q = 0; q < NQ && !missing; q++)
 		missing = h5r_attr_num(h, "/ring", ATTR[q], &x->v[q]) || !isfinite(x->v[q]);
 	h5r_attr_num(h, "/ring", "centre_y", &x->centre_y);
-	h5r_attr_num(h, "/", "risen", &rs);
+	const int has_rise = h5r_attr_num(h, "/", "risen", &rs) == 0;
 	h5r_close(h);
 	x->risen = rs != 0;
 	const int failed = !strcmp(r->state, "failed");
-	if (missing)
+	if (has_rise && rs != 0 && rs != 1) /* a NaN would count as risen */
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s: risen = %g: expected 0 or 1", r->path, rs);
+	else if (missing)
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s: no before-the-rise ring averages (/ring *_before)%s", r->path,
 			 failed ? ": failed before the shaking" : "");
 	else if (!(x->samples > 0))

@@ -70,12 +70,26 @@ int tool_value(an_tool *t, int j, int k, const char *v)
 	return 0;
 }
 
+int tool_key_known(an_tool *t, const an_run *r, const char *key)
+{
+	char why[256];
+	if (!an_known(r, key, why, sizeof why))
+		return 0;
+	return sb_errf(&t->e, SB_EUSAGE, "campaign '%s': run %s: %s: its group is unknown (no default stands in: it "
+		       "would pool the run with others); repair or delete the run in %s", t->o->campaign, r->id, why,
+		       t->o->db);
+}
+
 int tool_group(an_tool *t, const char *const *always, const char *const *drop)
 {
 	char keys[AN_MAXKEYS][48];
 	int nk;
 	if (cli_keys(t->o, &t->d, always, drop, keys, &nk, &t->e))
 		return t->e.code;
+	for (int i = 0; i < t->k; i++)
+		for (int k = 0; k < nk; k++)
+			if (tool_key_known(t, &t->runs[i], keys[k]))
+				return t->e.code;
 	t->ng = an_group_runs(t->runs, t->k, keys, nk, &t->labels);
 	if (t->ng < 0) {
 		t->ng = 0;

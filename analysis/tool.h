@@ -50,8 +50,14 @@ int tool_keep(an_tool *t, int i);
  * (e.g. " that matches --where", or ""). */
 int tool_none(an_tool *t, const char *kind, const char *narrowed);
 
+/* 0 when run r has key, and a finite number as its value when it is a number key
+ * (an_known); else the error: a group whose key is missing or no number is refused,
+ * naming the run, the key and the value. */
+int tool_key_known(an_tool *t, const an_run *r, const char *key);
+
 /* Groups the considered runs by the grouping keys (cli_keys: --by, else always[] and
- * the swept axes not in drop[]). */
+ * the swept axes not in drop[]); a run whose value of a key is unknown is refused
+ * (tool_key_known). */
 int tool_group(an_tool *t, const char *const *always, const char *const *drop);
 
 /* The grouping keys of groups a tool made itself (t->ng and t->labels set): every

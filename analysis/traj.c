@@ -55,6 +55,15 @@ int traj_read(const char *path, traj *tr, sb_err *e)
 		traj_free(tr);
 		return sb_errf(e, SB_EIO, "%s: /particles/intruder/position is not [T x 1 x 2] with T times", path);
 	}
+	for (size_t i = 0; i < dp[0]; i++)
+		if (!isfinite(tr->t[i]) || !isfinite(pos[2 * i]) || !isfinite(pos[2 * i + 1])) {
+			h5r_close(f);
+			sb_errf(e, SB_ENAN, "%s: /particles/intruder/position row %zu (t = %g, y = %g): not a finite number",
+				path, i, tr->t[i], pos[2 * i + 1]);
+			free(pos);
+			traj_free(tr);
+			return e->code;
+		}
 	sb_drive d;
 	drive_of(f, &d);
 	h5r_close(f);
@@ -105,5 +114,19 @@ int traj_fraction(const traj *tr, double q, double *time)
 		return 1;
 	}
 	*time = tr->t[tr->n - 1];
+	return 0;
+}
+
+int traj_rise(hid_t f, const char *path, double *risen, double *wait, sb_err *e)
+{
+	double rs, w;
+	if (h5r_attr_num(f, "/", "risen", &rs) || h5r_attr_num(f, "/", "waiting_time", &w))
+		return sb_errf(e, SB_EIO, "%s: no valid root attributes risen, waiting_time", path);
+	if (rs != 0 && rs != 1)
+		return sb_errf(e, SB_ENAN, "%s: risen = %g: expected 0 or 1", path, rs);
+	if (!isfinite(w) || w < 0)
+		return sb_errf(e, SB_ENAN, "%s: waiting_time = %g: not a finite time >= 0", path, w);
+	*risen = rs;
+	*wait = w;
 	return 0;
 }

@@ -19,6 +19,7 @@
 #include <stddef.h>
 
 #include "err.h"
+#include "h5read.h"
 
 typedef struct traj {
 	size_t n;
@@ -33,9 +34,16 @@ typedef struct traj {
 /* Reads path's trajectory and its box frame from the file's own /parameters (ramp,
  * amplitude, frequency, ramp_from, ramp_to, ramp_hold, duration). Returns 0, 1 when
  * the file has no trajectory (traj_rate = 0, or no sample: tr->n = 0), or an error
- * code with e set (unreadable file). */
+ * code with e set: SB_ENAN when a time or position is not a finite number, else an
+ * unreadable file. */
 int traj_read(const char *path, traj *tr, sb_err *e);
 void traj_free(traj *tr);
+
+/* The engine's rise of a run, the root attributes risen and waiting_time of the open
+ * file f: 0 with both set; SB_EIO when either is missing or is not one number;
+ * SB_ENAN when waiting_time is no finite time >= 0 or risen is not 0 or 1 (a NaN
+ * would count as risen, or sort as a time). e names path and the value. */
+int traj_rise(hid_t f, const char *path, double *risen, double *wait, sb_err *e);
 
 /* The first time y[i] reaches level (y[0] >= level: t[0]), interpolated linearly
  * between the samples around the crossing; NaN when it never does. */

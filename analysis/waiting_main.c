@@ -190,14 +190,16 @@ static void classify(an_run *r, double *rs, double *w, wait_state *s)
 	if (h5r_open(r->path, &h, &he))
 		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
 	else {
-		if (h5r_attr_num(h, "/", "risen", rs) || h5r_attr_num(h, "/", "waiting_time", w) || !(*w >= 0) ||
-		    !isfinite(*w))
-			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no valid root attributes risen, waiting_time", r->path);
+		if (traj_rise(h, r->path, rs, w, &he))
+			/* a value that is no time is there, and unusable; a missing one unreadable */
+			acct_set(r, he.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", he.msg);
 		h5r_attr_num(h, "/", "status_time", &st);
 		h5r_close(h);
 	}
 	if (r->use == AN_UNREADABLE)
 		fprintf(stderr, "waiting: warning: %s (counted as unreadable)\n", r->why);
+	else if (r->use == AN_UNUSABLE)
+		*rs = *w = NAN;
 	else if (strcmp(r->state, "failed"))
 		acct_set(r, AN_USED, NAN, NAN, NULL);
 	else if (!(*w > 0))
@@ -227,7 +229,8 @@ static int consider(an_tool *t, wait_state *s)
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	for (int i = 0; i < t->nr; i++) {
 		an_run *r = &t->runs[i];
-		if (!(an_num(r, "radius_ratio", 0) > 0) || tool_old(t, r))
+		/* a ratio that is not known to be 0 is considered: grouping says what it lacks */
+		if (an_num(r, "radius_ratio", NAN) == 0 || tool_old(t, r))
 			continue;
 		double rs = NAN, w = NAN;
 		classify(r, &rs, &w, s);

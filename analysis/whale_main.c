@@ -121,8 +121,10 @@ static void classify(an_run *r, whale_obs *ob, const whale_cfg *c)
 	sb_err e = {0};
 	if (whale_read(r->path, c, ob, &e)) {
 		ob->status = -1;
-		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
-		fprintf(stderr, "whale: warning: %s (counted as unreadable)\n", r->why);
+		/* a rise or trajectory that is no number is there, and unusable */
+		acct_set(r, e.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", e.msg);
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "whale: warning: %s (counted as unreadable)\n", r->why);
 	} else if (strcmp(r->state, "failed"))
 		acct_set(r, AN_USED, NAN, NAN, NULL);
 	else if (!(ob->wait > 0)) {
@@ -141,7 +143,8 @@ static int consider(an_tool *t, whale_state *s)
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	for (int i = 0; i < t->nr; i++) {
 		an_run *r = &t->runs[i];
-		if (!(an_num(r, "radius_ratio", 0) > 0) || tool_old(t, r))
+		/* a ratio that is not known to be 0 is considered: grouping says what it lacks */
+		if (an_num(r, "radius_ratio", NAN) == 0 || tool_old(t, r))
 			continue;
 		whale_obs ob;
 		classify(r, &ob, &s->cfg);

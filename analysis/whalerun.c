@@ -20,8 +20,8 @@ static int read_attrs(const char *path, whale_obs *ob, sb_err *e)
 	if (h5r_open(path, &h, e))
 		return e->code;
 	double rs = NAN, w = NAN, rr = NAN, rmin = NAN, rmax = NAN, f = 0;
-	const int bad = h5r_attr_num(h, "/", "risen", &rs) || h5r_attr_num(h, "/", "waiting_time", &w) ||
-			!isfinite(w) || !(w >= 0);
+	sb_err re = {0};
+	const int bad = traj_rise(h, path, &rs, &w, &re);
 	if (h5r_attr_num(h, "/", "intruder_radius", &ob->radius) || !(ob->radius > 0)) {
 		h5r_attr_num(h, "/parameters", "radius_ratio", &rr);
 		h5r_attr_num(h, "/parameters", "r_min", &rmin);
@@ -31,7 +31,7 @@ static int read_attrs(const char *path, whale_obs *ob, sb_err *e)
 	h5r_attr_num(h, "/parameters", "frequency", &f);
 	h5r_close(h);
 	if (bad)
-		return sb_errf(e, SB_EIO, "%s: no valid root attributes risen, waiting_time", path);
+		return sb_errf(e, bad, "%s", re.msg);
 	ob->risen = rs != 0;
 	ob->wait = w;
 	ob->drive_f = f > 0 ? f : 0;

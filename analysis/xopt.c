@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "num.h"
+
 /* cli.c's options that every tool takes; the tool's others are in its allowed list */
 static const char COMMON[] = " help db runs out no-plot no-store all-versions ";
 
@@ -134,10 +136,8 @@ int xopt_num(const xopt *x, double lo, double hi, double dflt, double *v, sb_err
 		*v = dflt;
 		return 0;
 	}
-	char *end;
-	errno = 0;
-	const double d = strtod(x->val, &end);
-	if (!*x->val || *end || errno || !(d >= lo && d <= hi))
+	double d;
+	if (num_real(x->val, &d) || !(d >= lo && d <= hi))
 		return sb_errf(e, SB_EUSAGE, "--%s: expected a number in [%g, %g], got '%s'", x->name, lo, hi, x->val);
 	*v = d;
 	return 0;

@@ -127,3 +127,59 @@ void fs_abort(sb_file *o)
 	o->f = NULL;
 	unlink(o->tmp);
 }
+
+/* why a file of this mode is no input */
+static const char *not_regular(mode_t m)
+{
+	return S_ISDIR(m) ? "is a directory" : S_ISFIFO(m) ? "is not a regular file (a FIFO)" : "is not a regular file";
+}
+
+static int refuse(const char *path, const char *what, mode_t m, int code, sb_err *e)
+{
+	return sb_errf(e, code, "%s: %s: a %s must be a regular file (a FIFO or a device would be read without end)",
+		       path, not_regular(m), what);
+}
+
+int fs_check_input(const char *path, const char *what, int code, sb_err *e)
+{
+	struct stat sb;
+	if (stat(path, &sb))
+		return sb_errf(e, code, "%s: cannot open %s: %s", path, what, strerror(errno));
+	if (!S_ISREG(sb.st_mode))
+		return refuse(path, what, sb.st_mode, code, e);
+	return 0;
+}
+
+FILE *fs_open_input(const char *path, const char *what, long long max_bytes, int code, sb_err *e)
+{
+	/* O_NONBLOCK: the open of a FIFO returns at once, to be refused; it changes
+	 * nothing for a regular file */
+	int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0) {
+		sb_errf(e, code, "%s: cannot open %s: %s", path, what, strerror(errno));
+		return NULL;
+	}
+	struct stat sb;
+	if (fstat(fd, &sb)) {
+		sb_errf(e, SB_EIO, "%s: cannot open %s: %s", path, what, strerror(errno));
+		close(fd);
+		return NULL;
+	}
+	if (!S_ISREG(sb.st_mode)) {
+		refuse(path, what, sb.st_mode, code, e);
+		close(fd);
+		return NULL;
+	}
+	if (max_bytes > 0 && sb.st_size > max_bytes) {
+		sb_errf(e, code, "%s: %lld bytes, more than the %lld a %s may have", path, (long long)sb.st_size,
+			max_bytes, what);
+		close(fd);
+		return NULL;
+	}
+	FILE *f = fdopen(fd, "r");
+	if (!f) {
+		sb_errf(e, SB_ENOMEM, "%s: cannot open %s: %s", path, what, strerror(errno));
+		close(fd);
+	}
+	return f;
+}

@@ -1,5 +1,6 @@
 /* fsutil.h - crash-safe files: write to a temporary name in the same directory,
- * fsync, rename into place, fsync the directory. A reader never sees half a file. */
+ * fsync, rename into place, fsync the directory. A reader never sees half a file.
+ * And the one way an input is opened for reading: regular files only. */
 #ifndef SB_FSUTIL_H
 #define SB_FSUTIL_H
 
@@ -30,5 +31,18 @@ int fs_rename_durable(const char *tmp, const char *path, sb_err *e);
 int fs_replaceable(const char *path, const char **kind);
 /* "a directory", "a character device", ... for a st_mode. */
 const char *fs_kind(unsigned mode);
+
+/* Opens an input for reading when it is a regular file (docs/inputs.md, "Files"): a
+ * FIFO would block the open, and then every read, until a writer comes; a directory
+ * opens and reads as an empty file; a device never ends. The open itself does not
+ * block. `what` names the input in the message ("scene file"); a file that is not
+ * regular, or larger than max_bytes (> 0), is refused with `code`; a file that cannot
+ * be opened too (its errno said). NULL on error. */
+FILE *fs_open_input(const char *path, const char *what, long long max_bytes, int code, sb_err *e);
+
+/* The same check for a reader that opens the file by name itself (HDF5): 0 when path
+ * is a regular file, else `code` with the message. Stat first: an open of a FIFO would
+ * wait for a writer. */
+int fs_check_input(const char *path, const char *what, int code, sb_err *e);
 
 #endif

@@ -3,18 +3,18 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "fsutil.h"
 #include "guard.h"
+#include "num.h"
 #include "periodic.h"
 #include "prepare.h"
+#include "textline.h"
 
 /* What a particle file may hold. A line is at most PF_LINE_MAX characters (the
  * engine writes about 170); a longer one is refused rather than read in pieces, whose
@@ -42,7 +42,8 @@ typedef struct dlist {
 } dlist;
 
 /* Lines of a particle file, read byte by byte: fgets cannot tell a NUL byte from the
- * end of the line (the rest of the line would vanish). */
+ * end of the line (the rest of the line would vanish). A byte-order mark and the CR of
+ * a CRLF are dropped as textline.c drops them for scene and campaign files. */
 typedef struct lreader {
 	FILE *f;
 	const char *path;
@@ -57,6 +58,17 @@ static int lr_next(lreader *r, sb_err *e)
 	int ch;
 	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
 	while ((ch = getc_unlocked(r->f)) != EOF && ch != '\n') {
+		if (ch == '\r') {
+			/* CRLF: the line ends at the LF and is measured without the CR
+			 * (docs/inputs.md, "Lines") */
+			const int nx = getc_unlocked(r->f);
+			if (nx == '\n') {
+				ch = nx;
+				break;
+			}
+			if (nx != EOF)
+				ungetc(nx, r->f);
+		}
 		if (len == PF_LINE_MAX) {
 			sb_errf(e, SB_EUSAGE, "%s:%ld: line too long (the limit is %d characters)", r->path, r->line + 1,
 				PF_LINE_MAX);
@@ -65,6 +77,8 @@ static int lr_next(lreader *r, sb_err *e)
 		if (!ch && !nul)
 			nul = len + 1;
 		r->buf[len++] = (char)ch;
+		if (!r->line && len == TEXTLINE_BOM_LEN && !memcmp(r->buf, TEXTLINE_BOM, TEXTLINE_BOM_LEN))
+			len = 0; /* a byte-order mark opens the file: no part of its first line */
 	}
 	if (ch == EOF && ferror(r->f)) {
 		sb_errf(e, SB_EIO, "%s: cannot read particle file: %s", r->path, strerror(errno));
@@ -139,8 +153,52 @@ static int is_lammps(lreader *r, int *found, sb_err *e)
 	return 0;
 }
 
+/* The blank-separated fields of a line: at most max are kept in f; the count is
+ * returned (more than max when there are more). */
+typedef struct field {
+	const char *s;
+	size_t n;
+} field;
+
+static int split(const char *line, field *f, int max)
+{
+	int k = 0;
+	for (const char *p = line;;) {
+		p += strspn(p, " \t\r\f\v");
+		if (!*p)
+			return k;
+		const size_t n = strcspn(p, " \t\r\f\v");
+		if (k < max)
+			f[k] = (field){p, n};
+		k++;
+		p += n;
+	}
+}
+
+/* Field i of a line as a number: the strict reading of every input (num.h), so that
+ * "1.5" is no atom type and "0x10" no coordinate; the error names the line, the
+ * column's name and the text. */
+static int field_real(const lreader *r, const field *f, const char *name, double *x, sb_err *e)
+{
+	if (!num_real_n(f->s, f->n, x))
+		return 0;
+	return sb_errf(e, SB_EUSAGE, "%s:%ld: %s: expected a finite decimal number, got '%.*s'", r->path, r->line, name,
+		       (int)(f->n > 64 ? 64 : f->n), f->s);
+}
+
+static int field_int(const lreader *r, const field *f, const char *name, long long *x, sb_err *e)
+{
+	if (!num_int_n(f->s, f->n, x))
+		return 0;
+	return sb_errf(e, SB_EUSAGE, "%s:%ld: %s: expected an integer, got '%.*s'", r->path, r->line, name,
+		       (int)(f->n > 64 ? 64 : f->n), f->s);
+}
+
+/* Text lines "x y r kind [vx vy omega]": four or seven fields, every one read (a fifth
+ * word is no velocity: the line would start at rest unasked). */
 static int read_text(lreader *r, dlist *l, sb_err *e)
 {
+	static const char *const NAME[7] = {"x", "y", "r", "kind", "vx", "vy", "omega"};
 	const char *path = r->path;
 	int k;
 	while ((k = lr_next(r, e)) > 0) {
@@ -151,26 +209,28 @@ static int read_text(lreader *r, dlist *l, sb_err *e)
 		if (hash)
 			*hash = 0;
 		disk d = {.line = r->line};
-		char kind[32], extra[8];
-		int nf = sscanf(line, "%lf %lf %lf %31s %lf %lf %lf %7s", &d.x, &d.y, &d.r, kind, &d.vx, &d.vy, &d.w,
-				extra);
+		field f[7];
+		const int nf = split(line, f, 7);
 		if (nf != 4 && nf != 7)
-			return sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'x y r kind [vx vy omega]'", path, r->line);
-		if (!isfinite(d.x) || !isfinite(d.y) || !isfinite(d.vx) || !isfinite(d.vy) || !isfinite(d.w) ||
-		    !(d.r > 0) || !isfinite(d.r))
-			return sb_errf(e, SB_EUSAGE, "%s:%ld: numbers must be finite and the radius positive", path,
-				       r->line);
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'x y r kind [vx vy omega]', got %d fields", path,
+				       r->line, nf);
+		double *v[7] = {&d.x, &d.y, &d.r, NULL, &d.vx, &d.vy, &d.w};
+		for (int i = 0; i < nf; i++)
+			if (v[i] && field_real(r, &f[i], NAME[i], v[i], e))
+				return e->code;
 		if (check_radius(path, r->line, d.r, e))
 			return e->code;
-		if (!strcmp(kind, "grain"))
+		const char *kind = f[3].s;
+		const size_t kl = f[3].n;
+		if (kl == 5 && !strncmp(kind, "grain", 5))
 			d.kind = KIND_GRAIN;
-		else if (!strcmp(kind, "intruder"))
+		else if (kl == 8 && !strncmp(kind, "intruder", 8))
 			d.kind = KIND_INTRUDER;
-		else if (!strcmp(kind, "wall"))
+		else if (kl == 4 && !strncmp(kind, "wall", 4))
 			d.kind = KIND_WALL;
 		else
-			return sb_errf(e, SB_EUSAGE, "%s:%ld: kind: expected grain, intruder or wall, got '%s'", path,
-				       r->line, kind);
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: kind: expected grain, intruder or wall, got '%.*s'", path,
+				       r->line, (int)(kl > 64 ? 64 : kl), kind);
 		if (dl_push(l, d, path, e))
 			return e->code;
 	}
@@ -286,83 +346,113 @@ static int read_lammps(lreader *r, dlist *l, sb_err *e)
 		if (blank_or_comment(line))
 			continue;
 		if (sec == HEAD) {
-			long n;
-			double lo, hi;
-			char w[64], w2[64];
-			if (sscanf(line, "%ld %63s", &n, w) == 2 && !strcmp(w, "atoms")) {
-				natoms = n;
+			/* the lines read are "N atoms" and "lo hi xlo xhi", "lo hi ylo yhi", all of
+			 * them: "10 atoms extra" is no count (the other header lines are LAMMPS's
+			 * business, and not needed here) */
+			field f[5];
+			const int nf = split(line, f, 5);
+			if (nf >= 2 && f[1].n == 5 && !strncmp(f[1].s, "atoms", 5)) {
+				long long n;
+				if (nf != 2 || num_int_n(f[0].s, f[0].n, &n)) {
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'N atoms' (N an integer), got %d fields", path,
+						      r->line, nf);
+					break;
+				}
+				natoms = n < 0 ? -1 : n > l->max ? (long)l->max + 1 : (long)n;
 				natoms_line = r->line;
 				if (n < 0 || n > l->max)
-					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %ld atoms: expected at most %d (10^7 grains, an intruder and the walls of a box)",
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %lld atoms: expected at most %d (10^7 grains, an intruder and the walls of a box)",
 						      path, r->line, n, l->max);
-			} else if (sscanf(line, "%lf %lf %63s %63s", &lo, &hi, w, w2) == 4 && w[0] && !strcmp(w + 1, "lo") &&
-				   w2[0] == w[0] && !strcmp(w2 + 1, "hi") && (w[0] == 'x' || w[0] == 'y')) {
-				const int a = w[0] == 'y';
-				if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
-					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %s %s: expected finite numbers lo < hi", path,
-						      r->line, w, w2);
+			} else if (nf == 4 && f[2].n == 3 && f[3].n == 3 && (f[2].s[0] == 'x' || f[2].s[0] == 'y') &&
+				   f[3].s[0] == f[2].s[0] && !strncmp(f[2].s + 1, "lo", 2) && !strncmp(f[3].s + 1, "hi", 2)) {
+				const int a = f[2].s[0] == 'y';
+				double lo = 0, hi = 0;
+				if (num_real_n(f[0].s, f[0].n, &lo) || num_real_n(f[1].s, f[1].n, &hi) || !(lo < hi))
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %clo %chi: expected finite decimal numbers lo < hi", path,
+						      r->line, "xy"[a], "xy"[a]);
 				box[a][0] = lo;
 				box[a][1] = hi;
 				has_box[a] = 1;
 			}
 		} else if (sec == ATOMS) {
-			long id;
-			int type;
-			double dia, rho, z;
+			/* id type diameter density x y z [ix iy iz]: every field read, each of its
+			 * kind (an atom type 1.5 would shift the columns after it) */
+			static const char *const NAME[7] = {"id", "type", "diameter", "density", "x", "y", "z"};
+			field f[10];
+			const int nf = split(line, f, 10);
+			long long id = 0, type = 0, img;
+			double dia = 0, rho, z;
 			disk d = {.line = r->line};
-			if (sscanf(line, "%ld %d %lf %lf %lf %lf %lf", &id, &type, &dia, &rho, &d.x, &d.y, &z) != 7)
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id type diameter density x y z' (atom_style sphere)",
-					      path, r->line);
-			else if (id < 1)
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom id %ld: expected a positive integer", path, r->line,
+			if (nf != 7 && nf != 10) {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id type diameter density x y z [ix iy iz]' "
+					      "(atom_style sphere), got %d fields", path, r->line, nf);
+				break;
+			}
+			double *v[7] = {NULL, NULL, &dia, &rho, &d.x, &d.y, &z};
+			if (field_int(r, &f[0], NAME[0], &id, e) || field_int(r, &f[1], NAME[1], &type, e))
+				break;
+			for (int i = 2; i < 7 && !err; i++)
+				err = field_real(r, &f[i], NAME[i], v[i], e);
+			for (int i = 7; i < nf && !err; i++)
+				err = field_int(r, &f[i], "image flag", &img, e);
+			if (err)
+				break;
+			if (id < 1 || id > LONG_MAX)
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom id %lld: expected a positive integer", path, r->line,
 					      id);
 			else if (type < 1 || type > 3)
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom type %d: expected 1 (grain), 2 (intruder) or 3 (wall)",
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: atom type %lld: expected 1 (grain), 2 (intruder) or 3 (wall)",
 					      path, r->line, type);
-			else if (!(dia > 0) || !isfinite(dia) || !isfinite(d.x) || !isfinite(d.y))
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: numbers must be finite and the diameter positive", path,
-					      r->line);
+			else if (!(dia > 0))
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: diameter %g: expected a positive number", path, r->line,
+					      dia);
 			else if (!check_radius(path, r->line, 0.5 * dia, e)) {
 				for (int a = 0; a < 2 && !err; a++) {
-					const double v = a ? d.y : d.x;
-					if (has_box[a] && !(v >= box[a][0] && v <= box[a][1]))
+					const double vv = a ? d.y : d.x;
+					if (has_box[a] && !(vv >= box[a][0] && vv <= box[a][1]))
 						err = sb_errf(e, SB_EUSAGE,
-							      "%s:%ld: atom %ld at %c = %g lies outside the box of the header "
+							      "%s:%ld: atom %lld at %c = %g lies outside the box of the header "
 							      "(%clo %chi = %g %g), as LAMMPS would refuse it",
-							      path, r->line, id, "xy"[a], v, "xy"[a], "xy"[a], box[a][0],
+							      path, r->line, id, "xy"[a], vv, "xy"[a], "xy"[a], box[a][0],
 							      box[a][1]);
 				}
 				d.r = 0.5 * dia;
 				d.kind = type == 1 ? KIND_GRAIN : type == 2 ? KIND_INTRUDER : KIND_WALL;
-				d.id = id;
+				d.id = (long)id;
 				if (!err)
 					err = dl_push(l, d, path, e);
 			} else
 				err = e->code;
 		} else if (sec == VELS) {
-			long id;
-			double vx, vy, vz, wx, wy, wz;
-			if (sscanf(line, "%ld %lf %lf %lf %lf %lf %lf", &id, &vx, &vy, &vz, &wx, &wy, &wz) != 7) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id vx vy vz wx wy wz'", path, r->line);
+			static const char *const NAME[7] = {"id", "vx", "vy", "vz", "wx", "wy", "wz"};
+			field f[8];
+			const int nf = split(line, f, 8);
+			long long id;
+			double w[7];
+			if (nf != 7) {
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'id vx vy vz wx wy wz', got %d fields", path,
+					      r->line, nf);
 				break;
 			}
-			if (!isfinite(vx) || !isfinite(vy) || !isfinite(wz)) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: velocities must be finite", path, r->line);
+			if (field_int(r, &f[0], NAME[0], &id, e))
 				break;
-			}
-			const int i = find_id(ref, l->n, id);
+			for (int i = 1; i < 7 && !err; i++)
+				err = field_real(r, &f[i], NAME[i], &w[i], e);
+			if (err)
+				break;
+			const int i = id >= 1 && id <= LONG_MAX ? find_id(ref, l->n, (long)id) : -1;
 			if (i < 0) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: velocity for unknown atom id %ld", path, r->line, id);
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: velocity for unknown atom id %lld", path, r->line, id);
 				break;
 			}
 			if (l->d[i].vline) {
-				err = sb_errf(e, SB_EUSAGE, "%s:%ld: a second velocity for atom id %ld (the first on line %ld)",
+				err = sb_errf(e, SB_EUSAGE, "%s:%ld: a second velocity for atom id %lld (the first on line %ld)",
 					      path, r->line, id, l->d[i].vline);
 				break;
 			}
-			l->d[i].vx = vx;
-			l->d[i].vy = vy;
-			l->d[i].w = wz;
+			l->d[i].vx = w[1];
+			l->d[i].vy = w[2];
+			l->d[i].w = w[6];
 			l->d[i].vline = r->line;
 		}
 	}
@@ -604,31 +694,9 @@ static int check_overlaps(const sb_scene *sc, const dlist *l, const char *path, 
 
 static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 {
-	/* opened without blocking, so that a FIFO is refused instead of waiting for a
-	 * writer (O_NONBLOCK changes nothing for a regular file) */
-	int fd = open(path, O_RDONLY | O_NONBLOCK);
-	if (fd < 0)
-		return sb_errf(e, SB_EUSAGE, "%s: cannot open particle file: %s", path, strerror(errno));
-	struct stat sb;
-	if (fstat(fd, &sb)) {
-		close(fd);
-		return sb_errf(e, SB_EIO, "%s: cannot open particle file: %s", path, strerror(errno));
-	}
-	if (!S_ISREG(sb.st_mode)) {
-		close(fd);
-		return sb_errf(e, SB_EUSAGE, "%s: %s: a particle file must be a regular file (a FIFO or a device would be read without end)",
-			       path, S_ISDIR(sb.st_mode) ? "is a directory" : "is not a regular file");
-	}
-	if (sb.st_size > PF_MAX_BYTES) {
-		close(fd);
-		return sb_errf(e, SB_EUSAGE, "%s: %lld bytes, more than the %lld a particle file may have", path,
-			       (long long)sb.st_size, PF_MAX_BYTES);
-	}
-	FILE *f = fdopen(fd, "r");
-	if (!f) {
-		close(fd);
-		return sb_errf(e, SB_ENOMEM, "%s: cannot open particle file: %s", path, strerror(errno));
-	}
+	FILE *f = fs_open_input(path, "particle file", PF_MAX_BYTES, SB_EUSAGE, e);
+	if (!f)
+		return e->code;
 	lreader *r = malloc(sizeof *r);
 	int lammps = 0;
 	int err = !r ? sb_errf(e, SB_ENOMEM, "out of memory reading particles") : 0;

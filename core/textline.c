@@ -1,14 +1,32 @@
 /* textline.c - reading text input files line by line (textline.h). */
 #include "textline.h"
 
+#include <string.h>
+
 int textline_next(textline *t, char *str, int num, sb_err *e)
 {
 	int ch = 0;
 	long len = 0, nul = 0; /* nul: column of the first NUL byte, 1-based */
+	int first = t->line == 0;
 	while (len < num - 1 && (ch = getc(t->f)) != EOF) {
+		if (ch == '\r') {
+			/* CRLF: the line ends at the LF and is measured without the CR */
+			const int nx = getc(t->f);
+			if (nx == '\n') {
+				str[len++] = '\n';
+				break;
+			}
+			if (nx != EOF)
+				ungetc(nx, t->f);
+		}
 		if (!ch && !nul)
 			nul = len + 1;
 		str[len++] = (char)ch;
+		if (first && len == TEXTLINE_BOM_LEN && !memcmp(str, TEXTLINE_BOM, TEXTLINE_BOM_LEN)) {
+			len = 0; /* the byte-order mark opens the file, it is no part of its first line */
+			first = 0;
+			continue;
+		}
 		if (ch == '\n')
 			break;
 	}
@@ -26,8 +44,13 @@ int textline_next(textline *t, char *str, int num, sb_err *e)
 		return -1;
 	}
 	if (len == num - 1 && str[len - 1] != '\n') {
-		/* a line of exactly num - 1 characters fits: only its newline is left */
+		/* a line of exactly num - 1 characters fits: only its newline (LF or CRLF) is left */
 		ch = getc(t->f);
+		if (ch == '\r') {
+			ch = getc(t->f);
+			if (ch != '\n')
+				ch = 'x';
+		}
 		if (ch != EOF && ch != '\n') {
 			sb_errf(e, SB_EUSAGE, "%s:%d: line too long (the limit is %d characters)", t->path, t->line,
 				num - 1);

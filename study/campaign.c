@@ -11,6 +11,8 @@
 #include <strings.h>
 
 #include "adapt.h"
+#include "fsutil.h"
+#include "num.h"
 #include "safe.h"
 #include "textline.h"
 
@@ -117,24 +119,33 @@ static int axis_room(const cp_axis *a, double k, const char *count, const char *
 		       item, count, CP_MAX_VALUES);
 }
 
+/* t without the blanks around it (a range's "2.5 : 3.2"): *n bytes from the return */
+static const char *unblank(const char *t, size_t *n)
+{
+	t += strspn(t, " \t");
+	*n = strlen(t);
+	while (*n && (t[*n - 1] == ' ' || t[*n - 1] == '\t'))
+		--*n;
+	return t;
+}
+
+/* Numbers as every input reads them (core/num.h: decimal, no hex, no inf or nan). */
 static int parse_num(const char *t, double *x)
 {
-	char *end;
-	errno = 0;
-	*x = strtod(t, &end);
-	while (*end == ' ' || *end == '\t')
-		end++;
-	return end != t && !*end && !errno && isfinite(*x);
+	size_t n;
+	t = unblank(t, &n);
+	return !num_real_n(t, n, x);
 }
 
 static int parse_long(const char *t, long *x)
 {
-	char *end;
-	errno = 0;
-	*x = strtol(t, &end, 10);
-	while (*end == ' ' || *end == '\t')
-		end++;
-	return end != t && !*end && !errno;
+	size_t n;
+	long long v;
+	t = unblank(t, &n);
+	if (num_int_n(t, n, &v) || v < LONG_MIN || v > LONG_MAX)
+		return 0;
+	*x = (long)v;
+	return 1;
 }
 
 /* START:STOP:STEP, endpoint included. Value k is START + k STEP printed with 12
@@ -427,10 +438,11 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		if (params_load_file(&c->base, c->scene_file, &tmp))
 			return sb_errf(e, SB_EUSAGE, "%s: scene: %s", where, tmp.msg);
 	} else if (!strcmp(name, "seed")) {
+		/* digits only (an unsigned 64-bit seed: past num_int's range) */
 		char *end;
 		errno = 0;
 		unsigned long long s = strtoull(value, &end, 10);
-		if (!*value || *end || errno || value[0] == '-')
+		if (!*value || *end || errno || value[strspn(value, "0123456789")])
 			return sb_errf(e, SB_EUSAGE, "%s: seed: expected a non-negative integer, got '%s'", where, value);
 		c->seed = s;
 		r->seen_seed = 1;
@@ -474,10 +486,8 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		*(b ? &c->autorep.batch : &c->autorep.max_replicates) = n;
 		*(b ? &c->autorep.batch_line : &c->autorep.max_line) = r->line;
 	} else if (!strcmp(name, "replicates")) {
-		char *end;
-		errno = 0;
-		long n = strtol(value, &end, 10);
-		if (!*value || *end || errno || n < 1 || n > CP_MAX_VALUES)
+		long n;
+		if (!parse_long(value, &n) || n < 1 || n > CP_MAX_VALUES)
 			return sb_errf(e, SB_EUSAGE, "%s: replicates: expected auto or an integer in [1, %d], got '%s'",
 				       where, CP_MAX_VALUES, value);
 		c->replicates = n;
@@ -488,10 +498,8 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		snprintf(c->zip, sizeof c->zip, "%s", value);
 		c->zip_line = r->line;
 	} else if (!strcmp(name, "max_runs")) {
-		char *end;
-		errno = 0;
-		long n = strtol(value, &end, 10);
-		if (!*value || *end || errno || n < 1 || n > CP_MAX_RUNS_LIMIT)
+		long n;
+		if (!parse_long(value, &n) || n < 1 || n > CP_MAX_RUNS_LIMIT)
 			return sb_errf(e, SB_EUSAGE, "%s: max_runs: expected an integer in [1, %d], got '%s'", where,
 				       CP_MAX_RUNS_LIMIT, value);
 		c->max_runs = n;
@@ -879,9 +887,9 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 	memset(c, 0, sizeof *c);
 	snprintf(c->path, sizeof c->path, "%s", path);
 	params_defaults(&c->base);
-	FILE *f = fopen(path, "r");
+	FILE *f = fs_open_input(path, "campaign file", 0, SB_EUSAGE, e);
 	if (!f)
-		return sb_errf(e, SB_EUSAGE, "%s: cannot open campaign file: %s", path, strerror(errno));
+		return e->code;
 	struct rd r = {.c = c, .e = e, .f = f};
 	int rc = ini_parse_stream(cp_reader, &r, cp_handler, &r);
 	int ioerr = ferror(f);

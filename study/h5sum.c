@@ -2,155 +2,67 @@
  * where each lives. */
 #include "h5sum.h"
 
-#include <hdf5.h>
+#include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int attr_exists(hid_t obj, const char *name)
-{
-	return H5Aexists(obj, name) > 0;
-}
+#include "h5read.h"
 
-static double get_double(hid_t obj, const char *name, int *bad)
-{
-	double v = 0;
-	if (!attr_exists(obj, name))
-		return 0;
-	hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-	if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0)
-		*bad = 1;
-	if (a >= 0)
-		H5Aclose(a);
-	return v;
-}
-
-static long get_long(hid_t obj, const char *name, int *bad)
-{
-	long long v = 0;
-	if (!attr_exists(obj, name))
-		return 0;
-	hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-	if (a < 0 || H5Aread(a, H5T_NATIVE_LLONG, &v) < 0)
-		*bad = 1;
-	if (a >= 0)
-		H5Aclose(a);
-	return (long)v;
-}
-
-/* Fixed-length strings as the engine writes them; variable-length ones too, for
- * files written by other tools. */
-static void get_str(hid_t obj, const char *name, char *out, size_t len, int *bad)
-{
-	out[0] = 0;
-	if (!attr_exists(obj, name))
-		return;
-	hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-	hid_t ft = a >= 0 ? H5Aget_type(a) : -1;
-	if (ft < 0 || H5Tget_class(ft) != H5T_STRING) {
-		*bad = 1;
-	} else if (H5Tis_variable_str(ft) > 0) {
-		hid_t mt = H5Tcopy(H5T_C_S1);
-		H5Tset_size(mt, H5T_VARIABLE);
-		char *p = NULL;
-		if (H5Aread(a, mt, &p) >= 0 && p) {
-			snprintf(out, len, "%s", p);
-			H5free_memory(p);
-		} else {
-			*bad = 1;
-		}
-		H5Tclose(mt);
-	} else {
-		size_t sz = H5Tget_size(ft);
-		char *buf = calloc(sz + 1, 1);
-		hid_t mt = H5Tcopy(H5T_C_S1);
-		H5Tset_size(mt, sz);
-		if (buf && H5Aread(a, mt, buf) >= 0)
-			snprintf(out, len, "%s", buf);
-		else
-			*bad = 1;
-		H5Tclose(mt);
-		free(buf);
-	}
-	if (ft >= 0)
-		H5Tclose(ft);
-	if (a >= 0)
-		H5Aclose(a);
-}
-
-/* Rows of a dataset (its first dimension). */
-static long long dataset_rows(hid_t f, const char *path, int *has, int *bad)
-{
-	if (H5Lexists(f, path, H5P_DEFAULT) <= 0) /* parents are checked by the caller */
-		return 0;
-	hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
-	hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-	hsize_t dims[8] = {0};
-	int nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
-	if (nd < 1 || nd > 8 || H5Sget_simple_extent_dims(sp, dims, NULL) < 0)
-		*bad = 1;
-	else
-		*has = 1;
-	if (sp >= 0)
-		H5Sclose(sp);
-	if (d >= 0)
-		H5Dclose(d);
-	return (long long)dims[0];
-}
-
-/* Does every group along path exist? (H5Lexists fails on a missing parent.) */
-static int path_exists(hid_t f, const char *path)
-{
-	char buf[256];
-	snprintf(buf, sizeof buf, "%s", path);
-	for (char *p = buf + 1;; p++) {
-		char c = *p;
-		if (c == '/' || c == 0) {
-			*p = 0;
-			if (H5Lexists(f, buf, H5P_DEFAULT) <= 0)
-				return 0;
-			*p = c;
-		}
-		if (!c)
-			return 1;
-	}
-}
-
-static void read_column(hid_t f, const rcol *c, h5val *v, int *bad)
+/* One column: an attribute (OBJ@NAME) or a dataset's rows (PATH#rows). An attribute
+ * or dataset that is there but not what the column needs (an array where one value
+ * belongs, a string where a number does, a shape the file cannot hold) makes the file
+ * unreadable, through the same checked reads as the analysis tools' (core/h5read.h). */
+static void read_column(hid_t f, const rcol *c, h5val *v, int *bad, sb_err *e)
 {
 	char obj[256];
 	const char *at = strchr(c->where, '@'), *rows = strstr(c->where, "#rows");
 	if (rows) {
 		snprintf(obj, sizeof obj, "%.*s", (int)(rows - c->where), c->where);
-		if (path_exists(f, obj))
-			v->i = dataset_rows(f, obj, &v->has, bad);
+		if (!h5r_exists(f, obj))
+			return;
+		int rank;
+		size_t dims[8], n;
+		sb_err se = {0};
+		if (h5r_shape(f, obj, &rank, dims, &n, &se) || rank < 1 || dims[0] > LLONG_MAX) {
+			if (!*bad)
+				sb_errf(e, SB_EIO, "%s", se.code ? se.msg : "a dataset of rank 0 where rows belong");
+			*bad = 1;
+			return;
+		}
+		v->i = (long long)dims[0];
+		v->has = 1;
 		return;
 	}
 	if (!at)
 		return;
 	snprintf(obj, sizeof obj, "%.*s", (int)(at - c->where), c->where);
-	hid_t o = f;
-	if (obj[0]) {
-		if (!path_exists(f, obj))
-			return;
-		o = H5Oopen(f, obj, H5P_DEFAULT);
-		if (o < 0) {
-			*bad = 1;
-			return;
-		}
-	}
+	if (!obj[0])
+		snprintf(obj, sizeof obj, "/");
+	else if (!h5r_exists(f, obj))
+		return;
 	const char *name = at + 1;
-	if (attr_exists(o, name)) {
-		v->has = 1;
-		if (c->type == RT_TEXT)
-			get_str(o, name, v->s, sizeof v->s, bad);
-		else if (c->type == RT_INT)
-			v->i = get_long(o, name, bad);
-		else
-			v->d = get_double(o, name, bad);
+	int rc;
+	if (c->type == RT_TEXT)
+		rc = h5r_attr_str(f, obj, name, v->s, sizeof v->s);
+	else if (c->type == RT_INT)
+		rc = h5r_attr_int(f, obj, name, &v->i);
+	else
+		rc = h5r_attr_num(f, obj, name, &v->d);
+	v->has = rc == 0;
+	if (rc < 0) {
+		if (!*bad)
+			sb_errf(e, SB_EIO, "%s@%s: not one %s", obj, name,
+				c->type == RT_TEXT ? "string" : c->type == RT_INT ? "integer" : "number");
+		*bad = 1;
+	} else if (!rc && c->type == RT_REAL && !isfinite(v->d)) {
+		/* the engine writes no NaN or Inf (README, "Exit codes"): a waiting time of
+		 * Inf would enter a median as a time (docs/inputs.md, "Run files") */
+		if (!*bad)
+			sb_errf(e, SB_EIO, "%s@%s = %g: not a finite number", obj, name, v->d);
+		*bad = 1;
 	}
-	if (o != f)
-		H5Oclose(o);
 }
 
 int h5sum_read(const char *path, h5sum *s, sb_err *e)
@@ -160,22 +72,26 @@ int h5sum_read(const char *path, h5sum *s, sb_err *e)
 	const rcol *t = results_table(&n);
 	if (n > H5SUM_MAX)
 		return sb_errf(e, SB_ENOMEM, "results table larger than H5SUM_MAX");
-	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are returned, not printed */
-	hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-	if (f < 0)
-		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file", path);
+	hid_t f;
+	sb_err oe = {0};
+	if (h5r_open(path, &f, &oe)) /* a FIFO is refused before the open could wait for a writer */
+		return sb_errf(e, oe.code, "%s", oe.msg);
 	int bad = 0;
+	sb_err why = {0};
 	for (size_t i = 0; i < n; i++)
 		if (!(t[i].flags & RF_DERIVED))
-			read_column(f, &t[i], &s->v[i], &bad);
+			read_column(f, &t[i], &s->v[i], &bad, &why);
 	/* the scene's parameters are attributes of /parameters (H5MD) */
-	if (H5Lexists(f, "parameters", H5P_DEFAULT) > 0) {
-		hid_t g = H5Gopen2(f, "parameters", H5P_DEFAULT);
-		get_str(g, "particles", s->particles, sizeof s->particles, &bad);
-		H5Gclose(g);
+	if (h5r_exists(f, "/parameters") && h5r_attr_str(f, "/parameters", "particles", s->particles,
+							   sizeof s->particles) < 0) {
+		if (!bad)
+			sb_errf(&why, SB_EIO, "/parameters@particles: not one string");
+		bad = 1;
 	}
-	H5Fclose(f);
-	if (bad || !h5sum_text(s, "status")[0])
+	h5r_close(f);
+	if (bad)
+		return sb_errf(e, SB_EIO, "%s: not a complete shakebox run file (%s)", path, why.msg);
+	if (!h5sum_text(s, "status")[0])
 		return sb_errf(e, SB_EIO, "%s: not a complete shakebox run file (missing or unreadable status)", path);
 	return 0;
 }

@@ -20,7 +20,14 @@ $(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(BASEFLAGS) -O2 -g -o $@ $< -lm
 
-tests: $(FUZZ_BIN)
+# h5mut changes run files on purpose (the runfile target, hostile_runs.sh); it links HDF5
+H5MUT_BIN = build/fuzz/h5mut
+$(H5MUT_BIN): tests/fuzz/h5mut.c | build/.deps-ok
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $<")
+	$(Q)$(CC) $(BASEFLAGS) -O1 -g $(PKG_CFLAGS) -o $@ $< $(PKG_LIBS)
+
+tests: $(FUZZ_BIN) $(H5MUT_BIN)
 
 fuzz: build/.deps-ok $(FUZZ_BIN)
 	$(Q)$(MAKE) --no-print-directory SAN=1 build/san/bin/shake build/san/bin/study

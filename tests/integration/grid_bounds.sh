@@ -73,11 +73,24 @@ refused_file cp.nul_in_value 5 "NUL byte in column 14 (a campaign file is text)"
 refused_file cp.nul_line 5 "NUL byte in column 1"
 { printf '%s\n' "${H[@]}" '[grid]'; printf 'frequency = 2\n\0'; } >cp.nul_at_end.campaign
 refused_file cp.nul_at_end 6 "NUL byte in column 1"
-# an endless campaign (a pipe of comments) is bounded
-timeout -k 2 "$LIMIT" "$STUDY" expand <(printf '%s\n' "${H[@]}"; yes '# a comment') >cp.endless.out 2>cp.endless.err
+# a campaign that is no regular file is refused at once (a pipe could be endless, a
+# FIFO without a writer blocked the open for good); a regular one is bounded in lines
+for kind in pipe fifo; do
+	if [ $kind = fifo ]; then
+		mkfifo cp.fifo
+		timeout -k 2 "$LIMIT" "$STUDY" expand cp.fifo >cp.$kind.out 2>cp.$kind.err
+	else
+		timeout -k 2 "$LIMIT" "$STUDY" expand <(printf '%s\n' "${H[@]}"; yes '# a comment') >cp.$kind.out 2>cp.$kind.err
+	fi
+	rc=$?
+	[ "$rc" -eq 1 ] && grep -q 'not a regular file' cp.$kind.err && sanitizer_free cp.$kind.err &&
+		ok cp.$kind || fail cp.$kind "exit $rc: $(head -c 300 cp.$kind.err)"
+done
+{ printf '%s\n' "${H[@]}"; yes '# a comment' | head -n 100000; } >cp.long.campaign
+timeout -k 2 "$LIMIT" "$STUDY" expand cp.long.campaign >cp.long.out 2>cp.long.err
 rc=$?
-[ "$rc" -eq 1 ] && grep -qE ':100001: more than 100000 lines' cp.endless.err && sanitizer_free cp.endless.err &&
-	ok cp.endless || fail cp.endless "exit $rc: $(head -c 300 cp.endless.err)"
+[ "$rc" -eq 1 ] && grep -qE ':100001: more than 100000 lines' cp.long.err && sanitizer_free cp.long.err &&
+	ok cp.too_many_lines || fail cp.too_many_lines "exit $rc: $(head -c 300 cp.long.err)"
 
 # --- each axis is bounded before its values are made ---
 # 100001 values: the count is refused before they are made (it took 24 s to make them,

@@ -5,8 +5,10 @@
 # misreading or a physics failure later. Sizes computed from keys (lattice columns,
 # wall disks, masses) are checked before they are used; a long line or a NUL byte in a
 # scene or particle file is an error, never cut in pieces; particle files are regular
-# files of sane disks (radii, places, overlaps, LAMMPS ids, style and box). SIGTERM
-# ends a long preparation within seconds.
+# files of sane disks (radii, places, overlaps, LAMMPS ids, style and box). Every field
+# of a line is read, numbers in one strict decimal reading, and a byte-order mark or a
+# CRLF is read alike by the scene, campaign and particle readers. SIGTERM ends a long
+# preparation within seconds.
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
@@ -150,8 +152,13 @@ printf 'seed = 3\0frequency = 7.5\nduration = 0\n' >nul.scene
 refused scene.nul "nul.scene:1:|NUL byte" nul.scene "${FAST[@]}"
 printf 'seed = 3\n; \0\n' >nul_comment.scene
 refused scene.nul_in_comment "nul_comment.scene:2:|NUL byte" nul_comment.scene "${FAST[@]}" duration=0
-# an endless scene (a pipe of comments) is bounded
-refused scene.endless "more than 100000 lines" <(yes '; a comment') "${FAST[@]}" duration=0
+# a scene that is no regular file is refused at once: a pipe could be endless, a FIFO
+# without a writer blocked the open for good; a regular one is bounded in lines
+refused scene.pipe "not a regular file" <(yes '; a comment') "${FAST[@]}" duration=0
+mkfifo "$TMP/scene.fifo"
+refused scene.fifo "scene.fifo|not a regular file" "$TMP/scene.fifo" "${FAST[@]}" duration=0
+yes '; a comment' | head -n 100001 >long.scene
+refused scene.too_many_lines "long.scene:100001:|more than 100000 lines" long.scene "${FAST[@]}" duration=0
 
 # particle files: a state written by the engine, then altered
 if ! runs prep "${FAST[@]}" duration=0 write_particles="$TMP/bed.txt" write_lammps="$TMP/bed.data"; then
@@ -216,6 +223,64 @@ awk -v a="$a" 'NR == a + 4 { $6 = 1e6 } { print }' bed.data >outbox.data
 refused particles.lammps_outside_box "outbox.data:$((a + 4)):|outside the box|ylo yhi" particles=outbox.data "${RUN[@]}"
 sed 's/^[0-9]* atoms$/30000000 atoms/' bed.data >many.data
 refused particles.lammps_atom_count "many.data:|30000000 atoms|at most" particles=many.data "${RUN[@]}"
+
+# ==== 8. every field read whole, with one reading of a number, in every reader ====
+# (docs/inputs.md: "Numbers", "Lines")
+# a fifth word on a text line is no velocity: the grain started at rest unasked
+{ cat bed.txt; echo "5.5 30 1 grain garbage"; } >extra.txt
+refused particles.text_extra_field "extra.txt:$((nl + 1)):|5 fields" particles=extra.txt "${RUN[@]}"
+{ cat bed.txt; echo "5.5 30 1 grain 0 0 0 garbage"; } >extra8.txt
+refused particles.text_extra_field_after_velocity "extra8.txt:$((nl + 1)):|8 fields" particles=extra8.txt "${RUN[@]}"
+{ cat bed.txt; echo "0x10 30 1 grain"; } >hex.txt
+refused particles.text_hex "hex.txt:$((nl + 1)):|x|0x10" particles=hex.txt "${RUN[@]}"
+# an atom type 1.5 was read as 1, and ".5" as the diameter: every column shifted
+awk -v a="$a" 'NR == a + 2 { $2 = "1.5" } { print }' bed.data >type15.data
+refused particles.lammps_type_fraction "type15.data:$((a + 2)):|type|1.5" particles=type15.data "${RUN[@]}"
+awk -v a="$a" 'NR == a + 2 { $0 = $0 " garbage" } { print }' bed.data >trail.data
+refused particles.lammps_atoms_trailing "trail.data:$((a + 2)):|8 fields" particles=trail.data "${RUN[@]}"
+awk -v v="$v" 'NR == v + 2 { $0 = $0 " 7" } { print }' bed.data >trailv.data
+refused particles.lammps_velocities_trailing "trailv.data:$((v + 2)):|8 fields" particles=trailv.data "${RUN[@]}"
+sed 's/^\([0-9]*\) atoms$/\1 atoms junk/' bed.data >count_junk.data
+refused particles.lammps_count_trailing "count_junk.data:|N atoms" particles=count_junk.data "${RUN[@]}"
+# numbers: decimal only (0x10 was 16 Hz as a real, refused as an integer), and an
+# integer key range-checked as an integer (2^53 + 1 equals 2^53 as a double)
+printf 'frequency = 0x10\n' >hex.scene
+refused scene.hex_real "hex.scene:1:|frequency|0x10" hex.scene "${FAST[@]}" duration=0
+refused cmdline.hex_real "frequency|0x10" "${FAST[@]}" duration=0 frequency=0x10
+refused cmdline.hex_int "n_grains|0x10" "${FAST[@]}" duration=0 n_grains=0x10
+refused cmdline.int_past_double "seed|9007199254740993|9007199254740992" "${FAST[@]}" duration=0 seed=9007199254740993
+runs cmdline.int_at_bound "${FAST[@]}" duration=0 seed=9007199254740992 && ok cmdline.int_at_bound
+# a UTF-8 byte-order mark opens a file: dropped by all three readers alike (and a
+# section after it is checked like any other); a CRLF line is measured without its CR
+STUDY_BIN="$(dirname "$SHAKE")/study"
+bom() { printf '\357\273\277'; cat "$1"; }
+printf 'seed = 3\n' >plain.scene
+bom plain.scene >bom.scene
+runs scene.bom bom.scene "${FAST[@]}" duration=0 && ok scene.bom
+printf '[bogus]\nseed = 3\n' >bogus.scene
+bom bogus.scene >bom_bogus.scene
+refused scene.bom_bad_section "bom_bogus.scene:1:|unknown section [bogus]" bom_bogus.scene "${FAST[@]}" duration=0
+bom bed.txt >bom.txt
+runs particles.bom_text particles=bom.txt "${RUN[@]}" && ok particles.bom_text
+bom bed.data >bom.data
+runs particles.bom_lammps particles=bom.data "${RUN[@]}" && ok particles.bom_lammps
+printf '[campaign]\nname = b\nseed = 1\n[grid]\nfrequency = 3, 4\n' >plain.campaign
+bom plain.campaign >bom.campaign
+"$STUDY_BIN" expand bom.campaign >bom.campaign.out 2>&1 && [ "$(awk -F "\t" 'NR > 1 { print $5 }' bom.campaign.out | tr "\n" " ")" = "3 4 " ] &&
+	ok campaign.bom || fail campaign.bom "$(head -c 300 bom.campaign.out)"
+{ printf '\357\273\277[camp]\n'; cat plain.campaign; } >bom_bad.campaign
+"$STUDY_BIN" expand bom_bad.campaign >bom_bad.out 2>&1
+[ $? -eq 1 ] && grep -q 'bom_bad.campaign:1: unknown section' bom_bad.out && ok campaign.bom_bad_section ||
+	fail campaign.bom_bad_section "$(head -c 300 bom_bad.out)"
+# the longest line a reader takes (199 characters, 1023 in a particle file), with CRLF
+printf '; %s\r\nseed = 3\r\n' "$(ys 197)" >crlf.scene
+runs scene.crlf_longest_line crlf.scene "${FAST[@]}" duration=0 && ok scene.crlf_longest_line
+{ printf '[campaign]\r\nname = b\r\nseed = 1\r\n# %s\r\n[grid]\r\nfrequency = 3, 4\r\n' "$(ys 197)"; } >crlf.campaign
+"$STUDY_BIN" expand crlf.campaign >crlf.campaign.out 2>&1 && ok campaign.crlf_longest_line ||
+	fail campaign.crlf_longest_line "$(head -c 300 crlf.campaign.out)"
+{ sed 's/$/\r/' bed.txt; printf '# %s\r\n' "$(ys 1021)"; } >crlf.txt
+runs particles.crlf_longest_line particles=crlf.txt "${RUN[@]}" && ok particles.crlf_longest_line
+
 # and the files the engine writes still read back (particles_io.sh has the round trips)
 runs particles.own_files_read particles="$TMP/bed.txt" "${RUN[@]}" &&
 	runs particles.own_files_read particles="$TMP/bed.data" "${RUN[@]}" && ok particles.own_files_read

@@ -1,0 +1,284 @@
+/* h5read.c - attributes and datasets of run files, checked before use (h5read.h). */
+#include "h5read.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fsutil.h"
+
+/* A filtered (compressed) chunk holds at most this many times its stored bytes:
+ * deflate, the engine's filter, packs at most 1032:1 (zlib's technical notes), and
+ * shuffle packs nothing (docs/inputs.md, "Run files"). */
+#define H5R_MAX_RATIO 1100
+/* The longest fixed-length string attribute read: run files hold names and messages. */
+#define H5R_STR_MAX (1 << 20)
+
+int h5r_open(const char *path, hid_t *f, sb_err *e)
+{
+	*f = -1;
+	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+	if (fs_check_input(path, "run file", SB_EIO, e))
+		return e->code;
+	*f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+	if (*f < 0)
+		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file", path);
+	return 0;
+}
+
+void h5r_close(hid_t f)
+{
+	if (f >= 0)
+		H5Fclose(f);
+}
+
+int h5r_exists(hid_t f, const char *path)
+{
+	/* every prefix must exist for H5Lexists to answer without an error */
+	char buf[512];
+	if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+		return 0;
+	for (char *p = buf + 1; *p; p++) {
+		if (*p != '/')
+			continue;
+		*p = 0;
+		if (H5Lexists(f, buf, H5P_DEFAULT) <= 0)
+			return 0;
+		*p = '/';
+	}
+	return H5Lexists(f, buf, H5P_DEFAULT) > 0;
+}
+
+/* The attribute when it is there (0, *a open), 1 when missing, -1 when it is not one
+ * value: H5Aread writes every element of an array attribute, and the callers have room
+ * for one. */
+static int attr_open(hid_t f, const char *obj, const char *name, hid_t *a)
+{
+	if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) <= 0)
+		return 1;
+	*a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+	if (*a < 0)
+		return -1;
+	hid_t sp = H5Aget_space(*a);
+	const hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+	if (sp >= 0)
+		H5Sclose(sp);
+	if (np != 1) {
+		H5Aclose(*a);
+		return -1;
+	}
+	return 0;
+}
+
+static H5T_class_t attr_class(hid_t a)
+{
+	hid_t t = H5Aget_type(a);
+	const H5T_class_t c = t >= 0 ? H5Tget_class(t) : H5T_NO_CLASS;
+	if (t >= 0)
+		H5Tclose(t);
+	return c;
+}
+
+int h5r_attr_num(hid_t f, const char *obj, const char *name, double *v)
+{
+	hid_t a;
+	int rc = attr_open(f, obj, name, &a);
+	if (rc)
+		return rc;
+	const H5T_class_t c = attr_class(a);
+	double x;
+	rc = (c != H5T_INTEGER && c != H5T_FLOAT) || H5Aread(a, H5T_NATIVE_DOUBLE, &x) < 0 ? -1 : 0;
+	H5Aclose(a);
+	if (!rc)
+		*v = x;
+	return rc;
+}
+
+int h5r_attr_int(hid_t f, const char *obj, const char *name, long long *v)
+{
+	hid_t a;
+	int rc = attr_open(f, obj, name, &a);
+	if (rc)
+		return rc;
+	const H5T_class_t c = attr_class(a);
+	long long x = 0;
+	double d;
+	if (c == H5T_INTEGER)
+		rc = H5Aread(a, H5T_NATIVE_LLONG, &x) < 0 ? -1 : 0;
+	else if (c == H5T_FLOAT && H5Aread(a, H5T_NATIVE_DOUBLE, &d) >= 0 && d == (double)(long long)d &&
+		 d >= -9.2e18 && d <= 9.2e18)
+		x = (long long)d;
+	else
+		rc = -1;
+	H5Aclose(a);
+	if (!rc)
+		*v = x;
+	return rc;
+}
+
+int h5r_attr_str(hid_t f, const char *obj, const char *name, char *buf, size_t len)
+{
+	buf[0] = 0;
+	hid_t a;
+	int rc = attr_open(f, obj, name, &a);
+	if (rc)
+		return rc;
+	hid_t t = H5Aget_type(a);
+	rc = -1;
+	if (t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0) {
+		/* variable length, as other tools write them */
+		hid_t mt = H5Tcopy(H5T_C_S1);
+		char *p = NULL;
+		if (mt >= 0 && H5Tset_size(mt, H5T_VARIABLE) >= 0 && H5Aread(a, mt, &p) >= 0 && p) {
+			snprintf(buf, len, "%s", p);
+			rc = 0;
+		}
+		if (p)
+			H5free_memory(p);
+		if (mt >= 0)
+			H5Tclose(mt);
+	} else if (t >= 0 && H5Tget_class(t) == H5T_STRING) {
+		const size_t n = H5Tget_size(t);
+		char *tmp = n && n <= H5R_STR_MAX ? calloc(n + 1, 1) : NULL;
+		if (tmp && H5Aread(a, t, tmp) >= 0) {
+			snprintf(buf, len, "%s", tmp);
+			rc = 0;
+		}
+		free(tmp);
+	}
+	if (t >= 0)
+		H5Tclose(t);
+	H5Aclose(a);
+	return rc;
+}
+
+/* The bytes this machine has: no dataset can be read into more. */
+static size_t memory_bytes(void)
+{
+	const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+	if (pages <= 0 || size <= 0)
+		return SIZE_MAX / 2;
+	return (size_t)pages > SIZE_MAX / (size_t)size ? SIZE_MAX : (size_t)pages * (size_t)size;
+}
+
+/* "(1, 4294967296, 4294967296)" */
+static void shape_text(const hsize_t *hd, int r, char *buf, size_t len)
+{
+	size_t l = (size_t)snprintf(buf, len, "(");
+	for (int k = 0; k < r && l < len; k++)
+		l += (size_t)snprintf(buf + l, len - l, "%s%llu", k ? ", " : "", (unsigned long long)hd[k]);
+	if (l < len)
+		snprintf(buf + l, len - l, ")");
+}
+
+/* A dataset's shape and element count, checked before anything is allocated for it:
+ * a product of dimensions wraps (2^32 x 2^32 is 0 in 64 bits) and a shape is only a
+ * claim, so the count must not overflow in elements nor in bytes (of the file's type
+ * and of doubles), and the file must hold the bytes it claims: all of them for
+ * contiguous, compact and unfiltered chunked storage, 1/H5R_MAX_RATIO of them for
+ * compressed chunks; and the doubles must fit in this machine's memory. */
+static int shape_of(hid_t d, const char *path, int maxrank, int *rank, size_t *dims, size_t *count, sb_err *e)
+{
+	hid_t sp = H5Dget_space(d), t = H5Dget_type(d), pl = H5Dget_create_plist(d);
+	hsize_t hd[8] = {0};
+	const int r = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+	int err = 0;
+	char shape[200] = "";
+	if (r < 0 || t < 0 || pl < 0)
+		err = sb_errf(e, SB_EIO, "%s: cannot read its shape", path);
+	else if (r > maxrank)
+		err = sb_errf(e, SB_EIO, "%s: rank %d (at most %d)", path, r, maxrank);
+	else if (H5Sget_simple_extent_dims(sp, hd, NULL) < 0)
+		err = sb_errf(e, SB_EIO, "%s: cannot read its shape", path);
+	size_t n = 1;
+	if (!err) {
+		shape_text(hd, r, shape, sizeof shape);
+		for (int k = 0; k < r && !err; k++) {
+			if (hd[k] > SIZE_MAX || (hd[k] && n > SIZE_MAX / (size_t)hd[k]))
+				err = sb_errf(e, SB_EIO, "%s: shape %s: its element count overflows", path, shape);
+			else
+				n *= (size_t)hd[k];
+		}
+		if (!err && H5Sget_simple_extent_type(sp) == H5S_NULL)
+			n = 0;
+	}
+	const size_t ts = !err ? H5Tget_size(t) : 0;
+	if (!err && !ts)
+		err = sb_errf(e, SB_EIO, "%s: cannot read its type", path);
+	if (!err && (n > SIZE_MAX / ts || n > SIZE_MAX / sizeof(double)))
+		err = sb_errf(e, SB_EIO, "%s: shape %s of %zu-byte elements: its size in bytes overflows", path, shape,
+			      ts);
+	if (!err) {
+		const unsigned long long need = (unsigned long long)n * ts;
+		const unsigned long long held = H5Dget_storage_size(d);
+		const H5D_layout_t lay = H5Pget_layout(pl);
+		const int filtered = lay == H5D_CHUNKED && H5Pget_nfilters(pl) > 0;
+		if ((lay == H5D_CONTIGUOUS || lay == H5D_COMPACT || (lay == H5D_CHUNKED && !filtered)) && held < need)
+			err = sb_errf(e, SB_EIO, "%s: shape %s of %zu-byte elements is %llu bytes, but the file holds %llu "
+				      "for it", path, shape, ts, need, held);
+		else if (filtered && held < (need + H5R_MAX_RATIO - 1) / H5R_MAX_RATIO)
+			err = sb_errf(e, SB_EIO, "%s: shape %s of %zu-byte elements is %llu bytes, more than the %llu "
+				      "compressed bytes the file holds for it can give (at most %d:1)", path, shape, ts,
+				      need, held, H5R_MAX_RATIO);
+		else if (n > memory_bytes() / sizeof(double))
+			err = sb_errf(e, SB_EIO, "%s: shape %s: %zu values, more than this machine's memory holds", path,
+				      shape, n);
+	}
+	if (pl >= 0)
+		H5Pclose(pl);
+	if (t >= 0)
+		H5Tclose(t);
+	if (sp >= 0)
+		H5Sclose(sp);
+	if (err)
+		return err;
+	*rank = r;
+	for (int k = 0; k < maxrank; k++)
+		dims[k] = k < r ? (size_t)hd[k] : 1;
+	*count = n;
+	return 0;
+}
+
+int h5r_shape(hid_t f, const char *path, int *rank, size_t dims[8], size_t *count, sb_err *e)
+{
+	if (!h5r_exists(f, path))
+		return sb_errf(e, SB_EIO, "%s: no such dataset", path);
+	hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+	if (d < 0)
+		return sb_errf(e, SB_EIO, "%s: cannot open dataset", path);
+	const int rc = shape_of(d, path, 8, rank, dims, count, e);
+	H5Dclose(d);
+	return rc;
+}
+
+int h5r_read(hid_t f, const char *path, double **data, int *rank, size_t dims[3], sb_err *e)
+{
+	*data = NULL;
+	*rank = 0;
+	dims[0] = dims[1] = dims[2] = 1;
+	if (!h5r_exists(f, path))
+		return sb_errf(e, SB_EIO, "%s: no such dataset", path);
+	hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+	if (d < 0)
+		return sb_errf(e, SB_EIO, "%s: cannot open dataset", path);
+	size_t n, dd[3];
+	int r;
+	if (shape_of(d, path, 3, &r, dd, &n, e)) {
+		H5Dclose(d);
+		return e->code;
+	}
+	double *p = malloc(sizeof *p * (n ? n : 1));
+	const int bad = !p || (n && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, p) < 0);
+	H5Dclose(d);
+	if (bad) {
+		const int nomem = !p;
+		free(p);
+		return nomem ? sb_errf(e, SB_ENOMEM, "%s: out of memory for %zu values", path, n)
+			     : sb_errf(e, SB_EIO, "%s: cannot read dataset", path);
+	}
+	memcpy(dims, dd, sizeof dd);
+	*data = p;
+	*rank = r;
+	return 0;
+}

@@ -1,0 +1,162 @@
+#!/usr/bin/env bash
+# hostile_runs.sh - run files and campaign databases that are not what they claim are
+# read by every tool and by bin/study without a crash, a hang or a number made of them
+# (docs/inputs.md, "Files", "Numbers", "Run files"): a dataset whose shape the file
+# cannot hold (its element count wrapping to 0 in 64 bits) and an array where one value
+# belongs make the run unreadable, with the dataset and the reason; a FIFO where a run
+# file belongs is refused at once; NaN in Φ, the heights, risen or waiting_time, and a
+# parameter that is no number in the database, make the run unusable with the reason;
+# a run whose grouping key is missing or no number makes the tool refuse the campaign.
+# The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
+. "$(dirname "$0")/lib.sh"
+analysis_tools_setup
+H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"
+[ -x "$H5MUT" ] || { fail setup "$H5MUT is not an executable (run make tests)"; finish; }
+cd "$TMP" || exit 1
+LIMIT=30 # seconds before a tool counts as hung
+q() { sqlite3 -batch -noheader "$1/study.db" "$2"; }
+
+cp "$REPO/tests/fuzz/runs.campaign" fz.campaign
+"$STUDY" run fz.campaign --runs R --jobs 2 --no-progress >setup.log 2>&1 &&
+	[ "$(q R "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok setup.campaign ||
+	{ fail setup.campaign "$(tail -c 400 setup.log)"; finish; }
+# the run with an intruder at the fixed frequency, and one without
+ID=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
+	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none'")
+ID0=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
+	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none'")
+
+# fresh NAME [RUN H5MUT-OPS...]: a copy NAME of the runs with RUN's file changed
+fresh() {
+	local d=$1 id=${2:-}
+	rm -rf "$d" && cp -r R "$d" || return 1
+	[ -n "$id" ] || return 0
+	shift 2
+	"$H5MUT" "$d/fz/$id.h5" "$d/fz/$id.h5.new" "$@" && mv "$d/fz/$id.h5.new" "$d/fz/$id.h5" ||
+		{ fail "setup.$d" "h5mut $*"; return 1; }
+}
+
+# tool_on ID TOOL DIR: runs TOOL on DIR's campaign (TOOL.out, TOOL.err in DIR); returns
+# its exit code, 124 when it hung
+tool_on() {
+	local id=$1 t=$2 d=$3
+	timeout -k 5 "$LIMIT" "$BINDIR/$t" fz --runs "$d" --no-plot --no-store --out "$d/out" >"$d/$t.out" 2>"$d/$t.err"
+}
+
+# counted ID TOOL DIR RUN USE NEEDLE: TOOL exits 0 without a sanitizer report and counts
+# RUN as USE in its accounting CSV, with NEEDLE in the reason
+counted() {
+	local id=$1 t=$2 d=$3 run=$4 use=$5 needle=$6 rc row
+	tool_on "$id" "$t" "$d"
+	rc=$?
+	row=$(grep -F ",$run," "$d/out/${t}_accounting.csv" 2>/dev/null)
+	if [ "$rc" -ne 0 ]; then
+		fail "$id" "exit $rc: $(head -c 300 "$d/$t.err")"
+	elif grep -qE 'runtime error|AddressSanitizer|LeakSanitizer' "$d/$t.err"; then
+		fail "$id" "sanitizer: $(grep -m1 -E 'runtime error|Sanitizer' "$d/$t.err")"
+	elif ! grep -qF ",$use," <<<"$row" || ! grep -qF -- "$needle" <<<"$row"; then
+		fail "$id" "run $run: '$row' (want $use and '$needle')"
+	else
+		ok "$id"
+	fi
+}
+
+# refused ID TOOL DIR NEEDLE...: TOOL exits 1 with every NEEDLE on stderr
+refused() {
+	local id=$1 t=$2 d=$3 rc n why=""
+	shift 3
+	tool_on "$id" "$t" "$d"
+	rc=$?
+	[ "$rc" -eq 1 ] || why="exit $rc, expected 1"
+	for n in "$@"; do
+		[ -z "$why" ] && ! grep -qF -- "$n" "$d/$t.err" && why="stderr lacks '$n'"
+	done
+	[ -z "$why" ] && ok "$id" || fail "$id" "$why: $(head -c 300 "$d/$t.err") $(head -c 200 "$d/$t.out")"
+}
+
+# ingested ID DIR NEEDLE: bin/study ingests DIR's file of run $ID (made pending): it
+# exits 3 with the run failed, NEEDLE in the attempt's message, no sanitizer report
+ingested() {
+	local id=$1 d=$2 needle=$3 rc st msg
+	q "$d" "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
+	timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs "$d" --jobs 1 --no-progress >"$d.study.log" 2>&1
+	rc=$?
+	st=$(q "$d" "SELECT state FROM run WHERE id = '$ID'")
+	msg=$(q "$d" "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")
+	[ "$rc" -eq 3 ] && [ "$st" = failed ] && grep -qF -- "$needle" <<<"$msg" && ! grep -q Sanitizer "$d.study.log" &&
+		ok "$id" || fail "$id" "exit $rc, state '$st', message '$msg': $(tail -c 300 "$d.study.log")"
+}
+
+# ---- sizes: a shape is a claim, checked before anything is allocated ----
+# the displacement field of (1, 2^32, 2^32): its count wrapped to 0, and convect
+# crashed and figures wrote past its buffer
+big=1,4294967296,4294967296
+fresh W1 "$ID0" --shape /observables/field/ux/value $big --shape /observables/field/uy/value $big \
+	--shape /observables/field/count/value $big --shape /observables/field/ux/time 1
+counted size.field_wraps.convect convect W1 "$ID0" unreadable "element count overflows"
+counted size.field_wraps.figures figures W1 "$ID0" unreadable "element count overflows"
+# Φ of 3 x 2^31 values that the file does not hold (no byte of it is written)
+fresh W2 "$ID" --shape /observables/flux/phi/value 3,2147483648
+counted size.unwritten.onset onset W2 "$ID" unreadable "but the file holds 0"
+counted size.unwritten.rolls rolls W2 "$ID" unreadable "but the file holds 0"
+# an array where one value belongs: H5Aread wrote all of it over the one double
+fresh W3 "$ID" --attr-array / waiting_time 2000
+counted size.array_attribute.waiting waiting W3 "$ID" unreadable "no valid root attributes"
+counted size.array_attribute.whale whale W3 "$ID" unreadable "no valid root attributes"
+# bin/study reads the same way (h5sum.c): a run whose file claims 2^32 x 2^32
+# trajectory rows, or has an array for its status, is a damaged output, not a result
+fresh S1 "$ID" --shape /particles/intruder/position/value 4294967296,4294967296,2
+ingested size.study_rows S1 "element count overflows"
+fresh S2 "$ID" --attr-array / exit_code 2000
+ingested size.study_array S2 "exit_code: not one integer"
+
+# ---- a FIFO where a run file belongs: every reader opened it and waited for a writer ----
+fresh F && rm F/fz/"$ID".h5 && mkfifo F/fz/"$ID".h5
+for t in onset waiting figures rolls ring whale convect hysteresis; do
+	# the ramp runs are hysteresis's: its FIFO is the ramp run's
+	[ $t = hysteresis ] && continue
+	counted fifo.$t $t F "$ID" unreadable "not a regular file"
+done
+IDR=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
+	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'updown'")
+rm F/fz/"$IDR".h5 && mkfifo F/fz/"$IDR".h5
+counted fifo.hysteresis hysteresis F "$IDR" unreadable "not a regular file"
+# bin/study: the pending run's FIFO is ingested as a failure (the done run's file is
+# back, or the driver would run it again)
+rm F/fz/"$IDR".h5 && cp R/fz/"$IDR".h5 F/fz/
+ingested fifo.study F "not a regular file"
+
+# ---- values that are no number: the run is unusable, with the reason ----
+fresh N1 "$ID" --set /observables/flux/phi/value 3 nan
+counted nan.phi.onset onset N1 "$ID" unusable "phi/value[3] = nan"
+counted nan.phi.rolls rolls N1 "$ID" unusable "phi/value[3] = nan"
+counted nan.phi.figures figures N1 "$ID" unusable "phi/value[3] = nan"
+fresh N2 "$ID" --set /observables/flux/heights 2 inf
+counted nan.heights.onset onset N2 "$ID" unusable "heights[2] = inf"
+fresh N3 "$ID" --attr / waiting_time nan
+counted nan.waiting_time.waiting waiting N3 "$ID" unusable "waiting_time = nan"
+counted nan.waiting_time.figures figures N3 "$ID" unusable "waiting_time = nan"
+counted nan.waiting_time.whale whale N3 "$ID" unusable "waiting_time = nan"
+fresh N4 "$ID" --attr / risen nan
+counted nan.risen.ring ring N4 "$ID" unusable "risen = nan"
+# bin/study records no result with a value that is no number (an Inf waiting time
+# entered the median of replicates = auto as a time)
+fresh S3 "$ID" --attr / waiting_time inf
+ingested nan.waiting_time.study S3 "waiting_time = inf"
+fresh N5 && q N5 "UPDATE param SET value = 'nan' WHERE run = '$ID' AND key = 'frequency'"
+counted nan.param.onset onset N5 "$ID" unusable "frequency = 'nan'"
+# a group whose key is missing or no number is refused (figures pooled the run with
+# an intruder among those without one: radius_ratio read as 0)
+fresh M && q M "DELETE FROM param WHERE run = '$ID' AND key = 'radius_ratio'"
+for t in onset waiting figures; do
+	refused group.missing_key.$t $t M "run $ID" "radius_ratio: no row in the param table"
+done
+fresh M2 && q M2 "UPDATE param SET value = 'abc' WHERE run = '$ID' AND key = 'radius_ratio'"
+refused group.not_a_number.onset onset M2 "run $ID" "radius_ratio = 'abc'"
+
+# and the unchanged runs are used by every tool
+fresh U
+for t in onset waiting figures rolls ring whale convect; do
+	counted control.$t $t U "$ID" used ""
+done
+finish
