@@ -241,7 +241,7 @@ VAL=docs/validate_lammps.md
 lammps() {
 	[ -f "$VAL" ] || { echo "*Cross-checked in LAMMPS:* not run (\`make validate-lammps\`)."; return; }
 	awk -F' [|] ' -v p="$1" '$1 == "| " p { printf "*Cross-checked in LAMMPS* (make validate-lammps, part %s, same beds in both codes): %s — %s.\n", p, $3, $4; f = 1 }
-		END { if (!f) printf "*Cross-checked in LAMMPS:* part %s not in docs/validate_lammps.md.\n", p }' "$VAL"
+		END { if (!f) printf "*Cross-checked in LAMMPS:* not yet: `make validate-lammps` part %s has not been run (docs/validate_lammps.md holds no part %s).\n", p, p }' "$VAL"
 }
 # render : the verdict lines of scripts/verdicts.sh as a table of parts and the verdict
 render() {
@@ -271,7 +271,8 @@ runs_phi() {
 	echo
 	echo "| | |"
 	echo "|---|---|"
-	echo "| this invocation | $T_ALL s wall on $(nproc) cores ($T_RUN s running campaigns), $((n1 - n0)) runs simulated |"
+	if [ "$REPORT_ONLY" = 1 ]; then echo "| this invocation | report only (REPRODUCE_REPORT_ONLY=1): no campaign and no tool ran; the runs' own times are in the cost section |"
+	else echo "| this invocation | $T_ALL s wall on $(nproc) cores ($T_RUN s running campaigns), $((n1 - n0)) runs simulated |"; fi
 	echo "| runs in the database | $(q "SELECT COUNT(*) FROM run WHERE current") ($(q "SELECT COUNT(*) FROM run WHERE current AND state = 'failed'") failed) |"
 	echo "| simulated time | $(q "SELECT printf('%.0f', TOTAL(status_time)) FROM runs") s; engine loop $(q "SELECT printf('%.0f', TOTAL(wall_seconds)) FROM runs") s |"
 	echo "| engine | $(q "SELECT DISTINCT git_hash FROM runs LIMIT 3" | tr '\n' ' ') |"

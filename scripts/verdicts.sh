@@ -244,7 +244,7 @@ verdict_claim5() {
 answer_q1() {
 	local dat=$1 nd=$2 ng=$3 y0 g0 g0hi y1 g1 g1lo ratio0 ans
 	[ "$nd" = "$ng" ] || { printf 'answer\trunning\t%s of %s searches are done; `make reproduce` resumes them.\n' "${nd:-0}" "${ng:-0}"; return; }
-	[ -s "$dat" ] || { printf 'answer\tnone\tthe searches found no onset to compare.\n'; return; }
+	[ -s "$dat" ] || { printf 'answer\tnone\tThe searches found no onset to compare.\n'; return; }
 	set -- $(head -1 "$dat"); y0=${1:-} g0=${5:-} g0hi=${7:-}
 	ratio0=$(awk -v f="${2:-x}" -v e="${8:-x}" 'BEGIN { if (f + 0 == f && e + 0 == e && f > 0) printf "%.1f", e / f; else print "?" }')
 	set -- $(tail -1 "$dat"); y1=${1:-} g1=${5:-} g1lo=${6:-}
@@ -255,7 +255,7 @@ answer_q1() {
 		"$y1" "$([ "$g1" = - ] && echo "above the searched range: its interval starts at Γ = $g1lo" || echo "Γ = $g1, interval from $g1lo")" "$y0" "$g0" "$g0hi" "$ratio0" ;;
 	part) printf 'answer\tpart\tThe onset rises with the stiffness (Γ = %s at the paper'"'"'s Y, %s at Y = %s; the intervals separate) but stays below Γ = 1.\n' "$g0" "$g1" "$y1" ;;
 	no) printf 'answer\tno\tThe onset at Y = %s (Γ = %s) is not above the paper'"'"'s (Γ = %s) beyond the intervals: convection below Γ = 1 is not a matter of the contact stiffness between %s and %s g/s² at a fixed restitution.\n' "$y1" "$g1" "$g0" "$y0" "$y1" ;;
-	*) printf 'answer\tnone\tthe searches found no onset to compare.\n' ;;
+	*) printf 'answer\tnone\tThe searches found no onset to compare.\n' ;;
 	esac
 }
 
@@ -267,9 +267,9 @@ answer_q2() {
 	sep=$(vq "SELECT GROUP_CONCAT(a.grp || ' vs ' || b.grp, '; ') FROM onset_group a JOIN onset_group b
 		 ON a.campaign = b.campaign AND a.point < b.point
 		 WHERE a.campaign = '$n' AND a.state = 'done' AND b.state = 'done' AND (a.ci_hi < b.ci_lo OR b.ci_hi < a.ci_lo)")
-	if [ "${ng:-0}" = 0 ] || [ "${nd:-0}" != "${ng:-x}" ]; then printf 'answer\trunning\t%s of %s onset searches done.\n' "${nd:-0}" "${ng:-0}"
-	elif [ -n "$sep" ]; then printf 'answer\tdepends\tthe onset depends on the width: the intervals separate for %s.\n' "$sep"
-	else printf 'answer\tno\tthe onset does not depend on the width within the intervals (every pair overlaps).\n'; fi
+	if [ "${ng:-0}" = 0 ] || [ "${nd:-0}" != "${ng:-x}" ]; then printf 'answer\trunning\t%s of %s onset searches are done.\n' "${nd:-0}" "${ng:-0}"
+	elif [ -n "$sep" ]; then printf 'answer\tdepends\tThe onset depends on the width: the intervals separate for %s.\n' "$sep"
+	else printf 'answer\tno\tThe onset does not depend on the width within the intervals (every pair overlaps).\n'; fi
 }
 
 # answer_q3 CAMPAIGN: do the beds convect without side walls? A bed convects at a
@@ -298,10 +298,10 @@ answer_q4() {
 		  AND key = 'fraction_risen' AND value = 1")
 	lr=$(vq "SELECT value FROM analysis WHERE campaign = '$n' AND tool = 'waiting' AND key = 'logrank_p' LIMIT 1")
 	if [ -z "$notall" ] && [ -n "$allr" ]; then
-		printf 'answer\tnone_critical\tNo critical size ratio in this range. Every intruder of 𝓡 = %s rose within the run at 3.2 Hz; the waits %s.\n' "$allr" \
+		printf 'answer\tnone_critical\tEvery intruder of 𝓡 = %s rose within the run at 3.2 Hz; the waits %s.\n' "$allr" \
 			"$(vtest 'p < 0.05' p="${lr:-x}" && echo "differ across 𝓡 (log-rank p < 0.05)" || echo "do not differ across 𝓡 beyond chance (log-rank p ≥ 0.05)")"
-	elif [ -n "$notall" ]; then printf 'answer\tsome_stay\tnot every intruder rose at 𝓡 = %s; all did at 𝓡 = %s.\n' "$notall" "${allr:-none}"
-	else printf 'answer\tnone\tnot computed.\n'; fi
+	elif [ -n "$notall" ]; then printf 'answer\tsome_stay\tNot every intruder rose at 𝓡 = %s; all did at 𝓡 = %s.\n' "$notall" "${allr:-none}"
+	else printf 'answer\tnone\tNot computed.\n'; fi
 }
 
 # answer_q5 CAMPAIGN: the whale oscillation's trend with R (bin/whale's Spearman rho and
