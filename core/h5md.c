@@ -16,8 +16,9 @@ void h5w_init(void)
 	 * a killed engine (exit 2 is what an I/O fault must give: README, "Exit codes").
 	 * Without the handler nothing touches the stale id; every file is closed by its
 	 * writer anyway. Only effective before the library's first use, hence called
-	 * first (a second call, or one after some other use, fails harmlessly). HDF5's
-	 * own fix: HDFGroup/hdf5 pull request 2291 (1.14.1). */
+	 * first (a second call, or one after some other use, fails harmlessly). The flaw
+	 * is H5F__dest's, known as CVE-2020-10812 and mended in later HDF5 releases; the
+	 * 1.10 of Debian 12 has it. */
 	H5dont_atexit();
 }
 

@@ -81,8 +81,12 @@ for kind in $KINDS; do
 		rm -rf "${D:?}"/*
 		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=6 output="$D/late.h5" >"$id.log" 2>&1 &
 		pid=$!
-		for i in $(seq 300); do [ -e "$D/late.h5.journal" ] && break; sleep 0.02; done # shaking now
+		for i in $(seq 500); do [ -e "$D/late.h5.journal" ] && break; sleep 0.02; done # shaking now
+		# held while the node is made, so that a slow python or a busy machine cannot let
+		# the run end first
+		kill -STOP $pid
 		make_node "$name" "$kind"
+		kill -CONT $pid
 		wait $pid
 		rc=$?
 		left=$(cd "$D" && ls -d ./*.tmp.* 2>/dev/null | tr '\n' ' ')
