@@ -1,9 +1,11 @@
 /* fuzz.c - `make fuzz`: mutation fuzzing of scene, campaign and particle files against
- * the sanitizer builds of shake and `study expand`. Input k is made from the seed
- * corpus by a PRNG seeded with (--seed, k) alone, so the same k gives the same bytes in
- * every run whatever the time limit; findings (a crash, a sanitizer report, a hang, an
- * exit code outside the documented set, an input accepted that the reader must refuse)
- * are kept with a script that reproduces them. */
+ * the sanitizer builds of shake and `study expand`, and of run files (HDF5: shapes,
+ * types, attributes, truncation, bit flips, made by h5mut) against every analysis tool
+ * and `study run`. Input k is made from the seed corpus by a PRNG seeded with (--seed,
+ * k) alone, so the same k gives the same bytes in every run whatever the time limit;
+ * findings (a crash, a sanitizer report, a hang, an exit code outside the documented
+ * set, an input accepted that the reader must refuse) are kept with a script that
+ * reproduces them. */
 #define _GNU_SOURCE /* memmem, strndup, nftw, realpath */
 #include <errno.h>
 #include <fcntl.h>
@@ -21,8 +23,12 @@
 #include <time.h>
 #include <unistd.h>
 
-enum target { T_SCENE, T_CAMPAIGN, T_PARTICLES, NTARGET };
-static const char *const TARGET[NTARGET] = {"scene", "campaign", "particles"};
+enum target { T_SCENE, T_CAMPAIGN, T_PARTICLES, T_RUNFILE, NTARGET };
+static const char *const TARGET[NTARGET] = {"scene", "campaign", "particles", "runfile"};
+/* what reads a run file: the analysis tools (exit 0, 1 or 2) and `study run` (0-4, 7) */
+static const char *const RUNFILE_TOOLS[] = {"onset", "hysteresis", "waiting", "figures", "rolls",
+					    "ring",  "whale",	   "convect", "study"};
+#define NRUNFILE_TOOLS (sizeof RUNFILE_TOOLS / sizeof *RUNFILE_TOOLS)
 
 enum kind { K_CRASH, K_SANITIZER, K_HANG, K_EXIT, K_ACCEPTED, NKIND };
 static const char *const KIND[NKIND] = {"crash", "sanitizer", "hang", "exit", "accepted"};
@@ -54,6 +60,10 @@ typedef struct finding_sig {
 
 static struct {
 	const char *shake, *study, *out, *work;
+	/* the runfile target: the runs directory of the seed campaign (all done, and all
+	 * pending for `study run` to ingest), its campaign file and name, the tools' directory,
+	 * h5mut */
+	const char *runs_done, *runs_pending, *runs_campaign, *runs_name, *tools, *h5mut;
 	double seconds, timeout;
 	long inputs;
 	unsigned long long seed;
@@ -79,7 +89,7 @@ static struct {
 	long tried[NTARGET], found[NKIND];
 	long codes[NTARGET][10]; /* exit codes 0-8, and 9 for the rest (signals, hangs) */
 } F = {.out = "build/fuzz/findings", .work = "build/fuzz/work", .timeout = 10, .seed = 1, .keep = 3,
-       .line_max = {199, 199, 1023}};
+       .line_max = {199, 199, 1023, 0}};
 
 static void die(const char *fmt, ...)
 {
@@ -206,10 +216,14 @@ static int pick_line(const buf *b, size_t *s, size_t *e)
 	return 1;
 }
 
+/* as the readers measure a line (docs/inputs.md, "Lines"): without a byte-order mark
+ * that opens the file and without the CR of a CRLF */
 static size_t longest_line(const buf *b)
 {
-	size_t best = 0, cur = 0;
-	for (size_t i = 0; i < b->n; i++) {
+	size_t best = 0, cur = 0, i = b->n >= 3 && !memcmp(b->p, "\xEF\xBB\xBF", 3) ? 3 : 0;
+	for (; i < b->n; i++) {
+		if (b->p[i] == '\r' && i + 1 < b->n && b->p[i + 1] == '\n')
+			continue;
 		if (b->p[i] == '\n') {
 			if (cur > best)
 				best = cur;
@@ -806,6 +820,50 @@ static int build_argv(int target, const buf *b, const char *input, char **argv)
 	return n;
 }
 
+/* A run-file input runs tool k of RUNFILE_TOOLS on the runs directory R (a copy of the
+ * seed campaign's, with one file changed), from the run directory. */
+static void runfile_argv(int k, char **argv)
+{
+	static char tool[4200];
+	int n = 0;
+	if (!strcmp(RUNFILE_TOOLS[k], "study")) {
+		/* every run pending: `study run` ingests every file, the changed one too, and
+		 * has nothing left to run (no retries: an ingest that fails is a failed run) */
+		argv[n++] = (char *)F.study;
+		argv[n++] = "run";
+		argv[n++] = (char *)F.runs_campaign;
+		argv[n++] = "--runs";
+		argv[n++] = "R";
+		argv[n++] = "--jobs";
+		argv[n++] = "1";
+		argv[n++] = "--retries";
+		argv[n++] = "0";
+		argv[n++] = "--no-progress";
+	} else {
+		snprintf(tool, sizeof tool, "%s/%s", F.tools, RUNFILE_TOOLS[k]);
+		argv[n++] = tool;
+		argv[n++] = (char *)F.runs_name;
+		argv[n++] = "--runs";
+		argv[n++] = "R";
+		argv[n++] = "--out";
+		argv[n++] = "R/out";
+		argv[n++] = "--no-plot";
+		argv[n++] = "--no-store";
+	}
+	argv[n] = NULL;
+}
+
+/* cp -r from to (the seed runs directory into a run directory) */
+static void copy_tree(const char *from, const char *to)
+{
+	char *av[] = {"/bin/cp", "-r", (char *)from, (char *)to, NULL};
+	char err[4200];
+	int st;
+	snprintf(err, sizeof err, "%s/cp.stderr", F.work);
+	if (run(av, ".", err, &st) || !WIFEXITED(st) || WEXITSTATUS(st))
+		die("cannot copy %s to %s", from, to);
+}
+
 /* ---- findings ---- */
 
 static void shell_quote(FILE *f, const char *s)
@@ -905,6 +963,11 @@ static void keep(long iter, int kind, int target, const char *sig, const buf *in
 	if (!fs->first[0])
 		snprintf(fs->first, sizeof fs->first, "%s", dir);
 	snprintf(path, sizeof path, "%s/run/%s", dir, input_name);
+	if (target == T_RUNFILE) { /* the input is one file of a runs directory */
+		char runs[4400];
+		snprintf(runs, sizeof runs, "%s/run/R", dir);
+		copy_tree(strcmp(argv[0], F.study) ? F.runs_done : F.runs_pending, runs);
+	}
 	write_file(path, in->p ? in->p : "", in->n);
 	if (target == T_CAMPAIGN) { /* `scene = ../scenes/X` resolves beside run/ */
 		snprintf(path, sizeof path, "%s/scenes", dir);
@@ -956,6 +1019,11 @@ static void add_seed(int target, const char *path)
 	const char *dot = strrchr(base, '.');
 	snprintf(s->name, sizeof s->name, "input%s", target == T_SCENE ? ".scene" : target == T_CAMPAIGN ?
 		 ".campaign" : dot ? dot : ".txt");
+	if (target == T_RUNFILE) { /* a file of the runs directory, by its own name */
+		snprintf(s->name, sizeof s->name, "%s", base);
+		F.nseeds++;
+		return;
+	}
 	if (target == T_CAMPAIGN && !memmem(s->data.p, s->data.n, "max_runs", 8)) {
 		/* expanding is a few milliseconds a point in the sanitizer build: a grid the
 		 * mutations blow up stays below the timeout */
@@ -1038,7 +1106,11 @@ static const char USAGE[] =
 	"  --keep N          findings kept per distinct signature; default 3\n"
 	"  --particle-arg K=V  a scene key for the particle-file runs (repeatable)\n"
 	"  --line-max TARGET=N  the reader's line limit (scene=199, campaign=199, particles=1023)\n"
-	"  --target T        fuzz only target T (scene, campaign, particles; repeatable)\n"
+	"  --target T        fuzz only target T (scene, campaign, particles, runfile; repeatable)\n"
+	"  --runfile FILE    a run file of the seed runs directory (the runfile target; repeatable)\n"
+	"  --runs-done DIR, --runs-pending DIR  the seed runs directory, its runs done, and pending\n"
+	"  --runs-campaign FILE  its campaign file; --runs-name NAME its campaign name\n"
+	"  --tools DIR       the analysis tools (default: beside --shake); --h5mut BIN the run-file changer\n"
 	"  --quiet           no progress lines\n"
 	"Prints a summary and writes OUT/summary.tsv; exits 1 when there are findings.\n";
 
@@ -1082,6 +1154,20 @@ int main(int argc, char **argv)
 			add_seed(T_CAMPAIGN, v);
 		} else if (!strcmp(a, "--particles")) {
 			add_seed(T_PARTICLES, v);
+		} else if (!strcmp(a, "--runfile")) {
+			add_seed(T_RUNFILE, v);
+		} else if (!strcmp(a, "--runs-done")) {
+			F.runs_done = v;
+		} else if (!strcmp(a, "--runs-pending")) {
+			F.runs_pending = v;
+		} else if (!strcmp(a, "--runs-campaign")) {
+			F.runs_campaign = v;
+		} else if (!strcmp(a, "--runs-name")) {
+			F.runs_name = v;
+		} else if (!strcmp(a, "--tools")) {
+			F.tools = v;
+		} else if (!strcmp(a, "--h5mut")) {
+			F.h5mut = v;
 		} else if (!strcmp(a, "--particle-arg")) {
 			if (F.nparticle_args == MAX_ARGS - 16)
 				die("too many --particle-arg");
@@ -1091,7 +1177,7 @@ int main(int argc, char **argv)
 			for (t = 0; t < NTARGET && strcmp(v, TARGET[t]); t++)
 				;
 			if (t == NTARGET)
-				die("--target %s: expected scene, campaign or particles", v);
+				die("--target %s: expected scene, campaign, particles or runfile", v);
 			F.only[t] = 1;
 			F.nonly++;
 		} else if (!strcmp(a, "--line-max")) {
@@ -1114,6 +1200,29 @@ int main(int argc, char **argv)
 		die("%s, %s: %s", F.shake, F.study, strerror(errno));
 	F.shake = abs_shake;
 	F.study = abs_study;
+	/* the run-file target's paths, absolute: its inputs run in the run directory */
+	static char abs_done[4096], abs_pending[4096], abs_cp[4096], abs_tools[4096], abs_h5mut[4096];
+	if (!F.tools) {
+		snprintf(abs_tools, sizeof abs_tools, "%s", F.shake);
+		*strrchr(abs_tools, '/') = 0;
+		F.tools = abs_tools;
+	} else if (realpath(F.tools, abs_tools)) {
+		F.tools = abs_tools;
+	}
+	int runfiles = 0;
+	for (int i = 0; i < F.nseeds; i++)
+		runfiles += F.seeds[i].target == T_RUNFILE;
+	if (runfiles && (!F.nonly || F.only[T_RUNFILE])) {
+		if (!F.runs_done || !F.runs_pending || !F.runs_campaign || !F.runs_name || !F.h5mut)
+			die("--runfile needs --runs-done, --runs-pending, --runs-campaign, --runs-name and --h5mut");
+		if (!realpath(F.runs_done, abs_done) || !realpath(F.runs_pending, abs_pending) ||
+		    !realpath(F.runs_campaign, abs_cp) || !realpath(F.h5mut, abs_h5mut))
+			die("%s, %s, %s, %s: %s", F.runs_done, F.runs_pending, F.runs_campaign, F.h5mut, strerror(errno));
+		F.runs_done = abs_done;
+		F.runs_pending = abs_pending;
+		F.runs_campaign = abs_cp;
+		F.h5mut = abs_h5mut;
+	}
 	setenv("ASAN_OPTIONS", "detect_leaks=1", 0);
 	setenv("UBSAN_OPTIONS", "print_stacktrace=1", 0);
 
@@ -1137,7 +1246,13 @@ int main(int argc, char **argv)
 	for (int i = 0; i < F.nseeds; i++)
 		if (!F.nonly || F.only[F.seeds[i].target])
 			per[F.seeds[i].target][nper[F.seeds[i].target]++] = i;
-	if (!nper[T_SCENE] && !nper[T_CAMPAIGN] && !nper[T_PARTICLES])
+	/* the targets in turn, each with seeds: input k is target active[k % nactive], so the
+	 * text targets' inputs are the same as before run files were fuzzed unless they are */
+	int active[NTARGET], nactive = 0;
+	for (int t = 0; t < NTARGET; t++)
+		if (nper[t])
+			active[nactive++] = t;
+	if (!nactive)
 		die("no seed files for the targets asked for");
 
 	double t0 = now(), last = t0;
@@ -1152,27 +1267,75 @@ int main(int argc, char **argv)
 		if (F.seconds > 0 && now() - t0 >= F.seconds)
 			break;
 		rng_state = mix64(F.seed) ^ mix64(0x5eedULL + (unsigned long long)iter);
-		int target = (int)(iter % NTARGET);
-		for (int k = 0; k < NTARGET && !nper[target]; k++)
-			target = (target + 1) % NTARGET;
+		const int target = active[iter % nactive];
 		const seedfile *sf = &F.seeds[per[target][below((size_t)nper[target])]];
 		buf_set(&in, sf->data.p ? sf->data.p : "", sf->data.n);
-		size_t nm = 1 + (below(10) < 5 ? 0 : below(4));
-		for (size_t m = 0; m < nm; m++)
-			mutate_once(&in, target, sf);
-
+		int tool = -1;
+		char input_name[300], note[300] = "";
+		snprintf(input_name, sizeof input_name, "%s", sf->name);
 		clear_dir(rundir);
-		char input[4300];
-		snprintf(input, sizeof input, "%s/%s", rundir, sf->name);
+		if (target == T_RUNFILE) {
+			/* h5mut changes the structure or the bytes (its seed from this input's
+			 * stream); the tool that reads it is drawn from the same stream */
+			char mut[4300], mseed[32];
+			snprintf(mut, sizeof mut, "%s/mutated.h5", F.work);
+			snprintf(mseed, sizeof mseed, "%llu", rnd());
+			char *hv[] = {(char *)F.h5mut, (char *)sf->path, mut, "--random", mseed, NULL};
+			int hs;
+			if (run(hv, ".", errpath, &hs) || !WIFEXITED(hs) || WEXITSTATUS(hs) || read_file(mut, &in))
+				buf_set(&in, sf->data.p ? sf->data.p : "", sf->data.n); /* unchanged: rare */
+			/* what h5mut changed, for the finding's repro.sh */
+			FILE *nf = fopen(errpath, "rb");
+			const size_t nn = nf ? fread(note, 1, sizeof note - 1, nf) : 0;
+			if (nf)
+				fclose(nf);
+			note[nn] = 0;
+			for (char *q = note; *q; q++)
+				if (*q == '\n' || *q == '\r')
+					*q = *(q + 1) ? ';' : 0;
+			tool = (int)below(NRUNFILE_TOOLS);
+			char runs[4300];
+			snprintf(runs, sizeof runs, "%s/R", rundir);
+			copy_tree(strcmp(RUNFILE_TOOLS[tool], "study") ? F.runs_done : F.runs_pending, runs);
+			snprintf(input_name, sizeof input_name, "R/%.64s/%.200s", F.runs_name, sf->name);
+		} else {
+			size_t nm = 1 + (below(10) < 5 ? 0 : below(4));
+			for (size_t m = 0; m < nm; m++)
+				mutate_once(&in, target, sf);
+		}
+		char input[4400];
+		snprintf(input, sizeof input, "%s/%s", rundir, input_name);
 		if (write_file(input, in.p ? in.p : "", in.n))
 			die("%s: %s", input, strerror(errno));
 		char *av[MAX_ARGS];
-		build_argv(target, &in, sf->name, av);
+		if (target == T_RUNFILE)
+			runfile_argv(tool, av);
+		else
+			build_argv(target, &in, sf->name, av);
 		int status = 0, hung;
 		size_t en;
 		/* a binary that is being rebuilt is missing for a moment: not a finding */
 		for (int tries = 0;; tries++) {
 			hung = run(av, rundir, errpath, &status);
+			if (hung) {
+				/* a machine busy with other work can stretch a short run past the
+				 * timeout: a hang is one that a second run with three times the time
+				 * confirms (from a fresh copy of its inputs) */
+				const double t = F.timeout;
+				F.timeout = 3 * t;
+				if (target == T_RUNFILE) {
+					char runs[4300];
+					snprintf(runs, sizeof runs, "%s/R", rundir);
+					clear_dir(rundir);
+					copy_tree(strcmp(RUNFILE_TOOLS[tool], "study") ? F.runs_done : F.runs_pending, runs);
+				} else {
+					clear_dir(rundir);
+				}
+				if (write_file(input, in.p ? in.p : "", in.n))
+					die("%s: %s", input, strerror(errno));
+				hung = run(av, rundir, errpath, &status);
+				F.timeout = t;
+			}
 			FILE *ef = fopen(errpath, "rb");
 			en = ef ? fread(err, 1, STDERR_KEEP, ef) : 0;
 			if (ef)
@@ -1193,7 +1356,8 @@ int main(int argc, char **argv)
 		char why[512] = "";
 		if (hung) {
 			kind = K_HANG;
-			snprintf(why, sizeof why, "still running after %g s", F.timeout);
+			snprintf(why, sizeof why, "still running after %g s, and after %g s again", F.timeout,
+				 3 * F.timeout);
 		} else if (strstr(err, "runtime error:") || strstr(err, "AddressSanitizer") ||
 			   strstr(err, "LeakSanitizer") || strstr(err, "UndefinedBehaviorSanitizer")) {
 			kind = K_SANITIZER;
@@ -1201,11 +1365,13 @@ int main(int argc, char **argv)
 		} else if (WIFSIGNALED(status)) {
 			kind = K_CRASH;
 			snprintf(why, sizeof why, "killed by signal %d", WTERMSIG(status));
-		} else if (target == T_CAMPAIGN ? code > 2 : code > 7) {
-			/* shake: README "Exit codes" (0-7); study expand: 0 ok, 1 bad input, 2 other */
+		} else if (target == T_RUNFILE ? (tool == (int)NRUNFILE_TOOLS - 1 ? (code > 4 && code != 7) : code > 2)
+			   : target == T_CAMPAIGN ? code > 2 : code > 7) {
+			/* shake: README "Exit codes" (0-7); study expand: 0 ok, 1 bad input, 2 other;
+			 * the analysis tools: 0, 1 usage or nothing usable, 2 I/O; study run: 0-4, 7 */
 			kind = K_EXIT;
 			snprintf(why, sizeof why, "exit code %d, outside the documented set", code);
-		} else if (code != 1 && code != 2) {
+		} else if (target != T_RUNFILE && code != 1 && code != 2) {
 			size_t ll = longest_line(&in);
 			if (memchr(in.p ? in.p : "", 0, in.n)) {
 				kind = K_ACCEPTED;
@@ -1223,7 +1389,17 @@ int main(int argc, char **argv)
 										  : "a line past the limit accepted");
 			else
 				signature(kind, status, err, sig, sizeof sig);
-			keep(iter, kind, target, sig, &in, sf->name, av, errpath, why);
+			/* a run file's finding is the tool's: one signature per tool */
+			if (target == T_RUNFILE) {
+				char tsig[256];
+				snprintf(tsig, sizeof tsig, "%s: %.200s", RUNFILE_TOOLS[tool], sig);
+				snprintf(sig, sizeof sig, "%s", tsig);
+			}
+			if (note[0]) {
+				const size_t wl = strlen(why);
+				snprintf(why + wl, sizeof why - wl, " (h5mut: %s)", note);
+			}
+			keep(iter, kind, target, sig, &in, input_name, av, errpath, why);
 			if (!F.quiet)
 				fprintf(stderr, "fuzz: input %ld (%s): %s: %s\n", iter, TARGET[target], KIND[kind], sig);
 		}
@@ -1242,8 +1418,8 @@ int main(int argc, char **argv)
 	long nf = 0;
 	for (int k = 0; k < NKIND; k++)
 		nf += F.found[k];
-	printf("fuzz: %ld inputs in %.0f s (scene %ld, campaign %ld, particles %ld), seed %llu\n", iter, secs,
-	       F.tried[T_SCENE], F.tried[T_CAMPAIGN], F.tried[T_PARTICLES], F.seed);
+	printf("fuzz: %ld inputs in %.0f s (scene %ld, campaign %ld, particles %ld, runfile %ld), seed %llu\n", iter,
+	       secs, F.tried[T_SCENE], F.tried[T_CAMPAIGN], F.tried[T_PARTICLES], F.tried[T_RUNFILE], F.seed);
 	printf("fuzz: findings: crash %ld, sanitizer %ld, hang %ld, exit %ld, accepted %ld (inputs); %d distinct\n",
 	       F.found[K_CRASH], F.found[K_SANITIZER], F.found[K_HANG], F.found[K_EXIT], F.found[K_ACCEPTED],
 	       F.nsigs);

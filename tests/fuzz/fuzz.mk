@@ -1,8 +1,10 @@
 # fuzz.mk - `make fuzz`: time-bounded mutation fuzzing of scene, campaign and particle
-# files against the sanitizer builds of bin/shake and `study expand`
+# files against the sanitizer builds of bin/shake and `study expand`, and of run files
+# (HDF5, changed by tests/fuzz/h5mut.c) against every analysis tool and `study run`
 # (tests/fuzz/fuzz.sh drives tests/fuzz/fuzz.c). Included by the top-level Makefile;
-# not part of `make check`, which runs tests/integration/fuzz_quick.sh (a fixed seed, a
-# fixed number of inputs). Findings go to FUZZ_OUT, one directory each with repro.sh.
+# not part of `make check`, which runs tests/integration/fuzz_quick.sh and
+# fuzz_runfile_quick.sh (a fixed seed, a fixed number of inputs). Findings go to
+# FUZZ_OUT, one directory each with repro.sh.
 # Knobs: FUZZ_SECONDS (default 600), FUZZ_SEED (1), FUZZ_INPUTS (0 = no limit),
 # FUZZ_TIMEOUT (seconds after which a run is a hang, 10), FUZZ_OUT (build/fuzz/findings).
 FUZZ_BIN      = build/fuzz/fuzz
@@ -29,7 +31,8 @@ $(H5MUT_BIN): tests/fuzz/h5mut.c | build/.deps-ok
 
 tests: $(FUZZ_BIN) $(H5MUT_BIN)
 
-fuzz: build/.deps-ok $(FUZZ_BIN)
-	$(Q)$(MAKE) --no-print-directory SAN=1 build/san/bin/shake build/san/bin/study
+fuzz: build/.deps-ok $(FUZZ_BIN) $(H5MUT_BIN)
+	$(Q)$(MAKE) --no-print-directory SAN=1 build/san/bin/shake build/san/bin/study \
+		$(AN_MAIN:%=build/san/bin/%)
 	$(Q)FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_SEED=$(FUZZ_SEED) FUZZ_INPUTS=$(FUZZ_INPUTS) \
 		FUZZ_TIMEOUT=$(FUZZ_TIMEOUT) FUZZ_OUT=$(FUZZ_OUT) bash tests/fuzz/fuzz.sh

@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
-# fuzz.sh - `make fuzz`: the seed corpus (scenes/, campaigns/, and small particle files
-# the engine writes, text and LAMMPS) and the keys (shake --params), then the mutation
-# fuzzer against the sanitizer builds. Knobs (environment):
+# fuzz.sh - `make fuzz`: the seed corpus (scenes/, campaigns/, small particle files the
+# engine writes, text and LAMMPS, and the run files of tests/fuzz/runs.campaign) and the
+# keys (shake --params), then the mutation fuzzer against the sanitizer builds. Knobs
+# (environment):
 #   FUZZ_SECONDS  time limit (default 600; 0 = none, then FUZZ_INPUTS is needed)
 #   FUZZ_INPUTS   number of inputs (default 0 = no limit)
 #   FUZZ_SEED     PRNG seed (default 1): input k is the same for the same seed and corpus
 #   FUZZ_TIMEOUT  seconds after which a run is a hang (default 10)
 #   FUZZ_RSS_MB   memory (MB) past which ASan stops a run and reports it (default 1024)
-#   FUZZ_TARGETS  comma-separated subset of scene,campaign,particles (default all)
+#   FUZZ_TARGETS  comma-separated subset of scene,campaign,particles,runfile (default all)
 #   FUZZ_OUT      findings directory, emptied first (default build/fuzz/findings)
 #   FUZZ_WORK     scratch directory (default build/fuzz/work)
-#   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN  the binaries (default build/san/bin/{shake,study},
-#                 build/fuzz/fuzz)
+#   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN, FUZZ_H5MUT  the binaries (default
+#                 build/san/bin/{shake,study}, build/fuzz/{fuzz,h5mut}); the analysis
+#                 tools are the ones beside FUZZ_SHAKE
 # Exits 1 when there are findings (each under FUZZ_OUT with repro.sh), 2 on a setup error.
 set -u
 cd "$(dirname "$0")/../.." || exit 2
@@ -25,6 +27,7 @@ WORK="${FUZZ_WORK:-build/fuzz/work}"
 SHAKE="${FUZZ_SHAKE:-build/san/bin/shake}"
 STUDY="${FUZZ_STUDY:-build/san/bin/study}"
 FUZZ="${FUZZ_BIN:-build/fuzz/fuzz}"
+H5MUT="${FUZZ_H5MUT:-build/fuzz/h5mut}"
 for b in "$SHAKE" "$STUDY" "$FUZZ"; do
 	[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
 done
@@ -50,11 +53,16 @@ gen() { # NAME args...
 		{ echo "fuzz: could not write the particle seed $name: $(head -c 300 "$C/$name.log")" >&2; exit 2; }
 	rm -f "$C/$name.h5" "$C/$name.xmf"
 }
-gen bed n_grains=60 radius_ratio=2 depth=1
-gen bed0 n_grains=30 radius_ratio=0
-# a few lines of each are enough: mutations act on the structure, and a short file
-# keeps each run short
-head -n 24 "$C/bed.txt" >"$C/bed_short.txt"
+# (only when particle files are fuzzed: a few seconds of the sanitizer build)
+PARTICLES=0
+case ",${FUZZ_TARGETS:-particles}," in *,particles,*) PARTICLES=1 ;; esac
+if [ "$PARTICLES" = 1 ]; then
+	gen bed n_grains=60 radius_ratio=2 depth=1
+	gen bed0 n_grains=30 radius_ratio=0
+	# a few lines of each are enough: mutations act on the structure, and a short file
+	# keeps each run short
+	head -n 24 "$C/bed.txt" >"$C/bed_short.txt"
+fi
 
 # Scene seeds beside scenes/paper.scene (whose 950 grains the budget cuts to 150, too
 # few to settle in the budget's 0.3 s): small beds that settle at once, so that
@@ -99,10 +107,31 @@ EOF
 
 args=(--shake "$SHAKE" --study "$STUDY" --seed "$SEED" --timeout "$TIMEOUT" --out "$OUT" --work "$WORK"
 	--keys "$C/keys.tsv" --particle-arg "width=$PW" --particle-arg settle=no)
+
+# Run-file seeds: tests/fuzz/runs.campaign run by the study driver (a few seconds), its
+# runs directory kept twice: all done (what the analysis tools read) and all pending
+# (what `study run` ingests, every file once, with nothing left to run).
+case ",${FUZZ_TARGETS:-runfile}," in
+*,runfile,*)
+	for b in "$H5MUT" "$(dirname "$SHAKE")"/{onset,hysteresis,waiting,figures,rolls,ring,whale,convect}; do
+		[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
+	done
+	mkdir -p "$C/runfile" && cp tests/fuzz/runs.campaign "$C/runfile/fz.campaign" || exit 2
+	"$STUDY" run "$C/runfile/fz.campaign" --runs "$C/runfile/done" --jobs 2 --no-progress >"$C/runfile/study.log" 2>&1 ||
+		{ echo "fuzz: could not run the run-file seeds: $(tail -c 300 "$C/runfile/study.log")" >&2; exit 2; }
+	cp -r "$C/runfile/done" "$C/runfile/pending" &&
+		sqlite3 "$C/runfile/pending/study.db" "UPDATE run SET state = 'pending'; DELETE FROM result;" || exit 2
+	args+=(--runs-done "$C/runfile/done" --runs-pending "$C/runfile/pending" --runs-name fz
+		--runs-campaign "$C/runfile/fz.campaign" --h5mut "$H5MUT")
+	for f in "$C"/runfile/done/fz/*.h5; do args+=(--runfile "$f"); done
+	;;
+esac
 for t in ${FUZZ_TARGETS//,/ }; do args+=(--target "$t"); done
 [ "$SECONDS_LIMIT" != 0 ] && args+=(--seconds "$SECONDS_LIMIT")
 [ "$INPUTS" != 0 ] && args+=(--inputs "$INPUTS")
 for f in scenes/*.scene "$C/small.scene" "$C/observe.scene"; do args+=(--scene "$f"); done
 for f in campaigns/*.campaign; do args+=(--campaign "$f"); done
-for f in "$C"/bed.txt "$C"/bed.data "$C"/bed0.txt "$C"/bed0.data "$C"/bed_short.txt; do args+=(--particles "$f"); done
+if [ "$PARTICLES" = 1 ]; then
+	for f in "$C"/bed.txt "$C"/bed.data "$C"/bed0.txt "$C"/bed0.data "$C"/bed_short.txt; do args+=(--particles "$f"); done
+fi
 exec "$FUZZ" "${args[@]}"

@@ -15,7 +15,7 @@
  *                               attribute's type, shape or value, an object deleted or
  *                               turned into the other kind, a link to another dataset,
  *                               or bytes (truncation, bit flips, a block overwritten);
- *                               what it did goes to stdout
+ *                               what it did goes to stderr
  * Exit 0, or 2 when an operation could not be applied (the message on stderr). */
 #define _GNU_SOURCE
 #include <hdf5.h>
@@ -253,6 +253,20 @@ static const char *const ATTRS[] = {"risen", "waiting_time", "status", "status_t
 				    "frequency", "radius_ratio", "ramp", "duration", "exit_code", "steps", "particles",
 				    "format", "stopped_by"};
 #define NATTRS (sizeof ATTRS / sizeof *ATTRS)
+/* ... and where they look for them (the tools, core/h5read.c's callers; study/h5sum.c) */
+static const struct {
+	const char *obj, *name;
+} READ_ATTRS[] = {
+	{"/", "risen"}, {"/", "waiting_time"}, {"/", "status"}, {"/", "status_time"}, {"/", "surface_height"},
+	{"/", "intruder_settled_y"}, {"/", "intruder_radius"}, {"/", "stopped_by"}, {"/", "exit_code"},
+	{"/", "steps"}, {"/", "format"}, {"/ring", "samples_before"}, {"/ring", "before_from"},
+	{"/ring", "before_to"}, {"/ring", "mean_force_before"}, {"/ring", "centre_y"},
+	{"/observables/field", "cell"}, {"/observables/field", "x0"}, {"/observables/field", "periods_per_block"},
+	{"/observables/flux", "surface_height"}, {"/parameters", "frequency"}, {"/parameters", "radius_ratio"},
+	{"/parameters", "ramp"}, {"/parameters", "amplitude"}, {"/parameters", "duration"},
+	{"/parameters", "ramp_hold"}, {"/parameters", "r_min"}, {"/parameters", "particles"},
+};
+#define NREAD_ATTRS (sizeof READ_ATTRS / sizeof *READ_ATTRS)
 
 struct attr_pick {
 	long k, want;
@@ -268,10 +282,41 @@ static herr_t pick_attr(hid_t loc, const char *name, const H5A_info_t *ai, void 
 	return 0;
 }
 
+/* a dataset, three times in four one that a tool reads (the observables' values and
+ * times, the intruder's trajectory): most of a run file is snapshots, walls and step
+ * counts, read by none */
+static const char *pick_dataset(void)
+{
+	int read[MAXOBJ], n = 0;
+	for (int i = 0; i < ndsets; i++)
+		if ((strstr(dsets[i], "/observables/") || strstr(dsets[i], "/particles/intruder/")) &&
+		    !strstr(dsets[i], "/step"))
+			read[n++] = i;
+	if (n && below(4))
+		return dsets[read[below((size_t)n)]];
+	return ndsets ? dsets[below((size_t)ndsets)] : NULL;
+}
+
+/* an object whose attributes a tool reads, mostly: the root (the run's outcome), /ring,
+ * the flux and field groups, /parameters; else any group or dataset */
+static const char *pick_object(hid_t f, const char *ds)
+{
+	static const char *const READ[] = {"/", "/", "/", "/ring", "/observables/flux", "/observables/field",
+					   "/parameters"};
+	if (below(4)) {
+		const char *o = READ[below(sizeof READ / sizeof *READ)];
+		if (!strcmp(o, "/") || H5Lexists(f, o + 1, H5P_DEFAULT) > 0)
+			return o;
+	}
+	return below(3) && ngroups ? groups[below((size_t)ngroups)] : ds ? ds : "/";
+}
+
 static int random_structured(hid_t f)
 {
-	const char *ds = ndsets ? dsets[below((size_t)ndsets)] : NULL;
-	const int op = (int)below(8);
+	/* the changes that readers trusted most (values, attributes, shapes) more often */
+	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8};
+	const char *ds = pick_dataset();
+	const int op = OPS[below(sizeof OPS / sizeof *OPS)];
 	if ((op <= 2 || op == 6 || op == 7) && !ds)
 		return -1;
 	switch (op) {
@@ -283,7 +328,7 @@ static int random_structured(hid_t f)
 		for (int k = 0; k < r; k++)
 			dims[k] = below(3) ? DIMS[below(NDIMS)] : (n ? 1 + below((size_t)n) : 1);
 		const int chunk = (int)below(3);
-		printf("shape %s rank %d (%llu, %llu, %llu, %llu) %s\n", ds, r, r > 0 ? (unsigned long long)dims[0] : 0ULL,
+		fprintf(stderr, "shape %s rank %d (%llu, %llu, %llu, %llu) %s\n", ds, r, r > 0 ? (unsigned long long)dims[0] : 0ULL,
 		       r > 1 ? (unsigned long long)dims[1] : 0ULL, r > 2 ? (unsigned long long)dims[2] : 0ULL,
 		       r > 3 ? (unsigned long long)dims[3] : 0ULL, chunk == 2 ? "deflate" : chunk ? "chunked" : "contiguous");
 		const int rc = new_dataset(f, ds, H5T_IEEE_F64LE, r, dims, chunk, below(2) ? v : NULL, n);
@@ -315,7 +360,7 @@ static int random_structured(hid_t f)
 					    : H5T_C_S1);
 		if (k == 6)
 			H5Tset_size(ty, 8);
-		printf("type %s -> %s\n", ds, (const char *[]){"int8", "uint8", "int32", "uint64", "float32", "int64",
+		fprintf(stderr, "type %s -> %s\n", ds, (const char *[]){"int8", "uint8", "int32", "uint64", "float32", "int64",
 							      "string"}[k]);
 		const int rc = new_dataset(f, ds, ty, r, dims, (int)below(2), v, n);
 		H5Tclose(ty);
@@ -325,11 +370,14 @@ static int random_structured(hid_t f)
 	case 2: { /* a value: NaN, Inf, huge */
 		const double x = VALUES[below(NVALUES)];
 		const hsize_t at = (hsize_t)rnd();
-		printf("set %s[%llu %% n] = %g\n", ds, (unsigned long long)at, x);
+		fprintf(stderr, "set %s[%llu %% n] = %g\n", ds, (unsigned long long)at, x);
 		return set_value(f, ds, at, x);
 	}
-	case 3: { /* an attribute */
-		const char *obj = below(3) ? groups[below((size_t)ngroups)] : ds ? ds : "/";
+	case 3: { /* an attribute: half of the time one that a reader reads, where it reads it */
+		const char *obj = pick_object(f, ds);
+		const int known = (int)below(2 * NREAD_ATTRS);
+		if ((size_t)known < NREAD_ATTRS)
+			obj = READ_ATTRS[known].obj;
 		hid_t o = H5Oopen(f, obj, H5P_DEFAULT);
 		struct attr_pick p = {0, 0, ""};
 		if (o >= 0) {
@@ -340,14 +388,17 @@ static int random_structured(hid_t f)
 				H5Aiterate2(o, H5_INDEX_NAME, H5_ITER_NATIVE, NULL, pick_attr, &p);
 			H5Oclose(o);
 		}
-		const char *name = p.name[0] && below(4) ? p.name : ATTRS[below(NATTRS)];
-		const int kind = (int)below(5);
+		const char *name = (size_t)known < NREAD_ATTRS ? READ_ATTRS[known].name
+				   : p.name[0] && below(2) ? p.name : ATTRS[below(NATTRS)];
+		const int kind = below(3) ? (int)below(5) : 1; /* an array, often */
 		const double x = VALUES[below(NVALUES)];
-		const long n = below(4) == 0 ? -1 : (long)(below(2) ? 2 + below(4) : 1 + below(100000));
+		/* an array of a few values or of thousands (an attribute lives in its object's
+		 * header: at most 64 KiB), or a null dataspace */
+		const long n = below(4) == 0 ? -1 : (long)(below(2) ? 2 + below(4) : 1 + below(4000));
 		static const char *const S[] = {"nan", "ok", "", "1e999", "0x10", "overlap", "none"};
 		const char *str = S[below(sizeof S / sizeof *S)];
 		if (kind == 4) {
-			printf("delete attribute %s@%s\n", obj, name);
+			fprintf(stderr, "delete attribute %s@%s\n", obj, name);
 			hid_t oo = H5Oopen(f, obj, H5P_DEFAULT);
 			if (oo >= 0) {
 				H5Adelete(oo, name);
@@ -355,7 +406,7 @@ static int random_structured(hid_t f)
 			}
 			return 0;
 		}
-		printf("attribute %s@%s := %s (%g, n %ld, '%s')\n", obj, name,
+		fprintf(stderr, "attribute %s@%s := %s (%g, n %ld, '%s')\n", obj, name,
 		       (const char *[]){"double", "array", "int64", "string"}[kind], x, n, str);
 		return new_attr(f, obj, name, kind, x, kind == 2 ? (long)(rnd() >> 1) : n,
 				kind == 3 && below(3) ? str : kind == 3 ? NULL : str);
@@ -364,12 +415,12 @@ static int random_structured(hid_t f)
 		const char *p = below(2) && ds ? ds : ngroups > 1 ? groups[1 + below((size_t)ngroups - 1)] : ds;
 		if (!p)
 			return -1;
-		printf("delete %s\n", p);
+		fprintf(stderr, "delete %s\n", p);
 		return H5Ldelete(f, p, H5P_DEFAULT) < 0 ? -1 : 0;
 	}
 	case 5: { /* a group where a dataset was, or a dataset where a group was */
 		if (ds && below(2)) {
-			printf("group in place of dataset %s\n", ds);
+			fprintf(stderr, "group in place of dataset %s\n", ds);
 			H5Ldelete(f, ds, H5P_DEFAULT);
 			hid_t g = H5Gcreate2(f, ds, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
 			if (g < 0)
@@ -380,23 +431,86 @@ static int random_structured(hid_t f)
 		if (ngroups < 2)
 			return -1;
 		const char *g = groups[1 + below((size_t)ngroups - 1)];
-		printf("dataset in place of group %s\n", g);
+		fprintf(stderr, "dataset in place of group %s\n", g);
 		const double one = 1;
 		const hsize_t d1 = 1;
 		return new_dataset(f, g, H5T_IEEE_F64LE, 1, &d1, 0, &one, 1);
 	}
+	case 8: { /* the series of one H5MD group alike (field ux, uy, count; flux phi, j_top,
+		   * j_bot): their rows kept, each row 2^32 x ... values, so that the shapes
+		   * agree with each other and with the time series and only the count wraps */
+		hsize_t orig[8] = {0};
+		const char *v = strstr(ds, "/value");
+		hid_t d = v && !v[6] ? H5Dopen2(f, ds, H5P_DEFAULT) : -1;
+		hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+		const int r = sp >= 0 ? H5Sget_simple_extent_dims(sp, orig, NULL) : -1;
+		if (sp >= 0)
+			H5Sclose(sp);
+		if (d >= 0)
+			H5Dclose(d);
+		if (r < 2)
+			return -1;
+		char box[1100];
+		snprintf(box, sizeof box, "%.*s", (int)(v - ds), ds); /* /observables/field/ux */
+		char *slash = strrchr(box, '/');
+		if (!slash || slash == box)
+			return -1;
+		*slash = 0; /* /observables/field */
+		hsize_t dims[8];
+		dims[0] = orig[0];
+		for (int k = 1; k < r; k++)
+			dims[k] = 4294967296ULL;
+		if (r == 2 && orig[0] > 1) /* rows x ceil(2^64 / rows): wraps to fewer than rows */
+			dims[1] = UINT64_MAX / orig[0] + 1;
+		int n = 0;
+		for (int i = 0; i < ndsets; i++) {
+			const char *w = strstr(dsets[i], "/value");
+			hsize_t o2[8] = {0};
+			if (strncmp(dsets[i], box, strlen(box)) || dsets[i][strlen(box)] != '/' || !w || w[6])
+				continue;
+			hid_t d2 = H5Dopen2(f, dsets[i], H5P_DEFAULT);
+			hid_t s2 = d2 >= 0 ? H5Dget_space(d2) : -1;
+			const int r2 = s2 >= 0 ? H5Sget_simple_extent_dims(s2, o2, NULL) : -1;
+			if (s2 >= 0)
+				H5Sclose(s2);
+			if (d2 >= 0)
+				H5Dclose(d2);
+			if (r2 == r && !memcmp(o2, orig, sizeof o2) && !new_dataset(f, dsets[i], H5T_IEEE_F64LE, r, dims,
+											(int)below(2), NULL, 0))
+				n++;
+		}
+		fprintf(stderr, "huge series of %s: %d of them (%llu rows of %llu ...)\n", box, n,
+			(unsigned long long)orig[0], (unsigned long long)dims[1]);
+		return n ? 0 : -1;
+	}
 	case 6: { /* a hard link to another dataset (another shape) */
 		const char *other = dsets[below((size_t)ndsets)];
-		printf("link %s -> %s\n", ds, other);
+		fprintf(stderr, "link %s -> %s\n", ds, other);
 		H5Ldelete(f, ds, H5P_DEFAULT);
 		return H5Lcreate_hard(f, other, f, ds, H5P_DEFAULT, H5P_DEFAULT) < 0 ? -1 : 0;
 	}
-	default: { /* an unwritten dataset of a huge shape, as a crafted file has */
-		hsize_t dims[3] = {1, 4294967296ULL, 4294967296ULL};
-		const int r = 1 + (int)below(3);
-		if (r < 3)
+	default: { /* an unwritten dataset of a huge shape, as a crafted file has: half of
+		    * the time its rank and first dimension kept (the rows its time series
+		    * says it has) and the others 2^32, whose product wraps to 0 in 64 bits */
+		hsize_t dims[8] = {1, 4294967296ULL, 4294967296ULL}, orig[8] = {0};
+		hid_t d = H5Dopen2(f, ds, H5P_DEFAULT);
+		hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+		const int r0 = sp >= 0 ? H5Sget_simple_extent_dims(sp, orig, NULL) : -1;
+		if (sp >= 0)
+			H5Sclose(sp);
+		if (d >= 0)
+			H5Dclose(d);
+		int r = 1 + (int)below(3);
+		if (r0 >= 2 && below(2)) {
+			r = r0;
+			dims[0] = orig[0];
+			for (int k = 1; k < r; k++)
+				dims[k] = 4294967296ULL;
+		} else if (r < 3) {
 			dims[0] = DIMS[6 + below(4)];
-		printf("huge %s rank %d\n", ds, r);
+		}
+		fprintf(stderr, "huge %s rank %d (%llu, %llu, ...)\n", ds, r, (unsigned long long)dims[0],
+			(unsigned long long)dims[1]);
 		return new_dataset(f, ds, H5T_IEEE_F64LE, r, dims, (int)below(2), NULL, 0);
 	}
 	}
@@ -412,7 +526,7 @@ static int random_bytes(const char *path)
 	const int op = (int)below(3);
 	if (op == 0) {
 		const long at = (long)below((size_t)size);
-		printf("truncate at %ld of %ld\n", at, size);
+		fprintf(stderr, "truncate at %ld of %ld\n", at, size);
 		return truncate(path, at);
 	}
 	FILE *fp = fopen(path, "r+b");
@@ -426,13 +540,13 @@ static int random_bytes(const char *path)
 			int c = fgetc(fp);
 			fseek(fp, at, SEEK_SET);
 			fputc(c ^ (1 << below(8)), fp);
-			printf("flip a bit at %ld\n", at);
+			fprintf(stderr, "flip a bit at %ld\n", at);
 		} else {
 			const int len = 8 + (int)below(57), c = below(2) ? 0xff : 0;
 			fseek(fp, at, SEEK_SET);
 			for (int k = 0; k < len && at + k < size; k++)
 				fputc(c, fp);
-			printf("overwrite %d bytes at %ld with 0x%02x\n", len, at, c);
+			fprintf(stderr, "overwrite %d bytes at %ld with 0x%02x\n", len, at, c);
 		}
 	}
 	return fclose(fp) ? -1 : 0;

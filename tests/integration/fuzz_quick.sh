@@ -4,7 +4,7 @@
 # every run of the same tree) against the sanitizer builds of shake and `study
 # expand`. One FAIL per distinct finding (crash, sanitizer report, hang, undocumented
 # exit code, an input the reader must refuse that was accepted), with the command that
-# reproduces it; the findings stay in build/fuzz/quick/.
+# reproduces it; the findings stay in build/fuzz/quick/ (run files: fuzz_runfile_quick.sh).
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 FUZZ="${FUZZ_BIN:-$REPO/build/fuzz/fuzz}"
@@ -19,7 +19,8 @@ OUT="$REPO/build/fuzz/quick"
 # finds is named so that it can go
 KNOWN="${FUZZ_QUICK_KNOWN:-$REPO/tests/fuzz/known.tsv}"
 
-FUZZ_SHAKE="$SHAKE" FUZZ_STUDY="$STUDY" FUZZ_BIN="$FUZZ" FUZZ_SECONDS=0 FUZZ_INPUTS="$N" FUZZ_SEED="$SEED" \
+FUZZ_SHAKE="$SHAKE" FUZZ_STUDY="$STUDY" FUZZ_BIN="$FUZZ" FUZZ_TARGETS=scene,campaign,particles FUZZ_SECONDS=0 \
+	FUZZ_INPUTS="$N" FUZZ_SEED="$SEED" \
 	FUZZ_OUT="$OUT" FUZZ_WORK="$TMP/work" bash "$REPO/tests/fuzz/fuzz.sh" >"$TMP/fuzz.log" 2>&1
 rc=$?
 grep -E '^fuzz: [0-9]+ inputs in .* seed|^fuzz: findings|exit codes' "$TMP/fuzz.log" | sed 's/^/# /'
