@@ -98,8 +98,7 @@ static int value_add(cp_axis *a, sb_scene *scratch, const char *v, const char *w
 		return e->code;
 	const sb_param *p = params_find(a->key);
 	if (p->type == PT_STR && *v && !safe_path_value(v))
-		return sb_errf(e, SB_EUSAGE, "%s: %s: '%s' is not a plain file name ([A-Za-z0-9_./+-], no '..')",
-			       where, a->key, v);
+		return sb_errf(e, SB_EUSAGE, "%s: %s: '%s' " SAFE_PATH_RULE, where, a->key, v);
 	char buf[SB_STR_MAX + 8];
 	params_format(scratch, p, buf, sizeof buf);
 	return axis_add(a, buf, e);
@@ -437,6 +436,16 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		sb_err tmp = {0};
 		if (params_load_file(&c->base, c->scene_file, &tmp))
 			return sb_errf(e, SB_EUSAGE, "%s: scene: %s", where, tmp.msg);
+		/* the base scene's strings reach the engine's command line like the
+		 * campaign's own: the same rule, named where the scene file set them */
+		size_t np;
+		const sb_param *t = params_table(&np);
+		for (size_t i = 0; i < np; i++) {
+			const char *v = (const char *)&c->base + t[i].offset;
+			if (t[i].type == PT_STR && !campaign_key_reserved(t[i].name) && *v && !safe_path_value(v))
+				return sb_errf(e, SB_EUSAGE, "%s: %s: '%s' " SAFE_PATH_RULE " (scene = %s, %s)",
+					       params_where(&c->base, t[i].name), t[i].name, v, value, where);
+		}
 	} else if (!strcmp(name, "seed")) {
 		/* digits only (an unsigned 64-bit seed: past num_int's range) */
 		char *end;

@@ -12,6 +12,8 @@ int safe_name(const char *s);
 
 /* A file name value (e.g. particles = FILE): [A-Za-z0-9_./+-] only, no "..". */
 int safe_path_value(const char *s);
+/* what an error says of a value safe_path_value refuses */
+#define SAFE_PATH_RULE "is not a plain path ([A-Za-z0-9_./+-], no '..')"
 
 /* Single-quote s for a POSIX shell into out ('it'\''s'); returns -1 if it does not fit. */
 int safe_shell_quote(const char *s, char *out, size_t len);

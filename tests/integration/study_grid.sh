@@ -173,6 +173,16 @@ printf '[campaign]\nname = esc\nseed = 1\nscene = esc.scene\n' >esc/esc.campaign
 rc=$?
 [ "$rc" -eq 0 ] && [ -z "$(find "$TMP" -name 'escaped*')" ] && [ "$(ls esc/a/b/esc/*.h5 2>/dev/null | wc -l)" = 1 ] &&
 	ok injection.base_scene_paths_ignored || fail injection.base_scene_paths_ignored "exit $rc: $(find "$TMP" -name 'escaped*') $(tail -c 200 esc.out)"
+# a base scene's file names follow the campaign's own rule, named where the scene set them
+for v in '../../etc/passwd' 'x;touch /tmp/pwned'; do
+	id=base_scene_particles_$( [ "$v" = '../../etc/passwd' ] && echo dotdot || echo shell)
+	printf 'n_grains = 40\nparticles = %s\nwidth = 20\n' "$v" >esc/p.scene
+	printf '[campaign]\nname = escp\nseed = 1\nscene = p.scene\n' >esc/p.campaign
+	"$STUDY" expand esc/p.campaign >"$id.out" 2>&1
+	rc=$?
+	[ "$rc" -ne 0 ] && grep -q "p.scene:2: particles: .*not a plain path" "$id.out" &&
+		grep -q "esc/p.campaign:4" "$id.out" && ok "injection.$id" || fail "injection.$id" "exit $rc: $(head -c 300 "$id.out")"
+done
 [ ! -e "$MARK" ] && ok injection.no_marker || fail injection.no_marker "$MARK exists"
 rm -f "$MARK"
 
