@@ -96,7 +96,15 @@ int sp_split_args(const char *s, char **argv, int max, char *why, size_t whylen)
 	/* what study submit says itself: the tasks, where their lines go (the collector
 	 * reads them there), the job id's format, the script */
 	static const char *const own[] = {"-a", "--array", "-o", "--output", "--parsable", "--wrap", NULL};
-	int n = 0;
+	/* sbatch's options that take no separate value (those whose value is optional take
+	 * it only after '='): after one of these, or after a value, a word that is no option
+	 * would be sbatch's script, and study's own script its argument */
+	static const char *const bare[] = {"--contiguous", "--exclusive", "-H", "--hold", "--ignore-pbs", "-k",
+					   "--no-kill", "--no-requeue", "--requeue", "-O", "--overcommit", "-Q",
+					   "--quiet", "--spread-job", "--test-only", "-v", "--verbose", "-V",
+					   "--version", "-W", "--wait", "--use-min-nodes", "-h", "--help", "--usage",
+					   "-s", "--oversubscribe", "--reboot", "--get-user-env", "--nice", NULL};
+	int n = 0, takes = 0; /* takes: the last word was an option that may take the next */
 	why[0] = 0;
 	for (const char *p = s ? s : ""; *p;) {
 		while (*p && isspace((unsigned char)*p))
@@ -116,6 +124,19 @@ int sp_split_args(const char *s, char **argv, int max, char *why, size_t whylen)
 					 p, own[k]);
 				goto bad;
 			}
+		}
+		if (p[0] != '-' || l == 1) {
+			if (!takes) {
+				snprintf(why, whylen, "'%.*s' is no option: sbatch would take it for its script "
+					 "(options begin with '-'; a value follows its option or its '=')", (int)l, p);
+				goto bad;
+			}
+			takes = 0;
+		} else {
+			/* -p VALUE and --mem VALUE; not -pVALUE, --mem=VALUE or a bare flag */
+			takes = !memchr(p, '=', l) && (p[1] == '-' || l == 2);
+			for (int k = 0; takes && bare[k]; k++)
+				takes = !(strlen(bare[k]) == l && !strncmp(p, bare[k], l));
 		}
 		if (n >= max) {
 			snprintf(why, whylen, "more than %d words", max);

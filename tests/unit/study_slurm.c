@@ -82,8 +82,8 @@ static void test_args(void)
 	CHECK("study.slurm.args.empty", sp_split_args(NULL, v, 8, why, sizeof why) == 0 &&
 		      sp_split_args("   ", v, 8, why, sizeof why) == 0, "words from nothing");
 	/* no shell: quotes and metacharacters are plain bytes of a word */
-	n = sp_split_args("--comment='a;b' $(x)", v, 8, why, sizeof why);
-	CHECK("study.slurm.args.no_shell", n == 2 && !strcmp(v[0], "--comment='a;b'") && !strcmp(v[1], "$(x)"), "%d", n);
+	n = sp_split_args("--comment='a;b' -J $(x)", v, 8, why, sizeof why);
+	CHECK("study.slurm.args.no_shell", n == 3 && !strcmp(v[0], "--comment='a;b'") && !strcmp(v[2], "$(x)"), "%d", n);
 	while (n > 0)
 		free(v[--n]);
 	const char *own[] = {"--array=0-3", "--array", "-a", "-a0-3", "--output=x", "-o", "-ox.out", "--parsable",
@@ -99,7 +99,20 @@ static void test_args(void)
 	CHECK("study.slurm.args.lookalikes", n == 5, "%d: %s", n, why);
 	while (n > 0)
 		free(v[--n]);
-	CHECK("study.slurm.args.too_many", sp_split_args("a b c", v, 2, why, sizeof why) == -1, "3 words into 2");
+	CHECK("study.slurm.args.too_many", sp_split_args("-a1 -b -c", v, 2, why, sizeof why) == -1, "3 words into 2");
+	/* a word that is no option's value would be sbatch's script: refused, named */
+	const char *stray[] = {"job.sh", "--time=5 x", "--exclusive node1", "-p short extra", "-pshort x",
+			       "--mem 2G 3G", "-", NULL};
+	for (int i = 0; stray[i]; i++) {
+		char id[64];
+		snprintf(id, sizeof id, "study.slurm.args.no_script.%d", i);
+		CHECK(id, sp_split_args(stray[i], v, 8, why, sizeof why) == -1 && strstr(why, "script"),
+		      "'%s' accepted: %s", stray[i], why);
+	}
+	n = sp_split_args("-p short --mem 2G --exclusive -N 2", v, 8, why, sizeof why);
+	CHECK("study.slurm.args.values", n == 7, "%d: %s", n, why);
+	while (n > 0)
+		free(v[--n]);
 }
 
 static void test_parse(void)
