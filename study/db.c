@@ -404,6 +404,15 @@ int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const
 	return attempt_row(d, camp, id, exit_code, status, message, host, now, 0, 0, state, e);
 }
 
+int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, const char *status,
+		    const char *message, const char *now, sb_err *e)
+{
+	const char *end = s ? h5sum_text(s, "end_time") : "";
+	return attempt_row(d, camp, id, s ? h5sum_int(s, "exit_code") : SB_EIO, status, message,
+			   s ? h5sum_text(s, "host") : "", end[0] ? end : now, s != NULL,
+			   s ? h5sum_real(s, "wall_seconds") : 0, "pending", e);
+}
+
 /* The result row of a run from its file's summary: generated from the results table;
  * a run from the packing cache did not settle itself, its settling is the cache's. */
 int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb_err *e)
@@ -461,6 +470,12 @@ int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const 
 	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
 			h5sum_text(s, "host"), end[0] ? end : now, 1, h5sum_real(s, "wall_seconds"),
 			strcmp(status, "ok") ? "failed" : "done", e))
+		return e->code;
+	/* a run no driver saw start (a database rebuilt from the files): it started when
+	 * its file says the engine did */
+	const char *start = h5sum_text(s, "start_time");
+	if (start[0] && db_exec(d, e, NULL, "UPDATE run SET started = ?3 WHERE campaign = ?1 AND id = ?2 AND started IS NULL",
+				"ttt", camp, id, start))
 		return e->code;
 	return db_result_put(d, camp, id, s, e);
 }

@@ -43,6 +43,10 @@ int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const 
  * or written by another version gets its results back from the files. */
 int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb_err *e);
 /* Record an attempt that left no output file; state is the run's new state. */
+/* An earlier attempt of a run, recovered from the file it left in failed/ or damaged/
+ * (s NULL: the file is unreadable); the run stays pending for the attempts after it. */
+int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, const char *status,
+		    const char *message, const char *now, sb_err *e);
 int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
 	       const char *message, const char *host, const char *now, const char *state, sb_err *e);
 

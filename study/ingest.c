@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 
 #include "drv.h"
@@ -11,6 +12,62 @@
 #include "layout.h"
 #include "safe.h"
 #include "worker.h"
+
+/* A run the database has no attempt of (it was rebuilt from the files) gets back the
+ * attempts whose files the sweep kept aside (failed/, damaged/: ID.attemptN.h5), in
+ * their order; attempts that left no file (interrupted, lost) cannot come back. */
+static int recover_kept(drv *d, const char *id, sb_err *e)
+{
+	char st[16];
+	long att;
+	if (db_run_state(&d->db, d->c.name, id, st, sizeof st, &att, e) || att)
+		return e->code;
+	static const char *const subs[] = {"failed", "damaged"};
+	long kept[2][64];
+	int nk[2] = {0, 0};
+	char pre[96];
+	int lp = snprintf(pre, sizeof pre, "%s.attempt", id);
+	for (int w = 0; w < 2; w++) {
+		char dir[PATHX];
+		layout_sub(d->dir, subs[w], dir, sizeof dir);
+		DIR *dd = opendir(dir);
+		for (struct dirent *de; dd && (de = readdir(dd));) {
+			char *end;
+			long k = strncmp(de->d_name, pre, (size_t)lp) ? 0 : strtol(de->d_name + lp, &end, 10);
+			if (k > 0 && !strcmp(end, ".h5") && nk[w] < 64)
+				kept[w][nk[w]++] = k;
+		}
+		if (dd)
+			closedir(dd);
+	}
+	char now[32];
+	db_now(now, sizeof now);
+	/* merged by attempt number: the two lists come in directory order */
+	for (long last = 0;;) {
+		int bw = -1, bi = -1;
+		for (int w = 0; w < 2; w++)
+			for (int i = 0; i < nk[w]; i++)
+				if (kept[w][i] > last && (bw < 0 || kept[w][i] < kept[bw][bi]))
+					bw = w, bi = i;
+		if (bw < 0)
+			return 0;
+		last = kept[bw][bi];
+		char path[PATHX + 64];
+		layout_aside(d->dir, subs[bw], id, last, path, sizeof path);
+		h5sum s;
+		sb_err re = {0};
+		int bad = h5sum_read(path, &s, &re) != 0;
+		char msg[1200];
+		if (bw)
+			snprintf(msg, sizeof msg, "damaged (kept as damaged/%s.attempt%ld.h5)%s%s", id, last, bad ? ": " : "",
+				 bad ? re.msg : "");
+		else
+			snprintf(msg, sizeof msg, "%s", bad ? re.msg : h5sum_text(&s, "message"));
+		if (db_attempt_kept(&d->db, d->c.name, id, bad ? NULL : &s,
+				    bw ? "damaged" : bad ? "io" : h5sum_text(&s, "status"), msg, now, e))
+			return e->code;
+	}
+}
 
 int ingest_run(drv *d, const char *id, sb_err *e)
 {
@@ -21,6 +78,10 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	sb_err re = {0};
 	if (db_begin(&d->db, e))
 		return e->code;
+	if (recover_kept(d, id, e)) {
+		db_rollback(&d->db);
+		return e->code;
+	}
 	if (h5sum_read(path, &s, &re)) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
 	} else {

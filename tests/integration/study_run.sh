@@ -129,6 +129,20 @@ fid=$(q $DB "SELECT id FROM run WHERE campaign = 'f' AND state = 'failed'")
 [ "$(q $DB "SELECT COUNT(*) || ' ' || COUNT(DISTINCT message) FROM attempt WHERE campaign = 'f' AND run = '$fid'")" = "2 1" ] &&
 	[ -e "R/f/failed/$fid.attempt1.h5" ] && [ -e "R/f/$fid.h5" ] && ok fail.retry_keeps_attempts ||
 	fail fail.retry_keeps_attempts "$(q $DB "SELECT * FROM attempt WHERE campaign = 'f'")"
+# a database rebuilt from the files gets the history back: the kept attempt, the last
+# one, and when each run started
+hist() { q "$1" "SELECT n || ':' || status || ':' || exit_code || ':' || message FROM attempt WHERE campaign = 'f' AND run = '$fid' ORDER BY n"; }
+before=$(hist $DB)
+cp $DB rebuilt.orig.db
+rm -f $DB $DB-wal $DB-shm
+"$STUDY" run f.campaign --runs "$TMP/R" >rebuild.log 2>&1
+after=$(hist $DB)
+[ -n "$before" ] && [ "$before" = "$after" ] && ok rebuild.attempt_history ||
+	fail rebuild.attempt_history "before: $before; after: $after"
+[ "$(q $DB "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND started IS NULL")" = 0 ] &&
+	[ "$(q $DB "SELECT attempts FROM run WHERE campaign = 'f' AND id = '$fid'")" = 2 ] && ok rebuild.started ||
+	fail rebuild.started "$(q $DB "SELECT id, attempts, started FROM run WHERE campaign = 'f'")"
+cp rebuilt.orig.db $DB && rm -f $DB-wal $DB-shm
 
 # --- list and export ---
 "$STUDY" list --runs "$TMP/R" >list.out 2>&1
