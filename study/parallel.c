@@ -145,6 +145,8 @@ static int add_arg(char **argv, int *argc, int max, const char *fmt, const char 
 int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase,
 			sb_err *e)
 {
+	if (g_stop)
+		return 0; /* stopped before this pass began: it starts nothing */
 	int is_cache = !strcmp(kind, "cache");
 	char jobfile[PATHX], joblog[PATHX];
 	snprintf(jobfile, sizeof jobfile, "%s/%s.jobs", d->dir, kind);
@@ -228,8 +230,17 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		sb_errf(e, SB_EIO, "pipe: %s", strerror(errno));
 		goto out;
 	}
+	/* A signal between the fork and g_parallel's assignment would find no parallel to
+	 * stop, and this one would start every job: held until the pid is known, then
+	 * passed on if it came. */
+	sigset_t hold, was;
+	sigemptyset(&hold);
+	sigaddset(&hold, SIGINT);
+	sigaddset(&hold, SIGTERM);
+	sigprocmask(SIG_BLOCK, &hold, &was);
 	pid_t pid = fork();
 	if (pid < 0) {
+		sigprocmask(SIG_SETMASK, &was, NULL);
 		sb_errf(e, SB_EIO, "fork: %s", strerror(errno));
 		goto out;
 	}
@@ -237,6 +248,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		/* a driver killed outright takes parallel with it: no new jobs start, and
 		 * running ones are stopped with a checkpoint */
 		prctl(PR_SET_PDEATHSIG, SIGTERM);
+		sigprocmask(SIG_SETMASK, &was, NULL);
 		close(pfd[0]);
 		dup2(pfd[1], 1);
 		close(pfd[1]);
@@ -248,6 +260,9 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		_exit(127);
 	}
 	g_parallel = pid;
+	sigprocmask(SIG_SETMASK, &was, NULL);
+	if (g_stop)
+		kill(pid, SIGTERM); /* the signal came before the pid was known */
 	close(pfd[1]);
 	/* the workers' lines as they come, and a look for the progress line every
 	 * interval in between */

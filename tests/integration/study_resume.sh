@@ -108,6 +108,29 @@ same=0
 for f in REF/k/*.h5; do same_output "$f" "C/k/$(basename "$f")" && same=$((same + 1)); done
 [ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok ctrl_c.resumed_identical || fail ctrl_c.resumed_identical "exit $rc, $same of 6 identical"
 
+# a signal while the driver writes the runs' argument files, after the packings and
+# before GNU parallel starts, starts nothing: no run begins after the driver was told
+# to stop (three tries, each signalled when the first argument file appears)
+sed 's/^replicates = 2$/replicates = 8/' k.campaign >g.campaign
+late=""
+for t in 1 2 3; do
+	"$STUDY" run g.campaign --runs "$TMP/G$t" --jobs 2 >g$t.log 2>&1 &
+	pid=$!
+	for i in $(seq 1000); do ls G$t/k/jobs/*.args >/dev/null 2>&1 && break; sleep 0.005; done
+	kill -INT $pid
+	for i in $(seq 100); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
+	if kill -0 $pid 2>/dev/null; then
+		late="$late try $t: still running 10 s after SIGINT ($(sqlite3 G$t/study.db "SELECT state, COUNT(*) FROM run GROUP BY 1" | tr '\n' ' '))"
+		kill -TERM $pid
+	fi
+	wait $pid
+	rc=$?
+	n=$(sqlite3 G$t/study.db "SELECT COUNT(*) FROM attempt")
+	[ "$rc" = 7 ] && [ "$n" = 0 ] || late="$late try $t: exit $rc, $n attempts"
+done
+[ -z "$late" ] && [ -z "$(pgrep -f "$TMP/G" 2>/dev/null)" ] && ok signal.before_parallel_starts_nothing ||
+	fail signal.before_parallel_starts_nothing "${late:-engines left running}"
+
 # a worker's engine killed (OOM killer, a node's admin) while the driver runs on, with
 # --retries 0 (study_retry.sh tests the retries): the attempt is recorded as killed, the
 # run stays pending (exit 7), and the next `study run` continues it from its checkpoint
