@@ -39,13 +39,43 @@ int fs_replaceable(const char *path, const char **kind)
 	return 0;
 }
 
+int fs_create(const char *path, int rdwr, sb_err *e)
+{
+	/* the temporary names carry this process's id: a regular file there is a dead
+	 * process's litter, to be overwritten; anything else was put there, and neither
+	 * it nor what a link points to is written */
+	struct stat st;
+	if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+		sb_errf(e, SB_EIO, "%s: %s stands there, not a regular file: not written", path,
+			fs_kind((unsigned)st.st_mode));
+		return -1;
+	}
+	int fd = open(path, (rdwr ? O_RDWR : O_WRONLY) | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+	if (fd < 0) {
+		sb_errf(e, SB_EIO, "%s: cannot create: %s", path,
+			errno == ELOOP ? "a symbolic link stands there (not followed)" : strerror(errno));
+		return -1;
+	}
+	if (fstat(fd, &st) || !S_ISREG(st.st_mode)) { /* one that came between lstat and open */
+		sb_errf(e, SB_EIO, "%s: not a regular file: not written", path);
+		close(fd);
+		return -1;
+	}
+	return fd;
+}
+
 int fs_open_tmp(sb_file *o, const char *path, sb_err *e)
 {
 	snprintf(o->path, sizeof o->path, "%s", path);
 	fs_tmp_name(path, o->tmp, sizeof o->tmp);
-	o->f = fopen(o->tmp, "w");
-	if (!o->f)
+	int fd = fs_create(o->tmp, 0, e);
+	if (fd < 0)
+		return e->code;
+	o->f = fdopen(fd, "w");
+	if (!o->f) {
+		close(fd);
 		return sb_errf(e, SB_EIO, "%s: cannot create: %s", o->tmp, strerror(errno));
+	}
 	return 0;
 }
 
@@ -128,16 +158,10 @@ void fs_abort(sb_file *o)
 	unlink(o->tmp);
 }
 
-/* why a file of this mode is no input */
-static const char *not_regular(mode_t m)
-{
-	return S_ISDIR(m) ? "is a directory" : S_ISFIFO(m) ? "is not a regular file (a FIFO)" : "is not a regular file";
-}
-
 static int refuse(const char *path, const char *what, mode_t m, int code, sb_err *e)
 {
-	return sb_errf(e, code, "%s: %s: a %s must be a regular file (a FIFO or a device would be read without end)",
-		       path, not_regular(m), what);
+	return sb_errf(e, code, "%s: is %s, not a regular file: a %s must be a regular file (a FIFO or a device "
+		       "would be read without end)", path, fs_kind((unsigned)m), what);
 }
 
 int fs_check_input(const char *path, const char *what, int code, sb_err *e)

@@ -19,6 +19,11 @@ int fs_commit(sb_file *o, sb_err *e);   /* flush, fsync, close, rename, fsync di
 					* temporary is removed when that fails */
 void fs_abort(sb_file *o);              /* close and remove the temporary */
 
+/* Creates (or truncates) path for writing, read too if rdwr, only where nothing or a
+ * regular file stands: a symbolic link, FIFO, device, socket or directory there is
+ * refused, never followed or written. A file descriptor, or -1 with the message. */
+int fs_create(const char *path, int rdwr, sb_err *e);
+
 /* Temporary name for `path` (same directory), for writers that open files themselves. */
 void fs_tmp_name(const char *path, char *out, size_t len);
 int fs_fsync_path(const char *path, sb_err *e);

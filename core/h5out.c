@@ -945,6 +945,11 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 {
 	char tmp[4200];
 	fs_tmp_name(path, tmp, sizeof tmp);
+	/* made here first: HDF5's own create would follow a link planted at the name */
+	int fd = fs_create(tmp, 0, e);
+	if (fd < 0)
+		return e->code;
+	close(fd);
 	h5w_init();
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through sb_err */
 	h5w h;

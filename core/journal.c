@@ -4,9 +4,13 @@
 #include "journal.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdint.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/stat.h>
+
+#include "fsutil.h"
 
 static const char MAGIC[8] = {'S', 'B', 'J', 'R', 'N', 'L', '0', '1'};
 
@@ -19,17 +23,32 @@ int journal_open(sb_journal *j, const char *path, int nm, long offset, sb_err *e
 	if (j->discard)
 		return 0;
 	if (offset < 0) {
-		j->f = fopen(path, "w+b");
-		if (!j->f)
+		int fd = fs_create(path, 1, e);
+		if (fd < 0)
+			return e->code;
+		j->f = fdopen(fd, "w+b");
+		if (!j->f) {
+			close(fd);
 			return sb_errf(e, SB_EIO, "%s: cannot create journal: %s", path, strerror(errno));
+		}
 		int32_t n32 = nm;
 		if (fwrite(MAGIC, 1, 8, j->f) != 8 || fwrite(&n32, 4, 1, j->f) != 1)
 			return sb_errf(e, SB_EIO, "%s: write failed", path);
 		return 0;
 	}
-	j->f = fopen(path, "r+b");
-	if (!j->f)
+	/* a journal is only ever the engine's own regular file: no link is followed */
+	int fd = open(path, O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+	struct stat st;
+	if (fd >= 0 && (fstat(fd, &st) || !S_ISREG(st.st_mode))) {
+		close(fd);
+		return sb_errf(e, SB_EIO, "%s: not a regular file: not reopened for restart", path);
+	}
+	j->f = fd < 0 ? NULL : fdopen(fd, "r+b");
+	if (!j->f) {
+		if (fd >= 0)
+			close(fd);
 		return sb_errf(e, SB_EIO, "%s: cannot reopen journal for restart: %s", path, strerror(errno));
+	}
 	if (ftruncate(fileno(j->f), offset) || fseek(j->f, offset, SEEK_SET))
 		return sb_errf(e, SB_EIO, "%s: cannot truncate to the checkpoint: %s", path, strerror(errno));
 	return 0;

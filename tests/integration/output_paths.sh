@@ -4,7 +4,8 @@
 # sidecar, journal, checkpoint), checkpoint, write_particles or write_lammps is refused
 # before anything runs (exit 1, the key, where it was set, the path and what stands
 # there), and is left as it was; one that appears while the run shakes is not renamed
-# over at the end (exit 2, said so, no temporary left). output = none runs without a
+# over at the end (exit 2, said so, no temporary left); one planted at a temporary name
+# (OUTPUT.tmp.PID) is neither followed nor written (exit 2). output = none runs without a
 # run file. The nodes live in this test's directory: /dev/null and /dev/zero are never
 # touched (a device node here has their numbers, so an engine that renamed over it
 # would show it without harming the machine).
@@ -93,6 +94,31 @@ for kind in $KINDS; do
 		[ "$rc" = 2 ] && same_node "$name" "$kind" && [ -z "$left" ] &&
 			grep -q "^shake: $D/$name: a.* stands there, not a regular file: not replaced" "$id.log" && ok "$id" ||
 			fail "$id" "exit $rc, now $(stat -c %F "$D/$name" 2>&1), left [$left]: $(head -c 300 "$id.log")"
+	done
+done
+rm -rf "${D:?}"/*
+
+# --- a node planted at a temporary name (OUTPUT.tmp.PID, the sidecar's) before the
+# engine writes it is neither followed nor written (exit 2, the path named) ---
+for kind in symlink fifo chardev; do
+	for name in t.h5 t.xmf; do
+		id="planted_tmp.$kind.${name//./_}"
+		rm -rf "${D:?}"/*
+		# the engine's pid is known before it starts: a shell that stops itself, then
+		# becomes the engine
+		sh -c 'kill -STOP $$; exec "$@"' sh "$SHAKE" "${FAST[@]}" "${GENTLE[@]}" output="$D/t.h5" >"$id.log" 2>&1 &
+		pid=$!
+		for i in $(seq 250); do case $(ps -o stat= -p $pid) in T*) break ;; esac; sleep 0.02; done
+		make_node "$name.tmp.$pid" "$kind"
+		(sleep 60 && kill -KILL $pid 2>/dev/null) &
+		dog=$!
+		kill -CONT $pid
+		wait $pid
+		rc=$?
+		kill $dog 2>/dev/null
+		[ "$rc" = 2 ] && same_node "$name.tmp.$pid" "$kind" && [ ! -e "$D/$name" ] &&
+			grep -q "$D/$name.tmp.$pid: a.* stands there, not a regular file: not written" "$id.log" && ok "$id" ||
+			fail "$id" "exit $rc, now $(stat -c %F "$D/$name.tmp.$pid" 2>&1): $(head -c 300 "$id.log")"
 	done
 done
 rm -rf "${D:?}"/*
