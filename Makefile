@@ -154,7 +154,8 @@ portable: build/.deps-ok
 	$(Q)for b in shake study; do cp build/port/bin/$$b bin/$$b-portable.tmp && mv bin/$$b-portable.tmp bin/$$b-portable; done
 
 # Fault injection (I/O faults at random moments, damaged outputs, deleted run
-# directories and packing caches, litter, a second driver) against the sanitizer build; FAULT_ROUNDS rounds (make check runs one).
+# directories and packing caches, litter, a second driver) against the sanitizer
+# build; FAULT_ROUNDS rounds (make check runs one).
 FAULT_ROUNDS ?= 8
 faults: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
