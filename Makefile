@@ -75,7 +75,7 @@ help:
 	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
 	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"
 	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
-	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, litter (FAULT_ROUNDS=8)"
+	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, deleted run dirs, litter (FAULT_ROUNDS=8)"
 	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from the campaigns beside them (FIG_JOBS=2)"
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files, and of run files (HDF5) read"
 	@echo "                by every analysis tool and study run, against the sanitizer build"
@@ -153,8 +153,9 @@ portable: build/.deps-ok
 	$(Q)mkdir -p bin
 	$(Q)for b in shake study; do cp build/port/bin/$$b bin/$$b-portable.tmp && mv bin/$$b-portable.tmp bin/$$b-portable; done
 
-# Fault injection (I/O faults at random moments, damaged outputs, litter, a second
-# driver) against the sanitizer build; FAULT_ROUNDS rounds (make check runs one).
+# Fault injection (I/O faults at random moments, damaged outputs, deleted run
+# directories and packing caches, litter, a second driver) against the sanitizer
+# build; FAULT_ROUNDS rounds (make check runs one).
 FAULT_ROUNDS ?= 8
 faults: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests

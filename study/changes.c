@@ -15,10 +15,15 @@ static int exists(const char *p)
 	return access(p, F_OK) == 0;
 }
 
+/* forgotten/: made if missing; a link planted there is refused, never followed */
 static int mkdir_p(const char *path, sb_err *e)
 {
+	struct stat st = {0};
 	if (mkdir(path, 0777) && errno != EEXIST)
 		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
+	if (lstat(path, &st) || !S_ISDIR(st.st_mode))
+		return sb_errf(e, SB_EIO, "%s: is %s; study writes only into directories it made (remove it)", path,
+			       S_ISLNK(st.st_mode) ? "a symbolic link" : "not a directory");
 	return 0;
 }
 

@@ -47,11 +47,81 @@ int mkdir_p(const char *path, sb_err *e)
 	return 0;
 }
 
+/* A directory the driver writes into, made if missing: a symbolic link (or anything
+ * else) planted where it belongs is refused, never followed, so nothing is written
+ * outside the runs directory through a link the driver did not make. */
+int driver_own_dir(const char *path, sb_err *e)
+{
+	struct stat st;
+	if (mkdir(path, 0777) && errno != EEXIST)
+		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
+	if (lstat(path, &st))
+		return sb_errf(e, SB_EIO, "%s: %s", path, strerror(errno));
+	if (S_ISLNK(st.st_mode))
+		return sb_errf(e, SB_EIO, "%s: is a symbolic link; study writes only into directories it made "
+			       "(remove the link)", path);
+	if (!S_ISDIR(st.st_mode))
+		return sb_errf(e, SB_EIO, "%s: is not a directory", path);
+	return 0;
+}
+
+/* A file the driver writes: a symbolic link or anything but a regular file where it
+ * belongs is refused (lstat: the link itself is judged). */
+int driver_own_file(const char *path, sb_err *e)
+{
+	struct stat st;
+	if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode))
+		return sb_errf(e, SB_EIO, "%s: is %s; study writes only files it made (remove it)", path,
+			       S_ISLNK(st.st_mode) ? "a symbolic link" : "not a regular file");
+	return 0;
+}
+
+const char *const driver_subdirs[DRIVER_NSUB] = {"jobs", "logs", "cache", "failed"};
+
+int driver_dirs(const drv *d, const char *const *sub, size_t n, sb_err *e)
+{
+	if (driver_own_dir(d->dir, e))
+		return e->code;
+	for (size_t i = 0; i < n && !e->code; i++) {
+		char p[PATHX];
+		snprintf(p, sizeof p, "%s/%s", d->dir, sub[i]);
+		driver_own_dir(p, e);
+	}
+	return e->code;
+}
+
+/* One driver per campaign and database: two drivers given the same --db but different
+ * --runs would each hold their own directory's lock and run every run twice, so the
+ * database has a lock per campaign beside it (DB.NAME.lock, as SQLite keeps DB-journal
+ * there). */
+int driver_db_lock(const drv *d, sb_err *e)
+{
+	char dbp[PATHLEN], lp[PATHX];
+	driver_db_path(d->o->runs_dir, d->o->db_path, dbp, sizeof dbp);
+	snprintf(lp, sizeof lp, "%s.%s.lock", dbp, d->c.name);
+	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+	if (fd < 0) {
+		sb_errf(e, SB_EIO, "%s: cannot open the database's driver lock: %s", lp, strerror(errno));
+		return -1;
+	}
+	if (flock(fd, LOCK_EX | LOCK_NB)) {
+		const int err = errno;
+		close(fd);
+		if (err == EWOULDBLOCK)
+			sb_errf(e, DRV_BUSY, "campaign %s of database %s is being run by another study driver (%s)",
+				d->c.name, dbp, lp);
+		else
+			sb_errf(e, SB_EIO, "%s: cannot lock the database's driver lock: %s", lp, strerror(err));
+		return -1;
+	}
+	return fd;
+}
+
 int driver_lock(const drv *d, sb_err *e)
 {
 	char lp[PATHX];
 	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
-	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
 	if (fd < 0) {
 		sb_errf(e, SB_EIO, "%s: cannot open the campaign's driver lock: %s", lp, strerror(errno));
 		return -1;
@@ -82,9 +152,13 @@ static int write_args(const char *path, const sb_scene *s, sb_err *e)
 		return 0;
 	char tmp[PATHX];
 	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
-	FILE *f = fopen(tmp, "w");
-	if (!f)
+	int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0666);
+	FILE *f = fd < 0 ? NULL : fdopen(fd, "w");
+	if (!f) {
+		if (fd >= 0)
+			close(fd);
 		return sb_errf(e, SB_EIO, "%s: cannot create: %s", tmp, strerror(errno));
+	}
 	size_t n;
 	const sb_param *t = params_table(&n);
 	for (size_t i = 0; i < n; i++) {
@@ -165,6 +239,72 @@ int driver_cache_args(drv *d, const char *key, long first, sb_err *e)
 	return write_args(args, &s, e);
 }
 
+/* The packing a run's argument file starts it from ("" when it settles itself, or has
+ * no argument file): the argument file decides, since a resumed run keeps the one it
+ * was given. */
+void driver_args_packing(const drv *d, const char *id, char *key, size_t len)
+{
+	char p[PATHX], line[1200];
+	key[0] = 0;
+	layout_file(d->dir, 0, id, LAY_ARGS, p, sizeof p);
+	FILE *f = fopen(p, "r");
+	if (!f)
+		return;
+	while (fgets(line, sizeof line, f)) {
+		line[strcspn(line, "\r\n")] = 0;
+		static const char pre[] = "particles=cache/";
+		size_t l = strlen(line);
+		if (!strncmp(line, pre, sizeof pre - 1) && l > sizeof pre + 3 && !strcmp(line + l - 4, ".txt")) {
+			snprintf(key, len, "%.*s", (int)(l - 4 - (sizeof pre - 1)), line + sizeof pre - 1);
+			if (!safe_name(key))
+				key[0] = 0;
+		}
+	}
+	fclose(f);
+}
+
+int driver_cache_present(const drv *d, const char *key)
+{
+	char txt[PATHX];
+	layout_cache_particles(d->dir, key, txt, sizeof txt);
+	return exists(txt);
+}
+
+/* A packing's state ("ok", "failed", "" not built) as the files say: the database's
+ * row is not the file. A packing recorded as built whose particle file is gone (its
+ * directory deleted) is forgotten, so that it is built again; a failed one is
+ * forgotten with --retry-failed; one built while no driver listened is ingested. */
+int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
+{
+	char h5[PATHX];
+	cache_state(d, key, st, len);
+	layout_file(d->dir, 1, key, LAY_OUTPUT, h5, sizeof h5);
+	int gone = !strcmp(st, "ok") && !driver_cache_present(d, key);
+	if (gone || (!strcmp(st, "failed") && d->o->retry_failed)) {
+		if (gone)
+			fprintf(stderr, "study: %s: packing %s is recorded as built but cache/%s.txt is missing: "
+				"building it again\n", d->c.name, key, key);
+		unlink(h5); /* without its particle file it is no packing */
+		if (db_begin(&d->db, e))
+			return e->code;
+		if (db_exec(&d->db, e, NULL, "DELETE FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key)) {
+			db_rollback(&d->db);
+			return e->code;
+		}
+		if (db_commit(&d->db, e))
+			return e->code;
+		st[0] = 0;
+	}
+	if (!st[0] && exists(h5)) {
+		if (!db_begin(&d->db, e) && !ingest_cache(d, key, e))
+			db_commit(&d->db, e);
+		else
+			db_rollback(&d->db);
+		cache_state(d, key, st, len);
+	}
+	return e->code;
+}
+
 /* The packing cache: preparation keys shared by two or more pending runs (or already
  * built) settle once, in a job of their own; every run then starts from the file. */
 static int caches(drv *d, const long *pend, long npend, char ***basefiles, long *nbase, sb_err *e)
@@ -185,8 +325,14 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	}
 	/* count the runs per key (quadratic only in the number of distinct keys' lookups) */
 	long *count = calloc((size_t)npend, sizeof *count);
+	char *named = calloc((size_t)npend, 1);
+	if (!count || !named) {
+		free(keys), free(first), free(build), free(count), free(named);
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	}
 	for (long i = 0; i < npend; i++) {
 		const grid_run *r = &d->g.runs[pend[i]];
+		d->cache_ok[pend[i]] = 0; /* decided again: a packing may have gone since */
 		sb_scene s;
 		grid_scene(&d->g, r, &s);
 		if (s.particles[0] || s.settle == TRI_NO)
@@ -200,25 +346,19 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 			first[nk++] = pend[i];
 		}
 		count[k]++;
+		/* a run whose argument file already starts it from the packing needs it
+		 * (built again if it was deleted), alone or not */
+		char ak[64];
+		driver_args_packing(d, r->id, ak, sizeof ak);
+		named[k] |= !strcmp(ak, r->cache_key);
 	}
 	for (long k = 0; k < nk && !e->code; k++) {
-		char st[16], h5[PATHX];
-		cache_state(d, keys[k], st, sizeof st);
-		layout_file(d->dir, 1, keys[k], LAY_OUTPUT, h5, sizeof h5);
-		if (!strcmp(st, "failed") && d->o->retry_failed) {
-			unlink(h5);
-			st[0] = 0;
-		}
-		if (!st[0] && exists(h5)) {
-			if (!db_begin(&d->db, e) && !ingest_cache(d, keys[k], e))
-				db_commit(&d->db, e);
-			else
-				db_rollback(&d->db);
-			cache_state(d, keys[k], st, sizeof st);
-		}
+		char st[16];
+		if (driver_cache_check(d, keys[k], st, sizeof st, e))
+			break;
 		/* a replicate of an [onset] search runs several frequencies, one at a time:
 		 * its packing is worth settling once from its first run on */
-		if (st[0] || count[k] < (d->adaptive ? 1 : 2))
+		if (st[0] || (count[k] < (d->adaptive ? 1 : 2) && !named[k]))
 			continue;
 		if (!driver_cache_args(d, keys[k], first[k], e))
 			build[nb++] = keys[k];
@@ -241,6 +381,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	free(first);
 	free(build);
 	free(count);
+	free(named);
 	return e->code;
 }
 
@@ -252,8 +393,29 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 		layout_file(d->dir, 0, r->id, LAY_ARGS, args, sizeof args);
 		layout_file("", 0, r->id, LAY_OUTPUT, out, sizeof out);
 		names[i] = (char *)r->id;
-		if (exists(args))
-			continue; /* a resumed run keeps its arguments (and its cache choice) */
+		if (exists(args)) {
+			/* a resumed run keeps its arguments (and its cache choice), unless the
+			 * packing they start it from is gone and not built again (--no-cache, or
+			 * its build failed): then it settles itself, and a checkpoint of the old
+			 * arguments could not be resumed (restart = auto checks them) */
+			char ak[64];
+			driver_args_packing(d, r->id, ak, sizeof ak);
+			if (!ak[0] || driver_cache_present(d, ak) ||
+			    (d->cache_ok[pend[i]] && !strcmp(ak, r->cache_key)))
+				continue; /* (study submit: a task builds it before the run) */
+			fprintf(stderr, "study: %s: run %s starts from packing cache/%s.txt, which is missing: its "
+				"argument file is written again\n", d->c.name, r->id, ak);
+			char p[PATHX + 16];
+			int l = layout_file(d->dir, 0, r->id, LAY_OUTPUT, p, sizeof p - 16);
+			snprintf(p + l, sizeof p - (size_t)l, ".ckpt");
+			unlink(p);
+			snprintf(p + l, sizeof p - (size_t)l, ".journal");
+			unlink(p);
+			if (unlink(args)) {
+				sb_errf(e, SB_EIO, "%s: cannot remove: %s", args, strerror(errno));
+				break;
+			}
+		}
 		sb_scene s;
 		grid_scene(&d->g, r, &s);
 		driver_owned(&s, out);
@@ -364,8 +526,9 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 			}
 			db_commit(&d->db, e);
 		}
-		if (d->transient[i] > d->o->retries)
-			continue; /* exhausted: stays pending for the next `study run` */
+		if (d->transient[i] > d->o->retries || d->outcome[i] == 'm')
+			continue; /* exhausted: stays pending for the next `study run`; or its input
+				   * went: launch() prepares it again */
 		if (*io_probe && d->outcome[i] != 'i')
 			continue;
 		again[m++] = (char *)r->id;
@@ -373,13 +536,13 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 	return e->code ? 0 : m;
 }
 
-/* Runs the pending runs: their packings, their argument files, GNU parallel. */
-static int launch(drv *d, long npend, sb_err *e)
+/* Runs the given runs: their packings, their argument files, GNU parallel. */
+static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 {
 	char **basefiles = NULL;
 	long nbase = 0;
-	if (!caches(d, d->pend, npend, &basefiles, &nbase, e) && !parallel_stopped() &&
-	    !driver_prepare_jobs(d, d->pend, npend, d->names, e)) {
+	if (!caches(d, pend, npend, &basefiles, &nbase, e) && !parallel_stopped() &&
+	    !driver_prepare_jobs(d, pend, npend, d->names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
 		char **again = calloc((size_t)npend + 1, sizeof *again);
@@ -418,6 +581,35 @@ static int launch(drv *d, long npend, sb_err *e)
 	for (long i = 0; i < nbase; i++)
 		free(basefiles[i]);
 	free(basefiles);
+	return e->code;
+}
+
+/* Runs the pending runs. A run whose input went while the campaign ran (its argument
+ * file or its packing deleted: ingest.c, outcome 'm') is prepared again and run again,
+ * a few times at most (someone still deleting gets the runs left pending, exit 7). */
+static int launch(drv *d, long npend, sb_err *e)
+{
+	long *again = malloc(((size_t)npend + 1) * sizeof *again);
+	if (!again)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	long *list = d->pend, n = npend;
+	for (int round = 0; round < 3; round++) {
+		if (launch_once(d, list, n, e) || parallel_stopped() || d->io_fault)
+			break;
+		long m = 0;
+		for (long k = 0; k < n; k++)
+			if (d->outcome[list[k]] == 'm')
+				again[m++] = list[k];
+		if (m == 0 || round == 2)
+			break;
+		fprintf(stderr, "study: %s: %ld run%s lost %s input while the campaign ran (argument file or packing "
+			"deleted): prepared and run again\n", d->c.name, m, m > 1 ? "s" : "", m > 1 ? "their" : "its");
+		if (driver_dirs(d, driver_subdirs, DRIVER_NSUB, e))
+			break;
+		memcpy(list, again, (size_t)m * sizeof *again); /* list is d->pend: free to reuse */
+		n = m;
+	}
+	free(again);
 	return e->code;
 }
 
@@ -541,7 +733,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (!d)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	d->o = o;
-	int lock = -1;
+	int lock = -1, dblock = -1;
 	if (campaign_load(&d->c, o->campaign_file, e) || grid_expand(&d->g, &d->c, e))
 		goto out;
 	d->adaptive = d->c.onset.line != 0;
@@ -562,14 +754,9 @@ int driver_run(const driver_opts *o, sb_err *e)
 	}
 	/* the campaign name is checked ([A-Za-z0-9_.-], no leading dot): this stays inside root */
 	layout_campaign(d->root, d->c.name, d->dir, sizeof d->dir);
-	const char *sub[] = {"", "/jobs", "/logs", "/cache", "/failed"};
-	for (size_t i = 0; i < sizeof sub / sizeof *sub; i++) {
-		char p[PATHX];
-		snprintf(p, sizeof p, "%s%s", d->dir, sub[i]);
-		if (mkdir_p(p, e))
-			goto out;
-	}
-	if ((lock = driver_lock(d, e)) < 0)
+	if (driver_dirs(d, driver_subdirs, DRIVER_NSUB, e))
+		goto out;
+	if ((lock = driver_lock(d, e)) < 0 || (dblock = driver_db_lock(d, e)) < 0)
 		goto out;
 	if (d->adaptive)
 		search_init(&d->srch, &d->c, d->dir);
@@ -655,6 +842,8 @@ out:
 	campaign_free(&d->c);
 	if (lock >= 0)
 		close(lock);
+	if (dblock >= 0)
+		close(dblock);
 	free(d);
 	return e->code;
 }

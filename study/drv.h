@@ -39,7 +39,8 @@ typedef struct drv {
 	long *transient;      /* per grid run: attempts killed, failed on I/O or lost in this
 			       * `study run` (retried while at most o->retries) */
 	char *outcome;        /* per grid run, its last launch: 0 nothing heard, 'k' killed,
-			       * 'i' I/O, 'l' lost, 'h' stopped by the driver, 'r' recorded */
+			       * 'i' I/O, 'l' lost, 'h' stopped by the driver, 'r' recorded,
+			       * 'm' its input (argument file, packing) deleted under it */
 	struct watch *watch;  /* the progress line's look; NULL: no progress line */
 	int progress_tty;     /* the progress line rewrites itself (stderr is a terminal) */
 } drv;
@@ -56,6 +57,26 @@ int mkdir_p(const char *path, sb_err *e);
  * DRV_BUSY when another driver holds it, an I/O error when the lock cannot be made
  * or taken (a read-only or full runs directory), naming the file and why. */
 int driver_lock(const drv *d, sb_err *e);
+/* driver.c, also for `study submit`: the lock of the campaign in its database
+ * (DB.NAME.lock beside the database), as driver_lock; a second driver on the same
+ * database with another --runs is refused with DRV_BUSY. */
+int driver_db_lock(const drv *d, sb_err *e);
+/* driver.c: directories and files the driver writes inside the campaign directory,
+ * made if missing; a symbolic link (or another kind of file) planted there is refused
+ * naming the path, never followed (an I/O error). driver_dirs checks d->dir and its
+ * subdirectories sub[0..n). */
+int driver_own_dir(const char *path, sb_err *e);
+int driver_own_file(const char *path, sb_err *e);
+int driver_dirs(const drv *d, const char *const *sub, size_t n, sb_err *e);
+enum { DRIVER_NSUB = 4 };
+extern const char *const driver_subdirs[DRIVER_NSUB]; /* jobs, logs, cache, failed */
+/* driver.c: the packing cache as its files say. The key a run's argument file starts
+ * it from ("" none); whether a packing's particle file exists; a packing's state
+ * ("ok", "failed", "" to build) after forgetting a recorded one whose file is gone
+ * (and a failed one with --retry-failed) and ingesting one built unheard. */
+void driver_args_packing(const drv *d, const char *id, char *key, size_t len);
+int driver_cache_present(const drv *d, const char *key);
+int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e);
 
 /* driver.c, also for `study submit` (slurm.c), which prepares runs as `study run`
  * does and hands them to Slurm: the campaign and its runs recorded; the argument

@@ -148,6 +148,17 @@ void cache_state(drv *d, const char *key, char *st, size_t len)
 	sqlite3_finalize(q);
 }
 
+/* Is a run's input gone: its argument file, or the packing that file starts it from? */
+static int input_gone(drv *d, const char *id)
+{
+	char args[PATHX], key[64];
+	layout_file(d->dir, 0, id, LAY_ARGS, args, sizeof args);
+	if (!exists(args))
+		return 1;
+	driver_args_packing(d, id, key, sizeof key);
+	return key[0] && !driver_cache_present(d, key);
+}
+
 /* A DONE line from a worker: the output file decides; without one, the exit code. */
 int on_done(drv *d, int is_cache, char *line, sb_err *e)
 {
@@ -162,6 +173,10 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	char path[PATHX];
 	if (is_cache) {
 		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
+		char args[PATHX];
+		layout_file(d->dir, 1, name, LAY_ARGS, args, sizeof args);
+		if (!exists(path) && !exists(args))
+			return 0; /* its directory was deleted under it: not the packing's failure */
 		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128) || worker_crashed(code)) {
 			if (db_begin(&d->db, e))
 				return e->code;
@@ -184,6 +199,22 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		return ingest_run(d, name, e);
 	if (code == 0)
 		return 0; /* output still on its way back from a remote host: the final sweep */
+	long ix = r - d->g.runs;
+	char now[32];
+	if (code != SB_EINTR && code < 128 && input_gone(d, name)) {
+		/* its argument file or its packing was deleted while the campaign ran (the
+		 * engine cannot open them, or the worker found no argument file): no fault
+		 * of the run's nor of the machine's; launch() prepares it again */
+		d->outcome[ix] = 'm';
+		db_now(now, sizeof now);
+		if (db_begin(&d->db, e))
+			return e->code;
+		if (db_attempt(&d->db, d->c.name, name, code, "missing_input", msg, host, now, "pending", e)) {
+			db_rollback(&d->db);
+			return e->code;
+		}
+		return db_commit(&d->db, e);
+	}
 	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
 	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
 	 * stays pending and no further run starts, since every one would fail the same way
@@ -198,7 +229,6 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	/* a crash (SIGSEGV, SIGABRT, ...) is the engine's own and would repeat: failed */
 	const int crashed = worker_crashed(code);
 	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || io || lost;
-	long ix = r - d->g.runs;
 	int ours = code == SB_EINTR && (parallel_stopped() || d->io_fault);
 	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
 	if (resumable && !ours)
@@ -213,7 +243,6 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
 		parallel_halt(); /* no new jobs; running ones checkpoint */
 	}
-	char now[32];
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
 		return e->code;

@@ -151,6 +151,9 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	char jobfile[PATHX], joblog[PATHX];
 	snprintf(jobfile, sizeof jobfile, "%s/%s.jobs", d->dir, kind);
 	snprintf(joblog, sizeof joblog, "+%s/joblog.txt", d->dir);
+	/* GNU parallel follows a link at its joblog: none is written through one */
+	if (driver_own_file(jobfile, e) || driver_own_file(joblog + 1, e))
+		return e->code;
 	FILE *jf = fopen(jobfile, "w");
 	if (!jf)
 		return sb_errf(e, SB_EIO, "%s: cannot create: %s", jobfile, strerror(errno));

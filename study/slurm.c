@@ -68,7 +68,7 @@ static int write_file(const char *path, const char *text, int mode, sb_err *e)
 {
 	char tmp[PATHX + 32];
 	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
-	int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, mode);
+	int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, mode);
 	if (fd < 0)
 		return sb_errf(e, SB_EIO, "%s: cannot create: %s", tmp, strerror(errno));
 	size_t n = strlen(text), off = 0;
@@ -103,29 +103,6 @@ static int write_script(drv *d, const char *self, char *path, size_t len, sb_err
 	write_file(path, text, 0755, e);
 	free(text);
 	return e->code;
-}
-
-/* The packing a run's argument file starts it from ("" when it settles itself): the
- * argument file decides, since a resumed run keeps the one it was given. */
-static void args_packing(drv *d, const char *id, char *key, size_t len)
-{
-	char p[PATHX], line[1200];
-	key[0] = 0;
-	layout_file(d->dir, 0, id, LAY_ARGS, p, sizeof p);
-	FILE *f = fopen(p, "r");
-	if (!f)
-		return;
-	while (fgets(line, sizeof line, f)) {
-		line[strcspn(line, "\r\n")] = 0;
-		static const char pre[] = "particles=cache/";
-		size_t l = strlen(line);
-		if (!strncmp(line, pre, sizeof pre - 1) && l > sizeof pre + 3 && !strcmp(line + l - 4, ".txt")) {
-			snprintf(key, len, "%.*s", (int)(l - 4 - (sizeof pre - 1)), line + sizeof pre - 1);
-			if (!safe_name(key))
-				key[0] = 0;
-		}
-	}
-	fclose(f);
 }
 
 /* Which pending runs start from a packing, decided as study run decides it
@@ -163,21 +140,17 @@ static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
 	for (long a = 0, b; a < nk && !e->code; a = b) {
 		for (b = a; b < nk && !strcmp(k[b].key, k[a].key); b++)
 			;
-		char st[16], h5[PATHX];
-		cache_state(d, k[a].key, st, sizeof st);
-		layout_file(d->dir, 1, k[a].key, LAY_OUTPUT, h5, sizeof h5);
-		if (!strcmp(st, "failed") && d->o->retry_failed) {
-			unlink(h5);
-			st[0] = 0;
+		char st[16];
+		if (driver_cache_check(d, k[a].key, st, sizeof st, e))
+			break;
+		/* a run whose argument file starts it from the packing needs it, alone or not */
+		int named = 0;
+		for (long i = a; i < b && !named; i++) {
+			char ak[64];
+			driver_args_packing(d, d->g.runs[k[i].run].id, ak, sizeof ak);
+			named = !strcmp(ak, k[a].key);
 		}
-		if (!st[0] && exists(h5)) {
-			if (!db_begin(&d->db, e) && !ingest_cache(d, k[a].key, e))
-				db_commit(&d->db, e);
-			else
-				db_rollback(&d->db);
-			cache_state(d, k[a].key, st, sizeof st);
-		}
-		int use = !strcmp(st, "ok") || (!st[0] && b - a >= 2);
+		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
 		for (long i = a; i < b; i++)
 			d->cache_ok[k[i].run] = (char)use;
 	}
@@ -300,10 +273,12 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		const grid_run *r = &d->g.runs[d->pend[i]];
 		char h5[PATHX], cargs[PATHX];
 		runs[i].id = r->id;
-		args_packing(d, r->id, keys[i], sizeof keys[i]);
+		driver_args_packing(d, r->id, keys[i], sizeof keys[i]);
 		layout_file(d->dir, 1, keys[i], LAY_OUTPUT, h5, sizeof h5);
 		layout_file(d->dir, 1, keys[i], LAY_ARGS, cargs, sizeof cargs);
-		if (!keys[i][0] || exists(h5)) {
+		/* built: its particle file is there (a packing's output without it was
+		 * forgotten by driver_cache_check, and is built again) */
+		if (!keys[i][0] || (exists(h5) && driver_cache_present(d, keys[i]))) {
 			keys[i][0] = 0; /* settles itself, or its packing is built */
 		} else if (!exists(cargs)) {
 			/* a run of this packing gives the packing's preparation (the key is its hash) */
@@ -366,7 +341,7 @@ int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
 	if (nu < 0)
 		return sb_errf(e, SB_EUSAGE, "--sbatch-args: %s", why);
 	drv *d = calloc(1, sizeof *d);
-	int lock = -1;
+	int lock = -1, dblock = -1;
 	if (!d) {
 		sb_errf(e, SB_ENOMEM, "out of memory");
 		goto out;
@@ -379,19 +354,17 @@ int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
 			d->c.name, d->c.onset.line ? "an [onset] search" : "replicates = auto");
 		goto out;
 	}
-	const char *sub[] = {"", "/jobs", "/logs", "/cache", "/failed", "/" SLURM_SUB, "/" SLURM_SUB "/logs"};
-	for (size_t i = 0; i < sizeof sub / sizeof *sub; i++) {
-		char p[PATHX];
-		snprintf(p, sizeof p, "%s%s", d->dir, sub[i]);
-		if (mkdir_p(p, e))
-			goto out;
-	}
-	if ((lock = driver_lock(d, e)) < 0)
+	const char *sub[] = {"jobs", "logs", "cache", "failed", SLURM_SUB, SLURM_SUB "/logs"};
+	if (driver_dirs(d, sub, sizeof sub / sizeof *sub, e))
+		goto out;
+	if ((lock = driver_lock(d, e)) < 0 || (dblock = driver_db_lock(d, e)) < 0)
 		goto out;
 	submit(d, so, uargs, nu, e);
 out:
 	if (lock >= 0)
 		close(lock);
+	if (dblock >= 0)
+		close(dblock);
 	if (d) {
 		slurm_drv_close(d);
 		free(d);

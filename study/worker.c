@@ -109,7 +109,8 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	/* One engine per run, ever: a run orphaned by a killed driver still holds this
 	 * lock (the engine inherits it), and a new worker waits for it instead of writing
 	 * the same checkpoint and output concurrently. */
-	int lk = open(lockp, O_RDWR | O_CREAT, 0666);
+	/* O_NOFOLLOW: a link planted at a run's files is refused, never written through */
+	int lk = open(lockp, O_RDWR | O_CREAT | O_NOFOLLOW, 0666);
 	if (lk < 0 || flock(lk, LOCK_EX) != 0) {
 		report_done(name, 2, host, 0, "exec: cannot lock the run");
 		return 2; /* this host cannot run it: parallel --retries tries another */
@@ -154,7 +155,14 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		return 0;
 	}
 
-	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND, 0666);
+	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW, 0666);
+	if (lf < 0 && errno == ELOOP) {
+		for (int i = 1; i < argc; i++)
+			free(argv[i]);
+		report_done(name, 2, host, 0, "exec: logs/ is refused: a symbolic link stands at the run's log");
+		close(lk);
+		return 0;
+	}
 	long from = lf >= 0 ? (long)lseek(lf, 0, SEEK_END) : 0;
 	struct timeval t0, t1;
 	gettimeofday(&t0, NULL);

@@ -9,6 +9,9 @@
 #     again, instead of shrinking its group silently;
 #   * what killed engines leave beside finished runs (stale checkpoints, temporary
 #     files of dead processes) is removed, a live process's is not;
+#   * a deleted packing cache or run directory (the database kept), between two
+#     `study run` or at a random moment while one runs, is built and run again: every
+#     run ends done, none failed, the export equals an uninterrupted campaign's;
 #   * a second driver on the same campaign is refused with its own exit code (4).
 # `make faults` runs it with FAULT_ROUNDS rounds of the I/O fault armed at random
 # moments; `make check` runs one round armed from the start.
@@ -120,6 +123,39 @@ left=$(cd "$R/f" && ls "${ids[2]}".h5.* 2>/dev/null | tr '\n' ' ')
 	fail litter.removed_but_live_kept "left: '$left'"
 kill "$live" 2>/dev/null
 rm -f "$R/f/${ids[3]}.h5.ckpt.tmp.$live"
+
+# --- a deleted packing cache or run directory: built and run again, none failed ---
+# (with the packing cache, unlike the rounds above; `make faults` deletes at random
+# moments while the driver runs, alternately the cache and the whole directory)
+"$STUDY" run f.campaign --runs "$TMP/CREF" --jobs 2 >cref.log 2>&1 || fail deleted.setup "exit $?: $(tail -n 2 cref.log)"
+"$STUDY" export f --runs "$TMP/CREF" >cref.csv
+for round in $(seq 1 "$ROUNDS"); do
+	D="$TMP/D$round"
+	what=$([ $((round % 2)) = 1 ] && echo cache || echo dir)
+	if [ "$round" = 1 ]; then
+		# between two `study run`: one run's output and the cache, then everything
+		cp -a "$TMP/CREF" "$D"
+		rm -rf "$D/f/cache" "$D/f/${ids[0]}.h5"
+		"$STUDY" run f.campaign --runs "$D" --jobs 2 >del$round.a.log 2>&1 ||
+			fail deleted.between.cache "exit $?: $(tail -n 2 del$round.a.log)"
+		rm -rf "$D/f"
+	else
+		"$STUDY" run f.campaign --runs "$D" --jobs 1 >del$round.a.log 2>&1 &
+		drv=$!
+		sleep "$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.3 + 3 * rand() }')"
+		if [ "$what" = cache ]; then rm -rf "$D/f/cache"; else find "$D/f" -mindepth 1 -delete 2>/dev/null; fi
+		wait "$drv"
+	fi
+	"$STUDY" run f.campaign --runs "$D" --jobs 2 >del$round.log 2>&1
+	rc=$?
+	nf=$(q "$D/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'failed'")
+	nd=$(q "$D/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'done'")
+	[ "$rc" = 0 ] && [ "$nf" = 0 ] && [ "$nd" = 6 ] && ok "deleted.round$round.$what.all_done" ||
+		fail "deleted.round$round.$what.all_done" "exit $rc, done $nd, failed $nf: $(tail -n 3 del$round.log)"
+	"$STUDY" export f --runs "$D" >del$round.csv
+	cmp -s <(strip cref.csv) <(strip del$round.csv) && ok "deleted.round$round.$what.export_equals_uninterrupted" ||
+		fail "deleted.round$round.$what.export_equals_uninterrupted" "$(diff <(strip cref.csv) <(strip del$round.csv) | head -n 3 | cut -c1-300)"
+done
 
 # --- a second driver on the same campaign: refused with its own exit code ---
 flock "$R/f/.driver.lock" sleep 5 &
