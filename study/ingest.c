@@ -21,7 +21,7 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	sb_err re = {0};
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (h5sum_read(path, &s, &re)) {
+	if (h5sum_read(path, id, &s, &re)) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
 	} else {
 		/* the file says whether the run started from the packing cache: a database
@@ -64,7 +64,7 @@ int ingest_cache(drv *d, const char *key, sb_err *e)
 	db_now(now, sizeof now);
 	h5sum s;
 	sb_err re = {0};
-	h5sum_read(path, &s, &re);
+	h5sum_read(path, key, &s, &re);
 	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
 	const char *end = h5sum_text(&s, "end_time");
 	return db_exec(&d->db, e, NULL,
