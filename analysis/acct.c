@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "h5id.h"
+#include "h5read.h"
 
 static const char *const USE[AN_NUSE] = {"used", "failed_used", "unusable", "unreadable", "pending", "running"};
 
@@ -53,6 +55,24 @@ int acct_classify(an_run *r)
 			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no such file", r->path);
 		return 1;
 	}
+	/* the file must be the run the database says it is: another run's file copied or
+	 * linked into place, or attributes changed after the engine wrote them, make it
+	 * unreadable (core/h5id.h); its data's checksums are HDF5's to verify as the tool
+	 * reads them */
+	hid_t f;
+	sb_err e = {0};
+	int note = H5ID_OK;
+	if (h5r_open(r->path, &f, &e) || h5id_check(f, r->path, r->id, &note, &e)) {
+		h5r_close(f); /* -1 when it did not open: nothing */
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
+		return 1;
+	}
+	h5r_close(f);
+	static int noted;
+	if (note == H5ID_UNSEALED && !noted++)
+		fprintf(stderr, "note: %s: format %s, written before run files named their run and carried "
+			"checksums: such files are read unchecked (docs/inputs.md, \"Run files\")\n", r->path,
+			H5ID_FORMAT_OLD);
 	return 0;
 }
 

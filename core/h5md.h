@@ -1,7 +1,8 @@
 /* h5md.h - writing HDF5 in the H5MD 1.1 conventions (layout: README.md, "Output"):
  * attributes, groups, fixed datasets and time-dependent elements (a group holding
- * step, time and value, the three sharing their first dimension). Large datasets are
- * chunked and compressed (shuffle + deflate). Errors set a sticky flag instead of
+ * step, time and value, the three sharing their first dimension). Every dataset with
+ * data is chunked and checksummed (Fletcher32), large ones compressed (shuffle +
+ * deflate). Errors set a sticky flag instead of
  * returning, so a writer can go on and report once at the end. */
 #ifndef SB_H5MD_H
 #define SB_H5MD_H

@@ -14,6 +14,8 @@
  *   /final        every disk at the end (lab frame): x, y, vx, vy, omega, theta and
  *                 id, species, radius, mass
  *   /provenance   git hash, compiler, flags, host, times
+ *   /@digest      the attributes' digest, written last (core/h5id.h)
+ * Every dataset that holds data carries a Fletcher32 checksum per chunk.
  * Object time stamps are off, so two runs of one scene give identical files apart
  * from /provenance and /h5md (who ran it - the environment's USER - and which build). */
 #include <hdf5.h>
@@ -23,6 +25,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
+#include "h5id.h"
 #include "h5md.h"
 #include "h5out.h"
 #include "provenance.h"
@@ -881,7 +884,7 @@ static void write_h5md(h5w *h)
 static void write_results(h5w *h, const sb_sim *s, double t)
 {
 	const hid_t r = h->file;
-	h5w_attr_str(h, r, "format", "shakebox-run-2");
+	h5w_attr_str(h, r, H5ID_FORMAT_ATTR, H5ID_FORMAT);
 	h5w_attr_str(h, r, "status", sb_code_name(s->status));
 	h5w_attr_long(h, r, "exit_code", s->status);
 	h5w_attr_str(h, r, "status_message", s->status_msg);
@@ -985,6 +988,9 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	H5Gclose(bed);
 	H5Gclose(parts);
 	write_final(&h, s, t);
+	/* last: the digest covers every attribute written above (core/h5id.h) */
+	if (!rc && !h.bad)
+		rc = h5id_seal(h.file, e);
 	if (h5w_close(&h) && !rc) {
 		char why[256];
 		h5w_last_error(why, sizeof why);

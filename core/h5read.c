@@ -172,6 +172,42 @@ static void shape_text(const hsize_t *hd, int r, char *buf, size_t len)
 		snprintf(buf + l, len - l, ")");
 }
 
+/* Whether a chunked dataset's filters may store fewer bytes than its data has: any
+ * filter but shuffle (a permutation) and Fletcher32 (4 bytes more per chunk). */
+static int compressed(hid_t pl)
+{
+	const int nf = H5Pget_nfilters(pl);
+	for (int k = 0; k < nf; k++) {
+		unsigned flags, cd[8];
+		size_t ncd = 8;
+		const H5Z_filter_t id = H5Pget_filter2(pl, (unsigned)k, &flags, &ncd, cd, 0, NULL, NULL);
+		if (id != H5Z_FILTER_SHUFFLE && id != H5Z_FILTER_FLETCHER32)
+			return 1;
+	}
+	return 0;
+}
+
+/* HDF5 found a chunk whose Fletcher32 checksum does not match its bytes. */
+static herr_t is_checksum(unsigned n, const H5E_error2_t *err, void *data)
+{
+	(void)n;
+	if (err->desc && strstr(err->desc, "Fletcher32"))
+		*(int *)data = 1;
+	return 0;
+}
+
+/* Why a read failed, from HDF5's error stack: call it before any other HDF5 call,
+ * which would clear the stack. */
+static int read_failed(const char *path, sb_err *e)
+{
+	int sum = 0;
+	H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, is_checksum, &sum);
+	if (sum)
+		return sb_errf(e, SB_EIO, "%s: checksum error (Fletcher32): the stored data changed after it was "
+			       "written", path);
+	return sb_errf(e, SB_EIO, "%s: cannot read dataset", path);
+}
+
 /* A dataset's shape and element count, checked before anything is allocated for it:
  * a product of dimensions wraps (2^32 x 2^32 is 0 in 64 bits) and a shape is only a
  * claim, so the count must not overflow in elements nor in bytes (of the file's type
@@ -213,7 +249,7 @@ static int shape_of(hid_t d, const char *path, int maxrank, int *rank, size_t *d
 		const unsigned long long need = (unsigned long long)n * ts;
 		const unsigned long long held = H5Dget_storage_size(d);
 		const H5D_layout_t lay = H5Pget_layout(pl);
-		const int filtered = lay == H5D_CHUNKED && H5Pget_nfilters(pl) > 0;
+		const int filtered = lay == H5D_CHUNKED && compressed(pl);
 		if ((lay == H5D_CONTIGUOUS || lay == H5D_COMPACT || (lay == H5D_CHUNKED && !filtered)) && held < need)
 			err = sb_errf(e, SB_EIO, "%s: shape %s of %zu-byte elements is %llu bytes, but the file holds %llu "
 				      "for it", path, shape, ts, need, held);
@@ -270,15 +306,110 @@ int h5r_read(hid_t f, const char *path, double **data, int *rank, size_t dims[3]
 	}
 	double *p = malloc(sizeof *p * (n ? n : 1));
 	const int bad = !p || (n && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, p) < 0);
-	H5Dclose(d);
 	if (bad) {
 		const int nomem = !p;
 		free(p);
-		return nomem ? sb_errf(e, SB_ENOMEM, "%s: out of memory for %zu values", path, n)
-			     : sb_errf(e, SB_EIO, "%s: cannot read dataset", path);
+		const int rc = nomem ? sb_errf(e, SB_ENOMEM, "%s: out of memory for %zu values", path, n)
+				     : read_failed(path, e);
+		H5Dclose(d);
+		return rc;
 	}
+	H5Dclose(d);
 	memcpy(dims, dd, sizeof dd);
 	*data = p;
 	*rank = r;
 	return 0;
+}
+
+/* One dataset's every chunk, read a block of first-dimension rows at a time in its own
+ * type: HDF5 verifies each chunk's Fletcher32 checksum on the way. */
+static int verify_dataset(hid_t d, const char *path, sb_err *e)
+{
+	hid_t pl = H5Dget_create_plist(d), sp = H5Dget_space(d), t = H5Dget_type(d);
+	hid_t mt = t >= 0 ? H5Tget_native_type(t, H5T_DIR_DEFAULT) : -1;
+	int err = 0, sum = 0;
+	const int nf = pl >= 0 ? H5Pget_nfilters(pl) : 0;
+	for (int k = 0; k < nf; k++) {
+		unsigned flags, cd[8];
+		size_t ncd = 8;
+		if (H5Pget_filter2(pl, (unsigned)k, &flags, &ncd, cd, 0, NULL, NULL) == H5Z_FILTER_FLETCHER32)
+			sum = 1;
+	}
+	hsize_t dims[8], chunk[8];
+	const int r = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+	if (!sum || pl < 0 || sp < 0 || mt < 0 || r < 1 || r > 8 || H5Pget_layout(pl) != H5D_CHUNKED)
+		goto done; /* nothing to verify (old files, a virtual dataset): the reads check what they read */
+	if (H5Sget_simple_extent_dims(sp, dims, NULL) < 0 || H5Pget_chunk(pl, r, chunk) != r) {
+		err = sb_errf(e, SB_EIO, "%s: cannot read its shape", path);
+		goto done;
+	}
+	size_t row = H5Tget_size(mt);
+	for (int k = 1; k < r; k++)
+		row *= (size_t)dims[k];
+	/* shape_of has held dims to what the file holds and this machine's memory; a block
+	 * is one chunk's rows, at most all of them */
+	const hsize_t blk = chunk[0] < 1 ? 1 : chunk[0] < dims[0] ? chunk[0] : dims[0];
+	void *buf = malloc(row > 0 ? row * (size_t)blk : 1);
+	if (!buf) {
+		err = sb_errf(e, SB_ENOMEM, "%s: out of memory", path);
+		goto done;
+	}
+	for (hsize_t at = 0; at < dims[0] && !err; at += blk) {
+		hsize_t start[8] = {0}, cnt[8];
+		start[0] = at;
+		cnt[0] = dims[0] - at < blk ? dims[0] - at : blk;
+		for (int k = 1; k < r; k++)
+			cnt[k] = dims[k];
+		hid_t ms = H5Screate_simple(r, cnt, NULL);
+		if (ms < 0 || H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, cnt, NULL) < 0 ||
+		    H5Dread(d, mt, ms, sp, H5P_DEFAULT, buf) < 0)
+			err = read_failed(path, e);
+		if (ms >= 0)
+			H5Sclose(ms);
+	}
+	free(buf);
+done:
+	if (mt >= 0)
+		H5Tclose(mt);
+	if (t >= 0)
+		H5Tclose(t);
+	if (sp >= 0)
+		H5Sclose(sp);
+	if (pl >= 0)
+		H5Pclose(pl);
+	return err;
+}
+
+typedef struct vctx {
+	sb_err *e;
+	int err;
+} vctx;
+
+static herr_t verify_one(hid_t f, const char *name, const H5O_info_t *info, void *data)
+{
+	vctx *v = data;
+	if (info->type != H5O_TYPE_DATASET)
+		return 0;
+	char path[512];
+	snprintf(path, sizeof path, "/%s", name);
+	hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+	if (d < 0) {
+		v->err = sb_errf(v->e, SB_EIO, "%s: cannot open dataset", path);
+		return 1;
+	}
+	int rank;
+	size_t dims[8], n;
+	v->err = shape_of(d, path, 8, &rank, dims, &n, v->e);
+	if (!v->err && n > 0)
+		v->err = verify_dataset(d, path, v->e);
+	H5Dclose(d);
+	return v->err ? 1 : 0;
+}
+
+int h5r_verify(hid_t f, sb_err *e)
+{
+	vctx v = {e, 0};
+	if (H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, verify_one, &v, H5O_INFO_BASIC) < 0 && !v.err)
+		return sb_errf(e, SB_EIO, "cannot visit the file's objects");
+	return v.err;
 }

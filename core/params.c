@@ -207,6 +207,9 @@ static const sb_param TABLE[] = {
 	 "... and end at this time at the latest (0 = the rise or the end of the run)"},
 	{"progress", ENUM(progress), "", "auto", 0, 0, "auto|yes|no", PF_OUT | PF_DRIVER,
 	 "progress on stderr (auto: when stderr is a terminal)"},
+	{"run_id", STR(run_id), "", "", 0, 0, NULL, PF_OUT | PF_DRIVER,
+	 "the study driver's id of this run, recorded so that a file copied or linked in place of another "
+	 "run's is known (docs/inputs.md, \"Run files\"); empty outside a campaign"},
 };
 
 #define NTABLE (sizeof TABLE / sizeof TABLE[0])

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "h5id.h"
 #include "h5read.h"
 
 /* One column: an attribute (OBJ@NAME) or a dataset's rows (PATH#rows). An attribute
@@ -65,7 +66,7 @@ static void read_column(hid_t f, const rcol *c, h5val *v, int *bad, sb_err *e)
 	}
 }
 
-int h5sum_read(const char *path, h5sum *s, sb_err *e)
+int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e)
 {
 	memset(s, 0, sizeof *s);
 	size_t n;
@@ -76,6 +77,11 @@ int h5sum_read(const char *path, h5sum *s, sb_err *e)
 	sb_err oe = {0};
 	if (h5r_open(path, &f, &oe)) /* a FIFO is refused before the open could wait for a writer */
 		return sb_errf(e, oe.code, "%s", oe.msg);
+	/* nothing of a file is believed before it is known to be the run it claims to be */
+	if (h5id_check(f, path, want_id, &s->unsealed, &oe)) {
+		h5r_close(f);
+		return sb_errf(e, oe.code, "%s", oe.msg);
+	}
 	int bad = 0;
 	sb_err why = {0};
 	for (size_t i = 0; i < n; i++)
@@ -88,6 +94,9 @@ int h5sum_read(const char *path, h5sum *s, sb_err *e)
 			sb_errf(&why, SB_EIO, "/parameters@particles: not one string");
 		bad = 1;
 	}
+	/* and every byte of its data is what was written (Fletcher32) */
+	if (!bad && h5r_verify(f, &why))
+		bad = 1;
 	h5r_close(f);
 	if (bad)
 		return sb_errf(e, SB_EIO, "%s: not a complete shakebox run file (%s)", path, why.msg);

@@ -19,11 +19,14 @@ typedef struct h5val {
 typedef struct h5sum {
 	h5val v[H5SUM_MAX]; /* indexed like results_table() */
 	char particles[H5SUM_TEXT]; /* the run's particles parameter: the packing it started from */
+	int unsealed;       /* enum h5id_note: an older file, its identity and data unchecked */
 } h5sum;
 
-/* Read every stored column; an error when the file cannot be opened, a value cannot
- * be read or the run's status is missing (not a complete run file). */
-int h5sum_read(const char *path, h5sum *s, sb_err *e);
+/* Read every stored column; an error when the file cannot be opened, is not run
+ * want_id (NULL: any run; core/h5id.h: format, run id, attribute digest), a value
+ * cannot be read, a dataset's data fails its checksum (h5r_verify) or the run's status
+ * is missing (not a complete run file). */
+int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e);
 
 /* A column by name: "" / 0 when absent. */
 const char *h5sum_text(const h5sum *s, const char *name);

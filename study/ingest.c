@@ -56,7 +56,7 @@ static int recover_kept(drv *d, const char *id, sb_err *e)
 		layout_aside(d->dir, subs[bw], id, last, path, sizeof path);
 		h5sum s;
 		sb_err re = {0};
-		int bad = h5sum_read(path, &s, &re) != 0;
+		int bad = h5sum_read(path, id, &s, &re) != 0;
 		char msg[1200];
 		if (bw)
 			snprintf(msg, sizeof msg, "damaged (kept as damaged/%s.attempt%ld.h5)%s%s", id, last, bad ? ": " : "",
@@ -82,7 +82,7 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 		db_rollback(&d->db);
 		return e->code;
 	}
-	if (h5sum_read(path, &s, &re)) {
+	if (h5sum_read(path, id, &s, &re)) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
 	} else {
 		/* the file says whether the run started from the packing cache: a database
@@ -125,7 +125,7 @@ int ingest_cache(drv *d, const char *key, sb_err *e)
 	db_now(now, sizeof now);
 	h5sum s;
 	sb_err re = {0};
-	h5sum_read(path, &s, &re);
+	h5sum_read(path, key, &s, &re);
 	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
 	const char *end = h5sum_text(&s, "end_time");
 	return db_exec(&d->db, e, NULL,

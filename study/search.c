@@ -92,7 +92,7 @@ static double run_flux(const search *s, const char *id, int *damaged)
 	if (flux_read(path, &d, &e)) {
 		h5sum sum;
 		sb_err se = {0};
-		*damaged = h5sum_read(path, &sum, &se) != 0;
+		*damaged = h5sum_read(path, id, &sum, &se) != 0;
 		return NAN;
 	}
 	flux_opts o = {s->c->onset.band_lo, s->c->onset.band_hi, s->c->onset.skip};

@@ -48,7 +48,7 @@ static double run_flux(const sharpen *s, const char *id, int *damaged)
 	if (flux_read(path, &d, &e)) {
 		h5sum sum;
 		sb_err se = {0};
-		*damaged = h5sum_read(path, &sum, &se) != 0;
+		*damaged = h5sum_read(path, id, &sum, &se) != 0;
 		return NAN;
 	}
 	flux_opts o = FLUX_OPTS_DEFAULT;

@@ -108,7 +108,7 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			 * group silently */
 			h5sum s;
 			sb_err re = {0};
-			if (!exists(path) || h5sum_read(path, &s, &re)) {
+			if (!exists(path) || h5sum_read(path, r->id, &s, &re)) {
 				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
 					return e->code;
 				queued = 1;
@@ -120,7 +120,7 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			 * comes back from the file (the attempts are as recorded) */
 			h5sum s;
 			sb_err re = {0};
-			if (!h5sum_read(path, &s, &re)) {
+			if (!h5sum_read(path, r->id, &s, &re)) {
 				if (db_begin(&d->db, e) || db_result_put(&d->db, d->c.name, r->id, &s, e)) {
 					db_rollback(&d->db);
 					return e->code;

@@ -125,7 +125,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		report_done(name, 2, host, 0, "exec: missing argument file");
 		return 2; /* not transferred to this host: parallel --retries tries another */
 	}
-	char *argv[128];
+	char *argv[129]; /* the engine, 126 lines of the argument file, run_id, NULL */
 	int argc = 0;
 	char shake[1200];
 	/* the engine sits next to this binary (locally: bin/, remotely: the work dir) */
@@ -147,6 +147,13 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		argv[argc++] = strdup(line);
 	}
 	fclose(f);
+	/* the run's id, recorded in its file (core/h5id.h): a file later copied or linked
+	 * in place of another run's is known by it. Given here, not in the argument file,
+	 * so that a run whose arguments were written by an earlier version gets it too. */
+	char idarg[300];
+	snprintf(idarg, sizeof idarg, "run_id=%s", name);
+	if (!toomany)
+		argv[argc++] = strdup(idarg);
 	argv[argc] = NULL;
 	if (toomany) {
 		for (int i = 1; i < argc; i++)

@@ -993,6 +993,8 @@ static void keep(long iter, int kind, int target, const char *sig, const buf *in
 	shell_quote(f, getenv("ASAN_OPTIONS"));
 	fprintf(f, " UBSAN_OPTIONS=");
 	shell_quote(f, getenv("UBSAN_OPTIONS"));
+	fprintf(f, " LSAN_OPTIONS=");
+	shell_quote(f, getenv("LSAN_OPTIONS") ? getenv("LSAN_OPTIONS") : "");
 	fprintf(f, " \\\n  timeout %g", F.timeout);
 	for (int i = 0; argv[i]; i++) {
 		fputc(' ', f);

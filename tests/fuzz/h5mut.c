@@ -11,6 +11,13 @@
  *     --attr OBJ NAME VALUE     attribute NAME of OBJ := the scalar double VALUE
  *     --attr-array OBJ NAME N   attribute NAME of OBJ := N doubles
  *     --delete PATH             unlink PATH
+ *     --flip PATH               one bit of the stored bytes of dataset PATH's data
+ *                               flipped behind HDF5's back (in its first chunk), as a
+ *                               failing disk would
+ *     --stale-digest            (anywhere) the attribute digest is left as it was;
+ *                               without it every change through HDF5 is sealed again
+ *                               (core/h5id.h), so that the readers' checks behind the
+ *                               digest are what is tested
  *     --random SEED             one random change: a dataset's shape, type or values, an
  *                               attribute's type, shape or value, an object deleted or
  *                               turned into the other kind, a link to another dataset,
@@ -26,6 +33,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "h5id.h"
 
 static void die(const char *fmt, const char *a)
 {
@@ -552,17 +561,74 @@ static int random_bytes(const char *path)
 	return fclose(fp) ? -1 : 0;
 }
 
+/* A new digest over the attributes as they now are, unless asked not to. */
+static int stale;
+static void reseal(hid_t f)
+{
+	sb_err e = {0};
+	if (!stale && H5Aexists(f, H5ID_DIGEST_ATTR) > 0 && h5id_seal(f, &e))
+		die("%s", e.msg);
+}
+
+/* One bit of dataset path's first stored chunk (or its contiguous data), in the
+ * middle of it, flipped in the file's bytes. */
+static int flip(const char *file, const char *path)
+{
+	hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+	hid_t d = f >= 0 ? H5Dopen2(f, path, H5P_DEFAULT) : -1;
+	haddr_t at = HADDR_UNDEF;
+	hsize_t size = 0;
+	if (d >= 0) {
+		hid_t pl = H5Dget_create_plist(d);
+		if (H5Pget_layout(pl) == H5D_CHUNKED) {
+			hsize_t off[8];
+			unsigned mask;
+			hid_t sp = H5Dget_space(d);
+			if (H5Dget_chunk_info(d, sp, 0, off, &mask, &at, &size) < 0)
+				at = HADDR_UNDEF;
+			H5Sclose(sp);
+		} else {
+			at = H5Dget_offset(d);
+			size = H5Dget_storage_size(d);
+		}
+		H5Pclose(pl);
+		H5Dclose(d);
+	}
+	if (f >= 0)
+		H5Fclose(f);
+	if (at == HADDR_UNDEF || size == 0)
+		return -1;
+	FILE *fp = fopen(file, "r+b");
+	if (!fp)
+		return -1;
+	const long pos = (long)(at + size / 2);
+	int c = fseek(fp, pos, SEEK_SET) ? EOF : fgetc(fp);
+	int bad = c == EOF || fseek(fp, pos, SEEK_SET) || fputc(c ^ 0x10, fp) == EOF;
+	return fclose(fp) || bad ? -1 : 0;
+}
+
 int main(int argc, char **argv)
 {
 	if (argc < 3)
 		die("%s", "usage: h5mut IN OUT [--shape PATH DIMS | --set PATH INDEX VALUE | --attr OBJ NAME VALUE | "
-			  "--attr-array OBJ NAME N | --delete PATH | --random SEED] ...");
+			  "--attr-array OBJ NAME N | --delete PATH | --flip PATH | --stale-digest | --random SEED] ...");
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 	if (copy_file(argv[1], argv[2]))
 		die("cannot copy to %s", argv[2]);
 	int bytes = 0;
+	for (int i = 3; i < argc; i++)
+		if (!strcmp(argv[i], "--stale-digest"))
+			stale = 1;
 	for (int i = 3; i < argc; i++) {
 		const char *op = argv[i];
+		if (!strcmp(op, "--stale-digest"))
+			continue;
+		if (!strcmp(op, "--flip")) {
+			if (i + 1 > argc - 1 || flip(argv[2], argv[i + 1]))
+				die("cannot flip a bit of %s", i + 1 < argc ? argv[i + 1] : "?");
+			i++;
+			continue;
+		}
 		const int need = !strcmp(op, "--set") || !strcmp(op, "--attr") || !strcmp(op, "--attr-array") ? 3
 				 : !strcmp(op, "--shape")					       ? 2
 				 : !strcmp(op, "--delete") || !strcmp(op, "--random")		       ? 1
@@ -583,6 +649,7 @@ int main(int argc, char **argv)
 				int rc = -1;
 				for (int tries = 0; tries < 8 && rc; tries++)
 					rc = random_structured(f);
+				reseal(f);
 				H5Fclose(f);
 				if (below(4) == 0)
 					bytes = 1; /* and bytes too */
@@ -609,6 +676,8 @@ int main(int argc, char **argv)
 		} else if (!strcmp(op, "--delete")) {
 			rc = H5Ldelete(f, argv[i + 1], H5P_DEFAULT) < 0 ? -1 : 0;
 		}
+		if (!rc)
+			reseal(f);
 		H5Fclose(f);
 		if (rc)
 			die("%s failed", op);

@@ -86,11 +86,12 @@ h5snap() {
 # line (it names the file), without the /provenance and /h5md groups (who ran it, where,
 # with which build: /h5md/author is the user, whom ssh and a login shell name differently)
 # and without the named root or /parameters attributes (e.g. output, whose value is the
-# path the run was given).
+# path the run was given); nor the root's digest, which covers /provenance and /h5md too
+# (docs/inputs.md, "Run files").
 dump_noprov() {
 	local f=$1
 	shift
-	h5dump -m %.17g "$f" | awk -v skipattrs=" $* " 'NR == 1 { next }
+	h5dump -m %.17g "$f" | awk -v skipattrs=" digest $* " 'NR == 1 { next }
 		/^   GROUP "(provenance|h5md)" \{/ { skip = 1; end = "^   }$"; next }
 		/^   GROUP "parameters" \{/ { inparams = 1 }
 		inparams && /^   }$/ { inparams = 0 }
@@ -119,7 +120,7 @@ same_output() {
 	out=$(h5diff --exclude-path /provenance --exclude-path /h5md "$a" "$b" 2>&1)
 	rc=$?
 	[ "$rc" -le 1 ] || { echo "h5diff failed: $out" >&2; return 1; }
-	for n in "$@"; do
+	for n in digest "$@"; do
 		out=$(printf "%s\n" "$out" | grep -vF "attribute: <$n of </>> and <$n of </>>" |
 			grep -vF "attribute: <$n of </parameters>> and <$n of </parameters>>")
 	done

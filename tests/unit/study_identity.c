@@ -17,7 +17,7 @@
 /* The keys the driver owns (study/README.md) and those that change only how the state
  * is saved (checkpoint_every, compression): not in a run's id. */
 static const char *const DRIVER_KEYS[] = {"output", "checkpoint", "restart", "write_particles", "write_lammps",
-					  "progress", "checkpoint_every", "compression", NULL};
+					  "progress", "run_id", "checkpoint_every", "compression", NULL};
 
 static int driver_key(const char *k)
 {
