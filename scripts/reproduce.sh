@@ -472,7 +472,21 @@ runs_phi() {
 		echo
 		lammps C
 		# each code's own depth comparison: does the claim's verdict differ between the codes?
-		[ -f "$VAL" ] && sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 '^shakebox: .*LAMMPS: ' | sed 's/^/Each code alone, depth 1 against one row lower: /'
+		both=""
+		[ -f "$VAL" ] && both=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 '^shakebox: .*LAMMPS: ')
+		if [ -n "$both" ]; then
+			echo "Each code alone, depth 1 against one row lower: $both"
+			# "the codes agree" says only that they are not told apart bed by bed; when
+			# the depth effect is significant in one code alone, the reader is told whose it is
+			sb=${both%%LAMMPS:*} lm=${both#*LAMMPS:}
+			case "$sb|$lm" in
+			*"(significant)"*"|"*"(not significant)"*)
+				echo "So the depth effect 5a rests on is shakebox's: LAMMPS does not confirm it, and the two codes"
+				echo "are not told apart bed by bed either; more beds would decide whether it is the model's or one code's." ;;
+			*"(not significant)"*"|"*"(significant)"*)
+				echo "So the depth effect is LAMMPS's alone: shakebox does not show it on these beds." ;;
+			esac
+		fi
 		echo
 		if at_onset claim5_depth; then
 			claim5_table "${NAME[claim5_depth_on]}"
