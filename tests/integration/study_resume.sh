@@ -140,7 +140,7 @@ pid=$!
 victim=
 for i in $(seq 300); do
 	for w in $(pgrep -f "exec $TMP/W/k run" 2>/dev/null); do
-		id=$(tr '\0' '\n' <"/proc/$w/cmdline" 2>/dev/null | tail -n 1)
+		id=$({ tr '\0' '\n' <"/proc/$w/cmdline"; } 2>/dev/null | tail -n 1)
 		e=$(pgrep -P "$w" 2>/dev/null | head -n 1)
 		if [ -n "$e" ] && [ -e "W/k/$id.h5.ckpt" ]; then victim=$id; kill -KILL "$e"; break 2; fi
 	done
