@@ -272,9 +272,24 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	double interval = d->progress_tty ? 1 : 2, next = mono() + interval;
 	size_t cap = 65536, have = 0;
 	char *buf = malloc(cap);
+	/* GNU parallel ignores SIGTERM until its first jobs start ("Dummy until jobs
+	 * really start"): one sent in that moment is lost and every job would run. After
+	 * a stop it is sent again every second until parallel is gone (the engines take
+	 * a repeated SIGTERM as one). */
+	double resend = -1;
 	for (int open_ = buf != NULL; open_;) {
 		struct pollfd pf = {pfd[0], POLLIN, 0};
 		int ms = d->watch ? (int)((next - mono()) * 1000) : -1;
+		if (g_stop) {
+			if (resend < 0)
+				resend = mono() + 1;
+			else if (mono() >= resend) {
+				kill(pid, SIGTERM);
+				resend = mono() + 1;
+			}
+			int left = (int)((resend - mono()) * 1000) + 1;
+			ms = ms < 0 || left < ms ? left : ms;
+		}
 		int pr = poll(&pf, 1, d->watch && ms < 0 ? 0 : ms);
 		if (d->watch && mono() >= next) {
 			progress_line(d, 0);

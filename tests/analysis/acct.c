@@ -3,10 +3,14 @@
  * beyond the table's room collected as "other", runs in no group left out; runs that
  * are pending, running or without an output file classified before any file is read;
  * the versions rule. */
+#include <hdf5.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "acct.h"
+#include "h5id.h"
 #include "testlib.h"
 
 static an_run run(int group, const char *state, const char *status, int use)
@@ -78,9 +82,44 @@ int main(void)
 	x = run(0, "done", "ok", AN_USED);
 	snprintf(x.path, sizeof x.path, "/nonexistent/run.h5");
 	CHECK("acct.classify.done_without_file", acct_classify(&x) == 1 && x.use == AN_UNREADABLE, "use %d", x.use);
+	/* a path that is no run file (a directory) is unreadable, said so */
 	x = run(0, "done", "ok", AN_USED);
 	snprintf(x.path, sizeof x.path, "/");
-	CHECK("acct.classify.existing_file_is_the_tools", acct_classify(&x) == 0, "use %d", x.use);
+	CHECK("acct.classify.no_run_file", acct_classify(&x) == 1 && x.use == AN_UNREADABLE && x.why[0], "use %d",
+	      x.use);
+	/* a file that is this run's (format, run id, sealed) is the tool's to read; the
+	 * same file under another run's id is not */
+	char path[] = "/tmp/acct-run-XXXXXX";
+	int fd = mkstemp(path);
+	hid_t f = fd < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+	if (fd >= 0)
+		close(fd);
+	sb_err e = {0};
+	hid_t sp = H5Screate(H5S_SCALAR), ty = H5Tcopy(H5T_C_S1);
+	H5Tset_size(ty, 32);
+	char fmt[32] = H5ID_FORMAT, id[32] = "0123456789abcdef";
+	hid_t g = f < 0 ? -1 : H5Gcreate2(f, H5ID_RUN_OBJ, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t a1 = f < 0 ? -1 : H5Acreate2(f, H5ID_FORMAT_ATTR, ty, sp, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t a2 = g < 0 ? -1 : H5Acreate2(g, H5ID_RUN_ATTR, ty, sp, H5P_DEFAULT, H5P_DEFAULT);
+	int made = a1 >= 0 && a2 >= 0 && H5Awrite(a1, ty, fmt) >= 0 && H5Awrite(a2, ty, id) >= 0;
+	H5Aclose(a1);
+	H5Aclose(a2);
+	H5Gclose(g);
+	made = made && !h5id_seal(f, &e);
+	H5Tclose(ty);
+	H5Sclose(sp);
+	H5Fclose(f);
+	x = run(0, "done", "ok", AN_USED);
+	snprintf(x.path, sizeof x.path, "%s", path);
+	snprintf(x.id, sizeof x.id, "%s", id);
+	CHECK("acct.classify.existing_file_is_the_tools", made && acct_classify(&x) == 0, "made %d, use %d: %s", made,
+	      x.use, x.why);
+	x = run(0, "done", "ok", AN_USED);
+	snprintf(x.path, sizeof x.path, "%s", path);
+	snprintf(x.id, sizeof x.id, "%s", "fedcba9876543210");
+	CHECK("acct.classify.another_runs_file", made && acct_classify(&x) == 1 && x.use == AN_UNREADABLE,
+	      "made %d, use %d", made, x.use);
+	unlink(path);
 
 	/* versions: an earlier version's run is counted, and left out unless asked for */
 	long nold = 0;
