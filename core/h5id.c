@@ -1,5 +1,6 @@
 /* h5id.c - a run file's format, run id and attribute digest (h5id.h). */
 #include "h5id.h"
+#include "h5read.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -169,52 +170,12 @@ int h5id_seal(hid_t f, sb_err *e)
 	return bad ? sb_errf(e, SB_EIO, "cannot write the %s attribute", H5ID_DIGEST_ATTR) : 0;
 }
 
-/* A scalar string attribute, "" when missing; -1 when there but not one string. */
-static int str_attr(hid_t f, const char *obj, const char *name, char *buf, size_t len)
-{
-	buf[0] = 0;
-	if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) <= 0)
-		return 1;
-	hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-	hid_t t = a >= 0 ? H5Aget_type(a) : -1, sp = a >= 0 ? H5Aget_space(a) : -1;
-	int rc = -1;
-	if (t >= 0 && sp >= 0 && H5Sget_simple_extent_npoints(sp) == 1 && H5Tget_class(t) == H5T_STRING) {
-		if (H5Tis_variable_str(t) > 0) {
-			hid_t mt = H5Tcopy(H5T_C_S1);
-			char *p = NULL;
-			if (H5Tset_size(mt, H5T_VARIABLE) >= 0 && H5Tset_cset(mt, H5Tget_cset(t)) >= 0 &&
-			    H5Aread(a, mt, &p) >= 0 && p) {
-				snprintf(buf, len, "%s", p);
-				rc = 0;
-			}
-			if (p)
-				H5free_memory(p);
-			H5Tclose(mt);
-		} else {
-			const size_t n = H5Tget_size(t);
-			char *tmp = n && n < H5ID_MAX_ELEMS ? calloc(n + 1, 1) : NULL;
-			if (tmp && H5Aread(a, t, tmp) >= 0) {
-				snprintf(buf, len, "%s", tmp);
-				rc = 0;
-			}
-			free(tmp);
-		}
-	}
-	if (sp >= 0)
-		H5Sclose(sp);
-	if (t >= 0)
-		H5Tclose(t);
-	if (a >= 0)
-		H5Aclose(a);
-	return rc;
-}
-
 int h5id_check(hid_t f, const char *path, const char *want_id, int *note, sb_err *e)
 {
 	if (note)
 		*note = H5ID_OK;
 	char fmt[64], dgst[64], id[128], now[17];
-	const int rf = str_attr(f, "/", H5ID_FORMAT_ATTR, fmt, sizeof fmt);
+	const int rf = h5r_attr_str(f, "/", H5ID_FORMAT_ATTR, fmt, sizeof fmt);
 	if (rf)
 		return sb_errf(e, SB_EIO, "%s: not a shakebox run file (%s)", path,
 			       rf > 0 ? "no format attribute" : "its format attribute is not one string");
@@ -227,7 +188,7 @@ int h5id_check(hid_t f, const char *path, const char *want_id, int *note, sb_err
 	if (strcmp(fmt, H5ID_FORMAT))
 		return sb_errf(e, SB_EIO, "%s: format '%.40s', this version reads %s and %s", path, fmt, H5ID_FORMAT,
 			       H5ID_FORMAT_OLD);
-	const int rd = str_attr(f, "/", H5ID_DIGEST_ATTR, dgst, sizeof dgst);
+	const int rd = h5r_attr_str(f, "/", H5ID_DIGEST_ATTR, dgst, sizeof dgst);
 	if (rd)
 		return sb_errf(e, SB_EIO, "%s: %s", path,
 			       rd > 0 ? "no digest attribute (a damaged " H5ID_FORMAT " file)"
@@ -238,7 +199,7 @@ int h5id_check(hid_t f, const char *path, const char *want_id, int *note, sb_err
 	if (strcmp(now, dgst))
 		return sb_errf(e, SB_EIO, "%s: attributes do not match their digest (%.20s recorded, %s now): the file "
 			       "was changed after it was written", path, dgst, now);
-	const int ri = str_attr(f, H5ID_RUN_OBJ, H5ID_RUN_ATTR, id, sizeof id);
+	const int ri = h5r_attr_str(f, H5ID_RUN_OBJ, H5ID_RUN_ATTR, id, sizeof id);
 	if (ri)
 		return sb_errf(e, SB_EIO, "%s: %s", path, ri > 0 ? "no run id (" H5ID_RUN_OBJ "@" H5ID_RUN_ATTR ")"
 							 : "its run id is not one string");
