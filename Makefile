@@ -1,36 +1,41 @@
 # shakebox - top-level Makefile. Knobs first; `make help` lists the targets.
 CC      ?= cc
 CFLAGS  ?= -O3 -g
-# The widest vectors the build machine has: AVX-512 (x86-64-v4: the AVX-512 force
-# kernel and fused step, core/forces.c, core/integrate.c) or AVX2 (the vector loops of
-# the integrator gain 2x); set MARCH= to build for any x86-64. Results are
-# bit-identical either way: there is no FMA contraction (the AVX-512 kernel's one
-# explicit FMA multiplies by 1, -1 and 0, exactly, so it rounds as the plain sum) and
-# no reassociation (tests/integration/regression.sh compares the builds with one
-# reference).
-ifeq ($(origin MARCH),undefined)
-  MARCH := $(shell if grep -qw avx512vl /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v4; \
-		   elif grep -qw avx2 /proc/cpuinfo 2>/dev/null; then echo -march=x86-64-v3; fi)
+# One binary for every CPU of its architecture: everything is built for the baseline
+# (x86-64: SSE2), except the vector kernel (core/kvec.c), which is built once per
+# instruction set and chosen at start-up (docs/engine.md, "One vector kernel for every
+# CPU"). MARCH (e.g. MARCH=-march=native) builds the rest for one CPU instead: faster
+# nowhere measurable, and then not for other hosts. Results are bit-identical on every
+# path: there is no FMA contraction and no reassociation
+# (tests/integration/regression.sh runs every path against one reference).
+MARCH ?=
+TARGET := $(shell $(CC) -dumpmachine 2>/dev/null)
+ifneq ($(filter x86_64-%,$(TARGET)),)
+  KV_ISAS := avx512 avx2 sse2 w8
+else ifneq ($(filter aarch64-%,$(TARGET)),)
+  KV_ISAS := neon w8
+else
+  KV_ISAS := generic w8
 endif
+KV_FLAGS_avx512 = -march=x86-64-v4 -mtune=generic -Wno-psabi
+KV_FLAGS_avx2   = -march=x86-64-v3 -mtune=generic -Wno-psabi
+KV_FLAGS_sse2   = -march=x86-64 -mtune=generic -Wno-psabi
+KV_FLAGS_neon   = -Wno-psabi
+KV_FLAGS_generic = -Wno-psabi
+# eight lanes in plain code on any CPU of the architecture: the AVX-512 path's logic,
+# tested where AVX-512 is missing (never chosen by itself)
+KV_FLAGS_w8     = -Wno-psabi -DSB_KV_W=8 $(if $(filter x86_64-%,$(TARGET)),-march=x86-64 -mtune=generic)
 # No -ffast-math and no FMA contraction: a run must be bit-identical on every machine
 # that runs the same build (docs/model.md, "Integrators"). -fno-math-errno only drops the
 # errno side effect of sqrt (which nobody reads), so that it compiles to one instruction.
 BASEFLAGS = -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 SAN     ?= 0
-PORTABLE ?= 0
 V       ?= 0
 
 ifeq ($(SAN),1)
   BUILD   := build/san
   BIN     := build/san/bin
   XFLAGS  := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-else ifeq ($(PORTABLE),1)
-  # baseline x86-64 (SSE2 only): the scalar force kernel, checked against the same
-  # reference outputs as the build for this machine
-  BUILD   := build/port
-  BIN     := build/port/bin
-  MARCH   :=
-  XFLAGS  :=
 else
   BUILD   := build/rel
   BIN     := bin
@@ -49,8 +54,8 @@ else
   Q := @
 endif
 
-CORE_SRC  = $(filter-out core/shake_main.c,$(wildcard core/*.c))
-CORE_OBJ  = $(CORE_SRC:%.c=$(BUILD)/%.o)
+CORE_SRC  = $(filter-out core/shake_main.c core/kvec.c,$(wildcard core/*.c))
+CORE_OBJ  = $(CORE_SRC:%.c=$(BUILD)/%.o) $(KV_ISAS:%=$(BUILD)/core/kvec_%.o)
 LIB       = $(BUILD)/libshake.a
 TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
@@ -101,6 +106,12 @@ $(BUILD)/%.o: %.c $(BUILD)/flags | build/.deps-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(ALLCFLAGS) -c $< -o $@
+
+# the vector kernel, once per instruction set (kvec.h)
+$(KV_ISAS:%=$(BUILD)/core/kvec_%.o): $(BUILD)/core/kvec_%.o: core/kvec.c $(BUILD)/flags | build/.deps-ok
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  CC    $< ($*)")
+	$(Q)$(CC) $(ALLCFLAGS) $(KV_FLAGS_$*) -DSB_KV_NAME=$* -c $< -o $@
 
 # provenance.c gets the git hash and the compiler flags; version.h changes only when
 # they do, so an unchanged tree does not rebuild.

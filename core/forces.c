@@ -1,5 +1,6 @@
-/* forces.c - the contact law (docs/model.md, "Contact law") and the portable kernel
- * over the pair list. Conventions: n = (r_i - r_j)/d,
+/* forces.c - the contact law (docs/model.md, "Contact law") in plain C: the reference
+ * every path of the vector kernel (kvec.c) gives to the bit, and the scans over the
+ * list that need no speed. Conventions: n = (r_i - r_j)/d,
  * t = n rotated by +90 deg, overlap xi = R_i + R_j - d.
  *   F_N = Y xi + gamma_N m_eff xidot,  xidot = -(v_i - v_j).n          (eq. 2, signed)
  *   v_t = (v_i - v_j).t - (R_i w_i + R_j w_j)   (surface slip of i against j at the
@@ -51,103 +52,6 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		wi, wj, meff, fx, fy, &fs, &xi);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
-}
-
-/* Three passes over the flat pair list:
- *  1. "in contact?" for every pair, appended branch-free to a list (with d^2), so the
- *     pairs that are near but not touching cost no mispredicted branch;
- *  2. d and 1/d for the contacts in one contiguous loop, which the compiler
- *     vectorises: square root and division are the slowest operations of a contact
- *     and four lanes do them at nearly the cost of one;
- *  3. the contact forces, in a loop without data-dependent branches.
- * The kernel is instantiated once per value of clip, so that choice is made at setup
- * and costs nothing inside the loops. */
-static inline __attribute__((always_inline)) int kernel(const sb_law *law, sb_state *st,
-							const sb_nlist *nl, const sb_kscratch *ks,
-							double inv_dt, const int clip, double *restrict fsum)
-{
-	/* Velocities stay scaled (q1 = v dt): the 1/dt goes into the damping constants,
-	 * which saves four multiplications per contact. */
-	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
-		     mo = law->max_overlap;
-	const double *restrict x = st->q[C_X][0], *restrict y = st->q[C_Y][0];
-	const double *restrict vx = st->q[C_X][1], *restrict vy = st->q[C_Y][1],
-		     *restrict w = st->q[C_TH][1];
-	const double *restrict r = st->r;
-	double *restrict fxa = st->f[C_X], *restrict fya = st->f[C_Y], *restrict ta = st->f[C_TH];
-	const int *restrict pi = nl->pi, *restrict pj = nl->pj;
-	const double *restrict pmeff = ks->pmeff;
-	int *restrict clist = ks->contact;
-	double *restrict cd = ks->cd, *restrict cinv = ks->cinv;
-	const int np = nl->nflat;
-	int bad = 0;
-
-	memset(fxa, 0, sizeof(double) * (size_t)st->n);
-	memset(fya, 0, sizeof(double) * (size_t)st->n);
-	memset(ta, 0, sizeof(double) * (size_t)st->n);
-
-	int nc = 0;
-	for (int p = 0; p < np; p++) {
-		const int i = pi[p], j = pj[p];
-		const double dx = x[i] - x[j], dy = y[i] - y[j], rs = r[i] + r[j];
-		const double d2 = dx * dx + dy * dy;
-		clist[nc] = p;
-		cd[nc] = d2;
-		nc += d2 < rs * rs;
-	}
-
-	for (int k = 0; k < nc; k++) {
-		const double d = sqrt(cd[k]);
-		cd[k] = d;
-		cinv[k] = 1.0 / d;
-	}
-
-	for (int k = 0; k < nc; k++) {
-		const int p = clist[k];
-		const int i = pi[p], j = pj[p];
-		const double ri = r[i], rj = r[j];
-		double fx, fy, fs, xi;
-		contact(Y, gn, gs, mu, clip, x[i] - x[j], y[i] - y[j], cd[k], cinv[k], ri, rj,
-			vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], pmeff[p], &fx, &fy, &fs, &xi);
-		bad |= xi > mo * (ri < rj ? ri : rj);
-		if (fsum) { /* constant per instantiation: compiled away when NULL */
-			const double fa = sqrt(fx * fx + fy * fy);
-			fsum[i] += fa;
-			fsum[j] += fa;
-		}
-		fxa[i] += fx;
-		fya[i] += fy;
-		ta[i] -= ri * fs;
-		fxa[j] -= fx;
-		fya[j] -= fy;
-		ta[j] -= rj * fs;
-	}
-	return bad;
-}
-
-/* one instantiation per clip_attractive, and the ring's (fsum) compiled apart */
-static int kernel_plain(const sb_law *l, sb_state *s, const sb_nlist *n, const sb_kscratch *ks, double inv_dt)
-{
-	return kernel(l, s, n, ks, inv_dt, 0, NULL);
-}
-
-static int kernel_clip(const sb_law *l, sb_state *s, const sb_nlist *n, const sb_kscratch *ks, double inv_dt)
-{
-	return kernel(l, s, n, ks, inv_dt, 1, NULL);
-}
-
-static __attribute__((noinline)) int kernel_track(const sb_law *l, sb_state *s, const sb_nlist *n,
-						  const sb_kscratch *ks, double inv_dt, double *fsum)
-{
-	return l->clip ? kernel(l, s, n, ks, inv_dt, 1, fsum) : kernel(l, s, n, ks, inv_dt, 0, fsum);
-}
-
-int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb_kscratch *ks, double inv_dt,
-		   double *fabs_sum)
-{
-	if (fabs_sum)
-		return kernel_track(law, st, nl, ks, inv_dt, fabs_sum);
-	return law->clip ? kernel_clip(law, st, nl, ks, inv_dt) : kernel_plain(law, st, nl, ks, inv_dt);
 }
 
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,

@@ -1,5 +1,6 @@
 /* forces.h - Cundall-Strack contact forces (docs/model.md, "Contact law") over the
- * Verlet list: the law, the portable kernel, and the largest overlap. */
+ * Verlet list: the law in plain C (the reference of the vector kernel, kernel.h), the
+ * seam pairs, and the scans of the contacts. */
 #ifndef SB_FORCES_H
 #define SB_FORCES_H
 
@@ -12,24 +13,9 @@ typedef struct sb_law {
 	int clip;                /* clip_attractive */
 } sb_law;
 
-/* The portable kernel's per-pair scratch (kernel.c owns and sizes it): m_eff of each
- * pair of the list, and the pairs in contact this step with their distance and its
- * inverse. */
-typedef struct sb_kscratch {
-	double *pmeff, *cd, *cinv;
-	int *contact;
-} sb_kscratch;
-
-/* The portable kernel: contact forces and torques into st->f, evaluated at q[.][0]
- * with velocities q[.][1] * inv_dt, over a list of unscaled indices (pshift 0).
- * fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1
- * if some overlap exceeded max_overlap, else 0. A step calls it through kernel.h. */
-int forces_compute(const sb_law *law, sb_state *st, const sb_nlist *nl, const sb_kscratch *ks, double inv_dt,
-		   double *fabs_sum);
-
 /* Where the seam loop finds disk i's x, y and scaled velocities (at [i * ps] from
  * x, y, vx, vy) and adds its force and torque (at [i * fs] from fx, fy, t): the
- * state's arrays (ps = fs = 1) or the AVX-512 kernel's records and accumulators. */
+ * state's arrays (ps = fs = 1) or the vector kernel's records and accumulators. */
 typedef struct sb_seam_io {
 	const double *x, *y, *vx, *vy;
 	double *fx, *fy, *t;
@@ -37,9 +23,9 @@ typedef struct sb_seam_io {
 } sb_seam_io;
 
 /* The contact law over the seam pairs of periodic sides (nlist.h; none with walls):
- * disk i's image at x_i + period against disk j, the kernels' arithmetic to the bit
+ * disk i's image at x_i + period against disk j, the vector kernel's arithmetic to the bit
  * (scaled velocities, 1/dt in the damping), forces added after those of the flat
- * list in the list's order. fabs_sum as forces_compute. Returns 1 if some overlap
+ * list in the list's order. fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1 if some overlap
  * exceeded max_overlap, else 0. */
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
 		double *fabs_sum);

@@ -28,12 +28,12 @@ void integ_correct(const sb_integ *in, sb_state *st, double gy);
 void integ_correct_predict(const sb_integ *in, sb_state *st, double gy);
 
 /* The screening of the predicted state that a step does before its forces, done by
- * the AVX-512 build's fused corrector in the same pass (kernel_correct_predict): a disk
+ * the vector kernel's fused corrector in the same pass (kernel_correct_predict): a disk
  * moved more than half the skin since the last neighbour build (d^2 > lim), a
  * non-finite position or angle, a disk outside the box (x < xlo, x > xhi, y < ylo). */
 typedef struct sb_screen {
 	double lim, xlo, xhi, ylo;
-	int done;                 /* 0: not screened (portable build), check it yourself */
+	int done;                 /* 0: not screened (settling's drag path), check it yourself */
 	int rebuild, bad, out;
 } sb_screen;
 

@@ -1,18 +1,17 @@
-/* kernel.h - the force evaluation of a step and its fast path: the one module that
- * knows the AVX-512 kernel's per-disk records and the scaling of the pair list's
- * indices. Its interface is what a step needs: forces (into the state, or kept for
- * the fused corrector), the fused corrector, the sync of the state, the height of a
- * disk wherever it lives. The seam pairs of periodic sides (nlist.h) go through the
- * scalar law (forces_seam) after the flat list, in both builds alike. In a build without AVX-512 the same calls run the portable
- * kernel (forces.c) and correctors (integrate.c); both builds give the same numbers to
- * the bit (tests/integration/regression.sh).
+/* kernel.h - the force evaluation of a step: the vector kernel (kvec.c, one source
+ * compiled per instruction set; docs/engine.md, "One vector kernel for every CPU"),
+ * the instance this CPU runs chosen at start-up, and its fused corrector. Its
+ * interface is what a step needs: forces (into the state, or kept for the fused
+ * corrector), the fused corrector, the sync of the state, the height of a disk
+ * wherever it lives. The seam pairs of periodic sides (nlist.h) go through the scalar
+ * law (forces_seam) after the flat list. Every path gives the scalar law's numbers to
+ * the bit (tests/unit/kernel.c, tests/integration/regression.sh).
  *
- * The fast path of the AVX-512 build: every disk's contact data sit in a 64-byte
- * record (kernel_rec.h) that the kernel reads two per pair; the kernel adds each
- * contact's force into per-disk accumulators; on a fused step the corrector reads
- * those accumulators, corrects, predicts the next step and writes the next records in
- * one pass, keeping x, y and their velocities in the records only (the state's arrays
- * of them are stale until kernel_sync). */
+ * Every disk's contact data sit in a 64-byte record (kvec.h) that the kernel reads two
+ * per pair; the kernel adds each contact's force into per-disk accumulators; on a fused
+ * step the corrector reads those accumulators, corrects, predicts the next step and
+ * writes the next records in one pass, keeping x, y and their velocities in the
+ * records only (the state's arrays of them are stale until kernel_sync). */
 #ifndef SB_KERNEL_H
 #define SB_KERNEL_H
 
@@ -22,23 +21,37 @@
 #include "nlist.h"
 #include "state.h"
 
-/* The kernel is chosen at compile time: AVX-512 where the build targets it (make picks
- * -march=x86-64-v4 on such machines), the portable one elsewhere. */
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#define SB_KERNEL_AVX512 1
-#else
-#define SB_KERNEL_AVX512 0
-#endif
+/* The environment variable that forces a path (for tests and measurements): a name
+ * from kernel_paths, or "auto" (the default: the widest this CPU runs). */
+#define SB_KERNEL_ENV "SHAKEBOX_KERNEL"
+enum { SB_KPATHS_MAX = 4 };
+
+/* A path this build holds: its name, what the CPU needs for it, whether this one has it. */
+typedef struct sb_kpath {
+	const char *name, *needs;
+	int runnable;
+	int test; /* a path for tests and measurements, never chosen by itself */
+} sb_kpath;
+
+/* The paths of this build, widest first; returns how many (at most SB_KPATHS_MAX). */
+int kernel_paths(sb_kpath *out);
 
 typedef struct sb_kernel sb_kernel;
 
+/* The path named by SHAKEBOX_KERNEL, else the widest this CPU runs; an unknown name or
+ * one the CPU cannot run is an error (SB_EUSAGE) naming the variable and the choices. */
 int kernel_init(sb_kernel **k, const sb_state *st, sb_err *e);
+/* The same with the path given (NULL or "auto": the widest). */
+int kernel_init_path(sb_kernel **k, const sb_state *st, const char *name, sb_err *e);
+/* The name of the path that runs ("avx512", "avx2", "sse2", "neon", "generic"). */
+const char *kernel_path(const sb_kernel *k);
+/* Its candidate scan, for the neighbour list (nlist.h). */
+sb_scan_fn kernel_scan(const sb_kernel *k);
 void kernel_free(sb_kernel *k);
 
-/* The neighbour list stores i << kernel_pair_shift() for disk i: in the AVX-512 build
- * 3, the offset in doubles of the disk's record, so that the kernel addresses records
- * and accumulators with x86's scaled index and no shifts (32 of ~190 instructions per
- * eight pairs); 0 in the portable build. */
+/* The neighbour list stores i << kernel_pair_shift() for disk i: 3, the offset in
+ * doubles of the disk's record, so that the kernel addresses records and accumulators
+ * with x86's scaled index and no shifts. */
 int kernel_pair_shift(void);
 
 /* Contact forces at the current state (velocities q1 / dt). keep = 0: into st->f;

@@ -60,36 +60,9 @@ static int grow_flat(sb_nlist *nl, int need, sb_err *e)
 	return 0;
 }
 
-/* The candidate scan in AVX-512 where the build targets it. */
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#include <immintrin.h>
-/* Appends to the list the candidates k0..k1 (cell order) of disk i within reach ri:
- * eight at a time, the kept ones compressed out of the lanes in order. */
-static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1,
-			   int np)
-{
-	const __m512d X = _mm512_set1_pd(xi), Yv = _mm512_set1_pd(yi), R = _mm512_set1_pd(ri);
-	const __m256i I = _mm256_set1_epi32(i), I8 = _mm256_set1_epi32(i << nl->pshift);
-	const __m128i shift = _mm_cvtsi32_si128(nl->pshift);
-	for (int k = k0; k < k1; k += 8) {
-		const __mmask8 live = k1 - k >= 8 ? 0xff : (__mmask8)((1u << (k1 - k)) - 1);
-		const __m256i j = _mm256_maskz_loadu_epi32(live, nl->cell_idx + k);
-		const __m512d dx = _mm512_sub_pd(X, _mm512_maskz_loadu_pd(live, nl->xs + k));
-		const __m512d dy = _mm512_sub_pd(Yv, _mm512_maskz_loadu_pd(live, nl->ys + k));
-		const __m512d rc = _mm512_add_pd(R, _mm512_maskz_loadu_pd(live, nl->rs + k));
-		const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
-		const __mmask8 m = _mm512_mask_cmp_pd_mask(_mm256_mask_cmpgt_epi32_mask(live, j, I), d2,
-							   _mm512_mul_pd(rc, rc), _CMP_LT_OQ);
-		_mm256_storeu_si256((__m256i *)(nl->pj + np),
-				    _mm256_maskz_compress_epi32(m, _mm256_sll_epi32(j, shift)));
-		_mm256_storeu_si256((__m256i *)(nl->pi + np), I8);
-		np += __builtin_popcount(m);
-	}
-	return np;
-}
-#else
-static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1,
-			   int np)
+/* The plain candidate scan (sb_scan_fn): the reference the vector kernels' scans
+ * (kvec.c) give to the pair. */
+static int scan_plain(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1, int np)
 {
 	int *restrict pj = nl->pj, *restrict pi = nl->pi;
 	const int *restrict idx = nl->cell_idx;
@@ -103,7 +76,6 @@ static inline int scan_run(sb_nlist *nl, int i, double xi, double yi, double ri,
 	}
 	return np;
 }
-#endif
 
 int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err *e)
 {
@@ -113,6 +85,7 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err
 			       (INT_MAX - 64) >> pshift);
 	nl->skin = skin;
 	nl->pshift = pshift;
+	nl->scan = scan_plain;
 	nl->cap = st->n;
 	nl->large = calloc((size_t)st->n + 1, 1);
 	nl->large_list = malloc(sizeof(int) * ((size_t)st->n + 1));
@@ -120,10 +93,10 @@ int nlist_init(sb_nlist *nl, const sb_state *st, double skin, int pshift, sb_err
 	nl->cell_of = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_x = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
 	nl->cell_y = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->cell_idx = bigmem_alloc(sizeof(int) * ((size_t)st->n + 1));
-	nl->xs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->ys = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
-	nl->rs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
+	nl->cell_idx = bigmem_alloc(sizeof(int) * ((size_t)st->n + 9));
+	nl->xs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 9));
+	nl->ys = bigmem_alloc(sizeof(double) * ((size_t)st->n + 9));
+	nl->rs = bigmem_alloc(sizeof(double) * ((size_t)st->n + 9));
 	nl->xref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
 	nl->yref = bigmem_alloc(sizeof(double) * ((size_t)st->n + 1));
 	if (!nl->large || !nl->large_list || !nl->cell_of || !nl->cell_x || !nl->cell_y ||
@@ -366,7 +339,7 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 			const int k0 = nl->cell_start[yy * ncx + xa], k1 = nl->cell_start[yy * ncx + xb + 1];
 			if (np + (k1 - k0) + 16 > nl->fcap && grow_flat(nl, np + (k1 - k0) + 16, e))
 				return e->code;
-			np = scan_run(nl, i, xi, yi, ri, k0, k1, np);
+			np = nl->scan(nl, i, xi, yi, ri, k0, k1, np);
 		}
 	}
 	nl->npairs = np;

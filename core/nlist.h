@@ -8,7 +8,15 @@
 #include "err.h"
 #include "state.h"
 
-typedef struct sb_nlist {
+typedef struct sb_nlist sb_nlist;
+
+/* The candidate scan of one row of cells: appends to the flat list the pairs (i, j) of
+ * the candidates k0..k1 (cell order, j = cell_idx[k], coordinates xs, ys, rs) with j > i
+ * within reach ri of (xi, yi), in that order; returns the new count. The vector
+ * kernel's instance provides one (kernel_scan); nlist_init sets the plain one. */
+typedef int (*sb_scan_fn)(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, int k1, int np);
+
+struct sb_nlist {
 	double skin;
 	/* cell grid over the bounding box of all disks at the last build */
 	int ncx, ncy, ccap;
@@ -17,7 +25,9 @@ typedef struct sb_nlist {
 	int *cell_of;
 	int *cell_x, *cell_y;        /* the cell's column and row */
 	int *cell_pos;               /* scratch of the counting sort */
-	double *xs, *ys, *rs;       /* x, y, R of the disks in cell order (cell_idx) */
+	double *xs, *ys, *rs;       /* x, y, R of the disks in cell order (cell_idx); these and
+				     * cell_idx have 8 spare slots, so a scan reads whole vectors */
+	sb_scan_fn scan;
 	/* The flat list the force kernel walks: the npairs pairs (i, j > i) of ordinary
 	 * mobile i, in rows of ascending i (walls are j: they come after the mobile
 	 * disks), then the nbig pairs of the large disks, any order */
@@ -41,7 +51,7 @@ typedef struct sb_nlist {
 	double *xref, *yref;
 	int cap;
 	long builds;
-} sb_nlist;
+};
 
 /* Classify disks (large = radius above 1.5x the mean) and allocate; the list will
  * hold i << pshift for disk i (the force kernel's addressing, kernel.h). */

@@ -111,6 +111,7 @@ int sim_derive(sb_sim *s, sb_err *e)
 		return e->code;
 	if (nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e))
 		return e->code;
+	s->nl.scan = kernel_scan(s->kern);
 	if (s->sc.sides == SIDES_PERIODIC) {
 		/* no disk may reach its own image, nor a pair meet both ways round (the seam
 		 * list finds each pair of images once); params_validate checked the scene's

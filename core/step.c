@@ -1,7 +1,7 @@
 /* step.c - one time step, as a recipe: predict -> check -> neighbours -> forces ->
  * correct (the recording is the run loop's, run.c). Two recipes: the reference step,
  * whose corrected state anybody may read, and the fused one, whose corrector also
- * predicts the next step and, in the AVX-512 build, takes the forces straight from the
+ * predicts the next step and takes the forces straight from the
  * kernel (kernel.h). */
 #include "step.h"
 

@@ -22,7 +22,7 @@ run_one() { # name, command...
 	local p f
 	p=$(grep -c '^ok ' "$log")
 	f=$(grep -c '^FAIL ' "$log")
-	grep -E '^(FAIL|ok )' "$log" | sed 's/^/  /' | grep -v '^  ok ' || true
+	grep -E '^(FAIL|ok |SKIP )' "$log" | sed 's/^/  /' | grep -v '^  ok ' || true
 	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
 		echo "  FAIL $name: exited with status $rc without reporting a failure; its output ends:"
 		tail -n 15 "$log" | sed 's/^/    /'

@@ -1,8 +1,9 @@
-/* kernel.c - the force kernel module (core/kernel.h): the forces it gives are, to the
- * bit, those of the contact law applied pair by pair in list order with m_eff =
- * 1 / (1/m_i + 1/m_j) (forces_pair), in st->f and through the fused corrector's path;
- * the ring's |F| sums are those of the same pairs; and, in the AVX-512 build, the
- * per-disk records and accumulators give back exactly what went in. */
+/* kernel.c - the force kernel module (core/kernel.h), on every path of this build the
+ * CPU can run (the others are named on SKIP lines): the forces it gives are those of
+ * the contact law applied pair by pair in list order with m_eff = 1 / (1/m_i + 1/m_j)
+ * (forces_pair), in st->f and through the fused corrector's path; the ring's |F| sums
+ * are those of the same pairs; every path gives the first path's bits (forces, ring
+ * sums, fused step, neighbour list); an unknown or unrunnable path is refused. */
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -12,9 +13,6 @@
 #include "kernel.h"
 #include "prepare.h"
 #include "testlib.h"
-#if SB_KERNEL_AVX512
-#include "kernel_rec.h"
-#endif
 
 /* a bed of n grains scattered over W x H (overlapping: every pair a contact candidate)
  * above a floor of wall disks, with random velocities and spins */
@@ -74,7 +72,27 @@ static double max_rel(const double *a, const double *b, int n)
 	return scale > 0 ? worst / scale : worst;
 }
 
-static void test_forces(void)
+/* what the first path gave, for the others to equal: per clip, the forces, the ring
+ * sums, the fused step's state and the list */
+typedef struct firsts {
+	int have[2];
+	double *f[2][3], *fs[2], *q[2][3][6];
+	int *pi[2], *pj[2], np[2];
+} firsts;
+
+static int bits_equal(const void *a, const void *b, size_t bytes)
+{
+	return !memcmp(a, b, bytes);
+}
+
+static void *dup(const void *p, size_t bytes)
+{
+	void *q = malloc(bytes);
+	memcpy(q, p, bytes);
+	return q;
+}
+
+static void test_forces(const char *path, firsts *fi)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	for (int clip = 0; clip <= 1; clip++) {
@@ -86,10 +104,13 @@ static void test_forces(void)
 		sb_nlist nl;
 		sb_kernel *k = NULL;
 		sb_err e = {0};
-		int ok = !kernel_init(&k, &st, &e) && !nlist_init(&nl, &st, 0.5, kernel_pair_shift(), &e) &&
-			 !nlist_build(&nl, &st, &e);
-		char id[96];
-		snprintf(id, sizeof id, "kernel.clip%d.setup", clip);
+		int ok = !kernel_init_path(&k, &st, path, &e) && !nlist_init(&nl, &st, 0.5, kernel_pair_shift(), &e);
+		if (ok) {
+			nl.scan = kernel_scan(k);
+			ok = !nlist_build(&nl, &st, &e);
+		}
+		char id[128];
+		snprintf(id, sizeof id, "kernel.%s.clip%d.setup", path, clip);
 		CHECK(id, ok, "%s", e.msg);
 		if (!ok)
 			return;
@@ -103,7 +124,7 @@ static void test_forces(void)
 		int ncontact = 0;
 		for (int i = 0; i < st.n; i++)
 			ncontact += fs_ref[i] > 0;
-		snprintf(id, sizeof id, "kernel.clip%d.scene_has_contacts", clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d.scene_has_contacts", path, clip);
 		CHECK(id, ncontact > 100, "only %d disks touch", ncontact);
 		/* into st->f */
 		int bad = kernel_forces(k, &law, &st, &nl, inv_dt, 0, NULL, &e);
@@ -112,18 +133,20 @@ static void test_forces(void)
 			double r = max_rel(st.f[c], ref[c], st.n);
 			w = r > w ? r : w;
 		}
-		snprintf(id, sizeof id, "kernel.clip%d.forces_equal_pair_sums", clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d.forces_equal_pair_sums", path, clip);
 		/* a wrong m_eff, sign or torque would differ by far more than rounding */
 		CHECK(id, bad == 0 && w < 1e-12, "largest relative difference %.3g (kernel returned %d)", w, bad);
 		/* the ring's sums */
+		for (int c = 0; c < 3; c++)
+			memcpy(got[c], st.f[c], sizeof(double) * (size_t)st.n);
 		kernel_forces(k, &law, &st, &nl, inv_dt, 0, fs_got, &e);
-		snprintf(id, sizeof id, "kernel.clip%d.ring_sums_equal_pair_sums", clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d.ring_sums_equal_pair_sums", path, clip);
 		CHECK(id, max_rel(fs_got, fs_ref, st.n) < 1e-12, "largest relative difference %.3g",
 		      max_rel(fs_got, fs_ref, st.n));
 		/* an overlap beyond the threshold is reported */
 		sb_law tight = law;
 		tight.max_overlap = 1e-6;
-		snprintf(id, sizeof id, "kernel.clip%d.overlap_flag", clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d.overlap_flag", path, clip);
 		CHECK(id, kernel_forces(k, &tight, &st, &nl, inv_dt, 0, NULL, &e) == 1, "no overlap beyond 1e-6 R reported");
 		/* the fused path: forces kept, corrected and predicted in one pass, then
 		 * synced, equal the reference step (forces into st->f, correct, predict) */
@@ -136,8 +159,9 @@ static void test_forces(void)
 		integ_correct_predict(&in, &st, -981);
 		sb_kernel *k2 = NULL;
 		sb_nlist nl2;
-		kernel_init(&k2, &st2, &e);
+		kernel_init_path(&k2, &st2, path, &e);
 		nlist_init(&nl2, &st2, 0.5, kernel_pair_shift(), &e);
+		nl2.scan = kernel_scan(k2);
 		nlist_build(&nl2, &st2, &e);
 		sb_screen scr = {0.0625, -1e9, 1e9, -1e9, 0, 0, 0, 0};
 		kernel_forces(k2, &law, &st2, &nl2, inv_dt, 1, NULL, &e);
@@ -148,8 +172,38 @@ static void test_forces(void)
 		for (int c = 0; c < 3; c++)
 			for (int o = 0; o < 6; o++)
 				same &= !memcmp(st.q[c][o], st2.q[c][o], sizeof(double) * (size_t)st.nm);
-		snprintf(id, sizeof id, "kernel.clip%d.fused_equals_reference_step", clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d.fused_equals_reference_step", path, clip);
 		CHECK(id, same, "the fused corrector's state differs from forces + correct + predict");
+		/* every path gives the first path's bits */
+		const size_t nb = sizeof(double) * (size_t)st.n, mb = sizeof(double) * (size_t)st.nm;
+		if (!fi->have[clip]) {
+			fi->have[clip] = 1;
+			for (int c = 0; c < 3; c++) {
+				fi->f[clip][c] = dup(got[c], nb);
+				for (int o = 0; o < 6; o++)
+					fi->q[clip][c][o] = dup(st2.q[c][o], mb);
+			}
+			fi->fs[clip] = dup(fs_got, nb);
+			fi->np[clip] = nl.nflat;
+			fi->pi[clip] = dup(nl.pi, sizeof(int) * (size_t)nl.nflat);
+			fi->pj[clip] = dup(nl.pj, sizeof(int) * (size_t)nl.nflat);
+		} else {
+			int eq = nl.nflat == fi->np[clip] && bits_equal(nl.pi, fi->pi[clip], sizeof(int) * (size_t)nl.nflat) &&
+				 bits_equal(nl.pj, fi->pj[clip], sizeof(int) * (size_t)nl.nflat);
+			snprintf(id, sizeof id, "kernel.%s.clip%d.list_equals_first_path", path, clip);
+			CHECK(id, eq, "the candidate scan gave another list (%d pairs against %d)", nl.nflat, fi->np[clip]);
+			eq = bits_equal(fs_got, fi->fs[clip], nb);
+			for (int c = 0; c < 3; c++)
+				eq &= bits_equal(got[c], fi->f[clip][c], nb);
+			snprintf(id, sizeof id, "kernel.%s.clip%d.forces_equal_first_path_bits", path, clip);
+			CHECK(id, eq, "forces or ring sums differ from the first path's in some bit");
+			eq = 1;
+			for (int c = 0; c < 3; c++)
+				for (int o = 0; o < 6; o++)
+					eq &= bits_equal(st2.q[c][o], fi->q[clip][c][o], mb);
+			snprintf(id, sizeof id, "kernel.%s.clip%d.fused_step_equals_first_path_bits", path, clip);
+			CHECK(id, eq, "the fused step's state differs from the first path's in some bit");
+		}
 		nlist_free(&nl2);
 		kernel_free(k2);
 		state_free(&st2);
@@ -166,73 +220,66 @@ static void test_forces(void)
 	gsl_rng_free(rng);
 }
 
-#if SB_KERNEL_AVX512
-/* a distinct, exactly representable value per disk and field */
-static double val(int disk, int field) { return 1000.0 * disk + field + 0.25; }
-
-static void test_records(void)
+/* a path the CPU cannot run, and a name that is none, are refused with the variable's
+ * name and the choices */
+static void test_refusals(const sb_kpath *p, int n)
 {
-	double *rec = bigmem_alloc(sizeof(double) * 8 * 16), *acc = bigmem_alloc(sizeof(double) * 4 * 16);
-	double f[7][8];
-	for (int k = 0; k < 8; k++)
-		for (int c = 0; c < 7; c++)
-			f[c][k] = val(k, c);
-	for (int i = 0; i < 8 * 16; i++)
-		rec[i] = -1;
-	__m512d v[7];
-	for (int c = 0; c < 7; c++)
-		v[c] = _mm512_loadu_pd(f[c]);
-	/* fields: x y vx vy w R 1/m -> record (x, y, vx, vy, R w, 1/m, R, R) */
-	krec_store8(rec, v[0], v[1], v[2], v[3], v[4], v[5], v[6], 8);
-	int ok = 1;
-	for (int k = 0; k < 8; k++) {
-		const double *q = rec + 8 * k;
-		ok &= q[0] == f[0][k] && q[1] == f[1][k] && q[2] == f[2][k] && q[3] == f[3][k] &&
-		      q[4] == f[5][k] * f[4][k] && q[5] == f[6][k] && q[6] == f[5][k] && q[7] == f[5][k];
-	}
-	CHECK("kernel.rec.store8.layout", ok, "a record is not (x, y, vx, vy, R w, 1/m, R, R)");
-	__m512d x, y, vx, vy;
-	krec_load8(rec, &x, &y, &vx, &vy);
-	double g[4][8];
-	_mm512_storeu_pd(g[0], x);
-	_mm512_storeu_pd(g[1], y);
-	_mm512_storeu_pd(g[2], vx);
-	_mm512_storeu_pd(g[3], vy);
-	ok = 1;
-	for (int k = 0; k < 8; k++)
-		for (int c = 0; c < 4; c++)
-			ok &= g[c][k] == f[c][k];
-	CHECK("kernel.rec.load8.round_trip", ok, "x, y, vx, vy do not come back from the records");
-	/* a partial block writes its first records only (the walls' follow) */
-	krec_store8(rec + 64, v[0], v[1], v[2], v[3], v[4], v[5], v[6], 3);
-	ok = rec[64 + 8 * 2] == f[0][2];
-	for (int i = 64 + 8 * 3; i < 8 * 16; i++)
-		ok &= rec[i] == -1;
-	CHECK("kernel.rec.store8.partial_leaves_the_rest", ok, "a partial store wrote past its count");
-	/* accumulators (Fx, Fy, T, pad) -> three vectors */
-	for (int k = 0; k < 8; k++)
-		for (int c = 0; c < 4; c++)
-			acc[4 * k + c] = val(k, 10 + c);
-	__m512d fx, fy, t;
-	krec_load_acc8(acc, &fx, &fy, &t);
-	_mm512_storeu_pd(g[0], fx);
-	_mm512_storeu_pd(g[1], fy);
-	_mm512_storeu_pd(g[2], t);
-	ok = 1;
-	for (int k = 0; k < 8; k++)
-		for (int c = 0; c < 3; c++)
-			ok &= g[c][k] == val(k, 10 + c);
-	CHECK("kernel.rec.load_acc8.fx_fy_torque", ok, "the accumulators do not unpack to Fx, Fy, T");
-	free(rec);
-	free(acc);
+	sb_state st = {0};
+	sb_scene sc;
+	params_defaults(&sc);
+	sb_err e = {0};
+	prepare_push(&sc, &st, 0, 1, 1, KIND_GRAIN, &e);
+	sb_kernel *k = NULL;
+	int rc = kernel_init_path(&k, &st, "mmx", &e);
+	CHECK("kernel.refuses_unknown_path", rc == SB_EUSAGE && strstr(e.msg, SB_KERNEL_ENV) && strstr(e.msg, p[0].name),
+	      "rc %d, message '%s'", rc, e.msg);
+	kernel_free(k);
+	for (int i = 0; i < n; i++)
+		if (!p[i].runnable) {
+			e = (sb_err){0};
+			k = NULL;
+			rc = kernel_init_path(&k, &st, p[i].name, &e);
+			CHECK("kernel.refuses_path_the_cpu_lacks", rc == SB_EUSAGE && strstr(e.msg, "cannot run"),
+			      "%s: rc %d, message '%s'", p[i].name, rc, e.msg);
+			kernel_free(k);
+			break;
+		}
+	/* auto is the widest runnable path that is not for tests only */
+	e = (sb_err){0};
+	k = NULL;
+	rc = kernel_init_path(&k, &st, "auto", &e);
+	const char *want = NULL;
+	for (int i = 0; i < n && !want; i++)
+		if (p[i].runnable && !p[i].test)
+			want = p[i].name;
+	CHECK("kernel.auto_is_the_widest_runnable", rc == 0 && want && !strcmp(kernel_path(k), want), "auto chose %s, want %s",
+	      rc ? "(error)" : kernel_path(k), want ? want : "(none)");
+	kernel_free(k);
+	state_free(&st);
 }
-#endif
 
 int main(void)
 {
-	test_forces();
-#if SB_KERNEL_AVX512
-	test_records();
-#endif
+	sb_kpath p[SB_KPATHS_MAX];
+	const int n = kernel_paths(p);
+	firsts fi;
+	memset(&fi, 0, sizeof fi);
+	for (int i = 0; i < n; i++) {
+		if (p[i].runnable)
+			test_forces(p[i].name, &fi);
+		else
+			printf("SKIP kernel.%s: this CPU cannot run it (it needs %s)\n", p[i].name, p[i].needs);
+	}
+	test_refusals(p, n);
+	for (int c = 0; c < 2; c++) {
+		for (int d = 0; d < 3; d++) {
+			free(fi.f[c][d]);
+			for (int o = 0; o < 6; o++)
+				free(fi.q[c][d][o]);
+		}
+		free(fi.fs[c]);
+		free(fi.pi[c]);
+		free(fi.pj[c]);
+	}
 	return tl_done();
 }

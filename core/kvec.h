@@ -1,0 +1,73 @@
+/* kvec.h - private to the kernel module (kernel.c, kvec.c, and their unit test): the
+ * vector kernel's data and its per-ISA instances. kvec.c is one source, compiled once
+ * per instruction set with that set's -march and a name suffix; kernel.c picks one
+ * instance at start-up (docs/engine.md, "One vector kernel for every CPU").
+ *
+ * The data: every disk's contact data sit in a 64-byte record (x, y, vx, vy, R w, 1/m,
+ * R, R), read two per pair; a 32-byte accumulator (Fx, Fy, torque, 0) per disk takes
+ * one vector per contact. The fused corrector consumes the accumulators and writes the
+ * next step's records in the same pass over the disks. Velocities are the scaled
+ * Nordsieck ones (v dt), as everywhere in the kernel. The record's sixth lane is 1/m
+ * (0 only for a wall of infinite mass, docs/model.md "Walls"); the kernel forms
+ * m_eff = 1 / (1/m_i + 1/m_j) of a pair from its two records. */
+#ifndef SB_KVEC_H
+#define SB_KVEC_H
+
+#include "forces.h"
+#include "integrate.h"
+#include "nlist.h"
+#include "state.h"
+
+/* the pair list stores 8 i for disk i: the offset in doubles of its record */
+enum { SB_KSHIFT = 3, SB_KCHUNK = 256 };
+
+/* one chunk of the list's contacts, compressed out of the lanes: the disks (8 i, 8 j),
+ * the force on i and the torques -R_i F_S, R_j F_S (8 spare slots: whole vectors are
+ * stored) */
+typedef struct sb_kbuf {
+	_Alignas(64) double fx[SB_KCHUNK + 8], fy[SB_KCHUNK + 8], ti[SB_KCHUNK + 8], tj[SB_KCHUNK + 8];
+	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
+} sb_kbuf;
+
+typedef struct sb_kdata {
+	double *rec;      /* 8 doubles a disk, 64-byte aligned */
+	double *facc;     /* 4 doubles a disk */
+	sb_kbuf *kb;
+	long walls_packed; /* the list build whose wall records rec holds */
+	/* prefetch the far ends of the pairs: set when the per-disk data a step sweeps
+	 * outgrow half the last-level cache, where those loads come from memory */
+	int prefetch;
+} sb_kdata;
+
+/* One instance: the same functions for one instruction set. */
+typedef struct sb_kvec {
+	const char *name;  /* "avx512", "avx2", "sse2", "neon", "generic" */
+	/* contact forces at st (packed: the records and accumulators are current); keep:
+	 * leave them in the accumulators, else into st->f; fsum: the ring's |F| sums.
+	 * Returns 1 when an overlap exceeded law->max_overlap, else 0. */
+	int (*forces)(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
+		      int keep, int packed, double *fsum);
+	/* the fused corrector (integ_correct_predict, bit-identical) with the screening
+	 * of the predicted state; x, y, vx, vy are left in the records only */
+	void (*correct_predict)(sb_kdata *d, const sb_integ *in, sb_state *st, double gy, const sb_nlist *nl,
+				sb_screen *scr);
+	/* x, y, vx, vy of the mobile disks from the records into st */
+	void (*to_state)(const sb_kdata *d, sb_state *st);
+	/* the neighbour list's candidate scan (nlist.h, sb_scan_fn) */
+	sb_scan_fn scan;
+} sb_kvec;
+
+/* The instances this build holds: on x86-64 avx512 (x86-64-v4, 8 lanes), avx2
+ * (x86-64-v3, 4 lanes) and sse2 (baseline, 2 lanes); elsewhere the one for the
+ * target's baseline (neon on aarch64, 2 lanes). Everywhere w8: 8 lanes in plain code,
+ * the widest path's logic for the tests of a CPU without it, never chosen by itself. */
+#if defined(__x86_64__)
+extern const sb_kvec sb_kvec_avx512, sb_kvec_avx2, sb_kvec_sse2;
+#elif defined(__aarch64__)
+extern const sb_kvec sb_kvec_neon;
+#else
+extern const sb_kvec sb_kvec_generic;
+#endif
+extern const sb_kvec sb_kvec_w8;
+
+#endif
