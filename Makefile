@@ -61,7 +61,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz portable reproduce
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz reproduce
 all: $(SHAKE)
 
 help:
@@ -79,15 +79,14 @@ help:
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
 	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"
-	@echo "make portable   bin/shake-portable, bin/study-portable: what study run --sshloginfile sends to other hosts"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, deleted run dirs, litter (FAULT_ROUNDS=8)"
 	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from the campaigns beside them (FIG_JOBS=2)"
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files, and of run files (HDF5) read"
 	@echo "                by every analysis tool and study run, against the sanitizer build"
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
 	@echo "make clean      remove build products (never runs/)"
-	@echo "knobs: CC, CFLAGS, MARCH, V=1 (show commands), SAN=1 (sanitizer build in build/san),"
-	@echo "       PORTABLE=1 (baseline x86-64 build in build/port)"
+	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
+	@echo "       SAN=1 (sanitizer build in build/san); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"
 
 # Installs what is missing; a no-op when everything is there.
 deps:
@@ -118,7 +117,7 @@ $(KV_ISAS:%=$(BUILD)/core/kvec_%.o): $(BUILD)/core/kvec_%.o: core/kvec.c $(BUILD
 $(BUILD)/core/provenance.o: $(BUILD)/version.h
 $(BUILD)/version.h: FORCE | build/.deps-ok
 	@mkdir -p $(dir $@)
-	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS)" > $@.new
+	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS)" "$(strip $(MARCH))" > $@.new
 	$(Q)if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 $(BUILD)/core/provenance.o: ALLCFLAGS += -I$(BUILD)
 FORCE:
@@ -148,21 +147,12 @@ $(FAULT_SHIM): tests/faults/iofail.c | build/.deps-ok
 tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
-# the integration scripts; the release and the portable bin/shake run the regression
-# test too. It ends with "N passed, N failed".
+# the integration scripts; the release bin/shake runs the regression test too, on
+# every kernel path this CPU has. It ends with "N passed, N failed".
 check: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory all tests
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
-	$(Q)$(MAKE) --no-print-directory portable
 	$(Q)bash tests/run.sh
-
-# What travels to other hosts with `study run --sshloginfile` (study/README.md, "Across
-# hosts"): the baseline x86-64 build of the engine and of bin/study, which run on every
-# x86-64 host (the build above may use AVX-512) and give the same bits.
-portable: build/.deps-ok
-	$(Q)$(MAKE) --no-print-directory PORTABLE=1 build/port/bin/shake build/port/bin/study
-	$(Q)mkdir -p bin
-	$(Q)for b in shake study; do cp build/port/bin/$$b bin/$$b-portable.tmp && mv bin/$$b-portable.tmp bin/$$b-portable; done
 
 # Fault injection (I/O faults at random moments, damaged outputs, deleted run
 # directories and packing caches, litter, a second driver) against the sanitizer

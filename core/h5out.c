@@ -13,7 +13,7 @@
  *   /ring         the ring's averages: over the run and before the rise
  *   /final        every disk at the end (lab frame): x, y, vx, vy, omega, theta and
  *                 id, species, radius, mass
- *   /provenance   git hash, compiler, flags, host, times
+ *   /provenance   git hash, compiler, flags, host, CPU model, force kernel path, times
  *   /@digest      the attributes' digest, written last (core/h5id.h)
  * Every dataset that holds data carries a Fletcher32 checksum per chunk.
  * Object time stamps are off, so two runs of one scene give identical files apart
@@ -28,6 +28,7 @@
 #include "h5id.h"
 #include "h5md.h"
 #include "h5out.h"
+#include "kernel.h"
 #include "provenance.h"
 
 /* The engine step of a recorded time (times are step * dt exactly). */
@@ -938,6 +939,8 @@ static void write_provenance(h5w *h, const sb_sim *s)
 	h5w_attr_str(h, g, "compiler", p.compiler);
 	h5w_attr_str(h, g, "cflags", p.cflags);
 	h5w_attr_str(h, g, "host", p.host);
+	h5w_attr_str(h, g, "cpu", p.cpu);
+	h5w_attr_str(h, g, "kernel_path", kernel_path(s->kern));
 	h5w_attr_str(h, g, "start_time", p.start_time);
 	h5w_attr_str(h, g, "end_time", p.end_time);
 	h5w_attr_double(h, g, "loop_seconds", s->loop_seconds);

@@ -25,10 +25,56 @@ void prov_init(sb_prov *p)
 	snprintf(p->cflags, sizeof p->cflags, "%s", SB_CFLAGS);
 	if (gethostname(p->host, sizeof p->host - 1))
 		snprintf(p->host, sizeof p->host, "unknown");
+	prov_cpu(p->cpu, sizeof p->cpu);
 	prov_now(p->start_time);
+}
+
+int prov_portable(void)
+{
+	return SB_MARCH[0] == 0;
+}
+
+const char *prov_march(void)
+{
+	return SB_MARCH;
 }
 
 const char *prov_version(void)
 {
 	return "shakebox " SB_GIT_HASH;
+}
+
+void prov_cpu(char *out, size_t n)
+{
+	snprintf(out, n, "unknown");
+	FILE *f = fopen("/proc/cpuinfo", "r");
+	if (!f)
+		return;
+	/* the first processor's model name, and on x86 its family and model numbers
+	 * (a virtual machine may name only the vendor: "AMD EPYC") */
+	char line[512], name[96] = "", fam[16] = "", model[16] = "";
+	int procs = 0;
+	while (fgets(line, sizeof line, f)) {
+		if (!strncmp(line, "processor", 9) && ++procs > 1)
+			break; /* the first processor's lines only */
+		char *colon = strchr(line, ':');
+		if (!colon)
+			continue;
+		char *v = colon + 1;
+		v += strspn(v, " \t");
+		v[strcspn(v, "\n")] = 0;
+		if (!strncmp(line, "model name", 10) || !strncmp(line, "Model name", 10))
+			snprintf(name, sizeof name, "%s", v);
+		else if (!strncmp(line, "cpu family", 10))
+			snprintf(fam, sizeof fam, "%s", v);
+		else if (!strncmp(line, "model\t", 6) || !strncmp(line, "model ", 6))
+			snprintf(model, sizeof model, "%s", v);
+		if (name[0] && fam[0] && model[0])
+			break;
+	}
+	fclose(f);
+	if (name[0] && fam[0])
+		snprintf(out, n, "%s (family %s, model %s)", name, fam, model[0] ? model : "?");
+	else if (name[0])
+		snprintf(out, n, "%s", name);
 }

@@ -9,6 +9,8 @@
 #include "checkpoint.h"
 #include "clock.h"
 #include "h5out.h"
+#include "kernel.h"
+#include "provenance.h"
 #include "prep.h"
 #include "run.h"
 #include "sim.h"
@@ -22,11 +24,34 @@ static void on_signal(int sig)
 	g_stop = 1;
 }
 
+/* The force kernel's paths: for people (--version) or one a line for scripts. */
+static void print_kernels(FILE *f, int plain)
+{
+	sb_kpath p[SB_KPATHS_MAX];
+	const int n = kernel_paths(p);
+	char cpu[128];
+	prov_cpu(cpu, sizeof cpu);
+	if (!plain) {
+		const char *pick = NULL;
+		for (int i = 0; i < n && !pick; i++)
+			if (p[i].runnable && !p[i].test)
+				pick = p[i].name;
+		fprintf(f, "cpu: %s\nkernel path: %s (the widest this CPU runs; %s=NAME forces one)\npaths:", cpu,
+			pick ? pick : "none", SB_KERNEL_ENV);
+		for (int i = 0; i < n; i++)
+			fprintf(f, " %s%s%s", p[i].name, p[i].test ? " (tests)" : "", p[i].runnable ? "" : " (not on this CPU)");
+		fprintf(f, "\n");
+		return;
+	}
+	for (int i = 0; i < n; i++)
+		fprintf(f, "%s %s %s %s\n", p[i].name, p[i].runnable ? "yes" : "no", p[i].test ? "test" : "-", p[i].needs);
+}
+
 static void usage(FILE *f)
 {
 	fprintf(f,
 		"usage: shake [SCENE] [key=value ...] [--profile]\n"
-		"       shake --help | --params | --version\n\n"
+		"       shake --help | --params | --version | --kernel-paths\n\n"
 		"Simulates a vertically vibrated 2D box of soft disks (Poeschel & Herrmann 1995)\n"
 		"and writes one HDF5 file (output=...) with an XDMF sidecar for ParaView.\n"
 		"SCENE is an INI file of key = value lines (top level or [scene]); key=value\n"
@@ -34,7 +59,11 @@ static void usage(FILE *f)
 		"  --help      this text and every scene key with unit, default and range\n"
 		"  --params    the parameter table as TSV (for tools)\n"
 		"  --profile   time per phase of the step on stderr at the end\n"
-		"  --version   git hash of the build\n\n"
+		"  --version   git hash of the build, the CPU and the force kernel's paths\n"
+		"  --kernel-paths  the force kernel's paths, one a line: name, runs here (yes/no),\n"
+		"              for tests only (test/-), what the CPU needs (for scripts)\n\n"
+		"The force kernel runs the widest path this CPU has; SHAKEBOX_KERNEL=NAME forces\n"
+		"one (docs/kernel.md). Every path gives the same numbers to the bit.\n\n"
 		"Exit codes: 0 ok, 1 bad input, 2 I/O, 3 NaN/Inf, 4 overlap beyond max_overlap,\n"
 		"5 a disk left the box, 6 settling did not converge, 7 interrupted (SIGINT/SIGTERM;\n"
 		"a checkpoint is written when checkpoint_every > 0 and the run resumes from it).\n\n");
@@ -59,6 +88,11 @@ int main(int argc, char **argv)
 		}
 		if (!strcmp(a, "--version")) {
 			printf("%s\n", prov_version());
+			print_kernels(stdout, 0);
+			return 0;
+		}
+		if (!strcmp(a, "--kernel-paths")) {
+			print_kernels(stdout, 1);
 			return 0;
 		}
 		if (!strcmp(a, "--profile")) {
@@ -190,6 +224,7 @@ int main(int argc, char **argv)
 	}
 	if (profile) {
 		static const char *names[PH_N] = {"predict", "check", "neighbour", "force", "correct", "record"};
+		fprintf(stderr, "profile: kernel path %s on %s\n", kernel_path(s->kern), s->prov.cpu);
 		fprintf(stderr, "profile: %ld steps, %ld neighbour builds, %d pairs in the last list (%d of large disks)\n",
 			s->step, s->nl.builds, s->nl.npairs + s->nl.nbig, s->nl.nbig);
 		for (int k = 0; k < PH_N; k++)

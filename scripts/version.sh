@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# version.sh CC FLAGS - the provenance compiled into bin/shake (git hash, dirty flag,
-# compiler and flags). Prints a C header.
-cc="$1"; flags="$2"
+# version.sh CC FLAGS [MARCH] - the provenance compiled into bin/shake (git hash, dirty
+# flag, compiler and flags, the MARCH the build was made for: empty for every CPU).
+# Prints a C header.
+cc="$1"; flags="$2"; march="${3:-}"
 hash=$(git rev-parse --verify -q HEAD 2>/dev/null || echo unknown)
 dirty=0
 if git rev-parse --verify -q HEAD >/dev/null 2>&1; then
@@ -13,3 +14,4 @@ echo "#define SB_GIT_HASH \"$(esc "$hash")\""
 echo "#define SB_GIT_DIRTY $dirty"
 echo "#define SB_COMPILER \"$(esc "$ccv")\""
 echo "#define SB_CFLAGS \"$(esc "$flags")\""
+echo "#define SB_MARCH \"$(esc "$march")\""

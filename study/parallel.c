@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "drv.h"
+#include "provenance.h"
 #include "safe.h"
 #include "watch.h"
 #include "worker.h"
@@ -58,7 +59,7 @@ static int copy_exe(const char *src, const char *dst, sb_err *e)
 	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", dst, (long)getpid());
 	int in = open(src, O_RDONLY | O_CLOEXEC);
 	if (in < 0)
-		return sb_errf(e, SB_EUSAGE, "%s: %s: the binaries that travel to other hosts are built by `make portable`",
+		return sb_errf(e, SB_EUSAGE, "%s: %s: the binaries that travel to other hosts are the ones beside bin/study (make)",
 			       src, strerror(errno));
 	int out = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0755);
 	char buf[65536];
@@ -77,14 +78,18 @@ static int copy_exe(const char *src, const char *dst, sb_err *e)
 	return 0;
 }
 
-/* What travels to other hosts: the portable builds beside this binary
- * (study-portable, shake-portable: -march=x86-64, no AVX), as NAME/.remote/study and
- * .remote/shake, the names the worker looks for. The build for this machine may use
- * AVX-512, which another host may lack (SIGILL mid-run); the portable engine gives the
- * same bits (tests/integration/regression.sh, study_ssh.sh). */
+/* What travels to other hosts: the binaries beside this one (study, shake), as
+ * NAME/.remote/study and .remote/shake, the names the worker looks for. They run on
+ * every CPU of their architecture: the force kernel picks its path on each host at
+ * start-up, and every path gives the same bits (docs/kernel.md; regression.sh,
+ * study_ssh.sh). A build made for one CPU (MARCH=...) is refused: it may stop with
+ * SIGILL on another. */
 static int stage_remote(drv *d, char *dir, size_t len, sb_err *e)
 {
 	char bindir[PATHX], src[PATHX + 32], dst[PATHX + 32];
+	if (!prov_portable())
+		return sb_errf(e, SB_EUSAGE, "this build is for one CPU only (%s): rebuild without MARCH (make) to run on other hosts",
+			       prov_march());
 	snprintf(bindir, sizeof bindir, "%s", d->o->self);
 	*strrchr(bindir, '/') = 0;
 	snprintf(dir, len, "%s/.remote", d->dir);
@@ -92,7 +97,7 @@ static int stage_remote(drv *d, char *dir, size_t len, sb_err *e)
 		return e->code;
 	static const char *const names[] = {"study", "shake"};
 	for (int i = 0; i < 2; i++) {
-		snprintf(src, sizeof src, "%s/%s-portable", bindir, names[i]);
+		snprintf(src, sizeof src, "%s/%s", bindir, names[i]);
 		snprintf(dst, sizeof dst, "%s/%s", dir, names[i]);
 		if (copy_exe(src, dst, e))
 			return e->code;

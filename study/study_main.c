@@ -47,7 +47,7 @@ static const char *HELP_RUN =
 	"  --jobs N            parallel jobs (per host with --sshloginfile; default: cores)\n"
 	"  --sshloginfile FILE GNU parallel sshlogins; binaries and inputs are copied to\n"
 	"                      ~/.shakebox/NAME on each host, outputs copied back; the\n"
-	"                      portable engine (bin/shake-portable, make portable) travels;\n"
+	"                      engine beside bin/study travels (one binary for every CPU);\n"
 	"                      hosts that are down are left out, a job lost with its host\n"
 	"                      is redone on another\n"
 	"  --retries N         a run killed by a signal, failed on I/O or lost with its host\n"

@@ -3,21 +3,18 @@
 # 127.0.0.1 (own host key, own authorized key), two sshlogin entries pointing at it;
 # the campaign runs through GNU parallel's --basefile/--transferfile/--return, the
 # database stays local, and the outputs equal a local run of the same campaign. The
-# engine that travels is the portable build (bin/shake-portable, -march=x86-64): its
-# outputs are bit-identical to the local build's (AVX-512 here). Then hosts that die:
+# engine that travels is the one beside the driver (one binary for every CPU: its
+# kernel picks its path on each host). Then hosts that die:
 # one down from the start (left out by --filter-hosts) and one whose ssh starts failing
 # mid-campaign, killing the job it was running; the campaign completes and its export
 # equals an uninterrupted local run's (timing and host columns aside).
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
-for b in shake study; do
-	[ -x "$REPO/bin/$b-portable" ] || { fail setup "$REPO/bin/$b-portable is missing (make portable)"; finish; }
-done
 cd "$TMP" || exit 1
-# the driver finds what travels beside itself (study-portable, shake-portable), and
-# its local worker the engine beside itself: the binaries under test, plus the portable ones
-mkdir bin && cp "$STUDY" bin/study && cp "$SHAKE" bin/shake && cp "$REPO/bin/shake-portable" "$REPO/bin/study-portable" bin/ ||
+# the driver finds what travels beside itself (study, shake), and its local worker the
+# engine beside itself: the binaries under test
+mkdir bin && cp "$STUDY" bin/study && cp "$SHAKE" bin/shake ||
 	{ fail setup "cannot copy the binaries"; finish; }
 STUDY="$TMP/bin/study"
 SSHD=$(command -v sshd || echo /usr/sbin/sshd)
@@ -97,10 +94,9 @@ echo "# campaign over ssh (4 runs + 2 packings, 2 logins): $((($(date +%s%N) - t
 same=0
 for f in L/$NAME/*.h5; do same_output "$f" "S/$NAME/$(basename "$f")" && same=$((same + 1)); done
 [ "$same" = 4 ] && ok ssh.same_as_local || fail ssh.same_as_local "$same of 4 outputs identical to the local run"
-# what ran remotely was the portable engine, and the local one is the build for this
-# machine: the identical files above are the portable and native builds agreeing
-cmp -s "$HOME/.shakebox/$NAME/shake" bin/shake-portable && ! cmp -s bin/shake-portable bin/shake &&
-	ok ssh.portable_engine_sent || fail ssh.portable_engine_sent "the remote engine is not bin/shake-portable"
+# what ran remotely was the engine beside the driver
+cmp -s "$HOME/.shakebox/$NAME/shake" bin/shake && cmp -s "$HOME/.shakebox/$NAME/study" bin/study &&
+	ok ssh.engine_sent || fail ssh.engine_sent "the remote engine or driver is not the one beside the driver"
 # the same through the database: the exports equal but for when, where and how often
 strip() {
 	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
