@@ -162,8 +162,10 @@ faults: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
 	$(Q)FAULT_ROUNDS=$(FAULT_ROUNDS) SHAKE=$(CURDIR)/build/san/bin/shake bash tests/integration/faults.sh
 
+# the dispatched binary is also timed against a build for this CPU only (build/native)
 bench: build/.deps-ok all
-	$(Q)bash tests/bench/bench.sh
+	$(Q)$(MAKE) --no-print-directory MARCH=-march=native BUILD=build/native BIN=build/native/bin build/native/bin/shake
+	$(Q)NATIVE=build/native/bin/shake bash tests/bench/bench.sh
 
 demo: build/.deps-ok all
 	$(Q)bash scripts/demo.sh

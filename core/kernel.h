@@ -1,5 +1,5 @@
 /* kernel.h - the force evaluation of a step: the vector kernel (kvec.c, one source
- * compiled per instruction set; docs/engine.md, "One vector kernel for every CPU"),
+ * compiled per instruction set; docs/kernel.md),
  * the instance this CPU runs chosen at start-up, and its fused corrector. Its
  * interface is what a step needs: forces (into the state, or kept for the fused
  * corrector), the fused corrector, the sync of the state, the height of a disk

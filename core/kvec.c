@@ -1,18 +1,17 @@
 /* kvec.c - the force kernel, the fused corrector and the candidate scan, written once
  * over the vector layer (simd.h) and compiled once per instruction set (kvec.h; the
- * Makefile passes -march and SB_KV_NAME). docs/engine.md, "One vector kernel for every
- * CPU", tells the design; in short:
- *
- * The kernel takes W candidate pairs a vector (the native width: simd.h). Every disk's contact data are one
- * 64-byte record (kvec.h), so a pair's data are two record loads combined lane-wise
- * (differences, sums, R_i, R_j); eight pairs are transposed into lanes and m_eff =
- * 1 / (1/m_i + 1/m_j) formed there. Each lane performs the scalar law's operations in
- * its order (forces.c, contact(): no FMA, min and max with the ternaries' operand
- * order, the sign copy exact), so the forces are the scalar law's to the bit. The
- * contacts are compressed out of the lanes into a chunk buffer; a second pass adds
- * their forces to per-disk accumulators in list order, one 4-double vector per disk and contact - the order of the scalar sums, so
- * the totals are bit-identical too. Gathers are not used: on the AMD cores this was
- * tuned on they cost more than the loads and shuffles they would replace. */
+ * Makefile passes -march and SB_KV_NAME). docs/kernel.md tells the design; in short.
+ * The kernel takes W candidate pairs a vector (the native width: simd.h). Every disk's
+ * contact data are one 64-byte record (kvec.h), so a pair's data are two record loads
+ * combined lane-wise (differences, sums, R_i, R_j); W pairs are transposed into
+ * lanes and m_eff = 1 / (1/m_i + 1/m_j) formed there. Each lane performs the scalar
+ * law's operations in its order (forces.c, contact(): no FMA, min and max with the
+ * ternaries' operand order, the sign copy exact), so the forces are the scalar law's
+ * to the bit. The contacts are compressed out of the lanes into a chunk buffer; a
+ * second pass adds their forces to per-disk accumulators in list order, one 4-double
+ * vector per disk and contact - the order of the scalar sums, so the totals are bit-
+ * identical too. Gathers are not used: on the AMD cores this was tuned on they cost
+ * more than the loads and shuffles they would replace. */
 #include "kvec.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
 /* kvec.h - private to the kernel module (kernel.c, kvec.c, and their unit test): the
  * vector kernel's data and its per-ISA instances. kvec.c is one source, compiled once
  * per instruction set with that set's -march and a name suffix; kernel.c picks one
- * instance at start-up (docs/engine.md, "One vector kernel for every CPU").
+ * instance at start-up (docs/kernel.md).
  *
  * The data: every disk's contact data sit in a 64-byte record (x, y, vx, vy, R w, 1/m,
  * R, R), read two per pair; a 32-byte accumulator (Fx, Fy, torque, 0) per disk takes

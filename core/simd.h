@@ -1,13 +1,12 @@
-/* simd.h - the ISA-neutral vector layer of the force kernel (docs/engine.md, "One
- * vector kernel for every CPU"). The kernel (kvec.c) is written once over sb_vd, SB_W
- * doubles, with GCC's vector extensions: + - * / and comparisons are the compiler's.
- * What vector extensions cannot say is here, each with a plain-C form beside its
- * per-ISA one: square root, min and max with x86's operand order, a mask's bits, the
- * positions of its set bits; and the transposes, written with __builtin_shuffle, so
- * every ISA gets its own shuffles from one text. Nothing here rounds differently on another ISA: every lane does IEEE
- * double arithmetic, and -ffp-contract=off forbids fused multiply-adds, so all paths
- * give the scalar contact law's bits (tests/unit/kernel.c, regression.sh).
- *
+/* simd.h - the ISA-neutral vector layer of the force kernel (docs/kernel.md). The
+ * kernel (kvec.c) is written once over sb_vd, SB_W doubles, with GCC's vector
+ * extensions: + - * / and comparisons are the compiler's. What vector extensions
+ * cannot say is here, each with a plain-C form beside its per-ISA one: square root,
+ * min and max with x86's operand order, a mask's bits, the positions of its set bits;
+ * and the transposes, written with __builtin_shuffle, so every ISA gets its own
+ * shuffles from one text. Nothing here rounds differently on another ISA: every lane
+ * does IEEE double arithmetic, and -ffp-contract=off forbids fused multiply-adds, so
+ * all paths give the scalar contact law's bits (tests/unit/kernel.c, regression.sh).
  * Every function is static inline: each kvec.c instance (one per ISA, compiled with
  * its own -march) gets its own copy. */
 #ifndef SB_SIMD_H

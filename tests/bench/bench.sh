@@ -4,7 +4,7 @@
 #  1. paper scene (950 grains, radius ratio 4, 60 cm box, f = 3.2 Hz): settle once, then time
 #     1 simulated second (20000 steps) of shakebox and of LAMMPS gran/hooke (lammps_time.sh) on
 #     the same settled state, BENCH_REPS times each, interleaved (shake, lammps, shake, ...).
-#     Target: LAMMPS / shakebox >= 5 on one core.
+#     Target: LAMMPS / shakebox >= 6 on one core, on every path (1b).
 #  2. scaling: N = 1e3, 1e4, 1e5 grains, box width 60 cm * N/950 (same bed height), settled once
 #     each, then a short run timed BENCH_SCALE_REPS times, the sizes taking turns.  Target: ns
 #     per particle-step within 1.5x of the N = 1e3 figure.
@@ -28,6 +28,10 @@
 #                        so that no run migrates between cores - on the 2-core CI machines CPU 0
 #                        also takes the interrupts and its times spread twice as far; "none":
 #                        no pinning)
+#   BENCH_PATH_REPS=3    repetitions of the paper scene on every other kernel path this CPU runs
+#   NATIVE=path          a build of the same tree for this CPU only (make bench builds it with
+#                        MARCH=-march=native into build/native): timed against the dispatched
+#                        binary on the paper scene (BENCH_PATH_REPS each, interleaved); unset: skipped
 #   SHAKE=path           binary to time (default bin/shake; copied to build/bench/ first so a
 #                        rebuild during the benchmark cannot mix two engines)
 #   LMP=path             LAMMPS binary (passed to lammps_time.sh; default lmp)
@@ -38,6 +42,7 @@ root=$(cd "$here/../.." && pwd)
 cd "$root" || exit 1
 
 REPS=${BENCH_REPS:-9}
+PREPS=${BENCH_PATH_REPS:-3}
 SREPS=${BENCH_SCALE_REPS:-5}
 QUICK=${BENCH_QUICK:-0}
 NO_LAMMPS=${BENCH_NO_LAMMPS:-0}
@@ -196,6 +201,9 @@ fi
 mkdir -p "$W/log" || die "cannot create $W"
 SHAKE=$W/shake
 cp "$SHAKE_SRC" "$SHAKE" || die "cannot copy $SHAKE_SRC to $SHAKE"
+if [ -n "${NATIVE:-}" ]; then
+	cp "$NATIVE" "$W/shake-native" || die "cannot copy NATIVE=$NATIVE to $W/shake-native"
+fi
 : >"$REPORT"
 printf 'section\tN\tmetric\tvalue\tunit\n' >"$TSV"
 printf 'tag\tengine\tloop_seconds\tsteps\tmobile_or_atoms\twalls\tmax_rss_kib\n' >"$RUNS"
@@ -203,13 +211,17 @@ printf 'tag\tengine\tloop_seconds\tsteps\tmobile_or_atoms\twalls\tmax_rss_kib\n'
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 dirty=$(git status --porcelain --untracked-files=no -- core Makefile 2>/dev/null | wc -l)
 [ "$dirty" -gt 0 ] && commit="$commit+dirty($dirty files in core/ Makefile)"
-cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)
+cpu=$("$SHAKE" --version 2>/dev/null | sed -n 's/^cpu: //p')
+kpath=$("$SHAKE" --version 2>/dev/null | sed -n 's/^kernel path: \([^ ]*\).*/\1/p')
+isa=$(grep -m1 -ow -E 'avx512f|avx512vl|avx512dq|avx512bw|avx2|fma|bmi2|sse2|asimd' /proc/cpuinfo 2>/dev/null | sort -u | tr '\n' ' ')
 lmpver=skipped
 [ "$NO_LAMMPS" = 1 ] || lmpver=$("${LMP:-lmp}" -h 2>/dev/null | awk '/^Large-scale|LAMMPS \(/ { print; exit }')
 
 rep "shakebox speed benchmark  $(date '+%Y-%m-%d %H:%M:%S')"
 rep "  engine   $SHAKE_SRC  (commit $commit, md5 $(md5sum "$SHAKE" | cut -c1-12))"
 rep "  machine  ${cpu:-unknown CPU}, $(nproc) cores; load average at start $(cut -d' ' -f1-3 /proc/loadavg)"
+rep "  isa      ${isa:-unknown}"
+rep "  kernel   path ${kpath:-unknown} (the widest this CPU runs; section 1b times the others)"
 rep "  lammps   ${lmpver:-unknown}"
 rep "  settings BENCH_REPS=$REPS BENCH_SCALE_REPS=$SREPS BENCH_QUICK=$QUICK${PIN:+ BENCH_TASKSET=$PIN}$([ "$NO_LAMMPS" = 1 ] && echo " BENCH_NO_LAMMPS=1")"
 rep "  ns/particle-step = loop_seconds / (steps * particles) * 1e9; 'mobile' = grains + intruder,"
@@ -270,8 +282,8 @@ if [ "$NO_LAMMPS" != 1 ]; then
 	repf '   %-10s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile), %6.1f (all)\n' \
 		LAMMPS "$l_med" "$l_min" "$l_max" "$lns_m" "$lns_a"
 	best=$(calc "$l_min / $s_min")
-	repf '   speed-up LAMMPS/shakebox = %.2fx (ratio of medians)   target >= 5x: %s\n' \
-		"$speedup" "$(verdict "$speedup >= 5")"
+	repf '   speed-up LAMMPS/shakebox = %.2fx (ratio of medians)   target >= 6x: %s\n' \
+		"$speedup" "$(verdict "$speedup >= 6")"
 	repf '   (this machine'"'"'s times come in bursts: ratio of the fastest runs %.2fx; of each\n' "$best"
 	repf '   shakebox run and the LAMMPS run after it: median %.2fx, range %.2f .. %.2f)\n' "$r_med" "$r_min" "$r_max"
 	read -r v_med v_min v_max < <(stats "${verlet_t[@]}")
@@ -294,6 +306,64 @@ if [ "$NO_LAMMPS" != 1 ]; then
 else
 	rep "   LAMMPS skipped (BENCH_NO_LAMMPS=1): no speed-up figure"
 fi
+rep ""
+
+# --- 1b. every kernel path this CPU runs, and the dispatched binary against a native build
+rep "1b. The paper scene on every kernel path this CPU runs (SHAKEBOX_KERNEL; $PREPS runs each, interleaved;"
+rep "    loop wall time, median [min .. max]; ratio: LAMMPS's median of section 1 / this median)"
+declare -A PT
+paths=()
+while read -r path runs test needs; do
+	if [ "$runs" != yes ]; then
+		rep "    $(printf '%-8s' "$path") skipped: this CPU cannot run it (it needs $needs)"
+	elif [ "$test" = test ]; then
+		rep "    $(printf '%-8s' "$path") not timed: for tests only (eight lanes in plain code)"
+	else
+		paths+=("$path")
+	fi
+done < <("$SHAKE" --kernel-paths)
+for ((i = 1; i <= PREPS; i++)); do
+	for path in "${paths[@]}"; do
+		SHAKEBOX_KERNEL=$path run_shake "path_${path}_$i" particles="$PAPER" duration=1 output="$W/run.h5" "${RUN_FLAGS[@]}"
+		PT[$path]="${PT[$path]:-} $R_LOOP"
+	done
+	if [ -n "${NATIVE:-}" ]; then
+		SHAKE_KEEP=$SHAKE SHAKE=$W/shake-native
+		run_shake "native_$i" particles="$PAPER" duration=1 output="$W/run.h5" "${RUN_FLAGS[@]}"
+		SHAKE=$SHAKE_KEEP
+		PT[native]="${PT[native]:-} $R_LOOP"
+		run_shake "dispatched_$i" particles="$PAPER" duration=1 output="$W/run.h5" "${RUN_FLAGS[@]}"
+		PT[dispatched]="${PT[dispatched]:-} $R_LOOP"
+	fi
+	log "paths rep $i/$PREPS done"
+done
+for path in "${paths[@]}"; do
+	# shellcheck disable=SC2086
+	read -r m lo hi < <(stats ${PT[$path]})
+	if [ "$NO_LAMMPS" != 1 ]; then
+		repf '    %-8s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile)   LAMMPS/this = %.2fx\n' \
+			"$path" "$m" "$lo" "$hi" "$(calc "$m / ($PAPER_STEPS * $P_MOBILE) * 1e9")" "$(calc "$l_med / $m")"
+		tsv paths "$P_MOBILE" "speedup_$path" "$(calc "$l_med / $m")" x
+	else
+		repf '    %-8s %9.4f s  [%.4f .. %.4f]   %6.1f ns/particle-step (mobile)\n' \
+			"$path" "$m" "$lo" "$hi" "$(calc "$m / ($PAPER_STEPS * $P_MOBILE) * 1e9")"
+	fi
+	tsv paths "$P_MOBILE" "loop_median_$path" "$m" s
+done
+if [ -n "${NATIVE:-}" ]; then
+	# shellcheck disable=SC2086
+	read -r nm nlo nhi < <(stats ${PT[native]})
+	# shellcheck disable=SC2086
+	read -r dm dlo dhi < <(stats ${PT[dispatched]})
+	repf '    dispatched %.4f s [%.4f .. %.4f] against a build for this CPU only (MARCH=-march=native) %.4f s\n' \
+		"$dm" "$dlo" "$dhi" "$nm"
+	repf '    [%.4f .. %.4f]: the dispatched binary takes %+.1f %%   target within 5 %%: %s\n' "$nlo" "$nhi" \
+		"$(calc "($dm / $nm - 1) * 100")" "$(verdict "$dm <= 1.05 * $nm")"
+	tsv paths "$P_MOBILE" dispatched_over_native "$(calc "$dm / $nm")" x
+else
+	rep "    (the dispatched binary against a native build: skipped, NATIVE unset; make bench sets it)"
+fi
+rm -f "$W/run.h5" "$W/run.xmf"
 rep ""
 
 # --- 2. scaling + 3. memory ---------------------------------------------------------
