@@ -144,6 +144,30 @@ static void to_state(const sb_kdata *d, sb_state *st)
 
 /* ---- the force kernel ---- */
 
+/* The lane-wise combination of W fields from h of a pair's records a (of i) and b (of
+ * j): x, y, vx, vy of i minus j (fields 0-3), R w and 1/m of i plus j (4, 5), R_i (6),
+ * R_j (7). Where a vector holds fields of one kind that is one operation; else
+ * a wa + b wb, whose products are exact (x 1, -1, 0), so that its one rounding is
+ * that of a - b or a + b, and R_i + 0, 0 + R_j are R_i, R_j: the same numbers. */
+SB_INLINE sb_vd rec_pair(sb_vd a, sb_vd b, const int h, sb_vd wa, sb_vd wb)
+{
+	if (h + SB_W <= 4)
+		return a - b;
+#if SB_W < 8
+	(void)wa;
+	(void)wb;
+#endif
+#if SB_W == 2
+	if (h == 4)
+		return a + b;
+	return __builtin_shuffle(a, b, (sb_vl){0, 3});
+#elif SB_W == 4
+	return __builtin_shuffle(a + b, __builtin_shuffle(a, b, (sb_vl){0, 0, 2, 7}), (sb_vl){0, 1, 6, 7});
+#else
+	return a * wa + b * wb;
+#endif
+}
+
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		     const int clip, double *restrict fsum, const int packed, const int keep, const int pf)
 {
@@ -154,10 +178,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	const sb_vd Y = sb_splat(law->Y), gn = sb_splat(law->gn * inv_dt), gs = sb_splat(law->gs * inv_dt),
 		    mu = sb_splat(law->mu), mo = sb_splat(law->max_overlap), one = sb_splat(1.0),
 		    zero = sb_splat(0.0);
-	/* the lane-wise combination of a pair's records a (of i) and b (of j) as
-	 * a wa + b wb: both products are exact (x 1, -1, 0), so the one rounding is that
-	 * of a - b or a + b, and lanes 6 and 7 are R_i + 0 and 0 + R_j - the scalar
-	 * kernel's numbers to the bit */
+	/* the weights of rec_pair's general form */
 	const double wa[8] = {1, 1, 1, 1, 1, 1, 1, 0}, wb[8] = {-1, -1, -1, -1, 1, 1, 0, 1};
 	double *restrict facc = kd->facc;
 	/* packed: the fused corrector of the last step wrote the mobile disks' records
@@ -193,7 +214,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			for (int h = 0; h < 8; h += SB_W) {
 				const sb_vd ka = sb_load(wa + h), kb_ = sb_load(wb + h);
 				for (int l = 0; l < SB_W; l++)
-					t[h + l] = sb_load(rec + pi[p + l] + h) * ka + sb_load(rec + pj[p + l] + h) * kb_;
+					t[h + l] = rec_pair(sb_load(rec + pi[p + l] + h), sb_load(rec + pj[p + l] + h), h, ka, kb_);
 				sb_transpose(t + h);
 			}
 			const sb_vd dx = t[0], dy = t[1], dvx = t[2], dvy = t[3], rw = t[4], ims = t[5], ri = t[6],
