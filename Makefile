@@ -185,5 +185,6 @@ clean:
 -include tests/bench/bench.mk
 -include tests/bench/validate.mk
 -include tests/fuzz/fuzz.mk
+-include tests/cross/cross.mk
 
 -include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# run.sh TEST... - run cross-built test programs under $QEMU (`make cross-aarch64`,
+# docs/cross.md). Each test prints "ok ID" or "FAIL ID: why", as natively; a program
+# that dies without saying FAIL counts as one failure. With NATIVE (a build directory
+# of this machine, e.g. build/rel), the same test built natively runs too, and its
+# output must be the same line for line, the numbers the tests print included
+# ("# ..." lines): a check "cross.same_output.TEST". Only checks of the native build's
+# own instruction set (lines "ok ..." that the cross build lacks) may be extra.
+# One line per program, then "N passed, N failed"; exits non-zero on any failure.
+set -u
+cd "$(dirname "$0")/../.."
+QEMU=${QEMU:-qemu-aarch64 -L /usr/aarch64-linux-gnu}
+pass=0 fail=0
+log=$(mktemp)
+nlog=$(mktemp)
+trap 'rm -f "$log" "$nlog"' EXIT
+NATIVE=${NATIVE:-}
+CROSS_BUILD=${CROSS_BUILD:-build/aarch64}
+[ $# -gt 0 ] || { echo "run.sh: no test programs given" >&2; exit 2; }
+for t in "$@"; do
+	t0=$SECONDS
+	# shellcheck disable=SC2086 # QEMU is a command and its options
+	$QEMU "$t" >"$log" 2>&1
+	rc=$?
+	p=$(grep -c '^ok ' "$log")
+	f=$(grep -c '^FAIL ' "$log")
+	grep '^FAIL ' "$log" | sed 's/^/  /'
+	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+		echo "  FAIL $t: exited with status $rc without reporting a failure; its output ends:"
+		tail -n 15 "$log" | sed 's/^/    /'
+		f=1
+	elif [ "$p" -eq 0 ] && [ "$f" -eq 0 ]; then
+		echo "  FAIL $t: reported no check; its output ends:"
+		tail -n 15 "$log" | sed 's/^/    /'
+		f=1
+	fi
+	same=""
+	if [ -n "$NATIVE" ]; then
+		n=$NATIVE/${t#"$CROSS_BUILD"/}
+		"$n" >"$nlog" 2>&1
+		# what differs, but the summary lines and the native build's extra checks
+		all=$(diff <(grep -v '^# [0-9]* passed, [0-9]* failed$' "$log") \
+			<(grep -v '^# [0-9]* passed, [0-9]* failed$' "$nlog") | grep '^[<>]')
+		d=$(printf '%s\n' "$all" | grep -v '^> ok ' | grep .)
+		if [ -z "$d" ]; then
+			p=$((p + 1))
+			same=", output as on x86-64"
+			extra=$(printf '%s\n' "$all" | grep -c '^> ok ')
+			[ "$extra" -eq 0 ] || same+=" + $extra x86-64-only checks"
+		else
+			echo "  FAIL cross.same_output.${t#"$CROSS_BUILD"/}: the output differs from $n's (< aarch64, > x86-64):"
+			printf '%s\n' "$d" | head -n 10 | sed 's/^/    /'
+			f=$((f + 1))
+		fi
+	fi
+	pass=$((pass + p)); fail=$((fail + f))
+	printf '%-44s %3d passed %3d failed  (%ds%s)\n' "$t" "$p" "$f" $((SECONDS - t0)) "$same"
+done
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
