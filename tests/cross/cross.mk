@@ -1,5 +1,7 @@
 # cross.mk - `make cross-aarch64`: the engine and its unit and physics tests built by
-# Debian's cross compiler for aarch64 and run under qemu-user (docs/cross.md). Included by the top-level Makefile; not
+# Debian's cross compiler for aarch64 and run under qemu-user; `make
+# cross-aarch64-regression`: the engine under qemu on the regression scenes, compared
+# with the x86-64 references (docs/cross.md). Included by the top-level Makefile; not
 # part of `make check` (it needs `make deps-cross`, and qemu is slow).
 #
 # The build is this Makefile run again with the cross compiler, a build directory of
@@ -21,7 +23,7 @@ CROSS_SHAKE    = $(CROSS_BUILD)/bin/shake
 CROSS_MAKE     = PKG_CONFIG_LIBDIR=$(CROSS_PKGDIR) $(MAKE) --no-print-directory \
 		 CC=$(CROSS_CC) BUILD=$(CROSS_BUILD) BIN=$(CROSS_BUILD)/bin SAN=0 PORTABLE=0
 
-.PHONY: deps-cross cross-aarch64 cross-aarch64-build cross-aarch64-products
+.PHONY: deps-cross cross-aarch64 cross-aarch64-build cross-aarch64-products cross-aarch64-regression
 
 deps-cross:
 	$(Q)CROSS_ROOT=$(CROSS_ROOT) bash scripts/deps_cross.sh
@@ -44,3 +46,5 @@ cross-aarch64-products: $(LIB) $(SHAKE) $(CROSS_TSRC:%.c=$(BUILD)/%)
 cross-aarch64: cross-aarch64-build $(CROSS_TSRC:%.c=$(BUILD)/%)
 	$(Q)QEMU="$(CROSS_QEMU)" NATIVE=$(BUILD) CROSS_BUILD=$(CROSS_BUILD) bash tests/cross/run.sh $(CROSS_TBIN)
 
+cross-aarch64-regression: cross-aarch64-build $(SHAKE)
+	$(Q)QEMU="$(CROSS_QEMU)" CROSS_SHAKE=$(CURDIR)/$(CROSS_SHAKE) bash tests/cross/regression.sh
