@@ -52,7 +52,8 @@ if [ -f "$CROSS_ROOT/versions" ] && [ "$(cat "$CROSS_ROOT/versions")" = "${want%
 fi
 echo "deps-cross: unpacking the $ARCH development packages of HDF5 and GSL into $CROSS_ROOT" >&2
 tmp=$(mktemp -d)
-chmod 755 "$tmp" # apt-get download writes as the _apt user
+# apt-get download writes the files as the _apt user (else it warns and writes as root)
+if [ "$(id -u)" -eq 0 ] && id _apt >/dev/null 2>&1; then chown _apt "$tmp"; fi
 trap 'rm -rf "$tmp"' EXIT
 update
 for u in "${UNPACK[@]}"; do
