@@ -14,7 +14,7 @@ set -euo pipefail
 ARCH=arm64
 TRIPLET=aarch64-linux-gnu
 CROSS_ROOT=${CROSS_ROOT:-/opt/shakebox-cross/$TRIPLET}
-HOST_PKGS=(gcc-$TRIPLET binutils-$TRIPLET qemu-user pkg-config)
+HOST_PKGS=("gcc-$TRIPLET" "binutils-$TRIPLET" qemu-user pkg-config)
 # co-installable with the amd64 ones: the libraries and headers the engine links,
 # and the runtime libraries of the two that are unpacked
 ARM_PKGS=(libinih-dev libsqlite3-dev libhdf5-103-1 libgsl27 libgslcblas0)

@@ -8,7 +8,7 @@
 # own instruction set (lines "ok ..." that the cross build lacks) may be extra.
 # One line per program, then "N passed, N failed"; exits non-zero on any failure.
 set -u
-cd "$(dirname "$0")/../.."
+cd "$(dirname "$0")/../.." || exit 1
 QEMU=${QEMU:-qemu-aarch64 -L /usr/aarch64-linux-gnu}
 pass=0 fail=0
 log=$(mktemp)
