@@ -84,7 +84,7 @@ help:
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files, and of run files (HDF5) read"
 	@echo "                by every analysis tool and study run, against the sanitizer build"
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
-	@echo "make cross-aarch64  engine and unit/physics tests built for aarch64, run under qemu (deps-cross; cross-aarch64-regression; docs/cross.md)"
+	@echo "make cross-aarch64  the engine and every test program built for aarch64, run under qemu (deps-cross; -regression; docs/cross.md)"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
 	@echo "       SAN=1 (sanitizer build in build/san); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"

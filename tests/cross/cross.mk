@@ -1,4 +1,4 @@
-# cross.mk - `make cross-aarch64`: the engine and its unit and physics tests built by
+# cross.mk - `make cross-aarch64`: the engine and the test programs built by
 # Debian's cross compiler for aarch64 and run under qemu-user; `make
 # cross-aarch64-regression`: the engine under qemu on the regression scenes, compared
 # with the x86-64 references (docs/cross.md). Included by the top-level Makefile; not
@@ -15,9 +15,9 @@ CROSS_BUILD   ?= build/aarch64
 CROSS_ROOT    ?= /opt/shakebox-cross/$(CROSS_TRIPLET)
 CROSS_PKGDIR   = $(CROSS_ROOT)/pkgconfig:/usr/lib/$(CROSS_TRIPLET)/pkgconfig:/usr/share/pkgconfig
 CROSS_QEMU    ?= qemu-aarch64 -L /usr/$(CROSS_TRIPLET)
-# the unit tests that need only the engine library (study_* link bin/study's modules
-# too), and the physics tests
-CROSS_TSRC     = $(filter-out tests/unit/study_%,$(wildcard tests/unit/*.c)) $(wildcard tests/physics/*.c)
+# every test program: the engine's unit and physics tests, and those of bin/study's
+# modules and of the analysis library (CROSS_TSRC=tests/unit/kernel.c narrows it)
+CROSS_TSRC    ?= $(wildcard tests/unit/*.c tests/physics/*.c tests/analysis/*.c)
 CROSS_TBIN     = $(CROSS_TSRC:%.c=$(CROSS_BUILD)/%)
 CROSS_SHAKE    = $(CROSS_BUILD)/bin/shake
 CROSS_MAKE     = PKG_CONFIG_LIBDIR=$(CROSS_PKGDIR) $(MAKE) --no-print-directory \
