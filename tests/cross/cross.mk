@@ -47,4 +47,4 @@ cross-aarch64: cross-aarch64-build $(CROSS_TSRC:%.c=$(BUILD)/%)
 	$(Q)QEMU="$(CROSS_QEMU)" NATIVE=$(BUILD) CROSS_BUILD=$(CROSS_BUILD) bash tests/cross/run.sh $(CROSS_TBIN)
 
 cross-aarch64-regression: cross-aarch64-build $(SHAKE)
-	$(Q)QEMU="$(CROSS_QEMU)" CROSS_SHAKE=$(CURDIR)/$(CROSS_SHAKE) bash tests/cross/regression.sh
+	$(Q)QEMU="$(CROSS_QEMU)" CROSS_SHAKE=$(CURDIR)/$(CROSS_SHAKE) NATIVE_SHAKE=$(CURDIR)/$(SHAKE) bash tests/cross/regression.sh
