@@ -6,8 +6,9 @@
 #
 # The build is this Makefile run again with the cross compiler, a build directory of
 # its own and the arm64 pkg-config files, so that whatever core/ holds is built the
-# same way as natively. The compiler's target (-dumpmachine) is not x86-64, so no
-# x86 -march is taken from this machine.
+# same way as natively: the Makefile picks the vector kernel's instruction sets from
+# the compiler's target (-dumpmachine). MARCH, a knob for this machine's CPU, is
+# emptied.
 CROSS_TRIPLET ?= aarch64-linux-gnu
 CROSS_CC      ?= $(CROSS_TRIPLET)-gcc
 CROSS_BUILD   ?= build/aarch64
@@ -20,8 +21,7 @@ CROSS_QEMU    ?= qemu-aarch64 -L /usr/$(CROSS_TRIPLET)
 CROSS_TSRC    ?= $(wildcard tests/unit/*.c tests/physics/*.c tests/analysis/*.c)
 CROSS_TBIN     = $(CROSS_TSRC:%.c=$(CROSS_BUILD)/%)
 CROSS_SHAKE    = $(CROSS_BUILD)/bin/shake
-CROSS_MAKE     = PKG_CONFIG_LIBDIR=$(CROSS_PKGDIR) $(MAKE) --no-print-directory \
-		 CC=$(CROSS_CC) BUILD=$(CROSS_BUILD) BIN=$(CROSS_BUILD)/bin SAN=0 PORTABLE=0
+CROSS_VARS     = CC=$(CROSS_CC) BUILD=$(CROSS_BUILD) BIN=$(CROSS_BUILD)/bin SAN=0 MARCH=
 
 .PHONY: deps-cross cross-aarch64 cross-aarch64-build cross-aarch64-products cross-aarch64-regression
 
@@ -33,7 +33,7 @@ deps-cross:
 # results would differ from x86-64's).
 cross-aarch64-build: build/.deps-ok
 	$(Q)CROSS_ROOT=$(CROSS_ROOT) bash scripts/deps_cross.sh
-	$(Q)$(CROSS_MAKE) cross-aarch64-products
+	$(Q)PKG_CONFIG_LIBDIR=$(CROSS_PKGDIR) $(MAKE) --no-print-directory $(CROSS_VARS) cross-aarch64-products
 	$(Q)if grep -q -- '-march' $(CROSS_BUILD)/flags || ! grep -q -- '-ffp-contract=off' $(CROSS_BUILD)/flags; then \
 		echo "cross-aarch64: wrong flags in $(CROSS_BUILD)/flags: $$(cat $(CROSS_BUILD)/flags)" >&2; exit 1; fi
 

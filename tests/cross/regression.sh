@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # regression.sh - the cross-built engine ($CROSS_SHAKE, run under $QEMU) on the
 # regression scenes of tests/integration/regression.sh (`make cross-aarch64-regression`,
-# docs/cross.md). Two checks per scene and integrator:
-#   regression.aarch64.CASE           the reduced output (%.17g, tests/reference/regress.sh)
-#                                     equals the committed x86-64 reference exactly; when it
-#                                     does not, which datasets differ, in how many values and
-#                                     by how much
-#   regression.aarch64.CASE.whole_file  every dataset and every attribute of the file equals
-#                                     those of the same run of this machine's bin/shake
+# docs/cross.md). Per scene and integrator:
+#   regression.aarch64.CASE.PATH      on every kernel path the aarch64 engine has
+#                                     (`shake --kernel-paths`, SHAKEBOX_KERNEL), the reduced
+#                                     output (%.17g, tests/reference/regress.sh) equals the
+#                                     committed x86-64 reference exactly; when it does not,
+#                                     which datasets differ, in how many values and by how much
+#   regression.aarch64.CASE.whole_file  on the path it picks, every dataset and every
+#                                     attribute of the file equals those of the same run of
+#                                     this machine's bin/shake
 #                                     (h5diff, exact), but for what says where and when and
 #                                     by which compiler it ran: /provenance, /parameters@output
 #                                     and /@digest (a hash over every attribute, those too)
@@ -58,25 +60,40 @@ h5diff_differences() {
 			printf "%s\t%s\t%s\t%d\n", kind, obj, name, $1 }' "$1"
 }
 
-for c in "${REGRESS_CASES[@]}"; do
-	id=regression.aarch64.$c
-	t0=$SECONDS
-	if ! regress_run "$TMP/shake" "$c" "$TMP/$c.h5" >"$TMP/$c.log" 2>&1; then
-		fail "$id.run" "exit $?: $(head -c 300 "$TMP/$c.log")"
-		continue
+# the kernel paths of the aarch64 engine that this (emulated) CPU runs
+paths=$("$TMP/shake" --kernel-paths 2>"$TMP/paths.err" | awk '$2 == "yes" { printf "%s ", $1 }')
+[ -n "$paths" ] || fail regression.aarch64.paths "shake --kernel-paths listed none: $(head -c 300 "$TMP/paths.err")"
+# the one it picks by itself (`shake --version`: "kernel path: NAME (...)")
+auto=$("$TMP/shake" --version 2>/dev/null | awk '$1 == "kernel" && $2 == "path:" { print $3 }')
+case " $paths " in *" $auto "*) ;; *) fail regression.aarch64.auto_path "shake --version names the path '$auto', not one of: $paths" ;; esac
+
+# compare ID CASE PATH OUT.h5 : run on kernel path PATH and compare with the reference
+compare() {
+	local id=$1 c=$2 path=$3 out=$4 t0=$SECONDS secs ref=tests/reference/$2.txt
+	if ! SHAKEBOX_KERNEL=$path regress_run "$TMP/shake" "$c" "$out" >"$out.log" 2>&1; then
+		fail "$id.run" "exit $?: $(head -c 300 "$out.log")"
+		return
 	fi
 	secs=$((SECONDS - t0))
-	regress_reduce "$TMP/$c.h5" >"$TMP/$c.txt"
-	ref=tests/reference/$c.txt
-	if cmp -s "$TMP/$c.txt" "$ref"; then
+	regress_reduce "$out" >"$out.txt"
+	if cmp -s "$out.txt" "$ref"; then
 		ok "$id"
-		echo "# $c: $(wc -l <"$ref") values bit-identical to $ref (${secs}s under qemu)"
-	elif [ "$(grep -c '^#' "$TMP/$c.txt")" != "$(grep -c '^#' "$ref")" ] ||
-		[ "$(wc -l <"$TMP/$c.txt")" != "$(wc -l <"$ref")" ]; then
-		fail "$id" "a different shape from $ref: $(wc -l <"$TMP/$c.txt") lines, not $(wc -l <"$ref")"
+		echo "# $c on $path: $(wc -l <"$ref") values bit-identical to $ref (${secs}s under qemu)"
+	elif [ "$(grep -c '^#' "$out.txt")" != "$(grep -c '^#' "$ref")" ] ||
+		[ "$(wc -l <"$out.txt")" != "$(wc -l <"$ref")" ]; then
+		fail "$id" "a different shape from $ref: $(wc -l <"$out.txt") lines, not $(wc -l <"$ref")"
 	else
-		fail "$id" "differs from $ref: $(differing "$TMP/$c.txt" "$ref")"
+		fail "$id" "differs from $ref: $(differing "$out.txt" "$ref")"
 	fi
+}
+
+for c in "${REGRESS_CASES[@]}"; do
+	id=regression.aarch64.$c
+	for path in $paths; do
+		compare "$id.$path" "$c" "$path" "$TMP/$c.$path.h5"
+	done
+	[ -s "$TMP/$c.$auto.h5" ] || continue
+	cp "$TMP/$c.$auto.h5" "$TMP/$c.h5"
 
 	if [ ! -x "$NATIVE_SHAKE" ]; then
 		fail "$id.whole_file" "no native engine at $NATIVE_SHAKE (run make)"
