@@ -164,7 +164,7 @@ SB_INLINE sb_vd rec_pair(sb_vd a, sb_vd b, const int h, sb_vd wa, sb_vd wb)
 #elif SB_W == 4
 	return __builtin_shuffle(a + b, __builtin_shuffle(a, b, (sb_vl){0, 0, 2, 7}), (sb_vl){0, 1, 6, 7});
 #else
-	return a * wa + b * wb;
+	return sb_mul2_exact(a, wa, b, wb);
 #endif
 }
 
@@ -223,7 +223,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			/* masks become bits at once: combining them as vectors costs a
 			 * conversion per operation where the ISA has no 64-bit compares */
 			const unsigned live = p1 - p >= SB_W ? (1u << SB_W) - 1 : (1u << (p1 - p)) - 1;
-			const unsigned bits = sb_bits(d2 < rs * rs) & live;
+			const unsigned bits = sb_lt(d2, rs * rs) & live;
 			if (!bits)
 				continue;
 			/* contact(), operation by operation; the lanes not in contact compute
@@ -242,7 +242,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			const sb_vd fv = gs * meff * sb_abs(vt);
 			const sb_vd fc = mu * sb_abs(fn);
 			const sb_vd fs = sb_copysign_neg(sb_min(fv, fc), vt); /* copysign(fv < fc ? fv : fc, -vt) */
-			bad |= sb_bits(xi > mo * sb_min(ri, rj)) & bits;
+			bad |= sb_lt(mo * sb_min(ri, rj), xi) & bits;
 			/* the contacts compressed out of the lanes; whole-vector stores, the
 			 * slots past the contacts are overwritten by the next block */
 			const sb_cmask cm = sb_cmask_of(bits);
@@ -256,41 +256,27 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 		}
 		/* the chunk's forces added to the disks in list order, as 4-double vectors:
 		 * (Fx, Fy, -R_i F_S, 0) added to i's, (Fx, Fy, R_j F_S, 0) subtracted from j's
-		 * (a - b and a + (-b) are the same number). The pairs of one i are
-		 * consecutive in the list (nlist.h), so i's sum stays in a register along
-		 * its run and goes to memory once: the additions are the same, in the same
-		 * order, without a store and a reload between two of them. j never is the
-		 * current i (j != i, and a run of i begins after every pair that has i as
-		 * its j: those are in the runs of smaller disks, or in i's own run's
-		 * predecessors in the large disks' part, which come before it). */
+		 * (a - b and a + (-b) are the same number) */
 		char *const acc = (char *)facc;
-		ptrdiff_t cur = -1;
-		sb_v4 ra = {0, 0, 0, 0};
 		for (int k = 0; k < nc; k++) {
 			/* 8 i, 8 j (SB_KSHIFT): disk i's accumulator is 32 i = 4 (8 i) bytes in */
 			const ptrdiff_t i8 = kb->i[k], j8 = kb->j[k];
-			double *const aj = (double *)(acc + 4 * j8);
+			double *const ai = (double *)(acc + 4 * i8), *const aj = (double *)(acc + 4 * j8);
 			const double fx = kb->fx[k], fy = kb->fy[k];
 			if (fsum) { /* constant per instantiation: compiled away when NULL */
 				const double fa = sqrt(fx * fx + fy * fy);
 				fsum[i8 / 8] += fa;
 				fsum[j8 / 8] += fa;
 			}
-			if (i8 != cur) {
-				if (cur >= 0)
-					memcpy(acc + 4 * cur, &ra, sizeof ra);
-				memcpy(&ra, acc + 4 * i8, sizeof ra);
-				cur = i8;
-			}
 			const sb_v4 vi = {fx, fy, kb->ti[k], 0}, vj = {fx, fy, kb->tj[k], 0};
-			ra += vi;
-			sb_v4 b;
+			sb_v4 a, b;
+			memcpy(&a, ai, sizeof a);
+			a += vi;
+			memcpy(ai, &a, sizeof a);
 			memcpy(&b, aj, sizeof b);
 			b -= vj;
 			memcpy(aj, &b, sizeof b);
 		}
-		if (cur >= 0)
-			memcpy(acc + 4 * cur, &ra, sizeof ra);
 	}
 	if (!keep) /* else the fused corrector reads the accumulators */
 		unpack_forces(st, facc);
@@ -415,9 +401,9 @@ SB_INLINE void cpa_block(const int nval, const cpa_args *a, int i, const int cou
 	const sb_vd dx = x0 - sb_loadn(a->xref + i, count), dy = y0 - sb_loadn(a->yref + i, count);
 	const sb_vd d2 = dx * dx + dy * dy;
 	const unsigned live = (1u << count) - 1;
-	fl->rebuild |= sb_bits(d2 > a->lim) & live;
-	fl->bad |= ~sb_bits(d2 + sb_abs(t0) < (double)INFINITY) & live;
-	fl->out |= (sb_bits(x0 < a->xlo) | sb_bits(x0 > a->xhi) | sb_bits(y0 < a->ylo)) & live;
+	fl->rebuild |= sb_lt(sb_splat(a->lim), d2) & live;
+	fl->bad |= ~sb_lt(d2 + sb_abs(t0), sb_splat(INFINITY)) & live;
+	fl->out |= (sb_lt(x0, sb_splat(a->xlo)) | sb_lt(sb_splat(a->xhi), x0) | sb_lt(y0, sb_splat(a->ylo))) & live;
 }
 
 SB_INLINE void cpa(sb_kdata *d, const int nval, const sb_integ *in, sb_state *st, double gy, const sb_nlist *nl,
@@ -468,7 +454,7 @@ static int scan(sb_nlist *nl, int i, double xi, double yi, double ri, int k0, in
 		const sb_vd dx = X - sb_load(nl->xs + k), dy = Yv - sb_load(nl->ys + k), rc = R + sb_load(nl->rs + k);
 		const sb_vi j = sb_loadi(idx + k);
 		/* j > i keeps each pair once (walls sit above the mobile disks) */
-		const unsigned bits = sb_bits(dx * dx + dy * dy < rc * rc) & live & sb_bitsi(j > i);
+		const unsigned bits = sb_lt(dx * dx + dy * dy, rc * rc) & live & sb_bitsi(j > i);
 		const sb_vi I8 = i8 - (sb_vi){0};
 		memcpy(pi + np, &I8, sizeof I8); /* whole vectors: the list has room (nlist.c) */
 		sb_compressi(pj + np, j << sh, sb_cmask_of(bits));

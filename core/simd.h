@@ -200,6 +200,32 @@ SB_INLINE unsigned sb_bits(sb_vl m)
 #endif
 }
 
+/* the bits of a < b, lane by lane (false for NaN): AVX-512 compares into a mask
+ * register, where the vector form would be converted there and back */
+SB_INLINE unsigned sb_lt(sb_vd a, sb_vd b)
+{
+#if SB_X86_NATIVE && SB_W == 8
+	return _mm512_cmp_pd_mask((__m512d)a, (__m512d)b, _CMP_LT_OQ);
+#else
+	return sb_bits(a < b);
+#endif
+}
+
+/* a * wa + b * wb where one of the two products is exact (x 1, -1 or 0) and so
+ * the sum is rounded once either way: one fused multiply-add where the ISA has it
+ * (x86-64-v3 and up), the same number (-ffp-contract=off forbids the compiler to
+ * form it by itself) */
+SB_INLINE sb_vd sb_mul2_exact(sb_vd a, sb_vd wa, sb_vd b, sb_vd wb)
+{
+#if SB_X86_NATIVE && SB_W == 8
+	return (sb_vd)_mm512_fmadd_pd((__m512d)b, (__m512d)wb, (__m512d)(a * wa));
+#elif SB_X86_NATIVE && SB_W == 4 && defined(__FMA__)
+	return (sb_vd)_mm256_fmadd_pd((__m256d)b, (__m256d)wb, (__m256d)(a * wa));
+#else
+	return a * wa + b * wb;
+#endif
+}
+
 /* the same of an int mask */
 SB_INLINE unsigned sb_bitsi(sb_vi m)
 {
