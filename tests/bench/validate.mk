@@ -15,7 +15,7 @@
 # its **Result:** line, run times, CPU model and date) and its figures
 # (docs/validate_lammps.png, docs/validate_lammps_onset.png, and PDFs); the script runs
 # its jobs under nice -n 5 itself. About 43 minutes on 2 idle cores, under 50 even if
-# no intruder rose (measured rates: tests/bench/lammps/README.md). Not part of
+# no intruder rose (measured rates: docs/benchmarks.md). Not part of
 # `make check`: tests/analysis/dumpflux.c checks the dump -> Phi path there (an engine
 # run's snapshots through it give exactly the engine's flux), tests/analysis/twocode.c
 # the exact statistics.

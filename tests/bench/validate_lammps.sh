@@ -65,7 +65,7 @@
 #   and the fragment only, from the runs already in the run directory).
 # The defaults are sized for 50 minutes on 2 idle cores even if no intruder rose (about
 # 43 minutes when they rise as in the engine; measured rates and the sum in
-# tests/bench/lammps/README.md); the fragment states the power that leaves. The runs
+# docs/benchmarks.md, "Sizing make validate-lammps"); the fragment states the power that leaves. The runs
 # are started under nice -n 5 here; run the script (or make) without nice.
 # Exit status: 0 done (whatever the verdicts: the fragment states them), 1 a step failed.
 set -euo pipefail
