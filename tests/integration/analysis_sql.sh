@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # analysis_sql.sh - the `analysis` table answers plain SQL: the example queries of
-# analysis/README.md (read from that file: onset per radius ratio and depth, median
+# docs/database.md (read from that file: onset per radius ratio and depth, median
 # wait per radius ratio, failed runs per group and status, failed runs and why) on a
 # small campaign over two depths in which some runs fail on physics (a small
 # max_overlap), checked against the tools' CSV files; the grouping keys' columns typed
@@ -9,7 +9,7 @@
 # kept.
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
-README="$REPO/analysis/README.md"
+README="$REPO/docs/database.md"
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader -separator '|' R/study.db "$1"; }
 # example TITLE: the query of README's sql block that starts with "-- TITLE"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # study_results.sh - results you can trust: every result column of the database equals
 # the value in the run file it came from (for a campaign whose intruders rise), the
-# README's table is `study columns`, a changed campaign file is refused with what
+# table of docs/database.md is `study columns`, a changed campaign file is refused with what
 # changed (and kept or forgotten on request), a database rebuilt from the files equals
 # the original, export prints the numbers as written, `finished` is when the engine
 # wrote the file, and the status ETA comes from what ran.
@@ -11,12 +11,12 @@ STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader "$1" "$2"; }
 
-# --- the README's table is the generated one ---
+# --- docs/database.md's table is the generated one ---
 "$STUDY" columns >cols.md
 awk '/<!-- study columns: begin -->/ { on = 1; next } /<!-- study columns: end -->/ { on = 0 } on' \
-	"$REPO/study/README.md" >readme.md
+	"$REPO/docs/database.md" >readme.md
 cmp -s cols.md readme.md && ok columns.readme_is_generated ||
-	fail columns.readme_is_generated "study/README.md's table differs from 'study columns': $(diff cols.md readme.md | head -n 3)"
+	fail columns.readme_is_generated "docs/database.md's table differs from 'study columns': $(diff cols.md readme.md | head -n 3)"
 
 # --- a campaign whose intruders rise (a 2.5x intruder under one row, shaken hard) ---
 mk() { # FILE TRAJ_RATE
