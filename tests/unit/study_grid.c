@@ -1,5 +1,5 @@
 /* study_grid.c - grid expansion (study/campaign.c, study/grid.c) against the contract of
- * campaigns/README.md: the runs are the cartesian product of the axes (first axis
+ * docs/campaigns.md, "Campaign files": the runs are the cartesian product of the axes (first axis
  * fastest, values in file order, replicates the last axis), sorted by id; values are
  * canonical and duplicates are dropped, within an axis and between grid points;
  * START:STOP:STEP and FIRST..LAST ranges give the values of the written-out list; the

@@ -1,5 +1,5 @@
 /* study_identity.c - what identifies a run (study/README.md "Run identity",
- * campaigns/README.md "Replicates and seeds"): run ids, engine seeds and packing-cache
+ * docs/campaigns.md "Replicates and seeds"): run ids, engine seeds and packing-cache
  * keys. The same parameters give the same id in any file, order or spelling; every key
  * but the driver's own changes the id; the engine seed derives from the campaign seed,
  * the replicate and the preparation keys only; runs that differ only in their dynamics
@@ -232,7 +232,7 @@ static void test_changed_runs(const grid *ga)
 		sf_free(&c, &g);
 }
 
-/* SplitMix64's finaliser, as campaigns/README.md "Replicates and seeds" gives it. */
+/* SplitMix64's finaliser, as docs/campaigns.md "Replicates and seeds" gives it. */
 static unsigned long long mix(unsigned long long z)
 {
 	z += 0x9e3779b97f4a7c15ULL;
