@@ -61,7 +61,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz reproduce
+.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz reproduce docs
 all: $(SHAKE)
 
 help:
@@ -85,6 +85,7 @@ help:
 	@echo "                by every analysis tool and study run, against the sanitizer build"
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
 	@echo "make cross-aarch64  the engine and every test program built for aarch64, run under qemu (deps-cross; -regression; docs/cross.md)"
+	@echo "make docs       rewrite the docs' generated lists (scene keys, result columns) from the code"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
 	@echo "       SAN=1 (sanitizer build in build/san); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"
@@ -179,6 +180,17 @@ reproduce: build/.deps-ok all
 
 clean:
 	rm -rf build bin
+
+# The lists the code knows, in the docs (scripts/docs_lists.sh: the scene keys of
+# docs/scene.md and the result columns of docs/database.md are written from bin/shake
+# and bin/study; tests/integration/docs_lists.sh checks them and the lists it cannot
+# generate).
+docs: all
+	$(Q)bash scripts/docs_lists.sh write
+
+# make print-VAR: a variable's value, for scripts (docs_lists.sh reads AN_MAIN)
+print-%:
+	@echo '$($*)'
 
 # The campaign driver and the analysis tools bring their own rules.
 -include study/study.mk

@@ -1,0 +1,179 @@
+#!/usr/bin/env bash
+# docs_lists.sh - the lists the code knows, in the docs: written from the code where the
+# doc can be generated, compared with the code where it cannot.
+#
+#   bash scripts/docs_lists.sh write   # rewrite the generated sections (make docs)
+#   bash scripts/docs_lists.sh check   # print "ok ID" / "FAIL ID: why" per list
+#
+# Generated (between "<!-- docs_lists NAME: begin -->" and "... end -->" markers, or
+# study's own "<!-- study columns: begin/end -->"):
+#   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
+#   result-columns  docs/database.md     from `bin/study columns` (study/results.c's table)
+# Checked against the code:
+#   tools           docs/analysis.md's table and analysis/README.md's first paragraph
+#                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
+#   core-files      docs/engine.md's module table names every file of core/, and only those
+#   campaigns       campaigns/README.md names every campaign file, and only those
+#   run-file        docs/output.md's layout table against a run file with every
+#                   observable on: the same groups; every root and /provenance attribute
+#                   and every member of a listed group named in its row
+#   docs-map        README.md links every docs/*.md, and every docs/ file it names exists
+# SHAKE and STUDY name the binaries (default: bin/shake, bin/study of this clone).
+# DOCS_OVERRIDE=DIR reads a doc from DIR/PATH where that file exists (check only): how
+# tests/integration/docs_lists.sh shows that a broken list fails.
+set -u
+REPO=$(cd "$(dirname "$0")/.." && pwd)
+MODE=${1:-check}
+SHAKE=${SHAKE:-$REPO/bin/shake}
+STUDY=${STUDY:-$(dirname "$SHAKE")/study}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+nfail=0
+# doc PATH: the file to read for the doc at PATH (relative to the clone)
+doc() {
+	if [ -n "${DOCS_OVERRIDE:-}" ] && [ -f "$DOCS_OVERRIDE/$1" ]; then echo "$DOCS_OVERRIDE/$1"; else echo "$REPO/$1"; fi
+}
+ok() { echo "ok docs_lists.$1"; }
+fail() { echo "FAIL docs_lists.$1: $2"; nfail=$((nfail + 1)); }
+
+# The scene keys as a Markdown table, from the TSV of `shake --params`.
+gen_scene_keys() {
+	"$SHAKE" --params | awk -F'\t' '
+		function bit(f, b) { return int(f / b) % 2 }
+		NR == 1 { next }
+		{
+			f = $8 + 0; infl = ""
+			if (bit(f, 1)) infl = infl " prep"
+			if (bit(f, 2)) infl = infl " dyn"
+			if (bit(f, 4)) infl = infl " len"
+			if (bit(f, 8)) infl = infl " out"
+			if (bit(f, 32)) infl = infl " driver"
+			if (bit(f, 64)) infl = infl " no id"
+			sub(/^ /, "", infl)
+			gsub(/ /, ", ", infl); gsub(/no, id/, "no id", infl)
+			if ($7 != "") range = $7
+			else if ($2 == "int" || $2 == "real") range = (bit(f, 16) ? "(" : "[") $5 ", " $6 "]"
+			else range = ""
+			gsub(/\|/, " \\| ", range)
+			def = $4 == "" ? "" : "`" $4 "`"
+			help = $9; gsub(/\|/, "\\|", help)
+			printf "| `%s` | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, def, range, infl, help
+		}' | { printf '| key | type | unit | default | range | influences | meaning |\n|---|---|---|---|---|---|---|\n'; cat; }
+}
+
+gen_result_columns() { "$STUDY" columns; }
+
+# section FILE BEGIN END: the lines between the two marker lines
+section() { awk -v b="$2" -v e="$3" '$0 == e { on = 0 } on { print } $0 == b { on = 1 }' "$1"; }
+
+# replace FILE BEGIN END NEWFILE: the lines between the markers become NEWFILE's
+replace() {
+	grep -qxF "$2" "$1" && grep -qxF "$3" "$1" || { echo "docs_lists: $1: markers '$2' and '$3' missing" >&2; return 1; }
+	awk -v b="$2" -v e="$3" -v n="$4" '
+		$0 == e { on = 0 }
+		!on { print }
+		$0 == b { while ((getline l < n) > 0) print l; on = 1 }' "$1" >"$1.tmp" && mv "$1.tmp" "$1"
+}
+
+# generated NAME FILE BEGIN END GENERATOR
+generated() {
+	local name=$1 file=$2 b=$3 e=$4 gen=$5
+	if ! $gen >"$TMP/$name.new" 2>"$TMP/$name.err" || ! [ -s "$TMP/$name.new" ]; then
+		fail "$name" "could not generate it: $(head -c 300 "$TMP/$name.err")"
+		return
+	fi
+	if [ "$MODE" = write ]; then
+		replace "$REPO/$file" "$b" "$e" "$TMP/$name.new" && echo "docs_lists: $file: $name written"
+		return
+	fi
+	section "$(doc "$file")" "$b" "$e" >"$TMP/$name.doc"
+	if cmp -s "$TMP/$name.new" "$TMP/$name.doc"; then
+		ok "$name.current"
+	else
+		fail "$name.current" "$file differs from the code (make docs rewrites it): $(diff "$TMP/$name.doc" "$TMP/$name.new" | grep '^[<>]' | head -n 4 | cut -c1-160 | tr '\n' ' ')"
+	fi
+}
+
+# same_set NAME WHAT CODE-LIST DOC-LIST (one name a line each)
+same_set() {
+	local extra missing
+	missing=$(comm -23 <(sort -u "$3") <(sort -u "$4") | tr '\n' ' ')
+	extra=$(comm -13 <(sort -u "$3") <(sort -u "$4") | tr '\n' ' ')
+	if [ -z "$missing$extra" ]; then
+		ok "$1"
+	else
+		fail "$1" "$2:${missing:+ missing from the doc: $missing}${extra:+ in the doc but not in the code: $extra}"
+	fi
+}
+
+generated scene-keys docs/scene.md '<!-- docs_lists scene-keys: begin -->' '<!-- docs_lists scene-keys: end -->' gen_scene_keys
+generated result-columns docs/database.md '<!-- study columns: begin -->' '<!-- study columns: end -->' gen_result_columns
+[ "$MODE" = write ] && exit 0
+
+# --- the tools: analysis/analysis.mk's AN_MAIN ---
+make -s --no-print-directory -C "$REPO" print-AN_MAIN | tr ' ' '\n' | grep . >"$TMP/tools.code"
+[ -s "$TMP/tools.code" ] || fail tools.code "make print-AN_MAIN printed no tool"
+awk '/<!-- docs_lists tools:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
+	"$(doc docs/analysis.md)" | sed -n 's/^| `bin\/\([a-z_]*\)` |.*/\1/p' >"$TMP/tools.doc"
+same_set tools.docs_analysis "docs/analysis.md's table of tools" "$TMP/tools.code" "$TMP/tools.doc"
+awk 'NR > 1 && /^$/ && seen { exit } /^[^#]/ { seen = 1; print }' "$(doc analysis/README.md)" |
+	grep -o '`bin/[a-z_]*`' | tr -d '`' | sed 's#bin/##' >"$TMP/tools.room"
+same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tools.code" "$TMP/tools.room"
+
+# --- the files of core/ ---
+(cd "$REPO/core" && ls) >"$TMP/core.code"
+awk '/<!-- docs_lists core-files:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
+	"$(doc docs/engine.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
+	while read -r f; do
+		case "$f" in
+		*.\[ch\]) echo "${f%.\[ch\]}.c"; echo "${f%.\[ch\]}.h" ;;
+		*) echo "$f" ;;
+		esac
+	done >"$TMP/core.doc"
+same_set core-files "docs/engine.md's module table" "$TMP/core.code" "$TMP/core.doc"
+
+# --- the campaign files ---
+(cd "$REPO/campaigns" && ls *.campaign reproduce/*.campaign) >"$TMP/camp.code"
+grep -o '^| `[^`]*\.campaign`' "$(doc campaigns/README.md)" | sed 's/^| `//; s/`$//' >"$TMP/camp.doc"
+same_set campaigns "campaigns/README.md's tables" "$TMP/camp.code" "$TMP/camp.doc"
+
+# --- the run file's layout ---
+if (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 frequency=5 amplitude=1 \
+	settle_min=0.1 settle_ke=1 flux=yes field=yes field_periods=1 ring=yes energy_rate=50 \
+	contact_rate=20 traj_rate=50 output=all.h5 >run.log 2>&1); then
+	H5="$TMP/all.h5"
+	grep '^| `/' "$(doc docs/output.md)" >"$TMP/rows"
+	sed 's/^| `\([^`]*\)`.*/\1/' "$TMP/rows" | grep -vx '/' >"$TMP/groups.doc"
+	{
+		h5ls "$H5" | awk '$2 == "Group" { print "/" $1 }' | grep -vx '/particles\|/observables'
+		for g in particles observables; do h5ls "$H5/$g" | awk -v g="$g" '$2 == "Group" { print "/" g "/" $1 }'; done
+	} >"$TMP/groups.code"
+	same_set run-file.groups "docs/output.md's layout table" "$TMP/groups.code" "$TMP/groups.doc"
+	row() { awk -v p="$1" 'index($0, "| `" p "`") == 1 { print; exit }' "$TMP/rows"; }
+	# attrs GROUP: the names of GROUP's own attributes
+	attrs() {
+		h5dump -H -g "$1" "$H5" 2>/dev/null | awk -v d="$([ "$1" = / ] && echo 3 || echo 6)" '
+			match($0, /^ *ATTRIBUTE "/) && RLENGTH - 11 == d { s = $0; sub(/^ *ATTRIBUTE "/, "", s); sub(/".*/, "", s); print s }'
+	}
+	bad=
+	for g in / /provenance; do
+		r=$(row "$g")
+		for a in $(attrs "$g"); do grep -qw -- "$a" <<<"$r" || bad="$bad $g@$a"; done
+	done
+	while read -r g; do
+		case "$g" in /particles/* | /observables/* | /final) ;; *) continue ;; esac
+		r=$(row "$g")
+		for m in $(h5ls "$H5$g" 2>/dev/null | awk '{ print $1 }'); do grep -qw -- "$m" <<<"$r" || bad="$bad $g/$m"; done
+	done <"$TMP/groups.code"
+	[ -z "$bad" ] && ok run-file.members ||
+		fail run-file.members "in the run file but not in docs/output.md's row of its group:$bad"
+else
+	fail run-file "the engine did not write a run file: $(tail -n 3 "$TMP/run.log")"
+fi
+
+# --- the map of the docs in README.md ---
+(cd "$REPO" && ls docs/*.md) >"$TMP/map.code"
+grep -o 'docs/[A-Za-z0-9_]*\.md' "$(doc README.md)" | sort -u >"$TMP/map.doc"
+same_set docs-map "README.md's map of docs/" "$TMP/map.code" "$TMP/map.doc"
+
+[ "$nfail" -eq 0 ]
