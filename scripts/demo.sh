@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# demo.sh - `make demo`: a small campaign end to end (campaigns/demo.campaign: 4
+# demo.sh - `make demo`: a small campaign end to end (campaigns/demo.campaign: 5
 # frequencies x 2 replicates), a query of its results with sqlite3, and the intruder's
 # height in one run plotted. Run it again: nothing is recomputed.
 set -euo pipefail

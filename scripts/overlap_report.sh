@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # overlap_report.sh - the distribution of the largest overlap per run of the
-# overlap_safety campaigns (paper and fast preset), as the Markdown table the README
+# overlap_safety campaigns (paper and fast preset), as the Markdown table docs/benchmarks.md
 # quotes: runs, how many the max_overlap stop ended, quantiles of overlap_max, and the
 # largest per frequency. Usage: scripts/overlap_report.sh [RUNS-DIR [FIGURE]] (default
 # runs; with FIGURE also a histogram FIGURE.png and FIGURE.pdf)

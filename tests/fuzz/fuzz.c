@@ -1369,7 +1369,7 @@ int main(int argc, char **argv)
 			snprintf(why, sizeof why, "killed by signal %d", WTERMSIG(status));
 		} else if (target == T_RUNFILE ? (tool == (int)NRUNFILE_TOOLS - 1 ? (code > 4 && code != 7) : code > 2)
 			   : target == T_CAMPAIGN ? code > 2 : code > 7) {
-			/* shake: README "Exit codes" (0-7); study expand: 0 ok, 1 bad input, 2 other;
+			/* shake: docs/scene.md "Exit codes" (0-7); study expand: 0 ok, 1 bad input, 2 other;
 			 * the analysis tools: 0, 1 usage or nothing usable, 2 I/O; study run: 0-4, 7 */
 			kind = K_EXIT;
 			snprintf(why, sizeof why, "exit code %d, outside the documented set", code);
