@@ -235,7 +235,7 @@ q_long() {
 	integrator "${QNAME[q5_long]}" "${QFILE[q5_long]}"
 	echo
 	echo "600 s at 3.2 Hz for 𝓡 = 2 … 8: after its rise the intruder dives into the bed and comes back"
-	echo "(bin/whale, definitions in analysis/README.md: the height averaged over each drive period, from"
+	echo "(bin/whale, definitions in docs/analysis.md: the height averaged over each drive period, from"
 	echo "20 s after the rise; a dive starts below the top level (90th percentile) minus one intruder"
 	echo "radius and ends back above half that; period = mean time between dive starts, depth = top"
 	echo "level − lowest point of a dive; means over runs with bootstrap 95 % intervals)."

@@ -12,7 +12,7 @@ analysis_tools_setup
 README="$REPO/docs/database.md"
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader -separator '|' R/study.db "$1"; }
-# example TITLE: the query of README's sql block that starts with "-- TITLE"
+# example TITLE: the query of docs/database.md's sql block that starts with "-- TITLE"
 example() {
 	awk -v t="-- $1" '/^  ```sql/ { on = 1; next } /^  ```/ { on = 0 } !on { next }
 		index($0, t) == 3 { take = 1 } take && /^ *$/ { exit } take { print } take && /;$/ { exit }' "$README"
