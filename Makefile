@@ -192,7 +192,9 @@ docs: all
 print-%:
 	@echo '$($*)'
 
-# The campaign driver and the analysis tools bring their own rules.
+# The floor both upper rooms share, the campaign driver and the analysis tools bring
+# their own rules.
+-include lib/lib.mk
 -include study/study.mk
 -include analysis/analysis.mk
 -include tests/bench/bench.mk

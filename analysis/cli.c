@@ -1,6 +1,7 @@
 /* cli.c - shared options, paths, grouping keys, CSV and gnuplot helpers. */
 #include "cli.h"
 
+#include "dirs.h"
 #include "layout.h"
 #include "num.h"
 #include "words.h"
@@ -307,17 +308,7 @@ int cli_keys(const an_opts *o, adb *d, const char *const *always, const char *co
 
 int cli_outdir(const an_opts *o, sb_err *e)
 {
-	char tmp[1024];
-	snprintf(tmp, sizeof tmp, "%s", o->out);
-	for (char *p = tmp + 1; *p; p++)
-		if (*p == '/') {
-			*p = 0;
-			mkdir(tmp, 0777);
-			*p = '/';
-		}
-	if (mkdir(tmp, 0777) && errno != EEXIST)
-		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", o->out, strerror(errno));
-	return 0;
+	return dirs_make(o->out, e);
 }
 
 FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_err *e)

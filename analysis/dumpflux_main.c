@@ -15,6 +15,7 @@
 #include "lowerrow.h"
 #include "pairdiff.h"
 #include "twocode.h"
+#include "quantile.h"
 
 static const char *HELP =
 	"usage: dumpflux run RUN.h5 [--skip FRAC] [--periods]\n"
@@ -337,7 +338,7 @@ static int count(const char *s, long *v)
 
 static double tq(double level, size_t n)
 {
-	return n > 1 ? gsl_cdf_tdist_Pinv(0.5 + 0.5 * level, (double)(n - 1)) : NAN;
+	return n > 1 ? quant_student(level, (double)(n - 1)) : NAN;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -487,7 +488,7 @@ static int cmd_stats(int argc, char **argv)
 		double lo, hi;
 		if (v[1] < 1)
 			return usage("stats binom: N >= 1");
-		tc_clopper_pearson(v[0], v[1], level, &lo, &hi);
+		quant_clopper_pearson(v[0], v[1], level, &lo, &hi);
 		printf("%ld\t%ld\t%.6g\t%.6g\t%.6g\n", v[0], v[1], (double)v[0] / (double)v[1], lo, hi);
 	} else if (!strcmp(what, "sign"))
 		printf("%.6g\n", tc_sign_p(v[0], v[1]));

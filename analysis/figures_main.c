@@ -10,6 +10,7 @@
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
+#include "fluxrun.h"
 #include "h5read.h"
 #include "label.h"
 #include "num.h"
@@ -234,7 +235,7 @@ static void classify_data(an_run *r, const flux_opts *fo)
 	const double dur = an_num(r, "duration", NAN);
 	if (fl && !strcmp(fl, "yes")) {
 		flux_data fd;
-		if (flux_load(r, &fd)) {
+		if (fluxrun_load(r, &fd)) {
 			if (r->use == AN_UNREADABLE)
 				fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
 			return;
@@ -596,7 +597,7 @@ typedef struct profile {
 static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
 {
 	flux_data fd;
-	if (flux_load(r, &fd))
+	if (fluxrun_load(r, &fd))
 		return; /* classified as usable: only a file changed since could fail */
 	if (!pr->runs) {
 		free(pr->sp);

@@ -9,6 +9,7 @@
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
+#include "fluxrun.h"
 #include "hyst.h"
 #include "tool.h"
 
@@ -86,7 +87,7 @@ static int legs(const an_run *r, const flux_data *D, hyst_leg leg[2])
 /* Reads run r's flux into D and says what of it the statistic uses (acct.h). */
 static void classify(an_run *r, flux_data *D, size_t *pmax)
 {
-	if (flux_load(r, D)) {
+	if (fluxrun_load(r, D)) {
 		if (r->use == AN_UNREADABLE)
 			fprintf(stderr, "hysteresis: warning: %s (counted as unreadable)\n", r->why);
 		return;

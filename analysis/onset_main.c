@@ -10,6 +10,7 @@
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
+#include "fluxrun.h"
 #include "onsetfit.h"
 #include "tool.h"
 #include "xopt.h"
@@ -111,7 +112,7 @@ static double classify(an_run *r, const flux_opts *fo)
 {
 	flux_data fd;
 	double v = NAN;
-	if (flux_load(r, &fd)) {
+	if (fluxrun_load(r, &fd)) {
 		if (r->use == AN_UNREADABLE)
 			fprintf(stderr, "onset: warning: %s (counted as unreadable)\n", r->why);
 		return v;
@@ -284,7 +285,7 @@ static int band_phis(an_tool *t, const onset_state *s, double *pb)
 		for (int b = 0; b < NBAND; b++)
 			pb[b * t->k + i] = NAN;
 		flux_data fd;
-		if (!USED(&t->runs[i]) || flux_load(&t->runs[i], &fd))
+		if (!USED(&t->runs[i]) || fluxrun_load(&t->runs[i], &fd))
 			continue; /* classified usable: only a file changed since could fail */
 		for (int b = 0; b < NBAND; b++) {
 			const flux_opts fo = {BANDS[b][0], BANDS[b][1], s->fo.skip};

@@ -1,7 +1,7 @@
 /* pairdiff.c - paired comparison of two codes' profiles (pairdiff.h). */
 #include "pairdiff.h"
+#include "quantile.h"
 
-#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
@@ -87,7 +87,7 @@ int pd_compare(size_t n, size_t L, const double *a, const double *b, double leve
 		pd_free(r);
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	}
-	const double tq = gsl_cdf_tdist_Pinv(0.5 + 0.5 * level, (double)(n - 1));
+	const double tq = quant_student(level, (double)(n - 1));
 	const double sq = sqrt((double)n);
 	for (size_t i = 0; i < n * L; i++)
 		d[i] = a[i] - b[i];

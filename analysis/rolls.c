@@ -1,7 +1,7 @@
 /* rolls.c - the roll reach of a profile and the intervals that compare runs (rolls.h). */
 #include "rolls.h"
+#include "quantile.h"
 
-#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -77,7 +77,7 @@ void rolls_mean_ci(const double *v, size_t n, double level, rolls_mean *m)
 	for (size_t i = 0; i < n; i++)
 		ss += (v[i] - m->mean) * (v[i] - m->mean);
 	m->sd = sqrt(ss / (double)(n - 1));
-	const double w = gsl_cdf_tdist_Pinv(0.5 + 0.5 * level, (double)(n - 1)) * m->sd / sqrt((double)n);
+	const double w = quant_student(level, (double)(n - 1)) * m->sd / sqrt((double)n);
 	m->lo = m->mean - w;
 	m->hi = m->mean + w;
 }
@@ -99,7 +99,7 @@ void rolls_welch(const double *a, size_t na, const double *b, size_t nb, double 
 		return;
 	}
 	r->df = (va + vb) * (va + vb) / (va * va / (double)(na - 1) + vb * vb / (double)(nb - 1));
-	const double w = gsl_cdf_tdist_Pinv(0.5 + 0.5 * level, r->df) * r->se;
+	const double w = quant_student(level, r->df) * r->se;
 	r->lo = r->d - w;
 	r->hi = r->d + w;
 }

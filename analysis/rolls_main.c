@@ -15,6 +15,7 @@
 #include "adb.h"
 #include "cli.h"
 #include "flux.h"
+#include "fluxrun.h"
 #include "label.h"
 #include "rolls.h"
 #include "tool.h"
@@ -132,7 +133,7 @@ static void classify(an_run *r, const rolls_state *s, prun *p)
 {
 	flux_data fd;
 	memset(p, 0, sizeof *p);
-	if (flux_load(r, &fd)) {
+	if (fluxrun_load(r, &fd)) {
 		if (r->use == AN_UNREADABLE)
 			fprintf(stderr, "rolls: warning: %s (counted as unreadable)\n", r->why);
 		return;

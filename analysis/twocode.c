@@ -6,17 +6,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-void tc_clopper_pearson(long k, long n, double level, double *lo, double *hi)
-{
-	if (n < 1 || k < 0 || k > n || !(level > 0 && level < 1)) {
-		*lo = *hi = NAN;
-		return;
-	}
-	const double a = 1 - level;
-	*lo = k ? gsl_cdf_beta_Pinv(a / 2, (double)k, (double)(n - k + 1)) : 0;
-	*hi = k < n ? gsl_cdf_beta_Pinv(1 - a / 2, (double)(k + 1), (double)(n - k)) : 1;
-}
-
 double tc_sign_p(long k, long n)
 {
 	if (n < 0 || k < 0 || k > n)

@@ -12,10 +12,6 @@
 
 #include "err.h"
 
-/* Clopper-Pearson interval of k of n at level (0 < level < 1): [0, hi] at k = 0,
- * [lo, 1] at k = n. NaN when n < 1 or k is out of range. */
-void tc_clopper_pearson(long k, long n, double level, double *lo, double *hi);
-
 /* Two-sided exact binomial test of k of n at probability 1/2 (the sign test; McNemar's
  * exact test with k = the discordant pairs one way, n = all discordant pairs):
  * min(1, 2 min(P(X <= k), P(X >= k))). 1 when n = 0, NaN when k is out of range. */

@@ -1,7 +1,6 @@
 /* waiting_main.c - bin/waiting: waiting times of the intruder's rise per group of runs
  * (Kaplan-Meier with right-censoring, median with its Brookmeyer-Crowley interval,
  * fraction risen, histogram). Only this file prints and exits. */
-#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +16,7 @@
 #include "tool.h"
 #include "traj.h"
 #include "xopt.h"
+#include "quantile.h"
 
 #define VERSION "2"
 
@@ -113,20 +113,6 @@ static int push(grp *g, double t, int ev, long run)
 	g->ev[g->n] = ev;
 	g->run[g->n++] = run;
 	return 0;
-}
-
-static double zq(double level)
-{
-	/* normal quantile by bisection on erfc; level in [0.5, 0.999] */
-	double lo = 0, hi = 10, p = 1 - level;
-	for (int i = 0; i < 100; i++) {
-		double m = 0.5 * (lo + hi);
-		if (erfc(m / sqrt(2)) > p)
-			lo = m;
-		else
-			hi = m;
-	}
-	return 0.5 * (lo + hi);
 }
 
 /* What waiting computes besides the frame: the observation of every considered run,
@@ -262,7 +248,7 @@ static int groups(an_tool *t, wait_state *s)
 /* Each group's Kaplan-Meier curve, and the longest observation. */
 static int fit(an_tool *t, wait_state *s)
 {
-	s->z = zq(t->o->level);
+	s->z = quant_normal(t->o->level);
 	s->tmax = 0;
 	for (int j = 0; j < t->ng; j++) {
 		if (km_fit(s->g[j].t, s->g[j].ev, (size_t)s->g[j].n, &s->km[j]))
@@ -409,10 +395,9 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 	tool_store(t, j, L, "runs", (double)n, NAN, NAN, n);
 	tool_store(t, j, L, "risen", (double)km->events, NAN, NAN, n);
 	/* Clopper-Pearson: exact for a binomial count, what claim 5 compares between depths */
-	const double al = 1 - t->o->level, k = (double)km->events;
-	const double f_lo = km->events ? gsl_cdf_beta_Pinv(al / 2, k, (double)n - k + 1) : 0;
-	const double f_hi = km->events < n ? gsl_cdf_beta_Pinv(1 - al / 2, k + 1, (double)n - k) : 1;
-	tool_store(t, j, L, "fraction_risen", frac, n ? f_lo : NAN, n ? f_hi : NAN, n);
+	double f_lo, f_hi;
+	quant_clopper_pearson(km->events, n, t->o->level, &f_lo, &f_hi);
+	tool_store(t, j, L, "fraction_risen", frac, f_lo, f_hi, n);
 	tool_store(t, j, L, "median", med, lo, hi, n);
 	tool_store(t, j, L, "t_max", tm, NAN, NAN, n);
 	tool_store(t, j, L, "s_end", s_end, s_lo, s_hi, n);

@@ -8,23 +8,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "dirs.h"
 #include "layout.h"
 
 static int exists(const char *p)
 {
 	return access(p, F_OK) == 0;
-}
-
-/* forgotten/: made if missing; a link planted there is refused, never followed */
-static int mkdir_p(const char *path, sb_err *e)
-{
-	struct stat st = {0};
-	if (mkdir(path, 0777) && errno != EEXIST)
-		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
-	if (lstat(path, &st) || !S_ISDIR(st.st_mode))
-		return sb_errf(e, SB_EIO, "%s: is %s; study writes only into directories it made (remove it)", path,
-			       S_ISLNK(st.st_mode) ? "a symbolic link" : "not a directory");
-	return 0;
 }
 
 /* Distinct values of a key among a set of runs, as "a, b, c" (at most 6, then "..."). */
@@ -206,7 +195,7 @@ int changes_check(const changes_ctx *x, sb_err *e)
 	if (x->forget_old) {
 		char dir[CHANGES_PATH];
 		layout_sub(x->dir, "forgotten", dir, sizeof dir);
-		if (mkdir_p(dir, e))
+		if (dirs_own(dir, e))
 			goto out;
 		for (long i = 0; i < ns; i++) {
 			static const enum lay_kind kinds[] = {LAY_OUTPUT, LAY_ARGS, LAY_LOG};

@@ -9,7 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -18,12 +17,16 @@
 #include "changes.h"
 #include "drv.h"
 #include "db.h"
+#include "dirs.h"
 #include "grid.h"
 #include "h5sum.h"
 #include "layout.h"
+#include "lock.h"
+#include "packing.h"
 #include "safe.h"
 #include "search.h"
 #include "sharpen.h"
+#include "stop.h"
 #include "watch.h"
 #include "worker.h"
 
@@ -32,113 +35,34 @@ void driver_db_path(const char *runs_dir, const char *db_path, char *out, size_t
 	layout_db(runs_dir, db_path, out, len);
 }
 
-int mkdir_p(const char *path, sb_err *e)
-{
-	char tmp[PATHLEN];
-	snprintf(tmp, sizeof tmp, "%s", path);
-	for (char *p = tmp + 1; *p; p++)
-		if (*p == '/') {
-			*p = 0;
-			mkdir(tmp, 0777);
-			*p = '/';
-		}
-	if (mkdir(tmp, 0777) && errno != EEXIST)
-		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
-	return 0;
-}
-
-/* A directory the driver writes into, made if missing: a symbolic link (or anything
- * else) planted where it belongs is refused, never followed, so nothing is written
- * outside the runs directory through a link the driver did not make. */
-int driver_own_dir(const char *path, sb_err *e)
-{
-	struct stat st;
-	if (mkdir(path, 0777) && errno != EEXIST)
-		return sb_errf(e, SB_EIO, "%s: cannot create directory: %s", path, strerror(errno));
-	if (lstat(path, &st))
-		return sb_errf(e, SB_EIO, "%s: %s", path, strerror(errno));
-	if (S_ISLNK(st.st_mode))
-		return sb_errf(e, SB_EIO, "%s: is a symbolic link; study writes only into directories it made "
-			       "(remove the link)", path);
-	if (!S_ISDIR(st.st_mode))
-		return sb_errf(e, SB_EIO, "%s: is not a directory", path);
-	return 0;
-}
-
-/* A file the driver writes: a symbolic link or anything but a regular file where it
- * belongs is refused (lstat: the link itself is judged). */
-int driver_own_file(const char *path, sb_err *e)
-{
-	struct stat st;
-	if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode))
-		return sb_errf(e, SB_EIO, "%s: is %s; study writes only files it made (remove it)", path,
-			       S_ISLNK(st.st_mode) ? "a symbolic link" : "not a regular file");
-	return 0;
-}
-
 const char *const driver_subdirs[DRIVER_NSUB] = {"jobs", "logs", "cache", "failed"};
 
 int driver_dirs(const drv *d, const char *const *sub, size_t n, sb_err *e)
 {
-	if (driver_own_dir(d->dir, e))
+	if (dirs_own(d->dir, e))
 		return e->code;
 	for (size_t i = 0; i < n && !e->code; i++) {
 		char p[PATHX];
 		snprintf(p, sizeof p, "%s/%s", d->dir, sub[i]);
-		driver_own_dir(p, e);
+		dirs_own(p, e);
 	}
 	return e->code;
 }
 
-/* One driver per campaign and database: two drivers given the same --db but different
- * --runs would each hold their own directory's lock and run every run twice, so the
- * database has a lock per campaign beside it (DB.NAME.lock, as SQLite keeps DB-journal
- * there). */
+/* The protocol is lib/lock.c's; these give it the campaign's paths. */
 int driver_db_lock(const drv *d, sb_err *e)
 {
-	char dbp[PATHLEN], lp[PATHX];
+	char dbp[PATHLEN];
 	driver_db_path(d->o->runs_dir, d->o->db_path, dbp, sizeof dbp);
-	snprintf(lp, sizeof lp, "%s.%s.lock", dbp, d->c.name);
-	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
-	if (fd < 0) {
-		sb_errf(e, SB_EIO, "%s: cannot open the database's driver lock: %s", lp, strerror(errno));
-		return -1;
-	}
-	if (flock(fd, LOCK_EX | LOCK_NB)) {
-		const int err = errno;
-		close(fd);
-		if (err == EWOULDBLOCK)
-			sb_errf(e, DRV_BUSY, "campaign %s of database %s is being run by another study driver (%s)",
-				d->c.name, dbp, lp);
-		else
-			sb_errf(e, SB_EIO, "%s: cannot lock the database's driver lock: %s", lp, strerror(err));
-		return -1;
-	}
-	return fd;
+	return lock_database(dbp, d->c.name, e);
 }
 
 int driver_lock(const drv *d, sb_err *e)
 {
-	char lp[PATHX];
-	snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
-	int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
-	if (fd < 0) {
-		sb_errf(e, SB_EIO, "%s: cannot open the campaign's driver lock: %s", lp, strerror(errno));
-		return -1;
-	}
-	if (flock(fd, LOCK_EX | LOCK_NB)) {
-		/* only a lock held elsewhere is another driver; any other failure is the file
-		 * system's (flock(2): EWOULDBLOCK is the one "held by another") */
-		const int err = errno;
-		close(fd);
-		if (err == EWOULDBLOCK)
-			sb_errf(e, DRV_BUSY, "campaign %s is being run by another study driver (%s)", d->c.name, lp);
-		else
-			sb_errf(e, SB_EIO, "%s: cannot lock the campaign's driver lock: %s", lp, strerror(err));
-		return -1;
-	}
-	return fd;
+	return lock_campaign(d->dir, d->c.name, e);
 }
+
+_Static_assert(DRV_BUSY == LOCK_BUSY, "a busy lock is the driver's exit code 4");
 
 /* ---- job files ---- */
 
@@ -239,37 +163,6 @@ int driver_cache_args(drv *d, const char *key, long first, sb_err *e)
 	return write_args(args, &s, e);
 }
 
-/* The packing a run's argument file starts it from ("" when it settles itself, or has
- * no argument file): the argument file decides, since a resumed run keeps the one it
- * was given. */
-void driver_args_packing(const drv *d, const char *id, char *key, size_t len)
-{
-	char p[PATHX], line[1200];
-	key[0] = 0;
-	layout_file(d->dir, 0, id, LAY_ARGS, p, sizeof p);
-	FILE *f = fopen(p, "r");
-	if (!f)
-		return;
-	while (fgets(line, sizeof line, f)) {
-		line[strcspn(line, "\r\n")] = 0;
-		static const char pre[] = "particles=cache/";
-		size_t l = strlen(line);
-		if (!strncmp(line, pre, sizeof pre - 1) && l > sizeof pre + 3 && !strcmp(line + l - 4, ".txt")) {
-			snprintf(key, len, "%.*s", (int)(l - 4 - (sizeof pre - 1)), line + sizeof pre - 1);
-			if (!safe_name(key))
-				key[0] = 0;
-		}
-	}
-	fclose(f);
-}
-
-int driver_cache_present(const drv *d, const char *key)
-{
-	char txt[PATHX];
-	layout_cache_particles(d->dir, key, txt, sizeof txt);
-	return exists(txt);
-}
-
 /* A packing's state ("ok", "failed", "" not built) as the files say: the database's
  * row is not the file. A packing recorded as built whose particle file is gone (its
  * directory deleted) is forgotten, so that it is built again; a failed one is
@@ -279,7 +172,7 @@ int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 	char h5[PATHX];
 	cache_state(d, key, st, len);
 	layout_file(d->dir, 1, key, LAY_OUTPUT, h5, sizeof h5);
-	int gone = !strcmp(st, "ok") && !driver_cache_present(d, key);
+	int gone = !strcmp(st, "ok") && !packing_present(d, key);
 	if (gone || (!strcmp(st, "failed") && d->o->retry_failed)) {
 		if (gone)
 			fprintf(stderr, "study: %s: packing %s is recorded as built but cache/%s.txt is missing: "
@@ -349,7 +242,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 		/* a run whose argument file already starts it from the packing needs it
 		 * (built again if it was deleted), alone or not */
 		char ak[64];
-		driver_args_packing(d, r->id, ak, sizeof ak);
+		packing_of_args(d, r->id, ak, sizeof ak);
 		named[k] |= !strcmp(ak, r->cache_key);
 	}
 	for (long k = 0; k < nk && !e->code; k++) {
@@ -399,8 +292,8 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 			 * its build failed): then it settles itself, and a checkpoint of the old
 			 * arguments could not be resumed (restart = auto checks them) */
 			char ak[64];
-			driver_args_packing(d, r->id, ak, sizeof ak);
-			if (!ak[0] || driver_cache_present(d, ak) ||
+			packing_of_args(d, r->id, ak, sizeof ak);
+			if (!ak[0] || packing_present(d, ak) ||
 			    (d->cache_ok[pend[i]] && !strcmp(ak, r->cache_key)))
 				continue; /* (study submit: a task builds it before the run) */
 			fprintf(stderr, "study: %s: run %s starts from packing cache/%s.txt, which is missing: its "
@@ -541,7 +434,7 @@ static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 {
 	char **basefiles = NULL;
 	long nbase = 0;
-	if (!caches(d, pend, npend, &basefiles, &nbase, e) && !parallel_stopped() &&
+	if (!caches(d, pend, npend, &basefiles, &nbase, e) && !stop_requested() &&
 	    !driver_prepare_jobs(d, pend, npend, d->names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
@@ -555,8 +448,8 @@ static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 					d->outcome[r - d->g.runs] = 0;
 			}
 			run_parallel(d, "run", list, n, basefiles, nbase, e);
-			int halted = d->io_fault || parallel_stopped(), probe;
-			if (e->code || parallel_stopped())
+			int halted = d->io_fault || stop_requested(), probe;
+			if (e->code || stop_requested())
 				break;
 			/* every run of this launch, not only the last pass's: a probe's success
 			 * puts the runs its fault halted back in the queue */
@@ -570,7 +463,7 @@ static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 			if (probe) {
 				/* a moment for a transient fault to pass */
 				struct timespec ts = {1, 0};
-				while (nanosleep(&ts, &ts) && !parallel_stopped())
+				while (nanosleep(&ts, &ts) && !stop_requested())
 					;
 				d->io_fault = 0;
 			}
@@ -594,7 +487,7 @@ static int launch(drv *d, long npend, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	long *list = d->pend, n = npend;
 	for (int round = 0; round < 3; round++) {
-		if (launch_once(d, list, n, e) || parallel_stopped() || d->io_fault)
+		if (launch_once(d, list, n, e) || stop_requested() || d->io_fault)
 			break;
 		long m = 0;
 		for (long k = 0; k < n; k++)
@@ -662,7 +555,7 @@ static int run_onset(drv *d, sb_err *e)
 			return e->code;
 		if (d->n_ingested > got)
 			continue;
-		if (!npend || parallel_stopped() || d->io_fault)
+		if (!npend || stop_requested() || d->io_fault)
 			return 0;
 		long searching = 0, groups = d->autorep ? d->shp.npoints : d->srch.ngroups;
 		for (long i = 0; i < groups; i++)
@@ -673,7 +566,7 @@ static int run_onset(drv *d, sb_err *e)
 			d->autorep ? "point" : "group", groups > 1 ? "s" : "", d->autorep ? "running" : "searching",
 			d->jobs, d->jobs > 1 ? "s" : "", d->o->sshloginfile ? " per host of " : "",
 			d->o->sshloginfile ? d->o->sshloginfile : "");
-		if (launch(d, npend, e) || parallel_stopped() || d->io_fault)
+		if (launch(d, npend, e) || stop_requested() || d->io_fault)
 			return e->code;
 		if (d->n_ingested == got && d->n_failed_now == failed)
 			return 0; /* nothing finished (every run stopped): the next `study run` goes on */
@@ -742,7 +635,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (d->jobs < 1)
 		d->jobs = 1;
 	const char *rd = o->runs_dir ? o->runs_dir : "runs";
-	if (mkdir_p(rd, e))
+	if (dirs_make(rd, e))
 		goto out;
 	if (!realpath(rd, d->root)) {
 		sb_errf(e, SB_EIO, "%s: %s", rd, strerror(errno));
@@ -768,7 +661,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 
-	parallel_signals();
+	stop_signals();
 	if (o->progress < 0 ? isatty(2) : o->progress) {
 		d->watch = malloc(sizeof *d->watch);
 		if (d->watch)
@@ -786,7 +679,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 		fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
 			d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "",
 			o->sshloginfile ? o->sshloginfile : "");
-		if (npend && !parallel_stopped() && !d->io_fault)
+		if (npend && !stop_requested() && !d->io_fault)
 			launch(d, npend, e);
 	}
 	sb_err se = {0};
@@ -813,12 +706,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 	long exhausted = 0;
 	for (long i = 0; d->transient && i < d->g.n; i++)
 		exhausted += d->transient[i] > o->retries;
-	if (!e->code && !d->io_fault && !parallel_stopped() && exhausted)
+	if (!e->code && !d->io_fault && !stop_requested() && exhausted)
 		sb_errf(e, DRV_INTERRUPTED,
 			"%s: %ld runs not complete, %ld of them killed or lost %d times in this run (--retries %d; study "
 			"status %s lists the attempts); run the same command again to resume",
 			d->c.name, pending, exhausted, o->retries + 1, o->retries, d->c.name);
-	else if (!e->code && (parallel_stopped() || pending))
+	else if (!e->code && (stop_requested() || pending))
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
 	else if (!e->code && failed)

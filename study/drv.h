@@ -50,32 +50,22 @@ static inline int exists(const char *p)
 	return access(p, F_OK) == 0;
 }
 
-int mkdir_p(const char *path, sb_err *e);
-
-/* driver.c, also for `study submit`: the campaign's lock (an exclusive flock on
- * DIR/.driver.lock, held while the driver works), its descriptor; -1 with e set:
- * DRV_BUSY when another driver holds it, an I/O error when the lock cannot be made
- * or taken (a read-only or full runs directory), naming the file and why. */
+/* driver.c, also for `study submit`: the campaign's lock and the lock of the
+ * campaign in its database (lib/lock.h, with this campaign's paths), a descriptor;
+ * -1 with e set: DRV_BUSY when another driver holds it, an I/O error when the lock
+ * cannot be made or taken (a read-only or full runs directory), naming the file and
+ * why. */
 int driver_lock(const drv *d, sb_err *e);
-/* driver.c, also for `study submit`: the lock of the campaign in its database
- * (DB.NAME.lock beside the database), as driver_lock; a second driver on the same
- * database with another --runs is refused with DRV_BUSY. */
 int driver_db_lock(const drv *d, sb_err *e);
-/* driver.c: directories and files the driver writes inside the campaign directory,
- * made if missing; a symbolic link (or another kind of file) planted there is refused
- * naming the path, never followed (an I/O error). driver_dirs checks d->dir and its
- * subdirectories sub[0..n). */
-int driver_own_dir(const char *path, sb_err *e);
-int driver_own_file(const char *path, sb_err *e);
+/* driver.c: the directories the driver writes inside the campaign directory, made if
+ * missing, a link planted there refused (lib/dirs.h): d->dir and its subdirectories
+ * sub[0..n). */
 int driver_dirs(const drv *d, const char *const *sub, size_t n, sb_err *e);
 enum { DRIVER_NSUB = 4 };
 extern const char *const driver_subdirs[DRIVER_NSUB]; /* jobs, logs, cache, failed */
-/* driver.c: the packing cache as its files say. The key a run's argument file starts
- * it from ("" none); whether a packing's particle file exists; a packing's state
- * ("ok", "failed", "" to build) after forgetting a recorded one whose file is gone
- * (and a failed one with --retry-failed) and ingesting one built unheard. */
-void driver_args_packing(const drv *d, const char *id, char *key, size_t len);
-int driver_cache_present(const drv *d, const char *key);
+/* driver.c: a packing's state ("ok", "failed", "" to build) after forgetting a
+ * recorded one whose file is gone (and a failed one with --retry-failed) and
+ * ingesting one built unheard (the files as packing.h reads them). */
 int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e);
 
 /* driver.c, also for `study submit` (slurm.c), which prepares runs as `study run`
@@ -86,12 +76,9 @@ int driver_record(drv *d, sb_err *e);
 int driver_cache_args(drv *d, const char *key, long first, sb_err *e);
 int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e);
 
-/* parallel.c: GNU parallel over the jobs, the workers' lines handed to ingest.c; the
- * driver's SIGINT/SIGTERM (no new jobs, running ones checkpoint) */
+/* parallel.c: GNU parallel over the jobs, the workers' lines handed to ingest.c (the
+ * driver's SIGINT/SIGTERM reach parallel through stop.h) */
 int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase, sb_err *e);
-void parallel_signals(void);
-int parallel_stopped(void);
-void parallel_halt(void);
 
 /* ingest.c: a run's or a packing's outcome into the database (and into d->outcome,
  * d->transient for the retries) */

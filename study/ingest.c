@@ -10,7 +10,9 @@
 #include "drv.h"
 #include "h5sum.h"
 #include "layout.h"
+#include "packing.h"
 #include "safe.h"
+#include "stop.h"
 #include "worker.h"
 
 /* A run the database has no attempt of (it was rebuilt from the files) gets back the
@@ -155,8 +157,8 @@ static int input_gone(drv *d, const char *id)
 	layout_file(d->dir, 0, id, LAY_ARGS, args, sizeof args);
 	if (!exists(args))
 		return 1;
-	driver_args_packing(d, id, key, sizeof key);
-	return key[0] && !driver_cache_present(d, key);
+	packing_of_args(d, id, key, sizeof key);
+	return key[0] && !packing_present(d, key);
 }
 
 /* A DONE line from a worker: the output file decides; without one, the exit code. */
@@ -229,7 +231,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	/* a crash (SIGSEGV, SIGABRT, ...) is the engine's own and would repeat: failed */
 	const int crashed = worker_crashed(code);
 	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || io || lost;
-	int ours = code == SB_EINTR && (parallel_stopped() || d->io_fault);
+	int ours = code == SB_EINTR && (stop_requested() || d->io_fault);
 	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
 	if (resumable && !ours)
 		d->transient[ix]++;
@@ -241,7 +243,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	if (io && !d->io_fault) {
 		d->io_fault = 1;
 		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
-		parallel_halt(); /* no new jobs; running ones checkpoint */
+		stop_halt(); /* no new jobs; running ones checkpoint */
 	}
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
@@ -305,7 +307,7 @@ void unreported(drv *d, sb_err *e)
 		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
 		/* not stopped by the driver: its worker died without a word (killed, or
 		 * its host lost): run again */
-		int lost = !parallel_stopped() && !d->io_fault;
+		int lost = !stop_requested() && !d->io_fault;
 		d->outcome[i] = lost ? 'l' : 'h';
 		if (lost) {
 			d->transient[i]++;

@@ -1,7 +1,6 @@
 /* parallel.c - GNU parallel over a campaign's jobs: the command line (locally, or
- * across hosts with --sshloginfile), the workers' START/DONE lines as they arrive, and
- * the driver's signals. The flags a signal handler sets are the only state that is
- * not the driver's (drv): a handler has no other way to speak. */
+ * across hosts with --sshloginfile) and the workers' START/DONE lines as they arrive,
+ * handed to ingest.c; a stop (stop.h) passed on to parallel. */
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -16,41 +15,12 @@
 #include <time.h>
 
 #include "drv.h"
+#include "dirs.h"
 #include "provenance.h"
 #include "safe.h"
+#include "stop.h"
 #include "watch.h"
 #include "worker.h"
-
-static volatile sig_atomic_t g_stop;
-static volatile sig_atomic_t g_parallel;
-
-static void on_signal(int sig)
-{
-	(void)sig;
-	if (!g_stop && g_parallel > 0)
-		kill((pid_t)g_parallel, SIGTERM); /* no new jobs; running ones checkpoint */
-	g_stop = 1;
-}
-
-void parallel_signals(void)
-{
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
-}
-
-int parallel_stopped(void)
-{
-	return g_stop;
-}
-
-void parallel_halt(void)
-{
-	if (g_parallel > 0)
-		kill((pid_t)g_parallel, SIGTERM);
-}
 
 /* Copy src to dst (temporary name, rename), executable. */
 static int copy_exe(const char *src, const char *dst, sb_err *e)
@@ -93,7 +63,7 @@ static int stage_remote(drv *d, char *dir, size_t len, sb_err *e)
 	snprintf(bindir, sizeof bindir, "%s", d->o->self);
 	*strrchr(bindir, '/') = 0;
 	snprintf(dir, len, "%s/.remote", d->dir);
-	if (mkdir_p(dir, e))
+	if (dirs_make(dir, e))
 		return e->code;
 	static const char *const names[] = {"study", "shake"};
 	for (int i = 0; i < 2; i++) {
@@ -150,14 +120,14 @@ static int add_arg(char **argv, int *argc, int max, const char *fmt, const char 
 int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase,
 			sb_err *e)
 {
-	if (g_stop)
+	if (stop_requested())
 		return 0; /* stopped before this pass began: it starts nothing */
 	int is_cache = !strcmp(kind, "cache");
 	char jobfile[PATHX], joblog[PATHX];
 	snprintf(jobfile, sizeof jobfile, "%s/%s.jobs", d->dir, kind);
 	snprintf(joblog, sizeof joblog, "+%s/joblog.txt", d->dir);
 	/* GNU parallel follows a link at its joblog: none is written through one */
-	if (driver_own_file(jobfile, e) || driver_own_file(joblog + 1, e))
+	if (dirs_own_file(jobfile, e) || dirs_own_file(joblog + 1, e))
 		return e->code;
 	FILE *jf = fopen(jobfile, "w");
 	if (!jf)
@@ -238,7 +208,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		sb_errf(e, SB_EIO, "pipe: %s", strerror(errno));
 		goto out;
 	}
-	/* A signal between the fork and g_parallel's assignment would find no parallel to
+	/* A signal between the fork and stop_child would find no parallel to
 	 * stop, and this one would start every job: held until the pid is known, then
 	 * passed on if it came. */
 	sigset_t hold, was;
@@ -267,9 +237,9 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 		fprintf(stderr, "study: cannot run GNU parallel: %s\n", strerror(errno));
 		_exit(127);
 	}
-	g_parallel = pid;
+	stop_child(pid);
 	sigprocmask(SIG_SETMASK, &was, NULL);
-	if (g_stop)
+	if (stop_requested())
 		kill(pid, SIGTERM); /* the signal came before the pid was known */
 	close(pfd[1]);
 	/* the workers' lines as they come, and a look for the progress line every
@@ -285,7 +255,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	for (int open_ = buf != NULL; open_;) {
 		struct pollfd pf = {pfd[0], POLLIN, 0};
 		int ms = d->watch ? (int)((next - mono()) * 1000) : -1;
-		if (g_stop) {
+		if (stop_requested()) {
 			if (resend < 0)
 				resend = mono() + 1;
 			else if (mono() >= resend) {
@@ -344,12 +314,12 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	int st = 0;
 	while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
 		;
-	g_parallel = 0;
+	stop_child(0);
 	if (!is_cache)
 		unreported(d, e);
-	if (WIFEXITED(st) && WEXITSTATUS(st) == 127 && !g_stop)
+	if (WIFEXITED(st) && WEXITSTATUS(st) == 127 && !stop_requested())
 		sb_errf(e, SB_EIO, "GNU parallel did not start (is it installed? make deps)");
-	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !g_stop && !d->io_fault)
+	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !stop_requested() && !d->io_fault)
 		sb_errf(e, SB_EIO, "GNU parallel failed (see the messages above)");
 out:
 	for (int i = 0; i < argc; i++)

@@ -11,8 +11,8 @@
 
 #include "adapt.h"
 #include "db.h"
+#include "dtext.h"
 #include "layout.h"
-#include "slurm.h"
 #include "watch.h"
 
 static int open_ro(st_db *d, const char *path, sb_err *e)
@@ -378,19 +378,6 @@ static void csv_field(FILE *out, const char *s)
 	fputc('"', out);
 }
 
-void report_number(double v, char *buf, size_t len)
-{
-	if (v == floor(v) && fabs(v) < 1e15) { /* 20, 3000000: no exponent */
-		snprintf(buf, len, "%.0f", v);
-		return;
-	}
-	for (int p = 1; p <= 17; p++) {
-		snprintf(buf, len, "%.*g", p, v);
-		if (strtod(buf, NULL) == v)
-			return;
-	}
-}
-
 int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 {
 	st_db d;
@@ -412,7 +399,7 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 					fputc(',', out);
 				if (sqlite3_column_type(q, i) == SQLITE_FLOAT) {
 					char num[40];
-					report_number(sqlite3_column_double(q, i), num, sizeof num);
+					dtext_shortest(sqlite3_column_double(q, i), num, sizeof num);
 					fputs(num, out);
 				} else {
 					csv_field(out, col(q, i));
@@ -436,7 +423,8 @@ static void on_watch_signal(int sig)
 	g_watch_stop = 1;
 }
 
-int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval, FILE *out, sb_err *e)
+int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval,
+		 report_refresh refresh, FILE *out, sb_err *e)
 {
 	st_db d;
 	if (open_ro(&d, db_path, e))
@@ -472,9 +460,9 @@ int report_watch(const char *db_path, const char *runs_dir, const char *name, do
 		/* what Slurm tasks did since the last look, into the database (the runs they
 		 * started show as running, with their journals beside them on the shared file
 		 * system); nothing without arrays recorded */
-		for (long i = 0; i < nw; i++) {
+		for (long i = 0; i < nw && refresh; i++) {
 			sb_err se = {0};
-			if (slurm_refresh(runs_dir, db_path, w[i].name, &w[i].slurm, stderr, &se))
+			if (refresh(runs_dir, db_path, w[i].name, &w[i].slurm, stderr, &se))
 				fprintf(stderr, "study: %s\n", se.msg);
 		}
 		for (long i = 0; i < nw && !e->code; i++) {

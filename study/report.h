@@ -9,17 +9,19 @@
 /* Counts per state, cache hits, failures with their reasons and an ETA; all
  * campaigns when name is NULL. */
 int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e);
+/* Before each look of report_watch, for each campaign: what its Slurm tasks did since
+ * the last look, into the database, and how many of its runs they hold (*active). The
+ * caller's (study_main.c gives slurm_refresh): the report reads, it does not collect. */
+typedef int (*report_refresh)(const char *runs_dir, const char *db_path, const char *name, long *active, FILE *msg,
+			      sb_err *e);
 /* Live progress (watch.h) of one campaign (all when name is NULL), a look every
  * interval seconds, until every run is finished, no driver runs it any more, or
- * SIGINT/SIGTERM; runs_dir is where the runs' journals are. */
-int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval, FILE *out, sb_err *e);
+ * SIGINT/SIGTERM; runs_dir is where the runs' journals are; refresh may be NULL. */
+int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval,
+		 report_refresh refresh, FILE *out, sb_err *e);
 /* One line per campaign. */
 int report_list(const char *db_path, FILE *out, sb_err *e);
 /* CSV of the `runs` view (parameters + results), one row per run. */
 int report_export(const char *db_path, const char *name, FILE *out, sb_err *e);
-
-/* The shortest text that reads back as the same double (0.85, not
- * 0.84999999999999998; 20, not 2e+01): what the user wrote, and still exact. */
-void report_number(double v, char *buf, size_t len);
 
 #endif

@@ -2,12 +2,12 @@
  * (see sharp.h; the reasoning is in study/README.md). */
 #include "sharp.h"
 
-#include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdlib.h>
 
 #include "adapt.h"
 #include "km.h"
+#include "quantile.h"
 
 long sharp_min_replicates(int result, double level)
 {
@@ -77,10 +77,8 @@ static void rise_fraction(const sh_plan *p, const sh_obs *obs, long n, sh_eval *
 	if (!m)
 		return;
 	/* Clopper-Pearson: exact, never narrower than its level, defined at 0 and m */
-	double a = 1 - p->level;
 	ev->est = (double)k / (double)m;
-	ev->lo = k ? gsl_cdf_beta_Pinv(a / 2, (double)k, (double)(m - k + 1)) : 0;
-	ev->hi = k < m ? gsl_cdf_beta_Pinv(1 - a / 2, (double)(k + 1), (double)(m - k)) : 1;
+	quant_clopper_pearson(k, m, p->level, &ev->lo, &ev->hi);
 	ev->width = ev->hi - ev->lo;
 }
 
@@ -101,7 +99,7 @@ static void mean_flux(const sh_plan *p, const sh_obs *obs, long n, sh_eval *ev)
 	for (long i = 0; i < n; i++)
 		if (obs[i].kind == SH_USED && isfinite(obs[i].value))
 			sq += (obs[i].value - ev->est) * (obs[i].value - ev->est);
-	double h = gsl_cdf_tdist_Pinv(0.5 + p->level / 2, (double)(m - 1)) * sqrt(sq / (double)(m - 1) / (double)m);
+	double h = quant_student(p->level, (double)(m - 1)) * sqrt(sq / (double)(m - 1) / (double)m);
 	ev->lo = ev->est - h;
 	ev->hi = ev->est + h;
 	ev->width = 2 * h;

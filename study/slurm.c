@@ -14,6 +14,7 @@
 
 #include "changes.h"
 #include "layout.h"
+#include "packing.h"
 #include "safe.h"
 #include "slurm_collect.h"
 #include "slurm_plan.h"
@@ -147,7 +148,7 @@ static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
 		int named = 0;
 		for (long i = a; i < b && !named; i++) {
 			char ak[64];
-			driver_args_packing(d, d->g.runs[k[i].run].id, ak, sizeof ak);
+			packing_of_args(d, d->g.runs[k[i].run].id, ak, sizeof ak);
 			named = !strcmp(ak, k[a].key);
 		}
 		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
@@ -273,12 +274,12 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		const grid_run *r = &d->g.runs[d->pend[i]];
 		char h5[PATHX], cargs[PATHX];
 		runs[i].id = r->id;
-		driver_args_packing(d, r->id, keys[i], sizeof keys[i]);
+		packing_of_args(d, r->id, keys[i], sizeof keys[i]);
 		layout_file(d->dir, 1, keys[i], LAY_OUTPUT, h5, sizeof h5);
 		layout_file(d->dir, 1, keys[i], LAY_ARGS, cargs, sizeof cargs);
 		/* built: its particle file is there (a packing's output without it was
 		 * forgotten by driver_cache_check, and is built again) */
-		if (!keys[i][0] || (exists(h5) && driver_cache_present(d, keys[i]))) {
+		if (!keys[i][0] || (exists(h5) && packing_present(d, keys[i]))) {
 			keys[i][0] = 0; /* settles itself, or its packing is built */
 		} else if (!exists(cargs)) {
 			/* a run of this packing gives the packing's preparation (the key is its hash) */

@@ -7,14 +7,14 @@
 #include "slurm_collect.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
 #include <unistd.h>
 
+#include "dirs.h"
 #include "layout.h"
+#include "lock.h"
 #include "slurm.h"
 #include "slurm_plan.h"
 #include "worker.h"
@@ -52,7 +52,7 @@ int slurm_drv_open(drv *d, const driver_opts *o, const char *path, sb_err *e)
 	if (campaign_load(&d->c, path, e) || grid_expand(&d->g, &d->c, e))
 		return e->code;
 	const char *rd = o->runs_dir ? o->runs_dir : "runs";
-	if (mkdir_p(rd, e))
+	if (dirs_make(rd, e))
 		return e->code;
 	if (!realpath(rd, d->root))
 		return sb_errf(e, SB_EIO, "%s: %s", rd, strerror(errno));
@@ -487,11 +487,8 @@ int slurm_refresh(const char *runs_dir, const char *db_path, const char *name, l
 		if (access(rd, F_OK)) /* never made again by a status */
 			sb_errf(&ce, SB_EIO, "%s: %s", rd, strerror(errno));
 		else if (!slurm_drv_open(d, &o, cs[i].file, &ce)) {
-			char lp[PATHX];
-			snprintf(lp, sizeof lp, "%s/.driver.lock", d->dir);
-			lock = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
 			/* a driver or a submit holds the campaign: it reads the tasks itself */
-			if (lock >= 0 && !flock(lock, LOCK_EX | LOCK_NB)) {
+			if ((lock = lock_campaign_try(d->dir)) >= 0) {
 				slurm_collect(d, have_q ? &q : NULL, &ce);
 				char *busy = calloc((size_t)d->g.n + 1, 1);
 				long nb = 0;

@@ -9,6 +9,7 @@
 #include "campaign.h"
 #include "driver.h"
 #include "grid.h"
+#include "dtext.h"
 #include "report.h"
 #include "results.h"
 #include "search.h"
@@ -365,14 +366,14 @@ static int cmd_expand(const char *path, sb_err *e)
 				char v[SB_STR_MAX + 8];
 				const sb_param *p = params_find(c->axes[a].key);
 				if (p->type == PT_REAL) /* the value as written; the id hashes all 17 digits */
-					report_number(*(const double *)((const char *)&s + p->offset), v, sizeof v);
+					dtext_shortest(*(const double *)((const char *)&s + p->offset), v, sizeof v);
 				else
 					params_format(&s, p, v, sizeof v);
 				printf("\t%s", v);
 			}
 			if (c->onset.line) {
 				char v[40];
-				report_number(s.frequency, v, sizeof v);
+				dtext_shortest(s.frequency, v, sizeof v);
 				printf("\t%s", v);
 			}
 			printf("\n");
@@ -522,7 +523,7 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	if (!strcmp(cmd, "status") && o.watch) {
-		report_watch(dbp, o.runs, o.npos ? name : NULL, o.interval, stdout, &e);
+		report_watch(dbp, o.runs, o.npos ? name : NULL, o.interval, slurm_refresh, stdout, &e);
 	} else if (!strcmp(cmd, "status")) {
 		int jobs = o.jobs ? o.jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
 		long active;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "drv.h"
+#include "dirs.h"
 #include "h5sum.h"
 #include "layout.h"
 
@@ -22,7 +23,7 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
 	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 	if (exists(path)) {
 		layout_sub(d->dir, "damaged", keep, sizeof keep);
-		if (driver_own_dir(keep, e))
+		if (dirs_own(keep, e))
 			return e->code;
 		layout_aside(d->dir, "damaged", id, att, keep, sizeof keep);
 		if (rename(path, keep))

@@ -5,13 +5,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
 #include <time.h>
 
 #include "jtail.h"
 #include "layout.h"
-#include "report.h"
+#include "lock.h"
+#include "dtext.h"
 
 /* a rate is measured over at least this much wall time (the engine's journal reaches
  * the disk in stdio buffers, so t advances in steps), and over the last this much at
@@ -48,35 +47,6 @@ void watch_free(watch *w)
 	w->nruns = w->cap = 0;
 }
 
-/* Does a process hold the campaign's driver lock (an exclusive flock)? Read from
- * /proc/locks, never by taking the lock: a watcher holding it even for a moment
- * would turn a starting driver away. -1 when that cannot be known. */
-static int driver_alive(const char *dir)
-{
-	char lp[4400];
-	struct stat sb;
-	snprintf(lp, sizeof lp, "%s/.driver.lock", dir);
-	if (stat(lp, &sb))
-		return 0;
-	FILE *f = fopen("/proc/locks", "r");
-	if (!f)
-		return -1;
-	char line[256];
-	int found = 0;
-	while (!found && fgets(line, sizeof line, f)) {
-		char kind[16];
-		unsigned maj, min;
-		unsigned long ino;
-		/* "1: FLOCK  ADVISORY  WRITE 1234 fd:01:5678 0 EOF" (waiters have "->" first) */
-		const char *p = strstr(line, ": ");
-		if (p && sscanf(p + 2, "%15s %*s %*s %*d %x:%x:%lu", kind, &maj, &min, &ino) == 4 && !strcmp(kind, "FLOCK") &&
-		    ino == (unsigned long)sb.st_ino && maj == major(sb.st_dev) && min == minor(sb.st_dev) && !strstr(line, "->"))
-			found = 1;
-	}
-	fclose(f);
-	return found;
-}
-
 /* "frequency=2.8 radius_ratio=4 seed=3": the campaign's swept keys (its `axes`) with
  * this run's values, and its replicate */
 static void run_label(st_db *db, const char *camp, const char *axes, const char *id, long replicate, char *out,
@@ -97,7 +67,7 @@ static void run_label(st_db *db, const char *camp, const char *axes, const char 
 		if (sqlite3_step(q) == SQLITE_ROW) {
 			char v[64];
 			if (sqlite3_column_type(q, 0) == SQLITE_FLOAT)
-				report_number(sqlite3_column_double(q, 0), v, sizeof v);
+				dtext_shortest(sqlite3_column_double(q, 0), v, sizeof v);
 			else
 				snprintf(v, sizeof v, "%s", col(q, 0));
 			l += (size_t)snprintf(out + l, len - l, "%s%s=%s", l ? " " : "", k, v);
@@ -263,7 +233,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		}
 	}
 	w->eta = w->rate > 0 ? w->remaining / w->rate : -1;
-	w->driver = driver_alive(w->dir);
+	w->driver = lock_campaign_held(w->dir);
 	return e->code;
 }
 
@@ -288,7 +258,7 @@ static void fmt_dur(double s, char *buf, size_t len)
 static void run_state(const watch_run *r, char *buf, size_t len)
 {
 	char T[32];
-	report_number(r->T, T, sizeof T);
+	dtext_shortest(r->T, T, sizeof T);
 	if (r->t >= 0)
 		snprintf(buf, len, "t %.3g/%s s", r->t, T);
 	else

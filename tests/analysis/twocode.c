@@ -8,22 +8,23 @@
 
 #include "testlib.h"
 #include "twocode.h"
+#include "quantile.h"
 
 int main(void)
 {
 	double lo, hi;
 	/* binom.test(3, 10)$conf.int: 0.06673951 0.65245285 */
-	tc_clopper_pearson(3, 10, 0.95, &lo, &hi);
+	quant_clopper_pearson(3, 10, 0.95, &lo, &hi);
 	CHECK_REL("cp.3_of_10.lo", lo, 0.06673951, 1e-6);
 	CHECK_REL("cp.3_of_10.hi", hi, 0.65245285, 1e-6);
 	/* at k = 0 the upper end is 1 - (alpha/2)^(1/n); at k = n the lower end is (alpha/2)^(1/n) */
-	tc_clopper_pearson(0, 16, 0.95, &lo, &hi);
+	quant_clopper_pearson(0, 16, 0.95, &lo, &hi);
 	CHECK("cp.0_of_16.lo", lo == 0, "lo %g", lo);
 	CHECK_REL("cp.0_of_16.hi", hi, 1 - pow(0.025, 1.0 / 16), 1e-9);
-	tc_clopper_pearson(16, 16, 0.95, &lo, &hi);
+	quant_clopper_pearson(16, 16, 0.95, &lo, &hi);
 	CHECK_REL("cp.16_of_16.lo", lo, pow(0.025, 1.0 / 16), 1e-9);
 	CHECK("cp.16_of_16.hi", hi == 1, "hi %g", hi);
-	tc_clopper_pearson(5, 4, 0.95, &lo, &hi);
+	quant_clopper_pearson(5, 4, 0.95, &lo, &hi);
 	CHECK("cp.refuses_k_over_n", isnan(lo) && isnan(hi), "%g %g", lo, hi);
 
 	/* binom.test(2, 10)$p.value = 0.109375 = 2 * 56 / 1024; 1 of 9: 2 * 10 / 512 */

@@ -13,8 +13,8 @@
  * Paths are relative to the campaign directory (NAME/) where a job runs in it (the
  * worker, a remote host), else joined to it. Each function returns the length it
  * needed (snprintf's), so a caller can refuse a path that did not fit. */
-#ifndef ST_LAYOUT_H
-#define ST_LAYOUT_H
+#ifndef LIB_LAYOUT_H
+#define LIB_LAYOUT_H
 
 #include <stddef.h>
 

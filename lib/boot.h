@@ -1,8 +1,8 @@
 /* boot.h - the nonparametric bootstrap with explicit random state: an MT19937 seeded
  * by the caller (the tools take --seed), so a result is reproducible bit for bit;
  * percentile confidence intervals that ignore failed (NaN) replicates. */
-#ifndef AN_BOOT_H
-#define AN_BOOT_H
+#ifndef LIB_BOOT_H
+#define LIB_BOOT_H
 
 #include <gsl/gsl_rng.h>
 #include <stddef.h>

@@ -3,8 +3,8 @@
  * the `result` table's schema, the ingest, the `runs` view and the README's table of
  * columns (`study columns`) are all generated from it, so no two copies can drift.
  * Every value is the engine's: the database never recomputes a result, it copies it. */
-#ifndef ST_RESULTS_H
-#define ST_RESULTS_H
+#ifndef LIB_RESULTS_H
+#define LIB_RESULTS_H
 
 #include <stddef.h>
 #include <stdio.h>

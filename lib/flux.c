@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "acct.h"
 #include "h5read.h"
 
 int flux_read(const char *path, flux_data *d, sb_err *e)
@@ -60,24 +59,6 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 	if (!isfinite(d->surface) && d->L)
 		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */
 	h5r_close(f);
-	return 0;
-}
-
-int flux_load(an_run *r, flux_data *d)
-{
-	memset(d, 0, sizeof *d);
-	if (acct_classify(r))
-		return 1;
-	sb_err e = {0};
-	if (flux_read(r->path, d, &e)) {
-		/* a value that is no number is there to read, and unusable */
-		acct_set(r, e.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", e.msg);
-		return 1;
-	}
-	const char *ramp = an_str(r, "ramp");
-	double per = an_num(r, "duration", NAN) * an_num(r, "frequency", NAN);
-	if (!strcmp(r->state, "failed") && (!ramp || !strcmp(ramp, "none")) && per >= 0 && per < 1e12)
-		d->planned = (size_t)floor(per + 1e-9);
 	return 0;
 }
 

@@ -4,8 +4,8 @@
  * S(t) <= 0.5) and its Brookmeyer-Crowley interval (Biometrics 38, 29, 1982): the
  * times where the pointwise band S -+ z se first reaches 0.5. At tied times events
  * come before censorings. */
-#ifndef AN_KM_H
-#define AN_KM_H
+#ifndef LIB_KM_H
+#define LIB_KM_H
 
 #include <stddef.h>
 

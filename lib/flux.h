@@ -3,12 +3,11 @@
  * band of the bed, default its middle, 0.4-0.6 of the settled surface height) per
  * period, its mean over the periods after a transient, and the time-mean profile
  * Phi(D) over every line (Fig. 3). */
-#ifndef AN_FLUX_H
-#define AN_FLUX_H
+#ifndef LIB_FLUX_H
+#define LIB_FLUX_H
 
 #include <stddef.h>
 
-#include "adb.h"
 #include "err.h"
 
 typedef struct flux_opts {
@@ -30,12 +29,6 @@ typedef struct flux_data {
 
 /* SB_ENAN when a time, frequency, Phi or height is not a finite number. */
 int flux_read(const char *path, flux_data *d, sb_err *e);
-/* A run's flux for a statistic (acct.h): returns 1 when there is nothing to read
- * (pending, running, no file, unreadable file, unusable values: r->use and r->why say
- * which), else 0
- * with d read; for a failed run d->planned is the number of periods its duration
- * holds at its frequency (fixed frequency), so that its transient is the planned one. */
-int flux_load(an_run *r, flux_data *d);
 void flux_free(flux_data *d);
 /* Lines [*l0, *l1) whose heights lie in the band (the nearest line when none does). */
 void flux_band(const flux_data *d, const flux_opts *o, size_t *l0, size_t *l1);

@@ -3,8 +3,8 @@
  * group against those expected from the pooled risk set; the statistic
  * (O - E)' V^-1 (O - E) over k - 1 groups, chi-square with k - 1 degrees of freedom
  * under the null. */
-#ifndef AN_LOGRANK_H
-#define AN_LOGRANK_H
+#ifndef LIB_LOGRANK_H
+#define LIB_LOGRANK_H
 
 #include <stddef.h>
 

@@ -1,7 +1,7 @@
 /* h5sum.h - a run's results read from its HDF5 output: every column of the results
  * table (results.h), each with a flag saying whether the file holds it. */
-#ifndef ST_H5SUM_H
-#define ST_H5SUM_H
+#ifndef LIB_H5SUM_H
+#define LIB_H5SUM_H
 
 #include "err.h"
 #include "results.h"

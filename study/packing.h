@@ -1,0 +1,16 @@
+/* packing.h - the packing cache as its files say: the packing a run's argument file
+ * starts it from, and whether a packing's particle file exists. The files decide,
+ * not the database (study/README.md, "What `study run` does"). */
+#ifndef ST_PACKING_H
+#define ST_PACKING_H
+
+#include <stddef.h>
+
+#include "drv.h"
+
+/* The key a run's argument file starts it from ("" none). */
+void packing_of_args(const drv *d, const char *id, char *key, size_t len);
+/* Does the packing's particle file (what the runs start from) exist? */
+int packing_present(const drv *d, const char *key);
+
+#endif
