@@ -80,7 +80,7 @@ help:
 	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
 	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, deleted run dirs, litter (FAULT_ROUNDS=8)"
-	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from the campaigns beside them (FIG_JOBS=2)"
+	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from campaigns/figures/ (FIG_JOBS=2)"
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files, and of run files (HDF5) read"
 	@echo "                by every analysis tool and study run, against the sanitizer build"
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"

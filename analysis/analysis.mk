@@ -1,9 +1,10 @@
 # analysis.mk - the analysis tools bin/onset, bin/hysteresis, bin/waiting, bin/figures, bin/rolls,
 # bin/ring, bin/whale, bin/convect
-# and their tests (included by the top-level Makefile). Shared modules go into
-# $(BUILD)/analysis/libanalysis.a; each tool is one *_main.c.
+# and their tests (included by the top-level Makefile after lib/lib.mk). The modules
+# (common/: the frame every tool shares; measure/: what the tools compute) go into
+# $(BUILD)/analysis/libanalysis.a; each tool is one tools/NAME_main.c.
 AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale convect
-AN_SRC    = $(filter-out %_main.c,$(wildcard analysis/*.c))
+AN_SRC    = $(wildcard analysis/common/*.c analysis/measure/*.c)
 AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o)
 AN_LIB    = $(BUILD)/analysis/libanalysis.a
 AN_BIN    = $(AN_MAIN:%=$(BIN)/%)
@@ -17,7 +18,7 @@ $(AN_LIB): $(AN_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(AN_BIN): $(BIN)/%: $(BUILD)/analysis/%_main.o $(AN_LIB) $(FLOOR) $(LIB)
+$(AN_BIN): $(BIN)/%: $(BUILD)/analysis/tools/%_main.o $(AN_LIB) $(FLOOR) $(LIB)
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  LD    $@")
 	$(Q)$(CC) $(LDFLAGS) -o $@ $< $(AN_LIB) $(FLOOR) $(LIB) $(PKG_LIBS)
@@ -32,7 +33,7 @@ all: $(AN_BIN)
 tests: $(AN_BIN) $(AN_TBIN)
 
 # make figures: the figures of analysis/README.md (PNG and PDF in analysis/figures/, with
-# the tables the tools printed, NAME.txt) from the campaigns beside them, so that a
+# the tables the tools printed, NAME.txt) from the campaigns in campaigns/figures/, so that a
 # committed figure is what today's tools draw from today's engine. Each campaign runs
 # in its own runs directory under build/figures/, again from scratch when its file or
 # the engine's sources change (not when bin/shake is only relinked: its version stamp
@@ -40,6 +41,7 @@ tests: $(AN_BIN) $(AN_TBIN)
 # The tools run again whenever they are rebuilt.
 FIG_DIR    = analysis/figures
 FIG_RUNS   = build/figures
+FIG_CAMP   = campaigns/figures
 FIG_JOBS  ?= 2
 FIG_ENGINE = $(wildcard core/*.c core/*.h)
 FIG_PNGS   = $(FIG_DIR)/onset.png $(FIG_DIR)/hysteresis.png $(FIG_DIR)/waiting_km.png $(FIG_DIR)/fig1.png
@@ -47,7 +49,7 @@ FIG_PNGS   = $(FIG_DIR)/onset.png $(FIG_DIR)/hysteresis.png $(FIG_DIR)/waiting_k
 .PHONY: figures
 figures: $(FIG_PNGS)
 
-$(FIG_RUNS)/%/done: $(FIG_DIR)/%.campaign $(FIG_ENGINE) | $(SHAKE) $(STUDY)
+$(FIG_RUNS)/%/done: $(FIG_CAMP)/%.campaign $(FIG_ENGINE) | $(SHAKE) $(STUDY)
 	$(Q)if [ -e $@ ]; then rm -rf $(FIG_RUNS)/$*; fi
 	@echo "  RUN   $<"
 	$(Q)$(STUDY) run $< --runs $(FIG_RUNS)/$* --jobs $(FIG_JOBS) --no-progress

@@ -97,7 +97,7 @@ const char *params_where(const sb_scene *s, const char *key);
 enum sb_ptype { PT_INT, PT_REAL, PT_BOOL, PT_ENUM, PT_STR };
 
 /* What a parameter influences. The study driver hashes PREP keys for the packing
- * cache and every key but the DRIVER and NOID ones for the run identity (study/grid.c: what is recorded changes a run's output too); a
+ * cache and every key but the DRIVER and NOID ones for the run identity (study/campaign/grid.c: what is recorded changes a run's output too); a
  * checkpoint is only resumed when every PREP|DYN key equals the scene's. */
 enum sb_pflag {
 	PF_PREP = 1,   /* changes the prepared (settled) state */

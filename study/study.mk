@@ -4,7 +4,9 @@
 # through a band an [onset] search classifies its runs by, the statistics) and the
 # engine library for the one parameter table (params_set, params_hash, ...); never
 # analysis/ (tests/integration/floors.sh).
-STUDY_SRC = $(wildcard study/*.c)
+# study_main.c and the sub-folders (study/README.md, "Source tour"); each folder's
+# files include the others' as "folder/name.h" (-Istudy), lib/ and core/ by name
+STUDY_SRC = $(wildcard study/*.c study/*/*.c)
 STUDY_OBJ = $(STUDY_SRC:%.c=$(BUILD)/%.o)
 STUDY     = $(BIN)/study
 # every module but the driver's main: what the unit tests link against

@@ -6,16 +6,16 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "campaign.h"
-#include "driver.h"
-#include "grid.h"
-#include "dtext.h"
-#include "report.h"
+#include "campaign/campaign.h"
+#include "local/driver.h"
+#include "campaign/grid.h"
+#include "report/dtext.h"
+#include "report/report.h"
 #include "results.h"
-#include "search.h"
-#include "slurm.h"
-#include "sharpen.h"
-#include "worker.h"
+#include "adaptive/search.h"
+#include "slurm/submit.h"
+#include "adaptive/sharpen.h"
+#include "job/worker.h"
 #include "words.h"
 
 static const char *USAGE =

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "acct.h"
+#include "common/acct.h"
 #include "h5id.h"
 #include "testlib.h"
 

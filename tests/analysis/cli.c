@@ -5,8 +5,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "cli.h"
-#include "label.h"
+#include "common/cli.h"
+#include "common/label.h"
 #include "testlib.h"
 
 static const char *const ONSET = " by band skip threshold boot seed level ";

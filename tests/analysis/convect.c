@@ -1,4 +1,4 @@
-/* convect.c - the roll strength of a displacement field (analysis/convect.h) on
+/* convect.c - the roll strength of a displacement field (analysis/measure/convect.h) on
  * synthetic fields whose answer is known: a sine of uy across the band gives A/sqrt(2)
  * wherever the pattern sits in x, the count weights, cells outside the band and cells
  * without samples carry no weight, the transient and empty blocks of a run, a run that
@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "convect.h"
+#include "measure/convect.h"
 #include "testlib.h"
 
 #define NX 40

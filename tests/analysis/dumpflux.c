@@ -1,6 +1,6 @@
-/* dumpflux.c - the path from another code's position dump to Phi(D) (analysis/dump.c,
- * analysis/dumpflux.c, core/crossing.c) and the two-code comparison
- * (analysis/pairdiff.c):
+/* dumpflux.c - the path from another code's position dump to Phi(D) (analysis/measure/dump.c,
+ * analysis/measure/dumpflux.c, core/crossing.c) and the two-code comparison
+ * (analysis/measure/pairdiff.c):
  *   - the dump reader: frames, columns by name, rows sorted by id, skipped ITEM
  *     sections; a truncated frame, a missing column, a repeated id are errors;
  *   - the crossing rule at the lines' edges (yp < h <= y up, y < h <= yp down) and the
@@ -21,10 +21,10 @@
 #include <unistd.h>
 
 #include "crossing.h"
-#include "dump.h"
-#include "dumpflux.h"
+#include "measure/dump.h"
+#include "measure/dumpflux.h"
 #include "flux.h"
-#include "pairdiff.h"
+#include "measure/pairdiff.h"
 #include "testlib.h"
 
 static void write_file(const char *path, const char *text)

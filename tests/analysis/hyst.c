@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "boot.h"
-#include "hyst.h"
+#include "measure/hyst.h"
 #include "testlib.h"
 
 enum { NHOLD = 6, NLEG = 80, P = NHOLD + 2 * NLEG, NS = 6 };

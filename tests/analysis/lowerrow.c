@@ -17,7 +17,7 @@
  * fail (verified by flipping it: 7 of the 23 checks fail). */
 #include <math.h>
 
-#include "lowerrow.h"
+#include "measure/lowerrow.h"
 #include "testlib.h"
 
 int main(void)

@@ -6,7 +6,7 @@
 #include <math.h>
 
 #include "boot.h"
-#include "onsetfit.h"
+#include "measure/onsetfit.h"
 #include "testlib.h"
 
 enum { NF = 13, NS = 6 };

@@ -8,7 +8,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "ring.h"
+#include "measure/ring.h"
 #include "testlib.h"
 
 /* n draws of N(mu, sd) */

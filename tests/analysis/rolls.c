@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "rolls.h"
+#include "measure/rolls.h"
 #include "testlib.h"
 
 enum { L = 20 };

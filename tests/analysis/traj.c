@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "testlib.h"
-#include "traj.h"
+#include "measure/traj.h"
 
 #include "h5synth.h"
 

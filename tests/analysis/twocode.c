@@ -1,4 +1,4 @@
-/* twocode.c - the exact statistics of the two-code validation (analysis/twocode.c) on
+/* twocode.c - the exact statistics of the two-code validation (analysis/measure/twocode.c) on
  * known answers: Clopper-Pearson intervals (R's binom.test), the two-sided sign test,
  * the exact sign-flip and Wilcoxon signed-rank tests (R's wilcox.test example of paired
  * data, exact), and McNemar's power against a case solved by hand. */
@@ -7,7 +7,7 @@
 #include <stdio.h>
 
 #include "testlib.h"
-#include "twocode.h"
+#include "measure/twocode.h"
 #include "quantile.h"
 
 int main(void)

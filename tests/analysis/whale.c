@@ -1,5 +1,5 @@
 /* whale.c - the whale oscillation's observables on synthetic heights with a known
- * answer (analysis/whale.h, whalespec.h, whalestat.h, whalerun.h): dives of a known
+ * answer (analysis/measure/whale.h, whalespec.h, whalestat.h, whalerun.h): dives of a known
  * shape at known, uneven times under the bed's flight at the drive frequency and
  * noise; a sine; no dive; one dive; noise at the threshold (hysteresis); a dive under
  * way when the window opens; the spectrum's period; Spearman's rho against hand
@@ -14,10 +14,10 @@
 #include <unistd.h>
 
 #include "testlib.h"
-#include "whale.h"
-#include "whalerun.h"
-#include "whalespec.h"
-#include "whalestat.h"
+#include "measure/whale.h"
+#include "measure/whalerun.h"
+#include "measure/whalespec.h"
+#include "measure/whalestat.h"
 
 enum { RATE = 100 };          /* samples per second, the engine's traj_rate default */
 #define DUR 600.0             /* s: the long runs whale is for */

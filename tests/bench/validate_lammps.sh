@@ -36,8 +36,8 @@
 #      code (bin/dumpflux dump: core/crossing.c, the lines of the engine's run of the
 #      same bed, the box offset A sin(2 pi f t) taken off); the rise by the engine's rule
 #      (validate_rise.in) against the engine's own `risen` / `waiting_time`;
-#   4. the statistics (bin/dumpflux compare, bin/dumpflux stats: analysis/pairdiff.c,
-#      analysis/twocode.c, exact small-sample tests) and one Markdown fragment, a
+#   4. the statistics (bin/dumpflux compare, bin/dumpflux stats: analysis/measure/pairdiff.c,
+#      analysis/measure/twocode.c, exact small-sample tests) and one Markdown fragment, a
 #      section per part (`## A.` ... `## D.`, each with a `**Result:**` line), a summary
 #      table at the top, figures for A and B (PNG and PDF).
 #

@@ -262,7 +262,7 @@ static const char *const ATTRS[] = {"risen", "waiting_time", "status", "status_t
 				    "frequency", "radius_ratio", "ramp", "duration", "exit_code", "steps", "particles",
 				    "format", "stopped_by"};
 #define NATTRS (sizeof ATTRS / sizeof *ATTRS)
-/* ... and where they look for them (the tools, core/h5read.c's callers; study/h5sum.c) */
+/* ... and where they look for them (the tools, core/h5read.c's callers; lib/h5sum.c) */
 static const struct {
 	const char *obj, *name;
 } READ_ATTRS[] = {

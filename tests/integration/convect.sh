@@ -5,7 +5,7 @@
 # figure and stored rows; the runs without a field counted per group as unusable and
 # listed with why; every used run's S recomputed here from its file with h5dump and
 # awk (band rows from the cell size and the settled surface height, count-weighted
-# rms per block, mean after the transient), independently of analysis/convect.c; the
+# rms per block, mean after the transient), independently of analysis/measure/convect.c; the
 # bed shaken at 6 Hz (Gamma 1.45) convects more than at 3 Hz (0.36). Then the options:
 # --band, --no-store, reproducibility, errors.
 . "$(dirname "$0")/lib.sh"

@@ -5,7 +5,7 @@
 # the runs that never rose listed and counted as the database says; and every
 # analysed run's window, top level, dives and period recomputed here from its file
 # with h5dump and awk (box frame, running mean over one period, GSL's quantile, the
-# hysteresis), independently of analysis/whale.c. Then the options: a skip longer than
+# hysteresis), independently of analysis/measure/whale.c. Then the options: a skip longer than
 # the runs (every risen run too short), --no-store, reproducibility, errors.
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup

@@ -1,4 +1,4 @@
-/* study_adapt.c - the adaptive onset search's pure logic (study/adapt.c) against
+/* study_adapt.c - the adaptive onset search's pure logic (study/rule/adapt.c) against
  * study/README.md, "Adaptive onset search": a replicate's bracket from its runs (the
  * last off -> on switch, unobserved ends confirmed, out-of-range onsets reported, flips
  * flagged), chains walked from results alone (the same results give the same points),
@@ -6,15 +6,15 @@
  * unbounded replicates), the replicates a group gets (fixed, auto batches up to the
  * target or the maximum), and a whole search over a synthetic classifier whose
  * transition is known, run round by round as the driver does; then the [onset] section
- * of a campaign file (study/campaign.c): defaults, and bad input refused with file,
+ * of a campaign file (study/campaign/campaign.c): defaults, and bad input refused with file,
  * line, key and the valid range. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "adapt.h"
-#include "campaign.h"
+#include "rule/adapt.h"
+#include "campaign/campaign.h"
 #include "study_files.h"
 #include "testlib.h"
 

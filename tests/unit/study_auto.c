@@ -1,19 +1,19 @@
-/* study_auto.c - replicates until the answer is sharp, the pure logic (study/sharp.c)
+/* study_auto.c - replicates until the answer is sharp, the pure logic (study/rule/sharp.c)
  * against study/README.md, "Replicates until the answer is sharp": the first batch,
  * the median wait's order-statistic interval with right-censoring (a run that did not
  * rise counts as at least its observed time) and its Kaplan-Meier estimate, the rise
  * fraction's and the mean flux's intervals, a point that waits for its runs, and a
  * point driven batch by batch over a synthetic result until it reaches the target or
  * its maximum (interrupted and resumed: the same sequence); then the [campaign] keys
- * of replicates = auto (study/campaign.c): defaults, and bad input refused with file,
+ * of replicates = auto (study/campaign/campaign.c): defaults, and bad input refused with file,
  * line, key and the valid range. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "campaign.h"
-#include "sharp.h"
+#include "campaign/campaign.h"
+#include "rule/sharp.h"
 #include "study_files.h"
 #include "testlib.h"
 

@@ -10,8 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "campaign.h"
-#include "grid.h"
+#include "campaign/campaign.h"
+#include "campaign/grid.h"
 
 static char sf_dir[] = "/tmp/sb_study_XXXXXX";
 static int sf_count;

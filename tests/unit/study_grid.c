@@ -1,4 +1,4 @@
-/* study_grid.c - grid expansion (study/campaign.c, study/grid.c) against the contract of
+/* study_grid.c - grid expansion (study/campaign/campaign.c, study/campaign/grid.c) against the contract of
  * docs/campaigns.md, "Campaign files": the runs are the cartesian product of the axes (first axis
  * fastest, values in file order, replicates the last axis), sorted by id; values are
  * canonical and duplicates are dropped, within an axis and between grid points;
@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "campaign.h"
-#include "grid.h"
+#include "campaign/campaign.h"
+#include "campaign/grid.h"
 #include "params.h"
 #include "study_files.h"
 #include "testlib.h"

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "campaign.h"
-#include "grid.h"
+#include "campaign/campaign.h"
+#include "campaign/grid.h"
 #include "params.h"
 #include "study_files.h"
 #include "testlib.h"

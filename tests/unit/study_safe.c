@@ -1,4 +1,4 @@
-/* study_safe.c - what may reach a shell or a path (study/safe.c): campaign names are
+/* study_safe.c - what may reach a shell or a path (study/campaign/safe.c): campaign names are
  * one plain path component, file values plain relative or absolute names without "..",
  * and shell quoting gives back every byte of its input through /bin/sh, runs nothing,
  * and refuses what does not fit its buffer. */
@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "safe.h"
+#include "campaign/safe.h"
 #include "testlib.h"
 
 static char tmpdir[] = "/tmp/sb_safe_XXXXXX";

@@ -1,4 +1,4 @@
-/* study_slurm.c - the pure part of study submit --slurm (study/slurm_plan.c): runs
+/* study_slurm.c - the pure part of study submit --slurm (study/slurm/plan.c): runs
  * into array tasks (runs per task, each packing to build named before its first run
  * in a task, runs of one packing together), the --array value with its throttle, the
  * user's sbatch arguments (split, study's own options refused), and reading sbatch's
@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "slurm_plan.h"
+#include "slurm/plan.h"
 #include "testlib.h"
-#include "worker.h"
+#include "job/worker.h"
 
 static void test_lines(void)
 {

@@ -1,0 +1,925 @@
+/* figures_main.c - bin/figures: the paper's Fig. 1 (arrow field of the averaged
+ * displacement), Fig. 3 (Phi versus height D with and without intruder) and Fig. 4
+ * (intruder height versus time) from a campaign. Only this file prints and exits. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/acct.h"
+#include "common/adb.h"
+#include "common/cli.h"
+#include "flux.h"
+#include "common/fluxrun.h"
+#include "h5read.h"
+#include "common/label.h"
+#include "num.h"
+#include "common/tool.h"
+#include "measure/traj.h"
+
+#define VERSION "4"
+
+/* a run whose records are drawn: finished, or failed and used up to the failure */
+#define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
+#define MAXROWS 6
+
+static int cmp_dbl(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* q-quantile of v[0..n) (sorts v); 0 when empty */
+static double percentile(double *v, size_t n, double q)
+{
+	if (!n)
+		return 0;
+	qsort(v, n, sizeof *v, cmp_dbl);
+	size_t k = (size_t)(q * (double)(n - 1) + 0.5);
+	return v[k < n ? k : n - 1];
+}
+
+/* median of the positive entries of v[0..n), without changing v */
+static double median_positive(const double *v, size_t n)
+{
+	double *t = malloc((n ? n : 1) * sizeof *t);
+	size_t m = 0;
+	if (!t)
+		return 0;
+	for (size_t i = 0; i < n; i++)
+		if (v[i] > 0)
+			t[m++] = v[i];
+	double med = percentile(t, m, 0.5);
+	free(t);
+	return med;
+}
+
+static const char *HELP =
+	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
+	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--all-versions]\n"
+	"               [--no-plot] [--no-store]\n\n"
+	"The paper's figures from the fixed-frequency runs (ramp = none) of a\n"
+	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
+	"at most 6) and two systems: without intruder (radius_ratio = 0) and with one of\n"
+	"radius ratio R (--ratio, default the largest in the campaign; --ratio 0: without\n"
+	"intruder only). Every replicate of a panel is averaged in. A campaign that sweeps\n"
+	"other keys too (depth, width, ...) must say which runs to draw: --where KEY=VALUE\n"
+	"(repeatable) keeps the runs whose KEY is VALUE; runs that still differ in a swept\n"
+	"key other than frequency, radius_ratio and seed are an error, not an average.\n"
+	"  fig1.png  Fig. 1: the displacement field (/field, field = yes): per cell the mean\n"
+	"            displacement per period, weighted by the samples (count) of every block\n"
+	"            and run (the grid of the panel's first run; the cells of the other\n"
+	"            replicates, whose grids differ slightly, join it by their centres);\n"
+	"            arrows on a common scale (the 95th percentile = 0.9 cell, longer\n"
+	"            ones clipped; cells sampled < 1/5 of the median left out) in all panels;\n"
+	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line over the periods of\n"
+	"            the panel's runs after the first FRAC of each (--skip, default 0.2),\n"
+	"            against the line height D above the bottom (/flux, flux = yes), both\n"
+	"            systems in one panel per frequency;\n"
+	"  fig4.png  Fig. 4: the intruder's height y(t) above the box floor\n"
+	"            (/particles/intruder/position less the box motion A sin(2 pi f t)) at\n"
+	"            the highest selected frequency, one panel per radius ratio > 0: every\n"
+	"            replicate as a thin line, and thick the representative, the run whose\n"
+	"            waiting time is the panel's median (risen runs ordered by waiting time,\n"
+	"            then the censored ones by the time observed; the lower middle of an even\n"
+	"            count), with its settled height and the surface.\n"
+	"A figure without data is skipped with a note. A failed run is drawn with what it\n"
+	"recorded before its failure (Fig. 3: its periods after the transient of the run as\n"
+	"planned, pooled with the other runs' periods; Fig. 1: its samples; Fig. 4: its\n"
+	"trajectory up to the failure). Per panel (frequency, radius ratio) the output,\n"
+	"figures_accounting.csv and the stored rows count the runs used, failed (by status;\n"
+	"used up to the failure or unusable), unreadable, pending and running.\n\n"
+	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
+	"  --all-versions   also the runs of earlier versions of the campaign file (run.current = 0)\n"
+	"  --no-plot, --no-store\n\n"
+	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the figures; stores per\n"
+	"panel of Fig. 3 in `analysis` (tool 'figures', grp 'fig3 f=F radius_ratio=R'):\n"
+	"phi_max (largest |Phi(D)|), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
+	"deep the rolls reach), runs (used) and the accounting (runs_failed, runs_failed_used,\n"
+	"..., as onset --help lists).\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
+	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+
+static int near(double a, double b)
+{
+	return fabs(a - b) <= 1e-9 * fmax(1, fabs(b));
+}
+
+/* The panels: one row per frequency; the system without intruder and, when R > 0,
+ * the one with an intruder of radius ratio R. Panel (row r, system sys) is group
+ * r * nsys + sys of the accounting. */
+typedef struct panels {
+	flux_opts fo;
+	double freqs[64];  /* the campaign's frequencies, then the rows' */
+	double ratios[64]; /* the campaign's radius ratios > 0 */
+	int nf, nra;
+	double R;
+	int nsys;
+} panels;
+
+static double sys_ratio(const panels *P, int sys)
+{
+	return sys ? P->R : 0;
+}
+
+/* "no intruder" or "𝓡 = 2.5", and with the frequency: "𝓡 = 2.5, 4.5 Hz" */
+static void sys_words(const panels *P, int sys, double f, char *buf, size_t n)
+{
+	char v[64], w[96];
+	snprintf(v, sizeof v, "%.17g", sys_ratio(P, sys));
+	label_param(w, sizeof w, "radius_ratio", v);
+	if (isnan(f))
+		snprintf(buf, n, "%s", w);
+	else
+		snprintf(buf, n, "%s, %g Hz", w, f);
+}
+
+/* every --where names a parameter of the campaign */
+static int where_known(an_tool *t)
+{
+	const an_opts *o = t->o;
+	for (int w = 0; w < o->nwhere; w++) {
+		int known = 0;
+		for (int i = 0; i < t->nr && !known; i++)
+			known = an_str(&t->runs[i], o->where_key[w]) != NULL;
+		if (t->nr && !known)
+			return sb_errf(&t->e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o->where_key[w],
+				       o->campaign);
+	}
+	return 0;
+}
+
+/* the run's KEY equals VALUE for every --where (as numbers when both are numbers) */
+static int where_ok(const an_opts *o, const an_run *r)
+{
+	for (int w = 0; w < o->nwhere; w++) {
+		const char *v = an_str(r, o->where_key[w]);
+		if (!v)
+			return 0;
+		double a, b;
+		const int numeric = !num_real(v, &a) && !num_real(o->where_val[w], &b);
+		if (numeric ? !near(a, b) : strcmp(v, o->where_val[w]) != 0)
+			return 0;
+	}
+	return 1;
+}
+
+/* Adds x to v[0..*n) unless it is there already, ok is false or v is full. */
+static void add_value(double *v, int *n, double x, int ok)
+{
+	int seen = 0;
+	for (int j = 0; j < *n; j++)
+		seen |= near(v[j], x);
+	if (!seen && *n < 64 && ok)
+		v[(*n)++] = x;
+}
+
+/* Every fixed-frequency run that matches --where is considered, whatever its state;
+ * their frequencies and radius ratios are noted. */
+static int consider(an_tool *t, panels *P)
+{
+	const an_opts *o = t->o;
+	for (int i = 0; i < t->nr; i++) {
+		const char *ramp = an_str(&t->runs[i], "ramp");
+		if ((ramp && strcmp(ramp, "none")) || !where_ok(o, &t->runs[i]) || tool_old(t, &t->runs[i]))
+			continue;
+		const an_run *r = &t->runs[tool_keep(t, i)];
+		/* the panels are its groups */
+		if (tool_key_known(t, r, "frequency") || tool_key_known(t, r, "radius_ratio"))
+			return t->e.code;
+		const double fr = an_num(r, "frequency", NAN), ra = an_num(r, "radius_ratio", 0);
+		add_value(P->freqs, &P->nf, fr, isfinite(fr));
+		add_value(P->ratios, &P->nra, ra, ra > 0);
+	}
+	return t->k ? 0 : tool_none(t, "fixed-frequency run", o->nwhere ? " that matches --where" : "");
+}
+
+/* A panel averages its runs: runs that differ in another swept key (depth, width...)
+ * would be averaged silently, so that is an error naming the key and two values. */
+static int pooled_axis(an_tool *t)
+{
+	const an_opts *o = t->o;
+	char axes[AN_MAXKEYS][48];
+	int na = 0;
+	if (adb_axes(&t->d, o->campaign, axes, AN_MAXKEYS, &na, &t->e))
+		return t->e.code;
+	for (int a = 0; a < na; a++) {
+		if (!strcmp(axes[a], "frequency") || !strcmp(axes[a], "radius_ratio") || !strcmp(axes[a], "seed"))
+			continue;
+		const char *first = an_str(&t->runs[0], axes[a]);
+		for (int i = 1; i < t->k; i++) {
+			const char *v = an_str(&t->runs[i], axes[a]);
+			if (first && v && strcmp(first, v))
+				return sb_errf(&t->e, SB_EUSAGE,
+					       "campaign '%s' sweeps %s (%s, %s, ...): a panel would average over it; "
+					       "choose with --where %s=VALUE", o->campaign, axes[a], first, v, axes[a]);
+		}
+	}
+	return 0;
+}
+
+/* What of a run the figures can draw (acct.h): with flux = yes its periods after the
+ * transient (a failed run's up to the failure; none when it failed within the
+ * transient), else its file up to its status time. */
+static void classify_data(an_run *r, const flux_opts *fo)
+{
+	if (acct_classify(r)) {
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+		return;
+	}
+	const int failed = !strcmp(r->state, "failed");
+	const char *fl = an_str(r, "flux");
+	const double dur = an_num(r, "duration", NAN);
+	if (fl && !strcmp(fl, "yes")) {
+		flux_data fd;
+		if (fluxrun_load(r, &fd)) {
+			if (r->use == AN_UNREADABLE)
+				fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			return;
+		}
+		size_t p0 = flux_first(&fd, fo);
+		if (p0 >= fd.P)
+			acct_set(r, AN_UNUSABLE, NAN, NAN, "%s%s%s: %zu periods recorded, none after the first %zu (transient)",
+				 failed ? "failed (" : "finished", failed ? r->status : "", failed ? ")" : "", fd.P, p0);
+		else if (failed)
+			acct_set(r, AN_PARTLY, fd.t[fd.P - 1], dur, "failed at t = %g s (%s): the %zu periods before it used",
+				 r->status_time, r->status, fd.P);
+		else
+			acct_set(r, AN_USED, NAN, NAN, NULL);
+		flux_free(&fd);
+		return;
+	}
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he)) {
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
+		fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+		return;
+	}
+	double st = r->status_time;
+	h5r_attr_num(h, "/", "status_time", &st);
+	h5r_close(h);
+	if (!failed)
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (st > 0)
+		acct_set(r, AN_PARTLY, st, dur, "failed at t = %g s (%s): used up to it", st, r->status);
+	else
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+}
+
+/* ... and what Fig. 1 and Fig. 4 read of it later is checked now, as the accounting
+ * is printed before they are drawn: a displacement field whose shape the file cannot
+ * hold makes the run unreadable, and a run with an intruder whose rise is no number
+ * (Fig. 4 orders the runs by it) unusable. */
+static void classify(an_run *r, const flux_opts *fo)
+{
+	static const char *const FIELD[] = {"/observables/field/ux/value", "/observables/field/uy/value",
+					    "/observables/field/count/value", NULL};
+	classify_data(r, fo);
+	if (r->use != AN_USED && r->use != AN_PARTLY)
+		return;
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return; /* classify_data read it */
+	int rank;
+	size_t dims[8], n;
+	for (int k = 0; FIELD[k] && h5r_exists(h, "/observables/field"); k++)
+		if (h5r_shape(h, FIELD[k], &rank, dims, &n, &he)) {
+			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: %s", r->path, he.msg);
+			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+			break;
+		}
+	double rs, w;
+	if ((r->use == AN_USED || r->use == AN_PARTLY) && an_num(r, "radius_ratio", 0) > 0 &&
+	    traj_rise(h, r->path, &rs, &w, &he) == SB_ENAN)
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", he.msg);
+	h5r_close(h);
+}
+
+/* The rows (--freq, else the campaign's frequencies, at most MAXROWS), the systems
+ * (--ratio, else the largest radius ratio), the panels' labels, each considered run's
+ * panel and what of it is drawn. */
+static int layout(an_tool *t, panels *P)
+{
+	const an_opts *o = t->o;
+	qsort(P->freqs, (size_t)P->nf, sizeof *P->freqs, cmp_dbl);
+	qsort(P->ratios, (size_t)P->nra, sizeof *P->ratios, cmp_dbl);
+	if (o->nfreq) {
+		P->nf = o->nfreq;
+		memcpy(P->freqs, o->freqs, sizeof(double) * (size_t)P->nf);
+	}
+	if (P->nf > MAXROWS)
+		P->nf = MAXROWS;
+	P->R = isnan(o->ratio) ? (P->nra ? P->ratios[P->nra - 1] : 0) : o->ratio;
+	/* the second system is the one with an intruder: none when R = 0 */
+	P->nsys = P->R > 0 ? 2 : 1;
+	t->ng = P->nf * P->nsys;
+	if (!(t->labels = calloc((size_t)t->ng, sizeof *t->labels)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int j = 0; j < t->ng; j++) {
+		char l[96];
+		snprintf(l, sizeof l, "f=%g radius_ratio=%g", P->freqs[j / P->nsys], sys_ratio(P, j % P->nsys));
+		if (!(t->labels[j] = strdup(l)))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	}
+	/* the panels are groups by frequency and radius ratio: their stored rows say so */
+	char keys[2][48] = {"frequency", "radius_ratio"};
+	if (tool_keys(t, keys, 2))
+		return t->e.code;
+	for (int j = 0; j < t->ng; j++) {
+		char v[2][64];
+		snprintf(v[0], sizeof v[0], "%.17g", P->freqs[j / P->nsys]);
+		snprintf(v[1], sizeof v[1], "%.17g", sys_ratio(P, j % P->nsys));
+		if (tool_value(t, j, 0, v[0]) || tool_value(t, j, 1, v[1]))
+			return t->e.code;
+	}
+	for (int i = 0; i < t->k; i++) {
+		an_run *r = &t->runs[i];
+		r->group = -1;
+		for (int j = 0; j < t->ng; j++)
+			if (near(an_num(r, "frequency", NAN), P->freqs[j / P->nsys]) &&
+			    near(an_num(r, "radius_ratio", 0), sys_ratio(P, j % P->nsys)))
+				r->group = j;
+		if (r->group >= 0)
+			classify(r, &P->fo);
+	}
+	return tool_tally(t, stdout, "the runs of the panels drawn");
+}
+
+/* ---- Fig. 1: displacement field ---- */
+
+/* One panel's field: the cells of its runs, count-weighted, on the grid of its first run. */
+typedef struct field {
+	size_t ny, nx;
+	double cell, x0;      /* the grid: cell size, left edge (cell 0: none yet) */
+	double *sx, *sy, *sc; /* [ny * nx] sums of count * ux, count * uy and of count */
+	int runs;
+} field;
+
+static void field_free(field *fl)
+{
+	free(fl->sx);
+	free(fl->sy);
+	free(fl->sc);
+}
+
+/* Adds a run's field (dims d, cell size and left edge from h). The grid is one mean
+ * diameter of the run's own grains, so replicates differ slightly: the panel takes the
+ * grid of its first run, and every run's cells go, by their centres, into the cell of
+ * that grid that holds them. */
+static void field_sum(field *fl, hid_t h, const size_t d[3], const double *ux, const double *uy, const double *cn)
+{
+	double ci = 0, xi = 0;
+	h5r_attr_num(h, "/observables/field", "cell", &ci);
+	h5r_attr_num(h, "/observables/field", "x0", &xi);
+	if (!(ci > 0))
+		return;
+	if (!fl->runs) {
+		field_free(fl);
+		fl->ny = d[1];
+		fl->nx = d[2];
+		fl->sx = calloc(d[1] * d[2], sizeof *fl->sx);
+		fl->sy = calloc(d[1] * d[2], sizeof *fl->sy);
+		fl->sc = calloc(d[1] * d[2], sizeof *fl->sc);
+		fl->cell = ci;
+		fl->x0 = xi;
+	}
+	for (size_t b = 0; fl->sx && fl->sy && fl->sc && b < d[0]; b++)
+		for (size_t rr = 0; rr < d[1]; rr++)
+			for (size_t c = 0; c < d[2]; c++) {
+				const size_t q = (b * d[1] + rr) * d[2] + c;
+				const double n = cn[q];
+				const double gx = floor((xi + ((double)c + 0.5) * ci - fl->x0) / fl->cell);
+				const double gy = floor(((double)rr + 0.5) * ci / fl->cell);
+				if (!(n > 0) || gx < 0 || gy < 0 || gx >= (double)fl->nx || gy >= (double)fl->ny)
+					continue;
+				const size_t g = (size_t)gy * fl->nx + (size_t)gx;
+				fl->sx[g] += n * ux[q];
+				fl->sy[g] += n * uy[q];
+				fl->sc[g] += n;
+			}
+	fl->runs += fl->sx != NULL;
+}
+
+/* Adds run r's /field to fl when it has a readable one. */
+static void field_add(field *fl, const an_run *r)
+{
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		return;
+	double *ux = NULL, *uy = NULL, *cn = NULL;
+	size_t d1[3], d2[3], d3[3];
+	int rk;
+	if (h5r_exists(h, "/observables/field") && !h5r_read(h, "/observables/field/ux/value", &ux, &rk, d1, &he) &&
+	    !h5r_read(h, "/observables/field/uy/value", &uy, &rk, d2, &he) &&
+	    !h5r_read(h, "/observables/field/count/value", &cn, &rk, d3, &he) && rk == 3 &&
+	    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1))
+		field_sum(fl, h, d1, ux, uy, cn);
+	free(ux);
+	free(uy);
+	free(cn);
+	h5r_close(h);
+}
+
+/* The arrows of every panel on one scale. The scale is the 95th percentile of the
+ * arrow lengths, not the longest: a grain thrown off the surface in a thinly sampled
+ * cell would otherwise shrink every arrow of the bulk to a dot. Longer arrows are
+ * drawn at that length (their direction kept), and cells sampled less than a fifth as
+ * often as the panel's median cell are left out. */
+typedef struct arrows {
+	double umax;         /* the common length (0 before it is known) */
+	double *lens;        /* every arrow's length, to find it */
+	size_t n, cap;
+	double xlo, xhi, yhi; /* the extent of the panels' grids */
+	double head;         /* the cell of the last panel drawn: the arrow heads' size */
+} arrows;
+
+static void arrows_note(arrows *a, const field *fl, double len)
+{
+	if (a->n == a->cap) {
+		size_t cap = a->cap ? 2 * a->cap : 1024;
+		double *p = realloc(a->lens, cap * sizeof *a->lens);
+		if (!p)
+			return;
+		a->lens = p;
+		a->cap = cap;
+	}
+	a->lens[a->n++] = len;
+	a->xlo = fmin(a->xlo, fl->x0);
+	a->xhi = fmax(a->xhi, fl->x0 + fl->nx * fl->cell);
+	a->yhi = fmax(a->yhi, fl->ny * fl->cell);
+}
+
+/* Panel (r, sys)'s arrows: their lengths into a (f NULL), or their rows into f, as
+ * panel 2 r + sys, clipped to the common length. */
+static void field_arrows(const field *fl, arrows *a, FILE *f, const panels *P, int r, int sys)
+{
+	const double cell = fl->cell, scale = a->umax > 0 ? 0.9 * cell / a->umax : 1;
+	const double cmin = 0.2 * median_positive(fl->sc, fl->ny * fl->nx);
+	for (size_t rr = 0; rr < fl->ny; rr++)
+		for (size_t c = 0; c < fl->nx; c++) {
+			const size_t q = rr * fl->nx + c;
+			if (fl->sc[q] <= 0 || fl->sc[q] < cmin)
+				continue;
+			double ux = fl->sx[q] / fl->sc[q], uy = fl->sy[q] / fl->sc[q];
+			const double x = fl->x0 + (c + 0.5) * cell, y = (rr + 0.5) * cell;
+			if (!f) {
+				arrows_note(a, fl, hypot(ux, uy));
+				continue;
+			}
+			if (a->umax > 0 && hypot(ux, uy) > a->umax) {
+				const double shrink = a->umax / hypot(ux, uy); /* clipped */
+				ux *= shrink;
+				uy *= shrink;
+			}
+			fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", 2 * r + sys, P->freqs[r],
+				sys_ratio(P, sys), x - 0.5 * ux * scale, y - 0.5 * uy * scale, ux, uy, fl->sc[q], ux * scale,
+				uy * scale);
+		}
+}
+
+/* Every panel's field, in two passes (f NULL: the lengths, to find the common scale;
+ * then the rows into f); the panels drawn. */
+static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f)
+{
+	int drawn = 0;
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++) {
+			field fl = {0};
+			for (int i = 0; i < t->k; i++) {
+				const an_run *run = &t->runs[i];
+				if (USED(run) && near(an_num(run, "frequency", NAN), P->freqs[r]) &&
+				    near(an_num(run, "radius_ratio", 0), sys_ratio(P, sys)))
+					field_add(&fl, run);
+			}
+			if (fl.runs && fl.sx && fl.sy && fl.sc) {
+				field_arrows(&fl, a, f, P, r, sys);
+				drawn++;
+			}
+			if (fl.cell > 0)
+				a->head = fl.cell;
+			field_free(&fl);
+		}
+	return drawn;
+}
+
+/* The box of the runs drawn: its inner width W and the radius of its wall disks. */
+static void box_of(const an_tool *t, double *W, double *rw)
+{
+	*W = NAN;
+	*rw = 1;
+	for (int i = 0; i < t->k && isnan(*W); i++)
+		if (t->runs[i].group >= 0) {
+			*W = an_num(&t->runs[i], "width", NAN);
+			*rw = an_num(&t->runs[i], "wall_radius", 1);
+		}
+}
+
+static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
+{
+	char script[1400], png[1400], set[512];
+	/* the panels show the box: the inner width W between the side walls, the floor at
+	 * 0, a wall (one disk diameter) on either side; at one scale in x and y, so the
+	 * canvas takes the box's shape (a panel's margins are about 75 pixels) */
+	double W, rw;
+	box_of(t, &W, &rw);
+	if (!(W > 0))
+		W = a->xhi - a->xlo;
+	const double x0 = -2 * rw, x1 = W + 2 * rw, y0 = -2 * rw, y1 = a->yhi;
+	/* a row per frequency with both systems; one system alone fills rows of up to 3 */
+	const int cols = P->nsys > 1 ? P->nsys : (P->nf < 3 ? P->nf : 3), rows = (P->nf * P->nsys + cols - 1) / cols;
+	const int pw = cols > 1 ? 450 : 600, aw = pw - 80;
+	const int ph = (int)(aw * (y1 - y0) / (x1 - x0)) + 80;
+	FILE *f = gp_open(t->o, "fig1", pw * cols, ph * rows + 50, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set multiplot layout %d,%d title \"Fig. 1: mean displacement per period%s%s\\n"
+		   "arrows to scale, the 95th percentile (%.3g cm) = 0.9 cell; longer ones clipped\"\n"
+		   "set size ratio -1\nunset key\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
+		   "set xlabel 'x (cm)'\nset ylabel 'height above the floor (cm)'\nunset grid\nset tics out\n"
+		   		   "set object 1 rect from %g, %g to 0, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
+		   "set object 2 rect from %g, %g to %g, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
+		   "set object 3 rect from %g, %g to %g, 0 fc rgb '#b0b0b0' fs solid 1 noborder behind\n",
+		rows, cols, *set ? ", " : "", set, a->umax, x0, x1, y0, y1, x0, y0, W, y0, x1, x0, y0, x1);
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++) {
+			char title[128];
+			sys_words(P, sys, P->freqs[r], title, sizeof title);
+			fprintf(f, "set title ");
+			gp_str(f, title);
+			fprintf(f, "\nplot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
+				2 * r + sys, 0.25 * a->head);
+		}
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig1: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
+	return 0;
+}
+
+/* fig1_field.csv and fig1.png */
+static int fig1(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig1_field.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
+	arrows a = {.xlo = INFINITY, .xhi = -INFINITY, .head = 1};
+	fig1_pass(t, P, &a, NULL);
+	a.umax = percentile(a.lens, a.n, 0.95);
+	const int drawn = fig1_pass(t, P, &a, f);
+	free(a.lens);
+	fclose(f);
+	if (!drawn)
+		printf("# fig1: no run with field = yes; skipped\n");
+	else if (!t->o->no_plot)
+		return fig1_plot(t, P, &a, drawn);
+	return 0;
+}
+
+/* ---- Fig. 3: Phi(D) ---- */
+
+/* One panel's profile: Phi(D) of its runs, pooled by their periods after the transient. */
+typedef struct profile {
+	size_t L;
+	double *sp, *sh; /* [L] sums of w * Phi and of w * D over the runs, w their periods */
+	double wsum;
+	int runs;
+} profile;
+
+static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
+{
+	flux_data fd;
+	if (fluxrun_load(r, &fd))
+		return; /* classified as usable: only a file changed since could fail */
+	if (!pr->runs) {
+		free(pr->sp);
+		free(pr->sh);
+		pr->L = fd.L;
+		pr->sp = calloc(pr->L ? pr->L : 1, sizeof *pr->sp);
+		pr->sh = calloc(pr->L ? pr->L : 1, sizeof *pr->sh);
+	}
+	double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
+	const size_t p0 = flux_first(&fd, fo);
+	/* the runs' periods pooled: a failed run weighs what it recorded */
+	const double w = fd.P > p0 ? (double)(fd.P - p0) : 0;
+	if (pr->sp && pr->sh && prof && fd.L == pr->L && w > 0) {
+		flux_profile(&fd, fo, prof);
+		for (size_t l = 0; l < pr->L; l++) {
+			pr->sp[l] += w * prof[l];
+			pr->sh[l] += w * fd.h[l];
+		}
+		pr->wsum += w;
+		pr->runs++;
+	}
+	free(prof);
+	flux_free(&fd);
+}
+
+/* Panel (r, sys)'s curve into f and its table row; its phi_max and half height. */
+static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
+			double *pm, double *half, int *headed)
+{
+	*pm = 0;
+	*half = NAN;
+	for (size_t l = 0; l < pr->L; l++) {
+		fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, P->freqs[r], sys_ratio(P, sys), l,
+			pr->sh[l] / pr->wsum, pr->sp[l] / pr->wsum, pr->runs);
+		*pm = fmax(*pm, fabs(pr->sp[l] / pr->wsum));
+	}
+	for (size_t l = 0; l < pr->L && isnan(*half); l++)
+		if (*pm > 0 && fabs(pr->sp[l] / pr->wsum) >= 0.5 * *pm)
+			*half = pr->sh[l] / pr->wsum;
+	if (!(*headed)++)
+		printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
+		       "unfinished");
+	printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", P->freqs[r], sys_ratio(P, sys), pr->runs, *pm, *half,
+	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+}
+
+/* Panel (r, sys): its curve and table row when a run is drawn; its stored rows when
+ * it has runs of any kind. Returns 1 when drawn. */
+static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int *headed)
+{
+	const int j = r * P->nsys + sys;
+	const an_acct *a = &t->A[j];
+	profile pr = {0};
+	double pm = 0, half = NAN;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i]) && t->runs[i].group == j)
+			profile_add(&pr, &t->runs[i], &P->fo);
+	if (pr.runs)
+		profile_out(&pr, P, r, sys, a, f, &pm, &half, headed);
+	long any = 0;
+	for (int u = 0; u < AN_NUSE; u++)
+		any += a->n[u];
+	if (any) {
+		char g[128];
+		snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", P->freqs[r], sys_ratio(P, sys));
+		if (pr.runs) {
+			tool_store(t, j, g, "phi_max", pm, NAN, NAN, pr.runs);
+			tool_store(t, j, g, "half_height", half, NAN, NAN, pr.runs);
+		}
+		tool_store(t, j, g, "runs", pr.runs, NAN, NAN, pr.runs);
+		tool_store_acct(t, g, j);
+	}
+	free(pr.sp);
+	free(pr.sh);
+	return pr.runs > 0;
+}
+
+static int fig3_plot(an_tool *t, const panels *P, int drawn)
+{
+	char script[1400], png[1400], set[512], w[2][96];
+	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 100, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	sys_words(P, 0, NAN, w[0], sizeof w[0]);
+	sys_words(P, 1, NAN, w[1], sizeof w[1]);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 3: convective flux Φ through planes at height D%s%s\"\n"
+		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n",
+		P->nf, *set ? "\\n" : "", set);
+	for (int r = 0; r < P->nf; r++) {
+		/* one legend, below the last panel: the systems are the same in every row */
+		fprintf(f, "%s", r + 1 < P->nf ? "unset key\n" : "set key below height 1\n");
+		fprintf(f, "set title '%g Hz'\n", P->freqs[r]);
+		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
+		gp_str(f, w[0]);
+		if (P->nsys > 1) {
+			fprintf(f, ", \\\n  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lt 2 title ", r);
+			gp_str(f, w[1]);
+		}
+		fprintf(f, ", \\\n  0 with lines lc 'gray' notitle\n");
+	}
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig3: %s (and .pdf, %d curve%s)\n", png, drawn, drawn == 1 ? "" : "s");
+	return 0;
+}
+
+/* fig3_profile.csv, the table of the curves, their stored rows and fig3.png */
+static int fig3(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig3_profile.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
+	int drawn = 0, headed = 0;
+	for (int r = 0; r < P->nf; r++)
+		for (int sys = 0; sys < P->nsys; sys++)
+			drawn += fig3_panel(t, P, r, sys, f, &headed);
+	fclose(f);
+	if (t->e.code)
+		return t->e.code;
+	if (!drawn)
+		printf("# fig3: no run with flux = yes; skipped\n");
+	else if (!t->o->no_plot)
+		return fig3_plot(t, P, drawn);
+	return 0;
+}
+
+/* ---- Fig. 4: intruder height ---- */
+
+#define MAXREP 64
+
+/* One panel of Fig. 4: the runs drawn (every replicate), their waiting times, and the
+ * representative. */
+typedef struct f4panel {
+	double ra;
+	int run[MAXREP], n;
+	double wt[MAXREP];  /* the engine's waiting time, or the time observed when not risen */
+	int risen[MAXREP];
+	int rep;            /* index into run[] of the representative */
+	double y0, surface; /* the representative's settled height and surface (box frame) */
+} f4panel;
+
+/* order of runs for the representative: risen ones by waiting time, then the censored
+ * ones by the time observed; ties by replicate */
+static const f4panel *f4_sort_panel;
+static const an_tool *f4_sort_tool;
+static int f4_cmp(const void *a, const void *b)
+{
+	const f4panel *P = f4_sort_panel;
+	const int i = *(const int *)a, j = *(const int *)b;
+	if (P->risen[i] != P->risen[j])
+		return P->risen[j] - P->risen[i];
+	if (P->wt[i] != P->wt[j])
+		return P->wt[i] < P->wt[j] ? -1 : 1;
+	const long ri = f4_sort_tool->runs[P->run[i]].replicate, rj = f4_sort_tool->runs[P->run[j]].replicate;
+	return (ri > rj) - (ri < rj);
+}
+
+/* Panel ra at f4: every used run (finished or failed up to its failure) with a
+ * trajectory, and the representative: the run whose waiting time is the group's median
+ * (the runs ordered by waiting time, the censored ones after every risen one; the
+ * lower middle one of an even count). 0 when the panel has no run. */
+static int fig4_panel(const an_tool *t, double f4, double ra, f4panel *P)
+{
+	memset(P, 0, sizeof *P);
+	P->ra = ra;
+	for (int i = 0; i < t->k && P->n < MAXREP; i++) {
+		const an_run *r = &t->runs[i];
+		if (!USED(r) || !near(an_num(r, "frequency", NAN), f4) || !near(an_num(r, "radius_ratio", 0), ra))
+			continue;
+		hid_t h;
+		sb_err he = {0};
+		double rs = 0, w = NAN;
+		if (h5r_open(r->path, &h, &he))
+			continue;
+		const int has = h5r_exists(h, "/particles/intruder/position");
+		sb_err re = {0};
+		if (traj_rise(h, r->path, &rs, &w, &re)) /* not risen, observed for an unknown time */
+			rs = 0, w = NAN;
+		h5r_close(h);
+		if (!has)
+			continue;
+		P->run[P->n] = i;
+		P->risen[P->n] = rs != 0;
+		P->wt[P->n++] = isfinite(w) ? w : INFINITY;
+	}
+	if (!P->n)
+		return 0;
+	int ord[MAXREP];
+	for (int k = 0; k < P->n; k++)
+		ord[k] = k;
+	f4_sort_panel = P;
+	f4_sort_tool = t;
+	qsort(ord, (size_t)P->n, sizeof *ord, f4_cmp);
+	P->rep = ord[(P->n - 1) / 2];
+	return 1;
+}
+
+/* Panel p's trajectories into f (lab frame and box frame); the representative's
+ * settled height and surface into P. 1 when the representative's was read. */
+static int fig4_traj(const an_tool *t, f4panel *P, int p, FILE *f)
+{
+	int ok = 0;
+	for (int k = 0; k < P->n; k++) {
+		const an_run *r = &t->runs[P->run[k]];
+		traj tr;
+		sb_err e = {0};
+		if (traj_read(r->path, &tr, &e)) {
+			traj_free(&tr);
+			continue;
+		}
+		for (size_t j = 0; j < tr.n; j++)
+			fprintf(f, "%d,%.17g,%s,%ld,%d,%.17g,%.17g,%.17g,%d\n", p, P->ra, r->id, r->replicate, k, tr.t[j], tr.y[j],
+				tr.ybox[j], k == P->rep);
+		if (k == P->rep) {
+			P->y0 = tr.y0;
+			P->surface = tr.surface;
+			ok = 1;
+		}
+		traj_free(&tr);
+	}
+	return ok;
+}
+
+static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
+{
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "fig4", 800, 290 * drawn + 110, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\\n"
+		   "every replicate (thin); thick: the run whose waiting time is the median of its panel\"\n"
+		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, f4, *set ? ", " : "", set);
+	for (int p = 0; p < drawn; p++) {
+		const f4panel *P = &F[p];
+		const an_run *rep = &t->runs[P->run[P->rep]];
+		char v[64], w[96], lr[256], le[64];
+		snprintf(v, sizeof v, "%.17g", P->ra);
+		label_param(w, sizeof w, "radius_ratio", v);
+		snprintf(le, sizeof le, "each replicate (%d runs)", P->n);
+		if (P->risen[P->rep])
+			snprintf(lr, sizeof lr, "median run: replicate %ld, rose at %.3g s", rep->replicate, P->wt[P->rep]);
+		else
+			snprintf(lr, sizeof lr, "median run: replicate %ld, not risen in %.3g s", rep->replicate, P->wt[P->rep]);
+		fprintf(f, "set key below height 1\nset title ");
+		gp_str(f, w);
+		fprintf(f, "\nplot ");
+		for (int k = 0; k < P->n; k++) {
+			fprintf(f, "%s'fig4_traj.csv' skip 1 using 6:($1==%d&&$5==%d?$8:1/0) with lines lw 0.7 lc rgb '#909cc8' ",
+				k ? ", \\\n  " : "", p, k);
+			if (k)
+				fprintf(f, "notitle");
+			else {
+				fprintf(f, "title ");
+				gp_str(f, le);
+			}
+		}
+		fprintf(f, ", \\\n  'fig4_traj.csv' skip 1 using 6:($1==%d&&$9==1?$8:1/0) with lines lw 2 lc rgb '#1f4e9c' title ",
+			p);
+		gp_str(f, lr);
+		fprintf(f, ", \\\n  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' "
+			   "title 'free surface (t = 0)'\n", P->y0, P->surface);
+	}
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# fig4: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
+	return 0;
+}
+
+/* fig4_traj.csv and fig4.png: one panel per radius ratio > 0 of the campaign (at most
+ * 8), at the highest row's frequency, every replicate */
+static int fig4(an_tool *t, const panels *P)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "fig4_traj.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "panel,radius_ratio,run,replicate,index,t,y,y_box,representative\n");
+	const double f4 = P->nf ? P->freqs[P->nf - 1] : NAN;
+	f4panel F[8];
+	int drawn = 0;
+	for (int q = 0; q < P->nra && drawn < 8; q++)
+		if (fig4_panel(t, f4, P->ratios[q], &F[drawn]) && fig4_traj(t, &F[drawn], drawn, f))
+			drawn++;
+	fclose(f);
+	if (!drawn)
+		printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
+	else {
+		printf("# fig4: %g Hz, every replicate; the representative is the run whose waiting time is its panel's median"
+		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", f4);
+		for (int p = 0; p < drawn; p++)
+			printf("%s 𝓡 = %g: replicate %ld of %d runs", p ? ";" : "", F[p].ra, t->runs[F[p].run[F[p].rep]].replicate,
+			       F[p].n);
+		printf("\n");
+		if (!t->o->no_plot)
+			return fig4_plot(t, f4, F, drawn);
+	}
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	an_opts o = {.tool = "figures", .version = VERSION};
+	int pr = tool_args(&o, argc, argv, HELP, " freq ratio skip where ", stdout, stderr);
+	if (pr)
+		return pr < 0 ? 0 : 1;
+	an_tool t;
+	panels P = {.fo = {0.4, 0.6, o.skip}};
+	if (tool_open(&t, &o) || where_known(&t) || consider(&t, &P) || pooled_axis(&t) || layout(&t, &P))
+		goto out;
+	if (cli_outdir(&o, &t.e) || tool_accounting_csv(&t) || tool_store_begin(&t))
+		goto out;
+	if (fig1(&t, &P) || fig3(&t, &P) || fig4(&t, &P) || tool_store_end(&t))
+		goto out;
+	tool_report(&t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
+				" of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
+	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
+out:
+	return tool_close(&t, stderr);
+}

@@ -1,0 +1,522 @@
+/* onset_main.c - bin/onset: convective flux through a plane versus frequency, and the
+ * onset frequency per group of runs (sigmoid midpoint and threshold crossing, bootstrap
+ * over seeds). Only this file prints and exits. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/acct.h"
+#include "common/adb.h"
+#include "common/cli.h"
+#include "flux.h"
+#include "common/fluxrun.h"
+#include "measure/onsetfit.h"
+#include "common/tool.h"
+#include "common/xopt.h"
+
+#define VERSION "2"
+
+/* a run whose records are in the statistic: finished, or failed and used up to it */
+#define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
+
+static const char *HELP =
+	"usage: onset CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
+	"             [--skip FRAC] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
+	"             [--sensitivity] [--all-versions] [--no-plot] [--no-store]\n\n"
+	"Onset of convection. For every run at a fixed frequency (ramp = none) with flux =\n"
+	"yes: Phi through the plane = the mean of Phi over the height lines that\n"
+	"lie in the band LO..HI of the settled surface height (default 0.4:0.6, the middle\n"
+	"of the bed), averaged over the periods after the first FRAC of them (default 0.2).\n"
+	"Per group (default: radius_ratio, depth and every other swept axis but frequency;\n"
+	"radius_ratio = 0 is the system without intruder), with all runs and seeds pooled:\n"
+	"  sigmoid    midpoint f0 of  Phi = b + a / (1 + exp(-(f - f0) / w))  fitted by\n"
+	"             nonlinear least squares (GSL trust region), its width w and step a;\n"
+	"  threshold  first frequency at which the mean Phi per frequency (oriented to rise)\n"
+	"             reaches PHI (default: halfway between its smallest and largest value),\n"
+	"             interpolated linearly;\n"
+	"both with percentile bootstrap intervals over seeds (replicates resampled with\n"
+	"replacement, all frequencies of a drawn seed together; over runs when a group has\n"
+	"one seed), and the spread (standard deviation) of the per-seed threshold estimates.\n\n"
+	"No run is dropped silently: per group the table, onset_summary.csv and the stored\n"
+	"rows count the runs used; the failed ones by status, of which those used up to the\n"
+	"failure (a failed run's file holds its periods before it: used after the transient\n"
+	"of the run as planned, floor(FRAC * duration * f) periods; one point like any run);\n"
+	"the unusable ones (failed without an output file, or within the transient); the\n"
+	"unreadable files (missing, truncated); the runs still pending or running (then the\n"
+	"campaign is not finished and the numbers will change: the output says so).\n"
+	"onset_accounting.csv has one row per run with what became of it and why.\n\n"
+	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
+	"  --by KEYS        group by these parameters (comma separated)\n"
+	"  --boot N         bootstrap replicates (default 1000); --seed S its seed (default 1)\n"
+	"  --level L        confidence level (default 0.95)\n"
+	"  --sensitivity    also how the onset depends on the measuring band and on the sampled\n"
+	"                   frequency range: both estimates again for the bands 0.2:0.4, 0.4:0.6\n"
+	"                   and 0.6:0.8 of the surface height and for the sampled range without\n"
+	"                   its lowest and without its highest frequency (the same bootstrap),\n"
+	"                   and the spread (largest - smallest) over these and the main estimate,\n"
+	"                   printed beside the main estimate's interval; onset_sensitivity.csv,\n"
+	"                   stored keys sens_spread_threshold_f, sens_spread_sigmoid_f0 and per\n"
+	"                   variant sens_threshold_f_V and sens_sigmoid_f0_V (lo, hi), V one of\n"
+	"                   band_0.2_0.4, band_0.4_0.6, band_0.6_0.8, no_lowest_f, no_highest_f\n"
+	"  --all-versions   also the runs of earlier versions of the campaign file (run.current\n"
+	"                   = 0, kept by study run --keep-old); by default the current grid's\n"
+	"  --no-plot        no figures;  --no-store  nothing written to the database\n\n"
+	"Writes onset_runs.csv (Phi per run), onset_seeds.csv (per-seed estimates),\n"
+	"onset_summary.csv, onset_accounting.csv, onset.png/.pdf; stores per group in `analysis`\n"
+	"(tool 'onset'): runs (used), seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step,\n"
+	"threshold_f (lo, hi), threshold_seed_sd, and the accounting: runs_failed,\n"
+	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
+	"runs_pending, runs_running, failed_STATUS per status.\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
+	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+
+/* What onset computes besides the frame: Phi through the plane of every considered
+ * run, one group's points at a time, and the estimates of every group. */
+typedef struct onset_state {
+	flux_opts fo;
+	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
+	double *xs, *ys; /* one group's points: frequency, Phi */
+	long *us;        /* ... and their seed (replicate) */
+	onset_res *R;    /* [ng] */
+} onset_state;
+
+static int state_alloc(an_tool *t, onset_state *s)
+{
+	size_t n = (size_t)(t->nr ? t->nr : 1);
+	s->phi = calloc(n, sizeof *s->phi);
+	s->xs = calloc(n, sizeof *s->xs);
+	s->ys = calloc(n, sizeof *s->ys);
+	s->us = calloc(n, sizeof *s->us);
+	if (!s->phi || !s->xs || !s->ys || !s->us)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+static void state_free(const an_tool *t, onset_state *s)
+{
+	for (int j = 0; s->R && j < t->ng; j++)
+		onset_res_free(&s->R[j]);
+	free(s->R);
+	free(s->phi);
+	free(s->xs);
+	free(s->ys);
+	free(s->us);
+}
+
+/* Phi through the plane of run r, and what of it the statistic uses (acct.h); NaN
+ * when nothing. */
+static double classify(an_run *r, const flux_opts *fo)
+{
+	flux_data fd;
+	double v = NAN;
+	if (fluxrun_load(r, &fd)) {
+		if (r->use == AN_UNREADABLE)
+			fprintf(stderr, "onset: warning: %s (counted as unreadable)\n", r->why);
+		return v;
+	}
+	v = flux_summary(&fd, fo);
+	const double dur = an_num(r, "duration", NAN), T = fd.P ? fd.t[fd.P - 1] : 0;
+	if (isfinite(v) && !strcmp(r->state, "failed"))
+		acct_set(r, AN_PARTLY, T, dur, "failed at t = %g s (%s): the %zu periods before it used, after the"
+			 " first %zu", r->status_time, r->status, fd.P, flux_first(&fd, fo));
+	else if (isfinite(v))
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (!strcmp(r->state, "failed"))
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed at t = %g s (%s) within the transient: %zu periods"
+			 " recorded, the first %zu of the planned %zu are the transient", r->status_time,
+			 r->status, fd.P, flux_first(&fd, fo), fd.planned);
+	else
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "no flux period recorded");
+	flux_free(&fd);
+	return v;
+}
+
+/* Every fixed-frequency run with flux = yes is considered, whatever its state. */
+static int consider(an_tool *t, onset_state *s)
+{
+	for (int i = 0; i < t->nr; i++) {
+		const char *ramp = an_str(&t->runs[i], "ramp"), *fl = an_str(&t->runs[i], "flux");
+		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) || tool_old(t, &t->runs[i]))
+			continue;
+		const double v = classify(&t->runs[i], &s->fo);
+		s->phi[tool_keep(t, i)] = v;
+	}
+	return t->k ? 0 : tool_none(t, "fixed-frequency run with flux = yes", "");
+}
+
+static int groups(an_tool *t, onset_state *s)
+{
+	static const char *const always[] = {"radius_ratio", "depth", NULL};
+	static const char *const drop[] = {"frequency", "ramp", "ramp_from", "ramp_to", NULL};
+	if (tool_group(t, always, drop))
+		return t->e.code;
+	if (!(s->R = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->R)))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return tool_tally(t, stdout, "its %d fixed-frequency runs with flux = yes", t->k);
+}
+
+/* onset_runs.csv: Phi of every run used, by group */
+static int runs_csv(an_tool *t, const onset_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "onset_runs.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < t->k; i++) {
+			const an_run *r = &t->runs[i];
+			if (r->group != j || !USED(r))
+				continue;
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", r->id, r->replicate, r->seed,
+				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), an_num(r, "frequency", NAN), s->phi[i],
+				acct_use_name(r->use), r->used_s);
+		}
+	fclose(f);
+	return 0;
+}
+
+/* Group j's points (frequency, Phi, seed) into xs, ys, us; their number. *ratio is
+ * the group's radius ratio. */
+static size_t group_points(const an_tool *t, onset_state *s, int j, double *ratio)
+{
+	size_t np = 0;
+	*ratio = 0;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j)
+			continue;
+		*ratio = an_num(r, "radius_ratio", 0);
+		if (!USED(r))
+			continue;
+		s->xs[np] = an_num(r, "frequency", NAN);
+		s->ys[np] = s->phi[i];
+		s->us[np++] = r->replicate;
+	}
+	return np;
+}
+
+/* Group j's estimates: its per-seed rows, its table row, its summary row, its stored rows. */
+static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double ratio, FILE *f, FILE *s)
+{
+	const char *L = t->labels[j];
+	const an_acct *a = &t->A[j];
+	for (size_t u = 0; u < r->units; u++) {
+		fprintf(f, "%d,", j);
+		csv_str(f, L);
+		fprintf(f, ",%ld,%.17g,%.17g\n", r->unit_id[u], r->seed_fit[u], r->seed_thr[u]);
+	}
+	const sig_fit *F = &r->fit;
+	const double f0 = F->ok ? F->x0 : NAN, w = F->ok ? F->w : NAN, step = F->ok ? F->a : NAN;
+	char c1[64], c2[64];
+	snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", f0, r->fit_lo, r->fit_hi);
+	snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
+	printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", L, ratio > 0 ? "yes" : "no", np, r->units, c1,
+	       w, c2, r->seed_sd, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	csv_str(s, L);
+	fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np, r->units,
+		F->ok, f0, r->fit_lo, r->fit_hi, w, step, r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
+	tool_summary_acct(t, s, j);
+	const long n = (long)np;
+	tool_store(t, j, L, "runs", (double)np, NAN, NAN, n);
+	tool_store(t, j, L, "seeds", (double)r->units, NAN, NAN, n);
+	tool_store(t, j, L, "sigmoid_f0", f0, r->fit_lo, r->fit_hi, n);
+	tool_store(t, j, L, "sigmoid_width", w, NAN, NAN, n);
+	tool_store(t, j, L, "sigmoid_step", step, NAN, NAN, n);
+	tool_store(t, j, L, "threshold_f", r->thr, r->thr_lo, r->thr_hi, n);
+	tool_store(t, j, L, "threshold_seed_sd", r->seed_sd, NAN, NAN, n);
+	tool_store_acct(t, L, j);
+}
+
+/* Per group: the estimates into onset_seeds.csv, onset_summary.csv, the table and
+ * the analysis table (storing begun here, ended by the caller). */
+static int estimate(an_tool *t, onset_state *s)
+{
+	const an_opts *o = t->o;
+	char path[1400];
+	FILE *f = cli_fopen(o, "onset_seeds.csv", path, sizeof path, &t->e), *sum = NULL;
+	if (f)
+		sum = tool_summary_csv(t, "onset_summary.csv",
+				       "group,intruder,runs,seeds,sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi,"
+				       "sigmoid_width,sigmoid_step,threshold_f,threshold_f_lo,threshold_f_hi,"
+				       "threshold_seed_sd,boot_ok");
+	if (sum) {
+		fprintf(f, "group_index,group,seed_unit,sigmoid_f0,threshold_f\n");
+		printf("%-30s %4s %4s %5s %22s %7s %22s %7s %6s %7s\n", "group", "intr", "used", "seeds",
+		       "sigmoid f0 [CI] (Hz)", "width", "threshold f [CI] (Hz)", "seed_sd", "failed", "unfinished");
+		tool_store_begin(t);
+	}
+	for (int j = 0; sum && j < t->ng && !t->e.code; j++) {
+		double ratio;
+		const size_t np = group_points(t, s, j, &ratio);
+		onset_res *r = &s->R[j];
+		if (!np) /* every run of the group failed, is unreadable or not finished */
+			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
+		else if (onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0),
+					o->seed, o->level, r)) {
+			sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			break;
+		}
+		group_out(t, r, j, np, ratio, f, sum);
+	}
+	if (f)
+		fclose(f);
+	if (sum)
+		fclose(sum);
+	return t->e.code;
+}
+
+/* ---- --sensitivity: the onset again for other bands and a trimmed frequency range ---- */
+
+enum { NBAND = 3, NVAR = NBAND + 3 };
+static const double BANDS[NBAND][2] = {{0.2, 0.4}, {0.4, 0.6}, {0.6, 0.8}};
+static const char *const VNAME[NVAR] = {"main", "band_0.2_0.4", "band_0.4_0.6", "band_0.6_0.8", "no_lowest_f",
+					"no_highest_f"};
+
+/* Phi through each of the bands of every used run (NaN for the others), read again. */
+static int band_phis(an_tool *t, const onset_state *s, double *pb)
+{
+	for (int i = 0; i < t->k; i++) {
+		for (int b = 0; b < NBAND; b++)
+			pb[b * t->k + i] = NAN;
+		flux_data fd;
+		if (!USED(&t->runs[i]) || fluxrun_load(&t->runs[i], &fd))
+			continue; /* classified usable: only a file changed since could fail */
+		for (int b = 0; b < NBAND; b++) {
+			const flux_opts fo = {BANDS[b][0], BANDS[b][1], s->fo.skip};
+			pb[b * t->k + i] = flux_summary(&fd, &fo);
+		}
+		flux_free(&fd);
+	}
+	return 0;
+}
+
+/* Group j's points of variant v (1..NBAND: a band; NBAND + 1, + 2: the main band without
+ * the lowest or the highest sampled frequency of the group) into xs, ys, us. */
+static size_t variant_points(const an_tool *t, onset_state *s, const double *pb, int j, int v)
+{
+	double flo = INFINITY, fhi = -INFINITY;
+	for (int i = 0; i < t->k; i++)
+		if (t->runs[i].group == j && USED(&t->runs[i])) {
+			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
+			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
+		}
+	size_t np = 0;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		const double f = an_num(r, "frequency", NAN);
+		if (r->group != j || !USED(r) || (v == NBAND + 1 && f == flo) || (v == NBAND + 2 && f == fhi))
+			continue;
+		const double y = v >= 1 && v <= NBAND ? pb[(v - 1) * t->k + i] : s->phi[i];
+		if (!isfinite(y))
+			continue;
+		s->xs[np] = f;
+		s->ys[np] = y;
+		s->us[np++] = r->replicate;
+	}
+	return np;
+}
+
+/* largest - smallest of the finite v[0..n); NaN when fewer than 2 */
+static double spread(const double *v, int n)
+{
+	double lo = INFINITY, hi = -INFINITY;
+	int m = 0;
+	for (int i = 0; i < n; i++)
+		if (isfinite(v[i])) {
+			lo = fmin(lo, v[i]);
+			hi = fmax(hi, v[i]);
+			m++;
+		}
+	return m >= 2 ? hi - lo : NAN;
+}
+
+/* One group's variants: table rows, CSV rows, stored rows; the spreads. */
+static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE *f)
+{
+	const an_opts *o = t->o;
+	const char *L = t->labels[j];
+	double thr[NVAR], f0[NVAR];
+	for (int v = 0; v < NVAR; v++) {
+		const size_t np = variant_points(t, s, pb, j, v);
+		onset_res r = {0};
+		if (np && onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0), o->seed,
+					 o->level, &r))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+		if (!np)
+			r.thr = r.thr_lo = r.thr_hi = r.fit_lo = r.fit_hi = NAN;
+		thr[v] = r.thr;
+		f0[v] = r.fit.ok ? r.fit.x0 : NAN;
+		const double blo = v >= 1 && v <= NBAND ? BANDS[v - 1][0] : o->band_lo;
+		const double bhi = v >= 1 && v <= NBAND ? BANDS[v - 1][1] : o->band_hi;
+		double flo = INFINITY, fhi = -INFINITY;
+		for (size_t p = 0; p < np; p++) {
+			flo = fmin(flo, s->xs[p]);
+			fhi = fmax(fhi, s->xs[p]);
+		}
+		char c1[64], c2[64], what[64];
+		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", r.thr, r.thr_lo, r.thr_hi);
+		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", f0[v], r.fit_lo, r.fit_hi);
+		if (v)
+			snprintf(what, sizeof what, "%s", VNAME[v]);
+		else
+			snprintf(what, sizeof what, "main (band %g:%g)", blo, bhi);
+		printf("%-30s %-22s %5.2f-%-5.2f %4zu %22s %22s\n", v ? "" : L, what, np ? flo : NAN, np ? fhi : NAN, np, c1,
+		       c2);
+		fprintf(f, "%d,", j);
+		csv_str(f, L);
+		fprintf(f, ",%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g\n", VNAME[v], blo, bhi,
+			np ? flo : NAN, np ? fhi : NAN, np, r.thr, r.thr_lo, r.thr_hi, r.fit.ok, f0[v], r.fit_lo, r.fit_hi);
+		if (v) {
+			char k1[64], k2[64];
+			snprintf(k1, sizeof k1, "sens_threshold_f_%s", VNAME[v]);
+			snprintf(k2, sizeof k2, "sens_sigmoid_f0_%s", VNAME[v]);
+			tool_store(t, j, L, k1, r.thr, r.thr_lo, r.thr_hi, (long)np);
+			tool_store(t, j, L, k2, f0[v], r.fit_lo, r.fit_hi, (long)np);
+		}
+		onset_res_free(&r);
+	}
+	const double st = spread(thr, NVAR), sf = spread(f0, NVAR);
+	const onset_res *m = &s->R[j];
+	const long n = (long)acct_used(&t->A[j]);
+	printf("%-30s spread over the %d variants: threshold f %.3f Hz (main interval %.3f Hz wide), sigmoid f0 %.3f Hz"
+	       " (main interval %.3f Hz wide)\n", "", NVAR, st, m->thr_hi - m->thr_lo, sf, m->fit_hi - m->fit_lo);
+	tool_store(t, j, L, "sens_spread_threshold_f", st, NAN, NAN, n);
+	tool_store(t, j, L, "sens_spread_sigmoid_f0", sf, NAN, NAN, n);
+	return 0;
+}
+
+/* --sensitivity: onset_sensitivity.csv and the table (rows stored beside the main ones). */
+static int sensitivity(an_tool *t, onset_state *s)
+{
+	char path[1400];
+	double *pb = malloc(sizeof *pb * (size_t)(NBAND * (t->k ? t->k : 1)));
+	FILE *f = pb ? cli_fopen(t->o, "onset_sensitivity.csv", path, sizeof path, &t->e) : NULL;
+	if (!pb)
+		sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if (!f) {
+		free(pb);
+		return t->e.code;
+	}
+	band_phis(t, s, pb);
+	fprintf(f, "group_index,group,variant,band_lo,band_hi,f_lo,f_hi,runs,threshold_f,threshold_f_lo,threshold_f_hi,"
+		   "sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi\n");
+	printf("\n# sensitivity of the onset: the measuring band (fraction of the surface height) and the sampled frequency"
+	       " range (without its lowest or highest frequency); %ld bootstrap replicates each\n", t->o->boot);
+	printf("%-30s %-22s %11s %4s %22s %22s\n", "group", "variant", "f range", "runs", "threshold f [CI] (Hz)",
+	       "sigmoid f0 [CI] (Hz)");
+	for (int j = 0; j < t->ng && !t->e.code; j++)
+		if (acct_used(&t->A[j]))
+			sens_group(t, s, pb, j, f);
+	fclose(f);
+	free(pb);
+	return t->e.code;
+}
+
+/* The transition a figure marks for group j: the sigmoid's f0 when it was accepted,
+ * else the threshold crossing; its interval; 0 when neither exists. */
+static int onset_mark(const onset_res *r, double *f, double *lo, double *hi, const char **name)
+{
+	if (r->fit.ok) {
+		*f = r->fit.x0, *lo = r->fit_lo, *hi = r->fit_hi, *name = "f₀";
+		return 1;
+	}
+	*f = r->thr, *lo = r->thr_lo, *hi = r->thr_hi, *name = "threshold f";
+	return isfinite(r->thr);
+}
+
+/* onset.png and onset.pdf: every group's runs and fitted sigmoid, the onset (a dashed
+ * line) and its interval (a shaded band) in the group's colour, Gamma on top */
+static int plot(an_tool *t, const onset_state *s)
+{
+	const an_opts *o = t->o;
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(o, "onset", 1000, 600, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n"
+		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
+		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
+		o->band_lo, o->band_hi, set, *set ? "; " : "", 100 * o->level);
+	double flo = INFINITY, fhi = -INFINITY, A, g;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i])) {
+			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
+			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
+		}
+	if (tool_gamma(t, &A, &g) && flo < fhi)
+		gp_gamma_axis(f, A, g, flo, fhi);
+	for (int j = 0; j < t->ng; j++) {
+		double m, lo, hi;
+		const char *nm;
+		if (s->R[j].fit.ok)
+			fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, s->R[j].fit.b,
+				s->R[j].fit.a, s->R[j].fit.x0, s->R[j].fit.w);
+		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+			continue;
+		if (isfinite(lo) && isfinite(hi))
+			fprintf(f, "set object %d rect from %.17g, graph 0 to %.17g, graph 1 behind fc lt %d "
+				   "fs transparent solid 0.15 noborder\n", j + 1, lo, hi, j + 1);
+		fprintf(f, "set arrow %d from %.17g, graph 0 to %.17g, graph 1 nohead lt %d dt 2 lw 1.5\n", j + 1, m, m,
+			j + 1);
+	}
+	fprintf(f, "plot ");
+	int np = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (!acct_used(&t->A[j])) /* nothing to draw: gnuplot would warn */
+			continue;
+		char leg[512], mark[256];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lt %d title ",
+			np++ ? ", \\\n  " : "", j, j + 1);
+		gp_str(f, *leg ? leg : "runs");
+		if (s->R[j].fit.ok)
+			fprintf(f, ", s%d(x) with lines lw 2 lt %d notitle", j, j + 1);
+		double m, lo, hi;
+		const char *nm;
+		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+			continue;
+		if (isfinite(lo) && isfinite(hi))
+			snprintf(mark, sizeof mark, "%s = %.3g Hz [%.3g, %.3g]", nm, m, lo, hi);
+		else
+			snprintf(mark, sizeof mark, "%s = %.3g Hz", nm, m);
+		fprintf(f, ", keyentry with lines lt %d dt 2 lw 1.5 title ", j + 1);
+		gp_str(f, mark);
+	}
+	fprintf(f, "\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# figure: %s (and .pdf)\n", png);
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	an_opts o = {.tool = "onset", .version = VERSION};
+	xopt x[] = {{"sensitivity", 0, NULL, 0}};
+	int pr = xopt_args(&o, argc, argv, HELP, " by band skip threshold boot seed level ", x, 1, stdout, stderr);
+	if (pr)
+		return pr < 0 ? 0 : 1;
+	an_tool t;
+	onset_state s = {.fo = {o.band_lo, o.band_hi, o.skip}};
+	if (tool_open(&t, &o) || state_alloc(&t, &s) || consider(&t, &s) || groups(&t, &s))
+		goto out;
+	if (cli_outdir(&o, &t.e) || runs_csv(&t, &s) || tool_accounting_csv(&t))
+		goto out;
+	if (estimate(&t, &s) || (x[0].set && sensitivity(&t, &s)) || tool_store_end(&t))
+		goto out;
+	tool_report(&t, stdout, "the periods they recorded before the failure (after the transient of the run as"
+				" planned): one point each, like a finished run");
+	if (!o.no_plot && plot(&t, &s))
+		goto out;
+	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s}.csv\n", o.out, x[0].set ? ",sensitivity" : "");
+out:
+	state_free(&t, &s);
+	return tool_close(&t, stderr);
+}

@@ -1,0 +1,797 @@
+/* waiting_main.c - bin/waiting: waiting times of the intruder's rise per group of runs
+ * (Kaplan-Meier with right-censoring, median with its Brookmeyer-Crowley interval,
+ * fraction risen, histogram). Only this file prints and exits. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/acct.h"
+#include "common/adb.h"
+#include "common/cli.h"
+#include "h5read.h"
+#include "km.h"
+#include "logrank.h"
+#include "measure/lowerrow.h"
+#include "common/tool.h"
+#include "measure/traj.h"
+#include "common/xopt.h"
+#include "quantile.h"
+
+#define VERSION "2"
+
+/* a run whose observation is in the statistic: finished, or failed and observed up to it */
+#define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
+
+static const char *HELP =
+	"usage: waiting CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--level L]\n"
+	"               [--bins N] [--fraction Q] [--all-versions] [--no-plot] [--no-store]\n\n"
+	"Waiting time of the intruder's rise (docs/model.md: first time its centre is one intruder\n"
+	"diameter above its settled height; a run that ends first is right-censored at the\n"
+	"time it observed), read from the root attributes `risen` and `waiting_time` of each\n"
+	"run with an intruder (radius_ratio > 0). A run that failed is observed up to its\n"
+	"failure: risen before it, an event at its waiting time; else censored at the time of\n"
+	"the failure (this assumes that the failure is independent of the rise; the output\n"
+	"says how many runs it concerns).\n"
+	"Per group of runs: Kaplan-Meier survival S(t), the median (first t with S <= 0.5)\n"
+	"with its Brookmeyer-Crowley interval (Greenwood errors, plain band), the fraction\n"
+	"risen by the end, and a histogram of the observed waiting times. When `depth` is a\n"
+	"grouping key, each group against the same start one row lower (depth - 1, docs/model.md):\n"
+	"both fractions risen, their difference and the two-sided Fisher exact test.\n\n"
+	"A second definition, beside the engine's (which a small intruder's slow creep of one\n"
+	"diameter trips): the first time the intruder's centre has covered the fraction Q\n"
+	"(--fraction, default 0.5) of the way from its settled height to the settled surface,\n"
+	"in the box frame, read off the recorded trajectory (/particles/intruder/position, lab\n"
+	"frame, less the box motion A sin(phi(t))) and interpolated between its samples. A run\n"
+	"whose trajectory ends first is censored at its last sample: at the end of the run,\n"
+	"its failure, or its stop (stop = risen ends a run stop_after seconds after the\n"
+	"engine's rise, which may come before the fraction; the output counts them). A run\n"
+	"without a trajectory (traj_rate = 0) has no second waiting time: counted, not used.\n"
+	"Both definitions side by side: per group the runs, risen, censored and the median with\n"
+	"its interval, and the log-rank test across the groups for each.\n\n"
+	"No run is dropped silently: per group the table, waiting_summary.csv and the stored\n"
+	"rows count the runs used, the failed ones by status (used up to the failure, or\n"
+	"unusable: without an output file, or failed before the shaking began), the unreadable\n"
+	"files and the runs still pending or running (the campaign is not finished: the output\n"
+	"says so); waiting_accounting.csv has one row per run with what became of it and why.\n\n"
+	"  --db FILE     campaign database (default RUNS/study.db)\n"
+	"  --runs DIR    where outputs are, as RUNS/CAMPAIGN/RUN-ID.h5 (default: the\n"
+	"                database's directory, or runs)\n"
+	"  --out DIR     CSV, gnuplot scripts and PNG (default RUNS/CAMPAIGN/analysis)\n"
+	"  --by KEYS     group by these parameters (comma separated; default radius_ratio\n"
+	"                and every swept axis of the campaign)\n"
+	"  --level L     confidence level (default 0.95)\n"
+	"  --bins N      histogram bins over [0, longest observation] (default 10)\n"
+	"  --fraction Q  the second definition's fraction of the way to the surface (0 < Q <= 1,\n"
+	"                default 0.5)\n"
+	"  --all-versions  also the runs of earlier versions of the campaign file\n"
+	"                (run.current = 0, kept by study run --keep-old); by default the\n"
+	"                current grid's\n"
+	"  --no-plot     no figures;  --no-store  nothing written to the database\n\n"
+	"Writes waiting_runs.csv, waiting_km.csv, waiting_summary.csv, waiting_hist.csv,\n"
+	"waiting_accounting.csv, waiting_km_band.csv, waiting_km.png/.pdf (with the\n"
+	"confidence band), waiting_hist.png/.pdf; stores per group in the\n"
+	"table `analysis` (tool 'waiting'): runs (used), risen, fraction_risen (Clopper-Pearson\n"
+	"lo, hi), median (lo, hi), t_max, s_end (lo, hi), and the accounting (runs_failed,\n"
+	"runs_failed_used, ..., as onset --help lists); a group with a start one row lower:\n"
+	"lower_fraction_diff (that start's fraction_risen less the group's), lower_fisher_p\n"
+	"(n: the runs of both) and lower_risen (n: its runs). The second definition:\n"
+	"waiting_way_runs.csv (both times of every used run), waiting_way_km.csv,\n"
+	"waiting_way_summary.csv, waiting_way.png/.pdf\n"
+	"(both definitions' Kaplan-Meier curves); keys way_fraction, way_runs, way_risen,\n"
+	"way_censored, way_median (lo, hi), way_no_trajectory, way_stop_censored, and as group\n"
+	"'all groups' way_logrank_chi2, way_logrank_df, way_logrank_p.\n"
+	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
+	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
+	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
+	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+
+typedef struct grp {
+	int n, cap;
+	double *t;
+	int *ev;
+	long *run;
+} grp;
+
+static int push(grp *g, double t, int ev, long run)
+{
+	if (g->n == g->cap) {
+		g->cap = g->cap ? 2 * g->cap : 16;
+		double *a = realloc(g->t, sizeof *a * (size_t)g->cap);
+		if (a)
+			g->t = a;
+		int *b = realloc(g->ev, sizeof *b * (size_t)g->cap);
+		if (b)
+			g->ev = b;
+		long *c = realloc(g->run, sizeof *c * (size_t)g->cap);
+		if (c)
+			g->run = c;
+		if (!a || !b || !c)
+			return -1;
+	}
+	g->t[g->n] = t;
+	g->ev[g->n] = ev;
+	g->run[g->n++] = run;
+	return 0;
+}
+
+/* What waiting computes besides the frame: the observation of every considered run,
+ * the used ones' times and events per group, their survival curves. */
+typedef struct wait_state {
+	double *wt;         /* [k] the time considered run i was observed to or rose at */
+	int *risen;         /* [k] 1 when it rose (an event), 0 when censored */
+	grp *g;             /* [ng] the used runs' times and events */
+	km_curve *km;       /* [ng] */
+	double z;           /* normal quantile of the level */
+	double tmax;        /* the longest observation of all groups */
+	double bw;          /* histogram bin width */
+	long f_ev, f_cens;  /* failed runs used: risen before the failure, censored at it */
+	/* the second definition (traj.h): the fraction q of the way to the surface */
+	double q;
+	grp *g2;            /* [ng] the used runs with a trajectory: times and events */
+	km_curve *km2;      /* [ng] */
+	double *way_t;      /* [k] its time (NaN: no trajectory) */
+	int *way_ev;        /* [k] 1 reached, 0 censored */
+	long *no_traj;      /* [ng] used runs without a trajectory */
+	long *stop_cens;    /* [ng] runs stopped by stop = risen before reaching the fraction */
+} wait_state;
+
+static void state_free(const an_tool *t, wait_state *s)
+{
+	for (int j = 0; s->g && j < t->ng; j++) {
+		free(s->g[j].t);
+		free(s->g[j].ev);
+		free(s->g[j].run);
+		if (s->km)
+			km_free(&s->km[j]);
+	}
+	for (int j = 0; s->g2 && j < t->ng; j++) {
+		free(s->g2[j].t);
+		free(s->g2[j].ev);
+		free(s->g2[j].run);
+		if (s->km2)
+			km_free(&s->km2[j]);
+	}
+	free(s->g);
+	free(s->km);
+	free(s->wt);
+	free(s->risen);
+	free(s->g2);
+	free(s->km2);
+	free(s->way_t);
+	free(s->way_ev);
+	free(s->no_traj);
+	free(s->stop_cens);
+}
+
+/* Reads run r's rise (*rs: risen, *w: waiting time) and says what of it the statistic
+ * uses (acct.h): a failed run was observed up to its failure. */
+static void classify(an_run *r, double *rs, double *w, wait_state *s)
+{
+	double st = NAN;
+	if (acct_classify(r))
+		return;
+	hid_t h;
+	sb_err he = {0};
+	if (h5r_open(r->path, &h, &he))
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", he.msg);
+	else {
+		if (traj_rise(h, r->path, rs, w, &he))
+			/* a value that is no time is there, and unusable; a missing one unreadable */
+			acct_set(r, he.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", he.msg);
+		h5r_attr_num(h, "/", "status_time", &st);
+		h5r_close(h);
+	}
+	if (r->use == AN_UNREADABLE)
+		fprintf(stderr, "waiting: warning: %s (counted as unreadable)\n", r->why);
+	else if (r->use == AN_UNUSABLE)
+		*rs = *w = NAN;
+	else if (strcmp(r->state, "failed"))
+		acct_set(r, AN_USED, NAN, NAN, NULL);
+	else if (!(*w > 0))
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "failed before the shaking began (%s)", r->status);
+	else {
+		/* observed up to the failure: a rise before it is an event, else the run is
+		 * censored when it failed */
+		if (!isfinite(st))
+			st = isfinite(r->status_time) ? r->status_time : *w;
+		acct_set(r, AN_PARTLY, *rs != 0 ? st : *w, an_num(r, "duration", NAN),
+			 *rs != 0 ? "failed at t = %g s (%s) after the rise at %g s: an event"
+				  : "failed at t = %g s (%s) before any rise: censored at %g s",
+			 st, r->status, *w);
+		if (*rs != 0)
+			s->f_ev++;
+		else
+			s->f_cens++;
+	}
+}
+
+/* Every run with an intruder is considered, whatever its state. */
+static int consider(an_tool *t, wait_state *s)
+{
+	s->wt = calloc((size_t)(t->nr ? t->nr : 1), sizeof *s->wt);
+	s->risen = calloc((size_t)(t->nr ? t->nr : 1), sizeof *s->risen);
+	if (!s->wt || !s->risen)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int i = 0; i < t->nr; i++) {
+		an_run *r = &t->runs[i];
+		/* a ratio that is not known to be 0 is considered: grouping says what it lacks */
+		if (an_num(r, "radius_ratio", NAN) == 0 || tool_old(t, r))
+			continue;
+		double rs = NAN, w = NAN;
+		classify(r, &rs, &w, s);
+		const int k = tool_keep(t, i);
+		s->wt[k] = w;
+		s->risen[k] = rs != 0 && !isnan(rs);
+	}
+	return t->k ? 0 : tool_none(t, "run with an intruder", "");
+}
+
+/* Groups the considered runs; each used one's time and event joins its group. */
+static int groups(an_tool *t, wait_state *s)
+{
+	static const char *const always[] = {"radius_ratio", NULL};
+	if (tool_group(t, always, NULL))
+		return t->e.code;
+	s->g = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->g);
+	s->km = calloc((size_t)(t->ng > 0 ? t->ng : 1), sizeof *s->km);
+	if (!s->g || !s->km)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if (tool_tally(t, stdout, "its %d runs with an intruder", t->k))
+		return t->e.code;
+	for (int i = 0; i < t->k; i++)
+		if (USED(&t->runs[i]) && push(&s->g[t->runs[i].group], s->wt[i], s->risen[i], i))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+/* Each group's Kaplan-Meier curve, and the longest observation. */
+static int fit(an_tool *t, wait_state *s)
+{
+	s->z = quant_normal(t->o->level);
+	s->tmax = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (km_fit(s->g[j].t, s->g[j].ev, (size_t)s->g[j].n, &s->km[j]))
+			return sb_errf(&t->e, SB_EIO, "group %s: bad waiting times", t->labels[j]);
+		for (int i = 0; i < s->g[j].n; i++)
+			s->tmax = fmax(s->tmax, s->g[j].t[i]);
+	}
+	s->bw = s->tmax > 0 ? s->tmax / (double)t->o->bins : 1;
+	return 0;
+}
+
+/* waiting_runs.csv: each used run's time and event */
+static int runs_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_runs.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,state,use\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < s->g[j].n; i++) {
+			const an_run *r = &t->runs[s->g[j].run[i]];
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->g[j].t[i], s->g[j].ev[i],
+				r->state, acct_use_name(r->use));
+		}
+	fclose(f);
+	return 0;
+}
+
+/* waiting_km_band.csv: group j's confidence band as the outline of steps (the band
+ * is constant between event times, as S is), for gnuplot's filledcurves: at each
+ * time the band before it, then after it */
+static void band_csv(FILE *b, const an_tool *t, const wait_state *s, int j)
+{
+	const km_curve *km = &s->km[j];
+	double lo = 1, hi = 1;
+	for (size_t i = 0; i < km->m; i++) {
+		fprintf(b, "%d,%.17g,%.17g,%.17g\n", j, km->t[i], lo, hi);
+		lo = fmax(0, km->s[i] - s->z * km->se[i]);
+		hi = fmin(1, km->s[i] + s->z * km->se[i]);
+		fprintf(b, "%d,%.17g,%.17g,%.17g\n", j, km->t[i], lo, hi);
+	}
+	(void)t;
+}
+
+/* waiting_km.csv: the survival curves, each starting at (0, 1), and their bands */
+static int km_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_km.csv", path, sizeof path, &t->e), *b;
+	if (!f)
+		return t->e.code;
+	if (!(b = cli_fopen(t->o, "waiting_km_band.csv", path, sizeof path, &t->e))) {
+		fclose(f);
+		return t->e.code;
+	}
+	fprintf(b, "group_index,t,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		fprintf(b, "%d,0,1,1\n", j);
+		band_csv(b, t, s, j);
+	}
+	fclose(b);
+	fprintf(f, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		const km_curve *km = &s->km[j];
+		fprintf(f, "%d,", j);
+		csv_str(f, t->labels[j]);
+		fprintf(f, ",0,%ld,0,0,1,0,1,1\n", km->n);
+		for (size_t i = 0; i < km->m; i++) {
+			const double S = km->s[i], se = km->se[i];
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
+				S, se, fmax(0, S - s->z * se), fmin(1, S + s->z * se));
+		}
+	}
+	fclose(f);
+	return 0;
+}
+
+/* The risen runs of group j whose waiting time is in bin b of bins (the last bin
+ * holds the longest). */
+static long hist_count(const wait_state *s, int j, long b, long bins)
+{
+	long c = 0;
+	for (int i = 0; i < s->g[j].n; i++) {
+		long q = (long)floor(s->g[j].t[i] / s->bw);
+		if (q >= bins)
+			q = bins - 1;
+		c += s->g[j].ev[i] && q == b;
+	}
+	return c;
+}
+
+/* waiting_hist.csv: the risen runs' waiting times, bins common to every group */
+static int hist_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	const long bins = t->o->bins;
+	FILE *f = cli_fopen(t->o, "waiting_hist.csv", path, sizeof path, &t->e);
+	if (!f)
+		return t->e.code;
+	fprintf(f, "group_index,group,lo,hi,count\n");
+	for (int j = 0; j < t->ng; j++)
+		for (long b = 0; b < bins; b++) {
+			const long c = hist_count(s, j, b, bins);
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%.17g,%.17g,%ld\n", b * s->bw, (b + 1) * s->bw, c);
+		}
+	fclose(f);
+	return 0;
+}
+
+/* Group j's summary: its table row, its summary row, its stored rows. */
+static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
+{
+	const km_curve *km = &s->km[j];
+	const char *L = t->labels[j];
+	const an_acct *a = &t->A[j];
+	double lo, hi, med = km_median(km, s->z, &lo, &hi), tm = 0;
+	for (int i = 0; i < s->g[j].n; i++)
+		tm = fmax(tm, s->g[j].t[i]);
+	const double se_end = km->m ? km->se[km->m - 1] : 0, s_end = km->m ? km->s[km->m - 1] : 1;
+	const double s_lo = fmax(0, s_end - s->z * se_end), s_hi = fmin(1, s_end + s->z * se_end);
+	const double frac = (double)km->events / (double)km->n;
+	char ci[64], ms[32];
+	snprintf(ms, sizeof ms, isnan(med) ? ">%.3g" : "%.3f", isnan(med) ? tm : med);
+	if (isnan(lo))
+		snprintf(ci, sizeof ci, "[>%.3g, -]", tm);
+	else if (isnan(hi))
+		snprintf(ci, sizeof ci, "[%.3f, >%.3g]", lo, tm);
+	else
+		snprintf(ci, sizeof ci, "[%.3f, %.3f]", lo, hi);
+	printf("%-36s %5ld %5ld %6.3f %9s %21s %8.3f %6.3f %6ld %10ld\n", L, km->n, km->events, frac, ms, ci, tm, s_end,
+	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	csv_str(sum, L);
+	fprintf(sum, ",%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", km->n, km->events, frac, med, lo, hi,
+		tm, s_end, s_lo, s_hi);
+	tool_summary_acct(t, sum, j);
+	const long n = km->n;
+	tool_store(t, j, L, "runs", (double)n, NAN, NAN, n);
+	tool_store(t, j, L, "risen", (double)km->events, NAN, NAN, n);
+	/* Clopper-Pearson: exact for a binomial count, what claim 5 compares between depths */
+	double f_lo, f_hi;
+	quant_clopper_pearson(km->events, n, t->o->level, &f_lo, &f_hi);
+	tool_store(t, j, L, "fraction_risen", frac, f_lo, f_hi, n);
+	tool_store(t, j, L, "median", med, lo, hi, n);
+	tool_store(t, j, L, "t_max", tm, NAN, NAN, n);
+	tool_store(t, j, L, "s_end", s_end, s_lo, s_hi, n);
+	tool_store_acct(t, L, j);
+}
+
+/* The log-rank test of equal waiting-time distributions across the groups: printed
+ * with the runs it rests on, and stored as group "all groups" (no key columns). */
+static void logrank_out(an_tool *t, const grp *g, const char *prefix, const char *what)
+{
+	long n = 0;
+	for (int j = 0; j < t->ng; j++)
+		n += g[j].n;
+	double *tt = malloc(sizeof *tt * (size_t)(n ? n : 1));
+	int *ev = malloc(sizeof *ev * (size_t)(n ? n : 1)), *gg = malloc(sizeof *gg * (size_t)(n ? n : 1));
+	logrank r = {0, NAN, NAN, 0};
+	if (tt && ev && gg) {
+		long k = 0;
+		for (int j = 0; j < t->ng; j++)
+			for (int i = 0; i < g[j].n; i++, k++) {
+				tt[k] = g[j].t[i];
+				ev[k] = g[j].ev[i];
+				gg[k] = j;
+			}
+		logrank_test(tt, ev, gg, (size_t)n, t->ng, &r);
+	}
+	free(tt);
+	free(ev);
+	free(gg);
+	if (r.k < 2)
+		return; /* one group: nothing to compare */
+	if (isnan(r.p)) {
+		printf("# %slog-rank test across the %d groups (%ld runs): no test, no intruder rose\n", what, r.k, n);
+		return;
+	}
+	printf("# %slog-rank test of equal waiting-time distributions across the %d groups (%ld runs, censored ones "
+	       "included): chi2 = %.4g, df = %d, p = %.3g\n", what, r.k, n, r.chi2, r.df, r.p);
+	char key[64];
+	snprintf(key, sizeof key, "%slogrank_chi2", prefix);
+	tool_store(t, -1, "all groups", key, r.chi2, NAN, NAN, n);
+	snprintf(key, sizeof key, "%slogrank_df", prefix);
+	tool_store(t, -1, "all groups", key, (double)r.df, NAN, NAN, n);
+	snprintf(key, sizeof key, "%slogrank_p", prefix);
+	tool_store(t, -1, "all groups", key, r.p, NAN, NAN, n);
+}
+
+/* Each group j that has a start one row lower i (lowerrow.h): the fractions risen of
+ * both, the difference frac(i) - frac(j) and the two-sided Fisher exact test, printed
+ * and stored as group j's (its key columns, its depth) lower_fraction_diff and
+ * lower_fisher_p (n the runs of both) and lower_risen (the lower start's risen, n its
+ * runs), so that no reader has to pair the depths again. Nothing when no group has one. */
+static void lower_out(an_tool *t, const wait_state *s)
+{
+	int np = 0;
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		const int i = lowerrow_partner(t, j);
+		if (i < 0)
+			continue;
+		const km_curve *a = &s->km[j], *b = &s->km[i];
+		const double fa = a->n ? (double)a->events / (double)a->n : NAN;
+		const double fb = b->n ? (double)b->events / (double)b->n : NAN;
+		const double p = lowerrow_fisher_p(b->events, b->n, a->events, a->n), d = fb - fa;
+		const long n = a->n + b->n;
+		if (!np++)
+			printf("\n# one row lower (depth - 1, docs/model.md): fraction risen starting one row lower minus at"
+			       " the group's depth d, two-sided Fisher exact test\n%-36s %14s %14s %8s %9s %5s\n",
+			       "group (depth d)", "risen/runs d", "risen/runs d-1", "diff", "fisher_p", "runs");
+		char ra[48], rb[48];
+		snprintf(ra, sizeof ra, "%ld/%ld", a->events, a->n);
+		snprintf(rb, sizeof rb, "%ld/%ld", b->events, b->n);
+		printf("%-36s %14s %14s %+8.3f %9.3g %5ld\n", t->labels[j], ra, rb, d, p, n);
+		tool_store(t, j, t->labels[j], "lower_fraction_diff", d, NAN, NAN, n);
+		tool_store(t, j, t->labels[j], "lower_fisher_p", p, NAN, NAN, n);
+		tool_store(t, j, t->labels[j], "lower_risen", (double)b->events, NAN, NAN, b->n);
+	}
+}
+
+/* Per group: waiting_summary.csv, the table, the comparison one row lower and the
+ * analysis table (storing begun here, ended by the caller). */
+static int summary(an_tool *t, const wait_state *s)
+{
+	FILE *sum = tool_summary_csv(t, "waiting_summary.csv",
+				     "group,runs,risen,fraction_risen,median,median_lo,median_hi,t_max,s_end,s_end_lo,"
+				     "s_end_hi");
+	if (!sum)
+		return t->e.code;
+	printf("%-36s %5s %5s %6s %9s %21s %8s %6s %6s %10s\n", "group", "used", "risen", "frac", "median_s",
+	       "CI (Brookmeyer-Crowley)", "t_max_s", "S_end", "failed", "unfinished");
+	tool_store_begin(t);
+	for (int j = 0; j < t->ng && !t->e.code; j++)
+		group_out(t, s, j, sum);
+	fclose(sum);
+	logrank_out(t, s->g, "", "");
+	lower_out(t, s);
+	return t->e.code;
+}
+
+/* ---- the second definition: the fraction q of the way to the surface (traj.h) ---- */
+
+/* Each used run's time from its trajectory, the groups' curves. */
+static int way(an_tool *t, wait_state *s)
+{
+	const size_t ng = (size_t)(t->ng > 0 ? t->ng : 1), k = (size_t)(t->k ? t->k : 1);
+	s->g2 = calloc(ng, sizeof *s->g2);
+	s->km2 = calloc(ng, sizeof *s->km2);
+	s->no_traj = calloc(ng, sizeof *s->no_traj);
+	s->stop_cens = calloc(ng, sizeof *s->stop_cens);
+	s->way_t = calloc(k, sizeof *s->way_t);
+	s->way_ev = calloc(k, sizeof *s->way_ev);
+	if (!s->g2 || !s->km2 || !s->no_traj || !s->stop_cens || !s->way_t || !s->way_ev)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		s->way_t[i] = NAN;
+		if (!USED(r))
+			continue;
+		traj tr;
+		sb_err e = {0};
+		const int rc = traj_read(r->path, &tr, &e);
+		double w = NAN;
+		const int ev = rc == 0 ? traj_fraction(&tr, s->q, &w) : -1;
+		if (rc > 1)
+			fprintf(stderr, "waiting: warning: %s (no second waiting time: counted as without a trajectory)\n", e.msg);
+		if (ev < 0)
+			s->no_traj[r->group]++;
+		else {
+			s->way_t[i] = w;
+			s->way_ev[i] = ev;
+			s->stop_cens[r->group] += !ev && !strcmp(tr.stopped_by, "risen");
+			if (push(&s->g2[r->group], w, ev, i)) {
+				traj_free(&tr);
+				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+			}
+		}
+		traj_free(&tr);
+	}
+	for (int j = 0; j < t->ng; j++)
+		if (km_fit(s->g2[j].t, s->g2[j].ev, (size_t)s->g2[j].n, &s->km2[j]))
+			return sb_errf(&t->e, SB_EIO, "group %s: bad second waiting times", t->labels[j]);
+	return 0;
+}
+
+/* waiting_way_runs.csv (both definitions of every used run) and waiting_way_km.csv */
+static int way_csv(an_tool *t, const wait_state *s)
+{
+	char path[1400];
+	FILE *f = cli_fopen(t->o, "waiting_way_runs.csv", path, sizeof path, &t->e), *k = NULL;
+	if (f)
+		k = cli_fopen(t->o, "waiting_way_km.csv", path, sizeof path, &t->e);
+	if (!k) {
+		if (f)
+			fclose(f);
+		return t->e.code;
+	}
+	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,way_time,way_risen,trajectory,use\n");
+	for (int j = 0; j < t->ng; j++)
+		for (int i = 0; i < t->k; i++) {
+			const an_run *r = &t->runs[i];
+			if (r->group != j || !USED(r))
+				continue;
+			fprintf(f, "%d,", j);
+			csv_str(f, t->labels[j]);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->wt[i], s->risen[i],
+				s->way_t[i], isnan(s->way_t[i]) ? 0 : s->way_ev[i], isnan(s->way_t[i]) ? "no" : "yes",
+				acct_use_name(r->use));
+		}
+	fclose(f);
+	fprintf(k, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
+	for (int j = 0; j < t->ng; j++) {
+		const km_curve *km = &s->km2[j];
+		fprintf(k, "%d,", j);
+		csv_str(k, t->labels[j]);
+		fprintf(k, ",0,%ld,0,0,1,0,1,1\n", km->n);
+		for (size_t i = 0; i < km->m; i++) {
+			fprintf(k, "%d,", j);
+			csv_str(k, t->labels[j]);
+			fprintf(k, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
+				km->s[i], km->se[i], fmax(0, km->s[i] - s->z * km->se[i]), fmin(1, km->s[i] + s->z * km->se[i]));
+		}
+	}
+	fclose(k);
+	return 0;
+}
+
+/* "12.345 [1.234, >6]" into b: a median and its interval, limits not reached as >t_max */
+static void med_ci(char *b, size_t n, double med, double lo, double hi, double tm)
+{
+	char m[32], l[32], h[32];
+	snprintf(m, sizeof m, isnan(med) ? ">%.3g" : "%.3f", isnan(med) ? tm : med);
+	snprintf(l, sizeof l, isnan(lo) ? ">%.3g" : "%.3f", isnan(lo) ? tm : lo);
+	snprintf(h, sizeof h, isnan(hi) ? ">%.3g" : "%.3f", isnan(hi) ? tm : hi);
+	snprintf(b, n, "%s [%s, %s]", m, l, h);
+}
+
+static double tmax_of(const grp *g)
+{
+	double tm = 0;
+	for (int i = 0; i < g->n; i++)
+		tm = fmax(tm, g->t[i]);
+	return tm;
+}
+
+/* Both definitions side by side: the table, waiting_way_summary.csv, the stored rows,
+ * the second log-rank test. */
+static int way_summary(an_tool *t, const wait_state *s)
+{
+	FILE *sum = tool_summary_csv(t, "waiting_way_summary.csv",
+				     "group,fraction,runs,risen,censored,median,median_lo,median_hi,way_runs,way_risen,"
+				     "way_censored,way_median,way_median_lo,way_median_hi,way_no_trajectory,way_stop_censored");
+	if (!sum)
+		return t->e.code;
+	printf("\n# both definitions: one diameter above the settled height (the engine's) | %g of the way from the"
+	       " settled height to the surface (box frame, from the trajectory)\n", s->q);
+	printf("%-36s %5s %5s %5s %26s | %5s %5s %5s %26s %7s %9s\n", "group", "used", "risen", "cens", "median_s [CI]",
+	       "used", "risen", "cens", "median_s [CI]", "no_traj", "stop_cens");
+	long stop = 0, none = 0;
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		const km_curve *a = &s->km[j], *b = &s->km2[j];
+		double l1, h1, l2, h2;
+		const double m1 = km_median(a, s->z, &l1, &h1), m2 = km_median(b, s->z, &l2, &h2);
+		char c1[112], c2[112];
+		med_ci(c1, sizeof c1, m1, l1, h1, tmax_of(&s->g[j]));
+		med_ci(c2, sizeof c2, m2, l2, h2, tmax_of(&s->g2[j]));
+		printf("%-36s %5ld %5ld %5ld %26s | %5ld %5ld %5ld %26s %7ld %9ld\n", t->labels[j], a->n, a->events,
+		       a->n - a->events, c1, b->n, b->events, b->n - b->events, c2, s->no_traj[j], s->stop_cens[j]);
+		csv_str(sum, t->labels[j]);
+		fprintf(sum, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld", s->q, a->n,
+			a->events, a->n - a->events, m1, l1, h1, b->n, b->events, b->n - b->events, m2, l2, h2, s->no_traj[j],
+			s->stop_cens[j]);
+		tool_summary_acct(t, sum, j);
+		const char *L = t->labels[j];
+		const long n = b->n;
+		tool_store(t, j, L, "way_fraction", s->q, NAN, NAN, n);
+		tool_store(t, j, L, "way_runs", (double)n, NAN, NAN, n);
+		tool_store(t, j, L, "way_risen", (double)b->events, NAN, NAN, n);
+		tool_store(t, j, L, "way_censored", (double)(n - b->events), NAN, NAN, n);
+		tool_store(t, j, L, "way_median", m2, l2, h2, n);
+		tool_store(t, j, L, "way_no_trajectory", (double)s->no_traj[j], NAN, NAN, a->n);
+		tool_store(t, j, L, "way_stop_censored", (double)s->stop_cens[j], NAN, NAN, n);
+		stop += s->stop_cens[j];
+		none += s->no_traj[j];
+	}
+	fclose(sum);
+	logrank_out(t, s->g2, "way_", "second definition: ");
+	if (none)
+		printf("# %ld used run%s without a trajectory (traj_rate = 0, or none recorded): no second waiting time, left"
+		       " out of the second definition only\n", none, none == 1 ? "" : "s");
+	if (stop)
+		printf("# %ld run%s stopped by stop = risen (stop_after seconds after the engine's rise) before covering %g of"
+		       " the way: censored at their end, which the second definition's median takes as a lower limit\n",
+		       stop, stop == 1 ? "" : "s", s->q);
+	return t->e.code;
+}
+
+/* waiting_way.png and .pdf: per group both definitions' survival curves */
+static int plot_way(an_tool *t, const wait_state *s)
+{
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "waiting_way", 900, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Intruder waiting time, two definitions: Kaplan–Meier survival\\n%s%s×: censored\\nsolid: one "
+		   "intruder diameter above the settled height; dashed: %g of the way to the surface\"\n"
+		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
+		   "set yrange [0:1.05]\nset xrange [0:*]\nplot ", set, *set ? "; " : "", s->q);
+	int np = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (!acct_used(&t->A[j]))
+			continue;
+		char leg[512], l2[600];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		snprintf(l2, sizeof l2, "%s%sone diameter", leg, *leg ? ": " : "");
+		fprintf(f, "%s'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lt %d title ", np++ ? ", \\\n  " : "",
+			j, j + 1);
+		gp_str(f, l2);
+		if (s->km2[j].n) {
+			snprintf(l2, sizeof l2, "%s%s%g of the way", leg, *leg ? ": " : "", s->q);
+			fprintf(f, ", \\\n  'waiting_way_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 dt 2 lt %d title ",
+				j, j + 1);
+			gp_str(f, l2);
+			fprintf(f, ", \\\n  'waiting_way_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lt %d notitle",
+				j, j + 1);
+		}
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
+}
+
+/* The closing lines, and how the failed runs used entered. */
+static void report(const an_tool *t, const wait_state *s)
+{
+	tool_report(t, stdout, NULL);
+	const long n = s->f_ev + s->f_cens;
+	if (n)
+		printf("# %ld failed run%s %s observed up to the failure: %ld had risen before it (events at their waiting"
+		       " times), %ld are censored at the failure time; this assumes that the failure is independent of"
+		       " the rise (non-informative censoring)\n", n, n == 1 ? "" : "s", n == 1 ? "is" : "are", s->f_ev,
+		       s->f_cens);
+}
+
+/* waiting_km.png and .pdf: the survival curves with their confidence bands, censored
+ * runs marked */
+static int plot_km(an_tool *t)
+{
+	char script[1400], png[1400], set[512];
+	FILE *f = gp_open(t->o, "waiting_km", 900, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	fprintf(f, "set title \"Intruder waiting time: Kaplan–Meier survival\\n%s%sband: %g %% CI (Greenwood), ×: censored\"\n"
+		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
+		   "set yrange [0:1.05]\nset xrange [0:*]\nset style fill transparent solid 0.18 noborder\nplot ",
+		set, *set ? "; " : "", 100 * t->o->level);
+	int np = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (!acct_used(&t->A[j])) /* nothing to draw: gnuplot would warn */
+			continue;
+		char leg[512];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'waiting_km_band.csv' skip 1 using 2:($1==%d?$3:1/0):4 with filledcurves lt %d notitle, \\\n",
+			np++ ? ", \\\n  " : "", j, j + 1);
+		fprintf(f, "  'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lt %d title ", j, j + 1);
+		gp_str(f, *leg ? leg : "all runs");
+		fprintf(f, ", \\\n  'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lt %d notitle",
+			j, j + 1);
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
+}
+
+/* waiting_hist.png and .pdf: the histograms side by side in each bin */
+static int plot_hist(an_tool *t, const wait_state *s)
+{
+	char script[1400], png[1400], set[512];
+	const double bw = s->bw;
+	FILE *f = gp_open(t->o, "waiting_hist", 900, 560, script, png, sizeof script, &t->e);
+	if (!f)
+		return t->e.code;
+	tool_setting(t, set, sizeof set);
+	/* counts: whole-number ticks, and a range also when no run rose (gnuplot would
+	 * warn of an empty one) */
+	long cmax = 0;
+	for (int j = 0; j < t->ng; j++)
+		for (long b = 0; b < t->o->bins; b++)
+			if (hist_count(s, j, b, t->o->bins) > cmax)
+				cmax = hist_count(s, j, b, t->o->bins);
+	fprintf(f, "set title \"Intruder waiting time: histogram of the risen runs%s%s\"\n"
+		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:%ld]\nset ytics %ld\n"
+		   "set xrange [0:%.17g]\nset style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
+		*set ? "\\n" : "", set, cmax + 1, cmax > 10 ? (cmax + 9) / 10 : 1, bw * (double)t->o->bins, bw / t->ng);
+	int np = 0;
+	for (int j = 0; j < t->ng; j++) {
+		if (!acct_used(&t->A[j]))
+			continue;
+		char leg[512];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lt %d title ",
+			np++ ? ", \\\n  " : "", bw / t->ng * (j + 0.5), j, j + 1);
+		gp_str(f, *leg ? leg : "all runs");
+	}
+	fprintf(f, "\n");
+	return tool_plot(t, f, script, png);
+}
+
+int main(int argc, char **argv)
+{
+	an_opts o = {.tool = "waiting", .version = VERSION};
+	xopt x[] = {{"fraction", 1, NULL, 0}};
+	int pr = xopt_args(&o, argc, argv, HELP, " by level bins ", x, 1, stdout, stderr);
+	if (pr)
+		return pr < 0 ? 0 : 1;
+	an_tool t;
+	wait_state s = {0};
+	sb_err xe = {0};
+	if (xopt_num(&x[0], 1e-6, 1, 0.5, &s.q, &xe)) {
+		fprintf(stderr, "waiting: %s\n", xe.msg);
+		return 1;
+	}
+	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || fit(&t, &s) ||
+	    way(&t, &s))
+		goto out;
+	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || km_csv(&t, &s) || hist_csv(&t, &s) || way_csv(&t, &s))
+		goto out;
+	if (summary(&t, &s) || way_summary(&t, &s) || tool_store_end(&t))
+		goto out;
+	report(&t, &s);
+	if (!o.no_plot) {
+		if (plot_km(&t) || plot_hist(&t, &s) || plot_way(&t, &s))
+			goto out;
+		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", o.out);
+	}
+	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary}.csv\n", o.out);
+out:
+	state_free(&t, &s);
+	return tool_close(&t, stderr);
+}

@@ -1,0 +1,217 @@
+/* worker.c - one job: lock, run bin/shake from an argument file, report. */
+#include "worker.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "params.h"
+#include "layout.h"
+#include "campaign/safe.h"
+
+static volatile sig_atomic_t g_child;
+
+/* Forward SIGINT/SIGTERM to the engine: it writes a checkpoint and exits 7. */
+static void forward(int sig)
+{
+	if (g_child > 0)
+		kill((pid_t)g_child, sig == SIGINT ? SIGTERM : sig);
+}
+
+/* Copy with truncation (messages are cut, never overflow). */
+static void scopy(char *out, size_t len, const char *s)
+{
+	size_t l = strlen(s);
+	if (l >= len)
+		l = len - 1;
+	memcpy(out, s, l);
+	out[l] = 0;
+}
+
+static void clean(char *s)
+{
+	for (; *s; s++)
+		if (*s == '\t' || *s == '\n' || *s == '\r')
+			*s = ' ';
+}
+
+/* The engine's own last word in this attempt (from byte `from` of its log): the last
+ * line it prefixed with "shake: " (its error or interruption message), else the last
+ * non-empty line. Anything printed after the message (a diagnostic at exit, a
+ * sanitizer report) does not replace it. */
+void worker_last_message(const char *log, long from, char *out, size_t len)
+{
+	out[0] = 0;
+	FILE *f = fopen(log, "r");
+	if (!f)
+		return;
+	if (from > 0)
+		fseek(f, from, SEEK_SET);
+	char line[2048];
+	int engine = 0;
+	while (fgets(line, sizeof line, f)) {
+		line[strcspn(line, "\r\n")] = 0;
+		int mine = !strncmp(line, "shake: ", 7);
+		if (line[strspn(line, " \t")] && (mine || !engine)) {
+			scopy(out, len, line);
+			engine |= mine;
+		}
+	}
+	fclose(f);
+}
+
+int worker_crashed(long code)
+{
+	if (code <= 128)
+		return 0;
+	const long sig = code - 128;
+	return sig == SIGSEGV || sig == SIGBUS || sig == SIGILL || sig == SIGABRT || sig == SIGFPE;
+}
+
+static void report_done(const char *name, int code, const char *host, double secs, const char *msg)
+{
+	char m[1024];
+	snprintf(m, sizeof m, "%s", msg);
+	clean(m);
+	printf("%s\t%s\t%d\t%s\t%.3f\t%s\n", WORKER_DONE, name, code, host, secs, m);
+	fflush(stdout);
+}
+
+int worker_exec(const char *dir, const char *kind, const char *name, const char *self)
+{
+	char host[256] = "";
+	gethostname(host, sizeof host - 1);
+	clean(host);
+	int is_cache = !strcmp(kind, "cache");
+	if ((!is_cache && strcmp(kind, "run")) || !safe_name(name) || chdir(dir) != 0) {
+		/* exit codes as the engine's: 1 a job that can never run (the driver marks it
+		 * failed), 2 an I/O fault (the run stays pending and the driver stops) */
+		report_done(name, 1, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
+		return 0;
+	}
+	char args[600], log[600], out[600], lockp[600];
+	layout_file("", is_cache, name, LAY_ARGS, args, sizeof args);
+	layout_file("", is_cache, name, LAY_LOG, log, sizeof log);
+	layout_file("", is_cache, name, LAY_OUTPUT, out, sizeof out);
+	layout_file("", is_cache, name, LAY_LOCK, lockp, sizeof lockp);
+	mkdir("logs", 0777);
+	printf("%s\t%s\t%s\n", WORKER_START, name, host);
+	fflush(stdout);
+
+	/* One engine per run, ever: a run orphaned by a killed driver still holds this
+	 * lock (the engine inherits it), and a new worker waits for it instead of writing
+	 * the same checkpoint and output concurrently. */
+	/* O_NOFOLLOW: a link planted at a run's files is refused, never written through */
+	int lk = open(lockp, O_RDWR | O_CREAT | O_NOFOLLOW, 0666);
+	if (lk < 0 || flock(lk, LOCK_EX) != 0) {
+		report_done(name, 2, host, 0, "exec: cannot lock the run");
+		return 2; /* this host cannot run it: parallel --retries tries another */
+	}
+	if (access(out, F_OK) == 0) {
+		report_done(name, 0, host, 0, "already complete");
+		return 0;
+	}
+
+	FILE *f = fopen(args, "r");
+	if (!f) {
+		report_done(name, 2, host, 0, "exec: missing argument file");
+		return 2; /* not transferred to this host: parallel --retries tries another */
+	}
+	char *argv[129]; /* the engine, 126 lines of the argument file, run_id, NULL */
+	int argc = 0;
+	char shake[1200];
+	/* the engine sits next to this binary (locally: bin/, remotely: the work dir) */
+	snprintf(shake, sizeof shake, "%s", self);
+	char *sl = strrchr(shake, '/');
+	snprintf(sl ? sl + 1 : shake, sizeof shake - (size_t)(sl ? sl + 1 - shake : 0), "shake");
+	argv[argc++] = shake;
+	char line[1100];
+	int toomany = 0;
+	while (fgets(line, sizeof line, f)) {
+		line[strcspn(line, "\r\n")] = 0;
+		if (!line[0])
+			continue;
+		/* never run the engine with some of its parameters silently dropped */
+		if (argc >= 127) {
+			toomany = 1;
+			break;
+		}
+		argv[argc++] = strdup(line);
+	}
+	fclose(f);
+	/* the run's id, recorded in its file (core/h5id.h): a file later copied or linked
+	 * in place of another run's is known by it. Given here, not in the argument file,
+	 * so that a run whose arguments were written by an earlier version gets it too. */
+	char idarg[300];
+	snprintf(idarg, sizeof idarg, "run_id=%s", name);
+	if (!toomany)
+		argv[argc++] = strdup(idarg);
+	argv[argc] = NULL;
+	if (toomany) {
+		for (int i = 1; i < argc; i++)
+			free(argv[i]);
+		report_done(name, 1, host, 0, "exec: argument file has more than 126 parameters");
+		return 0;
+	}
+
+	int lf = open(log, O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW, 0666);
+	if (lf < 0 && errno == ELOOP) {
+		for (int i = 1; i < argc; i++)
+			free(argv[i]);
+		report_done(name, 2, host, 0, "exec: logs/ is refused: a symbolic link stands at the run's log");
+		close(lk);
+		return 0;
+	}
+	long from = lf >= 0 ? (long)lseek(lf, 0, SEEK_END) : 0;
+	struct timeval t0, t1;
+	gettimeofday(&t0, NULL);
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = forward;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	pid_t pid = fork();
+	if (pid == 0) {
+		int dn = open("/dev/null", O_RDWR);
+		if (dn >= 0)
+			dup2(dn, 0), dup2(dn, 1);
+		if (lf >= 0)
+			dup2(lf, 2);
+		execv(shake, argv);
+		fprintf(stderr, "exec: cannot run %s: %s\n", shake, strerror(errno));
+		_exit(2);
+	}
+	g_child = pid;
+	int st = 0, code;
+	while (pid > 0 && waitpid(pid, &st, 0) < 0 && errno == EINTR)
+		;
+	if (pid < 0)
+		code = 2;
+	else if (WIFEXITED(st))
+		code = WEXITSTATUS(st);
+	else
+		code = 128 + WTERMSIG(st);
+	gettimeofday(&t1, NULL);
+	for (int i = 1; i < argc; i++)
+		free(argv[i]);
+	if (lf >= 0)
+		close(lf);
+	char msg[1024];
+	worker_last_message(log, from, msg, sizeof msg);
+	/* whatever it said last (e.g. "resuming from ...") is not why it stopped */
+	if (worker_crashed(code))
+		snprintf(msg, sizeof msg, "crashed by signal %d (%s)", code - 128, strsignal(code - 128));
+	else if (code >= 128)
+		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
+	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
+	close(lk);
+	return 0; /* reported: see worker.h */
+}

@@ -1,0 +1,328 @@
+/* ingest.c - what became of a run or a packing, into the database: from its output
+ * file when there is one (the file decides), else from the worker's exit code and the
+ * log's last line; an I/O fault stops the launching. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include "drv.h"
+#include "h5sum.h"
+#include "layout.h"
+#include "packing.h"
+#include "campaign/safe.h"
+#include "stop.h"
+#include "job/worker.h"
+
+/* A run the database has no attempt of (it was rebuilt from the files) gets back the
+ * attempts whose files the sweep kept aside (failed/, damaged/: ID.attemptN.h5), in
+ * their order; attempts that left no file (interrupted, lost) cannot come back. */
+static int recover_kept(drv *d, const char *id, sb_err *e)
+{
+	char st[16];
+	long att;
+	if (db_run_state(&d->db, d->c.name, id, st, sizeof st, &att, e) || att)
+		return e->code;
+	static const char *const subs[] = {"failed", "damaged"};
+	long kept[2][64];
+	int nk[2] = {0, 0};
+	char pre[96];
+	int lp = snprintf(pre, sizeof pre, "%s.attempt", id);
+	for (int w = 0; w < 2; w++) {
+		char dir[PATHX];
+		layout_sub(d->dir, subs[w], dir, sizeof dir);
+		DIR *dd = opendir(dir);
+		for (struct dirent *de; dd && (de = readdir(dd));) {
+			char *end;
+			long k = strncmp(de->d_name, pre, (size_t)lp) ? 0 : strtol(de->d_name + lp, &end, 10);
+			if (k > 0 && !strcmp(end, ".h5") && nk[w] < 64)
+				kept[w][nk[w]++] = k;
+		}
+		if (dd)
+			closedir(dd);
+	}
+	char now[32];
+	db_now(now, sizeof now);
+	/* merged by attempt number: the two lists come in directory order */
+	for (long last = 0;;) {
+		int bw = -1, bi = -1;
+		for (int w = 0; w < 2; w++)
+			for (int i = 0; i < nk[w]; i++)
+				if (kept[w][i] > last && (bw < 0 || kept[w][i] < kept[bw][bi]))
+					bw = w, bi = i;
+		if (bw < 0)
+			return 0;
+		last = kept[bw][bi];
+		char path[PATHX + 64];
+		layout_aside(d->dir, subs[bw], id, last, path, sizeof path);
+		h5sum s;
+		sb_err re = {0};
+		int bad = h5sum_read(path, id, &s, &re) != 0;
+		char msg[1200];
+		if (bw)
+			snprintf(msg, sizeof msg, "damaged (kept as damaged/%s.attempt%ld.h5)%s%s", id, last, bad ? ": " : "",
+				 bad ? re.msg : "");
+		else
+			snprintf(msg, sizeof msg, "%s", bad ? re.msg : h5sum_text(&s, "message"));
+		if (db_attempt_kept(&d->db, d->c.name, id, bad ? NULL : &s,
+				    bw ? "damaged" : bad ? "io" : h5sum_text(&s, "status"), msg, now, e))
+			return e->code;
+	}
+}
+
+int ingest_run(drv *d, const char *id, sb_err *e)
+{
+	char path[PATHX], now[32];
+	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
+	db_now(now, sizeof now);
+	h5sum s;
+	sb_err re = {0};
+	if (db_begin(&d->db, e))
+		return e->code;
+	if (recover_kept(d, id, e)) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	if (h5sum_read(path, id, &s, &re)) {
+		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
+	} else {
+		/* the file says whether the run started from the packing cache: a database
+		 * rebuilt from the files gets from_cache and the cache's row back */
+		const grid_run *r = grid_find(&d->g, id);
+		char want[128];
+		layout_cache_particles("", r ? r->cache_key : "", want, sizeof want);
+		if (r && !strcmp(s.particles, want)) {
+			char st[16];
+			cache_state(d, r->cache_key, st, sizeof st);
+			char h5[PATHX];
+			layout_file(d->dir, 1, r->cache_key, LAY_OUTPUT, h5, sizeof h5);
+			if (!st[0] && exists(h5))
+				ingest_cache(d, r->cache_key, e);
+			if (!e->code)
+				db_exec(&d->db, e, NULL, "UPDATE run SET from_cache = 1 WHERE campaign = ? AND id = ?", "tt",
+					d->c.name, id);
+		}
+		if (!e->code)
+			db_ingest(&d->db, d->c.name, id, &s, now, e);
+	}
+	if (e->code) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	d->n_ingested++;
+	const grid_run *gr = grid_find(&d->g, id);
+	if (gr && d->outcome)
+		d->outcome[gr - d->g.runs] = 'r';
+	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
+		d->n_failed_now++;
+	return db_commit(&d->db, e);
+}
+
+int ingest_cache(drv *d, const char *key, sb_err *e)
+{
+	char path[PATHX], txt[PATHX], now[32];
+	layout_file(d->dir, 1, key, LAY_OUTPUT, path, sizeof path);
+	layout_cache_particles(d->dir, key, txt, sizeof txt);
+	db_now(now, sizeof now);
+	h5sum s;
+	sb_err re = {0};
+	h5sum_read(path, key, &s, &re);
+	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
+	const char *end = h5sum_text(&s, "end_time");
+	return db_exec(&d->db, e, NULL,
+		       "INSERT OR REPLACE INTO cache(campaign, key, state, settle_time, settle_steps, wall_seconds,"
+		       " host, message, built) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+		       "tttdldttt", d->c.name, key, okc ? "ok" : "failed", h5sum_real(&s, "settle_time"),
+		       h5sum_int(&s, "settle_steps"), h5sum_real(&s, "wall_seconds"), h5sum_text(&s, "host"),
+		       re.code ? re.msg : h5sum_text(&s, "message"), end[0] ? end : now);
+}
+
+void cache_state(drv *d, const char *key, char *st, size_t len)
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	st[0] = 0;
+	if (db_exec(&d->db, &e, &q, "SELECT state FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key))
+		return;
+	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
+		snprintf(st, len, "%s", (const char *)sqlite3_column_text(q, 0));
+	sqlite3_finalize(q);
+}
+
+/* Is a run's input gone: its argument file, or the packing that file starts it from? */
+static int input_gone(drv *d, const char *id)
+{
+	char args[PATHX], key[64];
+	layout_file(d->dir, 0, id, LAY_ARGS, args, sizeof args);
+	if (!exists(args))
+		return 1;
+	packing_of_args(d, id, key, sizeof key);
+	return key[0] && !packing_present(d, key);
+}
+
+/* A DONE line from a worker: the output file decides; without one, the exit code. */
+int on_done(drv *d, int is_cache, char *line, sb_err *e)
+{
+	char *f[6] = {0};
+	int n = 0;
+	for (char *s = line, *t; n < 6 && (t = strsep(&s, "\t"));)
+		f[n++] = t;
+	if (n < 6 || !safe_name(f[1]))
+		return 0;
+	const char *name = f[1], *host = f[3], *msg = f[5];
+	long code = strtol(f[2], NULL, 10);
+	char path[PATHX];
+	if (is_cache) {
+		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
+		char args[PATHX];
+		layout_file(d->dir, 1, name, LAY_ARGS, args, sizeof args);
+		if (!exists(path) && !exists(args))
+			return 0; /* its directory was deleted under it: not the packing's failure */
+		if (exists(path) || (code != 0 && code != SB_EINTR && code < 128) || worker_crashed(code)) {
+			if (db_begin(&d->db, e))
+				return e->code;
+			if (exists(path))
+				ingest_cache(d, name, e);
+			else
+				db_exec(&d->db, e, NULL,
+					"INSERT OR REPLACE INTO cache(campaign, key, state, host, message) VALUES (?, ?, 'failed', ?, ?)",
+					"tttt", d->c.name, name, host, msg);
+			return e->code ? (db_rollback(&d->db), e->code) : db_commit(&d->db, e);
+		}
+		return 0;
+	}
+	const grid_run *r = grid_find(&d->g, name);
+	if (!r)
+		return 0;
+	d->started[r - d->g.runs] = 2;
+	layout_file(d->dir, 0, name, LAY_OUTPUT, path, sizeof path);
+	if (exists(path))
+		return ingest_run(d, name, e);
+	if (code == 0)
+		return 0; /* output still on its way back from a remote host: the final sweep */
+	long ix = r - d->g.runs;
+	char now[32];
+	if (code != SB_EINTR && code < 128 && input_gone(d, name)) {
+		/* its argument file or its packing was deleted while the campaign ran (the
+		 * engine cannot open them, or the worker found no argument file): no fault
+		 * of the run's nor of the machine's; launch() prepares it again */
+		d->outcome[ix] = 'm';
+		db_now(now, sizeof now);
+		if (db_begin(&d->db, e))
+			return e->code;
+		if (db_attempt(&d->db, d->c.name, name, code, "missing_input", msg, host, now, "pending", e)) {
+			db_rollback(&d->db);
+			return e->code;
+		}
+		return db_commit(&d->db, e);
+	}
+	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
+	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
+	 * stays pending and no further run starts, since every one would fail the same way
+	 * and a queue emptied in seconds would be marked failed. Bad input (1) fails.
+	 * Killed and I/O-failed runs are transient: the driver runs them again (up to
+	 * --retries); an interruption the driver asked for (its signal, its halt after an
+	 * I/O fault) is not. */
+	/* on another host, a job the worker could not start there (its argument file
+	 * never arrived: a host going away) is that host's fault, not this machine's */
+	int lost = d->o->sshloginfile && code == SB_EIO && !strncmp(msg, "exec: ", 6);
+	int io = code == SB_EIO && !lost;
+	/* a crash (SIGSEGV, SIGABRT, ...) is the engine's own and would repeat: failed */
+	const int crashed = worker_crashed(code);
+	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || io || lost;
+	int ours = code == SB_EINTR && (stop_requested() || d->io_fault);
+	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
+	if (resumable && !ours)
+		d->transient[ix]++;
+	const char *status = code == SB_EINTR ? "interrupted"
+			     : crashed         ? "crashed"
+			     : code >= 128     ? "killed"
+			     : lost            ? "lost"
+					       : sb_code_name((int)code);
+	if (io && !d->io_fault) {
+		d->io_fault = 1;
+		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
+		stop_halt(); /* no new jobs; running ones checkpoint */
+	}
+	db_now(now, sizeof now);
+	if (db_begin(&d->db, e))
+		return e->code;
+	if (db_attempt(&d->db, d->c.name, name, code, status, msg, host, now, resumable ? "pending" : "failed", e)) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	if (!resumable)
+		d->n_failed_now++;
+	return db_commit(&d->db, e);
+}
+
+int on_start(drv *d, char *line, sb_err *e)
+{
+	char *f[3] = {0};
+	int n = 0;
+	for (char *s = line, *t; n < 3 && (t = strsep(&s, "\t"));)
+		f[n++] = t;
+	const grid_run *r = n < 3 ? NULL : grid_find(&d->g, f[1]);
+	if (!r)
+		return 0;
+	d->started[r - d->g.runs] = 1;
+	/* where this attempt's lines begin in the run's log (earlier attempts precede) */
+	char lp[PATHX];
+	struct stat sb;
+	layout_file(d->dir, 0, r->id, LAY_LOG, lp, sizeof lp);
+	d->logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
+	char now[32];
+	db_now(now, sizeof now);
+	if (db_begin(&d->db, e))
+		return e->code;
+	if (db_exec(&d->db, e, NULL,
+		    "UPDATE run SET state = 'running', started = ?, host = ? WHERE campaign = ? AND id = ?"
+		    " AND state = 'pending'",
+		    "tttt", now, f[2], d->c.name, f[1])) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	return db_commit(&d->db, e);
+}
+
+/* Jobs that started but whose DONE line never came: GNU parallel stopped them (a
+ * signal to the driver, or the driver's death) and dropped their output. Each is
+ * recorded as an interrupted attempt with the engine's last words; it stays pending. */
+void unreported(drv *d, sb_err *e)
+{
+	for (long i = 0; i < d->g.n && !e->code; i++) {
+		if (d->started[i] != 1)
+			continue;
+		d->started[i] = 2;
+		const char *id = d->g.runs[i].id;
+		char path[PATHX], msg[1024] = "", now[32];
+		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
+		if (exists(path))
+			continue; /* finished after all: the sweep ingests it */
+		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
+		worker_last_message(path, d->logfrom[i], msg, sizeof msg);
+		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
+		 * no checkpoint yet, and it says so) */
+		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
+		/* not stopped by the driver: its worker died without a word (killed, or
+		 * its host lost): run again */
+		int lost = !stop_requested() && !d->io_fault;
+		d->outcome[i] = lost ? 'l' : 'h';
+		if (lost) {
+			d->transient[i]++;
+			intr = 0;
+		}
+		db_now(now, sizeof now);
+		if (db_begin(&d->db, e))
+			return;
+		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, lost ? "lost" : "interrupted",
+			       msg[0] && !lost ? msg : lost ? "the job ended without its outcome (worker killed or host lost)"
+							    : "stopped with the driver",
+			       "", now, "pending", e))
+			db_rollback(&d->db);
+		else
+			db_commit(&d->db, e);
+	}
+}
+

@@ -1,0 +1,503 @@
+/* report.c - status, list and export: readers of the database, never writers. */
+#include "report.h"
+
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "rule/adapt.h"
+#include "ledger/db.h"
+#include "dtext.h"
+#include "layout.h"
+#include "watch.h"
+
+static int open_ro(st_db *d, const char *path, sb_err *e)
+{
+	if (access(path, R_OK) != 0)
+		return sb_errf(e, SB_EUSAGE, "%s: no study database (run a campaign first)", path);
+	return db_open(d, path, 0, e);
+}
+
+static int campaign_known(st_db *d, const char *name, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q, "SELECT 1 FROM campaign WHERE name = ?", "t", name))
+		return e->code;
+	int found = sqlite3_step(q) == SQLITE_ROW;
+	sqlite3_finalize(q);
+	if (!found)
+		return sb_errf(e, SB_EUSAGE, "campaign '%s' is not in %s (study list shows the campaigns)", name, d->path);
+	return 0;
+}
+
+static const char *col(sqlite3_stmt *q, int i)
+{
+	const unsigned char *t = sqlite3_column_text(q, i);
+	return t ? (const char *)t : "";
+}
+
+static void fmt_dur(double s, char *buf, size_t len)
+{
+	if (s < 120)
+		snprintf(buf, len, "%.0f s", s);
+	else if (s < 7200)
+		snprintf(buf, len, "%.1f min", s / 60);
+	else
+		snprintf(buf, len, "%.1f h", s / 3600);
+}
+
+/* Runs finished per second by what actually ran: the last (at most 20) runs to finish,
+ * over the time from the first of them starting to the last finishing (runs that ran
+ * side by side count together, whatever --jobs or hosts did it); 0 when none has. */
+static double throughput(st_db *d, const char *name)
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	double rate = 0;
+	if (db_exec(d, &e, &q,
+		    "SELECT COUNT(*), (MAX(f) - MIN(s)) * 86400 FROM (SELECT julianday(a.finished) AS f,"
+		    " julianday(r.started) AS s FROM attempt a JOIN run r ON r.campaign = a.campaign AND r.id = a.run"
+		    " WHERE a.campaign = ? AND a.finished IS NOT NULL AND r.started IS NOT NULL"
+		    " ORDER BY a.finished DESC LIMIT 20)",
+		    "t", name))
+		return 0;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		long n = sqlite3_column_int64(q, 0);
+		double span = sqlite3_column_double(q, 1);
+		if (n >= 1 && span > 0)
+			rate = (double)n / span;
+	}
+	sqlite3_finalize(q);
+	return rate;
+}
+
+/* "2.6875"; "-" for a NULL (an end that bounds nothing, an estimate that does not exist) */
+static const char *num_or(sqlite3_stmt *q, int i, const char *none, char *buf, size_t len)
+{
+	if (sqlite3_column_type(q, i) == SQLITE_NULL)
+		return none;
+	snprintf(buf, len, "%.6g", sqlite3_column_double(q, i));
+	return buf;
+}
+
+/* An [onset] campaign: the search as the driver's last pass left it (search.c): per
+ * group the replicates and their states, the runs, the onset and its interval, and
+ * every replicate's bracket. Nothing when the campaign has no [onset] or the
+ * database predates it. */
+/* A grid with replicates = auto, as the driver's last pass left it (sharpen.c): per
+ * point the replicates so far, the runs used, waiting and failed, the result's
+ * estimate and the interval it reached. Nothing for other campaigns. */
+static void autorep_status(st_db *d, const char *name, FILE *out)
+{
+	sqlite3_stmt *q;
+	sb_err qe = {0};
+	if (db_exec(d, &qe, &q,
+		    "SELECT grp, result, replicates, used, waiting, failed, estimate, ci_lo, ci_hi, width, target, level,"
+		    " batch, max_replicates, state, updated FROM auto_point WHERE campaign = ? ORDER BY point",
+		    "t", name))
+		return; /* an older database: no auto_point */
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		char b[4][32];
+		if (first)
+			fprintf(out, "  replicates auto (last pass %s): %s, %s at a time up to %s, until the %g%% interval "
+				"is at most %s wide\n    %-28s %10s %5s %7s %6s %12s %24s %10s  %s\n", col(q, 15), col(q, 1),
+				col(q, 12), col(q, 13), 100 * sqlite3_column_double(q, 11), num_or(q, 10, "?", b[0], sizeof b[0]),
+				"point", "replicates",
+				"used", "waiting", "failed", "estimate", "interval", "width", "state");
+		first = 0;
+		char iv[80];
+		snprintf(iv, sizeof iv, "[%s, %s]", num_or(q, 7, "-inf", b[1], sizeof b[1]),
+			 num_or(q, 8, "+inf", b[2], sizeof b[2]));
+		fprintf(out, "    %-28s %10s %5s %7s %6s %12s %24s %10s  %s\n", col(q, 0), col(q, 2), col(q, 3), col(q, 4),
+			col(q, 5), num_or(q, 6, "none", b[0], sizeof b[0]), iv, num_or(q, 9, "inf", b[3], sizeof b[3]),
+			col(q, 14));
+	}
+	sqlite3_finalize(q);
+}
+
+static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	sb_err qe = {0};
+	if (db_exec(d, &qe, &q,
+		    "SELECT observable, freq_from, freq_to, tolerance, threshold, band_lo, band_hi, skip, replicates,"
+		    " max_replicates, batch, target, level, state, updated FROM onset_search WHERE campaign = ?",
+		    "t", name))
+		return 0; /* an older database: no onset tables */
+	if (sqlite3_step(q) != SQLITE_ROW) {
+		sqlite3_finalize(q);
+		return 0;
+	}
+	char b[8][32];
+	double level = sqlite3_column_double(q, 12);
+	fprintf(out, "  onset search (%s; last pass %s): ", col(q, 13), col(q, 14));
+	if (!strcmp(col(q, 0), "flux"))
+		fprintf(out, "mean flux through %s-%s of the surface after %s of the periods, on at |flux| >= %s "
+			"particles/period", num_or(q, 5, "?", b[0], 32), num_or(q, 6, "?", b[1], 32),
+			num_or(q, 7, "?", b[2], 32), num_or(q, 4, "?", b[3], 32));
+	else
+		fprintf(out, "the intruder's rise (risen)");
+	fprintf(out, ", %s to %s Hz, tolerance %s Hz;\n", num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32),
+		num_or(q, 3, "?", b[2], 32));
+	if (!strcmp(col(q, 8), "auto"))
+		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s Hz wide\n",
+			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32));
+	else if (atol(col(q, 8)) < adapt_min_replicates(level))
+		fprintf(out, "    replicates %s; an interval at %g%% needs %ld\n", col(q, 8), 100 * level,
+			adapt_min_replicates(level));
+	else
+		fprintf(out, "    replicates %s; %g%% interval over them\n", col(q, 8), 100 * level);
+	sqlite3_finalize(q);
+	if (db_exec(d, e, &q,
+		    "SELECT grp, replicates, searching, found, below, above, blocked, nonmonotone, runs, estimate, ci_lo,"
+		    " ci_hi, width, state FROM onset_group WHERE campaign = ? ORDER BY point",
+		    "t", name))
+		return e->code;
+	fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s\n", "group", "replicates", "searching",
+		"found", "below", "above", "blocked", "runs", "onset (Hz)", "interval (Hz)", "width", "state");
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		char iv[80];
+		snprintf(iv, sizeof iv, "[%s, %s]", num_or(q, 10, "-inf", b[0], 32), num_or(q, 11, "+inf", b[1], 32));
+		fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s%s\n", col(q, 0), col(q, 1), col(q, 2),
+			col(q, 3), col(q, 4), col(q, 5), col(q, 6), col(q, 8), num_or(q, 9, "none", b[2], 32), iv,
+			num_or(q, 12, "inf", b[3], 32), col(q, 13),
+			sqlite3_column_int64(q, 7) ? " (a replicate's runs flip: see its brackets)" : "");
+	}
+	sqlite3_finalize(q);
+	/* every replicate's bracket: "3 [2.68, 2.69]"; "5 [2.6, ~3.2] running 2.75" when
+	 * an end was not run (~: the range's end, assumed); "< 2.5", "> 3.2" out of range */
+	if (db_exec(d, e, &q,
+		    "SELECT grp, replicate, state, lo, hi, lo_run, hi_run, next, nonmonotone FROM onset_replicate"
+		    " WHERE campaign = ? ORDER BY (SELECT point FROM onset_group g WHERE g.campaign = onset_replicate.campaign"
+		    " AND g.grp = onset_replicate.grp), replicate",
+		    "t", name))
+		return e->code;
+	char grp[512] = "";
+	size_t width = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		if (strcmp(grp, col(q, 0))) {
+			snprintf(grp, sizeof grp, "%s", col(q, 0));
+			fprintf(out, "%s    brackets of %s:", width ? "\n" : "", grp);
+			width = 1;
+		}
+		char item[160];
+		const char *st = col(q, 2);
+		if (!strcmp(st, "below"))
+			snprintf(item, sizeof item, "%s < %s", col(q, 1), num_or(q, 4, "?", b[0], 32));
+		else if (!strcmp(st, "above"))
+			snprintf(item, sizeof item, "%s > %s", col(q, 1), num_or(q, 3, "?", b[0], 32));
+		else
+			snprintf(item, sizeof item, "%s [%s%s, %s%s]%s%s%s%s", col(q, 1), sqlite3_column_int64(q, 5) ? "" : "~",
+				 num_or(q, 3, "?", b[0], 32), sqlite3_column_int64(q, 6) ? "" : "~",
+				 num_or(q, 4, "?", b[1], 32),
+				 !strcmp(st, "searching") ? " needs " : !strcmp(st, "blocked") ? " failed at " : "",
+				 !strcmp(st, "searching") || !strcmp(st, "blocked") ? num_or(q, 7, "?", b[2], 32) : "",
+				 sqlite3_column_int64(q, 8) ? " flips" : "", "");
+		if (width > 1 && width + strlen(item) + 2 > 100) {
+			fprintf(out, "\n     ");
+			width = 5;
+		}
+		fprintf(out, "%s %s", width > 5 ? ";" : "", item);
+		width += strlen(item) + 2;
+	}
+	if (width)
+		fprintf(out, "\n");
+	sqlite3_finalize(q);
+	return 0;
+}
+
+/* Why runs failed, by status (physics failures are never retried: the engine is
+ * deterministic), and what was run again automatically (killed, I/O, lost). */
+static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q,
+		    "SELECT COALESCE(s.status, (SELECT a.status FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id"
+		    " ORDER BY a.n DESC LIMIT 1)) AS why, COUNT(*) FROM run r LEFT JOIN result s ON s.campaign = r.campaign"
+		    " AND s.run = r.id WHERE r.campaign = ? AND r.state = 'failed' GROUP BY why ORDER BY why",
+		    "t", name))
+		return e->code;
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		fprintf(out, "%s %s %s", first ? "  failed runs by reason (not run again; --retry-failed does):" : ",",
+			col(q, 0), col(q, 1));
+		first = 0;
+	}
+	if (!first)
+		fputc('\n', out);
+	sqlite3_finalize(q);
+	if (db_exec(d, e, &q,
+		    "SELECT a.status, COUNT(*), SUM(r.state = 'done') FROM attempt a JOIN run r ON r.campaign = a.campaign"
+		    " AND r.id = a.run WHERE a.campaign = ? AND a.status IN ('killed', 'io', 'lost') GROUP BY a.status"
+		    " ORDER BY a.status",
+		    "t", name))
+		return e->code;
+	first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		fprintf(out, "%s %s %s (%s of their runs now done)",
+			first ? "  transient attempts (run again automatically up to --retries):" : ",", col(q, 0), col(q, 1),
+			col(q, 2));
+		first = 0;
+	}
+	if (!first)
+		fputc('\n', out);
+	sqlite3_finalize(q);
+	return 0;
+}
+
+static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (db_exec(d, e, &q,
+		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
+		    " SUM(state = 'running'), SUM(from_cache AND state = 'done'),"
+		    " (SELECT AVG(wall_seconds) FROM result s WHERE s.campaign = ?1 AND s.status = 'ok'),"
+		    " (SELECT description FROM campaign WHERE name = ?1)"
+		    " FROM run WHERE campaign = ?1",
+		    "t", name))
+		return e->code;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		long n = sqlite3_column_int64(q, 0), done = sqlite3_column_int64(q, 1),
+		     failed = sqlite3_column_int64(q, 2), pending = sqlite3_column_int64(q, 3),
+		     running = sqlite3_column_int64(q, 4), hits = sqlite3_column_int64(q, 5);
+		double mean = sqlite3_column_double(q, 6);
+		fprintf(out, "campaign %s: %s\n", name, col(q, 7));
+		fprintf(out, "  runs %ld: done %ld, failed %ld, pending %ld, running %ld\n", n, done, failed, pending,
+			running);
+		fprintf(out, "  packing cache: %ld finished runs started from a shared packing\n", hits);
+		if (pending + running > 0) {
+			char eta[32];
+			double rate = throughput(d, name);
+			if (rate > 0) {
+				/* what actually ran: the pace of the last runs to finish, whatever
+				 * the number of jobs or hosts that produced it */
+				fmt_dur((double)(pending + running) / rate, eta, sizeof eta);
+				fprintf(out, "  ETA: about %s at the pace of the last runs (%.1f runs/h)\n", eta, 3600 * rate);
+			} else if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
+				/* a single finished run: its time spread over what runs now */
+				int w = running > 0 ? (int)running : jobs;
+				fmt_dur(mean * (double)(pending + running) / (w > 0 ? w : 1), eta, sizeof eta);
+				fprintf(out, "  ETA: about %s with %d run%s at a time (mean run %.1f s)\n", eta, w,
+					w > 1 ? "s" : "", mean);
+			} else {
+				fprintf(out, "  ETA: unknown until a run has finished\n");
+			}
+		}
+	}
+	sqlite3_finalize(q);
+	if (onset_status(d, name, out, e))
+		return e->code;
+	autorep_status(d, name, out);
+	if (db_exec(d, e, &q,
+		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
+		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",
+		    "t", name))
+		return e->code;
+	int first = 1;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		if (first)
+			fprintf(out, "  unsuccessful attempts (run, attempt, exit code, status: message):\n");
+		first = 0;
+		const char *st = col(q, 5);
+		fprintf(out, "    %s #%s exit %s %s: %s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3), col(q, 4),
+			!strcmp(st, "failed") ? "" : !strcmp(st, "done") ? "  [run again: done]" : "  [resumable]");
+	}
+	sqlite3_finalize(q);
+	return failure_summary(d, name, out, e);
+}
+
+int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	if (name) {
+		if (!campaign_known(&d, name, e))
+			status_one(&d, name, jobs, out, e);
+	} else {
+		sqlite3_stmt *q;
+		if (!db_exec(&d, e, &q, "SELECT name FROM campaign ORDER BY name", "")) {
+			while (!e->code && sqlite3_step(q) == SQLITE_ROW) {
+				char n[128];
+				snprintf(n, sizeof n, "%s", col(q, 0));
+				status_one(&d, n, jobs, out, e);
+			}
+			sqlite3_finalize(q);
+		}
+	}
+	db_close(&d);
+	return e->code;
+}
+
+int report_list(const char *db_path, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	sqlite3_stmt *q;
+	if (!db_exec(&d, e, &q,
+		     "SELECT c.name, COUNT(r.id), SUM(r.state = 'done'), SUM(r.state = 'failed'),"
+		     " SUM(r.state IN ('pending', 'running')), c.updated, c.axes, c.file,"
+		     /* the failed runs' reasons: "overlap:2 nan:1" */
+		     " (SELECT group_concat(why || ':' || n, ' ') FROM (SELECT COALESCE(s.status, (SELECT a.status FROM attempt a"
+		     "  WHERE a.campaign = f.campaign AND a.run = f.id ORDER BY a.n DESC LIMIT 1), 'failed') AS why,"
+		     "  COUNT(*) AS n FROM run f LEFT JOIN result s ON s.campaign = f.campaign AND s.run = f.id"
+		     "  WHERE f.campaign = c.name AND f.state = 'failed' GROUP BY why ORDER BY why))"
+		     " FROM campaign c LEFT JOIN run r ON r.campaign = c.name GROUP BY c.name ORDER BY c.name",
+		     "")) {
+		fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s\n", "campaign", "runs", "done", "failed", "pending",
+			"updated", "axes (file) [failed: reasons]");
+		while (sqlite3_step(q) == SQLITE_ROW)
+			fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s (%s)%s%s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3),
+				col(q, 4), col(q, 5), col(q, 6), col(q, 7), col(q, 8)[0] ? " [failed: " : "", col(q, 8),
+				col(q, 8)[0] ? "]" : "");
+		sqlite3_finalize(q);
+	}
+	db_close(&d);
+	return e->code;
+}
+
+/* RFC 4180: quote fields that hold a comma, quote or line break; double the quotes. */
+static void csv_field(FILE *out, const char *s)
+{
+	if (!strpbrk(s, ",\"\r\n")) {
+		fputs(s, out);
+		return;
+	}
+	fputc('"', out);
+	for (; *s; s++) {
+		if (*s == '"')
+			fputc('"', out);
+		fputc(*s, out);
+	}
+	fputc('"', out);
+}
+
+int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	sqlite3_stmt *q;
+	if (!campaign_known(&d, name, e) &&
+	    !db_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
+		int nc = sqlite3_column_count(q);
+		for (int i = 0; i < nc; i++) {
+			if (i)
+				fputc(',', out);
+			csv_field(out, sqlite3_column_name(q, i));
+		}
+		fputc('\n', out);
+		while (sqlite3_step(q) == SQLITE_ROW) {
+			for (int i = 0; i < nc; i++) {
+				if (i)
+					fputc(',', out);
+				if (sqlite3_column_type(q, i) == SQLITE_FLOAT) {
+					char num[40];
+					dtext_shortest(sqlite3_column_double(q, i), num, sizeof num);
+					fputs(num, out);
+				} else {
+					csv_field(out, col(q, i));
+				}
+			}
+			fputc('\n', out);
+		}
+		sqlite3_finalize(q);
+	}
+	db_close(&d);
+	return e->code;
+}
+
+/* Ctrl-C or SIGTERM ends a watch after the look it is at: the one flag a handler
+ * sets (a handler has no other way to speak). */
+static volatile sig_atomic_t g_watch_stop;
+
+static void on_watch_signal(int sig)
+{
+	(void)sig;
+	g_watch_stop = 1;
+}
+
+int report_watch(const char *db_path, const char *runs_dir, const char *name, double interval,
+		 report_refresh refresh, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	long nw = 0;
+	watch *w = NULL;
+	sqlite3_stmt *q;
+	if (name) {
+		if (campaign_known(&d, name, e))
+			goto out;
+	}
+	if (db_exec(&d, e, &q, "SELECT name FROM campaign WHERE ?1 IS NULL OR name = ?1 ORDER BY name", "t", name))
+		goto out;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		watch *nwp = realloc(w, (size_t)(nw + 1) * sizeof *w);
+		if (!nwp)
+			break;
+		w = nwp;
+		char dir[4200];
+		layout_campaign(runs_dir ? runs_dir : "runs", col(q, 0), dir, sizeof dir);
+		watch_init(&w[nw++], col(q, 0), dir);
+	}
+	sqlite3_finalize(q);
+	struct sigaction sa, old_int, old_term;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_watch_signal; /* no SA_RESTART: the sleep ends at once */
+	sigaction(SIGINT, &sa, &old_int);
+	sigaction(SIGTERM, &sa, &old_term);
+	g_watch_stop = 0;
+	int tty = isatty(fileno(out));
+	for (;;) {
+		int over = 1;
+		/* what Slurm tasks did since the last look, into the database (the runs they
+		 * started show as running, with their journals beside them on the shared file
+		 * system); nothing without arrays recorded */
+		for (long i = 0; i < nw && refresh; i++) {
+			sb_err se = {0};
+			if (refresh(runs_dir, db_path, w[i].name, &w[i].slurm, stderr, &se))
+				fprintf(stderr, "study: %s\n", se.msg);
+		}
+		for (long i = 0; i < nw && !e->code; i++) {
+			watch_poll(&w[i], &d, e);
+			over &= watch_over(&w[i]);
+		}
+		if (e->code)
+			break;
+		char stamp[32];
+		time_t now = time(NULL);
+		struct tm tm;
+		localtime_r(&now, &tm);
+		strftime(stamp, sizeof stamp, "%H:%M:%S", &tm);
+		if (tty)
+			fputs("\033[H\033[J", out); /* redraw in place */
+		fprintf(out, "%s%s\n", stamp, over ? "  (final)" : "");
+		for (long i = 0; i < nw; i++)
+			watch_print(&w[i], out);
+		if (!tty)
+			fputc('\n', out);
+		fflush(out);
+		if (over || g_watch_stop)
+			break;
+		struct timespec ts = {(time_t)interval, (long)((interval - floor(interval)) * 1e9)};
+		while (!g_watch_stop && nanosleep(&ts, &ts) && errno == EINTR)
+			;
+		if (g_watch_stop)
+			break;
+	}
+	sigaction(SIGINT, &old_int, NULL);
+	sigaction(SIGTERM, &old_term, NULL);
+out:
+	for (long i = 0; i < nw; i++)
+		watch_free(&w[i]);
+	free(w);
+	db_close(&d);
+	return e->code;
+}

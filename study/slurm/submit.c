@@ -1,0 +1,376 @@
+/* slurm.c - `study submit CAMPAIGN --slurm`: the runs that are not done, prepared as
+ * study run prepares them (driver.c: the campaign recorded, the packing choice, the
+ * argument files), handed to Slurm as one job array instead of GNU parallel. Nothing
+ * on the nodes writes the database: each task runs `study exec` (worker.c) for its
+ * runs, whose outputs and START/DONE lines slurm_collect.c reads back here. */
+#include "submit.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "ledger/changes.h"
+#include "layout.h"
+#include "local/packing.h"
+#include "campaign/safe.h"
+#include "collect.h"
+#include "plan.h"
+
+enum { MAX_SBATCH_ARGS = 64 };
+
+/* The array's script: the same for every submission of the campaign (sbatch keeps a
+ * copy of it per job, so rewriting it never changes a queued job). A task runs the
+ * words of its line of the task file given as $1. */
+static const char SCRIPT[] =
+	"#!/bin/bash\n"
+	"# array.sh - written by `study submit --slurm` for the shakebox campaign %s.\n"
+	"# sbatch gets it with --array=... and a task file (slurm/tasks-N.txt): array task I\n"
+	"# runs the words of line I + 1 in order, each with `study exec` (which runs bin/shake\n"
+	"# from the run's argument file): c:KEY builds the shared packing KEY unless it is\n"
+	"# built (a task that needs it while another builds it waits), r:ID runs the run ID.\n"
+	"# Slurm's SIGTERM (scancel, the time limit, --signal=B:TERM@SECONDS) makes the\n"
+	"# engine write a checkpoint and stop, and no further word starts; the next\n"
+	"# `study submit` resumes the run from its checkpoint. Logs: slurm/logs/JOB_INDEX.out\n"
+	"# (this script's) and logs/ID.log (the engine's).\n"
+	"set -u\n"
+	"study=%s\n"
+	"dir=%s\n"
+	"if [ $# -ne 1 ] || [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ]; then\n"
+	"\techo \"array.sh: for sbatch --array=... array.sh TASKFILE (study submit does it)\" >&2\n"
+	"\texit 1\n"
+	"fi\n"
+	"line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" \"$1\")\n"
+	"[ -n \"$line\" ] || { echo \"array.sh: $1 has no line for task $SLURM_ARRAY_TASK_ID\" >&2; exit 1; }\n"
+	"stop=0 child=0 rc=0\n"
+	"# scancel signals every process of the job, the engine too; a signal to this shell\n"
+	"# alone (scancel --batch, --signal=B:TERM@...) is passed on to the running word\n"
+	"trap 'stop=1; [ \"$child\" -gt 0 ] && kill -TERM \"$child\" 2>/dev/null' TERM INT\n"
+	"for w in $line; do\n"
+	"\t[ \"$stop\" -eq 0 ] || break\n"
+	"\tcase $w in\n"
+	"\tc:*) kind=cache ;;\n"
+	"\tr:*) kind=run ;;\n"
+	"\t*) continue ;;\n"
+	"\tesac\n"
+	"\t\"$study\" exec \"$dir\" \"$kind\" \"${w#*:}\" &\n"
+	"\tchild=$!\n"
+	"\t# a trapped signal ends `wait` early: wait on until the word has stopped\n"
+	"\twhile wait \"$child\"; st=$?; [ \"$st\" -gt 128 ] && kill -0 \"$child\" 2>/dev/null; do :; done\n"
+	"\tchild=0\n"
+	"\t[ \"$st\" -eq 0 ] || rc=$st\n"
+	"done\n"
+	"exit \"$rc\"\n";
+
+/* Written to a temporary name and renamed, so that no reader sees half of it. */
+static int write_file(const char *path, const char *text, int mode, sb_err *e)
+{
+	char tmp[PATHX + 32];
+	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
+	int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, mode);
+	if (fd < 0)
+		return sb_errf(e, SB_EIO, "%s: cannot create: %s", tmp, strerror(errno));
+	size_t n = strlen(text), off = 0;
+	while (off < n) {
+		ssize_t w = write(fd, text + off, n - off);
+		if (w < 0 && errno == EINTR)
+			continue;
+		if (w <= 0)
+			break;
+		off += (size_t)w;
+	}
+	int bad = off < n || fsync(fd) != 0;
+	bad |= close(fd) != 0;
+	if (bad || rename(tmp, path)) {
+		unlink(tmp);
+		return sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
+	}
+	return 0;
+}
+
+static int write_script(drv *d, const char *self, char *path, size_t len, sb_err *e)
+{
+	char qs[PATHX], qd[PATHX];
+	if (safe_shell_quote(self, qs, sizeof qs) || safe_shell_quote(d->dir, qd, sizeof qd))
+		return sb_errf(e, SB_EUSAGE, "path too long");
+	size_t n = sizeof SCRIPT + strlen(d->c.name) + strlen(qs) + strlen(qd);
+	char *text = malloc(n);
+	if (!text)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	snprintf(text, n, SCRIPT, d->c.name, qs, qd);
+	snprintf(path, len, "%s/" SLURM_SUB "/array.sh", d->dir);
+	write_file(path, text, 0755, e);
+	free(text);
+	return e->code;
+}
+
+/* Which pending runs start from a packing, decided as study run decides it
+ * (driver.c, caches()): a packing that is built, or one that two or more of them
+ * share; a packing that failed is not used (its runs settle themselves). Unlike
+ * study run nothing is built here: a task builds it before its first run that needs
+ * it. */
+typedef struct {
+	const char *key;
+	long run; /* grid index */
+} keyed;
+
+static int by_key(const void *a, const void *b)
+{
+	const keyed *x = a, *y = b;
+	int c = strcmp(x->key, y->key);
+	return c ? c : (x->run > y->run) - (x->run < y->run);
+}
+
+static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
+{
+	if (!d->o->use_cache)
+		return 0;
+	keyed *k = calloc((size_t)npend + 1, sizeof *k);
+	long nk = 0;
+	if (!k)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	for (long i = 0; i < npend; i++) {
+		sb_scene s;
+		grid_scene(&d->g, &d->g.runs[pend[i]], &s);
+		if (!s.particles[0] && s.settle != TRI_NO) /* else nothing to settle, or a user file */
+			k[nk++] = (keyed){d->g.runs[pend[i]].cache_key, pend[i]};
+	}
+	qsort(k, (size_t)nk, sizeof *k, by_key);
+	for (long a = 0, b; a < nk && !e->code; a = b) {
+		for (b = a; b < nk && !strcmp(k[b].key, k[a].key); b++)
+			;
+		char st[16];
+		if (driver_cache_check(d, k[a].key, st, sizeof st, e))
+			break;
+		/* a run whose argument file starts it from the packing needs it, alone or not */
+		int named = 0;
+		for (long i = a; i < b && !named; i++) {
+			char ak[64];
+			packing_of_args(d, d->g.runs[k[i].run].id, ak, sizeof ak);
+			named = !strcmp(ak, k[a].key);
+		}
+		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
+		for (long i = a; i < b; i++)
+			d->cache_ok[k[i].run] = (char)use;
+	}
+	free(k);
+	return e->code;
+}
+
+/* The task file: tasks-N.txt with the first N not taken (a queued task reads its own
+ * file, so none is ever rewritten). */
+static int write_tasks(drv *d, char **lines, long ntasks, char *path, size_t len, sb_err *e)
+{
+	for (long k = 1;; k++) {
+		snprintf(path, len, "%s/" SLURM_SUB "/tasks-%ld.txt", d->dir, k);
+		if (!exists(path))
+			break;
+	}
+	size_t n = 1;
+	for (long t = 0; t < ntasks; t++)
+		n += strlen(lines[t]) + 1;
+	char *text = malloc(n), *p = text;
+	if (!text)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	for (long t = 0; t < ntasks; t++)
+		p += sprintf(p, "%s\n", lines[t]);
+	*p = 0;
+	write_file(path, text, 0644, e);
+	free(text);
+	return e->code;
+}
+
+static int member(void *ctx, const char *id, long replicate, double frequency)
+{
+	(void)replicate, (void)frequency;
+	return grid_find(&((drv *)ctx)->g, id) != NULL;
+}
+
+/* The job and, per run, its task, in one transaction. */
+static int record_job(drv *d, const slurm_opts *so, long job, const char *spec, long ntasks, long npend,
+		      char **lines, const char *script, const char *tasks, sb_err *e)
+{
+	char now[32], cfile[PATHLEN];
+	db_now(now, sizeof now);
+	if (!realpath(d->o->campaign_file, cfile))
+		snprintf(cfile, sizeof cfile, "%s", d->o->campaign_file);
+	if (db_begin(&d->db, e))
+		return e->code;
+	db_exec(&d->db, e, NULL,
+		"INSERT OR REPLACE INTO slurm_job(campaign, job_id, array, tasks, runs, runs_per_task, throttle,"
+		" sbatch_args, script, task_file, campaign_file, dir, submitted) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+		"tltllllttttt" "t", d->c.name, job, spec, ntasks, npend, so->runs_per_task, so->throttle,
+		so->sbatch_args ? so->sbatch_args : "", script, tasks, cfile, d->dir, now);
+	for (long t = 0; t < ntasks && !e->code; t++) {
+		char *copy = strdup(lines[t]);
+		if (!copy) {
+			sb_errf(e, SB_ENOMEM, "out of memory");
+			break;
+		}
+		for (char *s = copy, *w; (w = strsep(&s, " ")) && !e->code;)
+			if (!strncmp(w, "r:", 2))
+				db_exec(&d->db, e, NULL,
+					"INSERT OR REPLACE INTO slurm_task(campaign, run, job_id, array_index, state, submitted)"
+					" VALUES (?, ?, ?, ?, 'submitted', ?)",
+					"ttllt", d->c.name, w + 2, job, t, now);
+		free(copy);
+	}
+	if (e->code) {
+		db_rollback(&d->db);
+		return e->code;
+	}
+	return db_commit(&d->db, e);
+}
+
+/* Everything after the campaign is open and locked. */
+static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err *e)
+{
+	changes_ctx x = {&d->db, &d->c, &d->g, d->dir, d->o->keep_old, d->o->forget_old, member, d};
+	if (changes_check(&x, e) || driver_record(d, e))
+		return e->code;
+	/* what the earlier arrays did, and which of their tasks still hold runs */
+	sq_queue q = {0};
+	char *busy = calloc((size_t)d->g.n + 1, 1);
+	long nbusy = 0, npend = 0;
+	if (!busy)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	if (sq_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
+	    sweep(d, d->pend, &npend, e)) {
+		sq_free(&q);
+		free(busy);
+		return e->code;
+	}
+	sq_free(&q);
+	long n = 0, failed = 0;
+	for (long i = 0; i < npend; i++)
+		if (!busy[d->pend[i]])
+			d->pend[n++] = d->pend[i];
+	for (long i = 0; i < d->g.n; i++) {
+		char st[16];
+		long att;
+		db_run_state(&d->db, d->c.name, d->g.runs[i].id, st, sizeof st, &att, e);
+		failed += !strcmp(st, "failed");
+	}
+	free(busy);
+	fprintf(stderr, "study: %s: %ld runs, %ld done, %ld failed%s, %ld queued or running in Slurm, %ld to submit\n",
+		d->c.name, d->g.n, d->g.n - npend - failed, failed, failed && !d->o->retry_failed ? " (--retry-failed submits them)" : "",
+		nbusy, n);
+	if (n == 0 || e->code)
+		return e->code;
+
+	if (choose_packings(d, d->pend, n, e) || driver_prepare_jobs(d, d->pend, n, d->names, e))
+		return e->code;
+	sp_run *runs = calloc((size_t)n, sizeof *runs);
+	char(*keys)[40] = calloc((size_t)n, sizeof *keys);
+	char **lines = NULL;
+	long ntasks = -1;
+	if (!runs || !keys) {
+		free(runs), free(keys);
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	}
+	for (long i = 0; i < n && !e->code; i++) {
+		const grid_run *r = &d->g.runs[d->pend[i]];
+		char h5[PATHX], cargs[PATHX];
+		runs[i].id = r->id;
+		packing_of_args(d, r->id, keys[i], sizeof keys[i]);
+		layout_file(d->dir, 1, keys[i], LAY_OUTPUT, h5, sizeof h5);
+		layout_file(d->dir, 1, keys[i], LAY_ARGS, cargs, sizeof cargs);
+		/* built: its particle file is there (a packing's output without it was
+		 * forgotten by driver_cache_check, and is built again) */
+		if (!keys[i][0] || (exists(h5) && packing_present(d, keys[i]))) {
+			keys[i][0] = 0; /* settles itself, or its packing is built */
+		} else if (!exists(cargs)) {
+			/* a run of this packing gives the packing's preparation (the key is its hash) */
+			if (strcmp(r->cache_key, keys[i]))
+				sb_errf(e, SB_EIO, "run %s: its argument file names packing %s, its key is %s", r->id, keys[i],
+					r->cache_key);
+			else
+				driver_cache_args(d, keys[i], d->pend[i], e);
+		}
+		runs[i].build_key = keys[i];
+	}
+	char spec[64], script[PATHX], tasks[PATHX];
+	if (!e->code && (ntasks = sp_task_lines(runs, n, so->runs_per_task, &lines)) < 0)
+		sb_errf(e, SB_ENOMEM, "out of memory");
+	if (!e->code && !write_tasks(d, lines, ntasks, tasks, sizeof tasks, e) &&
+	    !write_script(d, d->o->self, script, sizeof script, e)) {
+		sp_array_spec(ntasks, so->throttle, spec, sizeof spec);
+		char *args[MAX_SBATCH_ARGS + 8];
+		char a_array[96], a_name[128], a_out[PATHX + 64];
+		snprintf(a_array, sizeof a_array, "--array=%s", spec);
+		snprintf(a_name, sizeof a_name, "--job-name=%s", d->c.name);
+		snprintf(a_out, sizeof a_out, "--output=%s/" SLURM_SUB "/logs/%%A_%%a.out", d->dir);
+		int na = 0;
+		args[na++] = a_array;
+		args[na++] = a_name;
+		args[na++] = a_out;
+		/* the user's after study submit's own: later options win, so a user's
+		 * --job-name stands, and --array/--output were refused */
+		for (int i = 0; i < nuargs; i++)
+			args[na++] = uargs[i];
+		args[na++] = script;
+		args[na++] = tasks;
+		long job = -1;
+		if (sq_submit(args, na, &job, e)) {
+			if (ntasks > 1000)
+				fprintf(stderr, "study: %s: %ld array tasks; a cluster's MaxArraySize (often 1001) may "
+					"refuse them: --runs-per-task N puts N runs in a task\n", d->c.name, ntasks);
+		} else if (!record_job(d, so, job, spec, ntasks, n, lines, script, tasks, e)) {
+			fprintf(stderr, "study: %s: submitted %ld run%s in %ld task%s as Slurm job %ld (--array=%s)\n",
+				d->c.name, n, n > 1 ? "s" : "", ntasks, ntasks > 1 ? "s" : "", job, spec);
+			fprintf(stderr, "study: %s: logs in %s/" SLURM_SUB "/logs/%ld_INDEX.out and %s/logs/RUN.log; "
+				"study status %s shows what finished\n", d->c.name, d->dir, job, d->dir, d->c.name);
+		} else {
+			fprintf(stderr, "study: %s: Slurm job %ld was submitted but could not be recorded; its runs "
+				"are ingested from their files all the same (scancel %ld to stop it)\n",
+				d->c.name, job, job);
+		}
+	}
+	if (lines)
+		sp_free_lines(lines, ntasks);
+	free(runs);
+	free(keys);
+	return e->code;
+}
+
+int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
+{
+	char *uargs[MAX_SBATCH_ARGS], why[256];
+	int nu = sp_split_args(so->sbatch_args, uargs, MAX_SBATCH_ARGS, why, sizeof why);
+	if (nu < 0)
+		return sb_errf(e, SB_EUSAGE, "--sbatch-args: %s", why);
+	drv *d = calloc(1, sizeof *d);
+	int lock = -1, dblock = -1;
+	if (!d) {
+		sb_errf(e, SB_ENOMEM, "out of memory");
+		goto out;
+	}
+	if (slurm_drv_open(d, o, o->campaign_file, e))
+		goto out;
+	if (d->c.onset.line || d->c.autorep.on) {
+		/* their next runs depend on the results of the last ones */
+		sb_errf(e, SB_EUSAGE, "%s: %s chooses its runs round by round from the results; run it with study run",
+			d->c.name, d->c.onset.line ? "an [onset] search" : "replicates = auto");
+		goto out;
+	}
+	const char *sub[] = {"jobs", "logs", "cache", "failed", SLURM_SUB, SLURM_SUB "/logs"};
+	if (driver_dirs(d, sub, sizeof sub / sizeof *sub, e))
+		goto out;
+	if ((lock = driver_lock(d, e)) < 0 || (dblock = driver_db_lock(d, e)) < 0)
+		goto out;
+	submit(d, so, uargs, nu, e);
+out:
+	if (lock >= 0)
+		close(lock);
+	if (dblock >= 0)
+		close(dblock);
+	if (d) {
+		slurm_drv_close(d);
+		free(d);
+	}
+	while (nu > 0)
+		free(uargs[--nu]);
+	return e->code;
+}

@@ -1,0 +1,39 @@
+/* slurm.h - a campaign on a Slurm cluster: `study submit CAMPAIGN --slurm` prepares
+ * the runs exactly as `study run` does (argument files, packing choice) and submits
+ * one job array whose tasks run `study exec` on the nodes; what the tasks did is read
+ * back from their files by `study status`, `study run` and the next `study submit`.
+ * The database never leaves the machine study runs on (the login node); the campaign
+ * directory must be on a file system the nodes see at the same path. */
+#ifndef ST_SLURM_H
+#define ST_SLURM_H
+
+#include <stdio.h>
+
+#include "local/driver.h"
+#include "err.h"
+
+typedef struct slurm_opts {
+	long throttle;            /* at most this many tasks at once (--array=...%K); 0: no limit */
+	long runs_per_task;       /* runs one after the other in a task (>= 1) */
+	const char *sbatch_args;  /* more sbatch options, split at whitespace; NULL: none */
+} slurm_opts;
+
+/* Submits the runs of the campaign that are neither done (nor failed, unless
+ * o->retry_failed) nor queued or running in an earlier array: writes their argument
+ * files, a task file and RUNS/NAME/slurm/array.sh, runs sbatch, records the job in
+ * the tables slurm_job and slurm_task. Exit codes as study run's (driver.h). */
+int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e);
+
+/* What the tasks of the recorded arrays of campaign `name` (NULL: every campaign
+ * with arrays) did, into the database: finished runs ingested, interrupted and killed
+ * attempts recorded with their job and index. *active gets the runs whose tasks are
+ * still queued or running (-1 when squeue cannot say). Does nothing without arrays;
+ * a campaign that a driver holds is left to it. Messages go to msg. */
+int slurm_refresh(const char *runs_dir, const char *db_path, const char *name, long *active, FILE *msg,
+		  sb_err *e);
+
+/* For study status: one line per array of the campaign (NULL: all): its tasks
+ * queued, running and ended, what became of its runs, where its logs are. */
+int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e);
+
+#endif
