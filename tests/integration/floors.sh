@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# floors.sh - the code's floors hold: every call between object files (read with nm
+# from the build the suite tests) points down the order core < lib < {study, analysis},
+# never between study/ and analysis/, and no two sub-folders of a room, and no two
+# files, call each other in a circle (docs/layers.md). A check of the checker first:
+# a made-up upward call and a made-up circle must fail.
+cd "$(dirname "$0")/../.."
+source tests/integration/lib.sh
+
+# The objects of the build SHAKE belongs to (build/san/bin/shake: build/san; bin/shake:
+# build/rel).
+case "$SHAKE" in
+*/build/*/bin/shake) BUILD=${SHAKE%/bin/shake} ;;
+*) BUILD=$REPO/build/rel ;;
+esac
+
+# edges BUILD: "FROM TO SYMBOL" for every global symbol an object uses and another
+# defines (FROM, TO: source paths without .c, e.g. study/local/driver); objects whose
+# source is gone (moved or deleted since that build) are left out
+edges() {
+	local objs
+	objs=$(cd "$1" && find core lib study analysis -name '*.o' 2>/dev/null | sort |
+		while read -r o; do [ -f "$REPO/${o%.o}.c" ] && echo "$o"; done)
+	[ -n "$objs" ] || return 0
+	# nm -A: "OBJ.o:VALUE TYPE SYMBOL" (defined), "OBJ.o:   U SYMBOL" (used)
+	(cd "$1" && nm -A -g --defined-only $objs && nm -A -u $objs) | awk '
+		{ o = $1; sub(/\.o:.*/, "", o) }
+		$(NF - 1) == "U" { use[++n] = o " " $NF; next }
+		$(NF - 1) ~ /^[TDBRCV]$/ { def[$NF] = o }
+		END { for (i = 1; i <= n; i++) { split(use[i], u, " "); if (u[2] in def && def[u[2]] != u[1]) print u[1], def[u[2]], u[2] } }'
+}
+
+# rooms < EDGES: the calls that point up or sideways, one per line
+rooms() {
+	awk 'function rank(r) { return r == "core" ? 0 : r == "lib" ? 1 : 2 }
+		{ split($1, a, "/"); split($2, b, "/")
+		  if (a[1] != b[1] && (rank(b[1]) > rank(a[1]) || rank(b[1]) == rank(a[1])))
+			print $1 " -> " $2 " (" $3 "): " a[1] "/ may not call " b[1] "/" }'
+}
+
+# loops LEVEL < EDGES: the circles among sub-folders (LEVEL folders) or files (LEVEL
+# files) of study/ and analysis/; tsort names the members of each circle it meets
+loops() {
+	awk -v level="$1" '
+		function node(p,   n, a) { n = split(p, a, "/"); return level == "files" ? p : n > 2 ? a[1] "/" a[2] : a[1] "/" }
+		$1 ~ /^(study|analysis)\// { f = node($1); t = node($2); if (f != t) print f, t }' | sort -u |
+		tsort 2>&1 >/dev/null | sed -n 's/^tsort: //p' | grep -v 'input contains a loop'
+}
+
+# The checker, on made-up calls: a lib/ module calling study/, analysis/ calling
+# study/, and two study/ folders calling each other must each be found.
+up=$(printf 'lib/layout study/local/driver driver_run\n' | rooms)
+check floors.selftest.upward "a lib -> study call was not reported" test -n "$up"
+side=$(printf 'analysis/common/cli study/ledger/db db_open\n' | rooms)
+check floors.selftest.sideways "an analysis -> study call was not reported" test -n "$side"
+circ=$(printf 'study/a/x study/b/y y\nstudy/b/y study/a/x x\n' | loops folders)
+check floors.selftest.circle "a circle of two folders was not reported" test -n "$circ"
+down=$(printf 'study/a/x lib/layout layout_db\nlib/layout core/err sb_errf\n' | rooms)
+check floors.selftest.down "a downward call was reported: $down" test -z "$down"
+
+if ! ls "$BUILD"/lib/*.o >/dev/null 2>&1; then
+	fail floors.build "no objects under $BUILD/lib (run make)"
+	finish
+fi
+E=$TMP/edges
+edges "$BUILD" >"$E"
+check floors.edges "no calls between objects were found in $BUILD" test -s "$E"
+
+bad=$(rooms <"$E")
+if [ -z "$bad" ]; then ok floors.rooms.down; else fail floors.rooms.down "calls that point up:
+$bad"; fi
+bad=$(loops folders <"$E")
+if [ -z "$bad" ]; then ok floors.folders.acyclic; else fail floors.folders.acyclic "sub-folders in a circle:
+$bad"; fi
+bad=$(loops files <"$E")
+if [ -z "$bad" ]; then ok floors.files.acyclic; else fail floors.files.acyclic "files in a circle:
+$bad"; fi
+# Each room's include path names only itself, lib/ and core/ (the makefiles' -I), so
+# no source reaches past it with a relative path either.
+bad=$(grep -rn '#include "\.\./' core lib study analysis 2>/dev/null)
+if [ -z "$bad" ]; then ok floors.includes.relative; else fail floors.includes.relative "$bad"; fi
+finish
