@@ -193,7 +193,7 @@ void acct_csv_row(FILE *f, const an_acct *a)
 	acct_reasons(a, why, sizeof why);
 	fprintf(f, ",%ld,%ld,%.17g,%.17g,%ld,%ld,%ld,%ld,", a->failed, a->n[AN_PARTLY], a->used_s, a->planned_s,
 		a->n[AN_UNUSABLE], a->n[AN_UNREADABLE], a->n[AN_PENDING], a->n[AN_RUNNING]);
-	csv_str(f, why);
+	csv_text(f, why);
 }
 
 void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels)
@@ -203,11 +203,11 @@ void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels)
 		if (r[i].group < 0)
 			continue; /* in no group of this tool (e.g. a frequency not drawn) */
 		fprintf(f, "%d,", r[i].group);
-		csv_str(f, labels[r[i].group]);
+		csv_text(f, labels[r[i].group]);
 		fprintf(f, ",%s,%ld,%d,%s,", r[i].id, r[i].replicate, r[i].current, r[i].state);
-		csv_str(f, r[i].status);
+		csv_text(f, r[i].status);
 		fprintf(f, ",%s,%.17g,%.17g,", acct_use_name(r[i].use), r[i].used_s, r[i].planned_s);
-		csv_str(f, r[i].why);
+		csv_text(f, r[i].why);
 		fputc('\n', f);
 	}
 }

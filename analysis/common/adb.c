@@ -4,6 +4,7 @@
 #include "layout.h"
 #include "num.h"
 #include "params.h"
+#include "schema.h"
 
 #include <errno.h>
 #include <math.h>
@@ -12,41 +13,24 @@
 #include <string.h>
 #include <time.h>
 
-static const char TABLE[] =
-	"CREATE TABLE IF NOT EXISTS analysis(\n"
-	"  campaign TEXT NOT NULL, tool TEXT NOT NULL, version TEXT, grp TEXT NOT NULL,\n"
-	"  key TEXT NOT NULL, value REAL, lo REAL, hi REAL, n INTEGER, created TEXT,\n"
-	"  PRIMARY KEY (campaign, tool, grp, key))";
-
 static int dberr(adb *d, sb_err *e)
 {
-	return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+	return sb_errf(e, SB_EIO, "%s: %s", d->db.path, sqlite3_errmsg(d->db.h));
 }
 
 int adb_open(adb *d, const char *path, int writable, sb_err *e)
 {
 	memset(d, 0, sizeof *d);
-	snprintf(d->path, sizeof d->path, "%s", path);
-	int fl = writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY;
-	if (sqlite3_open_v2(path, &d->h, fl, NULL) != SQLITE_OK) {
-		sb_errf(e, SB_EIO, "%s: cannot open database: %s", path, d->h ? sqlite3_errmsg(d->h) : "out of memory");
-		sqlite3_close(d->h);
-		d->h = NULL;
-		return e->code;
-	}
-	/* the driver may be writing: wait for its short transactions */
-	sqlite3_busy_timeout(d->h, 60000);
-	return 0;
+	/* the driver may be writing: sql_open waits for its short transactions */
+	return sql_open(&d->db, path, writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY, e);
 }
 
 void adb_close(adb *d)
 {
 	if (d->ins)
 		sqlite3_finalize(d->ins);
-	if (d->h)
-		sqlite3_close(d->h);
-	d->h = NULL;
 	d->ins = NULL;
+	sql_close(&d->db);
 }
 
 static char *dup_text(const unsigned char *s)
@@ -66,7 +50,7 @@ static int has(adb *d, const char *table, const char *col)
 	sqlite3_stmt *st;
 	const char *sql = col ? "SELECT COUNT(*) FROM pragma_table_info(?1) WHERE name = ?2"
 			      : "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = ?1";
-	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
+	if (sqlite3_prepare_v2(d->db.h, sql, -1, &st, NULL) != SQLITE_OK)
 		return 0;
 	sqlite3_bind_text(st, 1, table, -1, SQLITE_TRANSIENT);
 	if (col)
@@ -80,7 +64,7 @@ int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e)
 {
 	sqlite3_stmt *st;
 	*yes = 0;
-	if (sqlite3_prepare_v2(d->h, "SELECT COUNT(*) FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
+	if (sqlite3_prepare_v2(d->db.h, "SELECT COUNT(*) FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
 	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
 	*yes = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) > 0;
@@ -169,9 +153,9 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		 cur, res ? "s.status" : "NULL", last[0], res && has(d, "result", "message") ? "s.message" : "NULL", last[1],
 		 res && has(d, "result", "status_time") ? "s.status_time" : "NULL",
 		 res ? "LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id" : "");
-	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
+	if (sqlite3_prepare_v2(d->db.h, sql, -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
-	if (sqlite3_prepare_v2(d->h, "SELECT key, value FROM param WHERE campaign = ? AND run = ? ORDER BY key", -1,
+	if (sqlite3_prepare_v2(d->db.h, "SELECT key, value FROM param WHERE campaign = ? AND run = ? ORDER BY key", -1,
 			       &ps, NULL) != SQLITE_OK) {
 		sqlite3_finalize(st);
 		return dberr(d, e);
@@ -258,7 +242,7 @@ int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_
 {
 	*n = 0;
 	sqlite3_stmt *st;
-	if (sqlite3_prepare_v2(d->h, "SELECT axes FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
+	if (sqlite3_prepare_v2(d->db.h, "SELECT axes FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
 	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
 	if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_text(st, 0)) {
@@ -353,17 +337,6 @@ void an_labels_free(char **labels, int ng)
 
 /* ---- results ---- */
 
-static int exec1(adb *d, const char *sql, sb_err *e)
-{
-	char *msg = NULL;
-	if (sqlite3_exec(d->h, sql, NULL, NULL, &msg) != SQLITE_OK) {
-		sb_errf(e, SB_EIO, "%s: %s", d->path, msg ? msg : sqlite3_errmsg(d->h));
-		sqlite3_free(msg);
-		return e->code;
-	}
-	return 0;
-}
-
 /* The columns every analysis table has besides the grouping keys' (adb.h). */
 static const char *const FIXED[] = {"campaign", "tool", "version", "grp", "key", "value", "lo", "hi", "n", "created", NULL};
 /* The keys campaigns sweep most: their columns exist whichever tool ran first, so a
@@ -404,15 +377,15 @@ static int add_column(adb *d, const char *key, sb_err *e)
 	char q[200], sql[300];
 	ident(q, sizeof q, key);
 	snprintf(sql, sizeof sql, "ALTER TABLE analysis ADD COLUMN %s", q);
-	return exec1(d, sql, e);
+	return sql_script(&d->db, sql, e);
 }
 
 int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][48], int nk, sb_err *e)
 {
-	if (exec1(d, "BEGIN IMMEDIATE", e))
+	if (sql_script(&d->db, "BEGIN IMMEDIATE", e))
 		return e->code;
 	sqlite3_stmt *st = NULL;
-	if (exec1(d, TABLE, e))
+	if (schema_analysis(&d->db, e))
 		goto fail;
 	for (int i = 0; COMMON_KEYS[i]; i++)
 		if (add_column(d, COMMON_KEYS[i], e))
@@ -420,7 +393,7 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][
 	for (int k = 0; k < nk; k++)
 		if (add_column(d, keys[k], e))
 			goto fail;
-	if (sqlite3_prepare_v2(d->h, "DELETE FROM analysis WHERE campaign = ? AND tool = ?", -1, &st, NULL) != SQLITE_OK) {
+	if (sqlite3_prepare_v2(d->db.h, "DELETE FROM analysis WHERE campaign = ? AND tool = ?", -1, &st, NULL) != SQLITE_OK) {
 		dberr(d, e);
 		goto fail;
 	}
@@ -452,14 +425,14 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][
 		if (d->col[k])
 			l += (size_t)snprintf(sql + l, sizeof sql - l, ", ?");
 	snprintf(sql + l, sizeof sql - l, ")");
-	if (l >= sizeof sql - 2 || sqlite3_prepare_v2(d->h, sql, -1, &d->ins, NULL) != SQLITE_OK) {
+	if (l >= sizeof sql - 2 || sqlite3_prepare_v2(d->db.h, sql, -1, &d->ins, NULL) != SQLITE_OK) {
 		dberr(d, e);
 		goto fail;
 	}
 	return 0;
 fail:
 	sqlite3_finalize(st);
-	sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
+	sqlite3_exec(d->db.h, "ROLLBACK", NULL, NULL, NULL);
 	return e->code;
 }
 
@@ -527,8 +500,8 @@ int adb_store_end(adb *d, int ok, sb_err *e)
 		sqlite3_finalize(d->ins);
 	d->ins = NULL;
 	if (!ok) {
-		sqlite3_exec(d->h, "ROLLBACK", NULL, NULL, NULL);
+		sqlite3_exec(d->db.h, "ROLLBACK", NULL, NULL, NULL);
 		return 0;
 	}
-	return exec1(d, "COMMIT", e);
+	return sql_script(&d->db, "COMMIT", e);
 }

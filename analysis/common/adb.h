@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "err.h"
+#include "sql.h"
 
 typedef struct an_run {
 	char id[128];
@@ -36,8 +37,7 @@ typedef struct an_run {
 #define AN_ADB_MAXKEYS 32
 
 typedef struct adb {
-	sqlite3 *h;
-	char path[1024];
+	sql_db db;          /* lib/sql.h */
 	sqlite3_stmt *ins;  /* INSERT into analysis, prepared by adb_store_begin */
 	int nk;             /* ... with the columns of these grouping keys: */
 	int col[AN_ADB_MAXKEYS]; /* 1 when key k has a column (adb_key_column) */

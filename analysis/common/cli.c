@@ -320,17 +320,6 @@ FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_e
 	return f;
 }
 
-void csv_str(FILE *f, const char *s)
-{
-	fputc('"', f);
-	for (; *s; s++) {
-		if (*s == '"')
-			fputc('"', f);
-		fputc(*s, f);
-	}
-	fputc('"', f);
-}
-
 void gp_str(FILE *f, const char *s)
 {
 	fputc('\'', f);

@@ -5,6 +5,7 @@
 
 #include <stdio.h>
 
+#include "csv.h" /* the tools' CSV text fields: csv_text */
 #include "adb.h"
 #include "err.h"
 
@@ -49,8 +50,6 @@ int cli_keys(const an_opts *o, adb *d, const char *const *always, const char *co
 /* mkdir -p of o->out; fopen of out/name for writing (path returned in path). */
 int cli_outdir(const an_opts *o, sb_err *e);
 FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_err *e);
-/* A CSV field in double quotes (RFC 4180). */
-void csv_str(FILE *f, const char *s);
 /* A gnuplot single-quoted string. */
 void gp_str(FILE *f, const char *s);
 /* Runs gnuplot on the script (no shell); 0 when it exits 0 and wrote png and the PDF

@@ -272,7 +272,7 @@ static int runs_csv(an_tool *t, const convect_state *s)
 	fprintf(f, "group_index,group,run,replicate,seed,state,use");
 	for (int k = 0; k < t->nk; k++) {
 		fputc(',', f);
-		csv_str(f, t->keys[k]);
+		csv_text(f, t->keys[k]);
 	}
 	fprintf(f, ",field,blocks,first_block,blocks_used,blocks_empty,band_rows,strength,strength_u,persistence_c,"
 		   "block_pairs\n");
@@ -280,12 +280,12 @@ static int runs_csv(an_tool *t, const convect_state *s)
 		const an_run *r = &t->runs[i];
 		const convect_run *c = &s->cr[i];
 		fprintf(f, "%d,", r->group);
-		csv_str(f, r->group >= 0 ? t->labels[r->group] : "");
+		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
 		fprintf(f, ",%s,%ld,%ld,%s,%s", r->id, r->replicate, r->seed, r->state, acct_use_name(r->use));
 		for (int k = 0; k < t->nk; k++) {
 			const char *v = an_str(r, t->keys[k]);
 			fputc(',', f);
-			csv_str(f, v ? v : "");
+			csv_text(f, v ? v : "");
 		}
 		fprintf(f, ",%s", s->nofield[i] ? "no" : "yes");
 		if (USED(r))
@@ -324,7 +324,7 @@ static void group_out(an_tool *t, const convect_state *s, int j, FILE *sum)
 	ci_text(c3, sizeof c3, g->tu.mean, g->tu.lo, g->tu.hi, g->tu.n);
 	printf("%-30s %4zu %6ld %7ld %31s %31s %31s %31s %6ld %6ld\n", L, g->t.n, g->blocks, g->nofield, c1, c2, c3, c4,
 	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(sum, L);
+	csv_text(sum, L);
 	fprintf(sum, ",%.17g,%zu,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
 		     "%.17g,%.17g,%.17g",
 		g->f, g->t.n, g->blocks, g->nofield, g->t.mean, g->t.sd, g->t.lo, g->t.hi, g->b.lo, g->b.hi, g->tu.mean,

@@ -165,7 +165,7 @@ static int run_periods(an_tool *t, hyst_state *s, int i, FILE *f)
 			if (hyst_add(g, leg[q].branch, D->f[p], s->sm[p], r->replicate))
 				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 			fprintf(f, "%d,", r->group);
-			csv_str(f, t->labels[r->group]);
+			csv_text(f, t->labels[r->group]);
 			fprintf(f, ",%s,%ld,%s,%zu,%.17g,%.17g,%.17g,%s\n", r->id, r->replicate,
 				leg[q].branch == HYST_DOWN ? "down" : "up", p, D->f[p], s->raw[p], s->sm[p],
 				acct_use_name(r->use));
@@ -201,7 +201,7 @@ static void group_out(an_tool *t, const hyst_data *g, const hyst_res *r, int j, 
 		snprintf(c[q], sizeof c[q], "%.3f [%.3f, %.3f]", r->v[q], r->lo[q], r->hi[q]);
 	printf("%-26s %4zu %5zu %22s %22s %24s %8.3f %8.3f %8.3f %6ld %10ld\n", L, g->nruns, g->nu, c[0], c[1], c[2],
 	       r->v[3], r->v[4], r->v[5], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(s, L);
+	csv_text(s, L);
 	fprintf(s, ",%zu,%zu", g->nruns, g->nu);
 	for (int q = 0; q < 6; q++)
 		fprintf(s, ",%.17g,%.17g,%.17g", r->v[q], r->lo[q], r->hi[q]);

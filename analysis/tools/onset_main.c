@@ -172,7 +172,7 @@ static int runs_csv(an_tool *t, const onset_state *s)
 			if (r->group != j || !USED(r))
 				continue;
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", r->id, r->replicate, r->seed,
 				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), an_num(r, "frequency", NAN), s->phi[i],
 				acct_use_name(r->use), r->used_s);
@@ -208,7 +208,7 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 	const an_acct *a = &t->A[j];
 	for (size_t u = 0; u < r->units; u++) {
 		fprintf(f, "%d,", j);
-		csv_str(f, L);
+		csv_text(f, L);
 		fprintf(f, ",%ld,%.17g,%.17g\n", r->unit_id[u], r->seed_fit[u], r->seed_thr[u]);
 	}
 	const sig_fit *F = &r->fit;
@@ -218,7 +218,7 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 	snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
 	printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", L, ratio > 0 ? "yes" : "no", np, r->units, c1,
 	       w, c2, r->seed_sd, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(s, L);
+	csv_text(s, L);
 	fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np, r->units,
 		F->ok, f0, r->fit_lo, r->fit_hi, w, step, r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
 	tool_summary_acct(t, s, j);
@@ -369,7 +369,7 @@ static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE 
 		printf("%-30s %-22s %5.2f-%-5.2f %4zu %22s %22s\n", v ? "" : L, what, np ? flo : NAN, np ? fhi : NAN, np, c1,
 		       c2);
 		fprintf(f, "%d,", j);
-		csv_str(f, L);
+		csv_text(f, L);
 		fprintf(f, ",%s,%.17g,%.17g,%.17g,%.17g,%zu,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g\n", VNAME[v], blo, bhi,
 			np ? flo : NAN, np ? fhi : NAN, np, r.thr, r.thr_lo, r.thr_hi, r.fit.ok, f0[v], r.fit_lo, r.fit_hi);
 		if (v) {

@@ -299,7 +299,7 @@ static int runs_csv(an_tool *t, const ring_state *s)
 		const an_run *r = &t->runs[i];
 		const rrun *x = &s->rr[i];
 		fprintf(f, "%d,", r->group);
-		csv_str(f, r->group >= 0 ? t->labels[r->group] : "");
+		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
 		fprintf(f, ",%s,%ld,%ld,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r->id, r->replicate, r->seed,
 			r->state, acct_use_name(r->use), is_intruder(r) ? x->risen : 0, x->samples, x->from, x->to, x->v[0],
 			x->v[1], x->v[2], x->centre_y);
@@ -330,9 +330,9 @@ static void group_out(an_tool *t, const ring_state *s, int j, FILE *sum)
 	printf("%-32s %4ld %4d %11.5g %11.5g %9.4g %23s %23s %23s %6.2f %6ld %10ld\n", L, n, s->ncens[j],
 	       s->mean[j][0].value, s->mean[j][1].value, s->mean[j][2].value, c[0], c[1], c[2], s->cy[j], a->failed,
 	       a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(sum, L);
+	csv_text(sum, L);
 	fputc(',', sum);
-	csv_str(sum, s->ref[j] >= 0 ? t->labels[s->ref[j]] : "");
+	csv_text(sum, s->ref[j] >= 0 ? t->labels[s->ref[j]] : "");
 	fprintf(sum, ",%.17g,%ld,%d", s->freq[j], n, s->ncens[j]);
 	for (int q = 0; q < NQ; q++)
 		fprintf(sum, ",%.17g,%.17g,%.17g", s->mean[j][q].value, s->mean[j][q].lo, s->mean[j][q].hi);
@@ -410,7 +410,7 @@ static int ratios_csv(an_tool *t, const ring_state *s)
 		for (int q = 0; q < NQ && s->ref[j] >= 0; q++) {
 			fprintf(f, "%d,%d,%.17g,%.17g,%.17g,%.17g,", s->curve[j], q, s->freq[j], s->ratio[j][q].value,
 				s->ratio[j][q].lo, s->ratio[j][q].hi);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fputc('\n', f);
 		}
 	fclose(f);

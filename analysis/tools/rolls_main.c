@@ -349,7 +349,7 @@ static int runs_csv(an_tool *t, const rolls_state *s)
 			if (r->group != j || !USED(r))
 				continue;
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%d,%zu,%.17g,%.17g,%d,%s,%.17g\n", r->id, r->replicate,
 				r->seed, an_num(r, "frequency", NAN), an_num(r, "radius_ratio", 0), s->pr[i].surface, q->phi_max,
 				q->sign, q->lmax, q->bottom, q->reach, q->to_floor, acct_use_name(r->use), r->used_s);
@@ -383,7 +383,7 @@ static int summary(an_tool *t, const rolls_state *s)
 		ci(c2, sizeof c2, B->mean, B->lo, B->hi);
 		printf("%-32s %4s %4zu %24s %24s %8.3f %5ld %6ld %10ld\n", t->labels[j], ratio > 0 ? "yes" : "no", R->n, c1,
 		       c2, s->phimax[j], s->floor[j], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-		csv_str(sum, t->labels[j]);
+		csv_text(sum, t->labels[j]);
 		fprintf(sum, ",%d,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld", ratio > 0, R->n, R->mean, R->lo,
 			R->hi, R->sd, B->mean, B->lo, B->hi, s->phimax[j], s->floor[j]);
 		tool_summary_acct(t, sum, j);
@@ -428,15 +428,15 @@ static int diffs(an_tool *t, const rolls_state *s)
 		ci(c2, sizeof c2, c->bottom.d, c->bottom.lo, c->bottom.hi);
 		printf("%-32s %4zu/%-4zu %26s %26s %3d of %zu\n", L, c->rw.n, c->rn.n, c1, c2, c->lines_differ, c->L);
 		fprintf(f, "%d,", k);
-		csv_str(f, L);
+		csv_text(f, L);
 		fputc(',', f);
-		csv_str(f, t->labels[c->n]);
+		csv_text(f, t->labels[c->n]);
 		fprintf(f, ",%zu,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%d\n", c->rw.n, c->rn.n,
 			c->rw.mean, c->rn.mean, c->reach.d, c->reach.lo, c->reach.hi, c->reach.df, c->bottom.d, c->bottom.lo,
 			c->bottom.hi, c->L, c->lines_differ);
 		for (size_t l = 0; l < c->L; l++) {
 			fprintf(p, "%d,", k);
-			csv_str(p, L);
+			csv_text(p, L);
 			fprintf(p, ",%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%zu\n", l, c->D[l],
 				c->pn[l].mean, c->pn[l].lo, c->pn[l].hi, c->pw[l].mean, c->pw[l].lo, c->pw[l].hi, c->pd[l].d,
 				c->pd[l].lo, c->pd[l].hi, c->pw[l].n, c->pn[l].n);

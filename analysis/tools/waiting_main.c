@@ -272,7 +272,7 @@ static int runs_csv(an_tool *t, const wait_state *s)
 		for (int i = 0; i < s->g[j].n; i++) {
 			const an_run *r = &t->runs[s->g[j].run[i]];
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->g[j].t[i], s->g[j].ev[i],
 				r->state, acct_use_name(r->use));
 		}
@@ -317,12 +317,12 @@ static int km_csv(an_tool *t, const wait_state *s)
 	for (int j = 0; j < t->ng; j++) {
 		const km_curve *km = &s->km[j];
 		fprintf(f, "%d,", j);
-		csv_str(f, t->labels[j]);
+		csv_text(f, t->labels[j]);
 		fprintf(f, ",0,%ld,0,0,1,0,1,1\n", km->n);
 		for (size_t i = 0; i < km->m; i++) {
 			const double S = km->s[i], se = km->se[i];
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
 				S, se, fmax(0, S - s->z * se), fmin(1, S + s->z * se));
 		}
@@ -358,7 +358,7 @@ static int hist_csv(an_tool *t, const wait_state *s)
 		for (long b = 0; b < bins; b++) {
 			const long c = hist_count(s, j, b, bins);
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%.17g,%.17g,%ld\n", b * s->bw, (b + 1) * s->bw, c);
 		}
 	fclose(f);
@@ -387,7 +387,7 @@ static void group_out(an_tool *t, const wait_state *s, int j, FILE *sum)
 		snprintf(ci, sizeof ci, "[%.3f, %.3f]", lo, hi);
 	printf("%-36s %5ld %5ld %6.3f %9s %21s %8.3f %6.3f %6ld %10ld\n", L, km->n, km->events, frac, ms, ci, tm, s_end,
 	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(sum, L);
+	csv_text(sum, L);
 	fprintf(sum, ",%ld,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", km->n, km->events, frac, med, lo, hi,
 		tm, s_end, s_lo, s_hi);
 	tool_summary_acct(t, sum, j);
@@ -559,7 +559,7 @@ static int way_csv(an_tool *t, const wait_state *s)
 			if (r->group != j || !USED(r))
 				continue;
 			fprintf(f, "%d,", j);
-			csv_str(f, t->labels[j]);
+			csv_text(f, t->labels[j]);
 			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->wt[i], s->risen[i],
 				s->way_t[i], isnan(s->way_t[i]) ? 0 : s->way_ev[i], isnan(s->way_t[i]) ? "no" : "yes",
 				acct_use_name(r->use));
@@ -569,11 +569,11 @@ static int way_csv(an_tool *t, const wait_state *s)
 	for (int j = 0; j < t->ng; j++) {
 		const km_curve *km = &s->km2[j];
 		fprintf(k, "%d,", j);
-		csv_str(k, t->labels[j]);
+		csv_text(k, t->labels[j]);
 		fprintf(k, ",0,%ld,0,0,1,0,1,1\n", km->n);
 		for (size_t i = 0; i < km->m; i++) {
 			fprintf(k, "%d,", j);
-			csv_str(k, t->labels[j]);
+			csv_text(k, t->labels[j]);
 			fprintf(k, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%.17g\n", km->t[i], km->n_risk[i], km->d[i], km->c[i],
 				km->s[i], km->se[i], fmax(0, km->s[i] - s->z * km->se[i]), fmin(1, km->s[i] + s->z * km->se[i]));
 		}
@@ -623,7 +623,7 @@ static int way_summary(an_tool *t, const wait_state *s)
 		med_ci(c2, sizeof c2, m2, l2, h2, tmax_of(&s->g2[j]));
 		printf("%-36s %5ld %5ld %5ld %26s | %5ld %5ld %5ld %26s %7ld %9ld\n", t->labels[j], a->n, a->events,
 		       a->n - a->events, c1, b->n, b->events, b->n - b->events, c2, s->no_traj[j], s->stop_cens[j]);
-		csv_str(sum, t->labels[j]);
+		csv_text(sum, t->labels[j]);
 		fprintf(sum, ",%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld,%ld,%.17g,%.17g,%.17g,%ld,%ld", s->q, a->n,
 			a->events, a->n - a->events, m1, l1, h1, b->n, b->events, b->n - b->events, m2, l2, h2, s->no_traj[j],
 			s->stop_cens[j]);

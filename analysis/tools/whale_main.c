@@ -309,7 +309,7 @@ static int runs_csv(an_tool *t, const whale_state *s)
 		const int used = USED(r) && o->status >= 0;
 		const whale_run *w = &o->run;
 		fprintf(f, "%d,", r->group);
-		csv_str(f, r->group >= 0 ? t->labels[r->group] : "");
+		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
 		fprintf(f, ",%s,%ld,%ld,%s,%s,%.17g,", r->id, r->replicate, r->seed, r->state, acct_use_name(r->use),
 			an_num(r, "radius_ratio", NAN));
 		if (!used) {
@@ -360,7 +360,7 @@ static void group_out(an_tool *t, const whale_state *s, int j, FILE *sum, FILE *
 		ci_text(c[q], sizeof c[q], &g->q[q], FMT[q]);
 	printf("%-28s %4ld %5ld %4ld %5ld %24s %24s %24s %24s %6ld %6ld\n", L, g->used, g->used - g->n[WHALE_NOT_RISEN],
 	       g->n[WHALE_OK], g->with_period, c[QP], c[QS], c[QD], c[QR], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
-	csv_str(sum, L);
+	csv_text(sum, L);
 	fprintf(sum, ",%.17g,%ld,%ld,%ld,%ld,%ld,%ld,%ld", g->ratio, g->used, g->used - g->n[WHALE_NOT_RISEN],
 		g->n[WHALE_NOT_RISEN], g->n[WHALE_NO_TRAJ], g->n[WHALE_SHORT], g->n[WHALE_OK], g->with_period);
 	for (int q = 0; q < NQ; q++)
@@ -368,7 +368,7 @@ static void group_out(an_tool *t, const whale_state *s, int j, FILE *sum, FILE *
 	fprintf(sum, ",%ld,%.17g,%.17g,%.17g,%.17g", g->spec_edge, g->top, g->dive, s->cfg.skip,
 		g->rep >= 0 ? s->ob[g->rep].run.period : NAN);
 	fputc(',', sum);
-	csv_str(sum, g->rep >= 0 ? t->runs[g->rep].id : "");
+	csv_text(sum, g->rep >= 0 ? t->runs[g->rep].id : "");
 	tool_summary_acct(t, sum, j);
 	fprintf(pts, "%d,%d,%.17g", j, g->curve, g->ratio);
 	for (int q = 0; q < NQ; q++)
@@ -417,7 +417,7 @@ static int trend_out(an_tool *t, const whale_state *s)
 		for (int a = 0; a < 3; a++) {
 			const whale_trend *tr = &s->trend[c][a];
 			fprintf(f, "%d,", c);
-			csv_str(f, w);
+			csv_text(f, w);
 			fprintf(f, ",%s,%zu,%d,%.17g,%.17g,%zu\n", TK[a], tr->n, nr, tr->rho, tr->p, tr->B);
 			if (isnan(tr->rho))
 				printf("# trend of the %s against 𝓡%s%s: none (%zu runs%s)\n", TK[a], *w ? ", " : "", w, tr->n,

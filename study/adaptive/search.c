@@ -197,7 +197,7 @@ int search_derive(search *s, grid *g, st_db *db, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	s->ngroups = g->points;
 	sqlite3_stmt *q;
-	if (db_exec(db, e, &q,
+	if (sql_exec(db, e, &q,
 		    "SELECT r.state, s.risen FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id"
 		    " WHERE r.campaign = ?1 AND r.id = ?2",
 		    "t", c->name))
@@ -279,9 +279,9 @@ int search_store(const search *s, st_db *db, sb_err *e)
 					    "DELETE FROM onset_replicate WHERE campaign = ?",
 					    "DELETE FROM onset_run WHERE campaign = ?"};
 	for (size_t i = 0; i < sizeof clear / sizeof *clear && !e->code; i++)
-		db_exec(db, e, NULL, clear[i], "t", c->name);
+		sql_exec(db, e, NULL, clear[i], "t", c->name);
 	int flux = o->observable == CP_OBS_FLUX;
-	db_exec(db, e, NULL,
+	sql_exec(db, e, NULL,
 		"INSERT INTO onset_search(campaign, observable, freq_from, freq_to, tolerance, threshold, band_lo,"
 		" band_hi, skip, replicates, max_replicates, batch, target, level, state, updated)"
 		" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -296,7 +296,7 @@ int search_store(const search *s, st_db *db, sb_err *e)
 			const ad_rep *r = &gr->reps[i];
 			count[r->state]++;
 			nonmono += r->nonmonotone;
-			db_exec(db, e, NULL,
+			sql_exec(db, e, NULL,
 				"INSERT INTO onset_replicate(campaign, grp, replicate, state, lo, hi, lo_run, hi_run, next,"
 				" runs, nonmonotone) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
 				"ttltDDllDll", c->name, gr->label, i + 1, adapt_state_name(r->state), bounded(r->lo), r->lo,
@@ -304,7 +304,7 @@ int search_store(const search *s, st_db *db, sb_err *e)
 				(long)r->nobs + (r->state == AD_SEARCHING || r->state == AD_BLOCKED), (long)r->nonmonotone);
 		}
 		const ad_interval *iv = &gr->iv;
-		db_exec(db, e, NULL,
+		sql_exec(db, e, NULL,
 			"INSERT INTO onset_group(campaign, grp, point, replicates, searching, found, below, above, blocked,"
 			" nonmonotone, runs, estimate, ci_lo, ci_hi, width, state)"
 			" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -315,7 +315,7 @@ int search_store(const search *s, st_db *db, sb_err *e)
 	}
 	for (long i = 0; i < s->nsteps && !e->code; i++) {
 		const srch_step *st = &s->steps[i];
-		db_exec(db, e, NULL,
+		sql_exec(db, e, NULL,
 			"INSERT OR REPLACE INTO onset_run(campaign, run, grp, replicate, step, frequency, value, class)"
 			" VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
 			"tttlldDt", c->name, st->id, s->groups[st->group].label, st->replicate, (long)st->step, st->f,

@@ -105,7 +105,7 @@ int sharpen_derive(sharpen *s, grid *g, st_db *db, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	s->npoints = g->points;
 	sqlite3_stmt *q;
-	if (db_exec(db, e, &q,
+	if (sql_exec(db, e, &q,
 		    "SELECT r.state, s.risen, s.waiting_time FROM run r LEFT JOIN result s ON s.campaign = r.campaign"
 		    " AND s.run = r.id WHERE r.campaign = ?1 AND r.id = ?2",
 		    "t", c->name))
@@ -180,12 +180,12 @@ int sharpen_store(const sharpen *s, st_db *db, sb_err *e)
 	db_now(now, sizeof now);
 	if (db_begin(db, e))
 		return e->code;
-	db_exec(db, e, NULL, "DELETE FROM auto_point WHERE campaign = ?", "t", c->name);
+	sql_exec(db, e, NULL, "DELETE FROM auto_point WHERE campaign = ?", "t", c->name);
 	for (long p = 0; p < s->npoints && !e->code; p++) {
 		const shp_point *pt = &s->pts[p];
 		const sh_eval *v = &pt->ev;
 		/* an end that bounds nothing, an estimate that does not exist: NULL */
-		db_exec(db, e, NULL,
+		sql_exec(db, e, NULL,
 			"INSERT INTO auto_point(campaign, point, grp, result, replicates, used, waiting, failed,"
 			" estimate, ci_lo, ci_hi, width, target, level, batch, max_replicates, state, updated)"
 			" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",

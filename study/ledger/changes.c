@@ -77,7 +77,7 @@ static void show_set(const char *set, char *out, size_t len)
 int changes_check(const changes_ctx *x, sb_err *e)
 {
 	sqlite3_stmt *q;
-	if (db_exec(x->db, e, &q,
+	if (sql_exec(x->db, e, &q,
 		    "SELECT r.id, r.state, r.replicate, (SELECT value FROM param p WHERE p.campaign = r.campaign"
 		    " AND p.run = r.id AND p.key = 'frequency') FROM run r WHERE r.campaign = ? AND r.current = 1",
 		    "t", x->c->name))
@@ -114,7 +114,7 @@ int changes_check(const changes_ctx *x, sb_err *e)
 		size_t np;
 		const sb_param *t = params_table(&np);
 		sqlite3_stmt *pv = NULL;
-		db_exec(x->db, e, &pv, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "");
+		sql_exec(x->db, e, &pv, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "");
 		int shown = 0;
 		for (size_t k = 0; pv && k < np && l < sizeof msg - 200; k++) {
 			if ((t[k].flags & PF_DRIVER) || !strcmp(t[k].name, "seed")) /* seed: the replicate's */
@@ -174,10 +174,10 @@ int changes_check(const changes_ctx *x, sb_err *e)
 	if (db_begin(x->db, e))
 		goto out;
 	if (x->keep_old)
-		db_exec(x->db, e, NULL, "UPDATE campaign SET version = version + 1 WHERE name = ?", "t", x->c->name);
+		sql_exec(x->db, e, NULL, "UPDATE campaign SET version = version + 1 WHERE name = ?", "t", x->c->name);
 	for (long i = 0; i < ns && !e->code; i++) {
 		if (x->keep_old) {
-			db_exec(x->db, e, NULL, "UPDATE run SET current = 0 WHERE campaign = ? AND id = ?", "tt", x->c->name,
+			sql_exec(x->db, e, NULL, "UPDATE run SET current = 0 WHERE campaign = ? AND id = ?", "tt", x->c->name,
 				stale[i]);
 			continue;
 		}
@@ -186,7 +186,7 @@ int changes_check(const changes_ctx *x, sb_err *e)
 						     "DELETE FROM attempt WHERE campaign = ?1 AND run = ?2",
 						     "DELETE FROM result WHERE campaign = ?1 AND run = ?2"};
 		for (size_t k = 0; k < sizeof tables / sizeof *tables && !e->code; k++)
-			db_exec(x->db, e, NULL, tables[k], "tt", x->c->name, stale[i]);
+			sql_exec(x->db, e, NULL, tables[k], "tt", x->c->name, stale[i]);
 	}
 	if (e->code || db_commit(x->db, e)) {
 		db_rollback(x->db);

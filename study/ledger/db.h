@@ -1,19 +1,19 @@
 /* db.h - the study database (SQLite): campaigns, runs, their parameters, every
  * attempt, results and packing caches. Only the driver writes it; WAL lets sqlite3
- * read while a campaign runs. The schema is documented in study/README.md. */
+ * read while a campaign runs. The schema (lib/schema.c) is documented in
+ * study/README.md. */
 #ifndef ST_DB_H
 #define ST_DB_H
 
 #include <sqlite3.h>
 
 #include "err.h"
+#include "sql.h"
 #include "campaign/grid.h"
 #include "h5sum.h"
 
-typedef struct st_db {
-	sqlite3 *h;
-	char path[1024];
-} st_db;
+/* The study database as lib/sql.h opens it; statements go through sql_exec. */
+typedef sql_db st_db;
 
 /* Open (creating the schema and views when writable). */
 int db_open(st_db *d, const char *path, int writable, sb_err *e);
@@ -24,11 +24,6 @@ void db_close(st_db *d);
 int db_begin(st_db *d, sb_err *e);
 int db_commit(st_db *d, sb_err *e);
 void db_rollback(st_db *d);
-
-/* Prepared statement, bound from fmt: 't' text, 'l' long, 'd' double, 'n' null
- * (no argument), 'D' double or null when the paired int is 0 (int ok, double v).
- * Runs it to completion when out is NULL; else returns the statement in *out. */
-int db_exec(st_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...);
 
 int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e);
 /* Insert a run and its parameters unless it is already known (extension keeps rows). */

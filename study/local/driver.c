@@ -132,7 +132,7 @@ int driver_record(drv *d, sb_err *e)
 	/* nothing runs while this driver holds the campaign lock: a 'running' row is
 	 * left from a driver that was killed */
 	if (!e->code)
-		db_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND state = 'running'",
+		sql_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND state = 'running'",
 			"t", d->c.name);
 	if (e->code) {
 		db_rollback(&d->db);
@@ -180,7 +180,7 @@ int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 		unlink(h5); /* without its particle file it is no packing */
 		if (db_begin(&d->db, e))
 			return e->code;
-		if (db_exec(&d->db, e, NULL, "DELETE FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key)) {
+		if (sql_exec(&d->db, e, NULL, "DELETE FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key)) {
 			db_rollback(&d->db);
 			return e->code;
 		}
@@ -321,7 +321,7 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 		}
 		if (db_begin(&d->db, e))
 			break;
-		if (db_exec(&d->db, e, NULL, "UPDATE run SET from_cache = ? WHERE campaign = ? AND id = ?", "ltt",
+		if (sql_exec(&d->db, e, NULL, "UPDATE run SET from_cache = ? WHERE campaign = ? AND id = ?", "ltt",
 			    (long)fc, d->c.name, r->id)) {
 			db_rollback(&d->db);
 			break;

@@ -100,7 +100,7 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 			if (!st[0] && exists(h5))
 				ingest_cache(d, r->cache_key, e);
 			if (!e->code)
-				db_exec(&d->db, e, NULL, "UPDATE run SET from_cache = 1 WHERE campaign = ? AND id = ?", "tt",
+				sql_exec(&d->db, e, NULL, "UPDATE run SET from_cache = 1 WHERE campaign = ? AND id = ?", "tt",
 					d->c.name, id);
 		}
 		if (!e->code)
@@ -130,7 +130,7 @@ int ingest_cache(drv *d, const char *key, sb_err *e)
 	h5sum_read(path, key, &s, &re);
 	int okc = !re.code && !strcmp(h5sum_text(&s, "status"), "ok") && exists(txt);
 	const char *end = h5sum_text(&s, "end_time");
-	return db_exec(&d->db, e, NULL,
+	return sql_exec(&d->db, e, NULL,
 		       "INSERT OR REPLACE INTO cache(campaign, key, state, settle_time, settle_steps, wall_seconds,"
 		       " host, message, built) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
 		       "tttdldttt", d->c.name, key, okc ? "ok" : "failed", h5sum_real(&s, "settle_time"),
@@ -143,7 +143,7 @@ void cache_state(drv *d, const char *key, char *st, size_t len)
 	sqlite3_stmt *q;
 	sb_err e = {0};
 	st[0] = 0;
-	if (db_exec(&d->db, &e, &q, "SELECT state FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key))
+	if (sql_exec(&d->db, &e, &q, "SELECT state FROM cache WHERE campaign = ? AND key = ?", "tt", d->c.name, key))
 		return;
 	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
 		snprintf(st, len, "%s", (const char *)sqlite3_column_text(q, 0));
@@ -185,7 +185,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 			if (exists(path))
 				ingest_cache(d, name, e);
 			else
-				db_exec(&d->db, e, NULL,
+				sql_exec(&d->db, e, NULL,
 					"INSERT OR REPLACE INTO cache(campaign, key, state, host, message) VALUES (?, ?, 'failed', ?, ?)",
 					"tttt", d->c.name, name, host, msg);
 			return e->code ? (db_rollback(&d->db), e->code) : db_commit(&d->db, e);
@@ -276,7 +276,7 @@ int on_start(drv *d, char *line, sb_err *e)
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (db_exec(&d->db, e, NULL,
+	if (sql_exec(&d->db, e, NULL,
 		    "UPDATE run SET state = 'running', started = ?, host = ? WHERE campaign = ? AND id = ?"
 		    " AND state = 'pending'",
 		    "tttt", now, f[2], d->c.name, f[1])) {

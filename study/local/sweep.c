@@ -34,7 +34,7 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
 	if (db_begin(&d->db, e))
 		return e->code;
 	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", now, "pending", e) ||
-	    db_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
+	    sql_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
 		db_rollback(&d->db);
 		return e->code;
 	}
@@ -76,7 +76,7 @@ static int has_result(drv *d, const char *id)
 {
 	sqlite3_stmt *q;
 	sb_err e = {0};
-	if (db_exec(&d->db, &e, &q, "SELECT 1 FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
+	if (sql_exec(&d->db, &e, &q, "SELECT 1 FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
 		return 1;
 	int found = sqlite3_step(q) == SQLITE_ROW;
 	sqlite3_finalize(q);
@@ -140,7 +140,7 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			}
 			if (db_begin(&d->db, e))
 				return e->code;
-			if (db_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND id = ?", "tt",
+			if (sql_exec(&d->db, e, NULL, "UPDATE run SET state = 'pending' WHERE campaign = ? AND id = ?", "tt",
 				    d->c.name, r->id)) {
 				db_rollback(&d->db);
 				return e->code;

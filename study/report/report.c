@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "rule/adapt.h"
+#include "csv.h"
 #include "ledger/db.h"
 #include "dtext.h"
 #include "layout.h"
@@ -25,7 +26,7 @@ static int open_ro(st_db *d, const char *path, sb_err *e)
 static int campaign_known(st_db *d, const char *name, sb_err *e)
 {
 	sqlite3_stmt *q;
-	if (db_exec(d, e, &q, "SELECT 1 FROM campaign WHERE name = ?", "t", name))
+	if (sql_exec(d, e, &q, "SELECT 1 FROM campaign WHERE name = ?", "t", name))
 		return e->code;
 	int found = sqlite3_step(q) == SQLITE_ROW;
 	sqlite3_finalize(q);
@@ -58,7 +59,7 @@ static double throughput(st_db *d, const char *name)
 	sqlite3_stmt *q;
 	sb_err e = {0};
 	double rate = 0;
-	if (db_exec(d, &e, &q,
+	if (sql_exec(d, &e, &q,
 		    "SELECT COUNT(*), (MAX(f) - MIN(s)) * 86400 FROM (SELECT julianday(a.finished) AS f,"
 		    " julianday(r.started) AS s FROM attempt a JOIN run r ON r.campaign = a.campaign AND r.id = a.run"
 		    " WHERE a.campaign = ? AND a.finished IS NOT NULL AND r.started IS NOT NULL"
@@ -95,7 +96,7 @@ static void autorep_status(st_db *d, const char *name, FILE *out)
 {
 	sqlite3_stmt *q;
 	sb_err qe = {0};
-	if (db_exec(d, &qe, &q,
+	if (sql_exec(d, &qe, &q,
 		    "SELECT grp, result, replicates, used, waiting, failed, estimate, ci_lo, ci_hi, width, target, level,"
 		    " batch, max_replicates, state, updated FROM auto_point WHERE campaign = ? ORDER BY point",
 		    "t", name))
@@ -124,7 +125,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
 	sb_err qe = {0};
-	if (db_exec(d, &qe, &q,
+	if (sql_exec(d, &qe, &q,
 		    "SELECT observable, freq_from, freq_to, tolerance, threshold, band_lo, band_hi, skip, replicates,"
 		    " max_replicates, batch, target, level, state, updated FROM onset_search WHERE campaign = ?",
 		    "t", name))
@@ -153,7 +154,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	else
 		fprintf(out, "    replicates %s; %g%% interval over them\n", col(q, 8), 100 * level);
 	sqlite3_finalize(q);
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT grp, replicates, searching, found, below, above, blocked, nonmonotone, runs, estimate, ci_lo,"
 		    " ci_hi, width, state FROM onset_group WHERE campaign = ? ORDER BY point",
 		    "t", name))
@@ -171,7 +172,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	sqlite3_finalize(q);
 	/* every replicate's bracket: "3 [2.68, 2.69]"; "5 [2.6, ~3.2] running 2.75" when
 	 * an end was not run (~: the range's end, assumed); "< 2.5", "> 3.2" out of range */
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT grp, replicate, state, lo, hi, lo_run, hi_run, next, nonmonotone FROM onset_replicate"
 		    " WHERE campaign = ? ORDER BY (SELECT point FROM onset_group g WHERE g.campaign = onset_replicate.campaign"
 		    " AND g.grp = onset_replicate.grp), replicate",
@@ -216,7 +217,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT COALESCE(s.status, (SELECT a.status FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id"
 		    " ORDER BY a.n DESC LIMIT 1)) AS why, COUNT(*) FROM run r LEFT JOIN result s ON s.campaign = r.campaign"
 		    " AND s.run = r.id WHERE r.campaign = ? AND r.state = 'failed' GROUP BY why ORDER BY why",
@@ -231,7 +232,7 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 	if (!first)
 		fputc('\n', out);
 	sqlite3_finalize(q);
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT a.status, COUNT(*), SUM(r.state = 'done') FROM attempt a JOIN run r ON r.campaign = a.campaign"
 		    " AND r.id = a.run WHERE a.campaign = ? AND a.status IN ('killed', 'io', 'lost') GROUP BY a.status"
 		    " ORDER BY a.status",
@@ -253,7 +254,7 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
 		    " SUM(state = 'running'), SUM(from_cache AND state = 'done'),"
 		    " (SELECT AVG(wall_seconds) FROM result s WHERE s.campaign = ?1 AND s.status = 'ok'),"
@@ -293,7 +294,7 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 	if (onset_status(d, name, out, e))
 		return e->code;
 	autorep_status(d, name, out);
-	if (db_exec(d, e, &q,
+	if (sql_exec(d, e, &q,
 		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
 		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",
 		    "t", name))
@@ -321,7 +322,7 @@ int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb
 			status_one(&d, name, jobs, out, e);
 	} else {
 		sqlite3_stmt *q;
-		if (!db_exec(&d, e, &q, "SELECT name FROM campaign ORDER BY name", "")) {
+		if (!sql_exec(&d, e, &q, "SELECT name FROM campaign ORDER BY name", "")) {
 			while (!e->code && sqlite3_step(q) == SQLITE_ROW) {
 				char n[128];
 				snprintf(n, sizeof n, "%s", col(q, 0));
@@ -340,7 +341,7 @@ int report_list(const char *db_path, FILE *out, sb_err *e)
 	if (open_ro(&d, db_path, e))
 		return e->code;
 	sqlite3_stmt *q;
-	if (!db_exec(&d, e, &q,
+	if (!sql_exec(&d, e, &q,
 		     "SELECT c.name, COUNT(r.id), SUM(r.state = 'done'), SUM(r.state = 'failed'),"
 		     " SUM(r.state IN ('pending', 'running')), c.updated, c.axes, c.file,"
 		     /* the failed runs' reasons: "overlap:2 nan:1" */
@@ -362,22 +363,6 @@ int report_list(const char *db_path, FILE *out, sb_err *e)
 	return e->code;
 }
 
-/* RFC 4180: quote fields that hold a comma, quote or line break; double the quotes. */
-static void csv_field(FILE *out, const char *s)
-{
-	if (!strpbrk(s, ",\"\r\n")) {
-		fputs(s, out);
-		return;
-	}
-	fputc('"', out);
-	for (; *s; s++) {
-		if (*s == '"')
-			fputc('"', out);
-		fputc(*s, out);
-	}
-	fputc('"', out);
-}
-
 int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 {
 	st_db d;
@@ -385,7 +370,7 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 		return e->code;
 	sqlite3_stmt *q;
 	if (!campaign_known(&d, name, e) &&
-	    !db_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
+	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
 		int nc = sqlite3_column_count(q);
 		for (int i = 0; i < nc; i++) {
 			if (i)
@@ -436,7 +421,7 @@ int report_watch(const char *db_path, const char *runs_dir, const char *name, do
 		if (campaign_known(&d, name, e))
 			goto out;
 	}
-	if (db_exec(&d, e, &q, "SELECT name FROM campaign WHERE ?1 IS NULL OR name = ?1 ORDER BY name", "t", name))
+	if (sql_exec(&d, e, &q, "SELECT name FROM campaign WHERE ?1 IS NULL OR name = ?1 ORDER BY name", "t", name))
 		goto out;
 	while (sqlite3_step(q) == SQLITE_ROW) {
 		watch *nwp = realloc(w, (size_t)(nw + 1) * sizeof *w);

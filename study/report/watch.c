@@ -61,7 +61,7 @@ static void run_label(st_db *db, const char *camp, const char *axes, const char 
 			continue; /* the replicate label, below */
 		sqlite3_stmt *q;
 		sb_err e = {0};
-		if (db_exec(db, &e, &q, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "ttt", camp, id,
+		if (sql_exec(db, &e, &q, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "ttt", camp, id,
 			    k))
 			continue;
 		if (sqlite3_step(q) == SQLITE_ROW) {
@@ -136,7 +136,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 {
 	double now = now_s();
 	sqlite3_stmt *q;
-	if (db_exec(db, e, &q,
+	if (sql_exec(db, e, &q,
 		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
 		    " SUM(state = 'running'), (SELECT axes FROM campaign WHERE name = ?1),"
 		    " (SELECT TOTAL(p.value) FROM run r2 JOIN param p ON p.campaign = r2.campaign AND p.run = r2.id"
@@ -160,7 +160,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 	/* the speed of one run, from the last runs to finish: simulated time over the
 	 * shaking loop's wall time */
 	double speed = -1;
-	if (!db_exec(db, e, &q,
+	if (!sql_exec(db, e, &q,
 		     "SELECT TOTAL(st), TOTAL(ws) FROM (SELECT s.status_time AS st, s.wall_seconds AS ws FROM result s"
 		     " JOIN run r ON r.campaign = s.campaign AND r.id = s.run WHERE s.campaign = ? AND s.status_time > 0"
 		     " AND s.wall_seconds > 0 ORDER BY r.finished DESC LIMIT 20)",
@@ -174,7 +174,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 
 	for (long i = 0; i < w->nruns; i++)
 		w->runs[i].seen = 0;
-	if (db_exec(db, e, &q,
+	if (sql_exec(db, e, &q,
 		    "SELECT r.id, r.host, CAST(strftime('%s', r.started) AS INTEGER), r.replicate, r.attempts,"
 		    " (SELECT value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id AND p.key = 'duration')"
 		    " FROM run r WHERE r.campaign = ? AND r.current AND r.state = 'running' ORDER BY r.started, r.id",
@@ -219,7 +219,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 	} else {
 		/* nothing in flight (between passes, or hosts whose output comes back
 		 * whole): simulated time finished per wall second by the last runs */
-		if (!db_exec(db, e, &q,
+		if (!sql_exec(db, e, &q,
 			     "SELECT COUNT(*), TOTAL(st), (MAX(f) - MIN(s)) * 86400 FROM (SELECT s.status_time AS st,"
 			     " julianday(r.finished) AS f, julianday(r.started) AS s FROM result s JOIN run r"
 			     " ON r.campaign = s.campaign AND r.id = s.run WHERE s.campaign = ? AND r.started IS NOT NULL"

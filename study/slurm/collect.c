@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "schema.h"
 #include "dirs.h"
 #include "layout.h"
 #include "lock.h"
@@ -19,29 +20,9 @@
 #include "plan.h"
 #include "job/worker.h"
 
-static const char SLURM_SCHEMA[] =
-	/* one row per submitted array */
-	"CREATE TABLE IF NOT EXISTS slurm_job(\n"
-	"  campaign TEXT NOT NULL, job_id INTEGER NOT NULL, array TEXT, tasks INTEGER, runs INTEGER,\n"
-	"  runs_per_task INTEGER, throttle INTEGER, sbatch_args TEXT, script TEXT, task_file TEXT,\n"
-	"  campaign_file TEXT, dir TEXT, submitted TEXT, PRIMARY KEY (campaign, job_id));\n"
-	/* one row per run per array it was submitted in; attempt: the attempt (attempt.n)
-	 * the task made of the run, once known */
-	"CREATE TABLE IF NOT EXISTS slurm_task(\n"
-	"  campaign TEXT NOT NULL, run TEXT NOT NULL, job_id INTEGER NOT NULL, array_index INTEGER NOT NULL,\n"
-	"  attempt INTEGER, state TEXT NOT NULL DEFAULT 'submitted'\n"
-	"    CHECK (state IN ('submitted', 'started', 'ended', 'unstarted')),\n"
-	"  host TEXT, submitted TEXT, PRIMARY KEY (campaign, run, job_id));\n"
-	"CREATE INDEX IF NOT EXISTS slurm_task_open ON slurm_task(campaign, state);\n";
-
 int slurm_tables(st_db *db, sb_err *e)
 {
-	char *msg = NULL;
-	if (sqlite3_exec(db->h, SLURM_SCHEMA, NULL, NULL, &msg) != SQLITE_OK) {
-		sb_errf(e, SB_EIO, "%s: %s", db->path, msg ? msg : sqlite3_errmsg(db->h));
-		sqlite3_free(msg);
-	}
-	return e->code;
+	return schema_slurm(db, e);
 }
 
 /* ---- a campaign, as the driver sees it ---- */
@@ -174,7 +155,7 @@ static int load_open_tasks(drv *d, trow **rows, long *n, sb_err *e)
 	sqlite3_stmt *q;
 	*rows = NULL;
 	*n = 0;
-	if (db_exec(&d->db, e, &q,
+	if (sql_exec(&d->db, e, &q,
 		    "SELECT run, job_id, array_index, state FROM slurm_task WHERE campaign = ?"
 		    " AND state IN ('submitted', 'started') ORDER BY job_id, array_index, run",
 		    "t", d->c.name))
@@ -205,7 +186,7 @@ static int set_task(drv *d, const trow *r, const char *state, int link, const ch
 {
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (db_exec(&d->db, e, NULL,
+	if (sql_exec(&d->db, e, NULL,
 		    "UPDATE slurm_task SET state = ?, host = COALESCE(NULLIF(?, ''), host),"
 		    " attempt = CASE WHEN ? THEN (SELECT MAX(n) FROM attempt WHERE campaign = ?4 AND run = ?5) END"
 		    " WHERE campaign = ?4 AND run = ?5 AND job_id = ?6",
@@ -371,7 +352,7 @@ int slurm_busy(drv *d, const sq_queue *q, char *busy, long *nbusy, sb_err *e)
 {
 	sqlite3_stmt *s;
 	*nbusy = 0;
-	if (db_exec(&d->db, e, &s,
+	if (sql_exec(&d->db, e, &s,
 		    "SELECT run, job_id, array_index FROM slurm_task WHERE campaign = ? AND state IN ('submitted', 'started')",
 		    "t", d->c.name))
 		return e->code;
@@ -404,7 +385,7 @@ static int array_campaigns(st_db *db, const char *name, camp_ref **out, long *n,
 	*out = NULL;
 	*n = 0;
 	/* the latest submission's file and directory */
-	if (db_exec(db, e, &q,
+	if (sql_exec(db, e, &q,
 		    "SELECT campaign, campaign_file, dir FROM slurm_job j WHERE (?1 IS NULL OR campaign = ?1)"
 		    " AND job_id = (SELECT MAX(job_id) FROM slurm_job k WHERE k.campaign = j.campaign) ORDER BY campaign",
 		    "t", name))
@@ -443,7 +424,7 @@ static int has_arrays(const char *db_path, const char *name)
 		return 0;
 	sqlite3_stmt *q;
 	int found = 0;
-	if (!db_exec(&db, &e, &q, "SELECT 1 FROM slurm_job WHERE ?1 IS NULL OR campaign = ?1 LIMIT 1", "t", name)) {
+	if (!sql_exec(&db, &e, &q, "SELECT 1 FROM slurm_job WHERE ?1 IS NULL OR campaign = ?1 LIMIT 1", "t", name)) {
 		found = sqlite3_step(q) == SQLITE_ROW;
 		sqlite3_finalize(q);
 	}
@@ -520,7 +501,7 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 	sb_err qe = {0};
 	int have_q = !sq_list(&q, &qe);
 	sqlite3_stmt *j;
-	if (db_exec(&db, e, &j,
+	if (sql_exec(&db, e, &j,
 		    "SELECT campaign, job_id, array, tasks, runs, runs_per_task, submitted, dir, campaign_file FROM slurm_job"
 		    " WHERE ?1 IS NULL OR campaign = ?1 ORDER BY campaign, job_id",
 		    "t", name)) {
@@ -534,7 +515,7 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 		long queued = 0, running = 0, ended = 0;
 		/* the tasks, as squeue sees them now */
 		sqlite3_stmt *t;
-		if (db_exec(&db, e, &t, "SELECT DISTINCT array_index FROM slurm_task WHERE campaign = ? AND job_id = ?", "tl",
+		if (sql_exec(&db, e, &t, "SELECT DISTINCT array_index FROM slurm_task WHERE campaign = ? AND job_id = ?", "tl",
 			    camp, job))
 			break;
 		while (sqlite3_step(t) == SQLITE_ROW) {
@@ -549,7 +530,7 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 		sqlite3_finalize(t);
 		/* its runs: the attempt each made, or why none */
 		long done = 0, failed = 0, stopped = 0, unstarted = 0, open = 0;
-		if (db_exec(&db, e, &t,
+		if (sql_exec(&db, e, &t,
 			    "SELECT s.state, a.status FROM slurm_task s LEFT JOIN attempt a ON a.campaign = s.campaign"
 			    " AND a.run = s.run AND a.n = s.attempt WHERE s.campaign = ? AND s.job_id = ?",
 			    "tl", camp, job))

@@ -198,7 +198,7 @@ static int record_job(drv *d, const slurm_opts *so, long job, const char *spec, 
 		snprintf(cfile, sizeof cfile, "%s", d->o->campaign_file);
 	if (db_begin(&d->db, e))
 		return e->code;
-	db_exec(&d->db, e, NULL,
+	sql_exec(&d->db, e, NULL,
 		"INSERT OR REPLACE INTO slurm_job(campaign, job_id, array, tasks, runs, runs_per_task, throttle,"
 		" sbatch_args, script, task_file, campaign_file, dir, submitted) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
 		"tltllllttttt" "t", d->c.name, job, spec, ntasks, npend, so->runs_per_task, so->throttle,
@@ -211,7 +211,7 @@ static int record_job(drv *d, const slurm_opts *so, long job, const char *spec, 
 		}
 		for (char *s = copy, *w; (w = strsep(&s, " ")) && !e->code;)
 			if (!strncmp(w, "r:", 2))
-				db_exec(&d->db, e, NULL,
+				sql_exec(&d->db, e, NULL,
 					"INSERT OR REPLACE INTO slurm_task(campaign, run, job_id, array_index, state, submitted)"
 					" VALUES (?, ?, ?, ?, 'submitted', ?)",
 					"ttllt", d->c.name, w + 2, job, t, now);

@@ -1,0 +1,209 @@
+/* schema.c - every table and view of the study database (schema.h). The tables are
+ * documented in study/README.md ("Schema") and analysis/README.md ("Derived numbers"). */
+#include "schema.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "params.h"
+#include "results.h"
+
+/* The driver's tables and views (bin/study run). */
+static const char STUDY[] =
+	"CREATE TABLE IF NOT EXISTS campaign(\n"
+	"  name TEXT PRIMARY KEY, description TEXT, file TEXT, scene_file TEXT,\n"
+	"  seed TEXT, seeds TEXT, axes TEXT, created TEXT, updated TEXT,\n"
+	"  version INTEGER NOT NULL DEFAULT 1);\n"
+	"CREATE TABLE IF NOT EXISTS run(\n"
+	"  campaign TEXT NOT NULL, id TEXT NOT NULL, replicate INTEGER, seed INTEGER,\n"
+	"  cache_key TEXT, state TEXT NOT NULL DEFAULT 'pending'\n"
+	"    CHECK (state IN ('pending', 'running', 'done', 'failed')),\n"
+	"  attempts INTEGER NOT NULL DEFAULT 0, from_cache INTEGER NOT NULL DEFAULT 0,\n"
+	"  host TEXT, added TEXT, started TEXT, finished TEXT,\n"
+	"  current INTEGER NOT NULL DEFAULT 1,\n"
+	"  PRIMARY KEY (campaign, id));\n"
+	"CREATE TABLE IF NOT EXISTS param(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, key TEXT NOT NULL, value,\n"
+	"  PRIMARY KEY (campaign, run, key)) WITHOUT ROWID;\n"
+	"CREATE TABLE IF NOT EXISTS attempt(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, n INTEGER NOT NULL, host TEXT,\n"
+	"  exit_code INTEGER, status TEXT, message TEXT, finished TEXT, wall_seconds REAL,\n"
+	"  PRIMARY KEY (campaign, run, n));\n"
+	"CREATE TABLE IF NOT EXISTS cache(\n"
+	"  campaign TEXT NOT NULL, key TEXT NOT NULL, state TEXT, settle_time REAL,\n"
+	"  settle_steps INTEGER, wall_seconds REAL, host TEXT, message TEXT, built TEXT,\n"
+	"  PRIMARY KEY (campaign, key));\n"
+	"CREATE INDEX IF NOT EXISTS run_state ON run(campaign, state);\n"
+	/* an [onset] campaign's search, as the driver's last pass left it (search.c) */
+	"CREATE TABLE IF NOT EXISTS onset_search(\n"
+	"  campaign TEXT PRIMARY KEY, observable TEXT, freq_from REAL, freq_to REAL, tolerance REAL,\n"
+	"  threshold REAL, band_lo REAL, band_hi REAL, skip REAL, replicates TEXT, max_replicates INTEGER,\n"
+	"  batch INTEGER, target REAL, level REAL, state TEXT, updated TEXT);\n"
+	"CREATE TABLE IF NOT EXISTS onset_group(\n"
+	"  campaign TEXT NOT NULL, grp TEXT NOT NULL, point INTEGER, replicates INTEGER, searching INTEGER,\n"
+	"  found INTEGER, below INTEGER, above INTEGER, blocked INTEGER, nonmonotone INTEGER, runs INTEGER,\n"
+	"  estimate REAL, ci_lo REAL, ci_hi REAL, width REAL, state TEXT, PRIMARY KEY (campaign, grp));\n"
+	"CREATE TABLE IF NOT EXISTS onset_replicate(\n"
+	"  campaign TEXT NOT NULL, grp TEXT NOT NULL, replicate INTEGER NOT NULL, state TEXT, lo REAL, hi REAL,\n"
+	"  lo_run INTEGER, hi_run INTEGER, next REAL, runs INTEGER, nonmonotone INTEGER,\n"
+	"  PRIMARY KEY (campaign, grp, replicate));\n"
+	"CREATE TABLE IF NOT EXISTS onset_run(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, grp TEXT, replicate INTEGER, step INTEGER,\n"
+	"  frequency REAL, value REAL, class TEXT, PRIMARY KEY (campaign, run));\n"
+	/* a grid with replicates = auto, per point, as the driver's last pass left it
+	 * (sharpen.c) */
+	"CREATE TABLE IF NOT EXISTS auto_point(\n"
+	"  campaign TEXT NOT NULL, point INTEGER NOT NULL, grp TEXT, result TEXT, replicates INTEGER,\n"
+	"  used INTEGER, waiting INTEGER, failed INTEGER, estimate REAL, ci_lo REAL, ci_hi REAL, width REAL,\n"
+	"  target REAL, level REAL, batch INTEGER, max_replicates INTEGER, state TEXT, updated TEXT,\n"
+	"  PRIMARY KEY (campaign, point));\n"
+	"DROP VIEW IF EXISTS progress;\n"
+	"CREATE VIEW progress AS SELECT campaign, state, COUNT(*) AS runs FROM run GROUP BY campaign, state;\n"
+	"DROP VIEW IF EXISTS failures;\n"
+	"CREATE VIEW failures AS SELECT a.campaign, a.run, a.n AS attempt, a.exit_code, a.status,\n"
+	"  a.message, a.host, a.finished, r.state FROM attempt a JOIN run r\n"
+	"  ON r.campaign = a.campaign AND r.id = a.run WHERE a.status <> 'ok';\n"
+	"DROP VIEW IF EXISTS caches;\n"
+	"CREATE VIEW caches AS SELECT c.*, (SELECT COUNT(*) FROM run r WHERE r.campaign = c.campaign\n"
+	"  AND r.cache_key = c.key AND r.from_cache) AS hits FROM cache c;\n";
+
+/* The Slurm arrays of `study submit --slurm` (study/slurm/). */
+static const char SLURM[] =
+	/* one row per submitted array */
+	"CREATE TABLE IF NOT EXISTS slurm_job(\n"
+	"  campaign TEXT NOT NULL, job_id INTEGER NOT NULL, array TEXT, tasks INTEGER, runs INTEGER,\n"
+	"  runs_per_task INTEGER, throttle INTEGER, sbatch_args TEXT, script TEXT, task_file TEXT,\n"
+	"  campaign_file TEXT, dir TEXT, submitted TEXT, PRIMARY KEY (campaign, job_id));\n"
+	/* one row per run per array it was submitted in; attempt: the attempt (attempt.n)
+	 * the task made of the run, once known */
+	"CREATE TABLE IF NOT EXISTS slurm_task(\n"
+	"  campaign TEXT NOT NULL, run TEXT NOT NULL, job_id INTEGER NOT NULL, array_index INTEGER NOT NULL,\n"
+	"  attempt INTEGER, state TEXT NOT NULL DEFAULT 'submitted'\n"
+	"    CHECK (state IN ('submitted', 'started', 'ended', 'unstarted')),\n"
+	"  host TEXT, submitted TEXT, PRIMARY KEY (campaign, run, job_id));\n"
+	"CREATE INDEX IF NOT EXISTS slurm_task_open ON slurm_task(campaign, state);\n";
+
+/* The analysis tools' derived numbers; each tool adds a column per grouping key it
+ * stores (analysis/common/adb.c). */
+static const char ANALYSIS[] =
+	"CREATE TABLE IF NOT EXISTS analysis(\n"
+	"  campaign TEXT NOT NULL, tool TEXT NOT NULL, version TEXT, grp TEXT NOT NULL,\n"
+	"  key TEXT NOT NULL, value REAL, lo REAL, hi REAL, n INTEGER, created TEXT,\n"
+	"  PRIMARY KEY (campaign, tool, grp, key))";
+
+static const char *sql_type(rt_type t)
+{
+	return t == RT_TEXT ? "TEXT" : t == RT_INT ? "INTEGER" : "REAL";
+}
+
+/* The `result` table, one column per stored column of the results table. A database
+ * whose result table has other columns (written by another version) gets the table
+ * anew: every result is in the run files, and the sweep reads them again. */
+static int result_table(sql_db *d, sb_err *e)
+{
+	size_t n;
+	const rcol *t = results_table(&n);
+	char want[4096] = "campaign,run,", have[4096];
+	size_t l = strlen(want);
+	for (size_t i = 0; i < n; i++)
+		if (!(t[i].flags & RF_DERIVED))
+			l += (size_t)snprintf(want + l, sizeof want - l, "%s,", t[i].name);
+	sql_columns(d, "result", have, sizeof have);
+	if (!strcmp(have, want))
+		return 0;
+	char sql[8192] = "DROP TABLE IF EXISTS result; CREATE TABLE result(campaign TEXT NOT NULL, run TEXT NOT NULL";
+	l = strlen(sql);
+	for (size_t i = 0; i < n; i++)
+		if (!(t[i].flags & RF_DERIVED))
+			l += (size_t)snprintf(sql + l, sizeof sql - l, ", %s %s", t[i].name, sql_type(t[i].type));
+	snprintf(sql + l, sizeof sql - l, ", PRIMARY KEY (campaign, run))");
+	return sql_script(d, sql, e);
+}
+
+/* The `runs` view: one row per run with every engine parameter as a column (generated
+ * from the engine's table, so a new key shows up without a schema change), its state
+ * and every result column of the results table (derived ones computed). */
+static int runs_view(sql_db *d, sb_err *e)
+{
+	size_t n, nr;
+	const sb_param *t = params_table(&n);
+	const rcol *rc = results_table(&nr);
+	size_t cap = 4096 + n * 256 + nr * 128;
+	char *sql = malloc(cap);
+	if (!sql)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	size_t l = 0;
+	l += (size_t)snprintf(sql + l, cap - l,
+			      "CREATE VIEW runs AS SELECT b.*,\n"
+			      /* the drive's peak acceleration in g and peak velocity: the literature
+			       * reports onsets in both (at a ramp's start frequency) */
+			      "  b.amplitude * (6.283185307179586 * b.frequency) * (6.283185307179586 * b.frequency)"
+			      " / b.gravity AS gamma,\n"
+			      "  6.283185307179586 * b.frequency * b.amplitude AS v_box\nFROM (SELECT r.campaign, r.id, r.state,"
+			      " r.attempts, r.replicate, r.current");
+	for (size_t i = 0; i < n; i++) {
+		if (t[i].flags & PF_OUT)
+			continue; /* paths and recording switches: in the param table */
+		l += (size_t)snprintf(sql + l, cap - l,
+				      ",\n  (SELECT value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id"
+				      " AND p.key = '%s') AS %s", t[i].name, t[i].name);
+	}
+	l += (size_t)snprintf(sql + l, cap - l, ",\n  r.from_cache, r.cache_key");
+	for (size_t i = 0; i < nr; i++) {
+		if (rc[i].flags & RF_NOVIEW)
+			continue;
+		if (rc[i].flags & RF_DERIVED) {
+			/* the expression's column names are the result table's */
+			char expr[256];
+			size_t el = 0;
+			for (const char *p = rc[i].where; *p && el < sizeof expr - 4;) {
+				if ((*p >= 'a' && *p <= 'z') && (p == rc[i].where || p[-1] == ' ')) {
+					expr[el++] = 's';
+					expr[el++] = '.';
+				}
+				expr[el++] = *p++;
+			}
+			expr[el] = 0;
+			l += (size_t)snprintf(sql + l, cap - l, ", %s AS %s", expr, rc[i].name);
+		} else {
+			l += (size_t)snprintf(sql + l, cap - l, ", s.%s", rc[i].name);
+		}
+	}
+	l += (size_t)snprintf(sql + l, cap - l,
+			      ", r.host, r.started, r.finished\n"
+			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id) b");
+	sqlite3_stmt *st;
+	int same = 0;
+	if (!sql_exec(d, e, &st, "SELECT sql FROM sqlite_master WHERE type = 'view' AND name = 'runs'", "")) {
+		if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_text(st, 0))
+			same = !strcmp((const char *)sqlite3_column_text(st, 0), sql);
+		sqlite3_finalize(st);
+	}
+	int rcode = 0;
+	if (!same && !e->code) {
+		rcode = sql_script(d, "DROP VIEW IF EXISTS runs", e);
+		if (!rcode)
+			rcode = sql_script(d, sql, e);
+	}
+	free(sql);
+	return e->code;
+}
+
+int schema_study(sql_db *d, sb_err *e)
+{
+	if (sql_script(d, STUDY, e) || sql_ensure_column(d, "run", "current", "INTEGER NOT NULL DEFAULT 1", e) ||
+	    sql_ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) || result_table(d, e))
+		return e->code;
+	return runs_view(d, e);
+}
+
+int schema_slurm(sql_db *d, sb_err *e)
+{
+	return sql_script(d, SLURM, e);
+}
+
+int schema_analysis(sql_db *d, sb_err *e)
+{
+	return sql_script(d, ANALYSIS, e);
+}
