@@ -6,6 +6,9 @@
 #include <string.h>
 
 #include "h5read.h"
+#include "h5sum.h"
+#include "layout.h"
+#include "runfile.h"
 
 int flux_read(const char *path, flux_data *d, sb_err *e)
 {
@@ -15,15 +18,15 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 		return e->code;
 	int r;
 	size_t dt[3], df[3], dp[3], dh[3];
-	if (!h5r_exists(f, "/observables/flux")) {
+	if (!h5r_exists(f, RUNFILE_FLUX)) {
 		h5r_close(f);
 		return sb_errf(e, SB_EIO, "%s: no /observables/flux group (run with flux = yes)", path);
 	}
 	sb_err re = {0};
-	if (h5r_read(f, "/observables/flux/phi/time", &d->t, &r, dt, &re) ||
-	    h5r_read(f, "/observables/flux/frequency/value", &d->f, &r, df, &re) ||
-	    h5r_read(f, "/observables/flux/phi/value", &d->phi, &r, dp, &re) ||
-	    h5r_read(f, "/observables/flux/heights", &d->h, &r, dh, &re)) {
+	if (h5r_read(f, RUNFILE_FLUX_TIME, &d->t, &r, dt, &re) ||
+	    h5r_read(f, RUNFILE_FLUX_FREQ, &d->f, &r, df, &re) ||
+	    h5r_read(f, RUNFILE_FLUX_PHI, &d->phi, &r, dp, &re) ||
+	    h5r_read(f, RUNFILE_FLUX_HEIGHTS, &d->h, &r, dh, &re)) {
 		h5r_close(f);
 		flux_free(d);
 		return sb_errf(e, re.code, "%.500s: %.500s", path, re.msg);
@@ -54,7 +57,7 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 				return e->code;
 			}
 	d->surface = NAN;
-	if (h5r_attr_num(f, "/observables/flux", "surface_height", &d->surface))
+	if (h5r_attr_num(f, RUNFILE_FLUX, "surface_height", &d->surface))
 		h5r_attr_num(f, "/", "surface_height", &d->surface);
 	if (!isfinite(d->surface) && d->L)
 		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */
@@ -137,4 +140,22 @@ void flux_profile(const flux_data *d, const flux_opts *o, double *prof)
 			s += d->phi[p * d->L + l];
 		prof[l] = d->P > p0 ? s / (double)(d->P - p0) : NAN;
 	}
+}
+
+double flux_of_run(const char *dir, const char *id, const flux_opts *o, int *damaged)
+{
+	char path[4600];
+	layout_file(dir, 0, id, LAY_OUTPUT, path, sizeof path);
+	flux_data d;
+	sb_err e = {0};
+	*damaged = 0;
+	if (flux_read(path, &d, &e)) {
+		h5sum sum;
+		sb_err se = {0};
+		*damaged = h5sum_read(path, id, &sum, &se) != 0;
+		return NAN;
+	}
+	double v = flux_summary(&d, o);
+	flux_free(&d);
+	return v;
 }

@@ -43,4 +43,9 @@ double flux_summary(const flux_data *d, const flux_opts *o);
 /* Time-mean Phi per line over the periods after the transient, into prof[L]. */
 void flux_profile(const flux_data *d, const flux_opts *o, double *prof);
 
+/* The mean plane flux (flux_summary) of run id's output in campaign directory dir
+ * (lib/layout.h), NaN when its flux cannot be read; then *damaged says whether the
+ * file is no complete run file either (h5sum_read refuses it), else 0. */
+double flux_of_run(const char *dir, const char *id, const flux_opts *o, int *damaged);
+
 #endif

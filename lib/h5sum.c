@@ -10,6 +10,7 @@
 
 #include "h5id.h"
 #include "h5read.h"
+#include "runfile.h"
 
 /* One column: an attribute (OBJ@NAME) or a dataset's rows (PATH#rows). An attribute
  * or dataset that is there but not what the column needs (an array where one value
@@ -88,7 +89,7 @@ int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e)
 		if (!(t[i].flags & RF_DERIVED))
 			read_column(f, &t[i], &s->v[i], &bad, &why);
 	/* the scene's parameters are attributes of /parameters (H5MD) */
-	if (h5r_exists(f, "/parameters") && h5r_attr_str(f, "/parameters", "particles", s->particles,
+	if (h5r_exists(f, RUNFILE_PARAMS) && h5r_attr_str(f, RUNFILE_PARAMS, "particles", s->particles,
 							   sizeof s->particles) < 0) {
 		if (!bad)
 			sb_errf(&why, SB_EIO, "/parameters@particles: not one string");

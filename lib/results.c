@@ -6,6 +6,8 @@
 
 #include <string.h>
 
+#include "runfile.h"
+
 static const rcol TABLE[] = {
 	{"status", RT_TEXT, "@status", "",
 	 "how the run ended: ok, or the failure (nan, overlap, left_box, settle_failed, io, ...)", 0},
@@ -53,7 +55,7 @@ static const rcol TABLE[] = {
 	{"n_mobile", RT_INT, "@n_mobile", "", "mobile disks (grains and intruder)", RF_NOVIEW},
 	{"n_walls", RT_INT, "@n_walls", "", "wall disks", RF_NOVIEW},
 	{"neighbour_builds", RT_INT, "@neighbour_builds", "", "neighbour-list builds while shaking", RF_NOVIEW},
-	{"traj_rows", RT_INT, "/particles/intruder/position/value#rows", "", "rows of the intruder trajectory", RF_NOVIEW},
+	{"traj_rows", RT_INT, RUNFILE_INTRUDER_POS "#rows", "", "rows of the intruder trajectory", RF_NOVIEW},
 	{"wall_seconds", RT_REAL, "/provenance@loop_seconds", "s", "wall-clock time of the shaking loop (not CPU time: on a loaded machine it is longer)", 0},
 	{"host", RT_TEXT, "/provenance@host", "", "machine that ran it", RF_NOVIEW},
 	{"git_hash", RT_TEXT, "/provenance@git_hash", "", "engine version", 0},

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "h5read.h"
+#include "runfile.h"
 
 void convect_strength(const double *ux, const double *uy, const double *n, size_t ny, size_t nx, double cell,
 		      double ylo, double yhi, convect_block *out)
@@ -116,25 +117,25 @@ int convect_read(const char *path, convect_field *f, sb_err *e)
 	hid_t h;
 	if (h5r_open(path, &h, e))
 		return e->code;
-	if (!h5r_exists(h, "/observables/field")) {
+	if (!h5r_exists(h, RUNFILE_FIELD)) {
 		h5r_close(h);
 		return sb_errf(e, SB_EUSAGE, "%s: no /observables/field (the run had field = no)", path);
 	}
 	size_t d1[3] = {0}, d2[3] = {0}, d3[3] = {0}, dt[3] = {0};
 	int r1 = 0, r2 = 0, r3 = 0, rt = 0;
 	sb_err re = {0};
-	if (h5r_read(h, "/observables/field/ux/value", &f->ux, &r1, d1, &re) ||
-	    h5r_read(h, "/observables/field/uy/value", &f->uy, &r2, d2, &re) ||
-	    h5r_read(h, "/observables/field/count/value", &f->n, &r3, d3, &re) ||
-	    h5r_read(h, "/observables/field/ux/time", &f->t, &rt, dt, &re)) {
+	if (h5r_read(h, RUNFILE_FIELD_UX, &f->ux, &r1, d1, &re) ||
+	    h5r_read(h, RUNFILE_FIELD_UY, &f->uy, &r2, d2, &re) ||
+	    h5r_read(h, RUNFILE_FIELD_COUNT, &f->n, &r3, d3, &re) ||
+	    h5r_read(h, RUNFILE_FIELD_TIME, &f->t, &rt, dt, &re)) {
 		h5r_close(h);
 		convect_free(f);
 		return sb_errf(e, re.code ? re.code : SB_EIO, "%.500s: %.500s", path, re.msg);
 	}
 	double cell = NAN, x0 = 0, K = NAN, hs = NAN;
-	h5r_attr_num(h, "/observables/field", "cell", &cell);
-	h5r_attr_num(h, "/observables/field", "x0", &x0);
-	h5r_attr_num(h, "/observables/field", "periods_per_block", &K);
+	h5r_attr_num(h, RUNFILE_FIELD, "cell", &cell);
+	h5r_attr_num(h, RUNFILE_FIELD, "x0", &x0);
+	h5r_attr_num(h, RUNFILE_FIELD, "periods_per_block", &K);
 	h5r_attr_num(h, "/", "surface_height", &hs);
 	h5r_close(h);
 	if (r1 != 3 || r2 != 3 || r3 != 3 || memcmp(d1, d2, sizeof d1) || memcmp(d1, d3, sizeof d1) || dt[0] != d1[0]) {

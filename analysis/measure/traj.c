@@ -7,19 +7,20 @@
 
 #include "drive.h"
 #include "h5read.h"
+#include "runfile.h"
 
 /* The box motion of the run, from its /parameters (the engine's core/sim.c setup). */
 static void drive_of(hid_t f, sb_drive *d)
 {
 	char ramp[32] = "none";
 	double A = 0, fr = 0, f0 = 0, f1 = 0, hold = 0, dur = 0;
-	h5r_attr_str(f, "/parameters", "ramp", ramp, sizeof ramp);
-	h5r_attr_num(f, "/parameters", "amplitude", &A);
-	h5r_attr_num(f, "/parameters", "frequency", &fr);
-	h5r_attr_num(f, "/parameters", "ramp_from", &f0);
-	h5r_attr_num(f, "/parameters", "ramp_to", &f1);
-	h5r_attr_num(f, "/parameters", "ramp_hold", &hold);
-	h5r_attr_num(f, "/parameters", "duration", &dur);
+	h5r_attr_str(f, RUNFILE_PARAMS, "ramp", ramp, sizeof ramp);
+	h5r_attr_num(f, RUNFILE_PARAMS, "amplitude", &A);
+	h5r_attr_num(f, RUNFILE_PARAMS, "frequency", &fr);
+	h5r_attr_num(f, RUNFILE_PARAMS, "ramp_from", &f0);
+	h5r_attr_num(f, RUNFILE_PARAMS, "ramp_to", &f1);
+	h5r_attr_num(f, RUNFILE_PARAMS, "ramp_hold", &hold);
+	h5r_attr_num(f, RUNFILE_PARAMS, "duration", &dur);
 	const int r = !strcmp(ramp, "linear") ? RAMP_LINEAR : !strcmp(ramp, "updown") ? RAMP_UPDOWN : RAMP_NONE;
 	*d = (sb_drive){r, A, fr, f0, f1, dur - hold, hold};
 }
@@ -34,7 +35,7 @@ int traj_read(const char *path, traj *tr, sb_err *e)
 	h5r_attr_num(f, "/", "intruder_settled_y", &tr->y0);
 	h5r_attr_num(f, "/", "surface_height", &tr->surface);
 	h5r_attr_str(f, "/", "stopped_by", tr->stopped_by, sizeof tr->stopped_by);
-	if (!h5r_exists(f, "/particles/intruder/position")) {
+	if (!h5r_exists(f, RUNFILE_INTRUDER)) {
 		h5r_close(f);
 		return 1;
 	}
@@ -42,8 +43,8 @@ int traj_read(const char *path, traj *tr, sb_err *e)
 	size_t dt[3], dp[3];
 	int rt, rp;
 	sb_err re = {0};
-	if (h5r_read(f, "/particles/intruder/position/time", &tr->t, &rt, dt, &re) ||
-	    h5r_read(f, "/particles/intruder/position/value", &pos, &rp, dp, &re)) {
+	if (h5r_read(f, RUNFILE_INTRUDER_TIME, &tr->t, &rt, dt, &re) ||
+	    h5r_read(f, RUNFILE_INTRUDER_POS, &pos, &rp, dp, &re)) {
 		h5r_close(f);
 		free(pos);
 		traj_free(tr);

@@ -6,6 +6,7 @@
 
 #include "h5read.h"
 #include "traj.h"
+#include "runfile.h"
 
 const char *whale_status_name(int s)
 {
@@ -23,12 +24,12 @@ static int read_attrs(const char *path, whale_obs *ob, sb_err *e)
 	sb_err re = {0};
 	const int bad = traj_rise(h, path, &rs, &w, &re);
 	if (h5r_attr_num(h, "/", "intruder_radius", &ob->radius) || !(ob->radius > 0)) {
-		h5r_attr_num(h, "/parameters", "radius_ratio", &rr);
-		h5r_attr_num(h, "/parameters", "r_min", &rmin);
-		h5r_attr_num(h, "/parameters", "r_max", &rmax);
+		h5r_attr_num(h, RUNFILE_PARAMS, "radius_ratio", &rr);
+		h5r_attr_num(h, RUNFILE_PARAMS, "r_min", &rmin);
+		h5r_attr_num(h, RUNFILE_PARAMS, "r_max", &rmax);
 		ob->radius = rr * 0.5 * (rmin + rmax);
 	}
-	h5r_attr_num(h, "/parameters", "frequency", &f);
+	h5r_attr_num(h, RUNFILE_PARAMS, "frequency", &f);
 	h5r_close(h);
 	if (bad)
 		return sb_errf(e, bad, "%s", re.msg);

@@ -16,6 +16,7 @@
 #include "num.h"
 #include "common/tool.h"
 #include "measure/traj.h"
+#include "runfile.h"
 
 #define VERSION "4"
 
@@ -276,8 +277,8 @@ static void classify_data(an_run *r, const flux_opts *fo)
  * (Fig. 4 orders the runs by it) unusable. */
 static void classify(an_run *r, const flux_opts *fo)
 {
-	static const char *const FIELD[] = {"/observables/field/ux/value", "/observables/field/uy/value",
-					    "/observables/field/count/value", NULL};
+	static const char *const FIELD[] = {RUNFILE_FIELD_UX, RUNFILE_FIELD_UY,
+					    RUNFILE_FIELD_COUNT, NULL};
 	classify_data(r, fo);
 	if (r->use != AN_USED && r->use != AN_PARTLY)
 		return;
@@ -287,7 +288,7 @@ static void classify(an_run *r, const flux_opts *fo)
 		return; /* classify_data read it */
 	int rank;
 	size_t dims[8], n;
-	for (int k = 0; FIELD[k] && h5r_exists(h, "/observables/field"); k++)
+	for (int k = 0; FIELD[k] && h5r_exists(h, RUNFILE_FIELD); k++)
 		if (h5r_shape(h, FIELD[k], &rank, dims, &n, &he)) {
 			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: %s", r->path, he.msg);
 			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
@@ -374,8 +375,8 @@ static void field_free(field *fl)
 static void field_sum(field *fl, hid_t h, const size_t d[3], const double *ux, const double *uy, const double *cn)
 {
 	double ci = 0, xi = 0;
-	h5r_attr_num(h, "/observables/field", "cell", &ci);
-	h5r_attr_num(h, "/observables/field", "x0", &xi);
+	h5r_attr_num(h, RUNFILE_FIELD, "cell", &ci);
+	h5r_attr_num(h, RUNFILE_FIELD, "x0", &xi);
 	if (!(ci > 0))
 		return;
 	if (!fl->runs) {
@@ -415,9 +416,9 @@ static void field_add(field *fl, const an_run *r)
 	double *ux = NULL, *uy = NULL, *cn = NULL;
 	size_t d1[3], d2[3], d3[3];
 	int rk;
-	if (h5r_exists(h, "/observables/field") && !h5r_read(h, "/observables/field/ux/value", &ux, &rk, d1, &he) &&
-	    !h5r_read(h, "/observables/field/uy/value", &uy, &rk, d2, &he) &&
-	    !h5r_read(h, "/observables/field/count/value", &cn, &rk, d3, &he) && rk == 3 &&
+	if (h5r_exists(h, RUNFILE_FIELD) && !h5r_read(h, RUNFILE_FIELD_UX, &ux, &rk, d1, &he) &&
+	    !h5r_read(h, RUNFILE_FIELD_UY, &uy, &rk, d2, &he) &&
+	    !h5r_read(h, RUNFILE_FIELD_COUNT, &cn, &rk, d3, &he) && rk == 3 &&
 	    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1))
 		field_sum(fl, h, d1, ux, uy, cn);
 	free(ux);
@@ -776,7 +777,7 @@ static int fig4_panel(const an_tool *t, double f4, double ra, f4panel *P)
 		double rs = 0, w = NAN;
 		if (h5r_open(r->path, &h, &he))
 			continue;
-		const int has = h5r_exists(h, "/particles/intruder/position");
+		const int has = h5r_exists(h, RUNFILE_INTRUDER);
 		sb_err re = {0};
 		if (traj_rise(h, r->path, &rs, &w, &re)) /* not risen, observed for an unknown time */
 			rs = 0, w = NAN;

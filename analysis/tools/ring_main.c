@@ -16,6 +16,7 @@
 #include "common/label.h"
 #include "measure/ring.h"
 #include "common/tool.h"
+#include "runfile.h"
 
 #define VERSION "1"
 
@@ -127,11 +128,11 @@ static void classify(an_run *r, rrun *x)
 		fprintf(stderr, "ring: warning: %s (counted as unreadable)\n", r->why);
 		return;
 	}
-	int missing = !h5r_exists(h, "/ring") || h5r_attr_num(h, "/ring", "samples_before", &x->samples) ||
-		      h5r_attr_num(h, "/ring", "before_from", &x->from) || h5r_attr_num(h, "/ring", "before_to", &x->to);
+	int missing = !h5r_exists(h, RUNFILE_RING) || h5r_attr_num(h, RUNFILE_RING, "samples_before", &x->samples) ||
+		      h5r_attr_num(h, RUNFILE_RING, "before_from", &x->from) || h5r_attr_num(h, RUNFILE_RING, "before_to", &x->to);
 	for (int q = 0; q < NQ && !missing; q++)
-		missing = h5r_attr_num(h, "/ring", ATTR[q], &x->v[q]) || !isfinite(x->v[q]);
-	h5r_attr_num(h, "/ring", "centre_y", &x->centre_y);
+		missing = h5r_attr_num(h, RUNFILE_RING, ATTR[q], &x->v[q]) || !isfinite(x->v[q]);
+	h5r_attr_num(h, RUNFILE_RING, "centre_y", &x->centre_y);
 	const int has_rise = h5r_attr_num(h, "/", "risen", &rs) == 0;
 	h5r_close(h);
 	x->risen = rs != 0;

@@ -84,21 +84,8 @@ static void val_put(search *s, const char *id, int cls, double value)
  * do not ask for). */
 static double run_flux(const search *s, const char *id, int *damaged)
 {
-	char path[4600];
-	layout_file(s->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-	flux_data d;
-	sb_err e = {0};
-	*damaged = 0;
-	if (flux_read(path, &d, &e)) {
-		h5sum sum;
-		sb_err se = {0};
-		*damaged = h5sum_read(path, id, &sum, &se) != 0;
-		return NAN;
-	}
 	flux_opts o = {s->c->onset.band_lo, s->c->onset.band_hi, s->c->onset.skip};
-	double v = flux_summary(&d, &o);
-	flux_free(&d);
-	return v;
+	return flux_of_run(s->dir, id, &o, damaged);
 }
 
 /* A run's class from its state and results. A run that failed without an answer

@@ -40,21 +40,8 @@ static sh_plan plan_of(const cp_auto *a)
  * or no complete run file: the sweep moves it aside and the run runs again. */
 static double run_flux(const sharpen *s, const char *id, int *damaged)
 {
-	char path[4600];
-	layout_file(s->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-	flux_data d;
-	sb_err e = {0};
-	*damaged = 0;
-	if (flux_read(path, &d, &e)) {
-		h5sum sum;
-		sb_err se = {0};
-		*damaged = h5sum_read(path, id, &sum, &se) != 0;
-		return NAN;
-	}
 	flux_opts o = FLUX_OPTS_DEFAULT;
-	double v = flux_summary(&d, &o);
-	flux_free(&d);
-	return v;
+	return flux_of_run(s->dir, id, &o, damaged);
 }
 
 /* A run's observation from its state and results. A failed run is used when it
