@@ -1,4 +1,4 @@
-/* slurm_collect.c - what the tasks of a campaign's Slurm arrays did, into the
+/* collect.c - what the tasks of a campaign's Slurm arrays did, into the
  * database. The nodes never touch the database: a task's run leaves its output file
  * (completion, as everywhere in study) and its worker's START/DONE lines in the
  * task's log, and this reads both on the submitting machine, through the same ingest
@@ -12,13 +12,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "schema.h"
 #include "dirs.h"
 #include "layout.h"
 #include "lock.h"
-#include "submit.h"
-#include "plan.h"
+#include "schema.h"
 #include "job/worker.h"
+#include "plan.h"
+#include "submit.h"
 
 int slurm_tables(st_db *db, sb_err *e)
 {
@@ -107,7 +107,7 @@ static int tlog_read(drv *d, long job, long index, tlog *t, sb_err *e)
 		line[strcspn(line, "\r\n")] = 0;
 		tline x = {0};
 		long code;
-		if (!(x.kind = sp_parse_worker(line, x.name, sizeof x.name, &code)))
+		if (!(x.kind = slurm_plan_parse_worker(line, x.name, sizeof x.name, &code)))
 			continue;
 		if (t->n == tcap) {
 			tcap = tcap * 2 + 8;
@@ -232,7 +232,7 @@ static int record_done(drv *d, const char *id, const char *text, sb_err *e)
 	return e->code;
 }
 
-static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_err *e)
+static int one_task(drv *d, const trow *r, const tlog *t, const slurm_queue *q, sb_err *e)
 {
 	char st[16], path[PATHX], host[256];
 	long att;
@@ -242,7 +242,7 @@ static int one_task(drv *d, const trow *r, const tlog *t, const sq_queue *q, sb_
 	const tline *done = tlog_find(t, 2, r->run), *start = tlog_find(t, 1, r->run);
 	start_host(start, host, sizeof host);
 	layout_file(d->dir, 0, r->run, LAY_OUTPUT, path, sizeof path);
-	const char *qs = q ? sq_state(q, r->job, r->index) : "?";
+	const char *qs = q ? slurm_queue_state(q, r->job, r->index) : "?";
 	/* a task runs its runs one after the other: a later run's START means this one's
 	 * worker is gone without a word, though the task goes on */
 	int passed = 0;
@@ -325,7 +325,7 @@ static int caches_of(drv *d, const tlog *t, sb_err *e)
 	return e->code;
 }
 
-int slurm_collect(drv *d, const sq_queue *q, sb_err *e)
+int slurm_collect(drv *d, const slurm_queue *q, sb_err *e)
 {
 	trow *rows;
 	long n;
@@ -348,7 +348,7 @@ int slurm_collect(drv *d, const sq_queue *q, sb_err *e)
 	return e->code;
 }
 
-int slurm_busy(drv *d, const sq_queue *q, char *busy, long *nbusy, sb_err *e)
+int slurm_busy(drv *d, const slurm_queue *q, char *busy, long *nbusy, sb_err *e)
 {
 	sqlite3_stmt *s;
 	*nbusy = 0;
@@ -360,7 +360,7 @@ int slurm_busy(drv *d, const sq_queue *q, char *busy, long *nbusy, sb_err *e)
 		const grid_run *r = grid_find(&d->g, (const char *)sqlite3_column_text(s, 0));
 		if (!r || busy[r - d->g.runs])
 			continue;
-		if (!q || sq_state(q, (long)sqlite3_column_int64(s, 1), (long)sqlite3_column_int64(s, 2))) {
+		if (!q || slurm_queue_state(q, (long)sqlite3_column_int64(s, 1), (long)sqlite3_column_int64(s, 2))) {
 			busy[r - d->g.runs] = 1;
 			(*nbusy)++;
 		}
@@ -446,9 +446,9 @@ int slurm_refresh(const char *runs_dir, const char *db_path, const char *name, l
 	db_close(&db);
 	if (e->code)
 		return e->code;
-	sq_queue q = {0};
+	slurm_queue q = {0};
 	sb_err qe = {0};
-	int have_q = !sq_list(&q, &qe);
+	int have_q = !slurm_queue_list(&q, &qe);
 	if (!have_q) {
 		fprintf(msg, "study: cannot ask Slurm which tasks are queued (%s); only their logs are read\n", qe.msg);
 		*active = -1;
@@ -485,7 +485,7 @@ int slurm_refresh(const char *runs_dir, const char *db_path, const char *name, l
 		slurm_drv_close(d);
 		free(d);
 	}
-	sq_free(&q);
+	slurm_queue_free(&q);
 	free(cs);
 	return e->code;
 }
@@ -497,16 +497,16 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 	st_db db;
 	if (db_open(&db, db_path, 0, e))
 		return e->code;
-	sq_queue q = {0};
+	slurm_queue q = {0};
 	sb_err qe = {0};
-	int have_q = !sq_list(&q, &qe);
+	int have_q = !slurm_queue_list(&q, &qe);
 	sqlite3_stmt *j;
 	if (sql_exec(&db, e, &j,
 		    "SELECT campaign, job_id, array, tasks, runs, runs_per_task, submitted, dir, campaign_file FROM slurm_job"
 		    " WHERE ?1 IS NULL OR campaign = ?1 ORDER BY campaign, job_id",
 		    "t", name)) {
 		db_close(&db);
-		sq_free(&q);
+		slurm_queue_free(&q);
 		return e->code;
 	}
 	while (sqlite3_step(j) == SQLITE_ROW) {
@@ -519,7 +519,7 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 			    camp, job))
 			break;
 		while (sqlite3_step(t) == SQLITE_ROW) {
-			const char *s = have_q ? sq_state(&q, job, (long)sqlite3_column_int64(t, 0)) : NULL;
+			const char *s = have_q ? slurm_queue_state(&q, job, (long)sqlite3_column_int64(t, 0)) : NULL;
 			if (!s)
 				ended++;
 			else if (!strcmp(s, "PENDING") || !strcmp(s, "REQUEUED"))
@@ -568,6 +568,6 @@ int slurm_report(const char *db_path, const char *name, FILE *out, sb_err *e)
 	}
 	sqlite3_finalize(j);
 	db_close(&db);
-	sq_free(&q);
+	slurm_queue_free(&q);
 	return e->code;
 }

@@ -1,4 +1,4 @@
-/* slurm_collect.h - private to slurm.c and slurm_collect.c: the Slurm tables, and what
+/* collect.h - private to submit.c and collect.c: the Slurm tables, and what
  * the tasks of a campaign's arrays did, read from their logs and squeue into the
  * database through the driver's own ingest (drv.h). */
 #ifndef ST_SLURM_COLLECT_H
@@ -18,10 +18,10 @@ int slurm_tables(st_db *db, sb_err *e);
  * finished output without a line, a task that ended (q: squeue now; NULL when it
  * could not say) after its run started but before it reported (an attempt
  * "killed"), or before its run started (no attempt). */
-int slurm_collect(drv *d, const sq_queue *q, sb_err *e);
+int slurm_collect(drv *d, const slurm_queue *q, sb_err *e);
 
 /* Per grid run of d: 1 when a task of an array holds it (queued or running). */
-int slurm_busy(drv *d, const sq_queue *q, char *busy, long *nbusy, sb_err *e);
+int slurm_busy(drv *d, const slurm_queue *q, char *busy, long *nbusy, sb_err *e);
 
 /* A drv for campaign file `path` under runs root `root` (absolute), the database
  * open, the per-run arrays allocated; driver-like options in *o. */

@@ -1,5 +1,5 @@
-/* slurm_plan.c - which run goes into which array task, and reading Slurm's answers
- * (slurm_plan.h). */
+/* plan.c - which run goes into which array task, and reading Slurm's answers
+ * (plan.h). */
 #include "plan.h"
 
 #include <ctype.h>
@@ -10,7 +10,7 @@
 #include "job/worker.h"
 
 typedef struct {
-	const sp_run *r;
+	const slurm_plan_run *r;
 	long i;
 } ord;
 
@@ -38,7 +38,7 @@ static int append(char **buf, size_t *len, size_t *cap, const char *a, const cha
 	return 0;
 }
 
-long sp_task_lines(const sp_run *runs, long n, long per_task, char ***lines)
+long slurm_plan_task_lines(const slurm_plan_run *runs, long n, long per_task, char ***lines)
 {
 	*lines = NULL;
 	if (per_task < 1)
@@ -65,7 +65,7 @@ long sp_task_lines(const sp_run *runs, long n, long per_task, char ***lines)
 				named |= !strcmp(o[j].r->build_key, k);
 			if ((k[0] && !named && append(&buf, &len, &cap, "c:", k)) || append(&buf, &len, &cap, "r:", o[i].r->id)) {
 				free(buf);
-				sp_free_lines(l, t);
+				slurm_plan_free_lines(l, t);
 				free(o);
 				return -1;
 			}
@@ -77,21 +77,21 @@ long sp_task_lines(const sp_run *runs, long n, long per_task, char ***lines)
 	return ntasks;
 }
 
-void sp_free_lines(char **lines, long n)
+void slurm_plan_free_lines(char **lines, long n)
 {
 	for (long i = 0; lines && i < n; i++)
 		free(lines[i]);
 	free(lines);
 }
 
-void sp_array_spec(long ntasks, long throttle, char *out, size_t len)
+void slurm_plan_array_spec(long ntasks, long throttle, char *out, size_t len)
 {
 	int l = ntasks > 1 ? snprintf(out, len, "0-%ld", ntasks - 1) : snprintf(out, len, "0");
 	if (throttle > 0 && l > 0 && (size_t)l < len)
 		snprintf(out + l, len - (size_t)l, "%%%ld", throttle);
 }
 
-int sp_split_args(const char *s, char **argv, int max, char *why, size_t whylen)
+int slurm_plan_split_args(const char *s, char **argv, int max, char *why, size_t whylen)
 {
 	/* what study submit says itself: the tasks, where their lines go (the collector
 	 * reads them there), the job id's format, the script */
@@ -158,7 +158,7 @@ bad:
 	return -1;
 }
 
-long sp_parse_jobid(const char *out)
+long slurm_plan_parse_jobid(const char *out)
 {
 	while (*out && isspace((unsigned char)*out))
 		out++;
@@ -171,7 +171,7 @@ long sp_parse_jobid(const char *out)
 	return id;
 }
 
-int sp_parse_squeue(const char *line, long *job, long *index, char *state, size_t slen)
+int slurm_plan_parse_squeue(const char *line, long *job, long *index, char *state, size_t slen)
 {
 	char *end;
 	if (!isdigit((unsigned char)*line))
@@ -190,7 +190,7 @@ int sp_parse_squeue(const char *line, long *job, long *index, char *state, size_
 	return state[0] != 0;
 }
 
-int sp_parse_worker(const char *line, char *name, size_t nlen, long *code)
+int slurm_plan_parse_worker(const char *line, char *name, size_t nlen, long *code)
 {
 	int kind = !strncmp(line, WORKER_START "\t", sizeof WORKER_START)  ? 1
 		   : !strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE) ? 2

@@ -1,4 +1,4 @@
-/* slurm_queue.c - sbatch and squeue as child processes (slurm_queue.h). */
+/* queue.c - sbatch and squeue as child processes (queue.h). */
 #include "queue.h"
 
 #include <errno.h>
@@ -24,7 +24,7 @@ static void last_line(const char *s, size_t n, char *out, size_t len)
 	snprintf(out, len, "%.*s", (int)(n - b), s + b);
 }
 
-int sq_run(char *const argv[], char **out, char *err, size_t errlen)
+int slurm_queue_run(char *const argv[], char **out, char *err, size_t errlen)
 {
 	int po[2], pe[2];
 	*out = NULL;
@@ -109,7 +109,7 @@ int sq_run(char *const argv[], char **out, char *err, size_t errlen)
 	return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
 }
 
-int sq_submit(char *const args[], int nargs, long *jobid, sb_err *e)
+int slurm_queue_submit(char *const args[], int nargs, long *jobid, sb_err *e)
 {
 	char **argv = calloc((size_t)nargs + 3, sizeof *argv);
 	if (!argv)
@@ -119,9 +119,9 @@ int sq_submit(char *const args[], int nargs, long *jobid, sb_err *e)
 	for (int i = 0; i < nargs; i++)
 		argv[i + 2] = args[i];
 	char *out, err[600];
-	int rc = sq_run(argv, &out, err, sizeof err);
+	int rc = slurm_queue_run(argv, &out, err, sizeof err);
 	free(argv);
-	*jobid = out ? sp_parse_jobid(out) : -1;
+	*jobid = out ? slurm_plan_parse_jobid(out) : -1;
 	if (rc == 127 && !out)
 		sb_errf(e, SB_EIO, "sbatch: %s", err);
 	else if (rc == 127)
@@ -132,7 +132,7 @@ int sq_submit(char *const args[], int nargs, long *jobid, sb_err *e)
 	return e->code;
 }
 
-int sq_list(sq_queue *q, sb_err *e)
+int slurm_queue_list(slurm_queue *q, sb_err *e)
 {
 	q->t = NULL;
 	q->n = 0;
@@ -141,7 +141,7 @@ int sq_list(sq_queue *q, sb_err *e)
 	/* every task on a line of its own (--array), ranges not yet split included */
 	char *argv[] = {"squeue", "--noheader", "--array", user, "--format=%i|%T", NULL};
 	char *out, err[600];
-	int rc = sq_run(argv, &out, err, sizeof err);
+	int rc = slurm_queue_run(argv, &out, err, sizeof err);
 	if (rc) {
 		free(out);
 		return sb_errf(e, SB_EIO, "squeue %s (exit %d)%s%s", rc == 127 ? "could not be run" : "failed", rc,
@@ -149,15 +149,15 @@ int sq_list(sq_queue *q, sb_err *e)
 	}
 	long cap = 0;
 	for (char *s = out, *line; (line = strsep(&s, "\n"));) {
-		sq_task t;
-		if (!sp_parse_squeue(line, &t.job, &t.index, t.state, sizeof t.state))
+		slurm_queue_task t;
+		if (!slurm_plan_parse_squeue(line, &t.job, &t.index, t.state, sizeof t.state))
 			continue;
 		if (q->n == cap) {
 			cap = cap * 2 + 64;
-			sq_task *nt = realloc(q->t, (size_t)cap * sizeof *nt);
+			slurm_queue_task *nt = realloc(q->t, (size_t)cap * sizeof *nt);
 			if (!nt) {
 				free(out);
-				sq_free(q);
+				slurm_queue_free(q);
 				return sb_errf(e, SB_ENOMEM, "out of memory");
 			}
 			q->t = nt;
@@ -168,7 +168,7 @@ int sq_list(sq_queue *q, sb_err *e)
 	return 0;
 }
 
-const char *sq_state(const sq_queue *q, long job, long index)
+const char *slurm_queue_state(const slurm_queue *q, long job, long index)
 {
 	const char *range = NULL;
 	for (long i = 0; i < q->n; i++) {
@@ -182,7 +182,7 @@ const char *sq_state(const sq_queue *q, long job, long index)
 	return range;
 }
 
-void sq_free(sq_queue *q)
+void slurm_queue_free(slurm_queue *q)
 {
 	free(q->t);
 	q->t = NULL;

@@ -1,8 +1,8 @@
-/* slurm.c - `study submit CAMPAIGN --slurm`: the runs that are not done, prepared as
+/* submit.c - `study submit CAMPAIGN --slurm`: the runs that are not done, prepared as
  * study run prepares them (driver.c: the campaign recorded, the packing choice, the
  * argument files), handed to Slurm as one job array instead of GNU parallel. Nothing
  * on the nodes writes the database: each task runs `study exec` (worker.c) for its
- * runs, whose outputs and START/DONE lines slurm_collect.c reads back here. */
+ * runs, whose outputs and START/DONE lines collect.c reads back here. */
 #include "submit.h"
 
 #include <errno.h>
@@ -12,10 +12,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "ledger/changes.h"
 #include "layout.h"
-#include "local/packing.h"
 #include "campaign/safe.h"
+#include "ledger/changes.h"
+#include "local/packing.h"
 #include "collect.h"
 #include "plan.h"
 
@@ -148,7 +148,7 @@ static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
 		int named = 0;
 		for (long i = a; i < b && !named; i++) {
 			char ak[64];
-			packing_of_args(d, d->g.runs[k[i].run].id, ak, sizeof ak);
+			packing_of_args(d->dir, d->g.runs[k[i].run].id, ak, sizeof ak);
 			named = !strcmp(ak, k[a].key);
 		}
 		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
@@ -231,18 +231,18 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	if (changes_check(&x, e) || driver_record(d, e))
 		return e->code;
 	/* what the earlier arrays did, and which of their tasks still hold runs */
-	sq_queue q = {0};
+	slurm_queue q = {0};
 	char *busy = calloc((size_t)d->g.n + 1, 1);
 	long nbusy = 0, npend = 0;
 	if (!busy)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
-	if (sq_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
+	if (slurm_queue_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
 	    sweep(d, d->pend, &npend, e)) {
-		sq_free(&q);
+		slurm_queue_free(&q);
 		free(busy);
 		return e->code;
 	}
-	sq_free(&q);
+	slurm_queue_free(&q);
 	long n = 0, failed = 0;
 	for (long i = 0; i < npend; i++)
 		if (!busy[d->pend[i]])
@@ -262,7 +262,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 
 	if (choose_packings(d, d->pend, n, e) || driver_prepare_jobs(d, d->pend, n, d->names, e))
 		return e->code;
-	sp_run *runs = calloc((size_t)n, sizeof *runs);
+	slurm_plan_run *runs = calloc((size_t)n, sizeof *runs);
 	char(*keys)[40] = calloc((size_t)n, sizeof *keys);
 	char **lines = NULL;
 	long ntasks = -1;
@@ -274,12 +274,12 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		const grid_run *r = &d->g.runs[d->pend[i]];
 		char h5[PATHX], cargs[PATHX];
 		runs[i].id = r->id;
-		packing_of_args(d, r->id, keys[i], sizeof keys[i]);
+		packing_of_args(d->dir, r->id, keys[i], sizeof keys[i]);
 		layout_file(d->dir, 1, keys[i], LAY_OUTPUT, h5, sizeof h5);
 		layout_file(d->dir, 1, keys[i], LAY_ARGS, cargs, sizeof cargs);
 		/* built: its particle file is there (a packing's output without it was
 		 * forgotten by driver_cache_check, and is built again) */
-		if (!keys[i][0] || (exists(h5) && packing_present(d, keys[i]))) {
+		if (!keys[i][0] || (exists(h5) && packing_present(d->dir, keys[i]))) {
 			keys[i][0] = 0; /* settles itself, or its packing is built */
 		} else if (!exists(cargs)) {
 			/* a run of this packing gives the packing's preparation (the key is its hash) */
@@ -292,11 +292,11 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		runs[i].build_key = keys[i];
 	}
 	char spec[64], script[PATHX], tasks[PATHX];
-	if (!e->code && (ntasks = sp_task_lines(runs, n, so->runs_per_task, &lines)) < 0)
+	if (!e->code && (ntasks = slurm_plan_task_lines(runs, n, so->runs_per_task, &lines)) < 0)
 		sb_errf(e, SB_ENOMEM, "out of memory");
 	if (!e->code && !write_tasks(d, lines, ntasks, tasks, sizeof tasks, e) &&
 	    !write_script(d, d->o->self, script, sizeof script, e)) {
-		sp_array_spec(ntasks, so->throttle, spec, sizeof spec);
+		slurm_plan_array_spec(ntasks, so->throttle, spec, sizeof spec);
 		char *args[MAX_SBATCH_ARGS + 8];
 		char a_array[96], a_name[128], a_out[PATHX + 64];
 		snprintf(a_array, sizeof a_array, "--array=%s", spec);
@@ -313,7 +313,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		args[na++] = script;
 		args[na++] = tasks;
 		long job = -1;
-		if (sq_submit(args, na, &job, e)) {
+		if (slurm_queue_submit(args, na, &job, e)) {
 			if (ntasks > 1000)
 				fprintf(stderr, "study: %s: %ld array tasks; a cluster's MaxArraySize (often 1001) may "
 					"refuse them: --runs-per-task N puts N runs in a task\n", d->c.name, ntasks);
@@ -329,7 +329,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		}
 	}
 	if (lines)
-		sp_free_lines(lines, ntasks);
+		slurm_plan_free_lines(lines, ntasks);
 	free(runs);
 	free(keys);
 	return e->code;
@@ -338,7 +338,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
 {
 	char *uargs[MAX_SBATCH_ARGS], why[256];
-	int nu = sp_split_args(so->sbatch_args, uargs, MAX_SBATCH_ARGS, why, sizeof why);
+	int nu = slurm_plan_split_args(so->sbatch_args, uargs, MAX_SBATCH_ARGS, why, sizeof why);
 	if (nu < 0)
 		return sb_errf(e, SB_EUSAGE, "--sbatch-args: %s", why);
 	drv *d = calloc(1, sizeof *d);

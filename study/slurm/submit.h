@@ -1,4 +1,4 @@
-/* slurm.h - a campaign on a Slurm cluster: `study submit CAMPAIGN --slurm` prepares
+/* submit.h - a campaign on a Slurm cluster: `study submit CAMPAIGN --slurm` prepares
  * the runs exactly as `study run` does (argument files, packing choice) and submits
  * one job array whose tasks run `study exec` on the nodes; what the tasks did is read
  * back from their files by `study status`, `study run` and the next `study submit`.
@@ -9,8 +9,8 @@
 
 #include <stdio.h>
 
-#include "local/driver.h"
 #include "err.h"
+#include "local/driver.h"
 
 typedef struct slurm_opts {
 	long throttle;            /* at most this many tasks at once (--array=...%K); 0: no limit */

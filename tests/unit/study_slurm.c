@@ -13,76 +13,76 @@
 
 static void test_lines(void)
 {
-	sp_run runs[] = {{"a1", "k1"}, {"b1", ""}, {"a2", "k2"}, {"a3", "k1"}, {"b2", ""}};
+	slurm_plan_run runs[] = {{"a1", "k1"}, {"b1", ""}, {"a2", "k2"}, {"a3", "k1"}, {"b2", ""}};
 	char **l;
-	long n = sp_task_lines(runs, 5, 1, &l);
+	long n = slurm_plan_task_lines(runs, 5, 1, &l);
 	CHECK("study.slurm.lines.one_per_task.count", n == 5, "%ld tasks", n);
 	CHECK("study.slurm.lines.one_per_task.order", n == 5 && !strcmp(l[0], "c:k1 r:a1") && !strcmp(l[1], "r:b1") &&
 		      !strcmp(l[2], "c:k2 r:a2") && !strcmp(l[3], "c:k1 r:a3") && !strcmp(l[4], "r:b2"),
 	      "'%s' '%s' '%s' '%s' '%s'", l[0], l[1], l[2], l[3], l[4]);
-	sp_free_lines(l, n);
+	slurm_plan_free_lines(l, n);
 
 	/* two per task: by packing (runs without one first), each packing named once a
 	 * line, before its first run */
-	n = sp_task_lines(runs, 5, 2, &l);
+	n = slurm_plan_task_lines(runs, 5, 2, &l);
 	CHECK("study.slurm.lines.two_per_task", n == 3 && !strcmp(l[0], "r:b1 r:b2") && !strcmp(l[1], "c:k1 r:a1 r:a3") &&
 		      !strcmp(l[2], "c:k2 r:a2"),
 	      "%ld: '%s' '%s' '%s'", n, l[0], l[1], n > 2 ? l[2] : "");
-	sp_free_lines(l, n);
+	slurm_plan_free_lines(l, n);
 
-	n = sp_task_lines(runs, 5, 10, &l);
+	n = slurm_plan_task_lines(runs, 5, 10, &l);
 	CHECK("study.slurm.lines.all_in_one", n == 1 && !strcmp(l[0], "r:b1 r:b2 c:k1 r:a1 r:a3 c:k2 r:a2"), "'%s'",
 	      n ? l[0] : "");
-	sp_free_lines(l, n);
+	slurm_plan_free_lines(l, n);
 
-	n = sp_task_lines(runs, 0, 3, &l);
+	n = slurm_plan_task_lines(runs, 0, 3, &l);
 	CHECK("study.slurm.lines.none", n == 0, "%ld", n);
-	sp_free_lines(l, n);
+	slurm_plan_free_lines(l, n);
 
 	/* a stable plan: the same input gives the same lines */
-	sp_run many[7];
+	slurm_plan_run many[7];
 	char ids[7][16];
 	for (int i = 0; i < 7; i++) {
 		snprintf(ids[i], sizeof ids[i], "r%d", i);
-		many[i] = (sp_run){ids[i], i % 2 ? "kb" : "ka"};
+		many[i] = (slurm_plan_run){ids[i], i % 2 ? "kb" : "ka"};
 	}
 	char **l2;
-	n = sp_task_lines(many, 7, 3, &l);
-	long n2 = sp_task_lines(many, 7, 3, &l2);
+	n = slurm_plan_task_lines(many, 7, 3, &l);
+	long n2 = slurm_plan_task_lines(many, 7, 3, &l2);
 	int same = n == n2 && n == 3;
 	for (long i = 0; same && i < n; i++)
 		same = !strcmp(l[i], l2[i]);
 	CHECK("study.slurm.lines.stable", same && !strcmp(l[0], "c:ka r:r0 r:r2 r:r4") &&
 		      !strcmp(l[1], "c:ka r:r6 c:kb r:r1 r:r3") && !strcmp(l[2], "c:kb r:r5"),
 	      "'%s' '%s' '%s'", l[0], l[1], l[2]);
-	sp_free_lines(l, n);
-	sp_free_lines(l2, n2);
+	slurm_plan_free_lines(l, n);
+	slurm_plan_free_lines(l2, n2);
 }
 
 static void test_spec(void)
 {
 	char s[64];
-	sp_array_spec(10, 0, s, sizeof s);
+	slurm_plan_array_spec(10, 0, s, sizeof s);
 	CHECK("study.slurm.spec.range", !strcmp(s, "0-9"), "'%s'", s);
-	sp_array_spec(10, 3, s, sizeof s);
+	slurm_plan_array_spec(10, 3, s, sizeof s);
 	CHECK("study.slurm.spec.throttle", !strcmp(s, "0-9%3"), "'%s'", s);
-	sp_array_spec(1, 2, s, sizeof s);
+	slurm_plan_array_spec(1, 2, s, sizeof s);
 	CHECK("study.slurm.spec.one", !strcmp(s, "0%2"), "'%s'", s);
 }
 
 static void test_args(void)
 {
 	char *v[8], why[256];
-	int n = sp_split_args("  --partition=short\t--time=01:00:00  --mem 2G ", v, 8, why, sizeof why);
+	int n = slurm_plan_split_args("  --partition=short\t--time=01:00:00  --mem 2G ", v, 8, why, sizeof why);
 	CHECK("study.slurm.args.split", n == 4 && !strcmp(v[0], "--partition=short") && !strcmp(v[1], "--time=01:00:00") &&
 		      !strcmp(v[2], "--mem") && !strcmp(v[3], "2G"),
 	      "%d words", n);
 	while (n > 0)
 		free(v[--n]);
-	CHECK("study.slurm.args.empty", sp_split_args(NULL, v, 8, why, sizeof why) == 0 &&
-		      sp_split_args("   ", v, 8, why, sizeof why) == 0, "words from nothing");
+	CHECK("study.slurm.args.empty", slurm_plan_split_args(NULL, v, 8, why, sizeof why) == 0 &&
+		      slurm_plan_split_args("   ", v, 8, why, sizeof why) == 0, "words from nothing");
 	/* no shell: quotes and metacharacters are plain bytes of a word */
-	n = sp_split_args("--comment='a;b' -J $(x)", v, 8, why, sizeof why);
+	n = slurm_plan_split_args("--comment='a;b' -J $(x)", v, 8, why, sizeof why);
 	CHECK("study.slurm.args.no_shell", n == 3 && !strcmp(v[0], "--comment='a;b'") && !strcmp(v[2], "$(x)"), "%d", n);
 	while (n > 0)
 		free(v[--n]);
@@ -91,25 +91,25 @@ static void test_args(void)
 	for (int i = 0; own[i]; i++) {
 		char id[64];
 		snprintf(id, sizeof id, "study.slurm.args.refused.%d", i);
-		CHECK(id, sp_split_args(own[i], v, 8, why, sizeof why) == -1 && strstr(why, "itself"), "'%s' accepted: %s",
+		CHECK(id, slurm_plan_split_args(own[i], v, 8, why, sizeof why) == -1 && strstr(why, "itself"), "'%s' accepted: %s",
 		      own[i], why);
 	}
 	/* options that only begin like study's own are the user's */
-	n = sp_split_args("--array-x --outputs --account=a -A a", v, 8, why, sizeof why);
+	n = slurm_plan_split_args("--array-x --outputs --account=a -A a", v, 8, why, sizeof why);
 	CHECK("study.slurm.args.lookalikes", n == 5, "%d: %s", n, why);
 	while (n > 0)
 		free(v[--n]);
-	CHECK("study.slurm.args.too_many", sp_split_args("-a1 -b -c", v, 2, why, sizeof why) == -1, "3 words into 2");
+	CHECK("study.slurm.args.too_many", slurm_plan_split_args("-a1 -b -c", v, 2, why, sizeof why) == -1, "3 words into 2");
 	/* a word that is no option's value would be sbatch's script: refused, named */
 	const char *stray[] = {"job.sh", "--time=5 x", "--exclusive node1", "-p short extra", "-pshort x",
 			       "--mem 2G 3G", "-", NULL};
 	for (int i = 0; stray[i]; i++) {
 		char id[64];
 		snprintf(id, sizeof id, "study.slurm.args.no_script.%d", i);
-		CHECK(id, sp_split_args(stray[i], v, 8, why, sizeof why) == -1 && strstr(why, "script"),
+		CHECK(id, slurm_plan_split_args(stray[i], v, 8, why, sizeof why) == -1 && strstr(why, "script"),
 		      "'%s' accepted: %s", stray[i], why);
 	}
-	n = sp_split_args("-p short --mem 2G --exclusive -N 2", v, 8, why, sizeof why);
+	n = slurm_plan_split_args("-p short --mem 2G --exclusive -N 2", v, 8, why, sizeof why);
 	CHECK("study.slurm.args.values", n == 7, "%d: %s", n, why);
 	while (n > 0)
 		free(v[--n]);
@@ -117,36 +117,36 @@ static void test_args(void)
 
 static void test_parse(void)
 {
-	CHECK("study.slurm.jobid.plain", sp_parse_jobid("12345\n") == 12345, "%ld", sp_parse_jobid("12345\n"));
-	CHECK("study.slurm.jobid.cluster", sp_parse_jobid("77;cluster\n") == 77, "%ld", sp_parse_jobid("77;cluster\n"));
-	CHECK("study.slurm.jobid.bad", sp_parse_jobid("") < 0 && sp_parse_jobid("Submitted batch job 5") < 0 &&
-		      sp_parse_jobid("5x") < 0 && sp_parse_jobid("0") < 0, "garbage parsed");
+	CHECK("study.slurm.jobid.plain", slurm_plan_parse_jobid("12345\n") == 12345, "%ld", slurm_plan_parse_jobid("12345\n"));
+	CHECK("study.slurm.jobid.cluster", slurm_plan_parse_jobid("77;cluster\n") == 77, "%ld", slurm_plan_parse_jobid("77;cluster\n"));
+	CHECK("study.slurm.jobid.bad", slurm_plan_parse_jobid("") < 0 && slurm_plan_parse_jobid("Submitted batch job 5") < 0 &&
+		      slurm_plan_parse_jobid("5x") < 0 && slurm_plan_parse_jobid("0") < 0, "garbage parsed");
 
 	long job, idx;
 	char st[24];
-	CHECK("study.slurm.squeue.task", sp_parse_squeue("123_4|RUNNING", &job, &idx, st, sizeof st) && job == 123 &&
+	CHECK("study.slurm.squeue.task", slurm_plan_parse_squeue("123_4|RUNNING", &job, &idx, st, sizeof st) && job == 123 &&
 		      idx == 4 && !strcmp(st, "RUNNING"), "%ld %ld %s", job, idx, st);
-	CHECK("study.slurm.squeue.range", sp_parse_squeue("123_[5-9%2]|PENDING", &job, &idx, st, sizeof st) &&
+	CHECK("study.slurm.squeue.range", slurm_plan_parse_squeue("123_[5-9%2]|PENDING", &job, &idx, st, sizeof st) &&
 		      job == 123 && idx == -1 && !strcmp(st, "PENDING"), "%ld %ld %s", job, idx, st);
-	CHECK("study.slurm.squeue.plain_job", sp_parse_squeue("99|COMPLETING\n", &job, &idx, st, sizeof st) && job == 99 &&
+	CHECK("study.slurm.squeue.plain_job", slurm_plan_parse_squeue("99|COMPLETING\n", &job, &idx, st, sizeof st) && job == 99 &&
 		      idx == -1 && !strcmp(st, "COMPLETING"), "%ld %ld %s", job, idx, st);
-	CHECK("study.slurm.squeue.junk", !sp_parse_squeue("", &job, &idx, st, sizeof st) &&
-		      !sp_parse_squeue("JOBID|STATE", &job, &idx, st, sizeof st) &&
-		      !sp_parse_squeue("12_3", &job, &idx, st, sizeof st) &&
-		      !sp_parse_squeue("12_3|", &job, &idx, st, sizeof st), "junk parsed");
+	CHECK("study.slurm.squeue.junk", !slurm_plan_parse_squeue("", &job, &idx, st, sizeof st) &&
+		      !slurm_plan_parse_squeue("JOBID|STATE", &job, &idx, st, sizeof st) &&
+		      !slurm_plan_parse_squeue("12_3", &job, &idx, st, sizeof st) &&
+		      !slurm_plan_parse_squeue("12_3|", &job, &idx, st, sizeof st), "junk parsed");
 
 	char name[40];
 	long code;
-	CHECK("study.slurm.worker.start", sp_parse_worker(WORKER_START "\tabc\tnode1", name, sizeof name, &code) == 1 &&
+	CHECK("study.slurm.worker.start", slurm_plan_parse_worker(WORKER_START "\tabc\tnode1", name, sizeof name, &code) == 1 &&
 		      !strcmp(name, "abc"), "%s", name);
-	CHECK("study.slurm.worker.done", sp_parse_worker(WORKER_DONE "\tabc\t7\tnode1\t1.5\tshake: interrupted", name,
+	CHECK("study.slurm.worker.done", slurm_plan_parse_worker(WORKER_DONE "\tabc\t7\tnode1\t1.5\tshake: interrupted", name,
 							 sizeof name, &code) == 2 && !strcmp(name, "abc") && code == 7,
 	      "%s %ld", name, code);
-	CHECK("study.slurm.worker.other", !sp_parse_worker("slurmstepd: error: *** JOB 5 CANCELLED ***", name, sizeof name,
+	CHECK("study.slurm.worker.other", !slurm_plan_parse_worker("slurmstepd: error: *** JOB 5 CANCELLED ***", name, sizeof name,
 							   &code) &&
-		      !sp_parse_worker(WORKER_DONE "\tabc", name, sizeof name, &code) &&
-		      !sp_parse_worker(WORKER_DONE "\t\t7", name, sizeof name, &code) &&
-		      !sp_parse_worker(WORKER_START "x\tabc", name, sizeof name, &code),
+		      !slurm_plan_parse_worker(WORKER_DONE "\tabc", name, sizeof name, &code) &&
+		      !slurm_plan_parse_worker(WORKER_DONE "\t\t7", name, sizeof name, &code) &&
+		      !slurm_plan_parse_worker(WORKER_START "x\tabc", name, sizeof name, &code),
 	      "other lines parsed");
 }
 
