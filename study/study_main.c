@@ -6,17 +6,17 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "results.h"
+#include "words.h"
+#include "adaptive/search.h"
+#include "adaptive/sharpen.h"
 #include "campaign/campaign.h"
-#include "local/driver.h"
 #include "campaign/grid.h"
+#include "job/worker.h"
+#include "local/driver.h"
 #include "report/dtext.h"
 #include "report/report.h"
-#include "results.h"
-#include "adaptive/search.h"
 #include "slurm/submit.h"
-#include "adaptive/sharpen.h"
-#include "job/worker.h"
-#include "words.h"
 
 static const char *USAGE =
 	"usage: study COMMAND [options] ...\n\n"

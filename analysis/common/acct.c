@@ -7,9 +7,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli.h"
 #include "h5id.h"
 #include "h5read.h"
+#include "cli.h"
 
 static const char *const USE[AN_NUSE] = {"used", "failed_used", "unusable", "unreadable", "pending", "running"};
 

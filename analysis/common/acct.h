@@ -8,8 +8,8 @@
 
 #include <stdio.h>
 
-#include "adb.h"
 #include "err.h"
+#include "adb.h"
 
 enum an_use {
 	AN_USED,       /* finished (done) and in the statistic */

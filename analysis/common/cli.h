@@ -6,8 +6,8 @@
 #include <stdio.h>
 
 #include "csv.h" /* the tools' CSV text fields: csv_text */
-#include "adb.h"
 #include "err.h"
+#include "adb.h"
 
 #define AN_MAXKEYS 32
 

@@ -3,9 +3,9 @@
 #ifndef AN_FLUXRUN_H
 #define AN_FLUXRUN_H
 
+#include "flux.h"
 #include "acct.h"
 #include "adb.h"
-#include "flux.h"
 
 /* A run's flux for a statistic (acct.h): returns 1 when there is nothing to read
  * (pending, running, no file, unreadable file, unusable values: r->use and r->why say

@@ -9,10 +9,10 @@
 
 #include <stdio.h>
 
+#include "err.h"
 #include "acct.h"
 #include "adb.h"
 #include "cli.h"
-#include "err.h"
 
 typedef struct an_tool {
 	const an_opts *o;

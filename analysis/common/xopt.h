@@ -8,8 +8,8 @@
 
 #include <stdio.h>
 
-#include "cli.h"
 #include "err.h"
+#include "cli.h"
 
 typedef struct xopt {
 	const char *name; /* without the dashes */

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 
 #include "h5read.h"
-#include "traj.h"
 #include "runfile.h"
+#include "traj.h"
 
 const char *whale_status_name(int s)
 {

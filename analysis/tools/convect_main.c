@@ -15,12 +15,12 @@
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "measure/convect.h"
 #include "common/label.h"
-#include "measure/rolls.h"
 #include "common/tool.h"
-#include "measure/whalestat.h"
 #include "common/xopt.h"
+#include "measure/convect.h"
+#include "measure/rolls.h"
+#include "measure/whalestat.h"
 
 #define VERSION "1"
 

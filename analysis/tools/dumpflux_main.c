@@ -10,12 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "measure/dumpflux.h"
 #include "flux.h"
+#include "quantile.h"
+#include "measure/dumpflux.h"
 #include "measure/lowerrow.h"
 #include "measure/pairdiff.h"
 #include "measure/twocode.h"
-#include "quantile.h"
 
 static const char *HELP =
 	"usage: dumpflux run RUN.h5 [--skip FRAC] [--periods]\n"

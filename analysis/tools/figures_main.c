@@ -6,17 +6,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flux.h"
+#include "h5read.h"
+#include "num.h"
+#include "runfile.h"
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "flux.h"
 #include "common/fluxrun.h"
-#include "h5read.h"
 #include "common/label.h"
-#include "num.h"
 #include "common/tool.h"
 #include "measure/traj.h"
-#include "runfile.h"
 
 #define VERSION "4"
 

@@ -5,13 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flux.h"
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "flux.h"
 #include "common/fluxrun.h"
-#include "measure/hyst.h"
 #include "common/tool.h"
+#include "measure/hyst.h"
 
 #define VERSION "3"
 

@@ -6,14 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flux.h"
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "flux.h"
 #include "common/fluxrun.h"
-#include "measure/onsetfit.h"
 #include "common/tool.h"
 #include "common/xopt.h"
+#include "measure/onsetfit.h"
 
 #define VERSION "2"
 

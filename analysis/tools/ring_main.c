@@ -9,14 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "h5read.h"
+#include "runfile.h"
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "h5read.h"
 #include "common/label.h"
-#include "measure/ring.h"
 #include "common/tool.h"
-#include "runfile.h"
+#include "measure/ring.h"
 
 #define VERSION "1"
 

@@ -11,15 +11,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flux.h"
 #include "common/acct.h"
 #include "common/adb.h"
 #include "common/cli.h"
-#include "flux.h"
 #include "common/fluxrun.h"
 #include "common/label.h"
-#include "measure/rolls.h"
 #include "common/tool.h"
 #include "common/xopt.h"
+#include "measure/rolls.h"
 
 #define VERSION "1"
 #define MAXCMP 6

@@ -6,17 +6,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/acct.h"
-#include "common/adb.h"
-#include "common/cli.h"
 #include "h5read.h"
 #include "km.h"
 #include "logrank.h"
-#include "measure/lowerrow.h"
-#include "common/tool.h"
-#include "measure/traj.h"
-#include "common/xopt.h"
 #include "quantile.h"
+#include "common/acct.h"
+#include "common/adb.h"
+#include "common/cli.h"
+#include "common/tool.h"
+#include "common/xopt.h"
+#include "measure/lowerrow.h"
+#include "measure/traj.h"
 
 #define VERSION "2"
 

@@ -15,9 +15,9 @@
 #include "common/cli.h"
 #include "common/label.h"
 #include "common/tool.h"
+#include "common/xopt.h"
 #include "measure/whalerun.h"
 #include "measure/whalestat.h"
-#include "common/xopt.h"
 
 #define VERSION "1"
 

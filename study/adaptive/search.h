@@ -5,10 +5,10 @@
 #ifndef ST_SEARCH_H
 #define ST_SEARCH_H
 
-#include "rule/adapt.h"
 #include "campaign/campaign.h"
-#include "ledger/db.h"
 #include "campaign/grid.h"
+#include "ledger/db.h"
+#include "rule/adapt.h"
 
 typedef struct srch_group {
 	char label[512];     /* grid_point_label */

@@ -8,8 +8,8 @@
 
 #include "flux.h"
 #include "h5sum.h"
-#include "rule/adapt.h"
 #include "layout.h"
+#include "rule/adapt.h"
 
 void sharpen_init(sharpen *s, const campaign *c, const char *dir)
 {

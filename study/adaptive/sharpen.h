@@ -6,8 +6,8 @@
 #define ST_SHARPEN_H
 
 #include "campaign/campaign.h"
-#include "ledger/db.h"
 #include "campaign/grid.h"
+#include "ledger/db.h"
 #include "rule/sharp.h"
 
 typedef struct shp_point {

@@ -10,11 +10,11 @@
 #include <string.h>
 #include <strings.h>
 
-#include "rule/adapt.h"
 #include "fsutil.h"
 #include "num.h"
-#include "safe.h"
 #include "textline.h"
+#include "rule/adapt.h"
+#include "safe.h"
 
 int campaign_key_reserved(const char *key)
 {

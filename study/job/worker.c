@@ -13,8 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "params.h"
 #include "layout.h"
+#include "params.h"
 #include "campaign/safe.h"
 
 static volatile sig_atomic_t g_child;

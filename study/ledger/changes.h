@@ -9,8 +9,8 @@
 #define ST_CHANGES_H
 
 #include "campaign/campaign.h"
-#include "db.h"
 #include "campaign/grid.h"
+#include "db.h"
 
 enum { CHANGES_PATH = 4352 };
 

@@ -8,9 +8,9 @@
 #include <sqlite3.h>
 
 #include "err.h"
+#include "h5sum.h"
 #include "sql.h"
 #include "campaign/grid.h"
-#include "h5sum.h"
 
 /* The study database as lib/sql.h opens it; statements go through sql_exec. */
 typedef sql_db st_db;

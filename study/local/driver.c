@@ -13,22 +13,22 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "campaign/campaign.h"
-#include "ledger/changes.h"
-#include "drv.h"
-#include "ledger/db.h"
 #include "dirs.h"
-#include "campaign/grid.h"
 #include "h5sum.h"
 #include "layout.h"
 #include "lock.h"
-#include "packing.h"
-#include "campaign/safe.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
-#include "stop.h"
-#include "report/watch.h"
+#include "campaign/campaign.h"
+#include "campaign/grid.h"
+#include "campaign/safe.h"
 #include "job/worker.h"
+#include "ledger/changes.h"
+#include "ledger/db.h"
+#include "report/watch.h"
+#include "drv.h"
+#include "packing.h"
+#include "stop.h"
 
 void driver_db_path(const char *runs_dir, const char *db_path, char *out, size_t len)
 {
@@ -172,7 +172,7 @@ int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 	char h5[PATHX];
 	cache_state(d, key, st, len);
 	layout_file(d->dir, 1, key, LAY_OUTPUT, h5, sizeof h5);
-	int gone = !strcmp(st, "ok") && !packing_present(d, key);
+	int gone = !strcmp(st, "ok") && !packing_present(d->dir, key);
 	if (gone || (!strcmp(st, "failed") && d->o->retry_failed)) {
 		if (gone)
 			fprintf(stderr, "study: %s: packing %s is recorded as built but cache/%s.txt is missing: "
@@ -242,7 +242,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 		/* a run whose argument file already starts it from the packing needs it
 		 * (built again if it was deleted), alone or not */
 		char ak[64];
-		packing_of_args(d, r->id, ak, sizeof ak);
+		packing_of_args(d->dir, r->id, ak, sizeof ak);
 		named[k] |= !strcmp(ak, r->cache_key);
 	}
 	for (long k = 0; k < nk && !e->code; k++) {
@@ -292,8 +292,8 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 			 * its build failed): then it settles itself, and a checkpoint of the old
 			 * arguments could not be resumed (restart = auto checks them) */
 			char ak[64];
-			packing_of_args(d, r->id, ak, sizeof ak);
-			if (!ak[0] || packing_present(d, ak) ||
+			packing_of_args(d->dir, r->id, ak, sizeof ak);
+			if (!ak[0] || packing_present(d->dir, ak) ||
 			    (d->cache_ok[pend[i]] && !strcmp(ak, r->cache_key)))
 				continue; /* (study submit: a task builds it before the run) */
 			fprintf(stderr, "study: %s: run %s starts from packing cache/%s.txt, which is missing: its "

@@ -5,12 +5,12 @@
 
 #include <unistd.h>
 
-#include "campaign/campaign.h"
-#include "ledger/db.h"
-#include "driver.h"
-#include "campaign/grid.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
+#include "campaign/campaign.h"
+#include "campaign/grid.h"
+#include "ledger/db.h"
+#include "driver.h"
 
 #define PATHLEN 4096
 #define PATHX (PATHLEN + 256)

@@ -7,13 +7,13 @@
 #include <dirent.h>
 #include <sys/stat.h>
 
-#include "drv.h"
 #include "h5sum.h"
 #include "layout.h"
-#include "packing.h"
 #include "campaign/safe.h"
-#include "stop.h"
 #include "job/worker.h"
+#include "drv.h"
+#include "packing.h"
+#include "stop.h"
 
 /* A run the database has no attempt of (it was rebuilt from the files) gets back the
  * attempts whose files the sweep kept aside (failed/, damaged/: ID.attemptN.h5), in
@@ -157,8 +157,8 @@ static int input_gone(drv *d, const char *id)
 	layout_file(d->dir, 0, id, LAY_ARGS, args, sizeof args);
 	if (!exists(args))
 		return 1;
-	packing_of_args(d, id, key, sizeof key);
-	return key[0] && !packing_present(d, key);
+	packing_of_args(d->dir, id, key, sizeof key);
+	return key[0] && !packing_present(d->dir, key);
 }
 
 /* A DONE line from a worker: the output file decides; without one, the exit code. */

@@ -3,6 +3,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "layout.h"
 #include "campaign/safe.h"
@@ -10,11 +11,11 @@
 /* The packing a run's argument file starts it from ("" when it settles itself, or has
  * no argument file): the argument file decides, since a resumed run keeps the one it
  * was given. */
-void packing_of_args(const drv *d, const char *id, char *key, size_t len)
+void packing_of_args(const char *dir, const char *id, char *key, size_t len)
 {
-	char p[PATHX], line[1200];
+	char p[4400], line[1200];
 	key[0] = 0;
-	layout_file(d->dir, 0, id, LAY_ARGS, p, sizeof p);
+	layout_file(dir, 0, id, LAY_ARGS, p, sizeof p);
 	FILE *f = fopen(p, "r");
 	if (!f)
 		return;
@@ -31,9 +32,9 @@ void packing_of_args(const drv *d, const char *id, char *key, size_t len)
 	fclose(f);
 }
 
-int packing_present(const drv *d, const char *key)
+int packing_present(const char *dir, const char *key)
 {
-	char txt[PATHX];
-	layout_cache_particles(d->dir, key, txt, sizeof txt);
-	return exists(txt);
+	char txt[4400];
+	layout_cache_particles(dir, key, txt, sizeof txt);
+	return access(txt, F_OK) == 0;
 }

@@ -6,11 +6,9 @@
 
 #include <stddef.h>
 
-#include "drv.h"
-
-/* The key a run's argument file starts it from ("" none). */
-void packing_of_args(const drv *d, const char *id, char *key, size_t len);
+/* The key run id's argument file in campaign directory dir starts it from ("" none). */
+void packing_of_args(const char *dir, const char *id, char *key, size_t len);
 /* Does the packing's particle file (what the runs start from) exist? */
-int packing_present(const drv *d, const char *key);
+int packing_present(const char *dir, const char *key);
 
 #endif

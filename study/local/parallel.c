@@ -14,13 +14,13 @@
 #include <sys/wait.h>
 #include <time.h>
 
-#include "drv.h"
 #include "dirs.h"
 #include "provenance.h"
 #include "campaign/safe.h"
-#include "stop.h"
-#include "report/watch.h"
 #include "job/worker.h"
+#include "report/watch.h"
+#include "drv.h"
+#include "stop.h"
 
 /* Copy src to dst (temporary name, rename), executable. */
 static int copy_exe(const char *src, const char *dst, sb_err *e)

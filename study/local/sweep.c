@@ -10,10 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "drv.h"
 #include "dirs.h"
 #include "h5sum.h"
 #include "layout.h"
+#include "drv.h"
 
 /* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
  * is recorded with the reason, the result row goes, and the run is pending again. */

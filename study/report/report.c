@@ -9,11 +9,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "rule/adapt.h"
 #include "csv.h"
-#include "ledger/db.h"
-#include "dtext.h"
 #include "layout.h"
+#include "ledger/db.h"
+#include "rule/adapt.h"
+#include "dtext.h"
 #include "watch.h"
 
 static int open_ro(st_db *d, const char *path, sb_err *e)

@@ -7,10 +7,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "jtail.h"
 #include "layout.h"
 #include "lock.h"
 #include "dtext.h"
+#include "jtail.h"
 
 /* a rate is measured over at least this much wall time (the engine's journal reaches
  * the disk in stdio buffers, so t advances in steps), and over the last this much at

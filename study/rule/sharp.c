@@ -5,9 +5,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "adapt.h"
 #include "km.h"
 #include "quantile.h"
+#include "adapt.h"
 
 long sharp_min_replicates(int result, double level)
 {
