@@ -38,13 +38,13 @@ rooms() {
 			print $1 " -> " $2 " (" $3 "): " a[1] "/ may not call " b[1] "/" }'
 }
 
-# loops LEVEL < EDGES: the circles among sub-folders (LEVEL folders) or files (LEVEL
-# files) of study/ and analysis/; tsort names the members of each circle it meets
+# loops LEVEL < EDGES: the members of the circles among sub-folders (LEVEL folders) or
+# files (LEVEL files) of study/ and analysis/, as tsort finds them, on one line
 loops() {
 	awk -v level="$1" '
 		function node(p,   n, a) { n = split(p, a, "/"); return level == "files" ? p : n > 2 ? a[1] "/" a[2] : a[1] "/" }
 		$1 ~ /^(study|analysis)\// { f = node($1); t = node($2); if (f != t) print f, t }' | sort -u |
-		tsort 2>&1 >/dev/null | sed -n 's/^tsort: //p' | grep -v 'input contains a loop'
+		tsort 2>&1 >/dev/null | sed -n 's/^tsort: //p' | grep -v 'input contains a loop' | sort -u | tr '\n' ' '
 }
 
 # The checker, on made-up calls: a lib/ module calling study/, analysis/ calling
