@@ -8,7 +8,7 @@
 # Generated (between "<!-- docs_lists NAME: begin -->" and "... end -->" markers, or
 # study's own "<!-- study columns: begin/end -->"):
 #   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
-#   result-columns  docs/database.md     from `bin/study columns` (study/results.c's table)
+#   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)

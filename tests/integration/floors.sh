@@ -2,7 +2,7 @@
 # floors.sh - the code's floors hold: every call between object files (read with nm
 # from the build the suite tests) points down the order core < lib < {study, analysis},
 # never between study/ and analysis/, and no two sub-folders of a room, and no two
-# files, call each other in a circle (docs/layers.md). A check of the checker first:
+# files, call each other in a circle (lib/README.md). A check of the checker first:
 # a made-up upward call and a made-up circle must fail.
 cd "$(dirname "$0")/../.."
 source tests/integration/lib.sh
