@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-/* Exit codes are part of the CLI contract (README "Exit codes"): the study driver
+/* Exit codes are part of the CLI contract (docs/scene.md, "Exit codes"): the study driver
  * reads them to tell a bad scene from a physics blow-up. */
 enum sb_code {
 	SB_OK = 0,

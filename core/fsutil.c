@@ -92,7 +92,7 @@ int fs_fsync_path(const char *path, sb_err *e)
 }
 
 /* The rename into place replaces only a regular file: a device, FIFO, socket,
- * directory or link that stands at the path (README, "Output"; bin/shake refuses those
+ * directory or link that stands at the path (docs/output.md; bin/shake refuses those
  * before it runs, this is for one that appeared meanwhile) is left alone and the write
  * fails. Where nothing stands, RENAME_NOREPLACE takes the name only if it is still
  * free. Where a regular file stands, a window of microseconds remains between lstat

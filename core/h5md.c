@@ -13,7 +13,7 @@ void h5w_init(void)
 	/* HDF5 1.10 frees a file's structures when H5Fclose fails (a full disk while it
 	 * flushes) but keeps the id, and its exit handler then closes that id a second
 	 * time: a segfault in H5F__close_cb at exit, which the study driver would take for
-	 * a killed engine (exit 2 is what an I/O fault must give: README, "Exit codes").
+	 * a killed engine (exit 2 is what an I/O fault must give: docs/scene.md, "Exit codes").
 	 * Without the handler nothing touches the stale id; every file is closed by its
 	 * writer anyway. Only effective before the library's first use, hence called
 	 * first (a second call, or one after some other use, fails harmlessly). The flaw

@@ -1,4 +1,4 @@
-/* h5md.h - writing HDF5 in the H5MD 1.1 conventions (layout: README.md, "Output"):
+/* h5md.h - writing HDF5 in the H5MD 1.1 conventions (layout: docs/output.md):
  * attributes, groups, fixed datasets and time-dependent elements (a group holding
  * step, time and value, the three sharing their first dimension). Every dataset with
  * data is chunked and checksummed (Fletcher32), large ones compressed (shuffle +

@@ -1,4 +1,4 @@
-/* h5out.c - the run's HDF5 file (H5MD 1.1; layout: README.md, "Output") and its XDMF
+/* h5out.c - the run's HDF5 file (H5MD 1.1; layout: docs/output.md) and its XDMF
  * sidecar, assembled from the journal and the final state when the run ends:
  *   /             attributes: status, results (waiting time, overlap record, ...)
  *   /h5md         version 1.1, author, creator

@@ -1,5 +1,5 @@
 /* h5out.h - a run's HDF5 output (and its XDMF sidecar), assembled from the journal
- * and the final state (h5out.c; layout in README.md). */
+ * and the final state (h5out.c; layout in docs/output.md). */
 #ifndef SB_H5OUT_H
 #define SB_H5OUT_H
 

@@ -85,7 +85,7 @@ struct sb_scene {
 };
 typedef struct sb_scene sb_scene;
 
-/* output = none: a run without a run file (README, "Output"), for a preparation that
+/* output = none: a run without a run file (docs/output.md), for a preparation that
  * only writes write_particles / write_lammps or a run whose exit code is all that is
  * wanted. Never what the study driver passes: it reads every run's file. */
 #define SB_OUTPUT_NONE "none"

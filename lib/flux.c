@@ -39,7 +39,7 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 		return sb_errf(e, SB_EIO, "%s: /observables/flux datasets have inconsistent sizes", path);
 	}
 	/* a NaN or Inf would become a mean and an interval printed as numbers; the engine
-	 * writes none (README, "Exit codes"), so a file that has one is refused
+	 * writes none (docs/scene.md, "Exit codes"), so a file that has one is refused
 	 * (docs/inputs.md, "Run files") */
 	const struct {
 		const char *name;

@@ -59,7 +59,7 @@ static void read_column(hid_t f, const rcol *c, h5val *v, int *bad, sb_err *e)
 				c->type == RT_TEXT ? "string" : c->type == RT_INT ? "integer" : "number");
 		*bad = 1;
 	} else if (!rc && c->type == RT_REAL && !isfinite(v->d)) {
-		/* the engine writes no NaN or Inf (README, "Exit codes"): a waiting time of
+		/* the engine writes no NaN or Inf (docs/scene.md, "Exit codes"): a waiting time of
 		 * Inf would enter a median as a time (docs/inputs.md, "Run files") */
 		if (!*bad)
 			sb_errf(e, SB_EIO, "%s@%s = %g: not a finite number", obj, name, v->d);

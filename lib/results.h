@@ -1,6 +1,6 @@
 /* results.h - the result columns of a run, in one table: name, SQL type, where the
  * value lives in the run's HDF5 file, unit and definition. The HDF5 reader (h5sum),
- * the `result` table's schema, the ingest, the `runs` view and the README's table of
+ * the `result` table's schema, the ingest, the `runs` view and docs/database.md's table of
  * columns (`study columns`) are all generated from it, so no two copies can drift.
  * Every value is the engine's: the database never recomputes a result, it copies it. */
 #ifndef LIB_RESULTS_H
@@ -31,7 +31,7 @@ const rcol *results_table(size_t *n);
 /* Index of a column by name, -1 if none. */
 int results_find(const char *name);
 
-/* Prints the table as the Markdown table of study/README.md. */
+/* Prints the table as the Markdown table of docs/database.md ("Result columns"). */
 void results_markdown(FILE *f);
 
 #endif

@@ -1,5 +1,5 @@
 /* schema.c - every table and view of the study database (schema.h). The tables are
- * documented in study/README.md ("Schema") and analysis/README.md ("Derived numbers"). */
+ * documented in docs/database.md ("Schema", "Derived numbers"). */
 #include "schema.h"
 
 #include <stdio.h>
