@@ -334,25 +334,26 @@ SB_INLINE void sb_compressi(int *dst, sb_vi v, sb_cmask c)
 SB_INLINE void sb_transpose(sb_vd r[SB_W])
 {
 #if SB_W == 8
+	/* pairs interleaved, then 128-bit blocks gathered twice: every shuffle of the last
+	 * two stages takes whole 128-bit blocks, one instruction without an index vector
+	 * on AVX-512 (vshuff64x2) */
 	const sb_vl lo1 = {0, 8, 2, 10, 4, 12, 6, 14}, hi1 = {1, 9, 3, 11, 5, 13, 7, 15};
-	const sb_vl lo2 = {0, 1, 8, 9, 4, 5, 12, 13}, hi2 = {2, 3, 10, 11, 6, 7, 14, 15};
-	const sb_vl lo4 = {0, 1, 2, 3, 8, 9, 10, 11}, hi4 = {4, 5, 6, 7, 12, 13, 14, 15};
-	sb_vd t[8];
+	const sb_vl ev = {0, 1, 4, 5, 8, 9, 12, 13}, od = {2, 3, 6, 7, 10, 11, 14, 15};
+	sb_vd t[8], u[8];
 	for (int k = 0; k < 8; k += 2) {
 		t[k] = __builtin_shuffle(r[k], r[k + 1], lo1);
 		t[k + 1] = __builtin_shuffle(r[k], r[k + 1], hi1);
 	}
-	for (int k = 0; k < 8; k += 4)
-		for (int a = 0; a < 2; a++) {
-			r[k + a] = __builtin_shuffle(t[k + a], t[k + a + 2], lo2);
-			r[k + a + 2] = __builtin_shuffle(t[k + a], t[k + a + 2], hi2);
-		}
-	for (int a = 0; a < 4; a++) {
-		t[a] = __builtin_shuffle(r[a], r[a + 4], lo4);
-		t[a + 4] = __builtin_shuffle(r[a], r[a + 4], hi4);
+	for (int k = 0; k < 8; k += 4) {
+		u[k] = __builtin_shuffle(t[k], t[k + 2], ev);
+		u[k + 1] = __builtin_shuffle(t[k + 1], t[k + 3], ev);
+		u[k + 2] = __builtin_shuffle(t[k], t[k + 2], od);
+		u[k + 3] = __builtin_shuffle(t[k + 1], t[k + 3], od);
 	}
-	for (int k = 0; k < 8; k++)
-		r[k] = t[k];
+	for (int k = 0; k < 4; k++) {
+		r[k] = __builtin_shuffle(u[k], u[k + 4], ev);
+		r[k + 4] = __builtin_shuffle(u[k], u[k + 4], od);
+	}
 #elif SB_W == 4
 	const sb_vl lo1 = {0, 4, 2, 6}, hi1 = {1, 5, 3, 7}, lo2 = {0, 1, 4, 5}, hi2 = {2, 3, 6, 7};
 	const sb_vd t0 = __builtin_shuffle(r[0], r[1], lo1), t1 = __builtin_shuffle(r[0], r[1], hi1),
