@@ -427,15 +427,24 @@ SB_INLINE void cpa(sb_kdata *d, const int nval, const sb_integ *in, sb_state *st
 	scr->out = fl.out != 0;
 }
 
+/* AVX-512 at its native width keeps an intrinsics form of cpa, for speed only
+ * (kvec_cp512.h says by how much and why) */
+#if SB_X86_NATIVE && SB_W == 8 && !defined(SB_NO_CP512)
+#include "kvec_cp512.h"
+#define CPA cpa512
+#else
+#define CPA cpa
+#endif
+
 static void correct_predict(sb_kdata *d, const sb_integ *in, sb_state *st, double gy, const sb_nlist *nl,
 			    sb_screen *scr)
 {
 	if (in->nval == 6)
-		cpa(d, 6, in, st, gy, nl, scr);
+		CPA(d, 6, in, st, gy, nl, scr);
 	else if (in->nval == 5)
-		cpa(d, 5, in, st, gy, nl, scr);
+		CPA(d, 5, in, st, gy, nl, scr);
 	else
-		cpa(d, 3, in, st, gy, nl, scr);
+		CPA(d, 3, in, st, gy, nl, scr);
 }
 
 /* ---- the candidate scan ---- */
