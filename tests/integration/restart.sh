@@ -5,6 +5,7 @@
 # kill moments with gear5 and one with verlet. SIGTERM exits with code 7, leaves a
 # checkpoint, and the rerun resumes to the same file. A checkpoint of other physics is
 # refused (code 1) unless restart = no; restart = yes without a checkpoint is refused.
+# tier: slow: five runs of 5 s, each killed and resumed
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

@@ -4,6 +4,7 @@
 # the CPU time of a resumed run (the sum of its attempts), and degenerate scenes (no
 # grains, one grain, only walls, only an intruder) with every observable on: a complete
 # file or a clear refusal, never a crash.
+# tier: slow: runs interrupted and resumed, and degenerate scenes
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
