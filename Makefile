@@ -31,6 +31,10 @@ KV_FLAGS_w8     = -Wno-psabi -DSB_KV_W=8 $(if $(filter x86_64-%,$(TARGET)),-marc
 BASEFLAGS = -std=c11 -Wall -Wextra -Werror -ffp-contract=off -fno-math-errno -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 SAN     ?= 0
 V       ?= 0
+# make check and make quick: T=REGEX runs only the tests whose name matches (tests/run.sh);
+# the builds run NPROC compilers at once and the suite NPROC tests at once (TEST_JOBS)
+T       ?=
+NPROC   ?= $(shell nproc 2>/dev/null || echo 2)
 
 ifeq ($(SAN),1)
   BUILD   := build/san
@@ -61,13 +65,16 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check bench bench-accuracy stress demo help clean tests faults fuzz reproduce docs
+.PHONY: all deps check quick bench bench-accuracy stress demo help clean tests faults fuzz reproduce docs
 all: $(SHAKE)
 
 help:
 	@echo "make            build bin/shake"
 	@echo "make deps       install the Debian packages shakebox needs (apt-get)"
-	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build)"
+	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build), NPROC tests"
+	@echo "                at a time; T=REGEX only the tests whose name matches (make check T=study_run)"
+	@echo "make quick      the tier for daily work, under 2 minutes: make check without the scripts marked"
+	@echo "                slow (docs/testing.md, \"Tiers\"; T= works here too)"
 	@echo "make bench      speed: shakebox vs LAMMPS gran/hooke on the paper scene, ns/particle-step"
 	@echo "make bench-accuracy  run time against error for every integrator (work-precision plot)"
 	@echo "make bench-study  what a study costs: the claims' questions by fixed grids and by stop rules, adaptive"
@@ -88,7 +95,8 @@ help:
 	@echo "make docs       rewrite the docs' generated lists (scene keys, result columns) from the code"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
-	@echo "       SAN=1 (sanitizer build in build/san); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"
+	@echo "       SAN=1 (sanitizer build in build/san), NPROC (compilers and tests at once, default: the CPUs),"
+	@echo "       T=REGEX (check, quick); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"
 
 # Installs what is missing; a no-op when everything is there.
 deps:
@@ -150,11 +158,21 @@ tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
 # the integration scripts; the release bin/shake runs the regression test too, on
-# every kernel path this CPU has. It ends with "N passed, N failed".
+# every kernel path this CPU has. It ends with "N passed, N failed". The two builds
+# one after the other: they share build/fuzz and build/faults.
 check: build/.deps-ok
-	$(Q)$(MAKE) --no-print-directory all tests
-	$(Q)$(MAKE) --no-print-directory SAN=1 tests
-	$(Q)bash tests/run.sh
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all tests
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) SAN=1 tests
+	$(Q)T='$(T)' TEST_JOBS=$(NPROC) bash tests/run.sh
+
+# make check without the scripts whose header says "# tier: slow" (tests/run.sh)
+quick: build/.deps-ok
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all tests
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) SAN=1 tests
+	$(Q)T='$(T)' TEST_JOBS=$(NPROC) bash tests/run.sh --quick
+
+# -jNPROC, unless make was given -j itself (then its job server is shared)
+BUILD_JOBS = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 
 # Fault injection (I/O faults at random moments, damaged outputs, deleted run
 # directories and packing caches, litter, a second driver) against the sanitizer

@@ -9,6 +9,7 @@
 # study's own "<!-- study columns: begin/end -->"):
 #   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
 #   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
+#   test-tiers      docs/testing.md      from `tests/run.sh --tiers` (the scripts' "# tier:" lines)
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
@@ -18,6 +19,7 @@
 #                   observable on: the same groups; every root and /provenance attribute
 #                   and every member of a listed group named in its row
 #   docs-map        README.md links every docs/*.md, and every docs/ file it names exists
+#   fuzz-inputs     docs/testing.md gives fuzz_quick.sh's number of inputs
 # SHAKE and STUDY name the binaries (default: bin/shake, bin/study of this clone).
 # DOCS_OVERRIDE=DIR reads a doc from DIR/PATH where that file exists (check only): how
 # tests/integration/docs_lists.sh shows that a broken list fails. DOCS_LISTS_CACHE=DIR
@@ -63,6 +65,8 @@ gen_scene_keys() {
 }
 
 gen_result_columns() { "$STUDY" columns; }
+
+gen_test_tiers() { bash "$REPO/tests/run.sh" --tiers; }
 
 # section FILE BEGIN END: the lines between the two marker lines
 section() { awk -v b="$2" -v e="$3" '$0 == e { on = 0 } on { print } $0 == b { on = 1 }' "$1"; }
@@ -113,6 +117,7 @@ same_set() {
 
 generated scene-keys docs/scene.md '<!-- docs_lists scene-keys: begin -->' '<!-- docs_lists scene-keys: end -->' gen_scene_keys
 generated result-columns docs/database.md '<!-- study columns: begin -->' '<!-- study columns: end -->' gen_result_columns
+generated test-tiers docs/testing.md '<!-- docs_lists test-tiers: begin -->' '<!-- docs_lists test-tiers: end -->' gen_test_tiers
 [ "$MODE" = write ] && exit 0
 
 # --- the tools: analysis/analysis.mk's AN_MAIN ---
@@ -186,6 +191,16 @@ if [ -s "$TMP/all.h5" ] || (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ra
 		fail run-file.members "in the run file but not in docs/output.md's row of its group:$bad"
 else
 	fail run-file "the engine did not write a run file: $(tail -n 3 "$TMP/run.log")"
+fi
+
+# --- the number of inputs of make check's fuzz run ---
+n=$(sed -n 's/^N="${FUZZ_QUICK_INPUTS:-\([0-9]*\)}"$/\1/p' "$REPO/tests/integration/fuzz_quick.sh")
+if [ -z "$n" ]; then
+	fail fuzz-inputs "no N=\"\${FUZZ_QUICK_INPUTS:-NUMBER}\" line in tests/integration/fuzz_quick.sh"
+elif grep -q "fuzz_quick.sh\` runs $n inputs" "$(doc docs/testing.md)"; then
+	ok fuzz-inputs
+else
+	fail fuzz-inputs "docs/testing.md does not say that fuzz_quick.sh runs $n inputs (its FUZZ_QUICK_INPUTS default)"
 fi
 
 # --- the map of the docs in README.md ---

@@ -1,25 +1,115 @@
 #!/usr/bin/env bash
-# run.sh - the whole suite: the sanitizer build of every unit and physics test
-# binary, then every integration script against bin/shake. Each test prints
-# "ok ID" or "FAIL ID: why"; a program that dies without saying FAIL counts as one
-# failure. Ends with "N passed, N failed" and exits non-zero on any failure.
+# run.sh - the suite: the sanitizer build of every unit and physics test binary, then
+# every integration script against the sanitizer build of bin/shake, TEST_JOBS (default:
+# the CPUs) at a time. Each test prints "ok ID" or "FAIL ID: why"; a program that dies
+# without saying FAIL counts as one failure. One line per test in a fixed order whatever
+# finishes first; ends with "N passed, N failed" and exits non-zero on any failure.
+#
+#   bash tests/run.sh [--quick] [PATTERN]   # PATTERN: an extended regex on the test names
+#   bash tests/run.sh --tiers               # the marked scripts as a Markdown table
+#
+# An integration script says in its header how it must be run, one line each, with why:
+#   # tier: slow: WHY    left out of --quick (make quick)
+#   # tier: alone: WHY   never beside another test (it runs after the others)
+# docs/testing.md, "Tiers", lists them (generated from these lines by --tiers).
 set -u
 cd "$(dirname "$0")/.."
-pass=0 fail=0
-log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+quick=0 pattern=${T:-}
+while [ $# -gt 0 ]; do
+	case $1 in
+	--quick) quick=1 ;;
+	--tiers) tiers=1 ;;
+	-h | --help)
+		sed -n '2,/^set -u/p' "$0" | sed '$d; s/^# \{0,1\}//'
+		exit 0
+		;;
+	-*) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+	*) pattern=$1 ;;
+	esac
+	shift
+done
+
+# every script's tier lines, read once: TIER[SCRIPT:WORD]=WHY
+declare -A TIER=()
+while IFS= read -r line; do
+	f=${line%%:# tier: *} rest=${line#*:# tier: }
+	TIER[$f:${rest%%: *}]=${rest#*: }
+done < <(grep -H '^# tier: [a-z]*: ' tests/integration/*.sh)
+
+if [ -n "${tiers:-}" ]; then
+	printf '| script | tier | why |\n|---|---|---|\n'
+	for t in tests/integration/*.sh; do
+		for w in slow alone; do
+			why=${TIER[$t:$w]:-}
+			[ -n "$why" ] && printf '| `%s` | %s | %s |\n' "${t##*/}" "$w" "$why"
+		done
+	done
+	exit 0
+fi
+
 # Integration scripts drive the sanitizer build of bin/shake too, so that every path
 # they reach is checked by ASan/UBSan.
 export SHAKE="${SHAKE:-$PWD/build/san/bin/shake}"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+jobs=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+case $jobs in '' | *[!0-9]* | 0) echo "run.sh: TEST_JOBS must be a whole number >= 1, got '$jobs'" >&2; exit 2 ;; esac
 
-run_one() { # name, command...
-	local name=$1; shift
-	local t0=$SECONDS
-	"$@" >"$log" 2>&1
-	local rc=$?
-	local p f
+# --- the tests: names, commands, how they run ---
+names=() cmds=() alone=() first=()
+add() { # name alone(0/1) slow-first(0/1) command
+	local n=$1 a=$2 s=$3
+	shift 3
+	if [ -n "$pattern" ]; then
+		[[ $n =~ $pattern ]] || return 0
+	fi
+	names+=("$n") alone+=("$a") first+=("$s") cmds+=("$*")
+}
+for t in build/san/tests/*/*; do
+	[ -x "$t" ] && [ -f "$t" ] || continue
+	case "$t" in *.d) continue ;; esac
+	add "${t#build/san/}" 0 0 "$t"
+done
+for t in tests/integration/*.sh; do
+	[ -f "$t" ] || continue
+	case "$t" in */lib.sh) continue ;; esac
+	slow=0 a=0
+	[ -n "${TIER[$t:slow]:-}" ] && slow=1
+	[ -n "${TIER[$t:alone]:-}" ] && a=1
+	[ "$quick" = 1 ] && [ "$slow" = 1 ] && continue
+	add "$t" "$a" "$slow" bash "$t"
+done
+n=${#names[@]}
+if [ "$n" -eq 0 ]; then
+	echo "run.sh: no test matches '${pattern}' (names like tests/unit/params, tests/integration/study_run.sh)" >&2
+	exit 2
+fi
+
+# The order lines are printed in: every test that may run beside others, in the order
+# above, then the ones that run alone. The order they are started in: the slow ones
+# first, so that the last minutes are not one long script on one CPU.
+order=() start=() late=()
+for ((i = 0; i < n; i++)); do [ "${alone[i]}" = 0 ] && order+=("$i"); done
+for ((i = 0; i < n; i++)); do [ "${alone[i]}" = 1 ] && order+=("$i") && late+=("$i"); done
+for ((i = 0; i < n; i++)); do [ "${alone[i]}" = 0 ] && [ "${first[i]}" = 1 ] && start+=("$i"); done
+for ((i = 0; i < n; i++)); do [ "${alone[i]}" = 0 ] && [ "${first[i]}" = 0 ] && start+=("$i"); done
+
+D=$(mktemp -d "${TMPDIR:-/tmp}/shake-run.XXXXXX")
+trap 'rm -rf "$D"' EXIT
+launch() { # index: runs the test in the background; DIR/i.rc gets "status seconds"
+	local i=$1
+	(
+		t0=$(date +%s%N)
+		eval "${cmds[i]}" >"$D/$i.log" 2>&1 </dev/null
+		rc=$?
+		echo "$rc $((($(date +%s%N) - t0) / 1000000))" >"$D/$i.tmp" && mv "$D/$i.tmp" "$D/$i.rc"
+	) &
+}
+
+pass=0 fail=0 sum_ms=0
+report() { # index: the test's lines, from its log
+	local i=$1 name=${names[$1]} log="$D/$1.log" rc ms p f
+	read -r rc ms <"$D/$i.rc"
 	p=$(grep -c '^ok ' "$log")
 	f=$(grep -c '^FAIL ' "$log")
 	grep -E '^(FAIL|ok |SKIP )' "$log" | sed 's/^/  /' | grep -v '^  ok ' || true
@@ -28,19 +118,35 @@ run_one() { # name, command...
 		tail -n 15 "$log" | sed 's/^/    /'
 		f=1
 	fi
-	pass=$((pass + p)); fail=$((fail + f))
-	printf '%-48s %3d ok %3d failed  (%ds)\n' "$name" "$p" "$f" $((SECONDS - t0))
+	pass=$((pass + p)) fail=$((fail + f)) sum_ms=$((sum_ms + ms))
+	printf '%-48s %3d ok %3d failed  (%ds)\n' "$name" "$p" "$f" $(((ms + 500) / 1000))
 }
 
-for t in build/san/tests/*/*; do
-	[ -x "$t" ] && [ -f "$t" ] || continue
-	case "$t" in *.d) continue ;; esac
-	run_one "${t#build/san/}" "$t"
+t_start=$(date +%s%N)
+next=0 shown=0 running=0
+flush() { # prints, in order, every test that has ended
+	while [ "$shown" -lt "$n" ] && [ -e "$D/${order[shown]}.rc" ]; do
+		report "${order[shown]}"
+		shown=$((shown + 1))
+	done
+}
+while [ "$next" -lt "${#start[@]}" ] || [ "$running" -gt 0 ]; do
+	while [ "$running" -lt "$jobs" ] && [ "$next" -lt "${#start[@]}" ]; do
+		launch "${start[next]}"
+		next=$((next + 1)) running=$((running + 1))
+	done
+	wait -n
+	running=0
+	for i in "${start[@]:0:next}"; do [ -e "$D/$i.rc" ] || running=$((running + 1)); done
+	flush
 done
-for t in tests/integration/*.sh; do
-	[ -f "$t" ] || continue
-	case "$t" in */lib.sh) continue ;; esac
-	run_one "$t" bash "$t"
+wait
+for i in "${late[@]}"; do
+	launch "$i"
+	wait
+	flush
 done
+flush
+echo "# $n tests, $jobs at a time: $((($(date +%s%N) - t_start) / 1000000000)) s of wall time, $((sum_ms / 1000)) s summed over the tests"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

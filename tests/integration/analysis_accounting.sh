@@ -9,6 +9,7 @@
 # waiting times (risen before the failure: an event; else censored at the failure) and
 # in the flux statistics (their periods before the failure used), the earlier version
 # left out by default and used with --all-versions, the unreadable file reported.
+# tier: slow: campaigns with failed, damaged and older-version runs, read by every tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

@@ -5,6 +5,7 @@
 # the count-weighted displacement field (Fig. 1), the fraction risen (waiting); the
 # legs of an up-down ramp with a hold (the hold's periods left out, the running mean
 # kept within a leg); Fig. 1 and 3 of a campaign read without an intruder system.
+# tier: slow: campaigns whose answers the tools must agree on
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

@@ -9,6 +9,7 @@
 # censored and counted; runs without a trajectory counted, not used; its own log-rank
 # test), and Fig. 4 with every replicate and the median run highlighted. Each output:
 # CSV, stored rows, PNG and PDF, nothing on stderr.
+# tier: slow: campaigns that the referee checks must pass and fail
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

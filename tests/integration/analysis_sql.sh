@@ -7,6 +7,7 @@
 # as the param table has them and NULL for keys that are not grouping keys; an
 # `analysis` table of an earlier version (without those columns) given them, its rows
 # kept.
+# tier: slow: a campaign for the SQL examples
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 README="$REPO/docs/database.md"

@@ -4,6 +4,7 @@
 # campaign run by bin/study, then onset, waiting, figures and hysteresis on them:
 # exit codes, nothing on stderr, tables, CSV and PNG files, the rows stored in the `analysis` table,
 # reproducible bootstrap intervals on a second run, and the error paths.
+# tier: slow: campaigns for every analysis tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

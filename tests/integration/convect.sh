@@ -8,6 +8,7 @@
 # rms per block, mean after the transient), independently of analysis/measure/convect.c; the
 # bed shaken at 6 Hz (Gamma 1.45) convects more than at 3 Hz (0.36). Then the options:
 # --band, --no-store, reproducibility, errors.
+# tier: slow: a campaign long enough for convection rolls
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

@@ -47,4 +47,6 @@ broken campaigns campaigns/README.md '/^| `reproduce\/q4_large\.campaign` |/d'
 broken run-file.groups docs/output.md '/^| `\/observables\/energy`/d' 'run-file.groups run-file.members'
 broken run-file.members docs/output.md 's/`neighbour_builds`; //'
 broken docs-map README.md 's#docs/cluster\.md#docs/slurm.md#g'
+broken test-tiers.current docs/testing.md '/^| `study_ssh\.sh` | slow |/d'
+broken fuzz-inputs docs/testing.md 's/fuzz_quick\.sh` runs \([0-9]*\) inputs/fuzz_quick.sh` runs 1\1 inputs/'
 finish

@@ -18,6 +18,7 @@
 #   * a second driver on the same campaign is refused with its own exit code (4).
 # `make faults` runs it with FAULT_ROUNDS rounds of the I/O fault armed at random
 # moments; `make check` runs one round armed from the start.
+# tier: slow: a campaign per fault (I/O at random moments, damaged and deleted outputs)
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"

@@ -7,6 +7,7 @@
 # with their band (from the step outline in waiting_km_band.csv), Fig. 1 as the box of
 # the runs' width with its walls, legends in words and symbols instead of parameter
 # keys; a PDF drawn again is the same file.
+# tier: slow: the campaigns of the paper figures, small
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

@@ -6,6 +6,7 @@
 # (the sanitizer builds). One FAIL per distinct finding (crash, sanitizer report, hang,
 # undocumented exit code), with the command that reproduces it; the findings stay in
 # build/fuzz/quick-runfile/. About a minute: the seed campaign, then ~1 s an input.
+# tier: slow: a seed campaign, then every mutated run file read by a tool
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 FUZZ="${FUZZ_BIN:-$REPO/build/fuzz/fuzz}"

@@ -4,6 +4,7 @@
 # the input (reals exactly, compared at %.17g), /provenance is complete, status is ok,
 # the file follows H5MD 1.1 (/h5md, particle groups with box, step/time/value elements,
 # units), and the datasets and the XDMF sidecar have the shapes the run implies.
+# tier: slow: a run for every observable switch
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

@@ -9,6 +9,7 @@
 # of a line is read, numbers in one strict decimal reading, and a byte-order mark or a
 # CRLF is read alike by the scene, campaign and particle readers. SIGTERM ends a long
 # preparation within seconds.
+# tier: slow: runs that must end by themselves within a time limit
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

@@ -9,6 +9,7 @@
 # run file. The nodes live in this test's directory: /dev/null and /dev/zero are never
 # touched (a device node here has their numbers, so an engine that renamed over it
 # would show it without harming the machine).
+# tier: slow: every kind of node at every output path, before and during a run
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 LIMIT=10 # timeout(1): a refused run ends at once, a run that is not refused shakes for ~15 s

@@ -3,6 +3,7 @@
 # 2 replicates of 8 s runs): the campaign runs, the tools run on it, REPRODUCTION.md holds
 # the claim's table, test and computed verdict, its figures exist, and a second call with
 # nothing changed simulates nothing and writes the same numbers.
+# tier: slow: the whole reproduction pipeline on a small campaign
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 for b in study shake waiting figures; do

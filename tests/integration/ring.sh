@@ -6,6 +6,7 @@
 # time, computed here from the file; the tool's table, CSV files, figure and stored
 # rows; and a case whose direction is clear: at rest, the grains around a heavy
 # intruder carry more force than the same grains without it.
+# tier: slow: campaigns for the ring observable
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1

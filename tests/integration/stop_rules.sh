@@ -5,6 +5,7 @@
 # ends bit-identical to an uninterrupted stopped run, a run whose rule never fires is
 # the plain run (censored when its intruder never rose), and the rules' preconditions
 # are input errors.
+# tier: slow: runs long enough for the stop rules to act
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

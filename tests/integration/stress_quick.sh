@@ -6,6 +6,7 @@
 # overlaps in a settled bed stay below 10 % of the radius; violent driving
 # (f = 30 Hz, Gamma = 72), a large intruder, zero damping and zero friction end as a valid
 # run or a clear blow-up, never with NaN in the output.
+# tier: slow: a short round of the numerical stress tests
 . "$(dirname "$0")/lib.sh"
 . "$REPO/tests/stress/lib.sh"
 cd "$TMP" || exit 1

@@ -10,6 +10,7 @@
 # study status shows the brackets and the interval; a search over the flux classifies a
 # run by bin/onset's Phi; a run that fails blocks its replicate; bad [onset] input and a
 # changed range are refused with file, line and key.
+# tier: slow: adaptive searches, one killed and resumed
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -6,6 +6,7 @@
 # as many replicates (same ids); a driver killed mid-campaign and run again ends with
 # the same runs; study status shows every point's interval; bad input is refused with
 # file, line and key.
+# tier: slow: auto replicates until a verdict, one killed
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -7,6 +7,7 @@
 # every run done and files bit-identical to an undisturbed campaign's. A done run whose
 # output was deleted is run again (recorded as a `damaged` attempt); --no-cache makes a
 # run whose packing is gone settle itself instead.
+# tier: slow: campaigns whose outputs and caches are deleted and run again
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -5,6 +5,7 @@
 # changed (and kept or forgotten on request), a database rebuilt from the files equals
 # the original, export prints the numbers as written, `finished` is when the engine
 # wrote the file, and the status ETA comes from what ran.
+# tier: slow: campaigns whose every result column is checked against the run files
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

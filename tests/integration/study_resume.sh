@@ -3,6 +3,7 @@
 # alone, or the driver with all its workers as in a crash) and run again ends with
 # the same database rows and bit-identical HDF5 outputs as an uninterrupted campaign;
 # SIGTERM stops it cleanly with exit code 7 and the runs resume from checkpoints.
+# tier: slow: campaigns killed at several moments and resumed
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -5,6 +5,7 @@
 # one; --retries bounds it (exhausted: pending, exit 7, said so); a run that blows up
 # (overlap) fails once, is not run again, and is listed with its reason by status and
 # list.
+# tier: slow: campaigns with engines killed and I/O faults, each run again
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"

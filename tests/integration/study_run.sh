@@ -3,6 +3,7 @@
 # ingested, the packing cache shared and bit-identical to settling per run, a second
 # run does nothing, an extension runs only the new points, a failing run keeps its
 # reason and is retried only with --retry-failed; status, list and export.
+# tier: slow: campaigns run, extended, interrupted
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

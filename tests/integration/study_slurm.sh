@@ -7,6 +7,7 @@
 # stopped one resumes), and the export equal to an uninterrupted local `study run`
 # of the same campaign, the run files bit-identical. Skips only where Slurm cannot
 # be installed.
+# tier: slow: a one-node Slurm cluster started, a job array run, cancelled and resubmitted
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -8,6 +8,7 @@
 # one down from the start (left out by --filter-hosts) and one whose ssh starts failing
 # mid-campaign, killing the job it was running; the campaign completes and its export
 # equals an uninterrupted local run's (timing and host columns aside).
+# tier: slow: an OpenSSH server, two campaigns over ssh (GNU parallel checks every host first) and a local reference
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -7,6 +7,7 @@
 # with h5dump and awk (box frame, running mean over one period, GSL's quantile, the
 # hysteresis), independently of analysis/measure/whale.c. Then the options: a skip longer than
 # the runs (every risen run too short), --no-store, reproducibility, errors.
+# tier: slow: a campaign of large beds
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1
