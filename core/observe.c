@@ -184,6 +184,19 @@ double obs_band_se(const sb_obs *o, double min_n)
 	return sqrt(var > 0 ? var / n : 0);
 }
 
+int obs_band_answered(const sb_obs *o, double min_n, double se, double thr, double k)
+{
+	const double e = obs_band_se(o, min_n);
+	if (!isfinite(e))
+		return 0;
+	if (!(thr > 0))
+		return e < se;
+	const double mean = o->band_sum / o->band_n, lo = mean - k * e, hi = mean + k * e;
+	const int on = lo >= thr || hi <= -thr; /* the class test is |Phi| >= thr */
+	const int off = lo > -thr && hi < thr;
+	return on || off;
+}
+
 int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
 	       long *nfield, sb_err *e)
 {

@@ -82,6 +82,13 @@ void obs_free(sb_obs *o);
 void obs_band_add(sb_obs *o);
 double obs_band_se(const sb_obs *o, double min_n);
 
+/* The flux stop rule's verdict on the band's running mean (docs/model.md, "Stop
+ * rules"): 1 when it is answered. With thr > 0, once the interval mean +- k SE
+ * lies wholly on one side of |Phi| = thr (both ends at or above thr in magnitude
+ * and of one sign, or both within -thr..thr); with thr = 0, once SE < se. Never
+ * below min_n periods. */
+int obs_band_answered(const sb_obs *o, double min_n, double se, double thr, double k);
+
 /* Record sizes, for the journal and the HDF5 layout. */
 int obs_flux_len(const sb_obs *o);   /* t, f, jtop[nl], jbot[nl] */
 int obs_field_len(const sb_obs *o);  /* t, periods, sx[ny*nx], sy[..], cnt[..] */

@@ -132,13 +132,24 @@ static const sb_param TABLE[] = {
 	{"stop", ENUM(stop), "", "none", 0, 0, "none|risen|flux", PF_LEN,
 	 "end the run when its question is answered: risen = stop_after seconds after the intruder rose "
 	 "(waiting time); flux = once the running mean of the per-period flux in the band stop_flux_lo..hi "
-	 "has a standard error below stop_flux_se (after stop_skip seconds and at least 20 periods)"},
+	 "is known (after stop_skip seconds and at least 20 periods): on which side of stop_flux_threshold "
+	 "it lies, by stop_flux_k standard errors, or, without a threshold, to a standard error below "
+	 "stop_flux_se"},
 	{"stop_after", REAL(stop_after), "s", "0", 0, 1e8, NULL, PF_LEN,
 	 "stop = risen: shaking kept after the rise (for the intruder's motion at the top)"},
 	{"stop_skip", REAL(stop_skip), "s", "0", 0, 1e8, NULL, PF_LEN,
 	 "stop = flux: the transient whose periods the rule ignores"},
 	{"stop_flux_se", REAL(stop_flux_se), "1/period", "0.05", 0, 1e6, NULL, PF_LEN | PF_MINX,
-	 "stop = flux: the standard error of the band's mean flux at which the run ends"},
+	 "stop = flux without stop_flux_threshold: the standard error of the band's mean flux at which the "
+	 "run ends"},
+	{"stop_flux_threshold", REAL(stop_flux_threshold), "1/period", "0", 0, 1e6, NULL, PF_LEN,
+	 "stop = flux: the flux |Phi| that divides convecting runs from still ones (the onset search's "
+	 "threshold); the run ends once its mean is stop_flux_k standard errors clear of it, on either side, "
+	 "and a run near it runs on; 0 = none (the stop_flux_se rule)"},
+	{"stop_flux_k", REAL(stop_flux_k), "", "3", 1, 100, NULL, PF_LEN,
+	 "stop = flux with stop_flux_threshold: the margin, in standard errors of the mean, by which the "
+	 "mean must clear the threshold (checked once a period, so a larger k guards a run near the "
+	 "threshold against a chance early verdict)"},
 	{"stop_flux_lo", REAL(stop_flux_lo), "", "0.4", 0, 1, NULL, PF_LEN,
 	 "stop = flux: lower edge of the band of flux lines, fraction of the settled surface height"},
 	{"stop_flux_hi", REAL(stop_flux_hi), "", "0.6", 0, 1, NULL, PF_LEN,

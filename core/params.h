@@ -51,7 +51,7 @@ struct sb_scene {
 	/* run length, and the rules that end a run when its question is answered */
 	double duration;
 	int stop;            /* enum sb_stop */
-	double stop_after, stop_skip, stop_flux_se, stop_flux_lo, stop_flux_hi;
+	double stop_after, stop_skip, stop_flux_se, stop_flux_lo, stop_flux_hi, stop_flux_threshold, stop_flux_k;
 	/* recording and files */
 	char output[SB_STR_MAX];
 	double traj_rate;

@@ -183,7 +183,8 @@ static void stop_rules(sb_sim *s)
 		if (s->step * sc->dt > sc->stop_skip)
 			obs_band_add(o);
 		o->have_band = 0;
-		if (!o->stop_step && obs_band_se(o, 20) < sc->stop_flux_se) {
+		if (!o->stop_step &&
+		    obs_band_answered(o, 20, sc->stop_flux_se, sc->stop_flux_threshold, sc->stop_flux_k)) {
 			o->stop_step = s->step + 1;
 			o->stop_rule = STOP_FLUX;
 		}

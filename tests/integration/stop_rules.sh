@@ -77,6 +77,17 @@ nf=$(rows f.h5 $J | wc -l)
 shake_run g.log "${FLUX[@]}" amplitude=2 duration=8 stop=flux stop_skip=2 stop_flux_se=1e-9 output=g.h5
 [ "$(attr g.h5 /stopped_by)" = none ] && [ "$(attr g.h5 /steps)" = 160000 ] && ok flux.tight_threshold_runs_out ||
 	fail flux.tight_threshold_runs_out "stopped_by '$(attr g.h5 /stopped_by)', steps $(attr g.h5 /steps)"
+# with a class threshold the same bed ends once its mean is 3 SE clear of it: far below a
+# threshold of 1e5, at the 20th period (7 s) whatever stop_flux_se asks; a threshold
+# its interval straddles (its mean flux is within 3 SE of 0.001 over the whole run)
+# keeps it running to its duration
+shake_run h.log "${FLUX[@]}" amplitude=2 duration=8 stop=flux stop_skip=2 stop_flux_se=1e-9 stop_flux_threshold=1e5 output=h.h5
+st=$(attr h.h5 /stop_time)
+[ "$(attr h.h5 /stopped_by)" = flux ] && awk -v s="$st" 'BEGIN { exit !(s > 6.99 && s < 7.01) }' &&
+	ok flux.class_clear_of_threshold_stops || fail flux.class_clear_of_threshold_stops "stopped_by '$(attr h.h5 /stopped_by)', stop_time $st"
+shake_run k.log "${FLUX[@]}" amplitude=2 duration=8 stop=flux stop_skip=2 stop_flux_se=1e3 stop_flux_threshold=0.001 output=k.h5
+[ "$(attr k.h5 /stopped_by)" = none ] && [ "$(attr k.h5 /steps)" = 160000 ] && ok flux.near_threshold_runs_on ||
+	fail flux.near_threshold_runs_on "stopped_by '$(attr k.h5 /stopped_by)', steps $(attr k.h5 /steps)"
 
 # preconditions are input errors
 shake_run p1.log "${FAST[@]}" stop=flux output=p1.h5

@@ -205,6 +205,50 @@ static void test_ring(void)
 	state_free(&st);
 }
 
+/* A band whose n periods alternate mean + d, mean - d: its mean is mean and its
+ * standard error d / sqrt(n - 1) (n even). */
+static sb_obs band_of(int n, double mean, double se)
+{
+	sb_obs o;
+	memset(&o, 0, sizeof o);
+	const double d = se * sqrt(n - 1.0);
+	for (int i = 0; i < n; i++) {
+		o.band_last = mean + (i % 2 ? -d : d);
+		obs_band_add(&o);
+	}
+	return o;
+}
+
+/* The flux stop rule's verdict, both ways: clear of the threshold on either side
+ * and either sign ends the run; straddling it, or too few periods, does not. */
+static void test_band_rule(void)
+{
+	const double thr = 2, k = 3, se = 0.05;
+	struct {
+		const char *id;
+		int n;
+		double mean, e, thr;
+		int want;
+	} c[] = {
+		{"observe.band_rule.on_clear", 26, 20, 1, thr, 1},      /* 17..23 */
+		{"observe.band_rule.on_negative", 26, -20, 1, thr, 1},  /* |Phi| >= 2 by k SE */
+		{"observe.band_rule.off_clear", 26, 0.1, 0.3, thr, 1},  /* -0.8..1.0 */
+		{"observe.band_rule.at_threshold", 26, 2.5, 1, thr, 0}, /* -0.5..5.5 straddles 2 */
+		{"observe.band_rule.just_on", 26, 2.6, 0.19, thr, 1},   /* 2.03..3.17 */
+		{"observe.band_rule.just_short", 26, 2.6, 0.21, thr, 0}, /* 1.97..3.23 */
+		{"observe.band_rule.crosses_zero", 26, 0.5, 1, thr, 0}, /* -2.5..3.5 */
+		{"observe.band_rule.too_few", 18, 20, 1, thr, 0},       /* 18 < 20 periods */
+		{"observe.band_rule.se_rule_met", 26, 20, 0.04, 0, 1},  /* no threshold: SE < 0.05 */
+		{"observe.band_rule.se_rule_not", 26, 0.1, 0.06, 0, 0},
+	};
+	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+		const sb_obs o = band_of(c[i].n, c[i].mean, c[i].e);
+		const int got = obs_band_answered(&o, 20, se, c[i].thr, k);
+		CHECK(c[i].id, got == c[i].want, "mean %g SE %g (SE got %g) threshold %g: answered %d, want %d",
+		      c[i].mean, c[i].e, obs_band_se(&o, 20), c[i].thr, got, c[i].want);
+	}
+}
+
 int main(void)
 {
 	int fd = mkstemp(jpath);
@@ -213,6 +257,7 @@ int main(void)
 	test_flux();
 	test_field();
 	test_ring();
+	test_band_rule();
 	unlink(jpath);
 	return tl_done();
 }
