@@ -641,12 +641,58 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 	H5Gclose(g);
 }
 
+/* The bed's kinetic energy per drive period (bed_kinetic_samples): the mean of each
+ * period's N samples, at the period's end (its last sample), with the drive frequency
+ * there; and its mean over the periods, a root attribute (a per-run summary). A
+ * period whose samples the run did not finish is left out. */
+static void write_kinetic(h5w *h, const sb_sim *s, hid_t g, const dbuf *kb, long n)
+{
+	const rec_col *cols = rec_table()[REC_KINETIC].cols;
+	const long N = s->sc.bed_kinetic_samples, P = N > 0 ? n / N : 0;
+	double *t = malloc(sizeof(double) * (size_t)(P ? P : 1)), *ke = malloc(sizeof(double) * (size_t)(P ? P : 1));
+	double *f = malloc(sizeof(double) * (size_t)(P ? P : 1)), sum = 0;
+	long *st = malloc(sizeof(long) * (size_t)(P ? P : 1));
+	if (!t || !ke || !f || !st) {
+		h->bad = 1;
+	} else {
+		for (long p = 0; p < P; p++) {
+			double m = 0;
+			for (long k = 0; k < N; k++)
+				m += kb->d[(p * N + k) * JR_KINETIC_COLS + 1];
+			const double *last = kb->d + (p * N + N - 1) * JR_KINETIC_COLS;
+			ke[p] = m / (double)N;
+			t[p] = last[0];
+			st[p] = step_of(s, t[p]);
+			f[p] = last[2];
+			sum += ke[p];
+		}
+		h5elem e0, e;
+		h5w_elem_create(h, &e0, g, cols[1].name, (hsize_t)P, 0, NULL, cols[1].unit, NULL);
+		h5w_elem_all(h, &e0, st, t, ke);
+		h5w_elem_create(h, &e, g, cols[2].name, (hsize_t)P, 0, NULL, cols[2].unit, &e0);
+		h5w_elem_all(h, &e, NULL, NULL, f);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		h5w_attr_long(h, g, "samples_per_period", N);
+		h5w_attr_str(h, g, "definition",
+			     "per drive period (time and step: its end): kinetic_energy = the mean of the mobile disks' "
+			     "sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = samples_per_period); "
+			     "frequency = the drive's at the period's end");
+		if (P > 0)
+			h5w_attr_double(h, h->file, rec_summary_attr(RSUM_bed_kinetic_mean), sum / (double)P);
+	}
+	free(t);
+	free(ke);
+	free(f);
+	free(st);
+}
+
 /* The writers of the groups of /observables, one per row of record.h's table with
  * RECF_OBS: the group (made from the row's path), the row's records, how many. */
 typedef void (*obs_writer)(h5w *h, const sb_sim *s, hid_t g, const dbuf *b, long n);
 static const obs_writer WRITERS[REC_N] = {
 	[REC_ENERGY] = write_energy, [REC_CONTACT] = write_contacts, [REC_FLUX] = write_flux,
-	[REC_FIELD] = write_field,   [REC_RING] = write_ring_series,
+	[REC_FIELD] = write_field,   [REC_RING] = write_ring_series, [REC_KINETIC] = write_kinetic,
 };
 
 static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t box, sb_err *e)

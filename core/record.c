@@ -14,6 +14,9 @@ static const rec_col CONTACT[] = {{"id_a", "1"},     {"id_b", "1"},     {"normal
 static const rec_col RING[] = {{"time", "s"},          {"mean_force", "dyn"}, {"net_force", "dyn"}, {"temperature", "cm2 s-2"},
 			       {"grains", "1"},        {"centre_x", "cm"},    {"centre_y", "cm"}};
 
+static const rec_col KINETIC[] = {{"time", "s"}, {"kinetic_energy", "erg"}, {"frequency", "Hz"}};
+
+_Static_assert(sizeof KINETIC / sizeof *KINETIC == JR_KINETIC_COLS, "a kinetic sample's columns");
 _Static_assert(sizeof TRAJ / sizeof *TRAJ == JR_TRAJ_COLS, "a trajectory row's columns");
 _Static_assert(sizeof ENERGY / sizeof *ENERGY == JR_ENERGY_COLS, "an energy row's columns");
 _Static_assert(sizeof CONTACT / sizeof *CONTACT == JR_CONTACT_COLS, "a contact's columns");
@@ -41,6 +44,8 @@ static const sb_record TABLE[REC_N] = {
 			 sample_contacts, contact_len},
 	[REC_RING] = {"ring", "ring", RC_RING, JR_RING, JR_RING_COLS, COLS(RING), REC_H5_RING, RECF_OBS, sample_ring,
 		      NULL},
+	[REC_KINETIC] = {"bed kinetic energy", "bed_kinetic_samples", RC_PHASE, JR_KINETIC, JR_KINETIC_COLS,
+			 COLS(KINETIC), REC_H5_KINETIC, RECF_OBS, sample_kinetic, NULL},
 };
 
 const sb_record *rec_table(void) { return TABLE; }
@@ -53,13 +58,14 @@ int rec_by_tag(int tag)
 	return -1;
 }
 
-/* The key's value in the scene: a rate (REAL) or a switch (BOOL); the table's unit
- * test holds every row's key to one of the two. */
+/* The key's value in the scene: a rate (REAL), a count per period (INT) or a switch
+ * (BOOL); the table's unit test holds every row's key to its clock's type. */
 static double key_value(const sb_scene *sc, const char *key)
 {
 	const sb_param *p = params_find(key);
 	const char *base = (const char *)sc + p->offset;
-	return p->type == PT_REAL ? *(const double *)base : *(const int *)base;
+	return p->type == PT_REAL ? *(const double *)base : p->type == PT_INT ? (double)*(const long *)base
+									 : *(const int *)base;
 }
 
 int rec_on(const sb_sim *s, int id)

@@ -14,14 +14,17 @@ struct sb_sim;
 
 /* The rows: the order the run file's groups are written in; a step records the rate
  * rows in this order, then the stroboscopic ones (run.c). */
-enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_N };
+enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_N };
 
 /* When a quantity is sampled:
  *   RC_RATE    at its key's rate (Hz), on an integer step grid (no drift);
  *   RC_STROBE  at phase 0 of every drive period (the stroboscopic samples);
+ *   RC_PHASE   its key's number of times per drive period, at phases k/N, k = 1..N
+ *              (the last at the period's end; an integer step grid at a constant
+ *              frequency, the phase itself on a ramp);
  *   RC_RING    on the ring's own schedule (observe.h: a rate or every n steps; the
  *              force kernel sums |F| on its steps, so it is sampled before the rest). */
-enum rec_clock { RC_RATE, RC_STROBE, RC_RING };
+enum rec_clock { RC_RATE, RC_STROBE, RC_RING, RC_PHASE };
 
 /* Row flags. */
 enum {
@@ -39,6 +42,7 @@ enum {
 #define REC_H5_FLUX REC_H5_OBS "/flux"
 #define REC_H5_FIELD REC_H5_OBS "/field"
 #define REC_H5_RING REC_H5_OBS "/ring"
+#define REC_H5_KINETIC REC_H5_OBS "/bed_kinetic"
 
 /* One column of a journal record (for a variable record: of each of its items). */
 typedef struct rec_col {
@@ -47,7 +51,8 @@ typedef struct rec_col {
 
 typedef struct sb_record {
 	const char *name;     /* what it is, in messages */
-	const char *key;      /* its switch (yes/no) or rate (Hz, 0 = off) key (params.h) */
+	const char *key;      /* its switch (yes/no), rate (Hz) or samples-per-period key
+	                       * (params.h; 0 = off) */
 	enum rec_clock clock;
 	int tag;              /* its journal record (journal.h) */
 	int len;              /* doubles per record; 0: the scene's (vlen) */
@@ -67,7 +72,7 @@ const sb_record *rec_table(void);
 int rec_by_tag(int tag);
 /* Does the scene ask for it (its key on; an intruder where the row needs one)? */
 int rec_on(const struct sb_sim *s, int id);
-/* A rate row's rate (Hz): its key's value. */
+/* A rate row's rate (Hz), a phase row's samples per period: its key's value. */
 double rec_rate(const struct sb_sim *s, int id);
 /* The length of the record of row id that starts at rec. */
 long rec_len(const struct sb_sim *s, int id, const double *rec);
@@ -80,7 +85,10 @@ long rec_len(const struct sb_sim *s, int id, const double *rec);
 	  "the intruder centre's height at the last trajectory row, box frame; NULL without a trajectory")     \
 	X(REC_TRAJ, intruder_max_y_box, "cm", "highest intruder centre over the trajectory rows, box frame")   \
 	X(REC_TRAJ, intruder_min_y_box, "cm", "lowest intruder centre over the trajectory rows, box frame")    \
-	X(REC_TRAJ, intruder_mean_y_box, "cm", "mean intruder centre height over the trajectory rows, box frame")
+	X(REC_TRAJ, intruder_mean_y_box, "cm", "mean intruder centre height over the trajectory rows, box frame") \
+	X(REC_KINETIC, bed_kinetic_mean, "erg",                                                                \
+	  "the mobile disks' kinetic energy (translation and rotation, box frame) averaged over the drive "     \
+	  "periods of the run, bed_kinetic_samples samples each; NULL when not recorded or no period ended")
 
 #define REC_SUM_ENUM_(row, attr, unit, def) RSUM_##attr,
 enum rec_summary { REC_SUMMARIES(REC_SUM_ENUM_) RSUM_N };

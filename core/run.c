@@ -22,22 +22,35 @@ static long due_step(long k, double interval, double dt)
  * worked out once, not in every step's decision. */
 typedef struct sched {
 	int on[REC_N];          /* the row is recorded */
-	double interval[REC_N]; /* a rate row's sampling interval (s) */
+	double interval[REC_N]; /* a rate row's sampling interval (s); a phase row's samples
+				 * per period */
 	int strobe;             /* stroboscopic samples are taken */
 } sched;
 
 /* Stroboscopic samples (phase 0 of each period) feed the rows on the strobe clock
- * (snapshots, flux, field); without any of them, or without a drive, there are none. */
+ * (snapshots, flux, field); without any of them, or without a drive, there are none,
+ * and no phase row is sampled either. */
 static void sched_init(sched *c, const sb_sim *s)
 {
 	const sb_record *R = rec_table();
+	const int drive = s->sc.ramp != RAMP_NONE || s->sc.frequency > 0;
 	c->strobe = 0;
 	for (int k = 0; k < REC_N; k++) {
-		c->on[k] = rec_on(s, k);
-		c->interval[k] = R[k].clock == RC_RATE && c->on[k] ? 1.0 / rec_rate(s, k) : 0;
+		c->on[k] = rec_on(s, k) && (R[k].clock != RC_PHASE || drive);
+		c->interval[k] = c->on[k] ? R[k].clock == RC_RATE ? 1.0 / rec_rate(s, k) : rec_rate(s, k) : 0;
 		c->strobe |= R[k].clock == RC_STROBE && c->on[k];
 	}
-	c->strobe = c->strobe && (s->sc.ramp != RAMP_NONE || s->sc.frequency > 0);
+	c->strobe = c->strobe && drive;
+}
+
+/* A phase row at a constant frequency: the step of its next sample, at phase
+ * (rec_n + 1) / N of the periods (an integer schedule, no drift); on a ramp the phase
+ * itself decides (due), and there is no step to give. */
+static long phase_next(const sb_sim *s, const sched *c, int k)
+{
+	if (s->sc.ramp != RAMP_NONE)
+		return 0;
+	return due_step(s->rec_n[k] + 1, 1.0 / (s->sc.frequency * c->interval[k]), s->sc.dt);
 }
 
 /* Is stroboscopic sample number n_strobe due at step n? Constant frequency: an integer
@@ -60,24 +73,28 @@ static int due(const sb_sim *s, const sched *c, int k, long n)
 	case RC_RATE: return n >= s->rec_next[k];
 	case RC_STROBE: return strobe_due(s, c, n);
 	case RC_RING: return obs_ring_due(&s->obs, n);
+	case RC_PHASE:
+		if (s->sc.ramp == RAMP_NONE)
+			return n >= s->rec_next[k];
+		return drive_cycles(&s->drive, n * s->sc.dt) >= (s->rec_n[k] + 1.0) / c->interval[k] - 1e-9;
 	}
 	return 0;
 }
 
-/* The samples due at this step, in the table's order: the rate rows, then one
- * stroboscopic sample for every row on its clock. The ring is sampled before, with
- * the step (sim_run). */
+/* The samples due at this step, in the table's order: the rate and phase rows, then
+ * one stroboscopic sample for every row on its clock. The ring is sampled before,
+ * with the step (sim_run). */
 static int record(sb_sim *s, const sched *c, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
 	const sb_record *R = rec_table();
 	const double t = s->step * sc->dt;
 	for (int k = 0; k < REC_N; k++) {
-		if (R[k].clock != RC_RATE || !due(s, c, k, s->step))
+		if ((R[k].clock != RC_RATE && R[k].clock != RC_PHASE) || !due(s, c, k, s->step))
 			continue;
 		if (R[k].sample(s, t, e))
 			return e->code;
-		s->rec_next[k] = due_step(s->rec_n[k], c->interval[k], sc->dt);
+		s->rec_next[k] = R[k].clock == RC_RATE ? due_step(s->rec_n[k], c->interval[k], sc->dt) : phase_next(s, c, k);
 	}
 	if (strobe_due(s, c, s->step)) {
 		for (int k = 0; k < REC_N; k++)
@@ -144,6 +161,9 @@ int sim_run(sb_sim *s, sb_err *e)
 	if (!resumed) {
 		s->n_ckpt = 0;
 		s->next_ckpt_step = sc->checkpoint_every > 0 ? due_step(1, sc->checkpoint_every, dt) : -1;
+		for (int k = 0; k < REC_N; k++) /* a phase row's first sample ends a period's first 1/N */
+			if (rec_table()[k].clock == RC_PHASE && c.on[k])
+				s->rec_next[k] = phase_next(s, &c, k);
 		if (record(s, &c, e))
 			return e->code;
 	}

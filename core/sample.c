@@ -109,3 +109,15 @@ int sample_ring(sb_sim *s, double t, sb_err *e)
 	s->rec_n[REC_RING]++;
 	return 0;
 }
+
+/* The bed's kinetic energy (translation and rotation of the mobile disks, box frame:
+ * the box's own motion is not the bed's) and the drive frequency; h5out averages a
+ * period's samples. */
+int sample_kinetic(sb_sim *s, double t, sb_err *e)
+{
+	const double row[JR_KINETIC_COLS] = {t, sim_kinetic(s), drive_freq(&s->drive, t)};
+	if (journal_record(&s->jr, JR_KINETIC, row, JR_KINETIC_COLS, e))
+		return e->code;
+	s->rec_n[REC_KINETIC]++;
+	return 0;
+}

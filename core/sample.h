@@ -13,5 +13,6 @@ int sample_snap(sb_sim *s, double t, sb_err *e);     /* every mobile disk, lab f
 int sample_flux(sb_sim *s, double t, sb_err *e);     /* crossings since the last strobe */
 int sample_field(sb_sim *s, double t, sb_err *e);    /* displacements since the last strobe */
 int sample_ring(sb_sim *s, double t, sb_err *e);     /* the ring around its centre */
+int sample_kinetic(sb_sim *s, double t, sb_err *e);  /* the bed's kinetic energy, box frame */
 
 #endif

@@ -16,8 +16,11 @@ int main(void)
 		const sb_record *r = &R[k];
 		const sb_param *p = params_find(r->key);
 		snprintf(id, sizeof id, "record.%s.key", r->name);
-		CHECK(id, p && (r->clock == RC_RATE ? p->type == PT_REAL && !strcmp(p->unit, "Hz") : p->type == PT_BOOL),
-		      "key '%s' of a %s row", r->key, r->clock == RC_RATE ? "rate" : "switch");
+		CHECK(id,
+		      p && (r->clock == RC_RATE    ? p->type == PT_REAL && !strcmp(p->unit, "Hz")
+			    : r->clock == RC_PHASE ? p->type == PT_INT && p->min == 0
+						   : p->type == PT_BOOL),
+		      "key '%s' of a row of clock %d", r->key, (int)r->clock);
 		snprintf(id, sizeof id, "record.%s.tag", r->name);
 		CHECK(id, rec_by_tag(r->tag) == k, "tag %d leads to row %d", r->tag, rec_by_tag(r->tag));
 		snprintf(id, sizeof id, "record.%s.columns", r->name);
@@ -45,13 +48,17 @@ int main(void)
 	params_defaults(&s.sc);
 	s.intruder = -1;
 	s.sc.traj_rate = 100;
-	CHECK("record.on.energy_off_by_default", !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX), "on");
+	CHECK("record.on.off_by_default", !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX) && !rec_on(&s, REC_KINETIC),
+	      "on");
 	CHECK("record.on.trajectory_needs_an_intruder", !rec_on(&s, REC_TRAJ), "on without an intruder");
 	s.intruder = 0;
 	s.sc.energy_rate = 50;
 	s.sc.flux = 1;
 	CHECK("record.on.by_key", rec_on(&s, REC_TRAJ) && rec_on(&s, REC_ENERGY) && rec_on(&s, REC_FLUX),
 	      "traj %d energy %d flux %d", rec_on(&s, REC_TRAJ), rec_on(&s, REC_ENERGY), rec_on(&s, REC_FLUX));
+	s.sc.bed_kinetic_samples = 8;
+	CHECK("record.on.samples_per_period", rec_on(&s, REC_KINETIC) && rec_rate(&s, REC_KINETIC) == 8, "%d %g",
+	      rec_on(&s, REC_KINETIC), rec_rate(&s, REC_KINETIC));
 	CHECK("record.rate.is_the_key", rec_rate(&s, REC_ENERGY) == 50 && rec_rate(&s, REC_TRAJ) == 100, "%g %g",
 	      rec_rate(&s, REC_ENERGY), rec_rate(&s, REC_TRAJ));
 
