@@ -13,10 +13,11 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-/* 09: the scene hash covers the key sides (periodic side boundaries), so an 08
- * checkpoint would be refused as "other parameters"; the version says why instead and
- * restart = auto starts over. The seam pairs are rebuilt from xref like the list. */
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '0', '9'};
+/* 10: the recording counters are the table's (core/record.h), one array each, and the
+ * header holds REC_N: a row added to the table changes the layout, and the format
+ * (version/REC_N) says so. 09: the scene hash covers the key sides; the seam pairs are
+ * rebuilt from xref like the list. */
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '0'};
 
 typedef struct hw {
 	FILE *f;
@@ -64,19 +65,12 @@ static void fields(hw *w, sb_sim *s, int nval, extra *x, void (*io)(hw *, void *
 	io(w, &s->surface0, sizeof s->surface0);
 	io(w, &s->intruder_y0, sizeof s->intruder_y0);
 	io(w, &s->step, sizeof s->step);
-	io(w, &s->n_traj, sizeof s->n_traj);
-	io(w, &s->n_snap, sizeof s->n_snap);
-	io(w, &s->next_traj_step, sizeof s->next_traj_step);
-	io(w, &s->next_snap_step, sizeof s->next_snap_step);
+	io(w, s->rec_n, sizeof s->rec_n); /* every recorded quantity's, in the table's order */
+	io(w, s->rec_next, sizeof s->rec_next);
+	io(w, &s->n_strobe, sizeof s->n_strobe);
+	io(w, &s->next_strobe_step, sizeof s->next_strobe_step);
 	io(w, &s->next_ckpt_step, sizeof s->next_ckpt_step);
 	io(w, &s->n_ckpt, sizeof s->n_ckpt);
-	io(w, &s->n_flux, sizeof s->n_flux);
-	io(w, &s->n_field, sizeof s->n_field);
-	io(w, &s->n_strobe, sizeof s->n_strobe);
-	io(w, &s->n_energy, sizeof s->n_energy);
-	io(w, &s->next_energy_step, sizeof s->next_energy_step);
-	io(w, &s->n_contact, sizeof s->n_contact);
-	io(w, &s->next_contact_step, sizeof s->next_contact_step);
 	io(w, &s->max_contacts, sizeof s->max_contacts);
 	io(w, &s->loop_seconds, sizeof s->loop_seconds); /* a resumed run's CPU time is the sum */
 	io(w, &x->builds, sizeof x->builds);
@@ -116,7 +110,7 @@ int ckpt_write(sb_sim *s, sb_err *e)
 		return e->code;
 	hw w = {out.f, 1469598103934665603ULL, 0};
 	uint64_t ph = ckpt_hash(&s->sc);
-	int32_t hdr[3] = {s->st.n, s->st.nm, s->in.nval};
+	int32_t hdr[4] = {s->st.n, s->st.nm, s->in.nval, REC_N};
 	hw_put(&w, MAGIC, 8);
 	hw_put(&w, &ph, sizeof ph);
 	hw_put(&w, hdr, sizeof hdr);
@@ -147,24 +141,27 @@ int ckpt_load(sb_sim *s, sb_err *e)
 	hw r = {f, 1469598103934665603ULL, 0};
 	char m[8];
 	uint64_t ph;
-	int32_t hdr[3];
+	int32_t hdr[4];
 	hw_get(&r, m, 8);
 	hw_get(&r, &ph, sizeof ph);
 	hw_get(&r, hdr, sizeof hdr);
 	int err = 0;
-	if (!r.bad && !memcmp(m, MAGIC, 6) && memcmp(m, MAGIC, 8)) {
+	/* the format: the version, and how many quantities the engine records (a row added
+	 * to core/record.h's table adds a pair of counters) */
+	char fmt[40], mine[40];
+	snprintf(fmt, sizeof fmt, "%.2s/%d", m + 6, (int)hdr[3]);
+	snprintf(mine, sizeof mine, "%.2s/%d", MAGIC + 6, REC_N);
+	if (!r.bad && !memcmp(m, MAGIC, 6) && strcmp(fmt, mine)) {
 		/* another engine version's checkpoint: restart = auto starts over (only
 		 * time is lost), restart = yes cannot do what it was asked */
 		if (s->sc.restart != TRI_YES) {
 			snprintf(s->warning, sizeof s->warning,
-				 "%.400s: a checkpoint of format %.2s (this engine writes %.2s): starting over", path, m + 6,
-				 MAGIC + 6);
+				 "%.400s: a checkpoint of format %.20s (this engine writes %.20s): starting over", path, fmt, mine);
 			fclose(f);
 			return 0;
 		}
-		err = sb_errf(e, SB_EUSAGE,
-			      "%s: a checkpoint of format %.2s, this engine writes %.2s; remove it or set restart = no",
-			      path, m + 6, MAGIC + 6);
+		err = sb_errf(e, SB_EUSAGE, "%s: a checkpoint of format %s, this engine writes %s; remove it or set restart = no",
+			      path, fmt, mine);
 	} else if (r.bad || memcmp(m, MAGIC, 8))
 		err = sb_errf(e, SB_EIO, "%s: not a shakebox checkpoint", path);
 	else if (ph != ckpt_hash(&s->sc))

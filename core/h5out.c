@@ -30,6 +30,7 @@
 #include "h5out.h"
 #include "kernel.h"
 #include "provenance.h"
+#include "record.h"
 
 /* The engine step of a recorded time (times are step * dt exactly). */
 static long step_of(const sb_sim *s, double t) { return lround(t / s->sc.dt); }
@@ -88,11 +89,11 @@ static int columns(const sb_sim *s, const dbuf *b, size_t len, size_t T, double 
 	return 0;
 }
 
-static void write_flux(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fl)
+static void write_flux(h5w *h, const sb_sim *s, hid_t g, const dbuf *fl, long n)
 {
 	const sb_obs *o = &s->obs;
 	const int nl = o->nlines, len = obs_flux_len(o);
-	const size_t P = (size_t)s->n_flux;
+	const size_t P = (size_t)n;
 	double *t = NULL, *f = malloc(sizeof(double) * (P ? P : 1));
 	long *st = NULL;
 	double *jt = malloc(sizeof(double) * (P ? P : 1) * nl), *jb = malloc(sizeof(double) * (P ? P : 1) * nl);
@@ -109,7 +110,6 @@ static void write_flux(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fl)
 				phi[k * nl + l] = r[2 + l] - r[2 + nl + l];
 			}
 		}
-		hid_t g = h5w_group(h, obs, "flux", 0);
 		const hsize_t tail = (hsize_t)nl;
 		h5elem e0, e;
 		h5w_elem_create(h, &e0, g, "phi", P, 1, &tail, "1", NULL);
@@ -131,7 +131,6 @@ static void write_flux(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fl)
 			     "box centre, j_bot the same outside; phi = j_top - j_bot (particles per period); heights in "
 			     "cm above the bottom");
 		h5w_attr_double(h, g, "surface_height", o->surface);
-		H5Gclose(g);
 	}
 	free(t);
 	free(st);
@@ -141,12 +140,12 @@ static void write_flux(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fl)
 	free(phi);
 }
 
-static void write_field(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fd)
+static void write_field(h5w *h, const sb_sim *s, hid_t g, const dbuf *fd, long n)
 {
 	const sb_obs *o = &s->obs;
 	const size_t nc = (size_t)o->nx * o->ny;
 	const int len = obs_field_len(o);
-	const size_t B = (size_t)s->n_field;
+	const size_t B = (size_t)n;
 	double *t = NULL;
 	long *st = NULL;
 	double *ux = malloc(sizeof(double) * (B ? B : 1) * nc), *uy = malloc(sizeof(double) * (B ? B : 1) * nc);
@@ -164,7 +163,6 @@ static void write_field(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fd)
 				cnt[k * nc + c] = n;
 			}
 		}
-		hid_t g = h5w_group(h, obs, "field", 0);
 		const hsize_t tail[2] = {(hsize_t)o->ny, (hsize_t)o->nx};
 		h5elem e0, e;
 		h5w_elem_create(h, &e0, g, "ux", B, 2, tail, "cm", NULL);
@@ -184,7 +182,6 @@ static void write_field(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fd)
 			     "(r+1)*cell above the bottom; ux, uy = mean displacement per period of the disks whose "
 			     "midpoint between successive phase-0 samples lies in the cell, over periods_per_block periods "
 			     "(cm); count = samples; time and step: the block's end");
-		H5Gclose(g);
 	}
 	free(t);
 	free(st);
@@ -195,23 +192,21 @@ static void write_field(h5w *h, const sb_sim *s, hid_t obs, const dbuf *fd)
 
 /* The energy series (energy_rate): one element per column, sharing one clock. The
  * energies are the box frame's (the box's own motion is not the bed's). */
-static void write_energy(h5w *h, const sb_sim *s, hid_t obs, const dbuf *en, size_t T)
+static void write_energy(h5w *h, const sb_sim *s, hid_t g, const dbuf *en, long n)
 {
-	static const char *const names[JR_ENERGY_COLS] = {"time", "kinetic_translational", "kinetic_rotational",
-							  "elastic", "com_height_box", "max_overlap", "contacts"};
-	static const char *const units[JR_ENERGY_COLS] = {"s", "erg", "erg", "erg", "cm", "1", "1"};
+	const rec_col *cols = rec_table()[REC_ENERGY].cols;
+	const size_t T = (size_t)n;
 	double *col = malloc(sizeof(double) * (T ? T : 1)), *t = NULL;
 	long *st = NULL;
 	if (!col || columns(s, en, JR_ENERGY_COLS, T, &t, &st)) {
 		h->bad = 1;
 	} else {
-		hid_t g = h5w_group(h, obs, "energy", 0);
 		h5elem e0 = {.g = -1}, e;
 		for (int c = 1; c < JR_ENERGY_COLS; c++) {
 			for (size_t k = 0; k < T; k++)
 				col[k] = en->d[k * JR_ENERGY_COLS + c];
 			h5elem *el = c == 1 ? &e0 : &e;
-			h5w_elem_create(h, el, g, names[c], T, 0, NULL, units[c], c == 1 ? NULL : &e0);
+			h5w_elem_create(h, el, g, cols[c].name, T, 0, NULL, cols[c].unit, c == 1 ? NULL : &e0);
 			h5w_elem_all(h, el, st, t, col);
 			if (c > 1)
 				h5w_elem_close(&e);
@@ -221,7 +216,6 @@ static void write_energy(h5w *h, const sb_sim *s, hid_t obs, const dbuf *en, siz
 			     "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y xi^2 / 2 "
 			     "over the contacts; com_height_box = mass-weighted mean y of the mobile disks; max_overlap = "
 			     "largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")");
-		H5Gclose(g);
 	}
 	free(col);
 	free(t);
@@ -231,11 +225,10 @@ static void write_energy(h5w *h, const sb_sim *s, hid_t obs, const dbuf *en, siz
 /* The contact dump (contact_rate): frames of every contact, flattened - frame k's
  * contacts are rows offset[k] .. offset[k] + count[k] of the per-contact datasets (a
  * number of contacts that changes from frame to frame is not an H5MD element). */
-static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
+static void write_contacts(h5w *h, const sb_sim *s, hid_t g, const dbuf *c, long F)
 {
-	static const char *const names[JR_CONTACT_COLS] = {"id_a", "id_b", "normal_force", "tangential_force",
-							   "normal_x", "normal_y", "x", "y_box"};
-	static const char *const units[JR_CONTACT_COLS] = {"1", "1", "dyn", "dyn", "1", "1", "cm", "cm"};
+	const rec_col *cols = rec_table()[REC_CONTACT].cols;
+	(void)s;
 	double *t = malloc(sizeof(double) * (size_t)(F ? F : 1)), *cnt = malloc(sizeof(double) * (size_t)(F ? F : 1)),
 	       *off = malloc(sizeof(double) * (size_t)(F ? F : 1));
 	size_t C = 0, pos = 0;
@@ -250,7 +243,6 @@ static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
 	if (!t || !cnt || !off || !col) {
 		h->bad = 1;
 	} else {
-		hid_t g = h5w_group(h, obs, "contacts", 0);
 		const hsize_t nf = (hsize_t)F, nc = (hsize_t)C;
 		h5w_dset(h, g, "time", 1, &nf, t, "s");
 		h5w_dset(h, g, "count", 1, &nf, cnt, "1");
@@ -264,13 +256,12 @@ static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
 					col[row++] = c->d[pos + 2 + JR_CONTACT_COLS * q + (size_t)k];
 				pos += 2 + JR_CONTACT_COLS * n;
 			}
-			h5w_dset(h, g, names[k], 1, &nc, col, units[k]);
+			h5w_dset(h, g, cols[k].name, 1, &nc, col, cols[k].unit);
 		}
 		h5w_attr_str(h, g, "definition",
 			     "every contact at each sample: disks id_a, id_b; the force on id_a is normal_force n + "
 			     "tangential_force t with n = (r_a - r_b)/d = (normal_x, normal_y), t = n turned by +90 deg; "
 			     "x, y_box: midpoint of the centres (box frame); frame k is rows offset[k] .. offset[k] + count[k]");
-		H5Gclose(g);
 	}
 	free(t);
 	free(cnt);
@@ -280,22 +271,21 @@ static void write_contacts(h5w *h, hid_t obs, const dbuf *c, long F)
 
 /* The ring's series (docs/model.md, "Ring force"): one row per sample, every quantity
  * an element sharing the first one's clock; centre is [T][2] (box frame). */
-static void write_ring_series(h5w *h, const sb_sim *s, hid_t obs, const dbuf *rg, size_t T)
+static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, long n)
 {
-	static const char *const names[JR_RING_COLS] = {"time", "mean_force", "net_force", "temperature", "grains"};
-	static const char *const units[JR_RING_COLS] = {"s", "dyn", "dyn", "cm2 s-2", "1"};
+	const rec_col *cols = rec_table()[REC_RING].cols;
+	const size_t T = (size_t)n;
 	double *col = malloc(sizeof(double) * 2 * (T ? T : 1)), *t = NULL;
 	long *st = NULL;
 	if (!col || columns(s, rg, JR_RING_COLS, T, &t, &st)) {
 		h->bad = 1;
 	} else {
-		hid_t g = h5w_group(h, obs, "ring", 0);
 		h5elem e0, e;
 		for (int c = OBS_RR_MEAN; c <= OBS_RR_N; c++) {
 			for (size_t k = 0; k < T; k++)
 				col[k] = rg->d[k * JR_RING_COLS + c];
 			h5elem *el = c == OBS_RR_MEAN ? &e0 : &e;
-			h5w_elem_create(h, el, g, names[c], T, 0, NULL, units[c], c == OBS_RR_MEAN ? NULL : &e0);
+			h5w_elem_create(h, el, g, cols[c].name, T, 0, NULL, cols[c].unit, c == OBS_RR_MEAN ? NULL : &e0);
 			h5w_elem_all(h, el, st, t, col);
 			if (c != OBS_RR_MEAN)
 				h5w_elem_close(&e);
@@ -305,7 +295,7 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t obs, const dbuf *rg
 			col[2 * k + 1] = rg->d[k * JR_RING_COLS + OBS_RR_CY];
 		}
 		const hsize_t two = 2;
-		h5w_elem_create(h, &e, g, "centre", T, 1, &two, "cm", &e0);
+		h5w_elem_create(h, &e, g, "centre", T, 1, &two, cols[OBS_RR_CX].unit, &e0);
 		h5w_elem_all(h, &e, NULL, NULL, col);
 		h5w_elem_close(&e);
 		h5w_elem_close(&e0);
@@ -315,7 +305,6 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t obs, const dbuf *rg
 			     "contact forces (dyn); net_force = mean of the magnitude of each grain's net force, contact "
 			     "forces plus weight, lab frame (dyn); temperature = half the mean squared velocity "
 			     "fluctuation about their mean velocity (cm^2/s^2); grains = how many (0: the means are 0)");
-		H5Gclose(g);
 	}
 	free(col);
 	free(t);
@@ -388,10 +377,10 @@ static void intruder_summary(h5w *h, const sb_sim *s, const double *traj, long T
 		ymin = y < ymin ? y : ymin;
 		sum += y;
 	}
-	h5w_attr_double(h, h->file, "intruder_final_y_box", y);
-	h5w_attr_double(h, h->file, "intruder_max_y_box", ymax);
-	h5w_attr_double(h, h->file, "intruder_min_y_box", ymin);
-	h5w_attr_double(h, h->file, "intruder_mean_y_box", sum / (double)T);
+	h5w_attr_double(h, h->file, rec_summary_attr(RSUM_intruder_final_y_box), y);
+	h5w_attr_double(h, h->file, rec_summary_attr(RSUM_intruder_max_y_box), ymax);
+	h5w_attr_double(h, h->file, rec_summary_attr(RSUM_intruder_min_y_box), ymin);
+	h5w_attr_double(h, h->file, rec_summary_attr(RSUM_intruder_mean_y_box), sum / (double)T);
 }
 
 static void box_size(const sb_sim *s, double *w, double *hgt);
@@ -652,24 +641,76 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 	H5Gclose(g);
 }
 
+/* The bed's kinetic energy per drive period (bed_kinetic_samples): the mean of each
+ * period's N samples, at the period's end (its last sample), with the drive frequency
+ * there; and its mean over the periods, a root attribute (a per-run summary). A
+ * period whose samples the run did not finish is left out. */
+static void write_kinetic(h5w *h, const sb_sim *s, hid_t g, const dbuf *kb, long n)
+{
+	const rec_col *cols = rec_table()[REC_KINETIC].cols;
+	const long N = s->sc.bed_kinetic_samples, P = N > 0 ? n / N : 0;
+	double *t = malloc(sizeof(double) * (size_t)(P ? P : 1)), *ke = malloc(sizeof(double) * (size_t)(P ? P : 1));
+	double *f = malloc(sizeof(double) * (size_t)(P ? P : 1)), sum = 0;
+	long *st = malloc(sizeof(long) * (size_t)(P ? P : 1));
+	if (!t || !ke || !f || !st) {
+		h->bad = 1;
+	} else {
+		for (long p = 0; p < P; p++) {
+			double m = 0;
+			for (long k = 0; k < N; k++)
+				m += kb->d[(p * N + k) * JR_KINETIC_COLS + 1];
+			const double *last = kb->d + (p * N + N - 1) * JR_KINETIC_COLS;
+			ke[p] = m / (double)N;
+			t[p] = last[0];
+			st[p] = step_of(s, t[p]);
+			f[p] = last[2];
+			sum += ke[p];
+		}
+		h5elem e0, e;
+		h5w_elem_create(h, &e0, g, cols[1].name, (hsize_t)P, 0, NULL, cols[1].unit, NULL);
+		h5w_elem_all(h, &e0, st, t, ke);
+		h5w_elem_create(h, &e, g, cols[2].name, (hsize_t)P, 0, NULL, cols[2].unit, &e0);
+		h5w_elem_all(h, &e, NULL, NULL, f);
+		h5w_elem_close(&e);
+		h5w_elem_close(&e0);
+		h5w_attr_long(h, g, "samples_per_period", N);
+		h5w_attr_str(h, g, "definition",
+			     "per drive period (time and step: its end): kinetic_energy = the mean of the mobile disks' "
+			     "sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = samples_per_period); "
+			     "frequency = the drive's at the period's end");
+		if (P > 0)
+			h5w_attr_double(h, h->file, rec_summary_attr(RSUM_bed_kinetic_mean), sum / (double)P);
+	}
+	free(t);
+	free(ke);
+	free(f);
+	free(st);
+}
+
+/* The writers of the groups of /observables, one per row of record.h's table with
+ * RECF_OBS: the group (made from the row's path), the row's records, how many. */
+typedef void (*obs_writer)(h5w *h, const sb_sim *s, hid_t g, const dbuf *b, long n);
+static const obs_writer WRITERS[REC_N] = {
+	[REC_ENERGY] = write_energy, [REC_CONTACT] = write_contacts, [REC_FLUX] = write_flux,
+	[REC_FIELD] = write_field,   [REC_RING] = write_ring_series, [REC_KINETIC] = write_kinetic,
+};
+
 static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t box, sb_err *e)
 {
-	const int nm = s->st.nm;
-	const hsize_t K = (hsize_t)s->n_snap, T = (hsize_t)s->n_traj;
-	long cap = 5L * nm + 1;
-	if (cap < JR_TRAJ_COLS) /* an intruder and no grains: a trajectory row is longer */
-		cap = JR_TRAJ_COLS;
-	if (cap < JR_ENERGY_COLS)
-		cap = JR_ENERGY_COLS;
-	if (cap < JR_RING_COLS)
-		cap = JR_RING_COLS;
-	if (cap < 2 + JR_CONTACT_COLS * s->max_contacts)
-		cap = 2 + JR_CONTACT_COLS * s->max_contacts;
-	if (s->obs.flux_on && obs_flux_len(&s->obs) > cap)
-		cap = obs_flux_len(&s->obs);
-	if (s->obs.field_on && obs_field_len(&s->obs) > cap)
-		cap = obs_field_len(&s->obs);
-	dbuf traj = {0}, flux = {0}, field = {0}, energy = {0}, contacts = {0}, ring = {0};
+	const sb_record *R = rec_table();
+	const hsize_t K = (hsize_t)s->rec_n[REC_SNAP], T = (hsize_t)s->rec_n[REC_TRAJ];
+	long cap = 1, any = 0;
+	for (int k = 0; k < REC_N; k++) {
+		/* the longest record: a fixed one, the scene's, or the largest contact frame */
+		long len = R[k].len;
+		if (k == REC_CONTACT)
+			len = 2 + JR_CONTACT_COLS * s->max_contacts;
+		else if (!len && (rec_on(s, k) || k == REC_SNAP))
+			len = rec_len(s, k, NULL);
+		cap = len > cap ? len : cap;
+		any |= s->rec_n[k];
+	}
+	dbuf rec[REC_N] = {{0}};
 	double *buf = malloc(sizeof(double) * (size_t)cap);
 	snapw sw = {0};
 	sw.pos.g = -1;
@@ -680,9 +721,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	}
 	sb_jreader r = {0};
 	/* a run that failed while preparing has no journal */
-	int rc = (s->jr.f || K || T || s->n_flux || s->n_field || s->n_energy || s->n_contact || s->obs.ring_samples)
-			 ? journal_reader_open(&r, s->journal_path, e)
-			 : 1;
+	int rc = (s->jr.f || any) ? journal_reader_open(&r, s->journal_path, e) : 1;
 	while (!rc && !h->bad) {
 		int count = 0;
 		int tag = journal_next(&r, buf, cap, &count, e);
@@ -690,76 +729,58 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			rc = tag < 0 ? e->code : 0;
 			break;
 		}
-		if (tag == JR_TRAJ)
-			rc = dbuf_add(&traj, buf, JR_TRAJ_COLS) ? SB_ENOMEM : 0;
-		else if (tag == JR_FLUX)
-			rc = dbuf_add(&flux, buf, (size_t)count) ? SB_ENOMEM : 0;
-		else if (tag == JR_FIELD)
-			rc = dbuf_add(&field, buf, (size_t)count) ? SB_ENOMEM : 0;
-		else if (tag == JR_ENERGY)
-			rc = dbuf_add(&energy, buf, JR_ENERGY_COLS) ? SB_ENOMEM : 0;
-		else if (tag == JR_CONTACT)
-			rc = dbuf_add(&contacts, buf, (size_t)count) ? SB_ENOMEM : 0;
-		else if (tag == JR_RING)
-			rc = dbuf_add(&ring, buf, JR_RING_COLS) ? SB_ENOMEM : 0;
-		else if (tag == JR_SNAP && sw.k < K)
-			snap_row(h, &sw, s, buf);
-		if (rc == SB_ENOMEM)
+		const int k = rec_by_tag(tag);
+		if (k == REC_SNAP) {
+			if (sw.k < K)
+				snap_row(h, &sw, s, buf);
+		} else if (k >= 0 && dbuf_add(&rec[k], buf, (size_t)count)) {
 			rc = sb_errf(e, SB_ENOMEM, "out of memory reading the journal");
+		}
 	}
 	journal_reader_close(&r);
 	if (rc == 1)
 		rc = 0;
 	const long ks = (long)sw.k;
 	snap_close(&sw);
-	long kt = (long)(traj.n / JR_TRAJ_COLS);
-	long kf = s->obs.flux_on ? (long)(flux.n / obs_flux_len(&s->obs)) : 0;
-	long kd = s->obs.field_on ? (long)(field.n / obs_field_len(&s->obs)) : 0;
-	if (!rc && (kt != (long)T || ks != (long)K || kf != s->n_flux || kd != s->n_field))
-		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld/%ld/%ld/%ld trajectory/snapshot/flux/field records, expected %ld/%ld/%ld/%ld",
-			     s->journal_path, kt, ks, kf, kd, s->n_traj, s->n_snap, s->n_flux, s->n_field);
+	/* the journal holds what the counters say, record by record */
+	long got[REC_N] = {0};
+	got[REC_SNAP] = ks;
+	for (int k = 0; k < REC_N; k++)
+		for (size_t pos = 0; k != REC_SNAP && pos < rec[k].n; got[k]++) {
+			/* every record holds a time and one more value; one that runs past the end
+			 * (a damaged journal) is counted as none */
+			const long l = rec[k].n - pos >= 2 ? rec_len(s, k, rec[k].d + pos) : -1;
+			if (l < 2 || (size_t)l > rec[k].n - pos) {
+				got[k] = -1;
+				break;
+			}
+			pos += (size_t)l;
+		}
+	for (int k = 0; k < REC_N && !rc; k++)
+		if (got[k] != s->rec_n[k])
+			rc = sb_errf(e, SB_EIO, "%s: journal holds %ld %s records, expected %ld", s->journal_path, got[k],
+				     R[k].name, s->rec_n[k]);
 	if (s->intruder >= 0) {
-		write_intruder(h, s, parts, traj.d, (long)T);
+		write_intruder(h, s, parts, rec[REC_TRAJ].d, (long)T);
 		if (!rc && T > 0)
-			intruder_summary(h, s, traj.d, (long)T);
+			intruder_summary(h, s, rec[REC_TRAJ].d, (long)T);
 	}
-	long ke = (long)(energy.n / JR_ENERGY_COLS);
-	if (!rc && ke != s->n_energy)
-		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld energy records, expected %ld", s->journal_path, ke, s->n_energy);
-	long kc = 0;
-	for (size_t pos = 0; pos + 2 <= contacts.n; kc++)
-		pos += 2 + JR_CONTACT_COLS * (size_t)contacts.d[pos + 1];
-	if (!rc && kc != s->n_contact)
-		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld contact frames, expected %ld", s->journal_path, kc,
-			     s->n_contact);
-	long kr = (long)(ring.n / JR_RING_COLS);
-	if (!rc && kr != s->obs.ring_samples)
-		rc = sb_errf(e, SB_EIO, "%s: journal holds %ld ring samples, expected %ld", s->journal_path, kr,
-			     s->obs.ring_samples);
-	const int any = s->obs.flux_on || s->obs.field_on || s->sc.energy_rate > 0 || s->sc.contact_rate > 0 ||
-			s->obs.ring_on;
-	if (!rc && any) {
-		hid_t obs = h5w_group(h, h->file, "observables", 0);
-		if (s->obs.flux_on)
-			write_flux(h, s, obs, &flux);
-		if (s->obs.field_on)
-			write_field(h, s, obs, &field);
-		if (s->sc.energy_rate > 0)
-			write_energy(h, s, obs, &energy, (size_t)ke);
-		if (s->sc.contact_rate > 0)
-			write_contacts(h, obs, &contacts, kc);
-		if (s->obs.ring_on)
-			write_ring_series(h, s, obs, &ring, (size_t)kr);
-		H5Gclose(obs);
+	int obs_on = 0;
+	for (int k = 0; k < REC_N; k++)
+		obs_on |= (R[k].flags & RECF_OBS) && rec_on(s, k);
+	if (!rc && obs_on) {
+		H5Gclose(h5w_group(h, h->file, REC_H5_OBS, 0));
+		for (int k = 0; k < REC_N; k++)
+			if ((R[k].flags & RECF_OBS) && rec_on(s, k)) {
+				hid_t g = h5w_group(h, h->file, R[k].h5, 0);
+				WRITERS[k](h, s, g, &rec[k], got[k]);
+				H5Gclose(g);
+			}
 	}
 	if (!rc && s->obs.ring_on)
 		write_ring(h, s, s->step * s->sc.dt);
-	free(traj.d);
-	free(flux.d);
-	free(field.d);
-	free(energy.d);
-	free(contacts.d);
-	free(ring.d);
+	for (int k = 0; k < REC_N; k++)
+		free(rec[k].d);
 	free(buf);
 	return rc;
 }
@@ -824,7 +845,7 @@ static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 		return e->code;
 	FILE *f = out.f;
 	const int nm = s->st.nm, nw = s->st.n - s->st.nm, prec = s->sc.snapshot_precision ? 4 : 8;
-	long K = s->n_snap;
+	long K = s->rec_n[REC_SNAP];
 	fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
 		   "<Grid Name=\"snapshots\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
 	/* snapshot times are read back from the file so the sidecar matches it exactly */
@@ -976,14 +997,14 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	/* /particles lists bed_xyz first: readers that take the first particle group and
 	 * know only 3-D (MDAnalysis) find the view they can read */
 	hid_t parts = h5w_group(&h, h.file, "particles", 1);
-	hid_t xyz = s->n_snap > 0 ? h5w_group(&h, parts, "bed_xyz", 0) : -1;
+	hid_t xyz = s->rec_n[REC_SNAP] > 0 ? h5w_group(&h, parts, "bed_xyz", 0) : -1;
 	hid_t box = -1;
 	hid_t bed = write_bed(&h, s, parts, &box);
 	write_walls(&h, s, parts);
 	int rc = copy_journal(&h, s, parts, bed, box, e);
 	if (xyz >= 0) {
 		if (!rc)
-			write_xyz(&h, xyz, bed, (hsize_t)s->n_snap, (hsize_t)s->st.nm,
+			write_xyz(&h, xyz, bed, (hsize_t)s->rec_n[REC_SNAP], (hsize_t)s->st.nm,
 				  s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE, s->nl.period > 0);
 		H5Gclose(xyz);
 	}

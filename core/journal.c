@@ -140,7 +140,7 @@ int journal_next(sb_jreader *r, double *buf, long cap, int *count, sb_err *e)
 		return 0;
 	if (got != 2)
 		return -sb_errf(e, SB_EIO, "journal: truncated record header");
-	if (h[0] < JR_TRAJ || h[0] > JR_RING || h[1] < 0 || h[1] > cap)
+	if (h[0] < JR_TRAJ || h[0] > JR_LAST || h[1] < 0 || h[1] > cap)
 		return -sb_errf(e, SB_EIO, "journal: corrupt record (tag %d, count %d)", h[0], h[1]);
 	if (fread(buf, sizeof(double), (size_t)h[1], r->f) != (size_t)h[1])
 		return -sb_errf(e, SB_EIO, "journal: truncated record");

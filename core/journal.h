@@ -9,10 +9,12 @@
 
 #include "err.h"
 
-enum { JR_TRAJ = 1, JR_SNAP = 2, JR_FLUX = 3, JR_FIELD = 4, JR_ENERGY = 5, JR_CONTACT = 6, JR_RING = 7 };
+enum { JR_TRAJ = 1, JR_SNAP = 2, JR_FLUX = 3, JR_FIELD = 4, JR_ENERGY = 5, JR_CONTACT = 6, JR_RING = 7, JR_KINETIC = 8,
+       JR_LAST = JR_KINETIC };
 #define JR_CONTACT_COLS 8 /* per contact: id a, id b, F_N, F_S, n_x, n_y, x, y (box frame) */
 #define JR_TRAJ_COLS 6
 #define JR_RING_COLS 7 /* t, mean sum |F|, mean |net force|, temperature, grains, centre x, y (observe.h) */
+#define JR_KINETIC_COLS 3 /* t, the bed's kinetic energy (box frame), drive frequency */
 #define JR_ENERGY_COLS 7 /* t, kinetic (translational, rotational), elastic, com y, max overlap, contacts */
 
 typedef struct sb_journal {

@@ -197,64 +197,79 @@ int obs_band_answered(const sb_obs *o, double min_n, double se, double thr, doub
 	return on || off;
 }
 
+int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, sb_err *e)
+{
+	if (!o->flux_on || !o->have_prev)
+		return 0;
+	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
+	flux_count(o, x, y);
+	const int n = o->nlines;
+	double *rec = malloc(sizeof(double) * (size_t)obs_flux_len(o));
+	if (!rec)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
+	rec[0] = t;
+	rec[1] = f;
+	/* the band's flux of this period: Phi = j_top - j_bot, averaged over its lines */
+	double band = 0;
+	for (int l = o->band_l0; l < o->band_l1; l++)
+		band += o->jtop[l] - o->jbot[l];
+	o->band_last = o->band_l1 > o->band_l0 ? band / (o->band_l1 - o->band_l0) : 0;
+	o->have_band = 1;
+	memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
+	memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
+	int rc = journal_record(jr, JR_FLUX, rec, obs_flux_len(o), e);
+	free(rec);
+	if (rc)
+		return rc;
+	(*nflux)++;
+	memset(o->jtop, 0, sizeof(double) * (size_t)n);
+	memset(o->jbot, 0, sizeof(double) * (size_t)n);
+	return 0;
+}
+
+int obs_field(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *nfield, sb_err *e)
+{
+	if (!o->field_on || !o->have_prev)
+		return 0;
+	field_add(o, st->q[C_X][0], st->q[C_Y][0]);
+	if (++o->kdone < o->K)
+		return 0;
+	size_t nc = (size_t)o->nx * o->ny;
+	double *rec = malloc(sizeof(double) * (size_t)obs_field_len(o));
+	if (!rec)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the field record");
+	rec[0] = t;
+	rec[1] = o->K;
+	memcpy(rec + 2, o->sx, sizeof(double) * nc);
+	memcpy(rec + 2 + nc, o->sy, sizeof(double) * nc);
+	memcpy(rec + 2 + 2 * nc, o->cnt, sizeof(double) * nc);
+	int rc = journal_record(jr, JR_FIELD, rec, obs_field_len(o), e);
+	free(rec);
+	if (rc)
+		return rc;
+	(*nfield)++;
+	o->kdone = 0;
+	memset(o->sx, 0, sizeof(double) * nc);
+	memset(o->sy, 0, sizeof(double) * nc);
+	memset(o->cnt, 0, sizeof(double) * nc);
+	return 0;
+}
+
+void obs_strobe_keep(sb_obs *o, const sb_state *st)
+{
+	if (!o->flux_on && !o->field_on)
+		return;
+	memcpy(o->xp, st->q[C_X][0], sizeof(double) * (size_t)o->nm);
+	memcpy(o->yp, st->q[C_Y][0], sizeof(double) * (size_t)o->nm);
+	o->have_prev = 1;
+}
+
 int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
 	       long *nfield, sb_err *e)
 {
-	if (!o->flux_on && !o->field_on)
-		return 0;
-	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
-	if (o->have_prev) {
-		if (o->flux_on) {
-			flux_count(o, x, y);
-			const int n = o->nlines;
-			double *rec = malloc(sizeof(double) * (size_t)obs_flux_len(o));
-			if (!rec)
-				return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
-			rec[0] = t;
-			rec[1] = f;
-			/* the band's flux of this period: Phi = j_top - j_bot, averaged over its lines */
-			double band = 0;
-			for (int l = o->band_l0; l < o->band_l1; l++)
-				band += o->jtop[l] - o->jbot[l];
-			o->band_last = o->band_l1 > o->band_l0 ? band / (o->band_l1 - o->band_l0) : 0;
-			o->have_band = 1;
-			memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
-			memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
-			int rc = journal_record(jr, JR_FLUX, rec, obs_flux_len(o), e);
-			free(rec);
-			if (rc)
-				return rc;
-			(*nflux)++;
-			memset(o->jtop, 0, sizeof(double) * (size_t)n);
-			memset(o->jbot, 0, sizeof(double) * (size_t)n);
-		}
-		if (o->field_on) {
-			field_add(o, x, y);
-			if (++o->kdone == o->K) {
-				size_t nc = (size_t)o->nx * o->ny;
-				double *rec = malloc(sizeof(double) * (size_t)obs_field_len(o));
-				if (!rec)
-					return sb_errf(e, SB_ENOMEM, "out of memory for the field record");
-				rec[0] = t;
-				rec[1] = o->K;
-				memcpy(rec + 2, o->sx, sizeof(double) * nc);
-				memcpy(rec + 2 + nc, o->sy, sizeof(double) * nc);
-				memcpy(rec + 2 + 2 * nc, o->cnt, sizeof(double) * nc);
-				int rc = journal_record(jr, JR_FIELD, rec, obs_field_len(o), e);
-				free(rec);
-				if (rc)
-					return rc;
-				(*nfield)++;
-				o->kdone = 0;
-				memset(o->sx, 0, sizeof(double) * nc);
-				memset(o->sy, 0, sizeof(double) * nc);
-				memset(o->cnt, 0, sizeof(double) * nc);
-			}
-		}
-	}
-	memcpy(o->xp, x, sizeof(double) * (size_t)o->nm);
-	memcpy(o->yp, y, sizeof(double) * (size_t)o->nm);
-	o->have_prev = 1;
+	if (obs_flux(o, st, t, f, jr, nflux, e) || obs_field(o, st, t, jr, nfield, e))
+		return e->code;
+	obs_strobe_keep(o, st);
 	return 0;
 }
 

@@ -94,8 +94,13 @@ int obs_flux_len(const sb_obs *o);   /* t, f, jtop[nl], jbot[nl] */
 int obs_field_len(const sb_obs *o);  /* t, periods, sx[ny*nx], sy[..], cnt[..] */
 
 /* A stroboscopic sample at time t (phase 0, box at rest position: lab = box frame),
- * drive frequency f. Writes JR_FLUX / JR_FIELD records when due; returns the
- * number of records written through *nflux, *nfield. */
+ * drive frequency f, in three parts: the flux since the previous sample (a JR_FLUX
+ * record, counted in *nflux), the field (a JR_FIELD record when a block is complete,
+ * counted in *nfield), then the sample kept for the next one. Each part does nothing
+ * when its observable is off. obs_sample is the three in order. */
+int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, sb_err *e);
+int obs_field(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *nfield, sb_err *e);
+void obs_strobe_keep(sb_obs *o, const sb_state *st);
 int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
 	       long *nfield, sb_err *e);
 

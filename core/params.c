@@ -166,6 +166,9 @@ static const sb_param TABLE[] = {
 	{"contact_rate", REAL(contact_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
 	 "samples per second of the contact dump (every contact: the two disks, normal and tangential "
 	 "force, normal, place; /observables/contacts, for force chains; 0 = none)"},
+	{"bed_kinetic_samples", INT(bed_kinetic_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the bed's kinetic energy (box frame), averaged per period "
+	 "(/observables/bed_kinetic) and over the run (bed_kinetic_mean); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0"},
 	{"snapshot_precision", ENUM(snapshot_precision), "", "single", 0, 0, "double|single", PF_OUT,

@@ -56,6 +56,7 @@ struct sb_scene {
 	char output[SB_STR_MAX];
 	double traj_rate;
 	double energy_rate, contact_rate;
+	long bed_kinetic_samples;
 	int snapshots;
 	int snapshot_precision; /* 0 double, 1 single (the default) */
 	long compression;

@@ -1,6 +1,7 @@
 /* run.c - the shaking loop: steps, fused where nobody reads the corrected state, the
- * recording schedule (trajectory, snapshots, stroboscopic samples, the ring) on an
- * integer step grid, checkpoints, progress, and the overlap record's threshold. */
+ * recording schedule of the recorded quantities (record.h's table: rates on an integer
+ * step grid, the stroboscopic samples, the ring), checkpoints, progress, and the
+ * overlap record's threshold. */
 #include "run.h"
 
 #include <math.h>
@@ -17,141 +18,92 @@ static long due_step(long k, double interval, double dt)
 	return (long)ceil(k * interval / dt - 1e-6);
 }
 
-static int record_traj(sb_sim *s, double t, sb_err *e)
-{
-	const sb_state *st = &s->st;
-	int i = s->intruder;
-	double idt = 1.0 / s->sc.dt;
-	double row[JR_TRAJ_COLS] = {t,
-				    st->q[C_X][0][i],
-				    st->q[C_Y][0][i] + sim_box_y(s, t),
-				    st->q[C_X][1][i] * idt,
-				    st->q[C_Y][1][i] * idt + sim_box_v(s, t),
-				    st->q[C_TH][1][i] * idt};
-	if (journal_traj(&s->jr, row, e))
-		return e->code;
-	s->n_traj++;
-	return 0;
-}
+/* What the run records and how often, from the table (record.h), fixed for the run:
+ * worked out once, not in every step's decision. */
+typedef struct sched {
+	int on[REC_N];          /* the row is recorded */
+	double interval[REC_N]; /* a rate row's sampling interval (s); a phase row's samples
+				 * per period */
+	int strobe;             /* stroboscopic samples are taken */
+} sched;
 
-static int record_snap(sb_sim *s, double t, sb_err *e)
+/* Stroboscopic samples (phase 0 of each period) feed the rows on the strobe clock
+ * (snapshots, flux, field); without any of them, or without a drive, there are none,
+ * and no phase row is sampled either. */
+static void sched_init(sched *c, const sb_sim *s)
 {
-	sb_state *st = &s->st;
-	/* lab frame: shift y by y_box(t) and vy by v_box(t) */
-	const double yb = sim_box_y(s, t), vb = sim_box_v(s, t), idt = 1.0 / s->sc.dt;
-	const size_t nm = (size_t)st->nm;
-	double *lab = malloc(sizeof(double) * 3 * (nm ? nm : 1));
-	if (!lab)
-		return sb_errf(e, SB_ENOMEM, "out of memory for a snapshot");
-	double *ylab = lab, *vx = lab + nm, *vy = lab + 2 * nm;
-	for (size_t i = 0; i < nm; i++) {
-		ylab[i] = st->q[C_Y][0][i] + yb;
-		vx[i] = st->q[C_X][1][i] * idt;
-		vy[i] = st->q[C_Y][1][i] * idt + vb;
+	const sb_record *R = rec_table();
+	const int drive = s->sc.ramp != RAMP_NONE || s->sc.frequency > 0;
+	c->strobe = 0;
+	for (int k = 0; k < REC_N; k++) {
+		c->on[k] = rec_on(s, k) && (R[k].clock != RC_PHASE || drive);
+		c->interval[k] = c->on[k] ? R[k].clock == RC_RATE ? 1.0 / rec_rate(s, k) : rec_rate(s, k) : 0;
+		c->strobe |= R[k].clock == RC_STROBE && c->on[k];
 	}
-	int rc = journal_snap(&s->jr, t, st->q[C_X][0], ylab, st->q[C_TH][0], vx, vy, e);
-	free(lab);
-	if (rc)
-		return e->code;
-	s->n_snap++;
-	return 0;
+	c->strobe = c->strobe && drive;
 }
 
-/* Stroboscopic samples (phase 0 of each period) feed the snapshots, the flux and
- * the displacement field; without any of them there are none. */
-static int strobe_on(const sb_sim *s)
+/* A phase row at a constant frequency: the step of its next sample, at phase
+ * (rec_n + 1) / N of the periods (an integer schedule, no drift); on a ramp the phase
+ * itself decides (due), and there is no step to give. */
+static long phase_next(const sb_sim *s, const sched *c, int k)
 {
-	return (s->sc.snapshots || s->obs.flux_on || s->obs.field_on) &&
-	       (s->sc.ramp != RAMP_NONE || s->sc.frequency > 0);
+	if (s->sc.ramp != RAMP_NONE)
+		return 0;
+	return due_step(s->rec_n[k] + 1, 1.0 / (s->sc.frequency * c->interval[k]), s->sc.dt);
 }
 
-/* Is sample number n_strobe due at step n? Constant frequency: an integer schedule
- * (no drift); a ramp: the phase has passed 2 pi n_strobe. */
-static int strobe_due(const sb_sim *s, long n)
+/* Is stroboscopic sample number n_strobe due at step n? Constant frequency: an integer
+ * schedule (no drift); a ramp: the phase has passed 2 pi n_strobe. */
+static int strobe_due(const sb_sim *s, const sched *c, long n)
 {
-	if (!strobe_on(s))
+	if (!c->strobe)
 		return 0;
 	if (s->sc.ramp == RAMP_NONE)
-		return n >= s->next_snap_step;
+		return n >= s->next_strobe_step;
 	return drive_cycles(&s->drive, n * s->sc.dt) >= s->n_strobe - 1e-9;
 }
 
-/* One row of the energy series (box frame; the state is the corrected one of a
- * step nobody fused). */
-static int record_energy(sb_sim *s, double t, sb_err *e)
+/* Is a sample of row k due at step n? */
+static int due(const sb_sim *s, const sched *c, int k, long n)
 {
-	const sb_state *st = &s->st;
-	const double idt = 1.0 / s->sc.dt;
-	double kt = 0, kr = 0, my = 0, m = 0, el, ov;
-	long nc;
-	for (int i = 0; i < st->nm; i++) {
-		const double vx = st->q[C_X][1][i] * idt, vy = st->q[C_Y][1][i] * idt, w = st->q[C_TH][1][i] * idt;
-		kt += 0.5 * st->m[i] * (vx * vx + vy * vy);
-		kr += 0.5 * w * w / st->inv_i[i];
-		my += st->m[i] * st->q[C_Y][0][i];
-		m += st->m[i];
+	if (!c->on[k])
+		return 0;
+	switch (rec_table()[k].clock) {
+	case RC_RATE: return n >= s->rec_next[k];
+	case RC_STROBE: return strobe_due(s, c, n);
+	case RC_RING: return obs_ring_due(&s->obs, n);
+	case RC_PHASE:
+		if (s->sc.ramp == RAMP_NONE)
+			return n >= s->rec_next[k];
+		return drive_cycles(&s->drive, n * s->sc.dt) >= (s->rec_n[k] + 1.0) / c->interval[k] - 1e-9;
 	}
-	forces_contact_energy(&s->law, st, &s->nl, &el, &ov, &nc);
-	const double row[JR_ENERGY_COLS] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
-	if (journal_record(&s->jr, JR_ENERGY, row, JR_ENERGY_COLS, e))
-		return e->code;
-	s->n_energy++;
 	return 0;
 }
 
-/* One frame of the contact dump: every contact of the corrected state, its disks by
- * id (box frame). */
-static int record_contacts(sb_sim *s, double t, sb_err *e)
-{
-	const sb_state *st = &s->st;
-	const long cap = (long)s->nl.nflat + s->nl.nseam; /* every pair of the list may touch */
-	double *rec = malloc(sizeof(double) * (size_t)(2 + JR_CONTACT_COLS * (cap > 0 ? cap : 1)));
-	if (!rec)
-		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");
-	const long n = forces_contacts(&s->law, st, &s->nl, 1.0 / s->sc.dt, rec + 2, cap);
-	rec[0] = t;
-	rec[1] = (double)n;
-	for (long k = 0; k < n; k++) { /* list indices -> the disks' ids */
-		double *c = rec + 2 + JR_CONTACT_COLS * k;
-		c[0] = st->id[(int)c[0]];
-		c[1] = st->id[(int)c[1]];
-	}
-	int rc = journal_record(&s->jr, JR_CONTACT, rec, (int)(2 + JR_CONTACT_COLS * n), e);
-	free(rec);
-	if (rc)
-		return rc;
-	s->max_contacts = n > s->max_contacts ? n : s->max_contacts;
-	s->n_contact++;
-	return 0;
-}
-
-static int record(sb_sim *s, sb_err *e)
+/* The samples due at this step, in the table's order: the rate and phase rows, then
+ * one stroboscopic sample for every row on its clock. The ring is sampled before,
+ * with the step (sim_run). */
+static int record(sb_sim *s, const sched *c, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
+	const sb_record *R = rec_table();
 	const double t = s->step * sc->dt;
-	if (s->intruder >= 0 && sc->traj_rate > 0 && s->step >= s->next_traj_step) {
-		if (record_traj(s, t, e))
+	for (int k = 0; k < REC_N; k++) {
+		if ((R[k].clock != RC_RATE && R[k].clock != RC_PHASE) || !due(s, c, k, s->step))
+			continue;
+		if (R[k].sample(s, t, e))
 			return e->code;
-		s->next_traj_step = due_step(s->n_traj, 1.0 / sc->traj_rate, sc->dt);
+		s->rec_next[k] = R[k].clock == RC_RATE ? due_step(s->rec_n[k], c->interval[k], sc->dt) : phase_next(s, c, k);
 	}
-	if (sc->energy_rate > 0 && s->step >= s->next_energy_step) {
-		if (record_energy(s, t, e))
-			return e->code;
-		s->next_energy_step = due_step(s->n_energy, 1.0 / sc->energy_rate, sc->dt);
-	}
-	if (sc->contact_rate > 0 && s->step >= s->next_contact_step) {
-		if (record_contacts(s, t, e))
-			return e->code;
-		s->next_contact_step = due_step(s->n_contact, 1.0 / sc->contact_rate, sc->dt);
-	}
-	if (strobe_due(s, s->step)) {
-		if (sc->snapshots && record_snap(s, t, e))
-			return e->code;
-		if (obs_sample(&s->obs, &s->st, t, drive_freq(&s->drive, t), &s->jr, &s->n_flux, &s->n_field, e))
-			return e->code;
+	if (strobe_due(s, c, s->step)) {
+		for (int k = 0; k < REC_N; k++)
+			if (R[k].clock == RC_STROBE && c->on[k] && R[k].sample(s, t, e))
+				return e->code;
+		obs_strobe_keep(&s->obs, &s->st);
 		s->n_strobe++;
 		if (sc->ramp == RAMP_NONE)
-			s->next_snap_step = due_step(s->n_strobe, 1.0 / sc->frequency, sc->dt);
+			s->next_strobe_step = due_step(s->n_strobe, 1.0 / sc->frequency, sc->dt);
 	}
 	return 0;
 }
@@ -202,13 +154,18 @@ int sim_run(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
 	const double dt = sc->dt;
-	const int resumed = s->step > 0 || s->n_traj > 0 || s->n_strobe > 0;
+	const int resumed = s->step > 0 || s->rec_n[REC_TRAJ] > 0 || s->n_strobe > 0;
+	sched c;
+	sched_init(&c, s);
 	if (!s->jr.f && !s->jr.discard && journal_open(&s->jr, s->journal_path, s->st.nm, -1, e))
 		return e->code;
 	if (!resumed) {
 		s->n_ckpt = 0;
 		s->next_ckpt_step = sc->checkpoint_every > 0 ? due_step(1, sc->checkpoint_every, dt) : -1;
-		if (record(s, e))
+		for (int k = 0; k < REC_N; k++) /* a phase row's first sample ends a period's first 1/N */
+			if (rec_table()[k].clock == RC_PHASE && c.on[k])
+				s->rec_next[k] = phase_next(s, &c, k);
+		if (record(s, &c, e))
 			return e->code;
 	}
 	stop_rules(s); /* a resumed run whose rule fired ends where it would have */
@@ -228,21 +185,19 @@ int sim_run(sb_sim *s, sb_err *e)
 		}
 		const long n1 = s->step + 1;
 		const double t1 = n1 * dt;
-		const int ring = obs_ring_due(&s->obs, n1);
+		const int ring = due(s, &c, REC_RING, n1);
 		/* fuse unless this step's corrected state is recorded, checkpointed or final */
-		const int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop) || ring ||
-				 (s->intruder >= 0 && sc->traj_rate > 0 && n1 >= s->next_traj_step) ||
-				 (sc->energy_rate > 0 && n1 >= s->next_energy_step) ||
-				 (sc->contact_rate > 0 && n1 >= s->next_contact_step) ||
-				 strobe_due(s, n1);
+		int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop);
+		for (int k = 0; k < REC_N && !look; k++)
+			look = due(s, &c, k, n1);
 		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look,
 			      ring ? s->obs.fabs_sum : NULL, e))
 			break;
 		s->step = n1;
-		if (ring && obs_ring(&s->obs, &s->st, s->intruder, t1, 1.0 / dt, &s->jr, e))
+		if (ring && rec_table()[REC_RING].sample(s, t1, e))
 			break;
 		TIC(PH_RECORD);
-		if (record(s, e))
+		if (record(s, &c, e))
 			break;
 		TOC(PH_RECORD);
 		stop_rules(s);

@@ -14,6 +14,7 @@
 #include "observe.h"
 #include "params.h"
 #include "provenance.h"
+#include "record.h"
 #include "state.h"
 
 enum sb_phase { PH_PREDICT, PH_CHECK, PH_NEIGH, PH_FORCE, PH_CORRECT, PH_RECORD, PH_N };
@@ -41,9 +42,10 @@ typedef struct sb_sim {
 	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
 	int ov_track;            /* shaking: the kernel's overlap threshold is the record so
 				  * far (obs.ov_max), not the stop (sim.c) */
-	long n_traj, n_snap;     /* records written so far */
-	long n_flux, n_field, n_strobe, n_energy, n_contact;
-	long next_traj_step, next_snap_step, next_ckpt_step, n_ckpt, next_energy_step, next_contact_step;
+	long rec_n[REC_N];       /* records written so far, per recorded quantity (record.h) */
+	long rec_next[REC_N];    /* the step the next sample of a rate row is due */
+	long n_strobe, next_strobe_step; /* stroboscopic samples taken; the next one's step */
+	long next_ckpt_step, n_ckpt;
 	long max_contacts;       /* the largest contact record so far (the reader's buffer) */
 	sb_obs obs;
 	sb_journal jr;

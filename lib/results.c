@@ -6,7 +6,11 @@
 
 #include <string.h>
 
+#include "record.h"
 #include "runfile.h"
+
+/* A summary attribute of the run file's root is a column of its name. */
+#define SUMMARY_COLUMN(row, attr, unit, def) {#attr, RT_REAL, "@" #attr, unit, def, 0},
 
 static const rcol TABLE[] = {
 	{"status", RT_TEXT, "@status", "",
@@ -28,14 +32,8 @@ static const rcol TABLE[] = {
 	 "the intruder centre's height after settling, box frame", 0},
 	{"intruder_settled_depth", RT_REAL, "@intruder_settled_depth", "cm",
 	 "free surface minus the intruder centre's height after settling", 0},
-	{"intruder_final_y_box", RT_REAL, "@intruder_final_y_box", "cm",
-	 "the intruder centre's height at the last trajectory row, box frame; NULL without a trajectory", 0},
-	{"intruder_max_y_box", RT_REAL, "@intruder_max_y_box", "cm",
-	 "highest intruder centre over the trajectory rows, box frame", 0},
-	{"intruder_min_y_box", RT_REAL, "@intruder_min_y_box", "cm",
-	 "lowest intruder centre over the trajectory rows, box frame", 0},
-	{"intruder_mean_y_box", RT_REAL, "@intruder_mean_y_box", "cm",
-	 "mean intruder centre height over the trajectory rows, box frame", 0},
+	/* the per-run summaries of the recorded quantities (core/record.h) */
+	REC_SUMMARIES(SUMMARY_COLUMN)
 	{"intruder_rise_box", RT_REAL, "intruder_final_y_box - intruder_settled_y_box", "cm",
 	 "final minus settled height of the intruder centre, box frame", RF_DERIVED},
 	{"risen", RT_INT, "@risen", "",

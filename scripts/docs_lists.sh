@@ -153,7 +153,7 @@ if [ -n "${DOCS_LISTS_CACHE:-}" ] && [ -s "$DOCS_LISTS_CACHE/all.h5" ]; then
 fi
 if [ -s "$TMP/all.h5" ] || (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 frequency=5 amplitude=1 \
 	settle_min=0.1 settle_ke=1 flux=yes field=yes field_periods=1 ring=yes energy_rate=50 \
-	contact_rate=20 traj_rate=50 output=all.h5 >run.log 2>&1); then
+	contact_rate=20 traj_rate=50 bed_kinetic_samples=4 output=all.h5 >run.log 2>&1); then
 	H5="$TMP/all.h5"
 	[ -z "${DOCS_LISTS_CACHE:-}" ] || cp "$H5" "$DOCS_LISTS_CACHE/all.h5"
 	grep '^| `/' "$(doc docs/output.md)" >"$TMP/rows"
