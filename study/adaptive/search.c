@@ -90,8 +90,8 @@ static double run_flux(const search *s, const char *id, int *damaged)
 }
 
 /* A run's class from its state and results. A run that the engine stopped on physics
- * is classified by what its failure means (adapt_failure_class: grains thrown out of
- * the box are "on"); any other failure stops its chain, and *why says which (its
+ * while shaking is classified by what its failure means (adapt_failure_class: grains
+ * thrown out of the box are "on"); any other failure stops its chain, and *why says which (its
  * status and message). An intruder that rose before a failure did rise; a failed run's
  * flux is not used: its periods end where the physics broke down. Only a finished
  * run's flux is kept between passes: a failed run may be run again (--retry-failed),
@@ -114,9 +114,13 @@ static int classify(search *s, sqlite3_stmt *q, const char *id, double *value, c
 	if (!st || (strcmp(st, "done") && !failed))
 		return AD_WAIT;
 	const char *status = (const char *)sqlite3_column_text(q, 2), *msg = (const char *)sqlite3_column_text(q, 3);
-	int fcls = failed ? adapt_failure_class(status) : AD_FAILED;
+	/* only a failure while shaking says something of the drive: a bed that spills
+	 * while it settles (no step of shaking) fails the same at every frequency */
+	int shaken = sqlite3_column_int64(q, 4) > 0;
+	int fcls = failed && shaken ? adapt_failure_class(status) : AD_FAILED;
 	if (failed)
-		snprintf(why, len, "%s%s%s", status ? status : "failed", msg && *msg ? ": " : "", msg ? msg : "");
+		snprintf(why, len, "%s%s%s%s", status ? status : "failed", shaken ? "" : " before shaking",
+			 msg && *msg ? ": " : "", msg ? msg : "");
 	if (s->c->onset.observable == CP_OBS_RISE) {
 		int has = sqlite3_column_type(q, 1) != SQLITE_NULL;
 		long risen = (long)sqlite3_column_int64(q, 1);
@@ -213,7 +217,7 @@ int search_derive(search *s, grid *g, st_db *db, sb_err *e)
 	s->ngroups = g->points;
 	sqlite3_stmt *q;
 	if (sql_exec(db, e, &q,
-		    "SELECT r.state, s.risen, a.status, a.message FROM run r"
+		    "SELECT r.state, s.risen, a.status, a.message, s.steps FROM run r"
 		    " LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id"
 		    " LEFT JOIN attempt a ON a.campaign = r.campaign AND a.run = r.id"
 		    "  AND a.n = (SELECT MAX(n) FROM attempt b WHERE b.campaign = r.campaign AND b.run = r.id)"

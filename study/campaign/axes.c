@@ -104,7 +104,7 @@ static const struct {
 	double gamma_min; /* from this Gamma up */
 	const char *what;
 } FAILS[] = {
-	{1.6, "the bed throws grains over the side walls and runs end with left_box (exit 5)"},
+	{1.6, "runs have ended with grains thrown over the side walls (left_box, exit 5)"},
 };
 
 const char *axes_model_fails(double gamma, double *limit)

@@ -658,7 +658,7 @@ static void test_section(void)
 		int w1 = search_preview(&c, 0, p1, sizeof p1), w3 = search_preview(&c, 2, p3, sizeof p3);
 		CHECK("adapt.preview.warns_above_limit", w3 && strstr(p3, "first point 4 Hz (Gamma 1.93, v 75.4 cm/s)") &&
 		      strstr(p3, "warning: group amplitude=3: the first point, 4 Hz, is at Gamma 1.93, at or above 1.6 where "
-			     "the bed throws grains"), "%s", p3);
+			     "runs have ended with grains thrown"), "%s", p3);
 		CHECK("adapt.preview.quiet_below_limit", !w1 && strstr(p1, "first point 4 Hz (Gamma 0.644, v 25.1 cm/s)") &&
 		      !strstr(p1, "warning"), "%s", p1);
 		sf_free(&c, &g);
