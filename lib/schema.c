@@ -37,20 +37,20 @@ static const char STUDY[] =
 	"CREATE INDEX IF NOT EXISTS run_state ON run(campaign, state);\n"
 	/* an [onset] campaign's search, as the driver's last pass left it (search.c) */
 	"CREATE TABLE IF NOT EXISTS onset_search(\n"
-	"  campaign TEXT PRIMARY KEY, observable TEXT, freq_from REAL, freq_to REAL, tolerance REAL,\n"
+	"  campaign TEXT PRIMARY KEY, observable TEXT, axis TEXT, freq_from REAL, freq_to REAL, tolerance REAL,\n"
 	"  threshold REAL, band_lo REAL, band_hi REAL, skip REAL, replicates TEXT, max_replicates INTEGER,\n"
 	"  batch INTEGER, target REAL, level REAL, state TEXT, updated TEXT);\n"
 	"CREATE TABLE IF NOT EXISTS onset_group(\n"
 	"  campaign TEXT NOT NULL, grp TEXT NOT NULL, point INTEGER, replicates INTEGER, searching INTEGER,\n"
 	"  found INTEGER, below INTEGER, above INTEGER, blocked INTEGER, nonmonotone INTEGER, runs INTEGER,\n"
-	"  estimate REAL, ci_lo REAL, ci_hi REAL, width REAL, state TEXT, PRIMARY KEY (campaign, grp));\n"
+	"  estimate REAL, ci_lo REAL, ci_hi REAL, width REAL, state TEXT, reason TEXT, PRIMARY KEY (campaign, grp));\n"
 	"CREATE TABLE IF NOT EXISTS onset_replicate(\n"
 	"  campaign TEXT NOT NULL, grp TEXT NOT NULL, replicate INTEGER NOT NULL, state TEXT, lo REAL, hi REAL,\n"
 	"  lo_run INTEGER, hi_run INTEGER, next REAL, runs INTEGER, nonmonotone INTEGER,\n"
 	"  PRIMARY KEY (campaign, grp, replicate));\n"
 	"CREATE TABLE IF NOT EXISTS onset_run(\n"
 	"  campaign TEXT NOT NULL, run TEXT NOT NULL, grp TEXT, replicate INTEGER, step INTEGER,\n"
-	"  frequency REAL, value REAL, class TEXT, PRIMARY KEY (campaign, run));\n"
+	"  axis_value REAL, frequency REAL, value REAL, class TEXT, PRIMARY KEY (campaign, run));\n"
 	/* a grid with replicates = auto, per point, as the driver's last pass left it
 	 * (sharpen.c) */
 	"CREATE TABLE IF NOT EXISTS auto_point(\n"
@@ -193,7 +193,10 @@ static int runs_view(sql_db *d, sb_err *e)
 int schema_study(sql_db *d, sb_err *e)
 {
 	if (sql_script(d, STUDY, e) || sql_ensure_column(d, "run", "current", "INTEGER NOT NULL DEFAULT 1", e) ||
-	    sql_ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) || result_table(d, e))
+	    sql_ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) ||
+	    /* a search's axis (Gamma, v) and why a group is blocked: absent from older files */
+	    sql_ensure_column(d, "onset_search", "axis", "TEXT", e) || sql_ensure_column(d, "onset_group", "reason", "TEXT", e) ||
+	    sql_ensure_column(d, "onset_run", "axis_value", "REAL", e) || result_table(d, e))
 		return e->code;
 	return runs_view(d, e);
 }

@@ -345,6 +345,11 @@ static int cmd_expand(const char *path, sb_err *e)
 		if (c->onset.line)
 			fprintf(stderr, "study: %s: an [onset] search: its first round below; the next ones depend on "
 				"the results\n", path);
+		for (long p = 0; c->onset.line && p < g.points; p++) {
+			char pv[2048];
+			search_preview(c, p, pv, sizeof pv);
+			fprintf(stderr, "%s", pv);
+		}
 		if (c->autorep.on)
 			fprintf(stderr, "study: %s: replicates = auto: the first batch of every grid point below; more "
 				"replicates depend on the results\n", path);
@@ -352,8 +357,10 @@ static int cmd_expand(const char *path, sb_err *e)
 		for (int a = 0; a < c->naxes; a++)
 			if (strcmp(c->axes[a].key, "seed"))
 				printf("\t%s", c->axes[a].key);
-		if (c->onset.line)
+		if (c->onset.line || c->derive == CP_DERIVE_FREQUENCY || c->derive == CP_DERIVE_BOTH)
 			printf("\tfrequency");
+		if (c->derive == CP_DERIVE_AMPLITUDE || c->derive == CP_DERIVE_BOTH)
+			printf("\tamplitude");
 		printf("\n");
 		for (long i = 0; i < g.n; i++) {
 			const grid_run *r = &g.runs[i];
@@ -365,15 +372,22 @@ static int cmd_expand(const char *path, sb_err *e)
 					continue;
 				char v[SB_STR_MAX + 8];
 				const sb_param *p = params_find(c->axes[a].key);
-				if (p->type == PT_REAL) /* the value as written; the id hashes all 17 digits */
+				if (!p) /* gamma, velocity: the campaign's own keys */
+					grid_axis_text(c, r->point, a, v, sizeof v);
+				else if (p->type == PT_REAL) /* the value as written; the id hashes all 17 digits */
 					dtext_shortest(*(const double *)((const char *)&s + p->offset), v, sizeof v);
 				else
 					params_format(&s, p, v, sizeof v);
 				printf("\t%s", v);
 			}
-			if (c->onset.line) {
+			if (c->onset.line || c->derive == CP_DERIVE_FREQUENCY || c->derive == CP_DERIVE_BOTH) {
 				char v[40];
 				dtext_shortest(s.frequency, v, sizeof v);
+				printf("\t%s", v);
+			}
+			if (c->derive == CP_DERIVE_AMPLITUDE || c->derive == CP_DERIVE_BOTH) {
+				char v[40];
+				dtext_shortest(s.amplitude, v, sizeof v);
 				printf("\t%s", v);
 			}
 			printf("\n");

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "campaign/axes.h"
 #include "flux.h"
 #include "h5sum.h"
 #include "layout.h"
@@ -88,14 +89,17 @@ static double run_flux(const search *s, const char *id, int *damaged)
 	return flux_of_run(s->dir, id, &o, damaged);
 }
 
-/* A run's class from its state and results. A run that failed without an answer
- * stops its chain (an intruder that rose before the failure did rise; a failed run's
- * flux is not used: its periods end where the physics broke down). Only a finished
+/* A run's class from its state and results. A run that the engine stopped on physics
+ * while shaking is classified by what its failure means (adapt_failure_class: grains
+ * thrown out of the box are "on"); any other failure stops its chain, and *why says which (its
+ * status and message). An intruder that rose before a failure did rise; a failed run's
+ * flux is not used: its periods end where the physics broke down. Only a finished
  * run's flux is kept between passes: a failed run may be run again (--retry-failed),
  * and a done run that is run again (its file was damaged) ends the same, to the bit. */
-static int classify(search *s, sqlite3_stmt *q, const char *id, double *value)
+static int classify(search *s, sqlite3_stmt *q, const char *id, double *value, char *why, size_t len)
 {
 	*value = NAN;
+	why[0] = 0;
 	const srch_val *v = val_find(s, id);
 	if (v) {
 		*value = v->value;
@@ -109,18 +113,34 @@ static int classify(search *s, sqlite3_stmt *q, const char *id, double *value)
 	int failed = st && !strcmp(st, "failed");
 	if (!st || (strcmp(st, "done") && !failed))
 		return AD_WAIT;
+	const char *status = (const char *)sqlite3_column_text(q, 2), *msg = (const char *)sqlite3_column_text(q, 3);
+	/* only a failure while shaking says something of the drive: a bed that spills
+	 * while it settles (no step of shaking) fails the same at every frequency */
+	int shaken = sqlite3_column_int64(q, 4) > 0;
+	int fcls = failed && shaken ? adapt_failure_class(status) : AD_FAILED;
+	if (failed)
+		snprintf(why, len, "%s%s%s%s", status ? status : "failed", shaken ? "" : " before shaking",
+			 msg && *msg ? ": " : "", msg ? msg : "");
 	if (s->c->onset.observable == CP_OBS_RISE) {
 		int has = sqlite3_column_type(q, 1) != SQLITE_NULL;
 		long risen = (long)sqlite3_column_int64(q, 1);
 		*value = has ? (double)risen : NAN;
-		return has && risen ? AD_ON : !has || failed ? AD_FAILED : AD_OFF;
+		if (has && risen)
+			return AD_ON;
+		if (failed)
+			return fcls;
+		if (!has)
+			snprintf(why, len, "done without a rise recorded");
+		return has ? AD_OFF : AD_FAILED;
 	}
 	if (failed)
-		return AD_FAILED;
+		return fcls;
 	int damaged;
 	*value = run_flux(s, id, &damaged);
 	if (damaged)
 		return AD_WAIT;
+	if (isnan(*value))
+		snprintf(why, len, "done without a period of flux after the transient");
 	int cls = isnan(*value) ? AD_FAILED : fabs(*value) >= s->c->onset.threshold ? AD_ON : AD_OFF;
 	val_put(s, id, cls, *value);
 	return cls;
@@ -135,17 +155,28 @@ struct walk {
 	long group, replicate;
 	int step;
 	sb_err *e;
+	const sb_scene *scene; /* the group's: its amplitude gives the frequency of a point */
 };
 
-static int look(void *ctx, double f)
+static int look(void *ctx, double x)
 {
 	struct walk *w = ctx;
 	search *s = w->s;
-	char id[17];
+	char id[17], why[300];
+	double f = grid_onset_frequency(s->c, w->scene, x);
 	if (w->e->code || grid_add(w->g, w->group, w->replicate, f, id, w->e))
 		return AD_WAIT;
 	double value;
-	int cls = classify(s, w->q, id, &value);
+	int cls = classify(s, w->q, id, &value, why, sizeof why);
+	srch_group *gr = &s->groups[w->group];
+	if (cls == AD_FAILED && !gr->reason[0]) {
+		char at[64];
+		if (s->c->onset.axis == AX_FREQUENCY)
+			snprintf(at, sizeof at, "%.12g Hz", f);
+		else
+			snprintf(at, sizeof at, "%s %.12g (%.12g Hz)", axes_name(s->c->onset.axis), x, f);
+		snprintf(gr->reason, sizeof gr->reason, "replicate %ld at %s: %s", w->replicate, at, why);
+	}
 	if (s->nsteps == s->capsteps) {
 		long cap = s->capsteps ? 2 * s->capsteps : 256;
 		srch_step *n = realloc(s->steps, sizeof *n * (size_t)cap);
@@ -160,6 +191,7 @@ static int look(void *ctx, double f)
 	st->group = w->group;
 	st->replicate = w->replicate;
 	st->step = w->step++;
+	st->x = x;
 	st->f = f;
 	memcpy(st->id, id, 17);
 	st->cls = cls;
@@ -185,7 +217,10 @@ int search_derive(search *s, grid *g, st_db *db, sb_err *e)
 	s->ngroups = g->points;
 	sqlite3_stmt *q;
 	if (sql_exec(db, e, &q,
-		    "SELECT r.state, s.risen FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id"
+		    "SELECT r.state, s.risen, a.status, a.message, s.steps FROM run r"
+		    " LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id"
+		    " LEFT JOIN attempt a ON a.campaign = r.campaign AND a.run = r.id"
+		    "  AND a.n = (SELECT MAX(n) FROM attempt b WHERE b.campaign = r.campaign AND b.run = r.id)"
 		    " WHERE r.campaign = ?1 AND r.id = ?2",
 		    "t", c->name))
 		return e->code;
@@ -194,6 +229,8 @@ int search_derive(search *s, grid *g, st_db *db, sb_err *e)
 	for (long p = 0; p < s->ngroups && !e->code; p++) {
 		srch_group *gr = &s->groups[p];
 		grid_point_label(c, p, gr->label, sizeof gr->label);
+		sb_scene scene;
+		grid_point_scene(c, p, &scene);
 		long n = adapt_first(&plan), want;
 		for (;;) {
 			ad_rep *nr = realloc(gr->reps, sizeof *nr * (size_t)n);
@@ -203,7 +240,7 @@ int search_derive(search *s, grid *g, st_db *db, sb_err *e)
 			}
 			gr->reps = nr;
 			for (long i = gr->nrep; i < n && !e->code; i++) {
-				struct walk w = {s, g, q, p, i + 1, 0, e};
+				struct walk w = {s, g, q, p, i + 1, 0, e, &scene};
 				adapt_walk(&range, look, &w, &gr->reps[i]);
 			}
 			gr->nrep = n;
@@ -226,13 +263,33 @@ int search_done(const search *s)
 	return 1;
 }
 
+struct member_map {
+	const campaign *c;
+	sb_scene scene;
+};
+
+static double member_map(void *ctx, double x)
+{
+	struct member_map *m = ctx;
+	return grid_onset_frequency(m->c, &m->scene, x);
+}
+
 int search_member(const campaign *c, long points, long replicate, double frequency, const char *id)
 {
 	const cp_onset *o = &c->onset;
 	ad_range range = {o->from, o->to, o->tolerance};
-	if (replicate < 1 || replicate > AD_MAX_REPLICATES || !adapt_member(&range, frequency))
+	if (replicate < 1 || replicate > AD_MAX_REPLICATES)
+		return 0;
+	if (o->axis == AX_FREQUENCY && !adapt_member(&range, frequency))
 		return 0;
 	for (long p = 0; p < points; p++) {
+		if (o->axis != AX_FREQUENCY) {
+			/* each group has its own frequencies: the point's amplitude maps them */
+			struct member_map m = {c, {0}};
+			grid_point_scene(c, p, &m.scene);
+			if (!adapt_member_map(&range, frequency, member_map, &m))
+				continue;
+		}
 		char want[17];
 		grid_onset_id(c, p, replicate, frequency, want);
 		if (!strcmp(want, id))
@@ -267,15 +324,19 @@ int search_store(const search *s, st_db *db, sb_err *e)
 					    "DELETE FROM onset_run WHERE campaign = ?"};
 	for (size_t i = 0; i < sizeof clear / sizeof *clear && !e->code; i++)
 		sql_exec(db, e, NULL, clear[i], "t", c->name);
-	int flux = o->observable == CP_OBS_FLUX;
+	int flux = o->observable == CP_OBS_FLUX, blocked = 0;
+	for (long p = 0; p < s->ngroups; p++)
+		blocked += s->groups[p].state == AD_G_BLOCKED;
+	/* freq_from, freq_to, tolerance and target are in the axis's unit (the name of
+	 * the first two is older than the axis) */
 	sql_exec(db, e, NULL,
-		"INSERT INTO onset_search(campaign, observable, freq_from, freq_to, tolerance, threshold, band_lo,"
+		"INSERT INTO onset_search(campaign, observable, axis, freq_from, freq_to, tolerance, threshold, band_lo,"
 		" band_hi, skip, replicates, max_replicates, batch, target, level, state, updated)"
-		" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-		"ttdddDDDDtllDdtt", c->name, flux ? "flux" : "rise", o->from, o->to, o->tolerance, flux, o->threshold,
-		flux, o->band_lo, flux, o->band_hi, flux, o->skip, reps, o->autorep ? o->max_replicates : o->replicates,
-		o->autorep ? o->batch : o->replicates, o->autorep, o->target, o->level,
-		search_done(s) ? "done" : "searching", now);
+		" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+		"tttdddDDDDtllDdtt", c->name, flux ? "flux" : "rise", axes_name(o->axis), o->from, o->to, o->tolerance,
+		flux, o->threshold, flux, o->band_lo, flux, o->band_hi, flux, o->skip, reps,
+		o->autorep ? o->max_replicates : o->replicates, o->autorep ? o->batch : o->replicates, o->autorep,
+		o->target, o->level, !search_done(s) ? "searching" : blocked ? "blocked" : "done", now);
 	for (long p = 0; p < s->ngroups && !e->code; p++) {
 		const srch_group *gr = &s->groups[p];
 		long count[AD_BLOCKED + 1] = {0}, nonmono = 0;
@@ -293,19 +354,19 @@ int search_store(const search *s, st_db *db, sb_err *e)
 		const ad_interval *iv = &gr->iv;
 		sql_exec(db, e, NULL,
 			"INSERT INTO onset_group(campaign, grp, point, replicates, searching, found, below, above, blocked,"
-			" nonmonotone, runs, estimate, ci_lo, ci_hi, width, state)"
-			" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-			"ttlllllllllDDDDt", c->name, gr->label, p, gr->nrep, count[AD_SEARCHING], count[AD_FOUND],
+			" nonmonotone, runs, estimate, ci_lo, ci_hi, width, state, reason)"
+			" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+			"ttlllllllllDDDDtt", c->name, gr->label, p, gr->nrep, count[AD_SEARCHING], count[AD_FOUND],
 			count[AD_BELOW], count[AD_ABOVE], count[AD_BLOCKED], nonmono, gr->runs, bounded(iv->est), iv->est,
 			bounded(iv->lo), iv->lo, bounded(iv->hi), iv->hi, bounded(iv->width), iv->width,
-			adapt_gstate_name(gr->state));
+			adapt_gstate_name(gr->state), gr->state == AD_G_BLOCKED ? gr->reason : NULL);
 	}
 	for (long i = 0; i < s->nsteps && !e->code; i++) {
 		const srch_step *st = &s->steps[i];
 		sql_exec(db, e, NULL,
-			"INSERT OR REPLACE INTO onset_run(campaign, run, grp, replicate, step, frequency, value, class)"
-			" VALUES (?, ?, ?, ?, ?, ?, ?, ?)",
-			"tttlldDt", c->name, st->id, s->groups[st->group].label, st->replicate, (long)st->step, st->f,
+			"INSERT OR REPLACE INTO onset_run(campaign, run, grp, replicate, step, axis_value, frequency, value,"
+			" class) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+			"tttllddDt", c->name, st->id, s->groups[st->group].label, st->replicate, (long)st->step, st->x, st->f,
 			bounded(st->value), st->value, search_class_name(st->cls));
 	}
 	if (e->code) {
@@ -313,4 +374,38 @@ int search_store(const search *s, st_db *db, sb_err *e)
 		return e->code;
 	}
 	return db_commit(db, e);
+}
+
+/* ---- before the start ---- */
+
+/* "4 Hz (Gamma 1.93, v 75.4 cm/s)" */
+static void drive_text(const sb_scene *s, double f, char *buf, size_t len)
+{
+	snprintf(buf, len, "%.6g Hz (Gamma %.3g, v %.3g cm/s)", f, axes_gamma(s->amplitude, f, s->gravity),
+		 axes_velocity(s->amplitude, f));
+}
+
+int search_preview(const campaign *c, long group, char *buf, size_t len)
+{
+	const cp_onset *o = &c->onset;
+	sb_scene s;
+	grid_point_scene(c, group, &s);
+	char label[512], at[3][96];
+	grid_point_label(c, group, label, sizeof label);
+	double x[3] = {adapt_mid(o->from, o->to), o->from, o->to}, f[3];
+	for (int k = 0; k < 3; k++) {
+		f[k] = grid_onset_frequency(c, &s, x[k]);
+		drive_text(&s, f[k], at[k], sizeof at[k]);
+	}
+	/* every replicate's chain starts at the midpoint; the ends run only when a bracket
+	 * closes on them */
+	size_t l = (size_t)snprintf(buf, len, "group %s (amplitude %g cm): first point %s; range %s to %s\n", label,
+				    s.amplitude, at[0], at[1], at[2]);
+	double limit, gamma = axes_gamma(s.amplitude, f[0], s.gravity);
+	const char *what = axes_model_fails(gamma, &limit);
+	if (what && l < len)
+		snprintf(buf + l, len - l, "warning: group %s: the first point, %.6g Hz, is at Gamma %.3g, at or above %g "
+			 "where %s (docs/model.md, \"Where the model fails\"); such a run counts as on\n", label, f[0],
+			 gamma, limit, what);
+	return what != NULL;
 }

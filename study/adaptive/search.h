@@ -17,13 +17,15 @@ typedef struct srch_group {
 	ad_interval iv;
 	int state;           /* enum ad_gstate (never AD_G_MORE after a pass) */
 	long runs;           /* runs of its chains, the waiting ones included */
+	char reason[400];    /* blocked: the first failed run's replicate, point, status and message */
 } srch_group;
 
 /* One run of a chain (a row of onset_run). */
 typedef struct srch_step {
 	long group, replicate;
 	int step;            /* 0, 1, ...: its place in the replicate's chain */
-	double f;
+	double x;            /* the point in the search's axis (Hz, Gamma or cm/s) */
+	double f;            /* its frequency for the group */
 	char id[17];
 	int cls;             /* enum ad_class */
 	double value;        /* rise: risen; flux: the mean flux through the band (NaN: none) */
@@ -71,5 +73,11 @@ int search_member(const campaign *c, long points, long replicate, double frequen
 
 /* The observable of a classified run, for the messages: "on", "off", ... */
 const char *search_class_name(int cls);
+
+/* What a group's search will run first, said before it starts: the first point's
+ * frequency, Gamma and v and the range's, and, when the model is known to fail at the
+ * first point (axes_model_fails), a warning. Lines into buf ("" when none); returns
+ * whether there is a warning. */
+int search_preview(const campaign *c, long group, char *buf, size_t len);
 
 #endif

@@ -13,6 +13,7 @@
 #include "fsutil.h"
 #include "num.h"
 #include "textline.h"
+#include "axes.h"
 #include "rule/adapt.h"
 #include "safe.h"
 
@@ -20,6 +21,11 @@ int campaign_key_reserved(const char *key)
 {
 	const sb_param *p = params_find(key);
 	return p && (p->flags & PF_DRIVER);
+}
+
+int campaign_key_derived(const char *key)
+{
+	return axes_kind(key) > AX_FREQUENCY;
 }
 
 static void trim(char *s)
@@ -92,8 +98,24 @@ static int axis_dedup(cp_axis *a, sb_err *e)
 /* Check one value with the engine's own parser and keep its canonical text, so that
  * "2.60" and "2.6" are the same value and the run id does not depend on spelling.
  * `scratch` is a scene at the defaults: only the value's own key is set and read. */
+static int parse_num(const char *t, double *x);
+
+/* The highest Gamma or v a campaign may ask for: the engine's frequency range (Hz) in
+ * the same number, well past any bed's onset */
+#define CP_DERIVED_MAX 1000
+
 static int value_add(cp_axis *a, sb_scene *scratch, const char *v, const char *where, sb_err *e)
 {
+	if (campaign_key_derived(a->key)) {
+		/* Gamma or v: a positive number, printed as a range's values are */
+		double x;
+		char buf[40];
+		if (!parse_num(v, &x) || !(x > 0 && x <= CP_DERIVED_MAX))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in (0, %d]%s, got '%s'", where, a->key,
+				       CP_DERIVED_MAX, strcmp(a->key, "velocity") ? "" : " (cm/s)", v);
+		snprintf(buf, sizeof buf, "%.12g", x);
+		return axis_add(a, buf, e);
+	}
 	if (params_set(scratch, a->key, v, where, e))
 		return e->code;
 	const sb_param *p = params_find(a->key);
@@ -233,7 +255,7 @@ int campaign_axis_parse(cp_axis *a, const char *key, const char *text, const cha
 		any = 1;
 		const sb_param *p = params_find(key);
 		char *dots = strstr(item, "..");
-		if (p && (p->type == PT_INT || p->type == PT_REAL) && strchr(item, ':'))
+		if (((p && (p->type == PT_INT || p->type == PT_REAL)) || campaign_key_derived(key)) && strchr(item, ':'))
 			rc = float_range(a, &scratch, item, where, e);
 		else if (p && p->type == PT_INT && dots)
 			rc = int_range(a, &scratch, item, dots, where, e);
@@ -524,12 +546,13 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 /* ---- [onset]: one table of its keys drives the parser, the range checks and the
  * messages ---- */
 
-enum { OK_OBS, OK_FREQ, OK_REAL, OK_BAND, OK_REPS, OK_INT };
+enum { OK_OBS, OK_AXIS, OK_FREQ, OK_REAL, OK_BAND, OK_REPS, OK_INT };
 
 static const struct onset_keydef {
 	const char *name;
 	int kind;
-	double min, max;       /* OK_REAL, OK_INT, OK_REPS; OK_FREQ: the frequency key's */
+	double min, max;       /* OK_REAL, OK_INT, OK_REPS; OK_FREQ: the frequency key's (Gamma and v
+				* in the same range) */
 	int min_open, max_open;
 	size_t val, line;      /* offsets in cp_onset: the value (double or long) and its line */
 } ONSET_KEYS[] = {
@@ -548,6 +571,8 @@ static const struct onset_keydef {
 	{"target", OK_REAL, 0, 1000, 1, 0, offsetof(cp_onset, target), offsetof(cp_onset, target_line)},
 	/* at most 0.999: an interval of the median at 0.999 needs 11 replicates */
 	{"level", OK_REAL, 0.5, 0.999, 0, 0, offsetof(cp_onset, level), offsetof(cp_onset, level_line)},
+	/* what from, to, tolerance and target are in */
+	{"axis", OK_AXIS, 0, 0, 0, 0, offsetof(cp_onset, axis), offsetof(cp_onset, axis_line)},
 };
 #define N_ONSET_KEYS (sizeof ONSET_KEYS / sizeof *ONSET_KEYS)
 
@@ -573,6 +598,14 @@ static void range_text(double lo, double hi, int lo_open, int hi_open, char *buf
 static int in_range(double x, double lo, double hi, int lo_open, int hi_open)
 {
 	return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+}
+
+/* " (Hz)" for a key in the search's axis ("" for Gamma, which has no unit) */
+static const char *onset_unit_text(const cp_onset *o, const struct onset_keydef *k)
+{
+	static const char *const text[AX_NKINDS] = {" (Hz)", "", " (cm/s)"};
+	int in_axis = k->kind == OK_FREQ || !strcmp(k->name, "tolerance") || !strcmp(k->name, "target");
+	return in_axis ? text[o->axis] : "";
 }
 
 static int onset_key(cp_onset *o, int line, const char *where, const char *name, const char *value, sb_err *e)
@@ -602,6 +635,13 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 			o->observable = CP_OBS_FLUX;
 		else
 			return sb_errf(e, SB_EUSAGE, "%s: observable: expected one of rise|flux, got '%s'", where, value);
+		return 0;
+	case OK_AXIS:
+		/* what the range is in: each group's frequency follows from its amplitude */
+		o->axis = axes_kind(value);
+		if (o->axis < 0)
+			return sb_errf(e, SB_EUSAGE, "%s: axis: expected one of frequency|gamma|velocity, got '%s'", where,
+				       value);
 		return 0;
 	case OK_BAND: {
 		/* LO:HI, fractions of the settled surface height */
@@ -643,10 +683,9 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 	default:
 		range_text(lo, hi, k->min_open, k->max_open, rt, sizeof rt);
 		if (!parse_num(value, &x) || !in_range(x, lo, hi, k->min_open, k->max_open))
-			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s, got '%s'", where, name, rt,
-				       k->kind == OK_FREQ || !strcmp(name, "tolerance") || !strcmp(name, "target")
-					       ? " (Hz)" : "",
-				       value);
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s%s%s, got '%s'", where, name, rt,
+				       onset_unit_text(o, k), o->axis_line ? " with axis = " : "",
+				       o->axis_line ? axes_name(o->axis) : "", value);
 		*dv = x;
 		return 0;
 	}
@@ -662,16 +701,17 @@ static int onset_finish(campaign *c, int campaign_replicates_line, sb_err *e)
 		if (!*onset_line(o, need[i]))
 			return sb_errf(e, SB_EUSAGE, "%s:%d: [onset] has no %s%s", p, o->line, need[i],
 				       i ? "" : " (rise or flux)");
+	const char *ax = axes_name(o->axis), *unit = axes_unit(o->axis);
 	if (!(o->to > o->from))
-		return sb_errf(e, SB_EUSAGE, "%s:%d: to: expected a frequency above from = %g (line %d), got %g", p,
-			       o->to_line, o->from, o->from_line, o->to);
+		return sb_errf(e, SB_EUSAGE, "%s:%d: to: expected a %s above from = %g (line %d), got %g", p,
+			       o->to_line, ax, o->from, o->from_line, o->to);
 	/* at most AD_MAX_LEVELS halvings of the range; a bracket as wide as the range is
 	 * no search */
 	double w = o->to - o->from, tmin = ldexp(w, -AD_MAX_LEVELS);
 	if (o->tolerance < tmin || o->tolerance >= w)
-		return sb_errf(e, SB_EUSAGE, "%s:%d: tolerance: expected a width in [%.3g, %g) Hz (from %g to %g in at "
-			       "most %d halvings), got %g", p, o->tolerance_line, tmin, w, o->from, o->to, AD_MAX_LEVELS,
-			       o->tolerance);
+		return sb_errf(e, SB_EUSAGE, "%s:%d: tolerance: expected a width in [%.3g, %g)%s%s (from %g to %g in at "
+			       "most %d halvings), got %g", p, o->tolerance_line, tmin, w, *unit ? " " : "", unit, o->from,
+			       o->to, AD_MAX_LEVELS, o->tolerance);
 	if (o->observable == CP_OBS_FLUX && !o->threshold_line)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: [onset] has no threshold (observable = flux: a run is on when "
 			       "its mean flux through the band is at least threshold particles per period)", p, o->line);
@@ -716,8 +756,8 @@ static int onset_finish(campaign *c, int campaign_replicates_line, sb_err *e)
 			       "(replicates = auto | N)", p, campaign_replicates_line);
 	int l;
 	if ((l = seen_key(c, "frequency")))
-		return sb_errf(e, SB_EUSAGE, "%s:%d: frequency: chosen by the [onset] search (from %g to %g, line %d); "
-			       "remove it", p, l, o->from, o->to, o->line);
+		return sb_errf(e, SB_EUSAGE, "%s:%d: frequency: chosen by the [onset] search (%s%sfrom %g to %g, line %d); "
+			       "remove it", p, l, o->axis ? ax : "", o->axis ? " " : "", o->from, o->to, o->line);
 	if ((l = seen_key(c, "seed")))
 		return sb_errf(e, SB_EUSAGE, "%s:%d: seed: the [onset] search numbers its replicates 1, 2, ...; remove "
 			       "it", p, l);
@@ -814,6 +854,36 @@ static int zip_finish(campaign *c, sb_err *e)
 	return 0;
 }
 
+/* gamma and velocity: what they set. Of amplitude, frequency, gamma and velocity two
+ * make the drive; a campaign gives at most two of them (the amplitude's default counts
+ * only when the campaign sets neither it nor the frequency). */
+static int derived_finish(campaign *c, sb_err *e)
+{
+	const char *p = c->path;
+	int lg = seen_key(c, "gamma"), lv = seen_key(c, "velocity");
+	int la = seen_key(c, "amplitude"), lf = seen_key(c, "frequency");
+	if (!lg && !lv)
+		return 0;
+	int l = lg ? lg : lv;
+	const char *k = lg ? "gamma" : "velocity";
+	if (c->onset.line)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: %s: an [onset] campaign searches the frequency; to search in %s, set "
+			       "axis = %s under [onset] (line %d)", p, l, k, k, k, c->onset.line);
+	if (lg && lv) {
+		if (la || lf)
+			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: gamma (line %d) and velocity (line %d) set both the "
+				       "amplitude and the frequency; remove it", p, la ? la : lf, la ? "amplitude" : "frequency",
+				       lg, lv);
+		c->derive = CP_DERIVE_BOTH;
+	} else if (la && lf) {
+		return sb_errf(e, SB_EUSAGE, "%s:%d: %s: amplitude (line %d) and frequency (line %d) are both set, so %s has "
+			       "nothing to set; remove one of the three", p, l, k, la, lf, k);
+	} else {
+		c->derive = lf ? CP_DERIVE_AMPLITUDE : CP_DERIVE_FREQUENCY;
+	}
+	return 0;
+}
+
 static int cp_handler(void *user, const char *section, const char *name, const char *value)
 {
 	struct rd *r = user;
@@ -837,8 +907,9 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 		onset_key(&c->onset, r->line, where, name, value, &tmp);
 	} else {
 		int prev;
-		if (!params_find(name))
-			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s' (shake --help lists the keys)", where, name);
+		if (!params_find(name) && !campaign_key_derived(name))
+			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s' (shake --help lists the keys; gamma and velocity "
+				"are the campaign's)", where, name);
 		else if (campaign_key_reserved(name))
 			sb_errf(&tmp, SB_EUSAGE, "%s: %s: set by the study driver, not by a campaign", where, name);
 		else if ((prev = seen_key(c, name)))
@@ -856,7 +927,8 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 					snprintf(f->key, sizeof f->key, "%s", name);
 					snprintf(f->value, sizeof f->value, "%s", one.values[0]);
 					f->line = r->line;
-					params_set(&c->base, name, one.values[0], where, &tmp);
+					if (!campaign_key_derived(name)) /* gamma, velocity: per point (grid.c) */
+						params_set(&c->base, name, one.values[0], where, &tmp);
 				}
 				for (long i = 0; i < one.n; i++)
 					free(one.values[i]);
@@ -921,6 +993,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 	 * [scene] section above `scene = FILE` must not be undone by loading FILE */
 	for (int i = 0; i < c->nfixed; i++) {
 		char where[SB_STR_MAX + 32];
+		if (campaign_key_derived(c->fixed[i].key))
+			continue;
 		snprintf(where, sizeof where, "%s:%d", path, c->fixed[i].line);
 		if (params_set(&c->base, c->fixed[i].key, c->fixed[i].value, where, e))
 			return e->code;
@@ -930,6 +1004,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 	if (autorep_finish(c, e))
 		return e->code;
 	if (c->zip_line && zip_finish(c, e))
+		return e->code;
+	if (derived_finish(c, e))
 		return e->code;
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)

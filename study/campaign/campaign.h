@@ -25,8 +25,11 @@ enum cp_observable { CP_OBS_NONE, CP_OBS_RISE, CP_OBS_FLUX };
 typedef struct cp_onset {
 	int line;                 /* the section's header; 0: no [onset] */
 	int observable;           /* enum cp_observable */
-	double from, to;          /* Hz: off at from, on at to */
-	double tolerance;         /* Hz: a replicate's bracket at most this wide is its answer */
+	int axis;                 /* enum ax_kind: what from, to, tolerance and target are in
+				   * (Hz, Gamma or cm/s); each group's frequency follows from
+				   * its amplitude (axes.h) */
+	double from, to;          /* off at from, on at to */
+	double tolerance;         /* a replicate's bracket at most this wide is its answer */
 	double threshold;         /* flux: |mean flux| at or above it is on (particles/period) */
 	double band_lo, band_hi;  /* flux: the band of heights, fractions of the surface */
 	double skip;              /* flux: fraction of the periods left out as transient */
@@ -34,9 +37,9 @@ typedef struct cp_onset {
 	long replicates;          /* fixed: this many; auto: 0 */
 	long max_replicates;      /* auto: at most */
 	long batch;               /* auto: added at a time */
-	double target;            /* auto: interval width to reach, Hz */
+	double target;            /* auto: interval width to reach */
 	double level;             /* confidence level of the interval */
-	int observable_line, from_line, to_line, tolerance_line, threshold_line, band_line, skip_line,
+	int axis_line, observable_line, from_line, to_line, tolerance_line, threshold_line, band_line, skip_line,
 		replicates_line, max_line, batch_line, target_line, level_line;
 } cp_onset;
 
@@ -72,6 +75,11 @@ typedef struct cp_fixed {
 	char value[SB_STR_MAX];
 } cp_fixed;
 
+/* What the drive axes gamma and velocity set (docs/campaigns.md, "Axes in Gamma and v"):
+ * the frequency from the amplitude, the amplitude from the frequency (a campaign that
+ * sets the frequency), or both (gamma and velocity together). */
+enum cp_derive { CP_DERIVE_NONE, CP_DERIVE_FREQUENCY, CP_DERIVE_AMPLITUDE, CP_DERIVE_BOTH };
+
 typedef struct campaign {
 	char path[SB_STR_MAX];
 	char name[80];
@@ -92,6 +100,7 @@ typedef struct campaign {
 	cp_auto autorep;                /* autorep.on: replicates = auto on a grid */
 	cp_onset onset;                 /* onset.line != 0: an adaptive campaign (its axes are
 					 * the groups; frequency and seed are the search's) */
+	int derive;                     /* enum cp_derive: gamma or velocity in [scene] or [grid] */
 } campaign;
 
 /* Read and check a campaign file. On error e holds "FILE:LINE: key: why". */
@@ -101,6 +110,10 @@ void campaign_free(campaign *c);
 /* The number of grid points (the product of the axes' sizes) in *points, or an error
  * naming the axis that takes the grid past max_runs and how to raise it. */
 int campaign_points(const campaign *c, long *points, sb_err *e);
+
+/* Whether key is a drive axis (gamma, velocity): no scene key, but a campaign key whose
+ * values set the frequency or the amplitude of each point (axes.h). */
+int campaign_key_derived(const char *key);
 
 /* Keys the driver owns (paths, restart, progress): not allowed in a campaign. */
 int campaign_key_reserved(const char *key);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "axes.h"
 #include "validate.h"
 
 /* SplitMix64 finaliser: a bijective mix, so distinct inputs stay distinct. */
@@ -63,13 +64,71 @@ unsigned long long grid_run_hash(const sb_scene *s)
 	return run_hash(s, &def);
 }
 
-static void scene_point(const campaign *c, long point, sb_scene *s)
+/* The value of a drive axis (gamma, velocity) at a point: its axis's value at the
+ * point's digit, or [scene]'s; NaN when the campaign has none. Its line into *line. */
+static double derived_at(const campaign *c, const long *digit, const char *key, int *line)
+{
+	for (int a = 0; a < c->naxes; a++)
+		if (!strcmp(c->axes[a].key, key)) {
+			*line = c->axes[a].line;
+			return strtod(c->axes[a].values[digit[a]], NULL);
+		}
+	for (int i = 0; i < c->nfixed; i++)
+		if (!strcmp(c->fixed[i].key, key)) {
+			*line = c->fixed[i].line;
+			return strtod(c->fixed[i].value, NULL);
+		}
+	return NAN;
+}
+
+/* gamma or velocity set the point's frequency, amplitude or both (campaign.c,
+ * derived_finish), within the engine's ranges of those keys */
+static int scene_derive(const campaign *c, const long *digit, sb_scene *s, sb_err *e)
+{
+	int lg = 0, lv = 0;
+	double gm = derived_at(c, digit, "gamma", &lg), v = derived_at(c, digit, "velocity", &lv);
+	int kind = lg ? AX_GAMMA : AX_VELOCITY, line = lg ? lg : lv;
+	double x = lg ? gm : v, f = s->frequency, A = s->amplitude;
+	if (c->derive == CP_DERIVE_FREQUENCY)
+		f = axes_frequency(kind, x, A, s->gravity);
+	else if (c->derive == CP_DERIVE_AMPLITUDE)
+		A = axes_amplitude(kind, x, f, s->gravity);
+	else
+		axes_drive(gm, v, s->gravity, &A, &f);
+	const char *key[2] = {"frequency", "amplitude"};
+	double val[2] = {f, A};
+	for (int k = 0; k < 2; k++) {
+		const sb_param *p = params_find(key[k]);
+		char buf[40], where[SB_STR_MAX + 32];
+		snprintf(buf, sizeof buf, "%.12g", val[k]);
+		snprintf(where, sizeof where, "%s:%d", c->path, line);
+		if (!(val[k] > p->min && val[k] <= p->max)) {
+			char at[96];
+			if (c->derive == CP_DERIVE_FREQUENCY)
+				snprintf(at, sizeof at, "at amplitude %g cm", s->amplitude);
+			else if (c->derive == CP_DERIVE_AMPLITUDE)
+				snprintf(at, sizeof at, "at frequency %g Hz", s->frequency);
+			else
+				snprintf(at, sizeof at, "and velocity = %.12g cm/s", v);
+			return sb_errf(e, SB_EUSAGE, "%s: %s: %s = %.12g %s needs %s = %s, outside (%g, %g]", where,
+				       axes_name(kind), axes_name(kind), x, at, key[k], buf, p->min, p->max);
+		}
+		if (params_set(s, key[k], buf, where, e))
+			return e->code;
+	}
+	return 0;
+}
+
+/* The scene of a grid point; the axes' value indices into digit (may be NULL). */
+static int scene_point_at(const campaign *c, long point, sb_scene *s, long *digit, sb_err *e)
 {
 	*s = c->base;
-	sb_err e = {0};
+	sb_err pe = {0};
 	/* mixed radix, first axis fastest; a zipped axis takes its leader's digit (the
 	 * leader comes first in the file order, so its digit is known) */
-	long digit[CP_MAX_KEYS];
+	long own[CP_MAX_KEYS];
+	if (!digit)
+		digit = own;
 	for (int a = 0; a < c->naxes; a++) {
 		long k;
 		if (c->axes[a].zipped_to) {
@@ -79,10 +138,19 @@ static void scene_point(const campaign *c, long point, sb_scene *s)
 			point /= c->axes[a].n;
 		}
 		digit[a] = k;
+		if (campaign_key_derived(c->axes[a].key))
+			continue;
 		char where[SB_STR_MAX + 32];
 		snprintf(where, sizeof where, "%s:%d", c->path, c->axes[a].line);
-		params_set(s, c->axes[a].key, c->axes[a].values[k], where, &e);
+		params_set(s, c->axes[a].key, c->axes[a].values[k], where, &pe);
 	}
+	return c->derive ? scene_derive(c, digit, s, e) : 0;
+}
+
+static void scene_point(const campaign *c, long point, sb_scene *s)
+{
+	sb_err e = {0};
+	scene_point_at(c, point, s, NULL, &e);
 }
 
 void grid_scene(const grid *g, const grid_run *r, sb_scene *s)
@@ -96,13 +164,17 @@ void grid_scene(const grid *g, const grid_run *r, sb_scene *s)
 void grid_point_label(const campaign *c, long point, char *buf, size_t len)
 {
 	sb_scene s;
-	scene_point(c, point, &s);
+	long digit[CP_MAX_KEYS];
+	sb_err e = {0};
+	scene_point_at(c, point, &s, digit, &e);
 	size_t l = 0;
 	buf[0] = 0;
 	for (int a = 0; a < c->naxes && l < len; a++) {
 		const sb_param *p = params_find(c->axes[a].key);
 		char v[SB_STR_MAX + 8];
-		if (p->type == PT_REAL)
+		if (!p) /* gamma, velocity: as the campaign wrote them */
+			snprintf(v, sizeof v, "%s", c->axes[a].values[digit[a]]);
+		else if (p->type == PT_REAL)
 			snprintf(v, sizeof v, "%.12g", *(const double *)((const char *)&s + p->offset));
 		else
 			params_format(&s, p, v, sizeof v);
@@ -119,7 +191,7 @@ static int by_id(const void *a, const void *b)
 
 /* A point's scene checked with the engine's cross-key rules; the message names where
  * the key at fault was set when it was set in this file, else the grid's first line. */
-static int point_check(const campaign *c, const sb_scene *s, const char *extra, sb_err *e)
+static int point_check(const campaign *c, long point, const sb_scene *s, const char *extra, sb_err *e)
 {
 	sb_err ve = {0};
 	if (!params_validate(s, &ve))
@@ -128,7 +200,11 @@ static int point_check(const campaign *c, const sb_scene *s, const char *extra, 
 	size_t l = 0;
 	for (int a = 0; a < c->naxes && l < sizeof pt - 1; a++) {
 		char v[SB_STR_MAX + 8];
-		params_format(s, params_find(c->axes[a].key), v, sizeof v);
+		const sb_param *p = params_find(c->axes[a].key);
+		if (p)
+			params_format(s, p, v, sizeof v);
+		else
+			grid_axis_text(c, point, a, v, sizeof v);
 		l += (size_t)snprintf(pt + l, sizeof pt - l, "%s%s=%s", a ? " " : "", c->axes[a].key, v);
 	}
 	if (extra && l < sizeof pt - 1)
@@ -156,12 +232,18 @@ static int onset_group_check(const campaign *c, long p, sb_scene *s, sb_err *e)
 	if (o->observable == CP_OBS_FLUX && !s->flux)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: observable: flux needs the flux records: set flux = yes under "
 			       "[scene] (group %s has flux = no)", c->path, o->observable_line, label);
+	if (o->axis != AX_FREQUENCY && !(s->amplitude > 0))
+		return sb_errf(e, SB_EUSAGE, "%s:%d: axis: a search in %s needs an amplitude above 0, but group %s has "
+			       "amplitude = %g", c->path, o->axis_line, axes_name(o->axis), label, s->amplitude);
 	double ends[2] = {o->from, o->to};
 	for (int k = 0; k < 2; k++) {
-		char at[64];
-		s->frequency = ends[k];
-		snprintf(at, sizeof at, "frequency=%.12g", ends[k]);
-		if (point_check(c, s, at, e))
+		char at[128];
+		s->frequency = grid_onset_frequency(c, s, ends[k]);
+		if (o->axis == AX_FREQUENCY)
+			snprintf(at, sizeof at, "frequency=%.12g", ends[k]);
+		else
+			snprintf(at, sizeof at, "%s=%.12g frequency=%.12g", axes_name(o->axis), ends[k], s->frequency);
+		if (point_check(c, p, s, at, e))
 			return e->code;
 	}
 	return 0;
@@ -198,8 +280,8 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 	if (c->autorep.on) {
 		for (long p = 0; p < total; p++) {
 			sb_scene s;
-			scene_point(c, p, &s);
-			if (autorep_point_check(c, p, &s, e) || point_check(c, &s, NULL, e))
+			if (scene_point_at(c, p, &s, NULL, e) || autorep_point_check(c, p, &s, e) ||
+			    point_check(c, p, &s, NULL, e))
 				return e->code;
 		}
 		return 0;
@@ -207,8 +289,7 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 	if (c->onset.line) {
 		for (long p = 0; p < total; p++) {
 			sb_scene s;
-			scene_point(c, p, &s);
-			if (onset_group_check(c, p, &s, e))
+			if (scene_point_at(c, p, &s, NULL, e) || onset_group_check(c, p, &s, e))
 				return e->code;
 		}
 		return 0;
@@ -222,8 +303,7 @@ int grid_expand(grid *g, const campaign *c, sb_err *e)
 	params_defaults(&def);
 	for (long p = 0; p < total; p++) {
 		sb_scene s;
-		scene_point(c, p, &s);
-		if (point_check(c, &s, NULL, e)) {
+		if (scene_point_at(c, p, &s, NULL, e) || point_check(c, p, &s, NULL, e)) {
 			grid_free(g);
 			return e->code;
 		}
@@ -276,6 +356,25 @@ static void onset_run(const campaign *c, long point, long replicate, double freq
 	s.seed = r->seed;
 	snprintf(r->id, sizeof r->id, "%016llx", grid_run_hash(&s));
 	snprintf(r->cache_key, sizeof r->cache_key, "%016llx", params_hash_nondefault(&s, PF_PREP));
+}
+
+double grid_onset_frequency(const campaign *c, const sb_scene *s, double x)
+{
+	return axes_frequency(c->onset.axis, x, s->amplitude, s->gravity);
+}
+
+void grid_point_scene(const campaign *c, long point, sb_scene *s)
+{
+	scene_point(c, point, s);
+}
+
+void grid_axis_text(const campaign *c, long point, int axis, char *buf, size_t len)
+{
+	sb_scene s;
+	long digit[CP_MAX_KEYS];
+	sb_err e = {0};
+	scene_point_at(c, point, &s, digit, &e);
+	snprintf(buf, len, "%s", c->axes[axis].values[digit[axis]]);
 }
 
 void grid_onset_id(const campaign *c, long point, long replicate, double frequency, char id[17])

@@ -36,11 +36,22 @@ int grid_add(grid *g, long point, long replicate, double frequency, char id[17],
  * `replicate` of grid point `point` of a grid with replicates = auto, the run a fixed
  * grid's seed = replicate makes. */
 void grid_onset_id(const campaign *c, long point, long replicate, double frequency, char id[17]);
+/* The frequency of an [onset] search's point x (in its axis: Hz, Gamma or cm/s) for
+ * a group's scene s: x itself, or the frequency at which the group's amplitude
+ * reaches x (axes.h). */
+double grid_onset_frequency(const campaign *c, const sb_scene *s, double x);
+/* The scene of grid point `point` (of an [onset] campaign: its group), without a run's
+ * frequency or seed. */
+void grid_point_scene(const campaign *c, long point, sb_scene *s);
 /* Orders the runs by id (for grid_find) and drops duplicates. */
 void grid_sort(grid *g);
 /* "radius_ratio=2 depth=1": the point's values of the campaign's axes (reals with 12
  * significant digits); "all" without axes. */
 void grid_point_label(const campaign *c, long point, char *buf, size_t len);
+
+/* The text of axis `axis`'s value at grid point `point`, as the campaign wrote it
+ * (canonical): for gamma and velocity, which are no scene keys. */
+void grid_axis_text(const campaign *c, long point, int axis, char *buf, size_t len);
 
 /* The canonical scene of run k: defaults, scene file, [scene], axis values, engine seed. */
 void grid_scene(const grid *g, const grid_run *r, sb_scene *s);

@@ -19,6 +19,7 @@
 #include "lock.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
+#include "campaign/axes.h"
 #include "campaign/campaign.h"
 #include "campaign/grid.h"
 #include "campaign/safe.h"
@@ -597,9 +598,13 @@ static void onset_summary(drv *d)
 		long found = 0;
 		for (long k = 0; k < gr->nrep; k++)
 			found += gr->reps[k].state == AD_FOUND;
-		fprintf(stderr, "study: %s: %s: onset %s%s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld runs: %s\n",
-			d->c.name, gr->label, est, isnan(gr->iv.est) ? " (no replicate answered)" : " Hz", 100 * o->level,
-			lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found, gr->runs, adapt_gstate_name(gr->state));
+		const char *unit = axes_unit(o->axis);
+		fprintf(stderr, "study: %s: %s: onset %s%s%s%s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld "
+			"runs: %s%s%s%s\n", d->c.name, gr->label, o->axis == AX_GAMMA ? "Gamma " : "", est,
+			isnan(gr->iv.est) ? " (no replicate answered)" : *unit ? " " : "", isnan(gr->iv.est) ? "" : unit,
+			100 * o->level, lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found, gr->runs,
+			adapt_gstate_name(gr->state), gr->state == AD_G_BLOCKED ? " (" : "",
+			gr->state == AD_G_BLOCKED ? gr->reason : "", gr->state == AD_G_BLOCKED ? ")" : "");
 	}
 }
 
@@ -669,6 +674,13 @@ int driver_run(const driver_opts *o, sb_err *e)
 		d->progress_tty = isatty(2);
 	}
 
+	if (d->adaptive) /* what the first points are, and where the model fails there */
+		for (long i = 0; i < d->g.points; i++) {
+			char pv[2048];
+			search_preview(&d->c, i, pv, sizeof pv);
+			for (char *sv, *ln = strtok_r(pv, "\n", &sv); ln; ln = strtok_r(NULL, "\n", &sv))
+				fprintf(stderr, "study: %s: %s\n", d->c.name, ln);
+		}
 	long npend;
 	if (rounds) {
 		if (run_onset(d, e) && e->code == SB_EUSAGE)
@@ -714,6 +726,12 @@ int driver_run(const driver_opts *o, sb_err *e)
 	else if (!e->code && (stop_requested() || pending))
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
+	long blocked = 0;
+	for (long i = 0; d->adaptive && i < d->srch.ngroups; i++)
+		blocked += d->srch.groups[i].state == AD_G_BLOCKED;
+	if (!e->code && !stop_requested() && !pending && blocked)
+		sb_errf(e, DRV_FAILED, "%s: %ld of %ld search groups blocked, %ld runs failed (study status %s lists the "
+			"reasons)", d->c.name, blocked, d->srch.ngroups, failed, d->c.name);
 	else if (!e->code && failed)
 		sb_errf(e, DRV_FAILED, "%s: %ld runs failed (study status %s lists the reasons)", d->c.name, failed,
 			d->c.name);

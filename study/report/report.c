@@ -11,6 +11,7 @@
 
 #include "csv.h"
 #include "layout.h"
+#include "campaign/axes.h"
 #include "ledger/db.h"
 #include "rule/adapt.h"
 #include "dtext.h"
@@ -127,7 +128,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	sb_err qe = {0};
 	if (sql_exec(d, &qe, &q,
 		    "SELECT observable, freq_from, freq_to, tolerance, threshold, band_lo, band_hi, skip, replicates,"
-		    " max_replicates, batch, target, level, state, updated FROM onset_search WHERE campaign = ?",
+		    " max_replicates, batch, target, level, state, updated, axis FROM onset_search WHERE campaign = ?",
 		    "t", name))
 		return 0; /* an older database: no onset tables */
 	if (sqlite3_step(q) != SQLITE_ROW) {
@@ -143,11 +144,16 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 			num_or(q, 7, "?", b[2], 32), num_or(q, 4, "?", b[3], 32));
 	else
 		fprintf(out, "the intruder's rise (risen)");
-	fprintf(out, ", %s to %s Hz, tolerance %s Hz;\n", num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32),
-		num_or(q, 3, "?", b[2], 32));
+	/* the range is in the search's axis: Hz, Gamma (no unit) or cm/s; NULL in an older database */
+	int kind = axes_kind(col(q, 15));
+	const char *unit = kind < 0 ? "Hz" : axes_unit(kind);
+	char sp[4];
+	snprintf(sp, sizeof sp, "%s", *unit ? " " : "");
+	fprintf(out, ", %s%s to %s%s%s, tolerance %s%s%s;\n", kind == AX_GAMMA ? "Gamma " : "",
+		num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32), sp, unit, num_or(q, 3, "?", b[2], 32), sp, unit);
 	if (!strcmp(col(q, 8), "auto"))
-		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s Hz wide\n",
-			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32));
+		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s%s%s wide\n",
+			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32), sp, unit);
 	else if (atol(col(q, 8)) < adapt_min_replicates(level))
 		fprintf(out, "    replicates %s; an interval at %g%% needs %ld\n", col(q, 8), 100 * level,
 			adapt_min_replicates(level));
@@ -156,11 +162,14 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	sqlite3_finalize(q);
 	if (sql_exec(d, e, &q,
 		    "SELECT grp, replicates, searching, found, below, above, blocked, nonmonotone, runs, estimate, ci_lo,"
-		    " ci_hi, width, state FROM onset_group WHERE campaign = ? ORDER BY point",
+		    " ci_hi, width, state, reason FROM onset_group WHERE campaign = ? ORDER BY point",
 		    "t", name))
 		return e->code;
+	char on[32], in[32];
+	snprintf(on, sizeof on, "onset (%s)", kind == AX_GAMMA ? "Gamma" : unit);
+	snprintf(in, sizeof in, "interval (%s)", kind == AX_GAMMA ? "Gamma" : unit);
 	fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s\n", "group", "replicates", "searching",
-		"found", "below", "above", "blocked", "runs", "onset (Hz)", "interval (Hz)", "width", "state");
+		"found", "below", "above", "blocked", "runs", on, in, "width", "state");
 	while (sqlite3_step(q) == SQLITE_ROW) {
 		char iv[80];
 		snprintf(iv, sizeof iv, "[%s, %s]", num_or(q, 10, "-inf", b[0], 32), num_or(q, 11, "+inf", b[1], 32));
@@ -168,6 +177,8 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 			col(q, 3), col(q, 4), col(q, 5), col(q, 6), col(q, 8), num_or(q, 9, "none", b[2], 32), iv,
 			num_or(q, 12, "inf", b[3], 32), col(q, 13),
 			sqlite3_column_int64(q, 7) ? " (a replicate's runs flip: see its brackets)" : "");
+		if (*col(q, 14)) /* why a blocked group cannot finish */
+			fprintf(out, "      %s blocked: %s\n", col(q, 0), col(q, 14));
 	}
 	sqlite3_finalize(q);
 	/* every replicate's bracket: "3 [2.68, 2.69]"; "5 [2.6, ~3.2] running 2.75" when

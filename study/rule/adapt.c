@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 double adapt_mid(double lo, double hi)
 {
@@ -106,23 +107,52 @@ void adapt_walk(const ad_range *r, ad_look look, void *ctx, ad_rep *p)
 	}
 }
 
-int adapt_member(const ad_range *r, double f)
+int adapt_failure_class(const char *status)
 {
-	if (f == r->from || f == r->to)
+	/* the statuses of core/err.c; one row per failure that answers the question */
+	static const struct {
+		const char *status;
+		int cls;
+	} MEANS[] = {
+		{"left_box", AD_ON}, /* grains thrown over the walls: far above the onset */
+	};
+	for (size_t i = 0; status && i < sizeof MEANS / sizeof *MEANS; i++)
+		if (!strcmp(status, MEANS[i].status))
+			return MEANS[i].cls;
+	return AD_FAILED;
+}
+
+static double identity(void *ctx, double x)
+{
+	(void)ctx;
+	return x;
+}
+
+int adapt_member_map(const ad_range *r, double f, double (*map)(void *ctx, double x), void *ctx)
+{
+	if (!map)
+		map = identity;
+	if (f == map(ctx, r->from) || f == map(ctx, r->to))
 		return 1;
 	double lo = r->from, hi = r->to;
+	/* descend the bisection tree by frequency: the map keeps the order of the points */
 	for (int d = 0; d < AD_MAX_LEVELS + 4; d++) {
-		double m = adapt_mid(lo, hi);
-		if (f == m)
+		double m = adapt_mid(lo, hi), fm = map(ctx, m);
+		if (f == fm)
 			return 1;
-		if (!(m > lo && m < hi) || !(f > lo && f < hi))
+		if (!(m > lo && m < hi) || !(f > map(ctx, lo) && f < map(ctx, hi)))
 			return 0;
-		if (f < m)
+		if (f < fm)
 			hi = m;
 		else
 			lo = m;
 	}
 	return 0;
+}
+
+int adapt_member(const ad_range *r, double f)
+{
+	return adapt_member_map(r, f, NULL, NULL);
 }
 
 long adapt_rank(long n, double level)
@@ -212,6 +242,9 @@ int adapt_group(const ad_plan *p, const ad_rep *reps, long n, ad_interval *iv, l
 	for (long i = 0; i < n; i++)
 		if (reps[i].state == AD_SEARCHING)
 			return AD_G_SEARCHING;
+	for (long i = 0; i < n; i++)
+		if (reps[i].state == AD_BLOCKED)
+			return AD_G_BLOCKED;
 	if (!p->autorep || iv->width <= p->target * (1 + 1e-9))
 		return AD_G_DONE;
 	if (n >= p->max)
@@ -228,6 +261,6 @@ const char *adapt_state_name(int state)
 
 const char *adapt_gstate_name(int gstate)
 {
-	static const char *const names[] = {"searching", "done", "max_replicates", "more"};
-	return gstate >= 0 && gstate <= AD_G_MORE ? names[gstate] : "?";
+	static const char *const names[] = {"searching", "done", "max_replicates", "more", "blocked"};
+	return gstate >= 0 && gstate <= AD_G_BLOCKED ? names[gstate] : "?";
 }

@@ -26,6 +26,12 @@ enum ad_class {
 	AD_FAILED, /* finished without an answer (the engine failed before it): the chain stops */
 };
 
+/* The class of a run that the engine stopped on physics (its status: docs/model.md,
+ * "Safety stops"), by what the failure means: a bed that throws grains out of the box
+ * (left_box) is shaken far above any onset, AD_ON; a blow-up (nan, overlap) or a bed
+ * that did not settle says nothing of the onset, AD_FAILED. */
+int adapt_failure_class(const char *status);
+
 /* A replicate's state. */
 enum ad_state {
 	AD_SEARCHING, /* it needs the run at `next` */
@@ -72,6 +78,10 @@ void adapt_walk(const ad_range *r, ad_look look, void *ctx, ad_rep *p);
  * the bisection tree, at any depth up to AD_MAX_LEVELS + 4): the runs of a campaign
  * whose tolerance or replicates changed still belong to it. */
 int adapt_member(const ad_range *r, double f);
+/* The same for a search whose points x are mapped to run frequencies (a search in
+ * Gamma or v: map(ctx, x) is a group's frequency at x, increasing with x): whether
+ * frequency f is the map of such a point. map NULL: the identity. */
+int adapt_member_map(const ad_range *r, double f, double (*map)(void *ctx, double x), void *ctx);
 
 /* The interval of the median over replicates: ranks r and n + 1 - r of the ordered
  * values cover the median with probability 1 - 2 P(Bin(n, 1/2) <= r - 1) >= level
@@ -109,12 +119,15 @@ enum ad_gstate {
 	AD_G_DONE,      /* every replicate answered (auto: and the interval is narrow enough) */
 	AD_G_MAX,       /* auto: every replicate answered at the maximum, the interval is wider */
 	AD_G_MORE,      /* auto: every replicate answered, the interval is wider: add a batch */
+	AD_G_BLOCKED,   /* none searching, and a replicate blocked by a run that failed without
+			 * an answer: the search cannot finish (no batch is added either) */
 };
 
 /* The replicates a group starts with: fixed n, or (auto) a first batch large enough
  * for an interval to exist at level. */
 long adapt_first(const ad_plan *p);
-/* The group's state from its n replicates (walked); *want the replicates it should
+/* The group's state from its n replicates (walked): searching while one is; blocked
+ * when one is blocked; else done, max_replicates or more; *want the replicates it should
  * have (more than n when a batch is due); iv its interval. */
 int adapt_group(const ad_plan *p, const ad_rep *reps, long n, ad_interval *iv, long *want);
 

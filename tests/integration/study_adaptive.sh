@@ -233,15 +233,65 @@ if [ -x "$ONSET" ]; then
 fi
 
 # --- a run that fails before it answers blocks its replicate, which keeps the bracket
-# it had; the search ends (exit 3: runs failed) and says so ---
+# it had; the group is blocked (never done) with the failure as its reason; the search
+# ends (exit 3: runs failed) and says so ---
 { campaign blocked; printf 'max_overlap = 0.02\n'; onset 'replicates = 2'; } >blocked.campaign
 "$STUDY" run blocked.campaign --runs "$TMP/BLK" --jobs 2 >blocked.log 2>&1
 rc=$?
 "$STUDY" status blocked --runs "$TMP/BLK" >blocked.txt 2>&1
 row=$(sqlite3 BLK/study.db "SELECT blocked || '|' || state || '|' || IFNULL(estimate, 'none') FROM onset_group")
-[ "$rc" -eq 3 ] && [ "$row" = "2|done|none" ] && grep -q "onset none (no replicate answered)" blocked.log &&
+reason=$(sqlite3 BLK/study.db "SELECT reason FROM onset_group")
+[ "$rc" -eq 3 ] && [ "$row" = "2|blocked|none" ] && grep -q "onset none (no replicate answered)" blocked.log &&
+	grep -q "all: .*: blocked (replicate 1 at 7 Hz: overlap before shaking: settling: overlap of disks" blocked.log &&
+	grep -q "blocked: 1 of 1 search groups blocked, 2 runs failed" blocked.log &&
+	case $reason in "replicate 1 at 7 Hz: overlap before shaking: "*) true ;; *) false ;; esac &&
+	[ "$(sqlite3 BLK/study.db "SELECT state FROM onset_search")" = blocked ] &&
 	grep -qF "brackets of all: 1 [~5, ~9] failed at 7; 2 [~5, ~9] failed at 7" blocked.txt &&
-	ok adaptive.failed_run_blocks_replicate || fail adaptive.failed_run_blocks_replicate "exit $rc, group $row: $(cat blocked.txt)"
+	grep -qF "all blocked: replicate 1 at 7 Hz: overlap before shaking: " blocked.txt &&
+	ok adaptive.failed_run_blocks_group || fail adaptive.failed_run_blocks_group "exit $rc, group $row, reason '$reason': $(cat blocked.log blocked.txt)"
+
+# --- a bed that throws grains over its walls while shaking (left_box) is far above the
+# onset: the run counts as on and the bracket moves down past it; with walls 12 cm high
+# every point of this range does, so the replicate's onset lies below the range. The
+# same failure while the bed settles says nothing of the drive: blocked ---
+{ campaign leftbox; printf 'wall_height = 12\n'; onset 'replicates = 1'; } >leftbox.campaign
+"$STUDY" run leftbox.campaign --runs "$TMP/LB" --jobs 2 >leftbox.log 2>&1
+rc=$?
+chain=$(sqlite3 LB/study.db "SELECT group_concat(printf('%g', frequency) || ':' || class, ' ') FROM (SELECT * FROM onset_run
+	ORDER BY step)")
+st=$(sqlite3 LB/study.db "SELECT r.state || '|' || g.state FROM onset_replicate r JOIN onset_group g USING (campaign, grp)")
+fails=$(sqlite3 LB/study.db "SELECT COUNT(*) FROM runs WHERE status = 'left_box' AND steps > 0")
+[ "$rc" -eq 3 ] && [ "$chain" = "7:on 6:on 5.5:on 5:on" ] && [ "$st" = "below|done" ] && [ "$fails" = 4 ] &&
+	ok adaptive.left_box_counts_on || fail adaptive.left_box_counts_on "exit $rc, chain '$chain', state $st, $fails left_box: $(tail -c 400 leftbox.log)"
+sed 's/^wall_height = 12$/wall_height = 9/; s/^name = leftbox$/name = spills/' leftbox.campaign >spills.campaign
+"$STUDY" run spills.campaign --runs "$TMP/LB" --jobs 2 >spills.log 2>&1
+rc=$?
+row=$(sqlite3 LB/study.db "SELECT state || '|' || reason FROM onset_group WHERE campaign = 'spills'")
+case $row in "blocked|replicate 1 at 7 Hz: left_box before shaking: "*) r=1 ;; *) r=0 ;; esac
+[ "$rc" -eq 3 ] && [ "$r" = 1 ] && ok adaptive.left_box_settling_blocks ||
+	fail adaptive.left_box_settling_blocks "exit $rc, group '$row': $(tail -c 300 spills.log)"
+
+# --- one range for every amplitude: a search in Gamma; each group runs its own
+# frequencies, f = sqrt(Gamma g / A) / 2 pi, and the first points are said before the
+# start, with a warning where the model fails (above Gamma 1.6 at the first point) ---
+{ campaign gamma; printf '[grid]\namplitude = 1, 3\n[onset]\nobservable = rise\naxis = gamma\nfrom = 0.5\nto = 2.9\n'
+	printf 'tolerance = 1\nreplicates = 1\n'; } | sed 's/^amplitude = 1$//' >gamma.campaign
+"$STUDY" expand gamma.campaign >gexp.tsv 2>gexp.err
+f=$(awk -F'\t' 'NR > 1 { print $5 ":" $6 }' gexp.tsv | sort | tr '\n' ' ')
+# the first point, Gamma 1.7: at A = 1 cm 6.49949 Hz, at 3 cm 3.75248 Hz
+f1=$(awk 'BEGIN { printf "%.12g %.12g", sqrt(1.7 * 981 / 1) / 6.283185307179586, sqrt(1.7 * 981 / 3) / 6.283185307179586 }')
+[ "$f" = "1:${f1% *} 3:${f1#* } " ] && [ "$f1" = "6.49948724824 3.75248071237" ] &&
+	grep -qF "group amplitude=3 (amplitude 3 cm): first point 3.75248 Hz (Gamma 1.7, v 70.7 cm/s)" gexp.err &&
+	grep -qF "warning: group amplitude=3: the first point, 3.75248 Hz, is at Gamma 1.7, at or above 1.6" gexp.err &&
+	ok adaptive.gamma.first_points || fail adaptive.gamma.first_points "runs '$f': $(cat gexp.err)"
+"$STUDY" run gamma.campaign --runs "$TMP/GM" --jobs 2 >gamma.log 2>&1
+rc=$?
+bad=$(sqlite3 GM/study.db "SELECT o.run FROM onset_run o JOIN runs r ON r.campaign = o.campaign AND r.id = o.run
+	WHERE abs(r.gamma - o.axis_value) > 1e-9 * o.axis_value OR abs(o.frequency - r.frequency) > 0")
+n=$(sqlite3 GM/study.db "SELECT COUNT(*) FROM onset_run")
+grep -q "warning: group amplitude=3" gamma.log && [ "$n" -ge 2 ] && [ -z "$bad" ] &&
+	[ "$(sqlite3 GM/study.db "SELECT axis FROM onset_search")" = gamma ] && ok adaptive.gamma.runs_at_their_gamma ||
+	fail adaptive.gamma.runs_at_their_gamma "exit $rc, $n runs, off: '$bad': $(tail -c 400 gamma.log)"
 
 # --- a changed range: the recorded runs are no chain's any more: refused, nothing runs ---
 sed 's/^to = 9$/to = 8/' rise.campaign >changed.campaign

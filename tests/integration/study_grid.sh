@@ -186,6 +186,29 @@ done
 [ ! -e "$MARK" ] && ok injection.no_marker || fail injection.no_marker "$MARK exists"
 rm -f "$MARK"
 
+# --- axes in Gamma and v (docs/campaigns.md): gamma = 1.5, 2.5 at A = 1 cm runs at
+# f = sqrt(Gamma g / A) / 2 pi = 6.10521, 7.88179 Hz, and the runs table keeps Gamma, v
+# and f; velocity with a set frequency sets the amplitude, A = v / (2 pi f) ---
+printf '[campaign]\nname = gm\nseed = 1\n[scene]\nn_grains = 40\nwidth = 20\nradius_ratio = 2\nsettle_ke = 1\nsettle_min = 0.2\nduration = 0.1\npreset = fast\namplitude = 1\n[grid]\ngamma = 1.5, 2.5\n' >gm.campaign
+"$STUDY" run gm.campaign --runs "$TMP/GM" --no-progress >gm.out 2>&1
+rc=$?
+got=$(sqlite3 GM/study.db "SELECT printf('%.12g|%.12g|%.9g|%g', gamma, frequency, v_box, amplitude) FROM runs
+	WHERE campaign = 'gm' ORDER BY frequency" | tr '\n' ' ')
+want=$(awk 'BEGIN { for (g = 1.5; g <= 2.5; g += 1) { f = sqrt(g * 981 / 1) / 6.283185307179586
+	printf "%.12g|%.12g|%.9g|1 ", g, f, 6.283185307179586 * f } }')
+# the frequencies as the brief computes them by hand: 6.10521 and 7.88179 Hz
+[ "$rc" -eq 0 ] && [ "$got" = "$want" ] && case $got in *"|6.10520519167|"*"|7.88178601084|"*) true ;; *) false ;; esac &&
+	ok grid.gamma.runs_keep_gamma_v_f || fail grid.gamma.runs_keep_gamma_v_f "exit $rc: got '$got', want '$want': $(tail -c 300 gm.out)"
+camp v.campaign 'velocity = 20, 40' 'frequency = 4'
+expand v.campaign >v.tsv
+got=$(awk -F'\t' 'NR > 1 { print $5 "|" $6 "|" $7 }' v.tsv | sort | tr '\n' ' ')
+[ "$got" = "20|4|0.795774715459 40|4|1.59154943092 " ] && head -n 1 v.tsv | grep -q 'amplitude$' &&
+	ok grid.velocity.sets_amplitude || fail grid.velocity.sets_amplitude "got '$got': $(cat v.tsv v.campaign.err)"
+camp o.campaign 'gamma = 1' 'amplitude = 1' 'frequency = 3'
+expand o.campaign >/dev/null
+grep -q "o.campaign:8: gamma: amplitude (line 9) and frequency (line 10) are both set" o.campaign.err &&
+	ok grid.gamma.overdetermined || fail grid.gamma.overdetermined "$(cat o.campaign.err)"
+
 # --- --help everywhere ---
 for c in run status list export expand exec; do
 	out=$("$STUDY" "$c" --help 2>&1)

@@ -14,7 +14,9 @@
 #include <string.h>
 
 #include "rule/adapt.h"
+#include "campaign/axes.h"
 #include "campaign/campaign.h"
+#include "adaptive/search.h"
 #include "study_files.h"
 #include "testlib.h"
 
@@ -110,6 +112,7 @@ typedef struct synth {
 	int looks;
 	double asked[64];
 	double fail_at;   /* a run that fails (NaN: none) */
+	const char *failure; /* its status (NULL: one that says nothing) */
 	int known;        /* how many of the asked runs have results (the rest wait) */
 } synth;
 
@@ -122,7 +125,7 @@ static int flips(double f)
 static int synth_class(const synth *s, double f)
 {
 	if (f == s->fail_at)
-		return AD_FAILED;
+		return adapt_failure_class(s->failure);
 	if (f < s->f0)
 		return AD_OFF;
 	if (f < s->f0 + s->flap)
@@ -139,6 +142,12 @@ static int synth_look(void *ctx, double f)
 	}
 	s->asked[s->looks++] = f;
 	return synth_class(s, f);
+}
+
+/* A group of amplitude *ctx cm searched in Gamma: the frequency of point x */
+static double gamma_freq(void *ctx, double x)
+{
+	return axes_frequency(AX_GAMMA, x, *(const double *)ctx, 981);
 }
 
 /* Walks the replicate round by round (each round makes one more result known, as
@@ -206,6 +215,35 @@ static void test_chains(void)
 	synth_search(&R, &f, &pf);
 	CHECK("adapt.walk.blocked", pf.state == AD_BLOCKED && pf.next == f.fail_at && pf.nobs == 1 && pf.lo == 2.85,
 	      "state %s next %g obs %d", adapt_state_name(pf.state), pf.next, pf.nobs);
+
+	/* a run that threw grains out of the box (left_box) is far above the onset: on, and
+	 * the bracket moves down past it; any other failure blocks, in both directions */
+	CHECK("adapt.failure.left_box_is_on", adapt_failure_class("left_box") == AD_ON, "%d",
+	      adapt_failure_class("left_box"));
+	CHECK("adapt.failure.others_block", adapt_failure_class("overlap") == AD_FAILED &&
+	      adapt_failure_class("nan") == AD_FAILED && adapt_failure_class("settle_failed") == AD_FAILED &&
+	      adapt_failure_class("io") == AD_FAILED && adapt_failure_class(NULL) == AD_FAILED, "a failure is not blocked");
+	synth lb = {.f0 = 2.9, .fail_at = 2.85, .failure = "left_box"};
+	ad_rep plb;
+	synth_search(&R, &lb, &plb);
+	CHECK("adapt.walk.left_box_moves_down", plb.state == AD_FOUND && plb.obs[0].f == 2.85 && plb.obs[0].on &&
+	      plb.hi <= 2.85 && plb.obs[1].f == adapt_mid(2.5, 2.85), "state %s first %g on %d [%g, %g]",
+	      adapt_state_name(plb.state), plb.obs[0].f, plb.obs[0].on, plb.lo, plb.hi);
+	synth ov = {.f0 = 2.9, .fail_at = 2.85, .failure = "overlap"};
+	ad_rep pov;
+	synth_search(&R, &ov, &pov);
+	CHECK("adapt.walk.overlap_blocks", pov.state == AD_BLOCKED && pov.next == 2.85 && pov.nobs == 0,
+	      "state %s next %g", adapt_state_name(pov.state), pov.next);
+
+	/* a search in Gamma: its points are a group's frequencies through a map; every
+	 * chain point's frequency is a member, a frequency between two is not */
+	double amp = 3;
+	int gm = 1;
+	for (int i = 0; i < p.nobs; i++)
+		gm &= adapt_member_map(&R, gamma_freq(&amp, p.obs[i].f), gamma_freq, &amp);
+	CHECK("adapt.member.mapped", gm && adapt_member_map(&R, gamma_freq(&amp, R.from), gamma_freq, &amp) &&
+	      !adapt_member_map(&R, gamma_freq(&amp, 2.7), gamma_freq, &amp) &&
+	      !adapt_member_map(&R, p.obs[0].f, gamma_freq, &amp), "mapped members %d", gm);
 
 	/* onsets outside the range are reported as such, after running the end */
 	synth lo = {.f0 = 2.0, .fail_at = NAN}, hi = {.f0 = 4.0, .fail_at = NAN};
@@ -331,10 +369,25 @@ static void test_group(void)
 	reps[1].state = AD_SEARCHING;
 	st = adapt_group(&fixed, reps, 3, &iv, &want);
 	CHECK("adapt.group.searching", st == AD_G_SEARCHING, "%s", adapt_gstate_name(st));
+	/* a blocked replicate: the group cannot finish, and says so (never done) */
 	reps[1].state = AD_BLOCKED;
 	st = adapt_group(&fixed, reps, 3, &iv, &want);
-	CHECK("adapt.group.blocked_is_answered", st == AD_G_DONE, "%s", adapt_gstate_name(st));
+	CHECK("adapt.group.blocked_is_blocked", st == AD_G_BLOCKED && want == 3 && !strcmp(adapt_gstate_name(st), "blocked"),
+	      "%s want %ld", adapt_gstate_name(st), want);
+	reps[1].state = AD_SEARCHING;
+	reps[2].state = AD_BLOCKED;
+	st = adapt_group(&fixed, reps, 3, &iv, &want);
+	CHECK("adapt.group.searching_before_blocked", st == AD_G_SEARCHING, "%s", adapt_gstate_name(st));
 	reps[1] = found(2.681, 2.691);
+	reps[2] = found(2.682, 2.692);
+	/* auto, an interval wider than the target: a blocked replicate adds no batch */
+	ad_plan wide = {1, 0, 16, 4, 0.0001, 0.95};
+	reps[3].state = AD_BLOCKED;
+	st = adapt_group(&wide, reps, 6, &iv, &want);
+	CHECK("adapt.group.blocked_adds_no_batch", st == AD_G_BLOCKED && want == 6, "%s want %ld", adapt_gstate_name(st), want);
+	reps[3] = found(2.683, 2.693);
+	st = adapt_group(&wide, reps, 6, &iv, &want);
+	CHECK("adapt.group.unblocked_adds_batch", st == AD_G_MORE && want == 10, "%s want %ld", adapt_gstate_name(st), want);
 
 	ad_plan au = {1, 0, 16, 4, 0.05, 0.95};
 	CHECK("adapt.group.auto_first", adapt_first(&au) == 6, "%ld (the fewest with an interval at 0.95)",
@@ -570,6 +623,59 @@ static void test_section(void)
 	      rc ? e.msg : "ok", g.points, g.n);
 	if (!rc)
 		sf_free(&c, &g);
+	/* a search in Gamma: one range serves groups of every amplitude, each at its own
+	 * frequencies f = sqrt(Gamma g / A) / 2 pi */
+	snprintf(text, sizeof text, "[campaign]\nname = t\nseed = 1\n[grid]\namplitude = 1, 2, 3\n[onset]\n"
+		 "observable = rise\naxis = gamma\nfrom = 0.5\nto = 2.5\ntolerance = 0.1\n");
+	rc = sf_expand(text, &c, &g, &e);
+	int fok = !rc && c.onset.axis == AX_GAMMA && g.points == 3;
+	for (long p = 0; fok && p < 3; p++) {
+		sb_scene sc;
+		grid_point_scene(&c, p, &sc);
+		double want = sqrt(2.5 * 981 / (double)(p + 1)) / (2 * M_PI);
+		fok = sc.amplitude == p + 1 && fabs(grid_onset_frequency(&c, &sc, 2.5) - want) < 1e-9 * want;
+	}
+	CHECK("adapt.groups.gamma_axis_frequencies", fok, "%s", rc ? e.msg : "a group's frequency differs");
+	if (!rc) {
+		/* the first point is Gamma 1.5 in every group: at A = 3 cm, 3.52484 Hz; the
+		 * preview warns when the table of axes.c says the model fails there */
+		char pv[2048];
+		int warned = search_preview(&c, 2, pv, sizeof pv);
+		double limit;
+		int want = axes_model_fails(1.5, &limit) != NULL;
+		CHECK("adapt.preview.gamma_axis", warned == want && strstr(pv, "group amplitude=3 (amplitude 3 cm): first "
+		      "point 3.52484 Hz (Gamma 1.5, v 66.4 cm/s)") && strstr(pv, "(Gamma 1.5, v "), "%s", pv);
+		sf_free(&c, &g);
+	}
+	/* issue's campaign: 1.5 to 6.5 Hz at A = 1, 2, 3 cm; every group's first point is
+	 * 4 Hz, Gamma 1.93 at A = 3 cm (above the model's limit: a warning), 0.644 at 1 cm
+	 * (none) */
+	snprintf(text, sizeof text, "[campaign]\nname = t\nseed = 1\n[grid]\namplitude = 1, 2, 3\n[onset]\n"
+		 "observable = rise\nfrom = 1.5\nto = 6.5\ntolerance = 0.1\n");
+	rc = sf_expand(text, &c, &g, &e);
+	if (!rc) {
+		char p1[2048], p3[2048];
+		int w1 = search_preview(&c, 0, p1, sizeof p1), w3 = search_preview(&c, 2, p3, sizeof p3);
+		CHECK("adapt.preview.warns_above_limit", w3 && strstr(p3, "first point 4 Hz (Gamma 1.93, v 75.4 cm/s)") &&
+		      strstr(p3, "warning: group amplitude=3: the first point, 4 Hz, is at Gamma 1.93, at or above 1.6 where "
+			     "runs have ended with grains thrown"), "%s", p3);
+		CHECK("adapt.preview.quiet_below_limit", !w1 && strstr(p1, "first point 4 Hz (Gamma 0.644, v 25.1 cm/s)") &&
+		      !strstr(p1, "warning"), "%s", p1);
+		sf_free(&c, &g);
+	} else
+		CHECK("adapt.preview.warns_above_limit", 0, "%s", e.msg);
+	snprintf(text, sizeof text, "[campaign]\nname = t\nseed = 1\n[grid]\namplitude = 0, 1\n[onset]\n"
+		 "observable = rise\naxis = velocity\nfrom = 10\nto = 50\ntolerance = 1\n");
+	rc = sf_expand(text, &c, &g, &e);
+	CHECK("adapt.groups.velocity_needs_amplitude", rc && strstr(e.msg, ":8: axis: a search in velocity needs an "
+	      "amplitude above 0, but group amplitude=0 has amplitude = 0"), "got %s", rc ? e.msg : "no error");
+	if (!rc)
+		sf_free(&c, &g);
+	section("adapt.section.bad_axis", "[onset]\naxis = g\n", ":8: axis: expected one of frequency|gamma|velocity, got 'g'");
+	section("adapt.section.axis_unit", "[onset]\naxis = velocity\nobservable = flux\nfrom = 10\nto = 30\n"
+		"tolerance = 25\nthreshold = 1\n", ":12: tolerance: expected a width in [1.91e-05, 20) cm/s (from 10 to 30");
+	section("adapt.section.gamma_to_below_from", "[onset]\naxis = gamma\nobservable = flux\nfrom = 1\nto = 0.5\n"
+		"tolerance = 0.1\nthreshold = 1\n", ":11: to: expected a gamma above from = 1 (line 10), got 0.5");
 	section("adapt.section.fixed_replicates", "[onset]\nobservable = rise\nfrom = 2.5\nto = 3.2\ntolerance = 0.02\n"
 		"replicates = 3\n", NULL);
 }

@@ -4,6 +4,7 @@
  * canonical and duplicates are dropped, within an axis and between grid points;
  * START:STOP:STEP and FIRST..LAST ranges give the values of the written-out list; the
  * grid's size is bounded by max_runs before anything is expanded. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -384,6 +385,98 @@ static void test_zip(void)
 	}
 }
 
+/* The run of grid point `point` (the first with it: replicates are one here). */
+static const grid_run *run_at(const grid *g, long point)
+{
+	for (long i = 0; i < g->n; i++)
+		if (g->runs[i].point == point)
+			return &g->runs[i];
+	return NULL;
+}
+
+/* gamma and velocity axes (docs/campaigns.md, "Axes in Gamma and v"): the frequency
+ * from the amplitude, the amplitude from a set frequency, both from both; the runs are
+ * the frequency grid's (same ids); what cannot make a drive is refused with the line. */
+static void test_derived(void)
+{
+	const double tau = 6.283185307179586;
+	campaign c, c2;
+	grid g, g2;
+	sb_err e;
+	const char *head = "[campaign]\nname = d\nseed = 1\n";
+	char text[1024];
+	snprintf(text, sizeof text, "%s[scene]\namplitude = 1\n[grid]\ngamma = 1.5, 2.5\n", head);
+	int rc = sf_expand(text, &c, &g, &e);
+	double want[2] = {sqrt(1.5 * 981 / 1) / tau, sqrt(2.5 * 981 / 1) / tau}; /* 6.10521, 7.88179 Hz */
+	int ok = !rc && g.n == 2 && c.derive == CP_DERIVE_FREQUENCY;
+	char f1[40] = "", f2[40] = "", l0[256] = "";
+	for (long p = 0; ok && p < 2; p++) {
+		sb_scene s;
+		const grid_run *r = run_at(&g, p);
+		ok = r != NULL;
+		if (ok) {
+			grid_scene(&g, r, &s);
+			ok = fabs(s.frequency - want[p]) < 1e-11 * want[p] && s.amplitude == 1 &&
+			     fabs(s.amplitude * (tau * s.frequency) * (tau * s.frequency) / s.gravity - (p ? 2.5 : 1.5)) < 1e-10;
+			snprintf(p ? f2 : f1, 40, "%.12g", s.frequency);
+		}
+	}
+	if (!rc)
+		grid_point_label(&c, 0, l0, sizeof l0);
+	CHECK("study.grid.gamma.frequencies", ok && !strcmp(f1, "6.10520519167") && !strcmp(f2, "7.88178601084") && !strcmp(l0, "gamma=1.5"),
+	      "%s: f %s, %s (want %.12g, %.12g), label '%s'", rc ? e.msg : "ok", f1, f2, want[0], want[1], l0);
+	/* the same runs as the frequencies written out */
+	snprintf(text, sizeof text, "%s[scene]\namplitude = 1\n[grid]\nfrequency = %s, %s\n", head, f1, f2);
+	int rc2 = sf_expand(text, &c2, &g2, &e);
+	CHECK("study.grid.gamma.same_runs", !rc && !rc2 && g.n == g2.n && g.n == 2 && !strcmp(g.runs[0].id, g2.runs[0].id) &&
+	      !strcmp(g.runs[1].id, g2.runs[1].id), "ids differ (%s)", e.msg);
+	if (!rc)
+		sf_free(&c, &g);
+	if (!rc2)
+		sf_free(&c2, &g2);
+
+	/* a set frequency: the amplitude follows, A = v / (2 pi f) */
+	snprintf(text, sizeof text, "%s[scene]\nfrequency = 5\n[grid]\nvelocity = 50\n", head);
+	rc = sf_expand(text, &c, &g, &e);
+	sb_scene s;
+	if (!rc)
+		grid_scene(&g, &g.runs[0], &s);
+	CHECK("study.grid.velocity.amplitude", !rc && c.derive == CP_DERIVE_AMPLITUDE && s.frequency == 5 &&
+	      fabs(s.amplitude - 50 / (tau * 5)) < 1e-11, "%s: A %.17g", rc ? e.msg : "ok", rc ? 0 : s.amplitude);
+	if (!rc)
+		sf_free(&c, &g);
+	/* both: omega = Gamma g / v, A = v / omega */
+	snprintf(text, sizeof text, "%s[scene]\ngamma = 2\nvelocity = 60\n", head);
+	rc = sf_expand(text, &c, &g, &e);
+	if (!rc)
+		grid_scene(&g, &g.runs[0], &s);
+	CHECK("study.grid.gamma_velocity.both", !rc && c.derive == CP_DERIVE_BOTH &&
+	      fabs(s.frequency - 2 * 981.0 / 60 / tau) < 1e-10 && fabs(s.amplitude - 60 / (2 * 981.0 / 60)) < 1e-10,
+	      "%s: f %.17g A %.17g", rc ? e.msg : "ok", rc ? 0 : s.frequency, rc ? 0 : s.amplitude);
+	if (!rc)
+		sf_free(&c, &g);
+
+	static const struct {
+		const char *id, *body, *word;
+	} bad[] = {
+		{"study.grid.gamma.overdetermined", "[scene]\namplitude = 1\nfrequency = 3\n[grid]\ngamma = 1, 2\n",
+		 ".campaign:8: gamma: amplitude (line 5) and frequency (line 6) are both set"},
+		{"study.grid.gamma.not_positive", "[grid]\ngamma = 0, 1\n", ".campaign:5: gamma: expected a number in (0, 1000], got '0'"},
+		{"study.grid.gamma.frequency_range", "[scene]\namplitude = 0.001\n[grid]\ngamma = 1, 900\n",
+		 ".campaign:7: gamma: gamma = 900 at amplitude 0.001 cm needs frequency = 4729.07160651, outside (0, 1000]"},
+		{"study.grid.gamma.onset", "[scene]\nradius_ratio = 2\n[grid]\ngamma = 1\n[onset]\nobservable = rise\n"
+		 "from = 2\nto = 3\ntolerance = 0.1\n", ".campaign:7: gamma: an [onset] campaign searches the frequency; to "
+		 "search in gamma, set axis = gamma under [onset]"},
+	};
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
+		rc = sf_expand(text, &c, &g, &e);
+		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word), "rc %d '%s' (want '%s')", rc, e.msg, bad[i].word);
+		if (!rc)
+			sf_free(&c, &g);
+	}
+}
+
 int main(void)
 {
 	if (sf_init()) {
@@ -397,6 +490,7 @@ int main(void)
 	test_preset_explicit_wins();
 	test_bounds();
 	test_zip();
+	test_derived();
 	sf_cleanup();
 	return tl_done();
 }
