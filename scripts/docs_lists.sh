@@ -9,6 +9,7 @@
 # study's own "<!-- study columns: begin/end -->"):
 #   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
 #   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
+#   study-options   docs/campaigns.md    from `bin/study options` (study/cli/opts.c's table)
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
@@ -63,6 +64,7 @@ gen_scene_keys() {
 }
 
 gen_result_columns() { "$STUDY" columns; }
+gen_study_options() { "$STUDY" options; }
 
 # section FILE BEGIN END: the lines between the two marker lines
 section() { awk -v b="$2" -v e="$3" '$0 == e { on = 0 } on { print } $0 == b { on = 1 }' "$1"; }
@@ -113,6 +115,7 @@ same_set() {
 
 generated scene-keys docs/scene.md '<!-- docs_lists scene-keys: begin -->' '<!-- docs_lists scene-keys: end -->' gen_scene_keys
 generated result-columns docs/database.md '<!-- study columns: begin -->' '<!-- study columns: end -->' gen_result_columns
+generated study-options docs/campaigns.md '<!-- docs_lists study-options: begin -->' '<!-- docs_lists study-options: end -->' gen_study_options
 [ "$MODE" = write ] && exit 0
 
 # --- the tools: analysis/analysis.mk's AN_MAIN ---
