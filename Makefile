@@ -200,9 +200,9 @@ clean:
 	rm -rf build bin
 
 # The lists the code knows, in the docs (scripts/docs_lists.sh: the scene keys of
-# docs/scene.md and the result columns of docs/database.md are written from bin/shake
-# and bin/study; tests/integration/docs_lists.sh checks them and the lists it cannot
-# generate).
+# docs/scene.md, the result columns of docs/database.md and the options of
+# docs/campaigns.md are written from bin/shake and bin/study;
+# tests/integration/docs_lists.sh checks them and the lists it cannot generate).
 docs: all
 	$(Q)bash scripts/docs_lists.sh write
 

@@ -1,17 +1,14 @@
 /* params.c - the parameter table and everything it drives (parse, check, help, echo). */
 #include "params.h"
 
-#include <errno.h>
-#include <ini.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
-#include "fsutil.h"
 #include "num.h"
-#include "textline.h"
+#include "inifile.h"
 #include "words.h"
 
 /* A row's type and field in one macro: the offset, and a compile-time check that the
@@ -422,114 +419,48 @@ void params_defaults(sb_scene *s)
 	/* A bad default is a programming error: the table test checks e stays clear. */
 }
 
-struct ini_ctx {
-	sb_scene *s;
-	sb_err *e;
-	const char *path;
-	FILE *f;
-	int line;      /* lines read so far: the handler runs right after its line is read */
-	int err_line;  /* line of the first error the handler found */
-	int seen[NTABLE]; /* line where each key of the table was set, 0 if not yet */
-};
-
 /* A scene is a few dozen keys; the bound keeps the line counter far from overflowing
  * on an endless stream (a pipe of comments). */
 #define SCENE_MAX_LINES 100000
 
-/* inih's Debian build has no INI_HANDLER_LINENO, so lines are counted in the reader.
- * The reader also checks section headers (inih tells the handler nothing about a
- * section without keys), strips "#" comments after a value (inih keeps them), and
- * strips indentation: inih would take an indented line as the continuation of the
- * previous value, so "  mu = 0.3" after "output = a.h5" would vanish into output.
- * The line itself comes from textline_next (NUL bytes, long lines, endless streams). */
-static char *scene_reader(char *str, int num, void *stream)
+struct scene_file {
+	sb_scene *s;
+	const char *path;
+	int seen[NTABLE]; /* line where each key of the table was set, 0 if not yet */
+};
+
+/* Keys at the top or under [scene]; a '[' without ']' is the reader's malformed line. */
+static int scene_section(void *user, const char *header, const char *name, int len, int line, sb_err *e)
 {
-	struct ini_ctx *c = stream;
-	if (c->err_line)
-		return NULL; /* stop at the first error */
-	textline tl = {c->f, c->path, "scene file", SCENE_MAX_LINES, c->line};
-	int got = textline_next(&tl, str, num, c->e);
-	c->line = tl.line;
-	if (got < 0)
-		c->err_line = c->line ? c->line : 1;
-	if (got <= 0)
-		return NULL;
-	size_t lead = strspn(str, " \t");
-	if (lead)
-		memmove(str, str + lead, strlen(str + lead) + 1);
-	for (char *h = strchr(str, '#'); h; h = strchr(h + 1, '#'))
-		if (h > str && (h[-1] == ' ' || h[-1] == '\t')) {
-			h[0] = '\n';
-			h[1] = 0;
-			break;
-		}
-	const char *p = str;
-	while (*p == ' ' || *p == '\t')
-		p++;
-	if (*p == '[') {
-		const char *q = strchr(p, ']');
-		size_t l = q ? (size_t)(q - p - 1) : 0;
-		if (q && !(l == 0 || (l == 5 && !strncmp(p + 1, "scene", 5)))) {
-			c->err_line = c->line;
-			sb_errf(c->e, SB_EUSAGE, "%s:%d: unknown section [%.*s] (a scene file has keys at the top or in [scene])",
-				c->path, c->line, (int)l, p + 1);
-			return NULL;
-		}
-	}
-	return str;
+	const struct scene_file *c = user;
+	(void)header;
+	if (len <= 0 || (len == 5 && !strncmp(name, "scene", 5)))
+		return 0;
+	return sb_errf(e, SB_EUSAGE, "%s:%d: unknown section [%.*s] (a scene file has keys at the top or in [scene])",
+		       c->path, line, len, name);
 }
 
-static int scene_handler(void *user, const char *section, const char *name, const char *value)
+static int scene_key(void *user, const char *name, const char *value, int line, sb_err *e)
 {
-	struct ini_ctx *c = user;
-	if (c->err_line)
-		return 1; /* keep only the first error */
+	struct scene_file *c = user;
 	char where[SB_STR_MAX + 32];
-	snprintf(where, sizeof where, "%s:%d", c->path, c->line);
-	sb_err tmp = {0};
-	(void)section; /* checked by scene_reader */
+	snprintf(where, sizeof where, "%s:%d", c->path, line);
 	/* a key given twice is a mistake that "last one wins" would hide */
 	const sb_param *p = params_find(name);
-	const size_t k = p ? (size_t)(p - TABLE) : 0;
-	if (p && c->seen[k])
-		sb_errf(&tmp, SB_EUSAGE, "%s: %s: set twice (first on line %d)", where, name, c->seen[k]);
-	else
-		params_set(c->s, name, value, where, &tmp);
-	if (p && !c->seen[k])
-		c->seen[k] = c->line;
-	if (tmp.code) {
-		c->err_line = c->line;
-		c->e->code = 0;
-		c->e->msg[0] = 0;
-		sb_errf(c->e, tmp.code, "%s", tmp.msg);
-		return 0;
+	if (p) {
+		const size_t k = (size_t)(p - TABLE);
+		if (c->seen[k])
+			return sb_errf(e, SB_EUSAGE, "%s: %s: set twice (first on line %d)", where, name, c->seen[k]);
+		c->seen[k] = line;
 	}
-	return 1;
+	return params_set(c->s, name, value, where, e);
 }
 
 int params_load_file(sb_scene *s, const char *path, sb_err *e)
 {
-	if (e->code)
-		return e->code;
-	/* a directory would read as an empty scene (the defaults would run unasked), a
-	 * FIFO would wait for a writer */
-	FILE *f = fs_open_input(path, "scene file", 0, SB_EUSAGE, e);
-	if (!f)
-		return e->code;
-	struct ini_ctx c = {s, e, path, f, 0, 0, {0}};
-	int rc = ini_parse_stream(scene_reader, &c, scene_handler, &c);
-	const int rerr = ferror(f) ? (errno ? errno : EIO) : 0;
-	fclose(f);
-	if (rerr && !c.err_line)
-		return sb_errf(e, SB_EIO, "%s: cannot read scene file: %s", path, strerror(rerr));
-	if (rc > 0 && (!c.err_line || rc < c.err_line)) {
-		/* a syntax error inih found before any value error */
-		e->code = 0;
-		return sb_errf(e, SB_EUSAGE, "%s:%d: malformed line (expected key = value or [section])", path, rc);
-	}
-	if (rc < 0)
-		return sb_errf(e, SB_EIO, "%s: cannot read scene file", path);
-	return e->code;
+	struct scene_file c = {s, path, {0}};
+	const inifile in = {path, "scene file", SCENE_MAX_LINES, scene_section, scene_key, &c};
+	return inifile_read(&in, e);
 }
 
 int params_override(sb_scene *s, const char *arg, sb_err *e)

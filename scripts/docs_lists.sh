@@ -10,6 +10,7 @@
 #   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
 #   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
 #   test-tiers      docs/testing.md      from `tests/run.sh --tiers` (the scripts' "# tier:" lines)
+#   study-options   docs/campaigns.md    from `bin/study options` (study/cli/opts.c's table)
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
@@ -65,6 +66,7 @@ gen_scene_keys() {
 }
 
 gen_result_columns() { "$STUDY" columns; }
+gen_study_options() { "$STUDY" options; }
 
 gen_test_tiers() { bash "$REPO/tests/run.sh" --tiers; }
 
@@ -118,6 +120,7 @@ same_set() {
 generated scene-keys docs/scene.md '<!-- docs_lists scene-keys: begin -->' '<!-- docs_lists scene-keys: end -->' gen_scene_keys
 generated result-columns docs/database.md '<!-- study columns: begin -->' '<!-- study columns: end -->' gen_result_columns
 generated test-tiers docs/testing.md '<!-- docs_lists test-tiers: begin -->' '<!-- docs_lists test-tiers: end -->' gen_test_tiers
+generated study-options docs/campaigns.md '<!-- docs_lists study-options: begin -->' '<!-- docs_lists study-options: end -->' gen_study_options
 [ "$MODE" = write ] && exit 0
 
 # --- the tools: analysis/analysis.mk's AN_MAIN ---

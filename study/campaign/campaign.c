@@ -2,7 +2,6 @@
 #include "campaign.h"
 
 #include <errno.h>
-#include <ini.h>
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -10,10 +9,9 @@
 #include <string.h>
 #include <strings.h>
 
-#include "fsutil.h"
 #include "num.h"
-#include "textline.h"
 #include "axes.h"
+#include "inifile.h"
 #include "rule/adapt.h"
 #include "safe.h"
 
@@ -324,7 +322,7 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 		       ax->line, rep ? "replicates" : ax->key, count, sizes, now, fix);
 }
 
-/* ---- the INI reader (same line counting as core/params.c) ---- */
+/* ---- the file's sections and keys (core/inifile.c reads its lines) ---- */
 
 #define CP_MAX_LINES 100000
 
@@ -333,7 +331,6 @@ enum { SEC_NONE, SEC_CAMPAIGN, SEC_SCENE, SEC_GRID, SEC_ONSET, SEC_N };
 struct rd {
 	campaign *c;
 	sb_err *e;
-	FILE *f;
 	int line, err_line, section;
 	int seen_name, seen_seed;
 	int sec_line[SEC_N];
@@ -341,64 +338,31 @@ struct rd {
 	int ckey_line[16], nckey;
 };
 
-/* inih's Debian build has no INI_HANDLER_LINENO: the reader counts lines (the handler
- * runs right after its line is read), strips indentation (inih would take it as a
- * continuation of the previous value) and inline " # comments", and checks section
- * names itself (inih says nothing about an empty section). The line comes from
- * textline_next (NUL bytes, lines past inih's buffer, endless streams). */
-static char *cp_reader(char *str, int num, void *stream)
+/* A [section] line (core/inifile.c reads the lines): the four sections, each once. */
+static int cp_section(void *user, const char *header, const char *name, int len, int line, sb_err *e)
 {
-	struct rd *r = stream;
-	if (r->err_line)
-		return NULL;
-	/* a pipe that never ends (yes '# x' |) must not keep the reader forever */
-	textline tl = {r->f, r->c->path, "campaign file", CP_MAX_LINES, r->line};
-	int rc = textline_next(&tl, str, num, r->e);
-	r->line = tl.line;
-	if (rc < 0)
-		r->err_line = r->line ? r->line : 1;
-	if (rc <= 0)
-		return NULL;
-	char *got = str;
-	size_t lead = strspn(str, " \t");
-	if (lead)
-		memmove(str, str + lead, strlen(str + lead) + 1);
-	for (char *h = strchr(str, '#'); h; h = strchr(h + 1, '#'))
-		if (h == str || h[-1] == ' ' || h[-1] == '\t') {
-			h[0] = '\n';
-			h[1] = 0;
-			break;
-		}
-	if (str[0] == '[') {
-		char *q = strchr(str, ']');
-		int sec = -1;
-		size_t n = q ? (size_t)(q - str - 1) : 0;
-		if (q && n == 8 && !strncmp(str + 1, "campaign", 8))
-			sec = SEC_CAMPAIGN;
-		else if (q && n == 5 && !strncmp(str + 1, "scene", 5))
-			sec = SEC_SCENE;
-		else if (q && n == 4 && !strncmp(str + 1, "grid", 4))
-			sec = SEC_GRID;
-		else if (q && n == 5 && !strncmp(str + 1, "onset", 5))
-			sec = SEC_ONSET;
-		if (sec < 0) {
-			r->err_line = r->line;
-			sb_errf(r->e, SB_EUSAGE, "%s:%d: unknown section '%.*s' (expected [campaign], [scene], [grid] or [onset])",
-				r->c->path, r->line, (int)strcspn(str, "\r\n"), str);
-			return NULL;
-		}
-		if (r->sec_line[sec]) {
-			r->err_line = r->line;
-			sb_errf(r->e, SB_EUSAGE, "%s:%d: section [%.*s] repeated (first on line %d)", r->c->path,
-				r->line, (int)n, str + 1, r->sec_line[sec]);
-			return NULL;
-		}
-		r->sec_line[sec] = r->line;
-		r->section = sec;
-		if (sec == SEC_ONSET)
-			r->c->onset.line = r->line;
-	}
-	return got;
+	struct rd *r = user;
+	int sec = -1;
+	r->line = line;
+	if (len == 8 && !strncmp(name, "campaign", 8))
+		sec = SEC_CAMPAIGN;
+	else if (len == 5 && !strncmp(name, "scene", 5))
+		sec = SEC_SCENE;
+	else if (len == 4 && !strncmp(name, "grid", 4))
+		sec = SEC_GRID;
+	else if (len == 5 && !strncmp(name, "onset", 5))
+		sec = SEC_ONSET;
+	if (sec < 0)
+		return sb_errf(e, SB_EUSAGE, "%s:%d: unknown section '%s' (expected [campaign], [scene], [grid] or [onset])",
+			       r->c->path, line, header);
+	if (r->sec_line[sec])
+		return sb_errf(e, SB_EUSAGE, "%s:%d: section [%.*s] repeated (first on line %d)", r->c->path, line, len,
+			       name, r->sec_line[sec]);
+	r->sec_line[sec] = line;
+	r->section = sec;
+	if (sec == SEC_ONSET)
+		r->c->onset.line = line;
+	return 0;
 }
 
 /* Whether the product of the axes' sizes exceeds limit (without overflowing). */
@@ -963,26 +927,23 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 	return 1;
 }
 
+/* A key = value line, from core/inifile.c: cp_handler (inih's form) at that line. */
+static int cp_key(void *user, const char *name, const char *value, int line, sb_err *e)
+{
+	struct rd *r = user;
+	r->line = line;
+	return cp_handler(r, NULL, name, value) ? 0 : e->code ? e->code : SB_EUSAGE;
+}
+
 int campaign_load(campaign *c, const char *path, sb_err *e)
 {
 	memset(c, 0, sizeof *c);
 	snprintf(c->path, sizeof c->path, "%s", path);
 	params_defaults(&c->base);
-	FILE *f = fs_open_input(path, "campaign file", 0, SB_EUSAGE, e);
-	if (!f)
+	struct rd r = {.c = c, .e = e};
+	const inifile in = {path, "campaign file", CP_MAX_LINES, cp_section, cp_key, &r};
+	if (inifile_read(&in, e))
 		return e->code;
-	struct rd r = {.c = c, .e = e, .f = f};
-	int rc = ini_parse_stream(cp_reader, &r, cp_handler, &r);
-	int ioerr = ferror(f);
-	fclose(f);
-	if (rc > 0 && (!r.err_line || rc < r.err_line)) {
-		e->code = 0;
-		return sb_errf(e, SB_EUSAGE, "%s:%d: malformed line (expected key = value or [section])", path, rc);
-	}
-	if (e->code)
-		return e->code;
-	if (rc < 0 || ioerr)
-		return sb_errf(e, SB_EIO, "%s: cannot read campaign file", path);
 	/* the [campaign] header, or line 1 of a file that has none */
 	int cl = r.sec_line[SEC_CAMPAIGN] ? r.sec_line[SEC_CAMPAIGN] : 1;
 	if (!r.seen_name)

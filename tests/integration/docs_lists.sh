@@ -39,6 +39,7 @@ broken() {
 }
 broken scene-keys.current docs/scene.md '/^| `seed` |/d'
 broken result-columns.current docs/database.md 's/^| `risen` | INTEGER |/| `risen` | REAL |/'
+broken study-options.current docs/campaigns.md '/^| `--throttle K` |/d'
 broken tools.docs_analysis docs/analysis.md '/^| `bin\/dumpflux` |/d'
 broken tools.analysis_readme analysis/README.md 's/`bin\/convect`,/`bin\/convect`, `bin\/sweep`,/'
 broken core-files docs/engine.md 's/^| `h5id\.\[ch\]` |/| `h5ident.[ch]` |/'

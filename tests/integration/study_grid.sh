@@ -210,7 +210,7 @@ grep -q "o.campaign:8: gamma: amplitude (line 9) and frequency (line 10) are bot
 	ok grid.gamma.overdetermined || fail grid.gamma.overdetermined "$(cat o.campaign.err)"
 
 # --- --help everywhere ---
-for c in run status list export expand exec; do
+for c in run status list export expand columns options submit exec; do
 	out=$("$STUDY" "$c" --help 2>&1)
 	rc=$?
 	[ "$rc" -eq 0 ] && case "$out" in *"usage: study $c"*) true ;; *) false ;; esac &&
@@ -219,4 +219,28 @@ done
 "$STUDY" --help | grep -q "study run CAMPAIGN" && ok help.top || fail help.top "no command list"
 "$STUDY" frobnicate >/dev/null 2>&1 && fail cli.unknown_command "exit 0" || ok cli.unknown_command
 "$STUDY" run a.campaign --bogus >/dev/null 2>&1 && fail cli.unknown_option "exit 0" || ok cli.unknown_option
+# the option table's errors as a user sees them: the option named, what the command takes
+out=$("$STUDY" run a.campaign --no-chace 2>&1)
+rc=$?
+[ "$rc" -eq 1 ] && case "$out" in *"study: run: unknown option '--no-chace'; did you mean --no-cache?"*"--jobs"*) true ;; *) false ;; esac &&
+	ok cli.unknown_option_named || fail cli.unknown_option_named "exit $rc: $out"
+out=$("$STUDY" list --watch 2>&1)
+rc=$?
+[ "$rc" -eq 1 ] && case "$out" in *"--watch is an option of study status, not of study list"*) true ;; *) false ;; esac &&
+	ok cli.option_of_another_command || fail cli.option_of_another_command "exit $rc: $out"
+out=$("$STUDY" status --interval 0 2>&1)
+rc=$?
+[ "$rc" -eq 1 ] && case "$out" in *"--interval: expected a number in [0.1, 3600], got '0'"*) true ;; *) false ;; esac &&
+	ok cli.option_out_of_range || fail cli.option_out_of_range "exit $rc: $out"
+# every option of the table in the --help of each command that takes it
+"$STUDY" options | sed -n 's/^| `\(-., \)\{0,1\}\(--[a-z-]*\)[^|]*| [^|]*| \([^|]*\) |.*/\2 \3/p' >opts.tsv
+nmiss=0
+while read -r opt cmds; do
+	[ "$cmds" = all ] && cmds="run, status, list, export, expand, columns, options, submit, exec"
+	for c in $(echo "$cmds" | tr -d ,); do
+		"$STUDY" "$c" --help | grep -qE -- "^  (-., )?$opt( |\$)" || { nmiss=$((nmiss + 1)); echo "# study $c --help lacks $opt"; }
+	done
+done <opts.tsv
+[ "$(wc -l <opts.tsv)" -ge 15 ] && [ "$nmiss" = 0 ] && ok cli.help_lists_table ||
+	fail cli.help_lists_table "$(wc -l <opts.tsv) options read, $nmiss missing from a --help"
 finish
