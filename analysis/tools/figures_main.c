@@ -55,7 +55,7 @@ static double median_positive(const double *v, size_t n)
 	return med;
 }
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
 	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--all-versions]\n"
 	"               [--no-plot] [--no-store]\n\n"
@@ -100,8 +100,7 @@ static const char *HELP =
 	"..., as onset --help lists).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
-	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
 
 static int near(double a, double b)
 {
@@ -904,23 +903,32 @@ static int fig4(an_tool *t, const panels *P)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	(void)x;
+	panels *P = vs;
+	P->fo = (flux_opts){0.4, 0.6, t->o->skip};
+	return 0;
+}
+
+static int run(an_tool *t, void *vs)
+{
+	panels *P = vs;
+	if (where_known(t) || consider(t, P) || pooled_axis(t) || layout(t, P) || cli_outdir(t->o, &t->e) ||
+	    tool_accounting_csv(t) || tool_store_begin(t) || fig1(t, P) || fig3(t, P) || fig4(t, P) ||
+	    tool_store_end(t))
+		return t->e.code;
+	tool_report(t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
+			       " of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
+	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", t->o->out, t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "figures", .version = VERSION, .help = HELP,
+			       .allowed = " freq ratio skip where ", .init = init, .run = run};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "figures", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " freq ratio skip where ", stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
-	panels P = {.fo = {0.4, 0.6, o.skip}};
-	if (tool_open(&t, &o) || where_known(&t) || consider(&t, &P) || pooled_axis(&t) || layout(&t, &P))
-		goto out;
-	if (cli_outdir(&o, &t.e) || tool_accounting_csv(&t) || tool_store_begin(&t))
-		goto out;
-	if (fig1(&t, &P) || fig3(&t, &P) || fig4(&t, &P) || tool_store_end(&t))
-		goto out;
-	tool_report(&t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
-				" of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
-	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
-out:
-	return tool_close(&t, stderr);
+	panels P = {0};
+	return tool_main(argc, argv, &SPEC, &P);
 }
