@@ -112,7 +112,7 @@ void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int nc
 void tool_setting(const an_tool *t, char *buf, size_t n);
 
 /* The box's amplitude A (cm) and gravity g (cm/s^2) when every considered run shares
- * them (then 1: the axis Gamma = A (2 pi f)^2 / g of a plot against f means one thing),
+ * them (then 1: the Gamma axis of a plot against f, drive_gamma, means one thing),
  * else 0. */
 int tool_gamma(const an_tool *t, double *A, double *g);
 

@@ -460,7 +460,9 @@ static void curve_words(const an_tool *t, const convect_state *s, int c, char *b
  * one curve per set of other keys, the Student-t interval as bars. */
 static void panel(FILE *f, const an_tool *t, const convect_state *s, int col, const char *title, const char *ylab)
 {
-	fprintf(f, "set title '%s'\nset xlabel 'f (Hz)'\nset ylabel '%s'\nset yrange [0:*]\nplot ", title, ylab);
+	fprintf(f, "set title '%s'\n", title);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel '%s'\nset yrange [0:*]\nplot ", ylab);
 	for (int c = 0; c < s->ncurve; c++) {
 		char w[256];
 		curve_words(t, s, c, w, sizeof w);

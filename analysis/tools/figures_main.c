@@ -127,13 +127,14 @@ static double sys_ratio(const panels *P, int sys)
 /* "no intruder" or "𝓡 = 2.5", and with the frequency: "𝓡 = 2.5, 4.5 Hz" */
 static void sys_words(const panels *P, int sys, double f, char *buf, size_t n)
 {
-	char v[64], w[96];
-	snprintf(v, sizeof v, "%.17g", sys_ratio(P, sys));
-	label_param(w, sizeof w, "radius_ratio", v);
+	char w[96], fw[64];
+	label_num(w, sizeof w, "radius_ratio", sys_ratio(P, sys));
 	if (isnan(f))
 		snprintf(buf, n, "%s", w);
-	else
-		snprintf(buf, n, "%s, %g Hz", w, f);
+	else {
+		label_num(fw, sizeof fw, "frequency", f);
+		snprintf(buf, n, "%.80s, %.40s", w, fw);
+	}
 }
 
 /* every --where names a parameter of the campaign */
@@ -690,7 +691,11 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 	for (int r = 0; r < P->nf; r++) {
 		/* one legend, below the last panel: the systems are the same in every row */
 		fprintf(f, "%s", r + 1 < P->nf ? "unset key\n" : "set key below height 1\n");
-		fprintf(f, "set title '%g Hz'\n", P->freqs[r]);
+		char fw[64];
+		label_num(fw, sizeof fw, "frequency", P->freqs[r]);
+		fprintf(f, "set title ");
+		gp_str(f, fw);
+		fputc('\n', f);
 		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
 		gp_str(f, w[0]);
 		if (P->nsys > 1) {
@@ -832,9 +837,11 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\\n"
+	char fw[64];
+	label_num(fw, sizeof fw, "frequency", f4);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %s%s%s\\n"
 		   "every replicate (thin); thick: the run whose waiting time is the median of its panel\"\n"
-		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, f4, *set ? ", " : "", set);
+		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, fw, *set ? ", " : "", set);
 	for (int p = 0; p < drawn; p++) {
 		const f4panel *P = &F[p];
 		const an_run *rep = &t->runs[P->run[P->rep]];
@@ -888,11 +895,13 @@ static int fig4(an_tool *t, const panels *P)
 		if (fig4_panel(t, f4, P->ratios[q], &F[drawn]) && fig4_traj(t, &F[drawn], drawn, f))
 			drawn++;
 	fclose(f);
+	char fw[64];
+	label_num(fw, sizeof fw, "frequency", f4);
 	if (!drawn)
-		printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
+		printf("# fig4: no run with an intruder at %s; skipped\n", fw);
 	else {
-		printf("# fig4: %g Hz, every replicate; the representative is the run whose waiting time is its panel's median"
-		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", f4);
+		printf("# fig4: %s, every replicate; the representative is the run whose waiting time is its panel's median"
+		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", fw);
 		for (int p = 0; p < drawn; p++)
 			printf("%s 𝓡 = %g: replicate %ld of %d runs", p ? ";" : "", F[p].ra, t->runs[F[p].run[F[p].rep]].replicate,
 			       F[p].n);

@@ -249,8 +249,9 @@ static int plot(an_tool *t, const hyst_state *s)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set title \"Flux Φ through the plane during frequency ramps (running mean of %ld periods; lines: "
-		   "fitted sigmoids)%s%s\"\nset xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
-		   "set samples 500\n", t->o->smooth, *set ? "\\n" : "", set);
+		   "fitted sigmoids)%s%s\"\n", t->o->smooth, *set ? "\\n" : "", set);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel 'Φ (particles per period)'\nset samples 500\n");
 	double flo = INFINITY, fhi = -INFINITY, A, g;
 	for (int j = 0; j < t->ng; j++)
 		for (int b = 0; b < 2; b++)

@@ -441,10 +441,11 @@ static int plot(an_tool *t, const onset_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n"
-		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
-		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n",
 		o->band_lo, o->band_hi, set, *set ? "; " : "", 100 * o->level);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel 'Φ (particles per period)'\n"
+		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n");
 	double flo = INFINITY, fhi = -INFINITY, A, g;
 	for (int i = 0; i < t->k; i++)
 		if (USED(&t->runs[i])) {

@@ -461,7 +461,7 @@ static int plot(an_tool *t, const ring_state *s)
 	fprintf(f,
 		"set title \"Claim 3: grains %g–%g cm from the intruder, with / without it, before the rise\\n%s%s"
 		"bars: %g %% bootstrap intervals over runs\"\n"
-		"set xlabel 'frequency f (Hz)'\nset ylabel 'with intruder / without'\n"
+		"set ylabel 'with intruder / without'\n"
 		"set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\nset key below\n"
 		"set arrow from graph 0, first 1 to graph 1, first 1 nohead lc rgb 'gray50' lw 1\n"
 		"set arrow from graph 0, first 1.15 to graph 1, first 1.15 nohead lc rgb 'black' dt 2 lw 1.5\n"
@@ -469,6 +469,7 @@ static int plot(an_tool *t, const ring_state *s)
 		"set label 'no change' at graph 0.01, first 1 offset 0, -0.8 font ',9' tc rgb 'gray40'\n",
 		rin, rout, set, *set ? "; " : "", 100 * t->o->level, flo - 0.15 * span, fhi + 0.15 * span,
 		ylo - 0.05 * (yhi - ylo), yhi + 0.08 * (yhi - ylo));
+	gp_xlabel(f, "frequency");
 	double A, g;
 	if (tool_gamma(t, &A, &g))
 		gp_gamma_axis(f, A, g, flo - 0.15 * span, fhi + 0.15 * span);
