@@ -92,3 +92,9 @@ double drive_a(const sb_drive *d, double t)
 		return -d->A * w * w * sin(ph);
 	return d->A * (SB_TWO_PI * drive_dfdt(d, t) * cos(ph) - w * w * sin(ph));
 }
+
+double drive_gamma(double A, double f, double g)
+{
+	/* the factors in this order: SQL's view (lib/schema.c) computes the same bits */
+	return A * (SB_TWO_PI * f) * (SB_TWO_PI * f) / g;
+}

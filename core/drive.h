@@ -21,4 +21,10 @@ double drive_y(const sb_drive *d, double t);
 double drive_v(const sb_drive *d, double t);
 double drive_a(const sb_drive *d, double t);
 
+/* The dimensionless peak acceleration of a box moving at amplitude A (cm) and
+ * frequency f (Hz) under gravity g (cm/s^2): Gamma = A (2 pi f)^2 / g (docs/model.md,
+ * "Units and the paper's values"). The one definition: the database's `runs.gamma`
+ * (lib/schema.c) is checked against it by a test, the figures' Gamma axis uses it. */
+double drive_gamma(double A, double f, double g);
+
 #endif

@@ -36,9 +36,11 @@ static scan check_state(const sb_sim *s)
 		out |= (x[i] < xlo) | (x[i] > xhi) | (y[i] < ylo);
 	}
 	scan r = {rebuild, bad, out, -1};
+	/* where: the first disk that fails the same tests (positions and angle: the
+	 * velocities are not screened, a non-finite one shows in the next positions) */
 	if (r.bad_num || r.out)
 		for (int i = 0; i < st->nm; i++) {
-			double v = x[i] + y[i] + th[i] + st->q[C_X][1][i] + st->q[C_Y][1][i];
+			double v = x[i] + y[i] + th[i];
 			if (!isfinite(v) || x[i] < xlo || x[i] > xhi || y[i] < ylo) {
 				r.where = i;
 				break;
@@ -112,7 +114,7 @@ static int check(sb_sim *s, const char *stage, double t, long step, int *rebuild
 	char what[256];
 	int i = c.where < 0 ? 0 : c.where;
 	if (c.bad_num) {
-		snprintf(what, sizeof what, "%s: non-finite position or velocity of disk %d", stage, st->id[i]);
+		snprintf(what, sizeof what, "%s: non-finite position or angle of disk %d", stage, st->id[i]);
 		return fail(s, e, SB_ENAN, t, step, "%s at t = %.6f s, step %ld (time step too large?)", what);
 	}
 	snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", stage, st->id[i],

@@ -37,8 +37,8 @@ static const rcol TABLE[] = {
 	{"intruder_rise_box", RT_REAL, "intruder_final_y_box - intruder_settled_y_box", "cm",
 	 "final minus settled height of the intruder centre, box frame", RF_DERIVED},
 	{"risen", RT_INT, "@risen", "",
-	 "1 when the intruder's centre rose more than one intruder diameter above its settled height "
-	 "(box frame, checked every step), else 0 (right-censored); NULL without intruder", 0},
+	 "1 when the intruder rose (docs/model.md, \"Waiting time\"), else 0 (right-censored); NULL without "
+	 "intruder", 0},
 	{"waiting_time", RT_REAL, "@waiting_time", "s",
 	 "when risen = 1 the first time it did (the waiting time), else the time observed "
 	 "(the censoring time, also for a run that failed before its intruder rose)", 0},

@@ -112,7 +112,7 @@ int an_known(const an_run *r, const char *key, char *why, size_t n)
 }
 
 /* The keys every run has recorded since the first bin/study (the campaign keys of the
- * README's scene contract, numbers all): a run without one was not written by it, and
+ * scene contract, docs/scene.md, numbers all): a run without one was not written by it, and
  * a default in its place would put it in another run's group (radius_ratio 0: no
  * intruder). */
 static const char *const EVERY_RUN[] = {"n_grains", "width", "radius_ratio", "depth", "amplitude", "frequency",

@@ -2,6 +2,8 @@
 #include "cli.h"
 
 #include "dirs.h"
+#include "drive.h"
+#include "label.h"
 #include "layout.h"
 #include "num.h"
 #include "words.h"
@@ -365,9 +367,18 @@ void gp_close(FILE *f)
 	fclose(f);
 }
 
+void gp_xlabel(FILE *f, const char *key)
+{
+	char w[128];
+	label_axis(w, sizeof w, key, key);
+	fputs("set xlabel ", f);
+	gp_str(f, w);
+	fputc('\n', f);
+}
+
 void gp_gamma_axis(FILE *f, double A, double g, double f_lo, double f_hi)
 {
-	const double k = A * 4 * M_PI * M_PI / g, span = k * (f_hi * f_hi - f_lo * f_lo);
+	const double k = drive_gamma(A, 1, g), span = k * (f_hi * f_hi - f_lo * f_lo);
 	/* about five ticks at 1, 2, 2.5 or 5 times a power of ten */
 	double step = span > 0 ? pow(10, floor(log10(span / 5))) : 0.1;
 	const double m = span > 0 ? span / 5 / step : 1;

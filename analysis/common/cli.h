@@ -60,8 +60,12 @@ int gp_run(const char *script, const char *png, sb_err *e);
  * head, the caller the body (settings and plots, UTF-8 text), gp_close the loop's end. */
 FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, char *png, size_t len, sb_err *e);
 void gp_close(FILE *f);
-/* The axis on top of a plot against the frequency f (Hz): Gamma = A (2 pi f)^2 / g
- * (A in cm, g in cm/s^2), with ticks at round values of Gamma over [f_lo, f_hi]. */
+/* The x axis's label for a key of the parameter table, its unit the table's
+ * (label_axis: "frequency f (Hz)"). */
+void gp_xlabel(FILE *f, const char *key);
+/* The axis on top of a plot against the frequency f: Gamma (drive_gamma, core/drive.h)
+ * of the amplitude A and gravity g, with ticks at round values of Gamma over
+ * [f_lo, f_hi]. */
 void gp_gamma_axis(FILE *f, double A, double g, double f_lo, double f_hi);
 
 #endif

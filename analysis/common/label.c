@@ -5,31 +5,74 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The words of a key: the format of its value (%s: the number or text) and, for
+#include "params.h"
+
+/* The words of a key: the format of its value and unit (two %s: the number or text,
+ * then the unit of the parameter table, core/params.c, as a reader writes it) and, for
  * radius_ratio, what 0 means. One row per key a campaign sweeps or a reader looks for;
  * the symbols are docs/model.md's. */
 static const struct {
 	const char *key, *fmt, *zero;
 } WORDS[] = {
 	{"radius_ratio", "𝓡 = %s", "no intruder"},
-	{"frequency", "%s Hz", NULL},
-	{"amplitude", "A = %s cm", NULL},
-	{"width", "W = %s cm", NULL},
+	{"frequency", "%s %s", NULL},
+	{"amplitude", "A = %s %s", NULL},
+	{"width", "W = %s %s", NULL},
 	{"depth", "depth %s", NULL},
 	{"n_grains", "N = %s", NULL},
-	{"gravity", "g = %s cm/s²", NULL},
+	{"gravity", "g = %s %s", NULL},
 	{"mu", "μ = %s", NULL},
-	{"gamma_n", "γ_N = %s s⁻¹", NULL},
-	{"gamma_s", "γ_S = %s s⁻¹", NULL},
-	{"stiffness", "Y = %s g/s²", NULL},
-	{"dt", "Δt = %s s", NULL},
-	{"duration", "%s s runs", NULL},
+	{"gamma_n", "γ_N = %s %s", NULL},
+	{"gamma_s", "γ_S = %s %s", NULL},
+	{"stiffness", "Y = %s %s", NULL},
+	{"dt", "Δt = %s %s", NULL},
+	{"duration", "%s %s runs", NULL},
 	{"integrator", "%s", NULL},
 	{"preset", "preset %s", NULL},
 	{"ramp", "%s ramp", NULL},
-	{"r_min", "r_min = %s cm", NULL},
-	{"r_max", "r_max = %s cm", NULL},
+	{"r_min", "r_min = %s %s", NULL},
+	{"r_max", "r_max = %s %s", NULL},
 };
+
+/* The symbol of a key on a figure's axis; the rows of WORDS that name one. */
+static const struct {
+	const char *key, *symbol;
+} AXES[] = {
+	{"frequency", "f"},
+};
+
+void label_unit(char *buf, size_t n, const char *key)
+{
+	const sb_param *p = params_find(key);
+	const char *u = p ? p->unit : "";
+	size_t l = 0;
+	if (n)
+		buf[0] = 0;
+	/* the table's ASCII (cm/s^2, 1/s) as printed: cm/s², s⁻¹ */
+	if (!strncmp(u, "1/", 2)) {
+		snprintf(buf, n, "%s⁻¹", u + 2);
+		return;
+	}
+	for (; *u && l + 4 < n; u++) {
+		if (u[0] == '^' && (u[1] == '2' || u[1] == '3')) {
+			l += (size_t)snprintf(buf + l, n - l, "%s", u[1] == '2' ? "²" : "³");
+			u++;
+		} else
+			buf[l++] = *u, buf[l] = 0;
+	}
+}
+
+void label_axis(char *buf, size_t n, const char *key, const char *words)
+{
+	char u[32];
+	const char *sym = key;
+	for (size_t i = 0; i < sizeof AXES / sizeof *AXES; i++)
+		if (!strcmp(AXES[i].key, key))
+			sym = AXES[i].symbol;
+	label_unit(u, sizeof u, key);
+	snprintf(buf, n, "%s%s%s%s%s%s", words ? words : "", words && *words ? " " : "", sym, *u ? " (" : "", u,
+		 *u ? ")" : "");
+}
 
 void label_param(char *buf, size_t n, const char *key, const char *val)
 {
@@ -43,11 +86,21 @@ void label_param(char *buf, size_t n, const char *key, const char *val)
 		if (!strcmp(WORDS[i].key, key)) {
 			if (WORDS[i].zero && val && *val && !*end && x == 0)
 				snprintf(buf, n, "%s", WORDS[i].zero);
-			else
-				snprintf(buf, n, WORDS[i].fmt, v);
+			else {
+				char u[32];
+				label_unit(u, sizeof u, key);
+				snprintf(buf, n, WORDS[i].fmt, v, u);
+			}
 			return;
 		}
 	snprintf(buf, n, "%s = %s", key, v);
+}
+
+void label_num(char *buf, size_t n, const char *key, double x)
+{
+	char v[32];
+	snprintf(v, sizeof v, "%.17g", x);
+	label_param(buf, n, key, v);
 }
 
 static const char *val_of(const char *const *vals, int nk, int j, int k)

@@ -19,9 +19,29 @@ int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *a
 	return pr;
 }
 
+int tool_main(int argc, char **argv, const tool_spec *spec, void *s)
+{
+	an_opts o = {.tool = spec->name, .version = spec->version};
+	xopt x[TOOL_MAXX];
+	memcpy(x, spec->x, sizeof x);
+	const int pr = spec->nx ? xopt_args(&o, argc, argv, spec->help, spec->allowed, x, spec->nx, stdout, stderr)
+				: tool_args(&o, argc, argv, spec->help, spec->allowed, stdout, stderr);
+	if (pr < 0) /* the help's last line: tool_close's codes, said where they are made */
+		fputs("Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n", stdout);
+	if (pr)
+		return pr < 0 ? 0 : 1;
+	an_tool t;
+	memset(&t, 0, sizeof t);
+	t.o = &o;
+	if (!(spec->init && spec->init(&t, s, x)) && !tool_open(&t, &o))
+		spec->run(&t, s);
+	if (spec->fini)
+		spec->fini(&t, s);
+	return tool_close(&t, stderr);
+}
+
 int tool_open(an_tool *t, const an_opts *o)
 {
-	memset(t, 0, sizeof *t);
 	t->o = o;
 	if (adb_open(&t->d, o->db, !o->no_store, &t->e))
 		return t->e.code;

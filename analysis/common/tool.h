@@ -1,9 +1,11 @@
-/* tool.h - the frame every analysis tool's main shares: the campaign's runs read from
+/* tool.h - the frame every analysis tool's main shares: one recipe (tool_main runs a
+ * tool from its tool_spec), the campaign's runs read from
  * the database, the runs the tool considers gathered at the front, their groups and
  * accounting, the rows stored in `analysis`, the closing lines and the exit code. What
  * a tool considers, how it classifies a run and what it computes stay in its main.
  * Functions return the error code kept in t->e (the first error wins); the ones that
- * print take the stream, so that only the mains choose where output goes. */
+ * print take the stream, so that only tool_main and the tools' own functions choose
+ * where output goes. */
 #ifndef AN_TOOL_H
 #define AN_TOOL_H
 
@@ -13,6 +15,7 @@
 #include "acct.h"
 #include "adb.h"
 #include "cli.h"
+#include "xopt.h"
 
 typedef struct an_tool {
 	const an_opts *o;
@@ -29,12 +32,37 @@ typedef struct an_tool {
 	sb_err e;
 } an_tool;
 
+/* One tool: what tool_main needs to run it. Everything but run may be NULL or 0. */
+enum { TOOL_MAXX = 4 };
+typedef struct tool_spec {
+	const char *name, *version; /* the tool's name (bin/NAME, messages) and its version (rows it stores) */
+	const char *help;           /* --help's text (tool_main adds the exit codes) */
+	const char *allowed;        /* the cli options it takes beyond the common ones (cli_parse) */
+	xopt x[TOOL_MAXX];          /* its own options (xopt.h), nx of them: their names and has_arg */
+	int nx;
+	/* After the command line, before the database: the options into the state s; a
+	 * usage error into t->e (the database is not opened then). x: the own options as
+	 * given. */
+	int (*init)(an_tool *t, void *s, const xopt *x);
+	/* The tool's work, with the database open and the campaign's runs read (t->runs):
+	 * its steps in order, stopping at the first that fails (the error in t->e). */
+	int (*run)(an_tool *t, void *s);
+	/* Frees the state, whatever step failed (also when init or tool_open did). */
+	void (*fini)(const an_tool *t, void *s);
+} tool_spec;
+
+/* The recipe every analysis tool's main follows, once: the command line (the help
+ * printed to stdout: exit 0; a usage error to stderr: exit 1), spec->init, the database
+ * opened (tool_open), spec->run, spec->fini, and the error printed as "TOOL: message"
+ * with the exit code of tool_close. s is the tool's state, passed to its functions. */
+int tool_main(int argc, char **argv, const tool_spec *spec, void *s);
+
 /* The command line (cli_parse): -1 when the help was printed to out (exit 0), 1 when
  * a usage error was printed to err (exit 1), 0 to go on. */
 int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err);
 
-/* Opens the database (writable unless --no-store) and reads every run of the campaign;
- * t is zeroed first. */
+/* Opens the database (writable unless --no-store) and reads every run of the campaign
+ * into t (zeroed but for t->o and t->e, as tool_main leaves it). */
 int tool_open(an_tool *t, const an_opts *o);
 
 /* A run of an earlier version of the campaign file that the options leave out
@@ -84,7 +112,7 @@ void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int nc
 void tool_setting(const an_tool *t, char *buf, size_t n);
 
 /* The box's amplitude A (cm) and gravity g (cm/s^2) when every considered run shares
- * them (then 1: the axis Gamma = A (2 pi f)^2 / g of a plot against f means one thing),
+ * them (then 1: the Gamma axis of a plot against f, drive_gamma, means one thing),
  * else 0. */
 int tool_gamma(const an_tool *t, double *A, double *g);
 

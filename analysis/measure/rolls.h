@@ -1,6 +1,6 @@
 /* rolls.h - how deep the convection rolls reach in one run's flux profile Phi(D)
  * (claim 2: "the intruder drags the rolls deeper"), and the intervals that compare two
- * sets of runs (docs/model.md, "Roll reach"; analysis/README.md, "rolls").
+ * sets of runs (docs/model.md, "Roll reach"; docs/analysis.md, "rolls").
  *
  * Roll reach. The profile is smoothed by a centred running mean over K lines (fewer
  * at the ends); its largest |Phi| is phi_max, on line m, of sign s. The roll region is

@@ -8,7 +8,7 @@
  *
  * Fraction rise: the first time the centre has covered the fraction q of the way from
  * y_0 to h_s, y_box(t) >= y_0 + q (h_s - y_0), linearly interpolated between the two
- * samples around the crossing. The engine's rule (one intruder diameter above y_0) is
+ * samples around the crossing. The engine's rule (docs/model.md, "Waiting time") is
  * tripped by a slow creep of a small intruder (its diameter is short); half the way to
  * the surface is not. A trajectory that never gets there is censored at its last
  * sample: the end of the run, its failure, or its stop (`stop = risen` ends a run

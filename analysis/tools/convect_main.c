@@ -26,7 +26,7 @@
 
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: convect CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--band LO:HI] [--skip FRAC]\n"
 	"               [--by KEYS] [--boot N] [--seed S] [--level L] [--all-versions] [--no-plot]\n"
 	"               [--no-store]\n\n"
@@ -84,8 +84,7 @@ static const char *HELP =
 	"bootstrap interval), persistence_c (C; n = runs with a pair of blocks), persistent\n"
 	"(P), blocks (blocks used, summed over runs), band_lo, band_hi, and\n"
 	"the accounting rows (onset --help).\n"
-	"Options take their value as --opt VALUE or --opt=VALUE.\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"Options take their value as --opt VALUE or --opt=VALUE.\n";
 
 typedef struct cgroup {
 	double f;              /* the group's frequency (its key's value, else its runs' mean) */
@@ -105,8 +104,10 @@ typedef struct convect_state {
 	int kf;          /* index of frequency among the grouping keys, -1 */
 } convect_state;
 
-static void state_free(convect_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	(void)t;
+	convect_state *s = vs;
 	free(s->cr);
 	free(s->nofield);
 	free(s->g);
@@ -459,7 +460,9 @@ static void curve_words(const an_tool *t, const convect_state *s, int c, char *b
  * one curve per set of other keys, the Student-t interval as bars. */
 static void panel(FILE *f, const an_tool *t, const convect_state *s, int col, const char *title, const char *ylab)
 {
-	fprintf(f, "set title '%s'\nset xlabel 'f (Hz)'\nset ylabel '%s'\nset yrange [0:*]\nplot ", title, ylab);
+	fprintf(f, "set title '%s'\n", title);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel '%s'\nset yrange [0:*]\nplot ", ylab);
 	for (int c = 0; c < s->ncurve; c++) {
 		char w[256];
 		curve_words(t, s, c, w, sizeof w);
@@ -520,35 +523,35 @@ static int band_opt(const xopt *x, convect_cfg *c, sb_err *e)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	convect_state *s = vs;
+	s->cfg.skip = t->o->skip;
+	return band_opt(&x[0], &s->cfg, &t->e);
+}
+
+static int run(an_tool *t, void *vs)
+{
+	convect_state *s = vs;
+	if (consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) || tool_accounting_csv(t) ||
+	    summary(t, s) || tool_store_end(t))
+		return t->e.code;
+	report(t, s);
+	if (!t->o->no_plot) {
+		if (plot(t, s))
+			return t->e.code;
+		printf("# figure: %s/convect.{png,pdf}\n", t->o->out);
+	}
+	printf("# csv: %s/convect_{runs,summary,points,accounting}.csv\n", t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "convect", .version = VERSION, .help = HELP,
+			       .allowed = " by skip boot seed level ", .x = {{"band", 1, NULL, 0}}, .nx = 1,
+			       .init = init, .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "convect", .version = VERSION};
-	xopt x[] = {{"band", 1, NULL, 0}};
-	int pr = xopt_args(&o, argc, argv, HELP, " by skip boot seed level ", x, 1, stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
 	convect_state s = {.cfg = CONVECT_CFG_DEFAULT};
-	s.cfg.skip = o.skip;
-	sb_err xe = {0};
-	if (band_opt(&x[0], &s.cfg, &xe)) {
-		fprintf(stderr, "convect: %s\n", xe.msg);
-		return 1;
-	}
-	an_tool t;
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e))
-		goto out;
-	if (runs_csv(&t, &s) || tool_accounting_csv(&t))
-		goto out;
-	if (summary(&t, &s) || tool_store_end(&t))
-		goto out;
-	report(&t, &s);
-	if (!o.no_plot) {
-		if (plot(&t, &s))
-			goto out;
-		printf("# figure: %s/convect.{png,pdf}\n", o.out);
-	}
-	printf("# csv: %s/convect_{runs,summary,points,accounting}.csv\n", o.out);
-out:
-	state_free(&s);
-	return tool_close(&t, stderr);
+	return tool_main(argc, argv, &SPEC, &s);
 }

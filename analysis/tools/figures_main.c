@@ -55,7 +55,7 @@ static double median_positive(const double *v, size_t n)
 	return med;
 }
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
 	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--all-versions]\n"
 	"               [--no-plot] [--no-store]\n\n"
@@ -100,8 +100,7 @@ static const char *HELP =
 	"..., as onset --help lists).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
-	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
 
 static int near(double a, double b)
 {
@@ -128,13 +127,14 @@ static double sys_ratio(const panels *P, int sys)
 /* "no intruder" or "𝓡 = 2.5", and with the frequency: "𝓡 = 2.5, 4.5 Hz" */
 static void sys_words(const panels *P, int sys, double f, char *buf, size_t n)
 {
-	char v[64], w[96];
-	snprintf(v, sizeof v, "%.17g", sys_ratio(P, sys));
-	label_param(w, sizeof w, "radius_ratio", v);
+	char w[96], fw[64];
+	label_num(w, sizeof w, "radius_ratio", sys_ratio(P, sys));
 	if (isnan(f))
 		snprintf(buf, n, "%s", w);
-	else
-		snprintf(buf, n, "%s, %g Hz", w, f);
+	else {
+		label_num(fw, sizeof fw, "frequency", f);
+		snprintf(buf, n, "%.80s, %.40s", w, fw);
+	}
 }
 
 /* every --where names a parameter of the campaign */
@@ -691,7 +691,11 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 	for (int r = 0; r < P->nf; r++) {
 		/* one legend, below the last panel: the systems are the same in every row */
 		fprintf(f, "%s", r + 1 < P->nf ? "unset key\n" : "set key below height 1\n");
-		fprintf(f, "set title '%g Hz'\n", P->freqs[r]);
+		char fw[64];
+		label_num(fw, sizeof fw, "frequency", P->freqs[r]);
+		fprintf(f, "set title ");
+		gp_str(f, fw);
+		fputc('\n', f);
 		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
 		gp_str(f, w[0]);
 		if (P->nsys > 1) {
@@ -833,9 +837,11 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %g Hz%s%s\\n"
+	char fw[64];
+	label_num(fw, sizeof fw, "frequency", f4);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 4: height of the intruder, %s%s%s\\n"
 		   "every replicate (thin); thick: the run whose waiting time is the median of its panel\"\n"
-		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, f4, *set ? ", " : "", set);
+		   "set xlabel 't (s)'\nset ylabel 'y (cm above the box floor)'\n", drawn, fw, *set ? ", " : "", set);
 	for (int p = 0; p < drawn; p++) {
 		const f4panel *P = &F[p];
 		const an_run *rep = &t->runs[P->run[P->rep]];
@@ -889,11 +895,13 @@ static int fig4(an_tool *t, const panels *P)
 		if (fig4_panel(t, f4, P->ratios[q], &F[drawn]) && fig4_traj(t, &F[drawn], drawn, f))
 			drawn++;
 	fclose(f);
+	char fw[64];
+	label_num(fw, sizeof fw, "frequency", f4);
 	if (!drawn)
-		printf("# fig4: no run with an intruder at %g Hz; skipped\n", f4);
+		printf("# fig4: no run with an intruder at %s; skipped\n", fw);
 	else {
-		printf("# fig4: %g Hz, every replicate; the representative is the run whose waiting time is its panel's median"
-		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", f4);
+		printf("# fig4: %s, every replicate; the representative is the run whose waiting time is its panel's median"
+		       " (risen runs by waiting time, then the censored ones; the lower middle of an even count):", fw);
 		for (int p = 0; p < drawn; p++)
 			printf("%s 𝓡 = %g: replicate %ld of %d runs", p ? ";" : "", F[p].ra, t->runs[F[p].run[F[p].rep]].replicate,
 			       F[p].n);
@@ -904,23 +912,32 @@ static int fig4(an_tool *t, const panels *P)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	(void)x;
+	panels *P = vs;
+	P->fo = (flux_opts){0.4, 0.6, t->o->skip};
+	return 0;
+}
+
+static int run(an_tool *t, void *vs)
+{
+	panels *P = vs;
+	if (where_known(t) || consider(t, P) || pooled_axis(t) || layout(t, P) || cli_outdir(t->o, &t->e) ||
+	    tool_accounting_csv(t) || tool_store_begin(t) || fig1(t, P) || fig3(t, P) || fig4(t, P) ||
+	    tool_store_end(t))
+		return t->e.code;
+	tool_report(t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
+			       " of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
+	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", t->o->out, t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "figures", .version = VERSION, .help = HELP,
+			       .allowed = " freq ratio skip where ", .init = init, .run = run};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "figures", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " freq ratio skip where ", stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
-	panels P = {.fo = {0.4, 0.6, o.skip}};
-	if (tool_open(&t, &o) || where_known(&t) || consider(&t, &P) || pooled_axis(&t) || layout(&t, &P))
-		goto out;
-	if (cli_outdir(&o, &t.e) || tool_accounting_csv(&t) || tool_store_begin(&t))
-		goto out;
-	if (fig1(&t, &P) || fig3(&t, &P) || fig4(&t, &P) || tool_store_end(&t))
-		goto out;
-	tool_report(&t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
-				" of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
-	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", o.out, o.out);
-out:
-	return tool_close(&t, stderr);
+	panels P = {0};
+	return tool_main(argc, argv, &SPEC, &P);
 }

@@ -15,7 +15,7 @@
 
 #define VERSION "3"
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: hysteresis CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
 	"                  [--smooth K] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
 	"                  [--all-versions] [--no-plot] [--no-store]\n\n"
@@ -48,8 +48,7 @@ static const char *HELP =
 	"the accounting (runs_failed, runs_failed_used, ..., as onset --help lists).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
-	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
 
 /* What hysteresis computes besides the frame: the flux of every considered run, the
  * points of each group's branches and their estimates. */
@@ -62,8 +61,9 @@ typedef struct hyst_state {
 	hyst_res *R;      /* [ng] */
 } hyst_state;
 
-static void state_free(const an_tool *t, hyst_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	hyst_state *s = vs;
 	for (int j = 0; s->G && j < t->ng; j++)
 		hyst_free(&s->G[j]);
 	free(s->G);
@@ -249,8 +249,9 @@ static int plot(an_tool *t, const hyst_state *s)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set title \"Flux Φ through the plane during frequency ramps (running mean of %ld periods; lines: "
-		   "fitted sigmoids)%s%s\"\nset xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
-		   "set samples 500\n", t->o->smooth, *set ? "\\n" : "", set);
+		   "fitted sigmoids)%s%s\"\n", t->o->smooth, *set ? "\\n" : "", set);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel 'Φ (particles per period)'\nset samples 500\n");
 	double flo = INFINITY, fhi = -INFINITY, A, g;
 	for (int j = 0; j < t->ng; j++)
 		for (int b = 0; b < 2; b++)
@@ -289,26 +290,34 @@ static int plot(an_tool *t, const hyst_state *s)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	(void)x;
+	hyst_state *s = vs;
+	s->fo = (flux_opts){t->o->band_lo, t->o->band_hi, 0};
+	return 0;
+}
+
+static int run(an_tool *t, void *vs)
+{
+	hyst_state *s = vs;
+	if (consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || periods(t, s) || tool_accounting_csv(t) ||
+	    estimate(t, s) || tool_store_end(t))
+		return t->e.code;
+	tool_report(t, stdout, "the periods they recorded before the failure (a leg cut short by it is used as far as"
+			       " it got)");
+	if (!t->o->no_plot && plot(t, s))
+		return t->e.code;
+	printf("# csv: %s/hysteresis_{periods,summary,accounting}.csv\n", t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "hysteresis", .version = VERSION, .help = HELP,
+			       .allowed = " by band smooth threshold boot seed level ", .init = init, .run = run,
+			       .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "hysteresis", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " by band smooth threshold boot seed level ", stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
-	hyst_state s = {.fo = {o.band_lo, o.band_hi, 0}};
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s))
-		goto out;
-	if (cli_outdir(&o, &t.e) || periods(&t, &s) || tool_accounting_csv(&t))
-		goto out;
-	if (estimate(&t, &s) || tool_store_end(&t))
-		goto out;
-	tool_report(&t, stdout, "the periods they recorded before the failure (a leg cut short by it is used as far as"
-				" it got)");
-	if (!o.no_plot && plot(&t, &s))
-		goto out;
-	printf("# csv: %s/hysteresis_{periods,summary,accounting}.csv\n", o.out);
-out:
-	state_free(&t, &s);
-	return tool_close(&t, stderr);
+	hyst_state s = {0};
+	return tool_main(argc, argv, &SPEC, &s);
 }

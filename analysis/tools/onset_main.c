@@ -20,7 +20,7 @@
 /* a run whose records are in the statistic: finished, or failed and used up to it */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: onset CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
 	"             [--skip FRAC] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
 	"             [--sensitivity] [--all-versions] [--no-plot] [--no-store]\n\n"
@@ -70,8 +70,7 @@ static const char *HELP =
 	"runs_pending, runs_running, failed_STATUS per status.\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
-	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
 
 /* What onset computes besides the frame: Phi through the plane of every considered
  * run, one group's points at a time, and the estimates of every group. */
@@ -81,6 +80,7 @@ typedef struct onset_state {
 	double *xs, *ys; /* one group's points: frequency, Phi */
 	long *us;        /* ... and their seed (replicate) */
 	onset_res *R;    /* [ng] */
+	int sens;        /* --sensitivity given */
 } onset_state;
 
 static int state_alloc(an_tool *t, onset_state *s)
@@ -95,8 +95,9 @@ static int state_alloc(an_tool *t, onset_state *s)
 	return 0;
 }
 
-static void state_free(const an_tool *t, onset_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	onset_state *s = vs;
 	for (int j = 0; s->R && j < t->ng; j++)
 		onset_res_free(&s->R[j]);
 	free(s->R);
@@ -440,10 +441,11 @@ static int plot(an_tool *t, const onset_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n"
-		   "set xlabel 'frequency f (Hz)'\nset ylabel 'Φ (particles per period)'\n"
-		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n",
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n",
 		o->band_lo, o->band_hi, set, *set ? "; " : "", 100 * o->level);
+	gp_xlabel(f, "frequency");
+	fprintf(f, "set ylabel 'Φ (particles per period)'\n"
+		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n");
 	double flo = INFINITY, fhi = -INFINITY, A, g;
 	for (int i = 0; i < t->k; i++)
 		if (USED(&t->runs[i])) {
@@ -496,27 +498,34 @@ static int plot(an_tool *t, const onset_state *s)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	onset_state *s = vs;
+	s->fo = (flux_opts){t->o->band_lo, t->o->band_hi, t->o->skip};
+	s->sens = x[0].set;
+	return 0;
+}
+
+static int run(an_tool *t, void *vs)
+{
+	onset_state *s = vs;
+	if (state_alloc(t, s) || consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || estimate(t, s) || (s->sens && sensitivity(t, s)) || tool_store_end(t))
+		return t->e.code;
+	tool_report(t, stdout, "the periods they recorded before the failure (after the transient of the run as"
+			       " planned): one point each, like a finished run");
+	if (!t->o->no_plot && plot(t, s))
+		return t->e.code;
+	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s}.csv\n", t->o->out, s->sens ? ",sensitivity" : "");
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "onset", .version = VERSION, .help = HELP,
+			       .allowed = " by band skip threshold boot seed level ", .x = {{"sensitivity", 0, NULL, 0}},
+			       .nx = 1, .init = init, .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "onset", .version = VERSION};
-	xopt x[] = {{"sensitivity", 0, NULL, 0}};
-	int pr = xopt_args(&o, argc, argv, HELP, " by band skip threshold boot seed level ", x, 1, stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
-	onset_state s = {.fo = {o.band_lo, o.band_hi, o.skip}};
-	if (tool_open(&t, &o) || state_alloc(&t, &s) || consider(&t, &s) || groups(&t, &s))
-		goto out;
-	if (cli_outdir(&o, &t.e) || runs_csv(&t, &s) || tool_accounting_csv(&t))
-		goto out;
-	if (estimate(&t, &s) || (x[0].set && sensitivity(&t, &s)) || tool_store_end(&t))
-		goto out;
-	tool_report(&t, stdout, "the periods they recorded before the failure (after the transient of the run as"
-				" planned): one point each, like a finished run");
-	if (!o.no_plot && plot(&t, &s))
-		goto out;
-	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s}.csv\n", o.out, x[0].set ? ",sensitivity" : "");
-out:
-	state_free(&t, &s);
-	return tool_close(&t, stderr);
+	onset_state s = {0};
+	return tool_main(argc, argv, &SPEC, &s);
 }

@@ -29,7 +29,7 @@ static const char *const KEY[NQ] = {"force", "net_force", "temperature"};
 static const char *const WORDS[NQ] = {"⟨Σ|F|⟩ ratio (contact forces)", "⟨|ΣF + m g|⟩ ratio (net force)",
 				      "granular temperature ratio"};
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: ring CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--boot N] [--seed S]\n"
 	"            [--level L] [--all-versions] [--no-plot] [--no-store]\n\n"
 	"Claim 3 of the paper: the grains in a ring around the intruder (4.5-8 cm from its centre)\n"
@@ -69,8 +69,7 @@ static const char *HELP =
 	"runs_censored, force, net_force, temperature (means, lo, hi), centre_y, and for a\n"
 	"group with an intruder ratio_force, ratio_net_force, ratio_temperature (lo, hi; n =\n"
 	"its runs used), with the accounting rows (runs_failed, ...; onset --help lists them).\n"
-	"Options take their value as --opt VALUE or --opt=VALUE.\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"Options take their value as --opt VALUE or --opt=VALUE.\n";
 
 /* What ring reads of each considered run (index as t->runs after tool_keep). */
 typedef struct rrun {
@@ -93,8 +92,9 @@ typedef struct ring_state {
 	int ncurve;
 } ring_state;
 
-static void state_free(const an_tool *t, ring_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	ring_state *s = vs;
 	for (int j = 0; s->val && j < t->ng; j++)
 		free(s->val[j]);
 	free(s->val);
@@ -461,7 +461,7 @@ static int plot(an_tool *t, const ring_state *s)
 	fprintf(f,
 		"set title \"Claim 3: grains %g–%g cm from the intruder, with / without it, before the rise\\n%s%s"
 		"bars: %g %% bootstrap intervals over runs\"\n"
-		"set xlabel 'frequency f (Hz)'\nset ylabel 'with intruder / without'\n"
+		"set ylabel 'with intruder / without'\n"
 		"set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\nset key below\n"
 		"set arrow from graph 0, first 1 to graph 1, first 1 nohead lc rgb 'gray50' lw 1\n"
 		"set arrow from graph 0, first 1.15 to graph 1, first 1.15 nohead lc rgb 'black' dt 2 lw 1.5\n"
@@ -469,6 +469,7 @@ static int plot(an_tool *t, const ring_state *s)
 		"set label 'no change' at graph 0.01, first 1 offset 0, -0.8 font ',9' tc rgb 'gray40'\n",
 		rin, rout, set, *set ? "; " : "", 100 * t->o->level, flo - 0.15 * span, fhi + 0.15 * span,
 		ylo - 0.05 * (yhi - ylo), yhi + 0.08 * (yhi - ylo));
+	gp_xlabel(f, "frequency");
 	double A, g;
 	if (tool_gamma(t, &A, &g))
 		gp_gamma_axis(f, A, g, flo - 0.15 * span, fhi + 0.15 * span);
@@ -491,28 +492,27 @@ static int plot(an_tool *t, const ring_state *s)
 	return tool_plot(t, f, script, png);
 }
 
+static int run(an_tool *t, void *vs)
+{
+	ring_state *s = vs;
+	if (consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || estimate(t, s) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || ratios_csv(t, s) || summary(t, s) || tool_store_end(t))
+		return t->e.code;
+	report(t, s);
+	if (!t->o->no_plot) {
+		if (plot(t, s))
+			return t->e.code;
+		printf("# figure: %s/ring.{png,pdf}\n", t->o->out);
+	}
+	printf("# csv: %s/ring_{runs,summary,ratios,accounting}.csv\n", t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "ring", .version = VERSION, .help = HELP, .allowed = " by boot seed level ",
+			       .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "ring", .version = VERSION};
-	int pr = tool_args(&o, argc, argv, HELP, " by boot seed level ", stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
 	ring_state s = {0};
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || estimate(&t, &s))
-		goto out;
-	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || ratios_csv(&t, &s))
-		goto out;
-	if (summary(&t, &s) || tool_store_end(&t))
-		goto out;
-	report(&t, &s);
-	if (!o.no_plot) {
-		if (plot(&t, &s))
-			goto out;
-		printf("# figure: %s/ring.{png,pdf}\n", o.out);
-	}
-	printf("# csv: %s/ring_{runs,summary,ratios,accounting}.csv\n", o.out);
-out:
-	state_free(&t, &s);
-	return tool_close(&t, stderr);
+	return tool_main(argc, argv, &SPEC, &s);
 }

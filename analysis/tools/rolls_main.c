@@ -27,7 +27,7 @@
 /* a run whose records are in the statistic: finished, or failed and used up to it */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: rolls CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--skip FRAC]\n"
 	"             [--fraction Q] [--smooth K] [--level L] [--all-versions] [--no-plot]\n"
 	"             [--no-store]\n\n"
@@ -72,8 +72,7 @@ static const char *HELP =
 	"reach_diff (lo, hi), roll_bottom_diff (lo, hi), lines_differ (lines whose interval\n"
 	"of the difference excludes 0), runs_with, runs_without.\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
-	"and PDF (vector) with their gnuplot scripts.\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"and PDF (vector) with their gnuplot scripts.\n";
 
 /* One considered run's profile and reach. */
 typedef struct prun {
@@ -109,8 +108,9 @@ typedef struct rolls_state {
 	int nocmp;       /* intruder groups without a partner */
 } rolls_state;
 
-static void state_free(const an_tool *t, rolls_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	rolls_state *s = vs;
 	for (int i = 0; s->pr && i < t->k; i++) {
 		free(s->pr[i].phi);
 		free(s->pr[i].h);
@@ -513,34 +513,35 @@ static int plot(an_tool *t, const rolls_state *s)
 	return 0;
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	rolls_state *s = vs;
+	s->fo = (flux_opts){t->o->band_lo, t->o->band_hi, t->o->skip};
+	s->K = (size_t)t->o->smooth;
+	return xopt_num(&x[0], 1e-6, 1, 0.5, &s->q, &t->e);
+}
+
+static int run(an_tool *t, void *vs)
+{
+	rolls_state *s = vs;
+	if (consider(t, s) || groups(t, s) || comparisons(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || summary(t, s) || diffs(t, s) || tool_store_end(t))
+		return t->e.code;
+	tool_report(t, stdout, "the periods they recorded before the failure (after the transient of the run as"
+			       " planned): one profile each, like a finished run");
+	if (!t->o->no_plot && s->nc && plot(t, s))
+		return t->e.code;
+	if (!s->nc)
+		printf("# no comparison with and without intruder: no figure\n");
+	printf("# csv: %s/rolls_{runs,summary,diff,profile,accounting}.csv\n", t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "rolls", .version = VERSION, .help = HELP, .allowed = " by skip level smooth ",
+			       .x = {{"fraction", 1, NULL, 0}}, .nx = 1, .init = init, .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "rolls", .version = VERSION};
-	xopt x[] = {{"fraction", 1, NULL, 0}};
-	int pr = xopt_args(&o, argc, argv, HELP, " by skip level smooth ", x, 1, stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	rolls_state s = {.fo = {o.band_lo, o.band_hi, o.skip}, .K = (size_t)o.smooth};
-	sb_err xe = {0};
-	if (xopt_num(&x[0], 1e-6, 1, 0.5, &s.q, &xe)) {
-		fprintf(stderr, "rolls: %s\n", xe.msg);
-		return 1;
-	}
-	an_tool t;
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || comparisons(&t, &s))
-		goto out;
-	if (cli_outdir(&o, &t.e) || runs_csv(&t, &s) || tool_accounting_csv(&t))
-		goto out;
-	if (summary(&t, &s) || diffs(&t, &s) || tool_store_end(&t))
-		goto out;
-	tool_report(&t, stdout, "the periods they recorded before the failure (after the transient of the run as"
-				" planned): one profile each, like a finished run");
-	if (!o.no_plot && s.nc && plot(&t, &s))
-		goto out;
-	if (!s.nc)
-		printf("# no comparison with and without intruder: no figure\n");
-	printf("# csv: %s/rolls_{runs,summary,diff,profile,accounting}.csv\n", o.out);
-out:
-	state_free(&t, &s);
-	return tool_close(&t, stderr);
+	rolls_state s = {0};
+	return tool_main(argc, argv, &SPEC, &s);
 }

@@ -23,13 +23,13 @@
 /* a run whose observation is in the statistic: finished, or failed and observed up to it */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: waiting CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--level L]\n"
 	"               [--bins N] [--fraction Q] [--all-versions] [--no-plot] [--no-store]\n\n"
-	"Waiting time of the intruder's rise (docs/model.md: first time its centre is one intruder\n"
-	"diameter above its settled height; a run that ends first is right-censored at the\n"
-	"time it observed), read from the root attributes `risen` and `waiting_time` of each\n"
-	"run with an intruder (radius_ratio > 0). A run that failed is observed up to its\n"
+	"Waiting time of the intruder's rise (the engine's definition: docs/model.md, \"Waiting\n"
+	"time\"; a run that ends first is right-censored at the time it observed), read from\n"
+	"the root attributes `risen` and `waiting_time` of each run with an intruder\n"
+	"(radius_ratio > 0). A run that failed is observed up to its\n"
 	"failure: risen before it, an event at its waiting time; else censored at the time of\n"
 	"the failure (this assumes that the failure is independent of the rise; the output\n"
 	"says how many runs it concerns).\n"
@@ -83,8 +83,7 @@ static const char *HELP =
 	"'all groups' way_logrank_chi2, way_logrank_df, way_logrank_p.\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
-	"each grouping key in that key's column (radius_ratio, depth, ...; analysis/README.md).\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
 
 typedef struct grp {
 	int n, cap;
@@ -136,8 +135,9 @@ typedef struct wait_state {
 	long *stop_cens;    /* [ng] runs stopped by stop = risen before reaching the fraction */
 } wait_state;
 
-static void state_free(const an_tool *t, wait_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	wait_state *s = vs;
 	for (int j = 0; s->g && j < t->ng; j++) {
 		free(s->g[j].t);
 		free(s->g[j].ev);
@@ -763,35 +763,35 @@ static int plot_hist(an_tool *t, const wait_state *s)
 	return tool_plot(t, f, script, png);
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	wait_state *s = vs;
+	return xopt_num(&x[0], 1e-6, 1, 0.5, &s->q, &t->e);
+}
+
+static int run(an_tool *t, void *vs)
+{
+	wait_state *s = vs;
+	if (consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || fit(t, s) || way(t, s) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || km_csv(t, s) || hist_csv(t, s) || way_csv(t, s) || summary(t, s) ||
+	    way_summary(t, s) || tool_store_end(t))
+		return t->e.code;
+	report(t, s);
+	if (!t->o->no_plot) {
+		if (plot_km(t) || plot_hist(t, s) || plot_way(t, s))
+			return t->e.code;
+		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", t->o->out);
+	}
+	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary}.csv\n",
+	       t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "waiting", .version = VERSION, .help = HELP, .allowed = " by level bins ",
+			       .x = {{"fraction", 1, NULL, 0}}, .nx = 1, .init = init, .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "waiting", .version = VERSION};
-	xopt x[] = {{"fraction", 1, NULL, 0}};
-	int pr = xopt_args(&o, argc, argv, HELP, " by level bins ", x, 1, stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
 	wait_state s = {0};
-	sb_err xe = {0};
-	if (xopt_num(&x[0], 1e-6, 1, 0.5, &s.q, &xe)) {
-		fprintf(stderr, "waiting: %s\n", xe.msg);
-		return 1;
-	}
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || cli_outdir(&o, &t.e) || fit(&t, &s) ||
-	    way(&t, &s))
-		goto out;
-	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || km_csv(&t, &s) || hist_csv(&t, &s) || way_csv(&t, &s))
-		goto out;
-	if (summary(&t, &s) || way_summary(&t, &s) || tool_store_end(&t))
-		goto out;
-	report(&t, &s);
-	if (!o.no_plot) {
-		if (plot_km(&t) || plot_hist(&t, &s) || plot_way(&t, &s))
-			goto out;
-		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", o.out);
-	}
-	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary}.csv\n", o.out);
-out:
-	state_free(&t, &s);
-	return tool_close(&t, stderr);
+	return tool_main(argc, argv, &SPEC, &s);
 }

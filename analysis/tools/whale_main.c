@@ -23,7 +23,7 @@
 
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
-static const char *HELP =
+static const char HELP[] =
 	"usage: whale CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--skip S] [--dive D] [--top Q]\n"
 	"             [--by KEYS] [--boot N] [--seed S] [--level L] [--all-versions] [--no-plot] [--no-store]\n\n"
 	"The whale effect (the paper's Fig. 4, claim 4): once at the top, the intruder dives\n"
@@ -78,8 +78,7 @@ static const char *HELP =
 	"spec_period, depth, rate, rms (lo, hi; n = the runs each rests on), spec_edge,\n"
 	"top, dive_cm, skip_s, and the accounting rows; per set of groups across 𝓡 (grp\n"
 	"'trend ...') trend_period_rho, trend_period_p, trend_depth_rho, ..., n the runs.\n"
-	"Options take their value as --opt VALUE or --opt=VALUE.\n"
-	"Exit codes: 0 ok, 1 usage or no usable runs, 2 I/O.\n";
+	"Options take their value as --opt VALUE or --opt=VALUE.\n";
 
 /* the per-group means: quantity, stored key, words */
 enum { QP, QS, QD, QR, QM, NQ };
@@ -104,8 +103,10 @@ typedef struct whale_state {
 	int kr;         /* the index of radius_ratio among the grouping keys */
 } whale_state;
 
-static void state_free(whale_state *s)
+static void state_free(const an_tool *t, void *vs)
 {
+	(void)t;
+	whale_state *s = vs;
 	free(s->ob);
 	free(s->g);
 	free(s->trend);
@@ -642,35 +643,36 @@ static int plot(an_tool *t, const whale_state *s)
 	return tool_plot(t, f, script, png);
 }
 
+static int init(an_tool *t, void *vs, const xopt *x)
+{
+	whale_state *s = vs;
+	if (xopt_num(&x[0], 0, 1e7, 20, &s->cfg.skip, &t->e) || xopt_num(&x[1], 1e-3, 100, 1, &s->cfg.dive_radii, &t->e))
+		return t->e.code;
+	return xopt_num(&x[2], 0.01, 1, 0.9, &s->cfg.top_q, &t->e);
+}
+
+static int run(an_tool *t, void *vs)
+{
+	whale_state *s = vs;
+	if (consider(t, s) || groups(t, s) || trends(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || traces_csv(t, s) || summary(t, s) || tool_store_end(t))
+		return t->e.code;
+	report(t, s);
+	if (!t->o->no_plot) {
+		if (plot(t, s))
+			return t->e.code;
+		printf("# figure: %s/whale.{png,pdf}\n", t->o->out);
+	}
+	printf("# csv: %s/whale_{runs,summary,points,trend,traces,accounting}.csv\n", t->o->out);
+	return 0;
+}
+
+static const tool_spec SPEC = {.name = "whale", .version = VERSION, .help = HELP, .allowed = " by boot seed level ",
+			       .x = {{"skip", 1, NULL, 0}, {"dive", 1, NULL, 0}, {"top", 1, NULL, 0}}, .nx = 3,
+			       .init = init, .run = run, .fini = state_free};
+
 int main(int argc, char **argv)
 {
-	an_opts o = {.tool = "whale", .version = VERSION};
-	xopt x[] = {{"skip", 1, NULL, 0}, {"dive", 1, NULL, 0}, {"top", 1, NULL, 0}};
-	int pr = xopt_args(&o, argc, argv, HELP, " by boot seed level ", x, 3, stdout, stderr);
-	if (pr)
-		return pr < 0 ? 0 : 1;
-	an_tool t;
 	whale_state s = {.cfg = {20, NAN, 1, 0.9}};
-	sb_err xe = {0};
-	if (xopt_num(&x[0], 0, 1e7, 20, &s.cfg.skip, &xe) || xopt_num(&x[1], 1e-3, 100, 1, &s.cfg.dive_radii, &xe) ||
-	    xopt_num(&x[2], 0.01, 1, 0.9, &s.cfg.top_q, &xe)) {
-		fprintf(stderr, "whale: %s\n", xe.msg);
-		return 1;
-	}
-	if (tool_open(&t, &o) || consider(&t, &s) || groups(&t, &s) || trends(&t, &s) || cli_outdir(&o, &t.e))
-		goto out;
-	if (runs_csv(&t, &s) || tool_accounting_csv(&t) || traces_csv(&t, &s))
-		goto out;
-	if (summary(&t, &s) || tool_store_end(&t))
-		goto out;
-	report(&t, &s);
-	if (!o.no_plot) {
-		if (plot(&t, &s))
-			goto out;
-		printf("# figure: %s/whale.{png,pdf}\n", o.out);
-	}
-	printf("# csv: %s/whale_{runs,summary,points,trend,traces,accounting}.csv\n", o.out);
-out:
-	state_free(&s);
-	return tool_close(&t, stderr);
+	return tool_main(argc, argv, &SPEC, &s);
 }

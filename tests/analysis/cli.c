@@ -100,6 +100,16 @@ int main(void)
 	CHECK("label.frequency_in_hz", !strcmp(w, "2.8 Hz"), "'%s'", w);
 	label_param(w, sizeof w, "width", "30.0");
 	CHECK("label.width", !strcmp(w, "W = 30 cm"), "'%s'", w);
+	label_param(w, sizeof w, "gravity", "981");
+	CHECK("label.unit_from_table", !strcmp(w, "g = 981 cm/s²"), "'%s'", w);
+	label_param(w, sizeof w, "gamma_n", "100");
+	CHECK("label.unit_inverse", !strcmp(w, "γ_N = 100 s⁻¹"), "'%s'", w);
+	label_axis(w, sizeof w, "frequency", "frequency");
+	CHECK("label.axis_frequency", !strcmp(w, "frequency f (Hz)"), "'%s'", w);
+	label_axis(w, sizeof w, "radius_ratio", NULL);
+	CHECK("label.axis_dimensionless", !strcmp(w, "radius_ratio"), "'%s'", w);
+	label_unit(w, sizeof w, "density");
+	CHECK("label.unit_cube", !strcmp(w, "g/cm³"), "'%s'", w);
 	label_param(w, sizeof w, "stop", "risen");
 	CHECK("label.other_key", !strcmp(w, "stop = risen"), "'%s'", w);
 	const char keys[3][48] = {"radius_ratio", "depth", "frequency"};

@@ -143,8 +143,22 @@ static void test_ramp_down(void)
 	}
 }
 
+/* Gamma's known values: the paper's 2.6 and 3.2 Hz at A = 2 cm, g = 981 cm/s^2 give
+ * 0.54 and 0.82 (docs/model.md), and Gamma = 1 at f = sqrt(g / A) / (2 pi); the peak of
+ * drive_a at constant frequency is Gamma g. */
+static void test_gamma(void)
+{
+	CHECK_REL("drive.gamma.paper_low", drive_gamma(2, 2.6, 981), 0.5440858369122451, 1e-14);
+	CHECK_REL("drive.gamma.paper_high", drive_gamma(2, 3.2, 981), 0.8241773624232825, 1e-14);
+	CHECK_REL("drive.gamma.one", drive_gamma(1, sqrt(981.0) / (2 * M_PI), 981), 1, 1e-14);
+	sb_drive d = {.ramp = RAMP_NONE, .A = 2, .f = 3.2};
+	CHECK_REL("drive.gamma.is_peak_acceleration", fabs(drive_a(&d, 0.75 / 3.2)) / 981, drive_gamma(2, 3.2, 981),
+		  1e-12);
+}
+
 int main(void)
 {
+	test_gamma();
 	test_ramp();
 	test_ramp_down();
 	return tl_done();
