@@ -36,20 +36,25 @@ V       ?= 0
 T       ?=
 NPROC   ?= $(shell nproc 2>/dev/null || echo 2)
 
+# assert() holds the invariants the fast path and the tables rely on (nlist_check,
+# kernel_check, rec_table_check, ...): active in the sanitizer build that make check
+# runs, compiled out of the release build (NDEBUG), as SQLite does with SQLITE_DEBUG.
 ifeq ($(SAN),1)
   BUILD   := build/san
   BIN     := build/san/bin
   XFLAGS  := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+  DBGFLAGS :=
 else
   BUILD   := build/rel
   BIN     := bin
   XFLAGS  :=
+  DBGFLAGS := -DNDEBUG
 endif
 
 PKGS     = hdf5-serial gsl inih sqlite3
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
-ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(PKG_CFLAGS) -Icore
+ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) -Icore
 LDFLAGS   += $(XFLAGS)
 
 ifeq ($(V),1)
@@ -127,7 +132,7 @@ $(KV_ISAS:%=$(BUILD)/core/kvec_%.o): $(BUILD)/core/kvec_%.o: core/kvec.c $(BUILD
 $(BUILD)/core/provenance.o: $(BUILD)/version.h
 $(BUILD)/version.h: FORCE | build/.deps-ok
 	@mkdir -p $(dir $@)
-	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS)" "$(strip $(MARCH))" > $@.new
+	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS)" "$(strip $(MARCH))" > $@.new
 	$(Q)if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 $(BUILD)/core/provenance.o: ALLCFLAGS += -I$(BUILD)
 FORCE:

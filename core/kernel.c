@@ -3,6 +3,7 @@
  * runs the seam pairs of periodic sides through the scalar law after the flat list. */
 #include "kernel.h"
 
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,6 +159,9 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	/* packed: the last fused corrector wrote this state's records and cleared the
 	 * accumulators; anything else packs the records from st, which must be current */
 	const int packed = keep && !fabs_sum && k->packed;
+	/* a list the kernel has not walked yet: its indices are record offsets the
+	 * vector loads trust (checked once per list build) */
+	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
 	if (!packed)
 		kernel_sync(k, st);
@@ -184,4 +188,20 @@ void kernel_correct_predict(sb_kernel *k, const sb_integ *in, sb_state *st, doub
 	k->v->correct_predict(&k->d, in, st, gy, nl, scr);
 	k->stale = 1;
 	k->packed = 1;
+	assert(!kernel_check(k, st));
+}
+
+const char *kernel_check(const sb_kernel *k, const sb_state *st)
+{
+	if (!k->packed)
+		return NULL; /* nothing promised: the next force evaluation packs */
+	const double *rec = k->d.rec, *acc = k->d.facc;
+	for (int i = 0; i < st->nm; i++) {
+		const double *q = rec + 8 * i;
+		if (!(q[5] == st->inv_m[i] && q[6] == st->r[i] && q[7] == st->r[i]))
+			return "a record's constant lanes are not (1/m, R, R) of its disk (kvec.h's layout)";
+		if (acc[4 * i] != 0 || acc[4 * i + 1] != 0 || acc[4 * i + 2] != 0 || acc[4 * i + 3] != 0)
+			return "an accumulator is not cleared for the next force evaluation";
+	}
+	return NULL;
 }

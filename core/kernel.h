@@ -72,6 +72,11 @@ void kernel_correct_predict(sb_kernel *k, const sb_integ *in, sb_state *st, doub
  * corrector): before anything else reads them. */
 void kernel_sync(sb_kernel *k, sb_state *st);
 
+/* The data the fused corrector leaves for the next force evaluation (asserted after it
+ * in the test build): NULL, or the first invariant broken - each mobile disk's record
+ * holds its 1/m and R in the lanes kvec.h gives them, and its accumulator is zero. */
+const char *kernel_check(const sb_kernel *k, const sb_state *st);
+
 /* The state's positions were changed outside the kernel (wrapped into the period at
  * a list build, periodic.h), after a kernel_sync: the next force evaluation packs its
  * records from st instead of trusting the fused corrector's. */

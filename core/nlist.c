@@ -3,6 +3,7 @@
 
 #include "bigmem.h"
 
+#include <assert.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -392,7 +393,26 @@ int nlist_build_from_ref(sb_nlist *nl, const sb_state *st, sb_err *e)
 		nl->pi[p] = nl->pj[p] = 0;
 	nl->nflat = nf;
 	nl->nseam = 0;
+	assert(!nlist_check(nl, n, nm));
 	return nl->period > 0 ? seam_build(nl, st, e) : 0;
+}
+
+const char *nlist_check(const sb_nlist *nl, int n, int nm)
+{
+	const int sh = nl->pshift, m = (1 << sh) - 1;
+	for (int p = 0; p < nl->nflat; p++) {
+		const int a = nl->pi[p], b = nl->pj[p];
+		if ((a & m) || (b & m))
+			return "an index is not a multiple of 1 << pshift (the kernel reads records at pi, pj)";
+		if (a < 0 || b < 0 || a >> sh >= n || b >> sh >= n)
+			return "an index outside the state's disks";
+		if (p < nl->npairs && (a >= b || a >> sh >= nm || (p > 0 && nl->pi[p - 1] > a)))
+			return "an ordinary pair out of order (i < j, i mobile, rows of ascending i)";
+	}
+	for (int p = nl->nflat; p < ((nl->nflat + 7) & ~7); p++)
+		if (nl->pi[p] || nl->pj[p])
+			return "the padding to a whole vector of 8 pairs is not (0, 0)";
+	return NULL;
 }
 
 /* The pairs within reach by the brute force of all pairs: i's position shifted by

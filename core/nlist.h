@@ -73,4 +73,11 @@ long nlist_brute(const sb_state *st, double skin, int *pi, int *pj, long cap);
  * x_i + W within r_i + r_j + skin of j, every ordered pair with i != j. */
 long nlist_brute_seam(const sb_state *st, double skin, double W, int *pi, int *pj, long cap);
 
+/* The list's invariants, which the force kernel's loads rely on (asserted after every
+ * build in the test build): NULL, or the first one broken - every index a multiple of
+ * 1 << pshift and a disk of the state (n disks, the first nm mobile); the ordinary
+ * pairs (i < j, i mobile) in rows of ascending i; the padding to whole vectors of 8
+ * pairs (0, 0). */
+const char *nlist_check(const sb_nlist *nl, int n, int nm);
+
 #endif

@@ -1,6 +1,9 @@
 /* record.c - the table of recorded quantities (record.h). */
 #include "record.h"
 
+#include <string.h>
+
+#include "params.h"
 #include "sample.h"
 
 static const rec_col TRAJ[] = {{"time", "s"}, {"x", "cm"}, {"y", "cm"}, {"vx", "cm s-1"}, {"vy", "cm s-1"},
@@ -49,6 +52,27 @@ static const sb_record TABLE[REC_N] = {
 };
 
 const sb_record *rec_table(void) { return TABLE; }
+
+const char *rec_table_check(void)
+{
+	for (int k = 0; k < REC_N; k++) {
+		const sb_record *r = &TABLE[k];
+		const sb_param *p = r->key ? params_find(r->key) : NULL;
+		if (!r->name || !p)
+			return "a row without a name or with a key the parameter table lacks";
+		const enum sb_ptype want = r->clock == RC_RATE ? PT_REAL : r->clock == RC_PHASE ? PT_INT : PT_BOOL;
+		if (p->type != want)
+			return "a row's key is not of its clock's type (rate: real, per period: int, else yes/no)";
+		if (r->len > 0 ? r->ncols != r->len || !r->cols : !r->vlen)
+			return "a fixed-length row's columns differ from its length, or a variable row has no length function";
+		if (!r->sample || !r->h5)
+			return "a row without a sampling function or a run-file group";
+		for (int j = 0; j < k; j++)
+			if (TABLE[j].tag == r->tag || !strcmp(TABLE[j].h5, r->h5))
+				return "two rows share a journal tag or a run-file group";
+	}
+	return NULL;
+}
 
 int rec_by_tag(int tag)
 {

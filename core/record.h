@@ -68,6 +68,11 @@ typedef struct sb_record {
 
 /* The table, REC_N rows indexed by enum rec_id. */
 const sb_record *rec_table(void);
+/* The table's own invariants (asserted at sim_init in the test build): NULL, or the
+ * first one a row breaks - every row's key in the parameter table, of its clock's
+ * type; a fixed-length row's columns as many as its doubles; a variable row's length
+ * function; a sampling function; tags and run-file groups distinct. */
+const char *rec_table_check(void);
 /* The row of a journal tag, -1 if none. */
 int rec_by_tag(int tag);
 /* Does the scene ask for it (its key on; an intruder where the row needs one)? */

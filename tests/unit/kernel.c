@@ -6,8 +6,11 @@
  * sums, fused step, neighbour list); an unknown or unrunnable path is refused. */
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "bigmem.h"
 #include "kernel.h"
@@ -85,7 +88,7 @@ static int bits_equal(const void *a, const void *b, size_t bytes)
 	return !memcmp(a, b, bytes);
 }
 
-static void *dup(const void *p, size_t bytes)
+static void *dup_bytes(const void *p, size_t bytes)
 {
 	void *q = malloc(bytes);
 	memcpy(q, p, bytes);
@@ -179,14 +182,14 @@ static void test_forces(const char *path, firsts *fi)
 		if (!fi->have[clip]) {
 			fi->have[clip] = 1;
 			for (int c = 0; c < 3; c++) {
-				fi->f[clip][c] = dup(got[c], nb);
+				fi->f[clip][c] = dup_bytes(got[c], nb);
 				for (int o = 0; o < 6; o++)
-					fi->q[clip][c][o] = dup(st2.q[c][o], mb);
+					fi->q[clip][c][o] = dup_bytes(st2.q[c][o], mb);
 			}
-			fi->fs[clip] = dup(fs_got, nb);
+			fi->fs[clip] = dup_bytes(fs_got, nb);
 			fi->np[clip] = nl.nflat;
-			fi->pi[clip] = dup(nl.pi, sizeof(int) * (size_t)nl.nflat);
-			fi->pj[clip] = dup(nl.pj, sizeof(int) * (size_t)nl.nflat);
+			fi->pi[clip] = dup_bytes(nl.pi, sizeof(int) * (size_t)nl.nflat);
+			fi->pj[clip] = dup_bytes(nl.pj, sizeof(int) * (size_t)nl.nflat);
 		} else {
 			int eq = nl.nflat == fi->np[clip] && bits_equal(nl.pi, fi->pi[clip], sizeof(int) * (size_t)nl.nflat) &&
 				 bits_equal(nl.pj, fi->pj[clip], sizeof(int) * (size_t)nl.nflat);
@@ -258,6 +261,98 @@ static void test_refusals(const sb_kpath *p, int n)
 	state_free(&st);
 }
 
+/* The invariants the kernel's loads rely on (nlist_check, kernel_check): a good list
+ * and a fused step's data pass, each kind of damage is named; and in the test build
+ * (no NDEBUG) kernel_forces asserts on a damaged list it has not walked yet: a
+ * forked child given one dies of SIGABRT, one given the good list does not. */
+#ifndef NDEBUG
+static int child_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl)
+{
+	fflush(NULL);
+	pid_t pid = fork();
+	if (pid == 0) {
+		sb_err e = {0};
+		kernel_forces(k, law, st, nl, 1e4, 0, NULL, &e);
+		_exit(0);
+	}
+	int ws = 0;
+	waitpid(pid, &ws, 0);
+	return ws;
+}
+#endif
+
+static void test_invariants(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	gsl_rng_set(rng, 11);
+	sb_state st = {0};
+	scene(&st, rng, 41, 12, 8, 5e-5);
+	sb_law law = {3e6, 100, 1, 0.5, 100, 0};
+	sb_nlist nl;
+	sb_kernel *k = NULL;
+	sb_err e = {0};
+	int ok = !kernel_init(&k, &st, &e) && !nlist_init(&nl, &st, 0.5, kernel_pair_shift(), &e);
+	if (ok) {
+		nl.scan = kernel_scan(k);
+		ok = !nlist_build(&nl, &st, &e);
+	}
+	CHECK("kernel.invariants.setup", ok && nl.npairs > 2, "%s (%d pairs)", e.msg, ok ? nl.npairs : 0);
+	if (!ok)
+		return;
+	const char *why = nlist_check(&nl, st.n, st.nm);
+	CHECK("kernel.invariants.good_list_passes", !why, "%s", why);
+	struct {
+		const char *id, *want;
+		int p, v, of_j;
+	} dmg[] = {
+		{"kernel.invariants.unscaled_index", "multiple", 0, 1, 0},
+		{"kernel.invariants.index_past_the_disks", "outside", 0, 1 << 30, 1},
+		{"kernel.invariants.pair_reversed", "out of order", 1, 0, 1},
+	};
+	for (size_t c = 0; c < sizeof dmg / sizeof dmg[0]; c++) {
+		int *a = dmg[c].of_j ? nl.pj : nl.pi, keep = a[dmg[c].p];
+		a[dmg[c].p] = dmg[c].v;
+		why = nlist_check(&nl, st.n, st.nm);
+		CHECK(dmg[c].id, why && strstr(why, dmg[c].want), "got '%s', want one naming '%s'", why ? why : "(none)",
+		      dmg[c].want);
+		a[dmg[c].p] = keep;
+	}
+	/* a fused step leaves records and accumulators as the next evaluation needs */
+	sb_integ in;
+	integ_init(&in, INTEG_GEAR5, 5e-5);
+	sb_screen scr = {0};
+	scr.lim = INFINITY, scr.xlo = -INFINITY, scr.xhi = INFINITY, scr.ylo = -INFINITY;
+	kernel_forces(k, &law, &st, &nl, 1 / 5e-5, 1, NULL, &e);
+	kernel_correct_predict(k, &in, &st, -981, &nl, &scr);
+	why = kernel_check(k, &st);
+	CHECK("kernel.invariants.fused_step_passes", !why, "%s", why);
+	kernel_sync(k, &st);
+	const double r0 = st.r[3];
+	st.r[3] *= 1.5; /* the record still holds the old radius */
+	why = kernel_check(k, &st);
+	CHECK("kernel.invariants.record_radius_named", why && strstr(why, "constant lanes"), "got '%s'",
+	      why ? why : "(none)");
+	st.r[3] = r0;
+#ifdef NDEBUG
+	printf("SKIP kernel.invariants.assert_fires: assert() is compiled out of this build (NDEBUG)\n");
+#else
+	/* a new build: the kernel has not walked it */
+	nlist_build(&nl, &st, &e);
+	int ws = child_forces(k, &law, &st, &nl);
+	CHECK("kernel.invariants.good_list_no_assert", WIFEXITED(ws) && WEXITSTATUS(ws) == 0, "child status %#x", ws);
+	nlist_build(&nl, &st, &e);
+	nl.pi[0] += 1;
+	ws = child_forces(k, &law, &st, &nl);
+	CHECK("kernel.invariants.damaged_list_asserts", WIFSIGNALED(ws) && WTERMSIG(ws) == SIGABRT,
+	      "child status %#x (want SIGABRT)", ws);
+	nl.pi[0] -= 1;
+#endif
+	kernel_free(k);
+	nlist_free(&nl);
+	state_free(&st);
+	gsl_rng_free(rng);
+}
+
 int main(void)
 {
 	sb_kpath p[SB_KPATHS_MAX];
@@ -271,6 +366,7 @@ int main(void)
 			printf("SKIP kernel.%s: this CPU cannot run it (it needs %s)\n", p[i].name, p[i].needs);
 	}
 	test_refusals(p, n);
+	test_invariants();
 	for (int c = 0; c < 2; c++) {
 		for (int d = 0; d < 3; d++) {
 			free(fi.f[c][d]);

@@ -10,6 +10,10 @@
 
 int main(void)
 {
+	{
+		const char *why = rec_table_check();
+		CHECK("record.table_invariants", !why, "%s", why); /* asserted at sim_init in the test build */
+	}
 	const sb_record *R = rec_table();
 	char id[128];
 	for (int k = 0; k < REC_N; k++) {
