@@ -80,4 +80,28 @@ cpu=$(awk '{ print $1 + $2 }' cpu.txt)
 echo "# estimated CPU ${est:-?} s, measured $cpu s"
 awk -v e="${est:-0}" -v m="$cpu" 'BEGIN { exit !(e > 0 && m / e >= 0.5 && m / e <= 2) }' &&
 	ok run.within_factor_2 || fail run.within_factor_2 "estimated ${est:-none} s, measured $cpu s CPU"
+# study status's ETA over a made-up search (beside c, in the database its run made): one run done in 60 s, one pending; the chain
+# over [0, 1] to 0.25 takes at most 4 runs; replicate 1 has 2 (its pending one included),
+# and the group may get 2 more replicates: 1 + (4 - 2) + 2 x 4 = 11 runs, 11 min at most
+sqlite3 R/study.db "INSERT INTO campaign(name, description) VALUES ('f', 'made up');
+INSERT INTO run(campaign, id, state, started) VALUES ('f', 'a', 'done', '2026-01-01T00:00:00Z'), ('f', 'b', 'pending', NULL);
+INSERT INTO attempt(campaign, run, n, status, finished) VALUES ('f', 'a', 1, 'ok', '2026-01-01T00:01:00Z');
+INSERT INTO onset_search(campaign, freq_from, freq_to, tolerance, replicates, max_replicates, state)
+	VALUES ('f', 0, 1, 0.25, 'auto', 4, 'searching');
+INSERT INTO onset_group(campaign, grp, point, replicates, runs, state) VALUES ('f', 'all', 0, 2, 3, 'searching');
+INSERT INTO onset_replicate(campaign, grp, replicate, state, runs) VALUES ('f', 'all', 1, 'searching', 2), ('f', 'all', 2, 'found', 1);" 2>sql.err
+"$STUDY" status f --runs R >st.out 2>&1
+grep -q '^  ETA: at most 11.0 min for the whole campaign (at most 11 runs to go) at the pace of the last runs' st.out &&
+	ok eta.whole_search || fail eta.whole_search "$(cat sql.err st.out)"
+# the same runs without a search: only what is pending, no bound claimed
+sqlite3 R/study.db "DELETE FROM onset_search; DELETE FROM onset_group; DELETE FROM onset_replicate"
+"$STUDY" status f --runs R >st2.out 2>&1
+grep -q '^  ETA: about 60 s at the pace of the last runs' st2.out && ! grep -q 'at most' st2.out &&
+	ok eta.grid_unchanged || fail eta.grid_unchanged "$(cat st2.out)"
+# replicates = auto: a point with 2 of at most 5 replicates: 1 pending + 3 = 4 runs
+sqlite3 R/study.db "INSERT INTO auto_point(campaign, point, grp, replicates, max_replicates, state)
+	VALUES ('f', 0, 'all', 2, 5, 'running')"
+"$STUDY" status f --runs R >st3.out 2>&1
+grep -q '^  ETA: at most 4.0 min for the whole campaign (at most 4 runs to go)' st3.out &&
+	ok eta.whole_auto || fail eta.whole_auto "$(cat st3.out)"
 finish
