@@ -41,7 +41,9 @@ static const command CMDS[] = {
 	{"status", OPTS_STATUS, "[NAME | CAMPAIGN-FILE]", 0, 1, "counts per state, failures with reasons, ETA",
 	 "Counts per state (pending, running, done, failed), packing-cache hits, every\n"
 	 "unsuccessful attempt with its exit code and message, and an ETA from the pace of the\n"
-	 "last runs to finish (with one finished run: its time spread over N jobs). Without\n"
+	 "last runs to finish (with one finished run: its time spread over N jobs); for a search\n"
+	 "or replicates = auto over the whole campaign, at most (its chains and replicates at\n"
+	 "their longest), not the current round. Without\n"
 	 "NAME: all. For an [onset] campaign: per group the onset, its interval, the replicates\n"
 	 "and runs so far, and every replicate's bracket. For a grid with replicates = auto: per\n"
 	 "point the replicates and runs so far, the result's estimate and the interval reached.\n\n"
