@@ -15,6 +15,12 @@ int layout_campaign(const char *runs, const char *name, char *out, size_t len)
 	return snprintf(out, len, "%s/%s", runs ? runs : "runs", name);
 }
 
+int layout_calibration(const char *runs, const char *tag, char *out, size_t len)
+{
+	return snprintf(out, len, "%s/.calibration%s%s%s", runs ? runs : "runs", tag ? "/" : "", tag ? tag : "",
+			tag ? ".txt" : "");
+}
+
 int layout_file(const char *dir, int cache, const char *id, enum lay_kind kind, char *out, size_t len)
 {
 	static const char *const sub[2][4] = {{"", "jobs/", "jobs/", "logs/"}, {"cache/", "cache/", "cache/", "cache/"}};

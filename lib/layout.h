@@ -9,6 +9,9 @@
  *   RUNS/NAME/{failed,damaged}/ID.attemptN.h5   outputs set aside
  *   RUNS/NAME/forgotten/                   files of runs forgotten with --forget-old
  *   RUNS/NAME/analysis/                    the analysis tools' outputs
+ *   RUNS/.calibration/TAG.txt              the engine's measured CPU cost per grain-step, per
+ *                                          build, CPU and integrator (study/report/calib.h); a
+ *                                          campaign name never starts with '.'
  *
  * Paths are relative to the campaign directory (NAME/) where a job runs in it (the
  * worker, a remote host), else joined to it. Each function returns the length it
@@ -22,6 +25,8 @@ enum lay_kind { LAY_OUTPUT, LAY_ARGS, LAY_LOCK, LAY_LOG };
 
 /* RUNS/study.db (runs NULL: "runs"); db when given. */
 int layout_db(const char *runs, const char *db, char *out, size_t len);
+/* RUNS/.calibration (tag NULL) or RUNS/.calibration/TAG.txt */
+int layout_calibration(const char *runs, const char *tag, char *out, size_t len);
 /* RUNS/NAME */
 int layout_campaign(const char *runs, const char *name, char *out, size_t len);
 /* a run's file (cache = 0) or a packing's (cache = 1, id = its key) of the given kind,

@@ -14,6 +14,7 @@
 #include "cli/opts.h"
 #include "job/worker.h"
 #include "local/driver.h"
+#include "report/cost.h"
 #include "report/dtext.h"
 #include "report/report.h"
 #include "slurm/submit.h"
@@ -78,7 +79,33 @@ static int onset_first_round(const campaign *c, grid *g, sb_err *e)
 	return e->code;
 }
 
-static int cmd_expand(const char *path, sb_err *e)
+static int own_path(char *self, size_t len);
+
+/* The campaign's cost on stderr (report/cost.h): the rates of the integrators it uses,
+ * measured once per engine build and CPU into the runs directory. */
+static int print_cost(const campaign *c, const grid *g, const char *runs, int use_cache, sb_err *e)
+{
+	char self[PATH_MAX], shake[PATH_MAX + 8];
+	if (own_path(self, sizeof self))
+		return sb_errf(e, SB_EIO, "cannot find my own executable");
+	snprintf(shake, sizeof shake, "%s", self);
+	char *sl = strrchr(shake, '/');
+	snprintf(sl ? sl + 1 : shake, sizeof shake - (size_t)(sl ? sl + 1 - shake : 0), "shake");
+	cost_sum *groups = calloc((size_t)g->points + 1, sizeof *groups), total;
+	if (!groups)
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	cost_count(c, g, use_cache, groups, &total);
+	calib rates[COST_NINTEG] = {0};
+	for (int i = 0; i < COST_NINTEG && !e->code; i++)
+		if (total.grain_steps[i] > 0 || total.settle_grains[i] > 0)
+			calib_get(runs, shake, i, &rates[i], e);
+	if (!e->code)
+		cost_print(stderr, c, groups, g->points, &total, rates);
+	free(groups);
+	return e->code;
+}
+
+static int cmd_expand(const char *path, const char *runs, sb_err *e)
 {
 	campaign *c = malloc(sizeof *c);
 	grid g = {0};
@@ -135,6 +162,11 @@ static int cmd_expand(const char *path, sb_err *e)
 			}
 			printf("\n");
 		}
+		fflush(stdout);
+		/* the table is the command's answer: a cost that cannot be measured is said, not fatal */
+		sb_err ce = {0};
+		if (print_cost(c, &g, runs, 1, &ce))
+			fprintf(stderr, "study: cost: %s\n", ce.msg);
 	}
 	grid_free(&g);
 	campaign_free(c);
@@ -152,6 +184,25 @@ static int own_path(char *self, size_t len)
 	}
 	self[l] = 0;
 	return 0;
+}
+
+/* study run --dry-run: the cost, and nothing run or recorded (no database, no
+ * campaign directory). */
+static int cmd_dry_run(const study_args *o)
+{
+	sb_err e = {0};
+	campaign *c = malloc(sizeof *c);
+	grid g = {0};
+	if (!c)
+		return 2;
+	if (!campaign_load(c, o->pos[0], &e) && !grid_expand(&g, c, &e))
+		print_cost(c, &g, o->runs, !o->no_cache, &e);
+	grid_free(&g);
+	campaign_free(c);
+	free(c);
+	if (e.code)
+		fprintf(stderr, "study: %s\n", e.msg);
+	return !e.code ? 0 : e.code == SB_EUSAGE ? DRV_USAGE : DRV_IO;
 }
 
 static int cmd_run(const study_args *o)
@@ -277,11 +328,11 @@ int main(int argc, char **argv)
 		return worker_exec(o.pos[0], o.pos[1], o.pos[2], self);
 	}
 	case OPTS_RUN:
-		return cmd_run(&o);
+		return o.dry_run ? cmd_dry_run(&o) : cmd_run(&o);
 	case OPTS_SUBMIT:
 		return cmd_submit(&o);
 	case OPTS_EXPAND:
-		if (cmd_expand(o.pos[0], &e)) {
+		if (cmd_expand(o.pos[0], o.runs, &e)) {
 			fprintf(stderr, "study: %s\n", e.msg);
 			return e.code == SB_EUSAGE ? 1 : 2;
 		}

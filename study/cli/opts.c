@@ -41,7 +41,9 @@ static const command CMDS[] = {
 	{"status", OPTS_STATUS, "[NAME | CAMPAIGN-FILE]", 0, 1, "counts per state, failures with reasons, ETA",
 	 "Counts per state (pending, running, done, failed), packing-cache hits, every\n"
 	 "unsuccessful attempt with its exit code and message, and an ETA from the pace of the\n"
-	 "last runs to finish (with one finished run: its time spread over N jobs). Without\n"
+	 "last runs to finish (with one finished run: its time spread over N jobs); for a search\n"
+	 "or replicates = auto over the whole campaign, at most (its chains and replicates at\n"
+	 "their longest), not the current round. Without\n"
 	 "NAME: all. For an [onset] campaign: per group the onset, its interval, the replicates\n"
 	 "and runs so far, and every replicate's bracket. For a grid with replicates = auto: per\n"
 	 "point the replicates and runs so far, the result's estimate and the interval reached.\n\n"
@@ -66,7 +68,8 @@ static const command CMDS[] = {
 	 "per run: id, cache key, replicate, engine seed and the swept values (TSV); for an\n"
 	 "[onset] campaign the runs of its first round, with their frequency (the next rounds\n"
 	 "depend on the results); with replicates = auto the first batch of every point.\n"
-	 "Nothing is run or recorded.\n",
+	 "Nothing is run or recorded. After the table, on stderr, what the whole campaign will\n"
+	 "cost (as study run --dry-run says it; docs/campaigns.md, \"Cost before the start\").\n",
 	 NULL},
 	{"columns", OPTS_COLUMNS, "", 0, 0, "the result columns: type, place in the run file, unit, definition",
 	 "Prints the result columns of the database (table `result`, view `runs`) as a\n"
@@ -130,8 +133,9 @@ typedef struct option {
 #define DB_USERS (OPTS_RUN | OPTS_STATUS | OPTS_LIST | OPTS_EXPORT | OPTS_SUBMIT)
 
 static const option OPTS[] = {
-	STR("runs", 0, "DIR", runs, DB_USERS, "runs",
-	    "the runs directory: outputs, logs, packings, the database"),
+	STR("runs", 0, "DIR", runs, DB_USERS | OPTS_EXPAND, "runs",
+	    "the runs directory: outputs, logs, packings, the database, the engine's measured cost (expand: only "
+	    "that)"),
 	STR("db", 0, "FILE", db, DB_USERS, "DIR/study.db", "the database"),
 	INT("jobs", 'j', "N", jobs, OPTS_RUN | OPTS_STATUS, 1, 4096, 0, "cores",
 	    "parallel jobs (per host with --sshloginfile); status: the jobs its ETA assumes while the pace of "
@@ -151,6 +155,9 @@ static const option OPTS[] = {
 	FLAG("forget-old", 0, forget_old, 1, OPTS_RUN | OPTS_SUBMIT,
 	     "the file changed and recorded runs are no longer in its grid: delete their rows and move their files "
 	     "to NAME/forgotten/ (without --keep-old or --forget-old a changed file is refused, saying what changed)"),
+	FLAG("dry-run", 0, dry_run, 1, OPTS_RUN,
+	     "run nothing, record nothing: print the campaign's runs, simulated seconds and CPU time at this "
+	     "machine's measured rate (upper bounds for a search or replicates = auto) and stop"),
 	FLAG("no-cache", 0, no_cache, 1, OPTS_RUN | OPTS_SUBMIT, "every run settles its own packing"),
 	FLAG("progress", 0, progress, 1, OPTS_RUN,
 	     "a progress line: runs in flight with their swept values and t/T, counts, ETA (default: when stderr "

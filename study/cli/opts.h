@@ -34,7 +34,7 @@ typedef struct study_args {
 	long throttle;     /* submit: 0: no limit */
 	long per_task;     /* submit: runs per array task */
 	double interval;   /* status --watch: seconds between looks */
-	int retry_failed, no_cache, keep_old, forget_old, slurm, watch;
+	int retry_failed, no_cache, keep_old, forget_old, slurm, watch, dry_run;
 	int progress;      /* -1: when stderr is a terminal */
 	int help;          /* --help given (opts_parse returns -1 at once) */
 } study_args;

@@ -14,6 +14,7 @@
 #include "campaign/axes.h"
 #include "ledger/db.h"
 #include "rule/adapt.h"
+#include "cost.h"
 #include "dtext.h"
 #include "watch.h"
 
@@ -262,6 +263,44 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 	return 0;
 }
 
+/* A search's or replicates = auto's runs still to come, at most: the runs pending or
+ * running, what every searching replicate's chain may still add (its longest chain,
+ * cost_chain_max, minus its runs so far) and the chains of the replicates a group not
+ * yet answered may still get; for replicates = auto, the replicates a point may still
+ * get. -1: neither (the runs in the database are all there will be). */
+static long runs_left_at_most(st_db *d, const char *name, long now, sb_err *e)
+{
+	sqlite3_stmt *q;
+	long more = -1;
+	if (sql_exec(d, e, &q, "SELECT freq_from, freq_to, tolerance FROM onset_search WHERE campaign = ?", "t", name))
+		return -1;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		const long chain = cost_chain_max(sqlite3_column_double(q, 0), sqlite3_column_double(q, 1),
+						  sqlite3_column_double(q, 2));
+		sqlite3_finalize(q);
+		if (sql_exec(d, e, &q,
+			    "SELECT (SELECT COALESCE(SUM(MAX(0, ?2 - runs)), 0) FROM onset_replicate WHERE campaign = ?1"
+			    " AND state = 'searching'), (SELECT COALESCE(SUM(MAX(0, s.max_replicates - g.replicates)), 0)"
+			    " FROM onset_group g JOIN onset_search s ON s.campaign = g.campaign WHERE g.campaign = ?1"
+			    " AND g.state IN ('searching', 'more'))",
+			    "tl", name, chain))
+			return -1;
+		if (sqlite3_step(q) == SQLITE_ROW)
+			more = sqlite3_column_int64(q, 0) + chain * sqlite3_column_int64(q, 1);
+	} else {
+		sqlite3_finalize(q);
+		if (sql_exec(d, e, &q,
+			    "SELECT COUNT(*), COALESCE(SUM(MAX(0, max_replicates - replicates)), 0) FROM auto_point"
+			    " WHERE campaign = ? AND state IN ('running', 'more')",
+			    "t", name))
+			return -1;
+		if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int64(q, 0) > 0)
+			more = sqlite3_column_int64(q, 1);
+	}
+	sqlite3_finalize(q);
+	return more < 0 ? -1 : now + more;
+}
+
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -282,22 +321,34 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		fprintf(out, "  runs %ld: done %ld, failed %ld, pending %ld, running %ld\n", n, done, failed, pending,
 			running);
 		fprintf(out, "  packing cache: %ld finished runs started from a shared packing\n", hits);
+		/* a search or replicates = auto: the whole campaign's work, at most */
+		const long left = pending + running > 0 ? runs_left_at_most(d, name, pending + running, e) : -1;
+		if (e->code) {
+			sqlite3_finalize(q);
+			return e->code;
+		}
+		const long todo = left >= 0 ? left : pending + running;
+		const char *most = left >= 0 ? "at most " : "about ";
+		char whole[96] = "";
+		if (left >= 0)
+			snprintf(whole, sizeof whole, " for the whole campaign (at most %ld runs to go)", left);
 		if (pending + running > 0) {
 			char eta[32];
 			double rate = throughput(d, name);
 			if (rate > 0) {
 				/* what actually ran: the pace of the last runs to finish, whatever
 				 * the number of jobs or hosts that produced it */
-				fmt_dur((double)(pending + running) / rate, eta, sizeof eta);
-				fprintf(out, "  ETA: about %s at the pace of the last runs (%.1f runs/h)\n", eta, 3600 * rate);
+				fmt_dur((double)todo / rate, eta, sizeof eta);
+				fprintf(out, "  ETA: %s%s%s at the pace of the last runs (%.1f runs/h)\n", most, eta, whole,
+					3600 * rate);
 			} else if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
 				/* a single finished run: its time spread over what runs now */
 				int w = running > 0 ? (int)running : jobs;
-				fmt_dur(mean * (double)(pending + running) / (w > 0 ? w : 1), eta, sizeof eta);
-				fprintf(out, "  ETA: about %s with %d run%s at a time (mean run %.1f s)\n", eta, w,
+				fmt_dur(mean * (double)todo / (w > 0 ? w : 1), eta, sizeof eta);
+				fprintf(out, "  ETA: %s%s%s with %d run%s at a time (mean run %.1f s)\n", most, eta, whole, w,
 					w > 1 ? "s" : "", mean);
 			} else {
-				fprintf(out, "  ETA: unknown until a run has finished\n");
+				fprintf(out, "  ETA: unknown until a run has finished%s\n", whole);
 			}
 		}
 	}

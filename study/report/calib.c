@@ -1,0 +1,174 @@
+/* calib.c - the engine's measured cost on this machine, cached per build, CPU and
+ * integrator in the runs directory (calib.h). */
+#define _GNU_SOURCE /* wait4 */
+#include "report/calib.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/time.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "layout.h"
+#include "params.h"
+#include "provenance.h"
+
+/* The two calibration runs' shaking: 0.5 s, and that plus CAL_STEPS steps (2 s of the
+ * paper preset, 8 s of the fast one): the difference is the shaking alone, long enough
+ * to stand out of a loaded machine's noise; settling and the start are the same in both. */
+static const double CAL_SHORT = 0.5, CAL_STEPS = 40000;
+
+/* Runs argv[0] with argv; its stdout into out (when out), its stderr to /dev/null.
+ * *cpu: the user + system seconds it used. 0, or the error. */
+static int child(char *const argv[], char *out, size_t len, double *cpu, sb_err *e)
+{
+	int fd[2];
+	if (pipe(fd))
+		return sb_errf(e, SB_EIO, "pipe: %s", strerror(errno));
+	pid_t pid = fork();
+	if (pid < 0) {
+		close(fd[0]);
+		close(fd[1]);
+		return sb_errf(e, SB_EIO, "fork: %s", strerror(errno));
+	}
+	if (pid == 0) {
+		int null = open("/dev/null", O_WRONLY);
+		dup2(fd[1], 1);
+		dup2(null, 2);
+		close(fd[0]);
+		close(fd[1]);
+		execv(argv[0], argv);
+		_exit(127);
+	}
+	close(fd[1]);
+	size_t n = 0;
+	char buf[512];
+	ssize_t r;
+	while ((r = read(fd[0], buf, sizeof buf)) > 0 || (r < 0 && errno == EINTR))
+		for (ssize_t i = 0; i < r && out && n + 1 < len; i++)
+			out[n++] = buf[i];
+	if (out && len)
+		out[n] = 0;
+	close(fd[0]);
+	int st;
+	struct rusage ru;
+	while (wait4(pid, &st, 0, &ru) < 0)
+		if (errno != EINTR)
+			return sb_errf(e, SB_EIO, "wait: %s", strerror(errno));
+	if (!WIFEXITED(st) || WEXITSTATUS(st))
+		return sb_errf(e, SB_EIO, "%s failed (%s %d)", argv[0], WIFEXITED(st) ? "exit" : "signal",
+			       WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
+	*cpu = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
+	       1e-6 * (double)ru.ru_stime.tv_usec;
+	return 0;
+}
+
+void calib_fit(double cpu_a, double steps_a, double cpu_b, double steps_b, long n, calib *k)
+{
+	const double g = n > 0 ? (double)n : 1;
+	k->step = (cpu_b - cpu_a) / (steps_b - steps_a) / g;
+	if (!(k->step > 0))
+		k->step = 1e-12;
+	k->settle = (cpu_a - k->step * g * steps_a) / g;
+	if (!(k->settle > 0))
+		k->settle = 0;
+}
+
+/* 64-bit FNV-1a of text, the tag's first part */
+static unsigned long long fnv(const char *s)
+{
+	unsigned long long h = 14695981039346656037ULL;
+	for (; *s; s++)
+		h = (h ^ (unsigned char)*s) * 1099511628211ULL;
+	return h;
+}
+
+int calib_get(const char *runs, const char *shake, int integrator, calib *k, sb_err *e)
+{
+	char version[2048], integ[64], tag[128], path[4200], dir[4200];
+	double ignored;
+	memset(k, 0, sizeof *k);
+	if (child((char *[]){(char *)shake, "--version", NULL}, version, sizeof version, &ignored, e))
+		return sb_errf(e, SB_EIO, "%s --version: %s", shake, e->msg);
+	/* the integrator's name as the parameter table spells it */
+	sb_scene s;
+	params_defaults(&s);
+	s.integrator = integrator;
+	params_format(&s, params_find("integrator"), integ, sizeof integ);
+	snprintf(tag, sizeof tag, "%016llx.%s", fnv(version), integ);
+	layout_calibration(runs, NULL, dir, sizeof dir);
+	layout_calibration(runs, tag, path, sizeof path);
+
+	FILE *f = fopen(path, "r");
+	if (f) {
+		char date[64] = "";
+		const int got = fscanf(f, "%lg %lg %63s", &k->step, &k->settle, date);
+		fclose(f);
+		if (got == 3 && k->step > 0 && k->settle >= 0) {
+			snprintf(k->source, sizeof k->source, "%s, cached from %s (%.4200s)", integ, date, path);
+			return 0;
+		}
+	}
+
+	/* the preset whose integrator this is gives its time step; else the default's */
+	char preset[80];
+	snprintf(preset, sizeof preset, "integrator=%s", integ);
+	for (const sb_preset *p = PRESETS; p->name; p++)
+		for (int i = 0; p->set[i] && p->set[i + 1]; i += 2)
+			if (!strcmp(p->set[i], "integrator") && !strcmp(p->set[i + 1], integ))
+				snprintf(preset, sizeof preset, "preset=%s", p->name);
+	if (mkdir(runs ? runs : "runs", 0777) && errno != EEXIST)
+		return sb_errf(e, SB_EIO, "%s: %s", runs ? runs : "runs", strerror(errno));
+	if (mkdir(dir, 0777) && errno != EEXIST)
+		return sb_errf(e, SB_EIO, "%s: %s", dir, strerror(errno));
+	/* the scene the two runs run (the defaults, the preset or integrator) */
+	params_defaults(&s);
+	const char *eq = strchr(preset, '=');
+	char key[16];
+	snprintf(key, sizeof key, "%.*s", (int)(eq - preset), preset);
+	if (params_set(&s, key, eq + 1, "calibration", e))
+		return e->code;
+	const double cal_long = CAL_SHORT + CAL_STEPS * s.dt;
+	char out[4300], outarg[4400], xmf[4300], dur[2][40];
+	snprintf(out, sizeof out, "%.4000s/%.100s.run.h5", dir, tag);
+	snprintf(outarg, sizeof outarg, "output=%s", out);
+	snprintf(dur[0], sizeof dur[0], "duration=%g", CAL_SHORT);
+	snprintf(dur[1], sizeof dur[1], "duration=%.17g", cal_long);
+	double cpu[2];
+	struct timespec t0, t1;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+	for (int i = 0; i < 2; i++) {
+		char *argv[] = {(char *)shake, preset, "radius_ratio=0", dur[i], "snapshots=no", "traj_rate=0",
+				"progress=no", outarg, NULL};
+		if (child(argv, NULL, 0, &cpu[i], e)) {
+			remove(out);
+			return sb_errf(e, SB_EIO, "calibrating the engine (%s %s %s): %s", shake, preset, dur[i], e->msg);
+		}
+	}
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	remove(out);
+	snprintf(xmf, sizeof xmf, "%.4000s/%.100s.run.xmf", dir, tag);
+	remove(xmf);
+	calib_fit(cpu[0], ceil(CAL_SHORT / s.dt - 1e-9), cpu[1], ceil(cal_long / s.dt - 1e-9), s.n_grains, k);
+
+	char date[32], tmp[4300];
+	prov_now(date);
+	snprintf(tmp, sizeof tmp, "%.4000s/%.100s.tmp", dir, tag);
+	f = fopen(tmp, "w");
+	if (!f)
+		return sb_errf(e, SB_EIO, "%s: %s", tmp, strerror(errno));
+	fprintf(f, "%.6g %.6g %s\n# CPU s per grain-step, CPU s per grain of a settling, when; measured with %s on:\n%s",
+		k->step, k->settle, date, preset, version);
+	if (fclose(f) || rename(tmp, path))
+		return sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
+	const double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+	snprintf(k->source, sizeof k->source, "%s, measured now in %.1f s (%.4200s)", integ, secs, path);
+	return 0;
+}

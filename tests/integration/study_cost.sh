@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# study_cost.sh - the cost before the start (docs/campaigns.md, "Cost before the
+# start"): study run --dry-run prints the runs, simulated seconds and CPU time and runs
+# and records nothing; the engine's rate is measured once into RUNS/.calibration and
+# reused; study expand prints the same summary on stderr and keeps its table; a search
+# is an upper bound; and the estimate meets the CPU the real run takes within a factor
+# of 2 either way.
+# tier: alone: compares a measured CPU time with an estimate
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+[ -x /usr/bin/time ] || { fail setup "/usr/bin/time is needed to measure the run's CPU"; finish; }
+cd "$TMP" || exit 1
+
+# the paper bed without intruder, fast preset: the engine's work dominates the driver's
+cat >c.campaign <<'E'
+[campaign]
+name = c
+seed = 5
+replicates = 2
+[scene]
+radius_ratio = 0
+preset = fast
+duration = 12
+snapshots = no
+traj_rate = 0
+[grid]
+frequency = 3
+E
+"$STUDY" run --dry-run c.campaign --runs R >dry.out 2>dry.err
+rc=$?
+[ "$rc" -eq 0 ] && grep -q '^  total: 2 runs, 24 s of simulated shaking, 2 packings to settle, CPU ' dry.err &&
+	grep -q 'verlet, measured now in' dry.err && ok dry.summary || fail dry.summary "exit $rc: $(cat dry.err)"
+# nothing run, nothing recorded: only the calibration in the runs directory
+[ ! -e R/study.db ] && [ ! -e R/c ] && [ "$(ls -A R)" = .calibration ] && [ ! -s dry.out ] &&
+	[ "$(ls R/.calibration)" = "$(ls R/.calibration | grep -E '^[0-9a-f]{16}\.verlet\.txt$')" ] &&
+	ok dry.nothing_run || fail dry.nothing_run "$(find R)"
+"$STUDY" run --dry-run c.campaign --runs R 2>dry2.err
+grep -q 'verlet, cached from 20' dry2.err && ok dry.cached || fail dry.cached "$(cat dry2.err)"
+
+# study expand: its table unchanged on stdout, the same summary on stderr
+"$STUDY" expand c.campaign --runs R >exp.out 2>exp.err
+[ "$(head -n 1 exp.out)" = "$(printf 'id\tcache_key\treplicate\tseed\tfrequency')" ] && [ "$(wc -l <exp.out)" = 3 ] &&
+	ok expand.table || fail expand.table "$(cat exp.out)"
+[ "$(grep '^  total' exp.err)" = "$(grep '^  total' dry2.err)" ] && ok expand.summary ||
+	fail expand.summary "$(cat exp.err)"
+
+# a search: bounds, said so (2 replicates x a chain of at most 8 runs over [2.5, 3.2] to 0.02)
+cat >o.campaign <<'E'
+[campaign]
+name = o
+seed = 1
+[scene]
+radius_ratio = 0
+preset = fast
+duration = 60
+flux = yes
+traj_rate = 0
+snapshots = no
+[onset]
+observable = flux
+from = 2.5
+to = 3.2
+tolerance = 0.02
+threshold = 2
+band = 0.4:0.6
+replicates = 2
+E
+"$STUDY" run --dry-run o.campaign --runs R 2>o.err
+grep -q '^  total: at most 16 runs, at most 16 min of simulated shaking, at most 2 packings to settle, CPU at most ' o.err &&
+	ok search.upper_bound || fail search.upper_bound "$(cat o.err)"
+[ ! -e R/o ] && [ ! -e R/study.db ] && ok search.nothing_run || fail search.nothing_run "$(find R)"
+
+# the real run: its CPU (engine, driver and GNU parallel) against the estimate
+est=$(sed -n 's/^  total: .*CPU \([0-9.e+]*\) s$/\1/p' dry2.err)
+/usr/bin/time -f '%U %S' -o cpu.txt "$STUDY" run c.campaign --runs R --jobs 1 >run.log 2>&1
+rc=$?
+cpu=$(awk '{ print $1 + $2 }' cpu.txt)
+[ "$rc" -eq 0 ] && ok run.exit || fail run.exit "exit $rc: $(tail -c 400 run.log)"
+echo "# estimated CPU ${est:-?} s, measured $cpu s"
+awk -v e="${est:-0}" -v m="$cpu" 'BEGIN { exit !(e > 0 && m / e >= 0.5 && m / e <= 2) }' &&
+	ok run.within_factor_2 || fail run.within_factor_2 "estimated ${est:-none} s, measured $cpu s CPU"
+# study status's ETA over a made-up search (beside c, in the database its run made): one run done in 60 s, one pending; the chain
+# over [0, 1] to 0.25 takes at most 4 runs; replicate 1 has 2 (its pending one included),
+# and the group may get 2 more replicates: 1 + (4 - 2) + 2 x 4 = 11 runs, 11 min at most
+sqlite3 R/study.db "INSERT INTO campaign(name, description) VALUES ('f', 'made up');
+INSERT INTO run(campaign, id, state, started) VALUES ('f', 'a', 'done', '2026-01-01T00:00:00Z'), ('f', 'b', 'pending', NULL);
+INSERT INTO attempt(campaign, run, n, status, finished) VALUES ('f', 'a', 1, 'ok', '2026-01-01T00:01:00Z');
+INSERT INTO onset_search(campaign, freq_from, freq_to, tolerance, replicates, max_replicates, state)
+	VALUES ('f', 0, 1, 0.25, 'auto', 4, 'searching');
+INSERT INTO onset_group(campaign, grp, point, replicates, runs, state) VALUES ('f', 'all', 0, 2, 3, 'searching');
+INSERT INTO onset_replicate(campaign, grp, replicate, state, runs) VALUES ('f', 'all', 1, 'searching', 2), ('f', 'all', 2, 'found', 1);" 2>sql.err
+"$STUDY" status f --runs R >st.out 2>&1
+grep -q '^  ETA: at most 11.0 min for the whole campaign (at most 11 runs to go) at the pace of the last runs' st.out &&
+	ok eta.whole_search || fail eta.whole_search "$(cat sql.err st.out)"
+# the same runs without a search: only what is pending, no bound claimed
+sqlite3 R/study.db "DELETE FROM onset_search; DELETE FROM onset_group; DELETE FROM onset_replicate"
+"$STUDY" status f --runs R >st2.out 2>&1
+grep -q '^  ETA: about 60 s at the pace of the last runs' st2.out && ! grep -q 'at most' st2.out &&
+	ok eta.grid_unchanged || fail eta.grid_unchanged "$(cat st2.out)"
+# replicates = auto: a point with 2 of at most 5 replicates: 1 pending + 3 = 4 runs
+sqlite3 R/study.db "INSERT INTO auto_point(campaign, point, grp, replicates, max_replicates, state)
+	VALUES ('f', 0, 'all', 2, 5, 'running')"
+"$STUDY" status f --runs R >st3.out 2>&1
+grep -q '^  ETA: at most 4.0 min for the whole campaign (at most 4 runs to go)' st3.out &&
+	ok eta.whole_auto || fail eta.whole_auto "$(cat st3.out)"
+finish
