@@ -7,8 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* 2 pi f: the drive's angular frequency */
-#define AX_TWO_PI 6.283185307179586
+#include "drive.h"
+#include "units.h"
+
+/* 2 pi f: the drive's angular frequency, as the engine's drive has it */
+#define AX_TWO_PI SB_TWO_PI
 
 /* 12 significant digits, as a campaign's ranges and the search's midpoints are
  * printed (adapt_mid): a derived value reads as written, and so hashes the same */
@@ -21,8 +24,7 @@ static double printed(double x)
 
 double axes_gamma(double amplitude, double frequency, double gravity)
 {
-	double w = AX_TWO_PI * frequency;
-	return amplitude * w * w / gravity;
+	return drive_gamma(amplitude, frequency, gravity); /* Gamma's one definition */
 }
 
 double axes_velocity(double amplitude, double frequency)
