@@ -12,8 +12,26 @@
 #include "num.h"
 #include "axes.h"
 #include "inifile.h"
+#include "words.h"
 #include "rule/adapt.h"
 #include "safe.h"
+
+/* "; did you mean KEY?" for a typo of one of the n words (the engine's rule for its
+ * keys, params_nearest: at most a third of the letters, and 3, apart), else "" */
+static const char *did_you_mean(const char *key, const char *const *words, size_t n, char *buf, size_t len)
+{
+	int best = 4, lim = (int)strlen(key) / 3;
+	const char *name = NULL;
+	for (size_t i = 0; i < n; i++) {
+		int d = words_distance(key, words[i]);
+		if (d < best && d <= (lim > 1 ? lim : 1))
+			best = d, name = words[i];
+	}
+	if (!name)
+		return "";
+	snprintf(buf, len, "; did you mean %s?", name);
+	return buf;
+}
 
 int campaign_key_reserved(const char *key)
 {
@@ -500,9 +518,14 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		c->max_runs = n;
 		c->max_runs_line = r->line;
 	} else {
-		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [campaign] "
+		static const char *const keys[] = {"name", "description", "scene", "seed", "seeds", "replicates",
+						   "max_runs", "zip", "result", "target", "batch", "max_replicates",
+						   "level"};
+		char dym[96];
+		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [campaign]%s "
 			       "(name, description, scene, seed, seeds, replicates, max_runs, zip; with replicates = auto: "
-			       "result, target, batch, max_replicates, level)", where, name);
+			       "result, target, batch, max_replicates, level)", where, name,
+			       did_you_mean(name, keys, sizeof keys / sizeof *keys, dym, sizeof dym));
 	}
 	return 0;
 }
@@ -576,11 +599,15 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 {
 	const struct onset_keydef *k = onset_keydef(name);
 	if (!k) {
-		char keys[400];
+		char keys[400], dym[96];
+		const char *names[N_ONSET_KEYS];
 		size_t l = 0;
-		for (size_t i = 0; i < N_ONSET_KEYS; i++)
+		for (size_t i = 0; i < N_ONSET_KEYS; i++) {
+			names[i] = ONSET_KEYS[i].name;
 			l += (size_t)snprintf(keys + l, sizeof keys - l, "%s%s", i ? ", " : "", ONSET_KEYS[i].name);
-		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [onset] (%s)", where, name, keys);
+		}
+		return sb_errf(e, SB_EUSAGE, "%s: unknown key '%s' in [onset]%s (%s)", where, name,
+			       did_you_mean(name, names, N_ONSET_KEYS, dym, sizeof dym), keys);
 	}
 	int *at = (int *)((char *)o + k->line);
 	if (*at)
@@ -871,9 +898,16 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 		onset_key(&c->onset, r->line, where, name, value, &tmp);
 	} else {
 		int prev;
-		if (!params_find(name) && !campaign_key_derived(name))
-			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s' (shake --help lists the keys; gamma and velocity "
-				"are the campaign's)", where, name);
+		if (!params_find(name) && !campaign_key_derived(name)) {
+			const char *near = params_nearest(name);
+			static const char *const derived[] = {"gamma", "velocity"};
+			char dym[96];
+			if (near)
+				snprintf(dym, sizeof dym, "; did you mean %s?", near);
+			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s'%s (shake --help lists the keys; gamma and velocity "
+				"are the campaign's)", where, name,
+				near ? dym : did_you_mean(name, derived, 2, dym, sizeof dym));
+		}
 		else if (campaign_key_reserved(name))
 			sb_errf(&tmp, SB_EUSAGE, "%s: %s: set by the study driver, not by a campaign", where, name);
 		else if ((prev = seen_key(c, name)))

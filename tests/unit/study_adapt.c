@@ -590,8 +590,17 @@ static void test_section(void)
 		"threshold = 1\nreplicates = 5\nbatch = 2\n", ":14: batch: only with replicates = auto (line 13 says 5)");
 	section("adapt.section.twice", "[onset]\nfrom = 2.5\nfrom = 2.6\n", ":9: from: given twice (first on line 8)");
 	section("adapt.section.unknown_key", "[onset]\nfrequency = 2.5\n", ":8: unknown key 'frequency' in [onset] (observable, from,");
+	/* a typo gets the nearest key, in every section; another word gets none */
+	section("adapt.section.typo_onset", "[onset]\ntolerence = 0.02\n", "unknown key 'tolerence' in [onset]; did you mean tolerance? (");
+	section("adapt.section.typo_scene", "frequncy = 3\n", "unknown key 'frequncy'; did you mean frequency? (");
+	section("adapt.section.typo_derived", "[grid]\nvelocty = 10, 20\n", "unknown key 'velocty'; did you mean velocity? (");
+	section("adapt.section.typo_none", "xyzzy = 3\n", "unknown key 'xyzzy' (shake --help");
 	section("adapt.section.frequency_elsewhere", "[grid]\nfrequency = 2.6, 2.8\n[onset]\nobservable = flux\nfrom = 2.5\n"
 		"to = 3.2\ntolerance = 0.02\nthreshold = 1\n", ":8: frequency: chosen by the [onset] search");
+	rc = sf_load("[campaign]\nname = t\nseeed = 1\n", &c, &e);
+	CHECK("adapt.section.typo_campaign", rc && strstr(e.msg, "unknown key 'seeed' in [campaign]; did you mean seed? ("),
+	      "got %s", rc ? e.msg : "no error");
+	campaign_free(&c);
 	snprintf(text, sizeof text, "[campaign]\nname = t\nseed = 1\nreplicates = 4\n[scene]\nflux = yes\n[onset]\n"
 		 "observable = flux\nfrom = 2.5\nto = 3.2\ntolerance = 0.02\nthreshold = 1\n");
 	rc = sf_load(text, &c, &e);
