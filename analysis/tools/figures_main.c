@@ -310,6 +310,22 @@ static int layout(an_tool *t, panels *P)
 	qsort(P->freqs, (size_t)P->nf, sizeof *P->freqs, cmp_dbl);
 	qsort(P->ratios, (size_t)P->nra, sizeof *P->ratios, cmp_dbl);
 	if (o->nfreq) {
+		/* a frequency without runs would be an empty row of panels: refused, with the
+		 * frequencies there are */
+		for (int i = 0; i < o->nfreq; i++) {
+			int have = 0;
+			for (int j = 0; j < P->nf && !have; j++)
+				have = near(o->freqs[i], P->freqs[j]);
+			if (!have) {
+				char list[512];
+				size_t l = 0;
+				for (int j = 0; j < P->nf && l < sizeof list - 32; j++)
+					l += (size_t)snprintf(list + l, sizeof list - l, "%s%g", j ? ", " : "", P->freqs[j]);
+				return sb_errf(&t->e, SB_EUSAGE, "--freq %g: no fixed-frequency run at this frequency%s "
+					       "(the runs' frequencies: %s)", o->freqs[i],
+					       o->nwhere ? " that matches --where" : "", list);
+			}
+		}
 		P->nf = o->nfreq;
 		memcpy(P->freqs, o->freqs, sizeof(double) * (size_t)P->nf);
 	}

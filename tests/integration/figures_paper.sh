@@ -115,6 +115,11 @@ grep -q "^set link x2 via" $G && grep -q "title 'up'" $G && grep -q "title 'down
 no_keys fig.hysteresis.no_raw_keys $G
 
 # ---- figures ----
+# a frequency without runs is refused, naming the ones there are (not an empty row)
+"$BINDIR/figures" t --runs=R --freq=5,4 >fig.nofreq.out 2>fig.nofreq.err
+rc=$?
+[ "$rc" -ne 0 ] && grep -q -- "--freq 4: no fixed-frequency run at this frequency (the runs' frequencies: 3, 5, 7)" fig.nofreq.err &&
+	ok fig.figures.freq_without_runs_refused || fail fig.figures.freq_without_runs_refused "exit $rc: $(head -c 300 fig.nofreq.err)"
 tool fig.figures figures t --runs=R --freq=5,7
 figs fig.figures.png_pdf $A fig1 fig3 fig4
 G=$A/fig1.gp
