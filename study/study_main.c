@@ -82,8 +82,9 @@ static int onset_first_round(const campaign *c, grid *g, sb_err *e)
 static int own_path(char *self, size_t len);
 
 /* The campaign's cost on stderr (report/cost.h): the rates of the integrators it uses,
- * measured once per engine build and CPU into the runs directory. */
-static int print_cost(const campaign *c, const grid *g, const char *runs, int use_cache, sb_err *e)
+ * measured once per engine build and CPU into the runs directory (measure = 0: read
+ * from there only, and said to be unknown when they are not there). */
+static int print_cost(const campaign *c, const grid *g, const char *runs, int use_cache, int measure, sb_err *e)
 {
 	char self[PATH_MAX], shake[PATH_MAX + 8];
 	if (own_path(self, sizeof self))
@@ -98,7 +99,7 @@ static int print_cost(const campaign *c, const grid *g, const char *runs, int us
 	calib rates[COST_NINTEG] = {0};
 	for (int i = 0; i < COST_NINTEG && !e->code; i++)
 		if (total.grain_steps[i] > 0 || total.settle_grains[i] > 0)
-			calib_get(runs, shake, i, &rates[i], e);
+			(void)(measure ? calib_get(runs, shake, i, &rates[i], e) : calib_cached(runs, shake, i, &rates[i], e));
 	if (!e->code)
 		cost_print(stderr, c, groups, g->points, &total, rates);
 	free(groups);
@@ -165,7 +166,8 @@ static int cmd_expand(const char *path, const char *runs, sb_err *e)
 		fflush(stdout);
 		/* the table is the command's answer: a cost that cannot be measured is said, not fatal */
 		sb_err ce = {0};
-		if (print_cost(c, &g, runs, 1, &ce))
+		/* expand measures nothing: the rate comes from the cache, or is said to be unknown */
+		if (print_cost(c, &g, runs, 1, 0, &ce))
 			fprintf(stderr, "study: cost: %s\n", ce.msg);
 	}
 	grid_free(&g);
@@ -196,7 +198,7 @@ static int cmd_dry_run(const study_args *o)
 	if (!c)
 		return 2;
 	if (!campaign_load(c, o->pos[0], &e) && !grid_expand(&g, c, &e))
-		print_cost(c, &g, o->runs, !o->no_cache, &e);
+		print_cost(c, &g, o->runs, !o->no_cache, 1, &e);
 	grid_free(&g);
 	campaign_free(c);
 	free(c);

@@ -134,8 +134,8 @@ typedef struct option {
 
 static const option OPTS[] = {
 	STR("runs", 0, "DIR", runs, DB_USERS | OPTS_EXPAND, "runs",
-	    "the runs directory: outputs, logs, packings, the database, the engine's measured cost (expand: only "
-	    "that)"),
+	    "the runs directory: outputs, logs, packings, the database, the engine's measured cost (expand only "
+	    "reads that)"),
 	STR("db", 0, "FILE", db, DB_USERS, "DIR/study.db", "the database"),
 	INT("jobs", 'j', "N", jobs, OPTS_RUN | OPTS_STATUS, 1, 4096, 0, "cores",
 	    "parallel jobs (per host with --sshloginfile); status: the jobs its ETA assumes while the pace of "

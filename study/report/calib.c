@@ -90,7 +90,19 @@ static unsigned long long fnv(const char *s)
 	return h;
 }
 
+static int calib_read(const char *runs, const char *shake, int integrator, int measure, calib *k, sb_err *e);
+
 int calib_get(const char *runs, const char *shake, int integrator, calib *k, sb_err *e)
+{
+	return calib_read(runs, shake, integrator, 1, k, e);
+}
+
+int calib_cached(const char *runs, const char *shake, int integrator, calib *k, sb_err *e)
+{
+	return calib_read(runs, shake, integrator, 0, k, e);
+}
+
+static int calib_read(const char *runs, const char *shake, int integrator, int measure, calib *k, sb_err *e)
 {
 	char version[2048], integ[64], tag[128], path[4200], dir[4200];
 	double ignored;
@@ -115,6 +127,12 @@ int calib_get(const char *runs, const char *shake, int integrator, calib *k, sb_
 			snprintf(k->source, sizeof k->source, "%s, cached from %s (%.4200s)", integ, date, path);
 			return 0;
 		}
+	}
+	if (!measure) {
+		k->step = k->settle = 0;
+		snprintf(k->source, sizeof k->source, "%s: not measured on this machine yet (study run --dry-run "
+			 "measures it once, two short runs of the paper bed)", integ);
+		return 1;
 	}
 
 	/* the preset whose integrator this is gives its time step; else the default's */

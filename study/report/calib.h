@@ -22,6 +22,9 @@ typedef struct calib {
  * preset of that integrator; the CPU difference per step, the rest per grain the settling) and
  * written there. Nothing outside RUNS/.calibration is touched. */
 int calib_get(const char *runs, const char *shake, int integrator, calib *k, sb_err *e);
+/* The same from the cache only: 0 with the rates when RUNS/.calibration has them, 1
+ * (k->step = 0, k->source saying so) when it has not; nothing is run or written. */
+int calib_cached(const char *runs, const char *shake, int integrator, calib *k, sb_err *e);
 
 /* The rates from two runs of n grains: cpu_a CPU seconds for steps_a shaking steps,
  * cpu_b for steps_b (steps_b > steps_a). Negative differences (a noisy clock) are

@@ -113,7 +113,14 @@ static void human(double s, char *buf, size_t len)
 static void line(FILE *out, const char *head, const cost_sum *s, const calib *rates)
 {
 	char cpu[32], sim[32];
-	human(cost_cpu(s, rates), cpu, sizeof cpu);
+	int known = 1;
+	for (int i = 0; i < COST_NINTEG; i++)
+		if ((s->grain_steps[i] > 0 || s->settle_grains[i] > 0) && !(rates[i].step > 0))
+			known = 0;
+	if (known)
+		human(cost_cpu(s, rates), cpu, sizeof cpu);
+	else
+		snprintf(cpu, sizeof cpu, "not known yet");
 	human(s->sim, sim, sizeof sim);
 	const char *most = s->bound ? "at most " : "";
 	const char *up = s->bound || s->stop_rule ? "at most " : "";
@@ -142,7 +149,9 @@ void cost_print(FILE *out, const campaign *c, const cost_sum *groups, long ngrou
 	if (groups && (c->onset.line || c->autorep.on) && ngroups > 20)
 		fprintf(out, "  (and %ld more groups)\n", ngroups - 20);
 	for (int i = 0; i < COST_NINTEG; i++)
-		if (total->grain_steps[i] > 0 || total->settle_grains[i] > 0)
+		if ((total->grain_steps[i] > 0 || total->settle_grains[i] > 0) && rates[i].step > 0)
 			fprintf(out, "  rate: %.3g CPU s per grain-step, %.3g CPU s per grain settled; %s\n", rates[i].step,
 				rates[i].settle, rates[i].source);
+		else if (total->grain_steps[i] > 0 || total->settle_grains[i] > 0)
+			fprintf(out, "  rate: %s\n", rates[i].source);
 }

@@ -267,7 +267,7 @@ bom bed.data >bom.data
 runs particles.bom_lammps particles=bom.data "${RUN[@]}" && ok particles.bom_lammps
 printf '[campaign]\nname = b\nseed = 1\n[grid]\nfrequency = 3, 4\n' >plain.campaign
 bom plain.campaign >bom.campaign
-"$STUDY_BIN" expand bom.campaign >bom.campaign.out 2>&1 && [ "$(awk -F "\t" 'NR > 1 { print $5 }' bom.campaign.out | tr "\n" " ")" = "3 4 " ] &&
+"$STUDY_BIN" expand bom.campaign >bom.campaign.out 2>bom.campaign.err && [ "$(awk -F "\t" 'NR > 1 { print $5 }' bom.campaign.out | tr "\n" " ")" = "3 4 " ] &&
 	ok campaign.bom || fail campaign.bom "$(head -c 300 bom.campaign.out)"
 { printf '\357\273\277[camp]\n'; cat plain.campaign; } >bom_bad.campaign
 "$STUDY_BIN" expand bom_bad.campaign >bom_bad.out 2>&1

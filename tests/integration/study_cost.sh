@@ -44,6 +44,10 @@ grep -q 'verlet, cached from 20' dry2.err && ok dry.cached || fail dry.cached "$
 	ok expand.table || fail expand.table "$(cat exp.out)"
 [ "$(grep '^  total' exp.err)" = "$(grep '^  total' dry2.err)" ] && ok expand.summary ||
 	fail expand.summary "$(cat exp.err)"
+# expand measures nothing: in a runs directory without the rate it says so and writes nothing
+"$STUDY" expand c.campaign --runs fresh >exp2.out 2>exp2.err
+grep -q '^  total: .*CPU not known yet' exp2.err && grep -q 'not measured on this machine yet' exp2.err && [ ! -e fresh ] &&
+	ok expand.measures_nothing || fail expand.measures_nothing "$(cat exp2.err; ls -a fresh 2>&1)"
 
 # a search: bounds, said so (2 replicates x a chain of at most 8 runs over [2.5, 3.2] to 0.02)
 cat >o.campaign <<'E'
