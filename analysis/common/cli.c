@@ -112,11 +112,13 @@ static int set_opt(an_opts *o, const char *name, const char *v, const char **db,
 		o->seed = (unsigned long)x;
 	} else if (!strcmp(name, "level"))
 		return num(e, name, v, 0.5, 0.999, &o->level);
-	else if (!strcmp(name, "threshold"))
+	else if (!strcmp(name, "threshold")) {
+		o->threshold_set = 1;
 		return num(e, name, v, -1e12, 1e12, &o->threshold);
-	else if (!strcmp(name, "skip"))
+	} else if (!strcmp(name, "skip")) {
+		o->skip_set = 1;
 		return num(e, name, v, 0, 0.99, &o->skip);
-	else if (!strcmp(name, "bins")) {
+	} else if (!strcmp(name, "bins")) {
 		if (num(e, name, v, 1, 1000, &x))
 			return 1;
 		o->bins = (long)x;
@@ -138,6 +140,7 @@ static int set_opt(an_opts *o, const char *name, const char *v, const char **db,
 		return num(e, name, v, 0, 1e6, &o->ratio);
 	else if (!strcmp(name, "band")) {
 		char buf[128], *c;
+		o->band_set = 1;
 		snprintf(buf, sizeof buf, "%s", v);
 		if (!(c = strchr(buf, ':')))
 			return sb_errf(e, SB_EUSAGE, "--band: expected LO:HI (fractions of the surface height), got '%s'", v);

@@ -11,9 +11,11 @@
 #include "common/adb.h"
 #include "common/cli.h"
 #include "common/fluxrun.h"
+#include "common/searchdef.h"
 #include "common/tool.h"
 #include "common/xopt.h"
 #include "measure/onsetfit.h"
+#include "measure/resolve.h"
 
 #define VERSION "2"
 
@@ -28,16 +30,23 @@ static const char HELP[] =
 	"yes: Phi through the plane = the mean of Phi over the height lines that\n"
 	"lie in the band LO..HI of the settled surface height (default 0.4:0.6, the middle\n"
 	"of the bed), averaged over the periods after the first FRAC of them (default 0.2).\n"
+	"On a campaign with an [onset] search over the flux, the search's threshold, band\n"
+	"and skip are the defaults (one onset per campaign); an option that changes one is\n"
+	"said to differ from the search's definition, and the search's own onset per group\n"
+	"is printed beside this tool's with both intervals and whether they overlap.\n"
 	"Per group (default: radius_ratio, depth and every other swept axis but frequency;\n"
 	"radius_ratio = 0 is the system without intruder), with all runs and seeds pooled:\n"
 	"  sigmoid    midpoint f0 of  Phi = b + a / (1 + exp(-(f - f0) / w))  fitted by\n"
 	"             nonlinear least squares (GSL trust region), its width w and step a;\n"
 	"  threshold  first frequency at which the mean Phi per frequency (oriented to rise)\n"
-	"             reaches PHI (default: halfway between its smallest and largest value),\n"
-	"             interpolated linearly;\n"
+	"             reaches PHI (default: the search's threshold, else halfway between its\n"
+	"             smallest and largest value), interpolated linearly: THE onset, the\n"
+	"             one the figure marks;\n"
 	"both with percentile bootstrap intervals over seeds (replicates resampled with\n"
 	"replacement, all frequencies of a drawn seed together; over runs when a group has\n"
-	"one seed), and the spread (standard deviation) of the per-seed threshold estimates.\n\n"
+	"one seed), and the spread (standard deviation) of the per-seed threshold estimates.\n"
+	"The threshold interval holds at least the two sampled frequencies around the\n"
+	"crossing (no interval claims more precision than the spacing of the runs).\n\n"
 	"No run is dropped silently: per group the table, onset_summary.csv and the stored\n"
 	"rows count the runs used; the failed ones by status, of which those used up to the\n"
 	"failure (a failed run's file holds its periods before it: used after the transient\n"
@@ -65,7 +74,8 @@ static const char HELP[] =
 	"Writes onset_runs.csv (Phi per run), onset_seeds.csv (per-seed estimates),\n"
 	"onset_summary.csv, onset_accounting.csv, onset.png/.pdf; stores per group in `analysis`\n"
 	"(tool 'onset'): runs (used), seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step,\n"
-	"threshold_f (lo, hi), threshold_seed_sd, and the accounting: runs_failed,\n"
+	"threshold_f (lo, hi), threshold_seed_sd, search_f (lo, hi: the search's onset, on a\n"
+	"campaign with one), and the accounting: runs_failed,\n"
 	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
 	"runs_pending, runs_running, failed_STATUS per status.\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
@@ -75,7 +85,11 @@ static const char HELP[] =
 /* What onset computes besides the frame: Phi through the plane of every considered
  * run, one group's points at a time, and the estimates of every group. */
 typedef struct onset_state {
-	flux_opts fo;
+	flux_opts fo;    /* the onset's definition: band and skip ... */
+	double thr;      /* ... and threshold (NaN: halfway up the step) */
+	sdef sd;         /* the campaign's [onset] search, when it has one */
+	int differs;     /* a command-line option differs from the search's definition */
+	char def[320];   /* the definition in words, for the table and the figure */
 	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
 	double *xs, *ys; /* one group's points: frequency, Phi */
 	long *us;        /* ... and their seed (replicate) */
@@ -133,6 +147,47 @@ static double classify(an_run *r, const flux_opts *fo)
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "no flux period recorded");
 	flux_free(&fd);
 	return v;
+}
+
+/* The onset's one definition (docs/analysis.md, "One onset per campaign"): on a
+ * campaign with an [onset] search over the flux, the search's threshold, band and
+ * skip, each unless the command line gives it (then the output says that the
+ * definition differs from the search's); else the options' (the defaults: band
+ * 0.4:0.6, skip 0.2, the threshold halfway up the step). */
+static int definition(an_tool *t, onset_state *s)
+{
+	const an_opts *o = t->o;
+	if (sdef_load(&t->d, o->campaign, &s->sd, &t->e))
+		return t->e.code;
+	const sdef *d = &s->sd;
+	s->thr = o->threshold;
+	s->fo = (flux_opts){o->band_lo, o->band_hi, o->skip};
+	const int from_search = d->found && d->flux;
+	if (from_search) {
+		if (!o->threshold_set)
+			s->thr = d->threshold;
+		if (!o->band_set)
+			s->fo.band_lo = d->band_lo, s->fo.band_hi = d->band_hi;
+		if (!o->skip_set)
+			s->fo.skip = d->skip;
+		s->differs = s->thr != d->threshold || s->fo.band_lo != d->band_lo || s->fo.band_hi != d->band_hi ||
+			     s->fo.skip != d->skip;
+	}
+	char th[64];
+	if (isnan(s->thr))
+		snprintf(th, sizeof th, "halfway up the step of");
+	else
+		snprintf(th, sizeof th, "≥ %g in", s->thr);
+	snprintf(s->def, sizeof s->def, "onset: first f with mean Φ %s band %g–%g, skip %g", th, s->fo.band_lo,
+		 s->fo.band_hi, s->fo.skip);
+	printf("# %s (%s)\n", s->def,
+	       !from_search ? "this tool's; the campaign has no [onset] search over the flux"
+	       : s->differs ? "set on the command line: differs from the search's"
+			    : "the [onset] search's definition");
+	if (from_search && s->differs)
+		printf("# the search's: first f with |mean Φ| ≥ %g in band %g–%g, skip %g; its onset below is by that one\n",
+		       d->threshold, d->band_lo, d->band_hi, d->skip);
+	return 0;
 }
 
 /* Every fixed-frequency run with flux = yes is considered, whatever its state. */
@@ -234,6 +289,17 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 	tool_store_acct(t, L, j);
 }
 
+/* The onset of the points xs, ys, us [0..np) into r, its threshold interval no
+ * narrower than the sampled frequencies around the crossing resolve (resolve.h). */
+static int estimate_one(an_tool *t, onset_state *s, size_t np, onset_res *r)
+{
+	const an_opts *o = t->o;
+	if (onset_estimate(s->xs, s->ys, s->us, np, s->thr, (size_t)(o->boot > 1 ? o->boot : 0), o->seed, o->level, r))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	resolve_grid(r->thr, &r->thr_lo, &r->thr_hi, s->xs, np);
+	return 0;
+}
+
 /* Per group: the estimates into onset_seeds.csv, onset_summary.csv, the table and
  * the analysis table (storing begun here, ended by the caller). */
 static int estimate(an_tool *t, onset_state *s)
@@ -258,17 +324,58 @@ static int estimate(an_tool *t, onset_state *s)
 		onset_res *r = &s->R[j];
 		if (!np) /* every run of the group failed, is unreadable or not finished */
 			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
-		else if (onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0),
-					o->seed, o->level, r)) {
-			sb_errf(&t->e, SB_ENOMEM, "out of memory");
+		else if (estimate_one(t, s, np, r))
 			break;
-		}
 		group_out(t, r, j, np, ratio, f, sum);
 	}
 	if (f)
 		fclose(f);
 	if (sum)
 		fclose(sum);
+	return t->e.code;
+}
+
+/* The [onset] search's own estimate of each group beside this tool's threshold
+ * onset, both intervals, and whether they agree (overlap); stored as search_f. */
+static int beside(an_tool *t, onset_state *s)
+{
+	if (!s->sd.found)
+		return 0;
+	const char **ids = malloc(sizeof *ids * (size_t)(t->k ? t->k : 1));
+	if (!ids)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	printf("\n# the [onset] search's onset (the median over replicates of their bisection brackets, its %g %% interval"
+	       " at least one bracket wide) beside this tool's threshold onset%s\n", 100 * s->sd.level,
+	       s->differs ? " by another definition (above)" : "");
+	printf("%-30s %24s %-9s %24s %s\n", "group", "search f [CI] (Hz)", "state", "threshold f [CI] (Hz)", "agree");
+	for (int j = 0; j < t->ng && !t->e.code; j++) {
+		int n = 0;
+		for (int i = 0; i < t->k; i++)
+			if (t->runs[i].group == j)
+				ids[n++] = t->runs[i].id;
+		sdef_est g;
+		if (sdef_group(&t->d, t->o->campaign, &s->sd, ids, n, &g, &t->e))
+			break;
+		const onset_res *r = &s->R[j];
+		char c1[64], c2[64];
+		const char *agree;
+		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", g.est, g.lo, g.hi);
+		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
+		if (!g.found)
+			agree = "n/a: none of its runs is the search's";
+		else if (g.pooled)
+			agree = "n/a: the group pools several search groups (--by)";
+		else if (!sdef_overlap(g.lo, g.hi, r->thr_lo, r->thr_hi))
+			agree = isfinite(g.lo) && isfinite(g.hi) && isfinite(r->thr_lo) && isfinite(r->thr_hi)
+					? "no: the intervals do not overlap"
+					: "n/a: an interval is missing";
+		else
+			agree = "yes: the intervals overlap";
+		printf("%-30s %24s %-9s %24s %s\n", t->labels[j], g.found && !g.pooled ? c1 : "-", g.state, c2, agree);
+		if (g.found && !g.pooled)
+			tool_store(t, j, t->labels[j], "search_f", g.est, g.lo, g.hi, g.replicates);
+	}
+	free(ids);
 	return t->e.code;
 }
 
@@ -340,21 +447,19 @@ static double spread(const double *v, int n)
 /* One group's variants: table rows, CSV rows, stored rows; the spreads. */
 static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE *f)
 {
-	const an_opts *o = t->o;
 	const char *L = t->labels[j];
 	double thr[NVAR], f0[NVAR];
 	for (int v = 0; v < NVAR; v++) {
 		const size_t np = variant_points(t, s, pb, j, v);
 		onset_res r = {0};
-		if (np && onset_estimate(s->xs, s->ys, s->us, np, o->threshold, (size_t)(o->boot > 1 ? o->boot : 0), o->seed,
-					 o->level, &r))
-			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+		if (np && estimate_one(t, s, np, &r))
+			return t->e.code;
 		if (!np)
 			r.thr = r.thr_lo = r.thr_hi = r.fit_lo = r.fit_hi = NAN;
 		thr[v] = r.thr;
 		f0[v] = r.fit.ok ? r.fit.x0 : NAN;
-		const double blo = v >= 1 && v <= NBAND ? BANDS[v - 1][0] : o->band_lo;
-		const double bhi = v >= 1 && v <= NBAND ? BANDS[v - 1][1] : o->band_hi;
+		const double blo = v >= 1 && v <= NBAND ? BANDS[v - 1][0] : s->fo.band_lo;
+		const double bhi = v >= 1 && v <= NBAND ? BANDS[v - 1][1] : s->fo.band_hi;
 		double flo = INFINITY, fhi = -INFINITY;
 		for (size_t p = 0; p < np; p++) {
 			flo = fmin(flo, s->xs[p]);
@@ -419,20 +524,18 @@ static int sensitivity(an_tool *t, onset_state *s)
 	return t->e.code;
 }
 
-/* The transition a figure marks for group j: the sigmoid's f0 when it was accepted,
- * else the threshold crossing; its interval; 0 when neither exists. */
-static int onset_mark(const onset_res *r, double *f, double *lo, double *hi, const char **name)
+/* The onset a figure marks for group j: the threshold crossing of the definition (the
+ * one the table, the stored rows and the search share), its interval; 0 when the data
+ * hold no crossing. The sigmoid's midpoint is another number, named as such. */
+static int onset_mark(const onset_res *r, double *f, double *lo, double *hi)
 {
-	if (r->fit.ok) {
-		*f = r->fit.x0, *lo = r->fit_lo, *hi = r->fit_hi, *name = "f₀";
-		return 1;
-	}
-	*f = r->thr, *lo = r->thr_lo, *hi = r->thr_hi, *name = "threshold f";
+	*f = r->thr, *lo = r->thr_lo, *hi = r->thr_hi;
 	return isfinite(r->thr);
 }
 
-/* onset.png and onset.pdf: every group's runs and fitted sigmoid, the onset (a dashed
- * line) and its interval (a shaded band) in the group's colour, Gamma on top */
+/* onset.png and onset.pdf: every group's runs and fitted sigmoid (its midpoint in the
+ * legend), the onset of the definition named in the title (a dashed line) and its
+ * interval (a shaded band) in the group's colour, Gamma on top */
 static int plot(an_tool *t, const onset_state *s)
 {
 	const an_opts *o = t->o;
@@ -441,8 +544,8 @@ static int plot(an_tool *t, const onset_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset, band: %g %% CI\"\n",
-		o->band_lo, o->band_hi, set, *set ? "; " : "", 100 * o->level);
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: %s;"
+		   " band: %g %% CI\"\n", s->fo.band_lo, s->fo.band_hi, set, *set ? "; " : "", s->def, 100 * o->level);
 	gp_xlabel(f, "frequency");
 	fprintf(f, "set ylabel 'Φ (particles per period)'\n"
 		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n");
@@ -456,11 +559,10 @@ static int plot(an_tool *t, const onset_state *s)
 		gp_gamma_axis(f, A, g, flo, fhi);
 	for (int j = 0; j < t->ng; j++) {
 		double m, lo, hi;
-		const char *nm;
 		if (s->R[j].fit.ok)
 			fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, s->R[j].fit.b,
 				s->R[j].fit.a, s->R[j].fit.x0, s->R[j].fit.w);
-		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+		if (!onset_mark(&s->R[j], &m, &lo, &hi))
 			continue;
 		if (isfinite(lo) && isfinite(hi))
 			fprintf(f, "set object %d rect from %.17g, graph 0 to %.17g, graph 1 behind fc lt %d "
@@ -478,16 +580,18 @@ static int plot(an_tool *t, const onset_state *s)
 		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lt %d title ",
 			np++ ? ", \\\n  " : "", j, j + 1);
 		gp_str(f, *leg ? leg : "runs");
-		if (s->R[j].fit.ok)
-			fprintf(f, ", s%d(x) with lines lw 2 lt %d notitle", j, j + 1);
+		if (s->R[j].fit.ok) {
+			snprintf(mark, sizeof mark, "sigmoid, midpoint f₀ = %.3g Hz (not the onset)", s->R[j].fit.x0);
+			fprintf(f, ", s%d(x) with lines lw 2 lt %d title ", j, j + 1);
+			gp_str(f, mark);
+		}
 		double m, lo, hi;
-		const char *nm;
-		if (!onset_mark(&s->R[j], &m, &lo, &hi, &nm))
+		if (!onset_mark(&s->R[j], &m, &lo, &hi))
 			continue;
 		if (isfinite(lo) && isfinite(hi))
-			snprintf(mark, sizeof mark, "%s = %.3g Hz [%.3g, %.3g]", nm, m, lo, hi);
+			snprintf(mark, sizeof mark, "onset f = %.3g Hz [%.3g, %.3g]", m, lo, hi);
 		else
-			snprintf(mark, sizeof mark, "%s = %.3g Hz", nm, m);
+			snprintf(mark, sizeof mark, "onset f = %.3g Hz", m);
 		fprintf(f, ", keyentry with lines lt %d dt 2 lw 1.5 title ", j + 1);
 		gp_str(f, mark);
 	}
@@ -500,8 +604,8 @@ static int plot(an_tool *t, const onset_state *s)
 
 static int init(an_tool *t, void *vs, const xopt *x)
 {
+	(void)t;
 	onset_state *s = vs;
-	s->fo = (flux_opts){t->o->band_lo, t->o->band_hi, t->o->skip};
 	s->sens = x[0].set;
 	return 0;
 }
@@ -509,8 +613,8 @@ static int init(an_tool *t, void *vs, const xopt *x)
 static int run(an_tool *t, void *vs)
 {
 	onset_state *s = vs;
-	if (state_alloc(t, s) || consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
-	    tool_accounting_csv(t) || estimate(t, s) || (s->sens && sensitivity(t, s)) || tool_store_end(t))
+	if (state_alloc(t, s) || definition(t, s) || consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
+	    tool_accounting_csv(t) || estimate(t, s) || beside(t, s) || (s->sens && sensitivity(t, s)) || tool_store_end(t))
 		return t->e.code;
 	tool_report(t, stdout, "the periods they recorded before the failure (after the transient of the run as"
 			       " planned): one point each, like a finished run");
