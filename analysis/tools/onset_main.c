@@ -178,9 +178,9 @@ static int definition(an_tool *t, onset_state *s)
 		snprintf(th, sizeof th, "halfway up the step of");
 	else
 		snprintf(th, sizeof th, "≥ %g in", s->thr);
-	snprintf(s->def, sizeof s->def, "onset: first f with mean Φ %s band %g–%g, skip %g", th, s->fo.band_lo,
-		 s->fo.band_hi, s->fo.skip);
-	printf("# %s (%s)\n", s->def,
+	snprintf(s->def, sizeof s->def, "first f with mean Φ %s band %g–%g, skip %g", th, s->fo.band_lo, s->fo.band_hi,
+		 s->fo.skip);
+	printf("# onset: %s (%s)\n", s->def,
 	       !from_search ? "this tool's; the campaign has no [onset] search over the flux"
 	       : s->differs ? "set on the command line: differs from the search's"
 			    : "the [onset] search's definition");
@@ -544,7 +544,7 @@ static int plot(an_tool *t, const onset_state *s)
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
-	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: %s;"
+	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset = %s;"
 		   " band: %g %% CI\"\n", s->fo.band_lo, s->fo.band_hi, set, *set ? "; " : "", s->def, 100 * o->level);
 	gp_xlabel(f, "frequency");
 	fprintf(f, "set ylabel 'Φ (particles per period)'\n"

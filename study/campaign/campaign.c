@@ -15,6 +15,7 @@
 #include "words.h"
 #include "rule/adapt.h"
 #include "safe.h"
+#include "stopdef.h"
 
 /* "; did you mean KEY?" for a typo of one of the n words (the engine's rule for its
  * keys, params_nearest: at most a third of the letters, and 3, apart), else "" */
@@ -995,6 +996,8 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 			return e->code;
 	}
 	if (c->onset.line && onset_finish(c, c->replicates ? c->replicates_line : 0, e))
+		return e->code;
+	if (stopdef_apply(c, e))
 		return e->code;
 	if (autorep_finish(c, e))
 		return e->code;
