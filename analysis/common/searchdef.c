@@ -104,8 +104,3 @@ int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *i
 	sqlite3_finalize(st);
 	return 0;
 }
-
-int sdef_overlap(double lo1, double hi1, double lo2, double hi2)
-{
-	return isfinite(lo1) && isfinite(hi1) && isfinite(lo2) && isfinite(hi2) && lo1 <= hi2 && lo2 <= hi1;
-}

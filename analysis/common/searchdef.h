@@ -42,7 +42,4 @@ typedef struct sdef_est {
  * one bisection bracket (tolerance) wide around it (resolve.h). */
 int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *ids, int n, sdef_est *g, sb_err *e);
 
-/* Whether two intervals overlap (both exist). */
-int sdef_overlap(double lo1, double hi1, double lo2, double hi2);
-
 #endif

@@ -42,6 +42,11 @@ int resolve_widen(double *lo, double *hi, double a, double b)
 	return w;
 }
 
+int resolve_overlap(double lo1, double hi1, double lo2, double hi2)
+{
+	return isfinite(lo1) && isfinite(hi1) && isfinite(lo2) && isfinite(hi2) && lo1 <= hi2 && lo2 <= hi1;
+}
+
 int resolve_grid(double t, double *lo, double *hi, const double *x, size_t n)
 {
 	double a, b;

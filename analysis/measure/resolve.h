@@ -2,7 +2,8 @@
  * precision than the data resolve (docs/analysis.md, "Intervals and the data's
  * resolution"). A threshold crossing interpolated between two sampled frequencies is
  * only known to lie between them, and a bisection's answer only to its bracket; an
- * interval narrower than that is widened to hold it. */
+ * interval narrower than that is widened to hold it. Two onsets agree when their
+ * intervals overlap. */
 #ifndef AN_RESOLVE_H
 #define AN_RESOLVE_H
 
@@ -22,5 +23,8 @@ int resolve_widen(double *lo, double *hi, double a, double b);
  * at least the two sampled frequencies around it (resolve_neighbours, resolve_widen).
  * Returns 1 when it widened. */
 int resolve_grid(double t, double *lo, double *hi, const double *x, size_t n);
+
+/* Whether two onsets agree: both intervals exist (finite ends) and overlap. */
+int resolve_overlap(double lo1, double hi1, double lo2, double hi2);
 
 #endif

@@ -365,7 +365,7 @@ static int beside(an_tool *t, onset_state *s)
 			agree = "n/a: none of its runs is the search's";
 		else if (g.pooled)
 			agree = "n/a: the group pools several search groups (--by)";
-		else if (!sdef_overlap(g.lo, g.hi, r->thr_lo, r->thr_hi))
+		else if (!resolve_overlap(g.lo, g.hi, r->thr_lo, r->thr_hi))
 			agree = isfinite(g.lo) && isfinite(g.hi) && isfinite(r->thr_lo) && isfinite(r->thr_hi)
 					? "no: the intervals do not overlap"
 					: "n/a: an interval is missing";

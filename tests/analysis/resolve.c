@@ -1,7 +1,8 @@
 /* resolve.c - the precision floor of an onset's interval, with known answers both
  * ways: a bootstrap interval narrower than the spacing of the sampled frequencies
  * around the onset is widened to them, a wider one is left alone, a missing one stays
- * missing; the neighbours of an onset at, below and above the samples. */
+ * missing; the neighbours of an onset at, below and above the samples; two onsets
+ * agree when their intervals overlap, and not when they are disjoint. */
 #include <math.h>
 
 #include "measure/resolve.h"
@@ -48,5 +49,13 @@ int main(void)
 	lo = 2.6, hi = 2.7;
 	CHECK("resolve.widen.holds", !resolve_widen(&lo, &hi, 2.65, 2.67) && lo == 2.6 && hi == 2.7, "got [%g, %g]",
 	      lo, hi);
+
+	/* agreement of two onsets: overlapping intervals agree, disjoint ones do not, a
+	 * missing end is no agreement */
+	CHECK("resolve.overlap.yes", resolve_overlap(2.6, 2.7, 2.65, 2.8), "[2.6, 2.7] and [2.65, 2.8]");
+	CHECK("resolve.overlap.touching", resolve_overlap(2.6, 2.7, 2.7, 2.8), "[2.6, 2.7] and [2.7, 2.8]");
+	CHECK("resolve.overlap.no", !resolve_overlap(2.633, 2.711, 2.721, 2.736), "the issue's [2.633, 2.711] and [2.721, 2.736]");
+	CHECK("resolve.overlap.missing", !resolve_overlap(2.6, NAN, 2.65, 2.8), "a NaN end");
+	CHECK("resolve.overlap.unbounded", !resolve_overlap(-INFINITY, 2.7, 2.65, 2.8), "an infinite end");
 	return tl_done();
 }
