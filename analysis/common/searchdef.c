@@ -6,8 +6,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "measure/resolve.h"
-
 static double col(sqlite3_stmt *st, int i)
 {
 	return sqlite3_column_type(st, i) == SQLITE_NULL ? NAN : sqlite3_column_double(st, i);
@@ -63,7 +61,7 @@ static double to_hz(const char *axis, double x, double x0, double f0)
 int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *ids, int n, sdef_est *g, sb_err *e)
 {
 	memset(g, 0, sizeof *g);
-	g->est = g->lo = g->hi = NAN;
+	g->est = g->lo = g->hi = g->bracket_lo = g->bracket_hi = NAN;
 	if (!s->found)
 		return 0;
 	sqlite3_stmt *st;
@@ -94,10 +92,9 @@ int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *i
 		text(st, 0, g->state, sizeof g->state);
 		g->replicates = sqlite3_column_int64(st, 1);
 		double x = col(st, 2), lo = col(st, 3), hi = col(st, 4), x0 = col(st, 5), f0 = col(st, 6);
-		/* the search's answer is a bracket: no interval narrower than one */
-		if (isfinite(x) && isfinite(s->tolerance))
-			resolve_widen(&lo, &hi, x - 0.5 * s->tolerance, x + 0.5 * s->tolerance);
 		g->est = to_hz(s->axis, x, x0, f0);
+		g->bracket_lo = to_hz(s->axis, x - 0.5 * s->tolerance, x0, f0);
+		g->bracket_hi = to_hz(s->axis, x + 0.5 * s->tolerance, x0, f0);
 		g->lo = to_hz(s->axis, lo, x0, f0);
 		g->hi = to_hz(s->axis, hi, x0, f0);
 	}

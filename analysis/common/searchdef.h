@@ -34,12 +34,13 @@ typedef struct sdef_est {
 	long replicates;
 	double est, lo, hi;     /* Hz; NaN when the search has none (no replicate answered,
 				 * or the onset lies outside the range) */
+	double bracket_lo, bracket_hi; /* Hz: one bisection bracket (tolerance) around est,
+				 * the least its interval can be (resolve.h) */
 } sdef_est;
 
 /* The estimate of the search group that the runs ids[0..n) belong to (onset_run),
  * converted from the search's axis to Hz by the group's own runs (a point's
- * frequency is a power of its axis value: Gamma ~ f^2, v ~ f), its interval at least
- * one bisection bracket (tolerance) wide around it (resolve.h). */
+ * frequency is a power of its axis value: Gamma ~ f^2, v ~ f). */
 int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *ids, int n, sdef_est *g, sb_err *e);
 
 #endif

@@ -357,6 +357,8 @@ static int beside(an_tool *t, onset_state *s)
 		if (sdef_group(&t->d, t->o->campaign, &s->sd, ids, n, &g, &t->e))
 			break;
 		const onset_res *r = &s->R[j];
+		/* the search's answer is a bracket: no interval narrower than one */
+		resolve_widen(&g.lo, &g.hi, g.bracket_lo, g.bracket_hi);
 		char c1[64], c2[64];
 		const char *agree;
 		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", g.est, g.lo, g.hi);
