@@ -45,7 +45,7 @@ int tool_open(an_tool *t, const an_opts *o)
 	t->o = o;
 	if (adb_open(&t->d, o->db, !o->no_store, &t->e))
 		return t->e.code;
-	return adb_runs(&t->d, o->campaign, o->runs, &t->runs, &t->nr, &t->e);
+	return pool_read(o, &t->d, &t->runs, &t->nr, t->axes, &t->na, &t->e);
 }
 
 int tool_old(an_tool *t, const an_run *r)
@@ -65,6 +65,9 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed)
 {
 	const an_opts *o = t->o;
 	int known = 0;
+	if (o->ncamp > 1) /* each is in its database (pool_read) */
+		return sb_errf(&t->e, SB_EUSAGE, "campaigns %s: no finished %s%s%s", o->campaign, kind, narrowed,
+			       t->nold ? " of the current grids (--all-versions)" : "");
 	if (!adb_campaign_exists(&t->d, o->campaign, &known, &t->e) && !known)
 		return sb_errf(&t->e, SB_EUSAGE, "campaign '%s' is not in %s", o->campaign, o->db);
 	return sb_errf(&t->e, SB_EUSAGE, "campaign '%s': no finished %s in %s%s%s", o->campaign, kind, o->db, narrowed,
@@ -104,8 +107,9 @@ int tool_group(an_tool *t, const char *const *always, const char *const *drop)
 {
 	char keys[AN_MAXKEYS][48];
 	int nk;
-	if (cli_keys(t->o, &t->d, always, drop, keys, &nk, &t->e))
-		return t->e.code;
+	cli_keys(t->o, t->axes, t->na, always, drop, keys, &nk);
+	if (t->o->nby < 0 && t->o->ncamp > 1)
+		t->nadded = pool_keys(t->runs, t->k, drop, keys, &nk);
 	for (int i = 0; i < t->k; i++)
 		for (int k = 0; k < nk; k++)
 			if (tool_key_known(t, &t->runs[i], keys[k]))
@@ -301,6 +305,7 @@ long tool_partly(const an_tool *t)
 void tool_report(const an_tool *t, FILE *out, const char *partly)
 {
 	acct_print(out, t->o->tool, t->labels, t->A, t->ng, t->nold, t->o->all_versions);
+	pool_print(out, t->o, t->runs, t->k, t->labels, t->ng, t->keys, t->nk, t->nadded);
 	long n = tool_partly(t);
 	if (partly && n)
 		fprintf(out, "# %ld failed run%s enter%s with %s\n", n, n == 1 ? "" : "s", n == 1 ? "s" : "", partly);

@@ -15,6 +15,7 @@
 #include "acct.h"
 #include "adb.h"
 #include "cli.h"
+#include "pool.h"
 #include "xopt.h"
 
 typedef struct an_tool {
@@ -29,6 +30,9 @@ typedef struct an_tool {
 	int nk;
 	char **gval;    /* [ng * nk]: group j's value of key k as text ("": none), malloc'd */
 	an_acct *A;     /* the accounting of each group (tool_tally) */
+	char axes[AN_MAXKEYS][48]; /* the swept axes of the campaigns (pool_read) */
+	int na;
+	int nadded;     /* keys[nk - nadded..nk): differing between pooled campaigns */
 	sb_err e;
 } an_tool;
 
@@ -61,8 +65,9 @@ int tool_main(int argc, char **argv, const tool_spec *spec, void *s);
  * a usage error was printed to err (exit 1), 0 to go on. */
 int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err);
 
-/* Opens the database (writable unless --no-store) and reads every run of the campaign
- * into t (zeroed but for t->o and t->e, as tool_main leaves it). */
+/* Opens the (first campaign's) database (writable unless --no-store) and reads every
+ * run of every campaign into t (pool_read; t zeroed but for t->o and t->e, as
+ * tool_main leaves it). */
 int tool_open(an_tool *t, const an_opts *o);
 
 /* A run of an earlier version of the campaign file that the options leave out
@@ -84,7 +89,8 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed);
 int tool_key_known(an_tool *t, const an_run *r, const char *key);
 
 /* Groups the considered runs by the grouping keys (cli_keys: --by, else always[] and
- * the swept axes not in drop[]); a run whose value of a key is unknown is refused
+ * the swept axes not in drop[], and with several campaigns the keys that differ
+ * between them, pool_keys); a run whose value of a key is unknown is refused
  * (tool_key_known). */
 int tool_group(an_tool *t, const char *const *always, const char *const *drop);
 
@@ -142,7 +148,8 @@ int tool_store_end(an_tool *t);
 /* Closes a gnuplot script (gp_open) and runs it. */
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png);
 
-/* The closing lines: the accounting table and, when failed runs were used up to
+/* The closing lines: the accounting table, the campaigns each group drew from when
+ * several were pooled (pool_print) and, when failed runs were used up to
  * their failure, "# N failed runs enter with PARTLY" (no such line when partly is
  * NULL: the tool says it itself). */
 void tool_report(const an_tool *t, FILE *out, const char *partly);

@@ -78,7 +78,7 @@ typedef struct onset_state {
 	flux_opts fo;
 	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
 	double *xs, *ys; /* one group's points: frequency, Phi */
-	long *us;        /* ... and their seed (replicate) */
+	long *us;        /* ... and their seed (the unit: replicate, pool.h) */
 	onset_res *R;    /* [ng] */
 	int sens;        /* --sensitivity given */
 } onset_state;
@@ -197,7 +197,7 @@ static size_t group_points(const an_tool *t, onset_state *s, int j, double *rati
 			continue;
 		s->xs[np] = an_num(r, "frequency", NAN);
 		s->ys[np] = s->phi[i];
-		s->us[np++] = r->replicate;
+		s->us[np++] = r->unit;
 	}
 	return np;
 }
@@ -318,7 +318,7 @@ static size_t variant_points(const an_tool *t, onset_state *s, const double *pb,
 			continue;
 		s->xs[np] = f;
 		s->ys[np] = y;
-		s->us[np++] = r->replicate;
+		s->us[np++] = r->unit;
 	}
 	return np;
 }
