@@ -107,7 +107,7 @@ int pool_keys(const an_run *runs, int n, const char *const *drop, char keys[][48
 			int dropped = !strcmp(key, "seed") || strlen(key) >= 48;
 			for (const char *const *d = drop; d && *d; d++)
 				dropped |= !strcmp(*d, key);
-			if (!P || (P->flags & PF_OUT) || dropped || in_keys(keys, *nk, key) || !differs(runs, n, key))
+			if (!P || (P->flags & (PF_OUT | PF_DRIVER | PF_NOID)) || dropped || in_keys(keys, *nk, key) || !differs(runs, n, key))
 				continue;
 			snprintf(keys[(*nk)++], 48, "%s", key);
 			added++;

@@ -24,7 +24,8 @@
  * axes[0..*na): the union of their swept axes (adb_axes). */
 int pool_read(const an_opts *o, adb *d, an_run **runs, int *nr, char axes[][48], int *na, sb_err *e);
 
-/* The parameters of the engine's table (not the output switches, not seed nor drop[])
+/* The parameters of the engine's table (not the output switches, the driver's paths
+ * nor the keys outside a run's id; not seed nor drop[])
  * whose value differs between two of runs[0..n) of different campaigns and that
  * keys[0..*nk) lacks: appended to keys (at most AN_MAXKEYS); returns how many. */
 int pool_keys(const an_run *runs, int n, const char *const *drop, char keys[][48], int *nk);

@@ -1,7 +1,9 @@
 /* tool.c - the frame every analysis tool's main shares (tool.h). */
 #include "tool.h"
 
+#include "axis.h"
 #include "label.h"
+#include "num.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -205,6 +207,77 @@ int tool_gamma(const an_tool *t, double *A, double *g)
 	/* a database without the key ran with the engine's default */
 	*g = shared(t, "gravity", gr, sizeof gr) ? strtod(gr, NULL) : 981;
 	return *A > 0 && *g > 0;
+}
+
+static int key_index(const an_tool *t, const char *key)
+{
+	for (int k = 0; k < t->nk; k++)
+		if (!strcmp(t->keys[k], key))
+			return k;
+	return -1;
+}
+
+int tool_curves(an_tool *t, const char *along, int *curve)
+{
+	const int ka = key_index(t, along);
+	if (ka < 0) {
+		char ks[AN_MAXKEYS * 50] = "";
+		for (int k = 0, l = 0; k < t->nk; k++)
+			l += snprintf(ks + l, sizeof ks - (size_t)l, "%s%s", k ? ", " : "", t->keys[k]);
+		sb_errf(&t->e, SB_EUSAGE, "'%s' is not a grouping key (they are: %s; --by sets them)", along,
+			*ks ? ks : "none");
+		return -1;
+	}
+	int nc = 0;
+	for (int j = 0; j < t->ng; j++) {
+		curve[j] = -1;
+		for (int h = 0; h < j && curve[j] < 0; h++) {
+			int alike = 1;
+			for (int k = 0; k < t->nk && alike; k++)
+				alike = k == ka || !strcmp(t->gval[j * t->nk + k], t->gval[h * t->nk + k]);
+			if (alike)
+				curve[j] = curve[h];
+		}
+		if (curve[j] < 0)
+			curve[j] = nc++;
+	}
+	return nc;
+}
+
+double tool_num(const an_tool *t, int j, const char *key)
+{
+	const int k = key_index(t, key);
+	double v;
+	if (k < 0 || j < 0 || j >= t->ng || num_real(t->gval[j * t->nk + k], &v))
+		return NAN;
+	return v;
+}
+
+void tool_label_but(const an_tool *t, int j, const char *key, char *buf, size_t n)
+{
+	size_t l = 0;
+	buf[0] = 0;
+	for (int k = 0; k < t->nk && l < n; k++)
+		if (strcmp(t->keys[k], key))
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", t->keys[k], t->gval[j * t->nk + k]);
+	if (!l)
+		snprintf(buf, n, "all");
+}
+
+int tool_group_drive(const an_tool *t, int j, double *A, double *g)
+{
+	int first = 1;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j)
+			continue;
+		const double a = an_num(r, "amplitude", NAN), gr = axis_gravity(r);
+		if (first)
+			*A = a, *g = gr, first = 0;
+		else if (a != *A || gr != *g)
+			return 0;
+	}
+	return !first && *A > 0 && *g > 0;
 }
 
 int tool_tally(an_tool *t, FILE *out, const char *fmt, ...)

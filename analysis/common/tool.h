@@ -112,6 +112,20 @@ void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n);
 void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int ncurve, const char *along, int c,
 		       int vary, char *buf, size_t n);
 
+/* The curves along a grouping key: curve[j] (of t->ng) = the index of the set of
+ * groups alike in every grouping key but along (numbered in group order); returns
+ * their number, or -1 (a usage error in t->e, naming the keys) when along is not a
+ * grouping key. */
+int tool_curves(an_tool *t, const char *along, int *curve);
+/* Group j's value of a grouping key as a number (NaN: none or no number); its label
+ * without that key ("radius_ratio=0 depth=1"; "all" when nothing else). */
+double tool_num(const an_tool *t, int j, const char *key);
+void tool_label_but(const an_tool *t, int j, const char *key, char *buf, size_t n);
+/* 1 when every considered run of group j shares the amplitude A and the gravity g
+ * (a database without gravity: the engine's default), so that its frequencies map
+ * onto one Gamma or v axis (axis.h); else 0. */
+int tool_group_drive(const an_tool *t, int j, double *A, double *g);
+
 /* The setting every considered run shares, in words for a title: the values of the
  * keys that every run has alike (of N, W, A) and the grouping keys that every group
  * shares, joined by ", "; "" when none. */
