@@ -257,9 +257,16 @@ void tool_label_but(const an_tool *t, int j, const char *key, char *buf, size_t 
 {
 	size_t l = 0;
 	buf[0] = 0;
-	for (int k = 0; k < t->nk && l < n; k++)
-		if (strcmp(t->keys[k], key))
-			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", t->keys[k], t->gval[j * t->nk + k]);
+	for (int k = 0; k < t->nk && l < n; k++) {
+		const char *v = t->gval[j * t->nk + k];
+		double x;
+		if (!strcmp(t->keys[k], key))
+			continue;
+		if (!num_real(v, &x)) /* as an_group_runs labels a number */
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%g", l ? " " : "", t->keys[k], x);
+		else
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", t->keys[k], v);
+	}
 	if (!l)
 		snprintf(buf, n, "all");
 }
