@@ -98,3 +98,8 @@ double drive_gamma(double A, double f, double g)
 	/* the factors in this order: SQL's view (lib/schema.c) computes the same bits */
 	return A * (SB_TWO_PI * f) * (SB_TWO_PI * f) / g;
 }
+
+double drive_velocity(double A, double f)
+{
+	return A * SB_TWO_PI * f;
+}

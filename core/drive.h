@@ -27,4 +27,9 @@ double drive_a(const sb_drive *d, double t);
  * (lib/schema.c) is checked against it by a test, the figures' Gamma axis uses it. */
 double drive_gamma(double A, double f, double g);
 
+/* The box's peak velocity (cm/s) at amplitude A (cm) and frequency f (Hz): v = A 2 pi f,
+ * the other dimensional measure of a drive the literature reports onsets in. The one
+ * definition: the campaign axis velocity and the analysis tools' velocity axis use it. */
+double drive_velocity(double A, double f);
+
 #endif

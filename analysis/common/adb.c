@@ -178,6 +178,7 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		snprintf(x->id, sizeof x->id, "%s", (const char *)sqlite3_column_text(st, 0));
 		x->replicate = (long)sqlite3_column_int64(st, 1);
 		x->seed = (long)sqlite3_column_int64(st, 2);
+		x->unit = x->replicate;
 		snprintf(x->state, sizeof x->state, "%s", sqlite3_column_text(st, 3) ? (const char *)sqlite3_column_text(st, 3) : "");
 		x->current = sqlite3_column_int(st, 4) != 0;
 		snprintf(x->status, sizeof x->status, "%s", sqlite3_column_text(st, 5) ? (const char *)sqlite3_column_text(st, 5) : "");

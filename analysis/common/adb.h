@@ -14,6 +14,9 @@ typedef struct an_run {
 	char id[128];
 	long replicate;     /* run.replicate: the bootstrap unit ("seed") */
 	long seed;          /* engine seed (run.seed) */
+	int camp;           /* which campaign of the command line it is of (an_opts.camp) */
+	long unit;          /* the bootstrap unit: replicate, made unique over several
+			     * campaigns pooled (pool.h) */
 	char path[1400];    /* RUNS/CAMPAIGN/ID.h5 */
 	int nparam;
 	char **key, **val;  /* param table rows, values as text */

@@ -207,8 +207,30 @@ static int bad_opt(const char *tool, const char *arg, const char *allowed, int m
 	return sb_errf(e, SB_EUSAGE, "%.*s%s: unknown option (%s --help)", dashes, "--", name, tool);
 }
 
+/* A campaign of the command line: NAME, or DIR/NAME (campaign names have no '/'). */
+static int add_camp(an_opts *o, const char *arg, sb_err *e)
+{
+	if (o->ncamp == AN_MAXCAMP)
+		return sb_errf(e, SB_EUSAGE, "'%s': at most %d campaigns (%s --help)", arg, AN_MAXCAMP, o->tool);
+	an_camp *k = &o->camp[o->ncamp];
+	const char *sl = strrchr(arg, '/');
+	k->runs[0] = 0;
+	k->name = sl ? sl + 1 : arg;
+	if (!*k->name || *k->name == '.')
+		return sb_errf(e, SB_EUSAGE, "'%s': expected a campaign's name, or DIR/NAME for one in the runs directory"
+			       " DIR (%s --help)", arg, o->tool);
+	if (sl && (size_t)(sl - arg) + 1 >= sizeof k->runs)
+		return sb_errf(e, SB_EUSAGE, "path too long");
+	if (sl)
+		snprintf(k->runs, sizeof k->runs, "%.*s", sl == arg ? 1 : (int)(sl - arg), arg);
+	o->ncamp++;
+	return 0;
+}
+
 int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e)
 {
+	o->ncamp = 0;
+	o->campaign = NULL;
 	const char *db = NULL, *runs = NULL, *out = NULL;
 	o->boot = 1000;
 	o->seed = 1;
@@ -246,12 +268,10 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e)
 		if (set_opt(o, OPTS[c - 256], optarg, &db, &runs, &out, e))
 			return 1;
 	}
-	for (int i = optind; i < argc; i++) {
-		if (o->campaign)
-			return sb_errf(e, SB_EUSAGE, "unexpected argument '%s' (%s --help)", argv[i], o->tool);
-		o->campaign = argv[i];
-	}
-	if (!o->campaign)
+	for (int i = optind; i < argc; i++)
+		if (add_camp(o, argv[i], e))
+			return 1;
+	if (!o->ncamp)
 		return sb_errf(e, SB_EUSAGE, "which campaign? (%s --help)", o->tool);
 	/* bin/study's layout (lib/layout.h) */
 	if (runs)
@@ -266,9 +286,33 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e)
 	} else
 		snprintf(o->runs, sizeof o->runs, "runs");
 	int l1 = layout_db(o->runs, db, o->db, sizeof o->db), l2;
+	for (int c = 0; c < o->ncamp; c++) {
+		an_camp *k = &o->camp[c];
+		if (k->runs[0]) { /* DIR/NAME: its own runs directory and database */
+			const int l = layout_db(k->runs, NULL, k->db, sizeof k->db);
+			l1 = l > l1 ? l : l1;
+		} else {
+			snprintf(k->runs, sizeof k->runs, "%s", o->runs);
+			snprintf(k->db, sizeof k->db, "%s", o->db);
+		}
+		for (int d = 0; d < c; d++)
+			if (!strcmp(o->camp[d].name, k->name) && !strcmp(o->camp[d].db, k->db))
+				return sb_errf(e, SB_EUSAGE, "campaign '%s' of %s given twice", k->name, k->db);
+	}
+	/* the first campaign's database holds the rows of the pooled ones too */
+	snprintf(o->runs, sizeof o->runs, "%s", o->camp[0].runs);
+	snprintf(o->db, sizeof o->db, "%s", o->camp[0].db);
+	o->campaign = o->camp[0].name;
+	if (o->ncamp > 1) {
+		size_t l = 0;
+		for (int c = 0; c < o->ncamp; c++)
+			l += (size_t)snprintf(o->pooled + l, sizeof o->pooled - l, "%s%s", c ? "+" : "", o->camp[c].name);
+		o->campaign = o->pooled;
+	}
 	if (out) {
 		l2 = snprintf(o->out, sizeof o->out, "%s", out);
 	} else {
+		/* several campaigns: RUNS/A+B/analysis ('+' is in no campaign's name) */
 		char dir[1200];
 		layout_campaign(o->runs, o->campaign, dir, sizeof dir);
 		l2 = layout_sub(dir, "analysis", o->out, sizeof o->out);
@@ -286,29 +330,24 @@ static int in_list(const char *const *l, const char *s)
 	return 0;
 }
 
-int cli_keys(const an_opts *o, adb *d, const char *const *always, const char *const *drop, char keys[][48],
-	     int *nk, sb_err *e)
+void cli_keys(const an_opts *o, char axes[][48], int na, const char *const *always, const char *const *drop,
+	      char keys[][48], int *nk)
 {
 	*nk = 0;
 	if (o->nby >= 0) {
 		for (int i = 0; i < o->nby; i++)
 			scopy(keys[(*nk)++], 48, o->by[i]);
-		return 0;
+		return;
 	}
-	char ax[AN_MAXKEYS][48];
-	int na;
-	if (adb_axes(d, o->campaign, ax, AN_MAXKEYS, &na, e))
-		return e->code;
 	for (const char *const *a = always; a && *a && *nk < AN_MAXKEYS; a++)
 		scopy(keys[(*nk)++], 48, *a);
 	for (int i = 0; i < na && *nk < AN_MAXKEYS; i++) {
 		int dup = 0;
 		for (int j = 0; j < *nk; j++)
-			dup |= !strcmp(keys[j], ax[i]);
-		if (!dup && !in_list(drop, ax[i]) && strcmp(ax[i], "seed"))
-			scopy(keys[(*nk)++], 48, ax[i]);
+			dup |= !strcmp(keys[j], axes[i]);
+		if (!dup && !in_list(drop, axes[i]) && strcmp(axes[i], "seed"))
+			scopy(keys[(*nk)++], 48, axes[i]);
 	}
-	return 0;
 }
 
 int cli_outdir(const an_opts *o, sb_err *e)

@@ -10,11 +10,22 @@
 #include "adb.h"
 
 #define AN_MAXKEYS 32
+#define AN_MAXCAMP 8
+
+/* One campaign of the command line: NAME (in the database of --runs/--db) or DIR/NAME
+ * (its own runs directory DIR, with DIR/study.db): the layout of lib/layout.h. */
+typedef struct an_camp {
+	const char *name;
+	char db[1024], runs[1024];
+} an_camp;
 
 typedef struct an_opts {
 	const char *tool, *version;
-	const char *campaign;
-	char db[1024], runs[1024], out[1024];
+	const char *campaign; /* the one campaign, or pooled's name of several */
+	char db[1024], runs[1024], out[1024]; /* the (first) campaign's database and runs */
+	an_camp camp[AN_MAXCAMP]; /* every campaign given, pooled by the tools (pool.h) */
+	int ncamp;
+	char pooled[AN_MAXCAMP * 66]; /* "A+B": the name of several campaigns pooled */
 	long boot;            /* bootstrap replicates */
 	unsigned long seed;   /* bootstrap seed */
 	double level;         /* confidence level */
@@ -34,7 +45,7 @@ typedef struct an_opts {
 } an_opts;
 
 /* Parses argv (getopt_long: --opt value, --opt=value, unambiguous prefixes; argv is
- * permuted); allowed lists the tool's own options (" boot seed ... ", with spaces)
+ * permuted), one or more campaigns (an_camp) among the options; allowed lists the tool's own options (" boot seed ... ", with spaces)
  * besides the common ones. Returns 0 (go on), -1 (help asked) or 1 (usage error in e:
  * an unknown option names the nearest one of the tool). */
 int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e);
@@ -43,10 +54,10 @@ int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e)
 int cli_distance(const char *a, const char *b);
 const char *cli_nearest(const char *name, const char *allowed);
 
-/* Grouping keys: o->by when given, else always[] then the campaign's swept axes not in
- * drop[] (NULL-terminated lists). */
-int cli_keys(const an_opts *o, adb *d, const char *const *always, const char *const *drop, char keys[][48],
-	     int *nk, sb_err *e);
+/* Grouping keys: o->by when given, else always[] then the swept axes[0..na) (of every
+ * campaign) not in drop[] (NULL-terminated lists). */
+void cli_keys(const an_opts *o, char axes[][48], int na, const char *const *always, const char *const *drop,
+	      char keys[][48], int *nk);
 
 /* mkdir -p of o->out; fopen of out/name for writing (path returned in path). */
 int cli_outdir(const an_opts *o, sb_err *e);

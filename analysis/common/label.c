@@ -34,17 +34,24 @@ static const struct {
 	{"r_max", "r_max = %s %s", NULL},
 };
 
-/* The symbol of a key on a figure's axis; the rows of WORDS that name one. */
+/* The symbol of a key on a figure's axis; the rows of WORDS that name one, and the
+ * drive's derived axes (axis.h), which are no keys of the parameter table: their unit
+ * is here (v's cm/s: A in cm times f in Hz). */
 static const struct {
-	const char *key, *symbol;
+	const char *key, *symbol, *unit;
 } AXES[] = {
-	{"frequency", "f"},
+	{"frequency", "f", NULL},
+	{"gamma", "Γ", ""},
+	{"velocity", "v", "cm/s"},
 };
 
 void label_unit(char *buf, size_t n, const char *key)
 {
 	const sb_param *p = params_find(key);
 	const char *u = p ? p->unit : "";
+	for (size_t i = 0; !p && i < sizeof AXES / sizeof *AXES; i++)
+		if (!strcmp(AXES[i].key, key) && AXES[i].unit)
+			u = AXES[i].unit;
 	size_t l = 0;
 	if (n)
 		buf[0] = 0;

@@ -1,7 +1,9 @@
 /* tool.c - the frame every analysis tool's main shares (tool.h). */
 #include "tool.h"
 
+#include "axis.h"
 #include "label.h"
+#include "num.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -45,7 +47,7 @@ int tool_open(an_tool *t, const an_opts *o)
 	t->o = o;
 	if (adb_open(&t->d, o->db, !o->no_store, &t->e))
 		return t->e.code;
-	return adb_runs(&t->d, o->campaign, o->runs, &t->runs, &t->nr, &t->e);
+	return pool_read(o, &t->d, &t->runs, &t->nr, t->axes, &t->na, &t->e);
 }
 
 int tool_old(an_tool *t, const an_run *r)
@@ -65,6 +67,9 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed)
 {
 	const an_opts *o = t->o;
 	int known = 0;
+	if (o->ncamp > 1) /* each is in its database (pool_read) */
+		return sb_errf(&t->e, SB_EUSAGE, "campaigns %s: no finished %s%s%s", o->campaign, kind, narrowed,
+			       t->nold ? " of the current grids (--all-versions)" : "");
 	if (!adb_campaign_exists(&t->d, o->campaign, &known, &t->e) && !known)
 		return sb_errf(&t->e, SB_EUSAGE, "campaign '%s' is not in %s", o->campaign, o->db);
 	return sb_errf(&t->e, SB_EUSAGE, "campaign '%s': no finished %s in %s%s%s", o->campaign, kind, o->db, narrowed,
@@ -104,8 +109,9 @@ int tool_group(an_tool *t, const char *const *always, const char *const *drop)
 {
 	char keys[AN_MAXKEYS][48];
 	int nk;
-	if (cli_keys(t->o, &t->d, always, drop, keys, &nk, &t->e))
-		return t->e.code;
+	cli_keys(t->o, t->axes, t->na, always, drop, keys, &nk);
+	if (t->o->nby < 0 && t->o->ncamp > 1)
+		t->nadded = pool_keys(t->runs, t->k, drop, keys, &nk);
 	for (int i = 0; i < t->k; i++)
 		for (int k = 0; k < nk; k++)
 			if (tool_key_known(t, &t->runs[i], keys[k]))
@@ -201,6 +207,84 @@ int tool_gamma(const an_tool *t, double *A, double *g)
 	/* a database without the key ran with the engine's default */
 	*g = shared(t, "gravity", gr, sizeof gr) ? strtod(gr, NULL) : 981;
 	return *A > 0 && *g > 0;
+}
+
+static int key_index(const an_tool *t, const char *key)
+{
+	for (int k = 0; k < t->nk; k++)
+		if (!strcmp(t->keys[k], key))
+			return k;
+	return -1;
+}
+
+int tool_curves(an_tool *t, const char *along, int *curve)
+{
+	const int ka = key_index(t, along);
+	if (ka < 0) {
+		char ks[AN_MAXKEYS * 50] = "";
+		for (int k = 0, l = 0; k < t->nk; k++)
+			l += snprintf(ks + l, sizeof ks - (size_t)l, "%s%s", k ? ", " : "", t->keys[k]);
+		sb_errf(&t->e, SB_EUSAGE, "'%s' is not a grouping key (they are: %s; --by sets them)", along,
+			*ks ? ks : "none");
+		return -1;
+	}
+	int nc = 0;
+	for (int j = 0; j < t->ng; j++) {
+		curve[j] = -1;
+		for (int h = 0; h < j && curve[j] < 0; h++) {
+			int alike = 1;
+			for (int k = 0; k < t->nk && alike; k++)
+				alike = k == ka || !strcmp(t->gval[j * t->nk + k], t->gval[h * t->nk + k]);
+			if (alike)
+				curve[j] = curve[h];
+		}
+		if (curve[j] < 0)
+			curve[j] = nc++;
+	}
+	return nc;
+}
+
+double tool_num(const an_tool *t, int j, const char *key)
+{
+	const int k = key_index(t, key);
+	double v;
+	if (k < 0 || j < 0 || j >= t->ng || num_real(t->gval[j * t->nk + k], &v))
+		return NAN;
+	return v;
+}
+
+void tool_label_but(const an_tool *t, int j, const char *key, char *buf, size_t n)
+{
+	size_t l = 0;
+	buf[0] = 0;
+	for (int k = 0; k < t->nk && l < n; k++) {
+		const char *v = t->gval[j * t->nk + k];
+		double x;
+		if (!strcmp(t->keys[k], key))
+			continue;
+		if (!num_real(v, &x)) /* as an_group_runs labels a number */
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%g", l ? " " : "", t->keys[k], x);
+		else
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", t->keys[k], v);
+	}
+	if (!l)
+		snprintf(buf, n, "all");
+}
+
+int tool_group_drive(const an_tool *t, int j, double *A, double *g)
+{
+	int first = 1;
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j)
+			continue;
+		const double a = an_num(r, "amplitude", NAN), gr = axis_gravity(r);
+		if (first)
+			*A = a, *g = gr, first = 0;
+		else if (a != *A || gr != *g)
+			return 0;
+	}
+	return !first && *A > 0 && *g > 0;
 }
 
 int tool_tally(an_tool *t, FILE *out, const char *fmt, ...)
@@ -301,6 +385,7 @@ long tool_partly(const an_tool *t)
 void tool_report(const an_tool *t, FILE *out, const char *partly)
 {
 	acct_print(out, t->o->tool, t->labels, t->A, t->ng, t->nold, t->o->all_versions);
+	pool_print(out, t->o, t->runs, t->k, t->labels, t->ng, t->keys, t->nk, t->nadded);
 	long n = tool_partly(t);
 	if (partly && n)
 		fprintf(out, "# %ld failed run%s enter%s with %s\n", n, n == 1 ? "" : "s", n == 1 ? "s" : "", partly);

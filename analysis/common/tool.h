@@ -15,6 +15,7 @@
 #include "acct.h"
 #include "adb.h"
 #include "cli.h"
+#include "pool.h"
 #include "xopt.h"
 
 typedef struct an_tool {
@@ -29,6 +30,9 @@ typedef struct an_tool {
 	int nk;
 	char **gval;    /* [ng * nk]: group j's value of key k as text ("": none), malloc'd */
 	an_acct *A;     /* the accounting of each group (tool_tally) */
+	char axes[AN_MAXKEYS][48]; /* the swept axes of the campaigns (pool_read) */
+	int na;
+	int nadded;     /* keys[nk - nadded..nk): differing between pooled campaigns */
 	sb_err e;
 } an_tool;
 
@@ -61,8 +65,9 @@ int tool_main(int argc, char **argv, const tool_spec *spec, void *s);
  * a usage error was printed to err (exit 1), 0 to go on. */
 int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err);
 
-/* Opens the database (writable unless --no-store) and reads every run of the campaign
- * into t (zeroed but for t->o and t->e, as tool_main leaves it). */
+/* Opens the (first campaign's) database (writable unless --no-store) and reads every
+ * run of every campaign into t (pool_read; t zeroed but for t->o and t->e, as
+ * tool_main leaves it). */
 int tool_open(an_tool *t, const an_opts *o);
 
 /* A run of an earlier version of the campaign file that the options leave out
@@ -84,7 +89,8 @@ int tool_none(an_tool *t, const char *kind, const char *narrowed);
 int tool_key_known(an_tool *t, const an_run *r, const char *key);
 
 /* Groups the considered runs by the grouping keys (cli_keys: --by, else always[] and
- * the swept axes not in drop[]); a run whose value of a key is unknown is refused
+ * the swept axes not in drop[], and with several campaigns the keys that differ
+ * between them, pool_keys); a run whose value of a key is unknown is refused
  * (tool_key_known). */
 int tool_group(an_tool *t, const char *const *always, const char *const *drop);
 
@@ -105,6 +111,20 @@ void tool_legend(const an_tool *t, int j, int vary, char *buf, size_t n);
  * array of structs). */
 void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int ncurve, const char *along, int c,
 		       int vary, char *buf, size_t n);
+
+/* The curves along a grouping key: curve[j] (of t->ng) = the index of the set of
+ * groups alike in every grouping key but along (numbered in group order); returns
+ * their number, or -1 (a usage error in t->e, naming the keys) when along is not a
+ * grouping key. */
+int tool_curves(an_tool *t, const char *along, int *curve);
+/* Group j's value of a grouping key as a number (NaN: none or no number); its label
+ * without that key ("radius_ratio=0 depth=1"; "all" when nothing else). */
+double tool_num(const an_tool *t, int j, const char *key);
+void tool_label_but(const an_tool *t, int j, const char *key, char *buf, size_t n);
+/* 1 when every considered run of group j shares the amplitude A and the gravity g
+ * (a database without gravity: the engine's default), so that its frequencies map
+ * onto one Gamma or v axis (axis.h); else 0. */
+int tool_group_drive(const an_tool *t, int j, double *A, double *g);
 
 /* The setting every considered run shares, in words for a title: the values of the
  * keys that every run has alike (of N, W, A) and the grouping keys that every group
@@ -142,7 +162,8 @@ int tool_store_end(an_tool *t);
 /* Closes a gnuplot script (gp_open) and runs it. */
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png);
 
-/* The closing lines: the accounting table and, when failed runs were used up to
+/* The closing lines: the accounting table, the campaigns each group drew from when
+ * several were pooled (pool_print) and, when failed runs were used up to
  * their failure, "# N failed runs enter with PARTLY" (no such line when partly is
  * NULL: the tool says it itself). */
 void tool_report(const an_tool *t, FILE *out, const char *partly);

@@ -107,8 +107,10 @@ int onset_estimate(const double *x, const double *y, const long *unit, size_t n,
 		nunits = n;
 	}
 	if (B > 1 && nunits > 1) {
-		if (boot_run(seed, nunits, B, 2, stat2, &g, bo))
+		if (boot_run(seed, nunits, B, 2, stat2, &g, bo) || !(r->boot = malloc(sizeof *bo * 2 * B)))
 			goto out;
+		memcpy(r->boot, bo, sizeof *bo * 2 * B); /* boot_percentile sorts bo */
+		r->B = B;
 		r->boot_ok = boot_percentile(bo, B, level, &r->fit_lo, &r->fit_hi);
 		boot_percentile(bo + B, B, level, &r->thr_lo, &r->thr_hi);
 	}
@@ -129,6 +131,9 @@ void onset_res_free(onset_res *r)
 	free(r->seed_fit);
 	free(r->seed_thr);
 	free(r->unit_id);
+	free(r->boot);
+	r->boot = NULL;
+	r->B = 0;
 	r->seed_fit = r->seed_thr = NULL;
 	r->unit_id = NULL;
 }

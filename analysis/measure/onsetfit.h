@@ -20,6 +20,10 @@ typedef struct onset_res {
 	size_t units, boot_ok;     /* bootstrap units; replicates whose fit succeeded */
 	double *seed_fit, *seed_thr; /* [units] per-unit estimates (malloc'd) */
 	long *unit_id;             /* [units] */
+	double *boot;              /* [2 B] the replicates in draw order: fit.x0's, then thr's
+				    * (NaN: failed), for differences and fits across groups;
+				    * NULL without a bootstrap */
+	size_t B;
 } onset_res;
 
 /* x[i], y[i] from unit[i] (seed / replicate id). threshold NaN: midpoint of the means.

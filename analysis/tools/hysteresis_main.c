@@ -155,14 +155,14 @@ static int run_periods(an_tool *t, hyst_state *s, int i, FILE *f)
 	flux_band(D, &s->fo, &l0, &l1);
 	hyst_leg leg[2];
 	const int nl = legs(r, D, leg);
-	if (hyst_add_run(g, r->replicate))
+	if (hyst_add_run(g, r->unit))
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	for (size_t p = 0; p < D->P; p++)
 		s->raw[p] = flux_plane(D, p, l0, l1);
 	for (int q = 0; q < nl; q++) {
 		hyst_smooth(s->raw, leg[q].a, leg[q].b, t->o->smooth, s->sm);
 		for (size_t p = leg[q].a; p < leg[q].b; p++) {
-			if (hyst_add(g, leg[q].branch, D->f[p], s->sm[p], r->replicate))
+			if (hyst_add(g, leg[q].branch, D->f[p], s->sm[p], r->unit))
 				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 			fprintf(f, "%d,", r->group);
 			csv_text(f, t->labels[r->group]);

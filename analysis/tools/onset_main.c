@@ -9,13 +9,17 @@
 #include "flux.h"
 #include "common/acct.h"
 #include "common/adb.h"
+#include "common/axis.h"
 #include "common/cli.h"
 #include "common/fluxrun.h"
 #include "common/searchdef.h"
+#include "common/label.h"
 #include "common/tool.h"
 #include "common/xopt.h"
+#include "measure/bootdiff.h"
 #include "measure/onsetfit.h"
 #include "measure/resolve.h"
+#include "measure/powerfit.h"
 
 #define VERSION "2"
 
@@ -23,9 +27,10 @@
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
 
 static const char HELP[] =
-	"usage: onset CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
+	"usage: onset CAMPAIGN... [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--band LO:HI]\n"
 	"             [--skip FRAC] [--threshold PHI] [--boot N] [--seed S] [--level L]\n"
-	"             [--sensitivity] [--all-versions] [--no-plot] [--no-store]\n\n"
+	"             [--sensitivity] [--diff KEY] [--fit KEY] [--axis frequency|gamma|velocity]\n"
+	"             [--all-versions] [--no-plot] [--no-store]\n\n"
 	"Onset of convection. For every run at a fixed frequency (ramp = none) with flux =\n"
 	"yes: Phi through the plane = the mean of Phi over the height lines that\n"
 	"lie in the band LO..HI of the settled surface height (default 0.4:0.6, the middle\n"
@@ -68,6 +73,22 @@ static const char HELP[] =
 	"                   stored keys sens_spread_threshold_f, sens_spread_sigmoid_f0 and per\n"
 	"                   variant sens_threshold_f_V and sens_sigmoid_f0_V (lo, hi), V one of\n"
 	"                   band_0.2_0.4, band_0.4_0.6, band_0.6_0.8, no_lowest_f, no_highest_f\n"
+	"  --diff KEY       the difference of the onsets (both estimates) of groups alike in every\n"
+	"                   grouping key but KEY, each against the group of the smallest KEY:\n"
+	"                   its percentile interval from the two groups' bootstraps (each over\n"
+	"                   its seeds, resampled apart) and whether 0 is inside; onset_diff.csv,\n"
+	"                   stored keys diff_threshold_f and diff_sigmoid_f0 (lo, hi)\n"
+	"  --fit KEY        a power law f_on = c KEY^p per set of groups alike but in KEY (> 0):\n"
+	"                   weighted least squares on log-log, weights from the onsets' intervals;\n"
+	"                   p's interval a percentile bootstrap over the groups' own replicates\n"
+	"                   (the covariance's beside it); for KEY = amplitude the exponents of\n"
+	"                   Gamma = const (p = -1/2) and v = const (p = -1), each said excluded\n"
+	"                   or not; onset_fit.csv, stored keys fit_p_E and fit_c_E (E threshold_f,\n"
+	"                   sigmoid_f0)\n"
+	"  --axis A         the figure's x: frequency (default), gamma (Gamma = A(2 pi f)^2/g) or\n"
+	"                   velocity (v = 2 pi f A), each run at its own amplitude\n"
+	"  CAMPAIGN...      several campaigns (NAME, or DIR/NAME in the runs directory DIR) are\n"
+	"                   pooled: groups by parameters whatever campaign (docs/analysis.md)\n"
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current\n"
 	"                   = 0, kept by study run --keep-old); by default the current grid's\n"
 	"  --no-plot        no figures;  --no-store  nothing written to the database\n\n"
@@ -92,9 +113,11 @@ typedef struct onset_state {
 	char def[320];   /* the definition in words, for the table and the figure */
 	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
 	double *xs, *ys; /* one group's points: frequency, Phi */
-	long *us;        /* ... and their seed (replicate) */
+	long *us;        /* ... and their seed (the unit: replicate, pool.h) */
 	onset_res *R;    /* [ng] */
 	int sens;        /* --sensitivity given */
+	const char *diff, *fit; /* --diff KEY, --fit KEY (NULL: not given) */
+	int axis;        /* --axis (axis.h) */
 } onset_state;
 
 static int state_alloc(an_tool *t, onset_state *s)
@@ -221,7 +244,7 @@ static int runs_csv(an_tool *t, const onset_state *s)
 	FILE *f = cli_fopen(t->o, "onset_runs.csv", path, sizeof path, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s\n");
+	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s,axis_x\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < t->k; i++) {
 			const an_run *r = &t->runs[i];
@@ -229,9 +252,10 @@ static int runs_csv(an_tool *t, const onset_state *s)
 				continue;
 			fprintf(f, "%d,", j);
 			csv_text(f, t->labels[j]);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g\n", r->id, r->replicate, r->seed,
-				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), an_num(r, "frequency", NAN), s->phi[i],
-				acct_use_name(r->use), r->used_s);
+			const double fr = an_num(r, "frequency", NAN);
+			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%.17g\n", r->id, r->replicate, r->seed,
+				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), fr, s->phi[i],
+				acct_use_name(r->use), r->used_s, axis_run(s->axis, r));
 		}
 	fclose(f);
 	return 0;
@@ -252,7 +276,7 @@ static size_t group_points(const an_tool *t, onset_state *s, int j, double *rati
 			continue;
 		s->xs[np] = an_num(r, "frequency", NAN);
 		s->ys[np] = s->phi[i];
-		s->us[np++] = r->replicate;
+		s->us[np++] = r->unit;
 	}
 	return np;
 }
@@ -381,6 +405,176 @@ static int beside(an_tool *t, onset_state *s)
 	return t->e.code;
 }
 
+/* ---- --diff and --fit: the onsets of several groups against each other ---- */
+
+/* The two estimates every group has: name, value, interval and replicates (r->boot). */
+enum { NEST = 2 };
+static const char *const EST[NEST] = {"threshold_f", "sigmoid_f0"};
+
+static double est(const onset_res *r, int e, double *lo, double *hi, const double **rep)
+{
+	*rep = r->boot && r->B ? r->boot + (e == 0 ? r->B : 0) : NULL;
+	*lo = e == 0 ? r->thr_lo : r->fit_lo;
+	*hi = e == 0 ? r->thr_hi : r->fit_hi;
+	return e == 0 ? r->thr : r->fit.ok ? r->fit.x0 : NAN;
+}
+
+/* --diff KEY: per curve along KEY, each group against the one of the smallest KEY. */
+static int diff_out(an_tool *t, onset_state *s)
+{
+	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
+	char path[1400];
+	FILE *f = NULL;
+	if (!curve)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if ((nc = tool_curves(t, s->diff, curve)) < 0 || !(f = cli_fopen(t->o, "onset_diff.csv", path, sizeof path, &t->e))) {
+		free(curve);
+		return t->e.code ? t->e.code : sb_errf(&t->e, SB_EUSAGE, "--diff %s: no groups", s->diff);
+	}
+	fprintf(f, "group_a,group_b,%s_a,%s_b,estimate,difference,lo,hi,replicates,zero\n", s->diff, s->diff);
+	printf("\n# differences along %s: the onset at each %s minus at the smallest (other keys equal); %g %% "
+	       "percentile interval from the two groups' bootstraps over their seeds, resampled apart\n", s->diff,
+	       s->diff, 100 * t->o->level);
+	printf("%-30s %10s %10s %-12s %30s %8s\n", "groups alike but in", s->diff, "against", "estimate",
+	       "difference (Hz) [CI]", "0");
+	int pairs = 0;
+	for (int c = 0; c < nc && !t->e.code; c++) {
+		int a = -1;
+		for (int j = 0; j < t->ng; j++) /* the reference: the smallest KEY with usable runs */
+			if (curve[j] == c && acct_used(&t->A[j]) &&
+			    (a < 0 || tool_num(t, j, s->diff) < tool_num(t, a, s->diff)))
+				a = j;
+		for (int b = 0; a >= 0 && b < t->ng; b++) {
+			if (curve[b] != c || b == a || !acct_used(&t->A[b]))
+				continue;
+			char lab[512], grp[1100];
+			tool_label_but(t, a, s->diff, lab, sizeof lab);
+			snprintf(grp, sizeof grp, "%s - %s", t->labels[b], t->labels[a]);
+			pairs++;
+			for (int e = 0; e < NEST; e++) {
+				double la, ha, lb, hb;
+				const double *ra, *rb;
+				const double va = est(&s->R[a], e, &la, &ha, &ra), vb = est(&s->R[b], e, &lb, &hb, &rb);
+				bootdiff_res d;
+				if (bootdiff_run(va, vb, ra, rb, ra && rb && s->R[a].B == s->R[b].B ? s->R[a].B : 0, t->o->level,
+						 &d)) {
+					sb_errf(&t->e, SB_ENOMEM, "out of memory");
+					break;
+				}
+				char ci[64];
+				snprintf(ci, sizeof ci, "%.3f [%.3f, %.3f]", d.d, d.lo, d.hi);
+				const char *z = d.zero == 1 ? "inside" : d.zero == 0 ? "excluded" : "-";
+				printf("%-30s %10g %10g %-12s %30s %8s\n", e ? "" : lab, tool_num(t, b, s->diff),
+				       tool_num(t, a, s->diff), EST[e], ci, z);
+				csv_text(f, t->labels[a]);
+				fputc(',', f);
+				csv_text(f, t->labels[b]);
+				fprintf(f, ",%.17g,%.17g,%s,%.17g,%.17g,%.17g,%zu,%d\n", tool_num(t, a, s->diff),
+					tool_num(t, b, s->diff), EST[e], d.d, d.lo, d.hi, d.ok, d.zero);
+				char key[64];
+				snprintf(key, sizeof key, "diff_%s", EST[e]);
+				tool_store(t, b, grp, key, d.d, d.lo, d.hi, (long)d.ok);
+			}
+		}
+	}
+	if (!pairs)
+		printf("# no two groups with usable runs differ only in %s\n", s->diff);
+	fclose(f);
+	free(curve);
+	return t->e.code;
+}
+
+/* One curve's fit of estimate e: its points, the fit, the table row, CSV and stored rows. */
+static int fit_curve(an_tool *t, onset_state *s, const int *curve, int c, int e, FILE *f)
+{
+	const size_t n = (size_t)t->ng;
+	double *x = malloc(sizeof *x * 4 * n), *rep = NULL;
+	size_t m = 0, B = 0;
+	int first = -1, allrep = 1;
+	if (!x)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	double *y = x + n, *lo = x + 2 * n, *hi = x + 3 * n;
+	const double **reps = malloc(sizeof *reps * n);
+	for (int j = 0; reps && j < t->ng; j++) {
+		double l, h;
+		const double *r;
+		const double v = est(&s->R[j], e, &l, &h, &r);
+		if (curve[j] != c || !(tool_num(t, j, s->fit) > 0) || !(v > 0))
+			continue;
+		first = first < 0 ? j : first;
+		x[m] = tool_num(t, j, s->fit), y[m] = v, lo[m] = l, hi[m] = h, reps[m++] = r;
+		allrep &= r != NULL && (B == 0 || s->R[j].B == B);
+		B = s->R[j].B;
+	}
+	powerfit_res P;
+	int rc = reps ? 0 : -1;
+	if (!rc && m && powerfit_fit(x, y, lo, hi, m, t->o->level, &P))
+		m = 0; /* fewer than two points: said below */
+	if (!rc && m && allrep && B > 1 && (rep = malloc(sizeof *rep * m * B))) {
+		for (size_t i = 0; i < m; i++)
+			memcpy(rep + i * B, reps[i], sizeof *rep * B);
+		rc = powerfit_boot(x, lo, hi, rep, m, B, t->o->level, &P);
+	}
+	if (!rc && first >= 0) {
+		char lab[512], grp[600], ci[64], cc[64], ref[128] = "";
+		tool_label_but(t, first, s->fit, lab, sizeof lab);
+		if (!m) {
+			printf("%-30s %-12s fewer than two points with %s > 0 and an onset\n", lab, EST[e], s->fit);
+		} else {
+			double il, ih;
+			powerfit_interval(&P, &il, &ih);
+			snprintf(ci, sizeof ci, "%.3f [%.3f, %.3f]", P.p, il, ih);
+			snprintf(cc, sizeof cc, "[%.3f, %.3f]", P.cov_lo, P.cov_hi);
+			if (!strcmp(s->fit, "amplitude")) {
+				const int eg = powerfit_excludes(&P, -0.5), ev = powerfit_excludes(&P, -1);
+				snprintf(ref, sizeof ref, "Γ const (p = -1/2) %s, v const (p = -1) %s",
+					 eg == 1 ? "excluded" : eg == 0 ? "inside" : "-", ev == 1 ? "excluded" : ev == 0 ? "inside" : "-");
+			}
+			printf("%-30s %-12s %6zu %26s %18s %10.4g %s%s  %s\n", lab, EST[e], m, ci, cc, P.c,
+			       P.weighted ? "" : "unweighted ", isfinite(P.boot_lo) ? "bootstrap" : "covariance", ref);
+			csv_text(f, lab);
+			fprintf(f, ",%s,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu\n", EST[e], m, P.weighted, P.p,
+				P.boot_lo, P.boot_hi, P.se, P.cov_lo, P.cov_hi, P.c, P.chi2, P.boot_ok);
+			char key[64];
+			snprintf(grp, sizeof grp, "%s: fit along %s", lab, s->fit);
+			snprintf(key, sizeof key, "fit_p_%s", EST[e]);
+			tool_store(t, first, grp, key, P.p, il, ih, (long)m);
+			snprintf(key, sizeof key, "fit_c_%s", EST[e]);
+			tool_store(t, first, grp, key, P.c, NAN, NAN, (long)m);
+		}
+	}
+	free(rep);
+	free(reps);
+	free(x);
+	return rc ? sb_errf(&t->e, SB_ENOMEM, "out of memory") : 0;
+}
+
+/* --fit KEY: per curve along KEY and estimate, f_on = c KEY^p. */
+static int fit_out(an_tool *t, onset_state *s)
+{
+	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
+	char path[1400];
+	FILE *f = NULL;
+	if (!curve)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if ((nc = tool_curves(t, s->fit, curve)) < 0 || !(f = cli_fopen(t->o, "onset_fit.csv", path, sizeof path, &t->e))) {
+		free(curve);
+		return t->e.code;
+	}
+	fprintf(f, "groups,estimate,points,weighted,p,p_lo,p_hi,p_se,p_cov_lo,p_cov_hi,c,chi2,boot_ok\n");
+	printf("\n# power law f_on = c %s^p: weighted least squares on log f against log %s, weights from the onsets'"
+	       " %g %% intervals; p's interval: percentile bootstrap over the groups' own replicates (the covariance's"
+	       " beside it)\n", s->fit, s->fit, 100 * t->o->level);
+	printf("%-30s %-12s %6s %26s %18s %10s %s\n", "groups alike but in", "estimate", "points", "p [CI]",
+	       "covariance CI", "c", "interval, reference exponents");
+	for (int c = 0; c < nc && !t->e.code; c++)
+		for (int e = 0; e < NEST && !t->e.code; e++)
+			fit_curve(t, s, curve, c, e, f);
+	fclose(f);
+	free(curve);
+	return t->e.code;
+}
+
 /* ---- --sensitivity: the onset again for other bands and a trimmed frequency range ---- */
 
 enum { NBAND = 3, NVAR = NBAND + 3 };
@@ -427,7 +621,7 @@ static size_t variant_points(const an_tool *t, onset_state *s, const double *pb,
 			continue;
 		s->xs[np] = f;
 		s->ys[np] = y;
-		s->us[np++] = r->replicate;
+		s->us[np++] = r->unit;
 	}
 	return np;
 }
@@ -538,6 +732,22 @@ static int onset_mark(const onset_res *r, double *f, double *lo, double *hi)
 /* onset.png and onset.pdf: every group's runs and fitted sigmoid (its midpoint in the
  * legend), the onset of the definition named in the title (a dashed line) and its
  * interval (a shaded band) in the group's colour, Gamma on top */
+
+/* The onset mark m [lo, hi] (Hz) of group j on the figure's axis: 0 when the group's
+ * runs do not share one amplitude and gravity (its frequencies map onto no one x). */
+static int on_axis(const an_tool *t, const onset_state *s, int j, double *m, double *lo, double *hi)
+{
+	double A, g;
+	if (s->axis == AXIS_FREQUENCY)
+		return 1;
+	if (!tool_group_drive(t, j, &A, &g))
+		return 0;
+	*m = axis_of(s->axis, A, *m, g);
+	*lo = axis_of(s->axis, A, *lo, g);
+	*hi = axis_of(s->axis, A, *hi, g);
+	return 1;
+}
+
 static int plot(an_tool *t, const onset_state *s)
 {
 	const an_opts *o = t->o;
@@ -548,7 +758,15 @@ static int plot(an_tool *t, const onset_state *s)
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset = %s;"
 		   " band: %g %% CI\"\n", s->fo.band_lo, s->fo.band_hi, set, *set ? "; " : "", s->def, 100 * o->level);
-	gp_xlabel(f, "frequency");
+	if (s->axis == AXIS_FREQUENCY)
+		gp_xlabel(f, "frequency");
+	else {
+		char xl[128];
+		axis_label(xl, sizeof xl, s->axis);
+		fputs("set xlabel ", f);
+		gp_str(f, xl);
+		fputc('\n', f);
+	}
 	fprintf(f, "set ylabel 'Φ (particles per period)'\n"
 		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n");
 	double flo = INFINITY, fhi = -INFINITY, A, g;
@@ -557,14 +775,14 @@ static int plot(an_tool *t, const onset_state *s)
 			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
 			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
 		}
-	if (tool_gamma(t, &A, &g) && flo < fhi)
+	if (s->axis == AXIS_FREQUENCY && tool_gamma(t, &A, &g) && flo < fhi)
 		gp_gamma_axis(f, A, g, flo, fhi);
 	for (int j = 0; j < t->ng; j++) {
 		double m, lo, hi;
 		if (s->R[j].fit.ok)
 			fprintf(f, "s%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, s->R[j].fit.b,
 				s->R[j].fit.a, s->R[j].fit.x0, s->R[j].fit.w);
-		if (!onset_mark(&s->R[j], &m, &lo, &hi))
+		if (!onset_mark(&s->R[j], &m, &lo, &hi) || !on_axis(t, s, j, &m, &lo, &hi))
 			continue;
 		if (isfinite(lo) && isfinite(hi))
 			fprintf(f, "set object %d rect from %.17g, graph 0 to %.17g, graph 1 behind fc lt %d "
@@ -579,21 +797,27 @@ static int plot(an_tool *t, const onset_state *s)
 			continue;
 		char leg[512], mark[256];
 		tool_legend(t, j, 1, leg, sizeof leg);
-		fprintf(f, "%s'onset_runs.csv' skip 1 using 8:($1==%d?$9:1/0) with points pt 7 ps 0.8 lt %d title ",
-			np++ ? ", \\\n  " : "", j, j + 1);
+		fprintf(f, "%s'onset_runs.csv' skip 1 using %d:($1==%d?$9:1/0) with points pt 7 ps 0.8 lt %d title ",
+			np++ ? ", \\\n  " : "", s->axis == AXIS_FREQUENCY ? 8 : 12, j, j + 1);
 		gp_str(f, *leg ? leg : "runs");
-		if (s->R[j].fit.ok) {
+		double m, lo, hi, A = NAN, g = NAN;
+		const int drawn = s->axis == AXIS_FREQUENCY || tool_group_drive(t, j, &A, &g);
+		if (s->R[j].fit.ok && drawn) { /* the sigmoid is one in f: drawn at the axis's f */
 			snprintf(mark, sizeof mark, "sigmoid, midpoint f₀ = %.3g Hz (not the onset)", s->R[j].fit.x0);
-			fprintf(f, ", s%d(x) with lines lw 2 lt %d title ", j, j + 1);
+			fprintf(f, ", s%d(", j);
+			axis_gp_freq(f, s->axis, A, g);
+			fprintf(f, ") with lines lw 2 lt %d title ", j + 1);
 			gp_str(f, mark);
 		}
-		double m, lo, hi;
-		if (!onset_mark(&s->R[j], &m, &lo, &hi))
+		if (!onset_mark(&s->R[j], &m, &lo, &hi) || !on_axis(t, s, j, &m, &lo, &hi))
 			continue;
+		char u[32];
+		const char *xs = s->axis == AXIS_FREQUENCY ? "onset f" : s->axis == AXIS_GAMMA ? "onset Γ" : "onset v";
+		label_unit(u, sizeof u, axis_name(s->axis));
 		if (isfinite(lo) && isfinite(hi))
-			snprintf(mark, sizeof mark, "onset f = %.3g Hz [%.3g, %.3g]", m, lo, hi);
+			snprintf(mark, sizeof mark, "%s = %.3g%s%s [%.3g, %.3g]", xs, m, *u ? " " : "", u, lo, hi);
 		else
-			snprintf(mark, sizeof mark, "onset f = %.3g Hz", m);
+			snprintf(mark, sizeof mark, "%s = %.3g%s%s", xs, m, *u ? " " : "", u);
 		fprintf(f, ", keyentry with lines lt %d dt 2 lw 1.5 title ", j + 1);
 		gp_str(f, mark);
 	}
@@ -609,26 +833,32 @@ static int init(an_tool *t, void *vs, const xopt *x)
 	(void)t;
 	onset_state *s = vs;
 	s->sens = x[0].set;
+	s->diff = x[1].set ? x[1].val : NULL;
+	s->fit = x[2].set ? x[2].val : NULL;
+	if ((s->axis = x[3].set ? axis_parse(x[3].val) : AXIS_FREQUENCY) < 0)
+		return sb_errf(&t->e, SB_EUSAGE, "--axis: expected one of frequency|gamma|velocity, got '%s'", x[3].val);
 	return 0;
 }
 
 static int run(an_tool *t, void *vs)
 {
 	onset_state *s = vs;
-	if (state_alloc(t, s) || definition(t, s) || consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || runs_csv(t, s) ||
-	    tool_accounting_csv(t) || estimate(t, s) || beside(t, s) || (s->sens && sensitivity(t, s)) || tool_store_end(t))
+	if (state_alloc(t, s) || definition(t, s) || consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) ||
+	    runs_csv(t, s) || tool_accounting_csv(t) || estimate(t, s) || beside(t, s) || (s->sens && sensitivity(t, s)) ||
+	    (s->diff && diff_out(t, s)) || (s->fit && fit_out(t, s)) || tool_store_end(t))
 		return t->e.code;
 	tool_report(t, stdout, "the periods they recorded before the failure (after the transient of the run as"
 			       " planned): one point each, like a finished run");
 	if (!t->o->no_plot && plot(t, s))
 		return t->e.code;
-	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s}.csv\n", t->o->out, s->sens ? ",sensitivity" : "");
+	printf("# csv: %s/onset_{runs,seeds,summary,accounting%s%s%s}.csv\n", t->o->out, s->sens ? ",sensitivity" : "",
+	       s->diff ? ",diff" : "", s->fit ? ",fit" : "");
 	return 0;
 }
 
 static const tool_spec SPEC = {.name = "onset", .version = VERSION, .help = HELP,
-			       .allowed = " by band skip threshold boot seed level ", .x = {{"sensitivity", 0, NULL, 0}},
-			       .nx = 1, .init = init, .run = run, .fini = state_free};
+			       .allowed = " by band skip threshold boot seed level ", .x = {{"sensitivity", 0, NULL, 0}, {"diff", 1, NULL, 0}, {"fit", 1, NULL, 0}, {"axis", 1, NULL, 0}},
+			       .nx = 4, .init = init, .run = run, .fini = state_free};
 
 int main(int argc, char **argv)
 {

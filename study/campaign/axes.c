@@ -29,7 +29,7 @@ double axes_gamma(double amplitude, double frequency, double gravity)
 
 double axes_velocity(double amplitude, double frequency)
 {
-	return amplitude * AX_TWO_PI * frequency;
+	return drive_velocity(amplitude, frequency); /* v's one definition */
 }
 
 double axes_value(int kind, double amplitude, double frequency, double gravity)

@@ -77,8 +77,23 @@ int main(void)
 	CHECK("cli.flag_with_value", rc == 1 && !strcmp(e.msg, "--no-plot takes no value"), "rc %d '%s'", rc, e.msg);
 	rc = parse(&o, &e, ONSET, ARGS("camp", "--boot=many"));
 	CHECK("cli.bad_number", rc == 1 && strstr(e.msg, "--boot: expected a number"), "rc %d '%s'", rc, e.msg);
-	rc = parse(&o, &e, ONSET, ARGS("camp", "other"));
-	CHECK("cli.two_campaigns", rc == 1 && strstr(e.msg, "unexpected argument 'other'"), "rc %d '%s'", rc, e.msg);
+	/* several campaigns: NAME in --runs' database, DIR/NAME in DIR's own; pooled under
+	 * "A+B", whose analysis directory is RUNS/A+B/analysis */
+	rc = parse(&o, &e, ONSET, ARGS("camp", "--runs", "R", "R2/other"));
+	CHECK("cli.two_campaigns", rc == 0 && o.ncamp == 2 && !strcmp(o.campaign, "camp+other") &&
+					   !strcmp(o.camp[0].db, "R/study.db") && !strcmp(o.camp[1].name, "other") &&
+					   !strcmp(o.camp[1].runs, "R2") && !strcmp(o.camp[1].db, "R2/study.db") &&
+					   !strcmp(o.db, "R/study.db") && !strcmp(o.out, "R/camp+other/analysis"),
+	      "rc %d n %d campaign %s db %s/%s runs %s out %s (%s)", rc, o.ncamp, o.campaign, o.camp[0].db, o.camp[1].db,
+	      o.camp[1].runs, o.out, e.msg);
+	rc = parse(&o, &e, ONSET, ARGS("camp", "camp"));
+	CHECK("cli.campaign_twice", rc == 1 && strstr(e.msg, "campaign 'camp' of runs/study.db given twice"), "rc %d '%s'",
+	      rc, e.msg);
+	rc = parse(&o, &e, ONSET, ARGS("R/"));
+	CHECK("cli.campaign_no_name", rc == 1 && strstr(e.msg, "'R/': expected a campaign's name"), "rc %d '%s'", rc,
+	      e.msg);
+	rc = parse(&o, &e, ONSET, ARGS("a", "b", "c", "d", "e", "f", "g", "h", "i"));
+	CHECK("cli.campaigns_at_most", rc == 1 && strstr(e.msg, "'i': at most 8 campaigns"), "rc %d '%s'", rc, e.msg);
 	rc = parse(&o, &e, ONSET, ARGS("--boot", "5"));
 	CHECK("cli.no_campaign", rc == 1 && strstr(e.msg, "which campaign?"), "rc %d '%s'", rc, e.msg);
 	rc = parse(&o, &e, ONSET, ARGS("camp", "-x"));

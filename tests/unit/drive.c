@@ -154,6 +154,9 @@ static void test_gamma(void)
 	sb_drive d = {.ramp = RAMP_NONE, .A = 2, .f = 3.2};
 	CHECK_REL("drive.gamma.is_peak_acceleration", fabs(drive_a(&d, 0.75 / 3.2)) / 981, drive_gamma(2, 3.2, 981),
 		  1e-12);
+	/* the peak velocity: 2 pi f A (40.2 cm/s at the paper's 3.2 Hz and 2 cm), drive_v at t = 0 */
+	CHECK_REL("drive.velocity.paper_high", drive_velocity(2, 3.2), 40.21238596594935, 1e-14);
+	CHECK_REL("drive.velocity.is_peak_velocity", drive_v(&d, 0), drive_velocity(2, 3.2), 1e-14);
 }
 
 int main(void)
