@@ -125,7 +125,8 @@ static void line(FILE *out, const char *head, const cost_sum *s, const calib *ra
 	const char *most = s->bound ? "at most " : "";
 	const char *up = s->bound || s->stop_rule ? "at most " : "";
 	fprintf(out, "%s%s%ld runs, %s%s of simulated shaking%s, %s%ld packings to settle, CPU %s%s\n", head, most,
-		s->runs, up, sim, s->stop_rule ? " (a stop rule may end runs earlier)" : "", most, s->packings, up, cpu);
+		s->runs, up, sim, s->stop_rule ? " (a stop rule may end runs earlier)" : "", most, s->packings,
+		known ? up : "", cpu);
 }
 
 void cost_print(FILE *out, const campaign *c, const cost_sum *groups, long ngroups, const cost_sum *total,

@@ -74,6 +74,10 @@ E
 grep -q '^  total: at most 16 runs, at most 16 min of simulated shaking, at most 2 packings to settle, CPU at most ' o.err &&
 	ok search.upper_bound || fail search.upper_bound "$(cat o.err)"
 [ ! -e R/o ] && [ ! -e R/study.db ] && ok search.nothing_run || fail search.nothing_run "$(find R)"
+# a search where the rate is not known: no bound claimed on a CPU time it cannot give
+"$STUDY" expand o.campaign --runs fresh >/dev/null 2>o2.err
+grep -q '^  total: at most 16 runs, .*, CPU not known yet$' o2.err && ok search.cpu_unknown ||
+	fail search.cpu_unknown "$(cat o2.err)"
 
 # the real run: its CPU (engine, driver and GNU parallel) against the estimate
 est=$(sed -n 's/^  total: .*CPU \([0-9.e+]*\) s$/\1/p' dry2.err)
