@@ -14,6 +14,7 @@
 #include "common/tool.h"
 #include "common/xopt.h"
 #include "measure/onsetfit.h"
+#include "measure/sigmoid.h"
 
 #define VERSION "2"
 
@@ -67,7 +68,10 @@ static const char HELP[] =
 	"(tool 'onset'): runs (used), seeds, sigmoid_f0 (lo, hi), sigmoid_width, sigmoid_step,\n"
 	"threshold_f (lo, hi), threshold_seed_sd, and the accounting: runs_failed,\n"
 	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
-	"runs_pending, runs_running, failed_STATUS per status.\n"
+	"runs_pending, runs_running, failed_STATUS per status; per run used (analysis_run, the\n"
+	"runs view's onset_phi and onset_phi_class): Phi and its class, on past the group's\n"
+	"threshold, off before it. The rows record the options that made them: a rerun with\n"
+	"the same options replaces its rows, one with others adds rows (docs/database.md).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
 	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
@@ -234,6 +238,21 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 	tool_store_acct(t, L, j);
 }
 
+/* Group j's runs used, stored with their Phi and their class by the group's threshold
+ * (sig_level): "on" past it, "off" before it; none when the group has no level. */
+static void runs_store(an_tool *t, const onset_state *s, int j, size_t np)
+{
+	int rising;
+	const double lvl = sig_level(s->xs, s->ys, np, t->o->threshold, &rising);
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j || !USED(r))
+			continue;
+		const int on = rising ? s->phi[i] >= lvl : s->phi[i] <= lvl;
+		tool_store_run(t, r, "phi", s->phi[i], isnan(lvl) || isnan(s->phi[i]) ? NULL : on ? "on" : "off");
+	}
+}
+
 /* Per group: the estimates into onset_seeds.csv, onset_summary.csv, the table and
  * the analysis table (storing begun here, ended by the caller). */
 static int estimate(an_tool *t, onset_state *s)
@@ -264,6 +283,7 @@ static int estimate(an_tool *t, onset_state *s)
 			break;
 		}
 		group_out(t, r, j, np, ratio, f, sum);
+		runs_store(t, s, j, np);
 	}
 	if (f)
 		fclose(f);
