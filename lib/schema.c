@@ -84,13 +84,60 @@ static const char SLURM[] =
 	"  host TEXT, submitted TEXT, PRIMARY KEY (campaign, run, job_id));\n"
 	"CREATE INDEX IF NOT EXISTS slurm_task_open ON slurm_task(campaign, state);\n";
 
-/* The analysis tools' derived numbers; each tool adds a column per grouping key it
- * stores (analysis/common/adb.c). */
+/* The analysis tools' derived numbers (docs/database.md, "Derived numbers"). A
+ * definition is one tool's invocation on a campaign: its options in canonical form, the
+ * tool's version and the build; every number it stores points at it, so that a rerun
+ * with other options adds rows beside the earlier ones, and one with the same options
+ * replaces its own (analysis/common/adb.c). `analysis` shows each tool's latest
+ * definition, the one most queries want; each tool adds a column to analysis_all per
+ * grouping key it stores. An id is never reused (AUTOINCREMENT): a rerun's definition
+ * is the newest even when it replaces the newest. */
 static const char ANALYSIS[] =
-	"CREATE TABLE IF NOT EXISTS analysis(\n"
+	"CREATE TABLE IF NOT EXISTS analysis_def(\n"
+	"  id INTEGER PRIMARY KEY AUTOINCREMENT, campaign TEXT NOT NULL, tool TEXT NOT NULL, version TEXT,\n"
+	"  options TEXT, build TEXT, created TEXT);\n"
+	"CREATE INDEX IF NOT EXISTS analysis_def_tool ON analysis_def(campaign, tool);\n"
+	"CREATE TABLE IF NOT EXISTS analysis_all(\n"
 	"  campaign TEXT NOT NULL, tool TEXT NOT NULL, version TEXT, grp TEXT NOT NULL,\n"
-	"  key TEXT NOT NULL, value REAL, lo REAL, hi REAL, n INTEGER, created TEXT,\n"
-	"  PRIMARY KEY (campaign, tool, grp, key))";
+	"  key TEXT NOT NULL, value REAL, lo REAL, hi REAL, n INTEGER, created TEXT, def INTEGER NOT NULL,\n"
+	"  PRIMARY KEY (campaign, tool, def, grp, key));\n"
+	/* the observable a tool computed for each run, and the run's class by it */
+	"CREATE TABLE IF NOT EXISTS analysis_run(\n"
+	"  def INTEGER NOT NULL, campaign TEXT NOT NULL, tool TEXT NOT NULL, run TEXT NOT NULL, key TEXT NOT NULL,\n"
+	"  value REAL, class TEXT, PRIMARY KEY (def, run, key));\n"
+	"CREATE INDEX IF NOT EXISTS analysis_run_run ON analysis_run(campaign, run)";
+static const char ANALYSIS_VIEW[] =
+	"CREATE VIEW IF NOT EXISTS analysis AS SELECT a.* FROM analysis_all a WHERE a.def =\n"
+	"  (SELECT MAX(d.id) FROM analysis_def d WHERE d.campaign = a.campaign AND d.tool = a.tool)";
+
+/* The fixed columns of analysis_all (ANALYSIS) that an `analysis` table of an earlier
+ * version has too; its other columns are grouping keys. */
+static const char *const AN_FIXED[] = {"campaign", "tool", "version", "grp", "key", "value", "lo", "hi", "n",
+				       "created", NULL};
+
+/* s quoted into buf: as an SQL string literal (quote '), or as an identifier (quote ") */
+static void quoted(char *buf, size_t n, const char *s, char q)
+{
+	size_t l = 0;
+	buf[l++] = q;
+	for (; s && *s && l + 3 < n; s++) {
+		if (*s == q)
+			buf[l++] = q;
+		buf[l++] = *s;
+	}
+	buf[l++] = q;
+	buf[l] = 0;
+}
+
+static void literal(char *buf, size_t n, const char *s)
+{
+	quoted(buf, n, s, '\'');
+}
+
+static void ident(char *buf, size_t n, const char *s)
+{
+	quoted(buf, n, s, '"');
+}
 
 static const char *sql_type(rt_type t)
 {
@@ -129,7 +176,16 @@ static int runs_view(sql_db *d, sb_err *e)
 	size_t n, nr;
 	const sb_param *t = params_table(&n);
 	const rcol *rc = results_table(&nr);
-	size_t cap = 4096 + n * 256 + nr * 128;
+	/* the per-run observables the analysis tools stored (analysis_run): a column
+	 * TOOL_KEY and TOOL_KEY_class each, of the tool's latest definition */
+	sqlite3_stmt *ob = NULL;
+	int nob = 0;
+	if (sql_exec(d, e, &ob, "SELECT COUNT(*) FROM (SELECT DISTINCT tool, key FROM analysis_run)", ""))
+		return e->code;
+	if (sqlite3_step(ob) == SQLITE_ROW)
+		nob = sqlite3_column_int(ob, 0);
+	sqlite3_finalize(ob);
+	size_t cap = 4096 + n * 256 + nr * 128 + (size_t)nob * 1024;
 	char *sql = malloc(cap);
 	if (!sql)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
@@ -171,9 +227,32 @@ static int runs_view(sql_db *d, sb_err *e)
 			l += (size_t)snprintf(sql + l, cap - l, ", s.%s", rc[i].name);
 		}
 	}
-	l += (size_t)snprintf(sql + l, cap - l,
-			      ", r.host, r.started, r.finished\n"
-			      "FROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id) b");
+	l += (size_t)snprintf(sql + l, cap - l, ", r.host, r.started, r.finished,\n"
+			      /* an [onset] search's observable and class of the run (search.c) */
+			      "  (SELECT o.value FROM onset_run o WHERE o.campaign = r.campaign AND o.run = r.id) AS search_value,\n"
+			      "  (SELECT o.class FROM onset_run o WHERE o.campaign = r.campaign AND o.run = r.id) AS search_class");
+	if (sql_exec(d, e, &ob, "SELECT DISTINCT tool, key FROM analysis_run ORDER BY tool, key", "")) {
+		free(sql);
+		return e->code;
+	}
+	for (int i = 0; i < nob && sqlite3_step(ob) == SQLITE_ROW; i++) {
+		char tool[160], key[160], name[400];
+		literal(tool, sizeof tool, (const char *)sqlite3_column_text(ob, 0));
+		literal(key, sizeof key, (const char *)sqlite3_column_text(ob, 1));
+		for (int c = 0; c < 2; c++) {
+			char col[400];
+			snprintf(col, sizeof col, "%s_%s%s", (const char *)sqlite3_column_text(ob, 0),
+				 (const char *)sqlite3_column_text(ob, 1), c ? "_class" : "");
+			ident(name, sizeof name, col);
+			l += (size_t)snprintf(sql + l, cap - l,
+					      ",\n  (SELECT x.%s FROM analysis_run x WHERE x.campaign = r.campaign AND x.run = r.id"
+					      " AND x.tool = %s AND x.key = %s AND x.def = (SELECT MAX(q.id) FROM analysis_def q"
+					      " WHERE q.campaign = r.campaign AND q.tool = %s)) AS %s",
+					      c ? "class" : "value", tool, key, tool, name);
+		}
+	}
+	sqlite3_finalize(ob);
+	l += (size_t)snprintf(sql + l, cap - l, "\nFROM run r LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id) b");
 	sqlite3_stmt *st;
 	int same = 0;
 	if (!sql_exec(d, e, &st, "SELECT sql FROM sqlite_master WHERE type = 'view' AND name = 'runs'", "")) {
@@ -197,8 +276,15 @@ int schema_study(sql_db *d, sb_err *e)
 	    sql_ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) ||
 	    /* a search's axis (Gamma, v) and why a group is blocked: absent from older files */
 	    sql_ensure_column(d, "onset_search", "axis", "TEXT", e) || sql_ensure_column(d, "onset_group", "reason", "TEXT", e) ||
-	    sql_ensure_column(d, "onset_run", "axis_value", "REAL", e) || result_table(d, e))
+	    sql_ensure_column(d, "onset_run", "axis_value", "REAL", e) || result_table(d, e) ||
+	    /* the runs view shows the tools' per-run observables */
+	    schema_analysis(d, e))
 		return e->code;
+	return runs_view(d, e);
+}
+
+int schema_runs(sql_db *d, sb_err *e)
+{
 	return runs_view(d, e);
 }
 
@@ -207,7 +293,61 @@ int schema_slurm(sql_db *d, sb_err *e)
 	return sql_script(d, SLURM, e);
 }
 
+/* An `analysis` table of an earlier version (one set of rows per campaign and tool,
+ * with the grouping keys' columns it was given) becomes analysis_all: its rows kept,
+ * under one definition per campaign and tool whose options are NULL (not recorded
+ * then). */
+static int analysis_migrate(sql_db *d, sb_err *e)
+{
+	sqlite3_stmt *st;
+	if (sql_exec(d, e, &st, "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'analysis'", ""))
+		return e->code;
+	const int old = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) > 0;
+	sqlite3_finalize(st);
+	if (!old)
+		return 0;
+	char cols[8192];
+	sql_columns(d, "analysis", cols, sizeof cols);
+	const size_t cap = 3 * sizeof cols + 1024;
+	char *list = malloc(cap), *sql = malloc(2 * cap);
+	if (!list || !sql) {
+		free(list);
+		free(sql);
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	}
+	size_t l = 0;
+	list[0] = 0;
+	for (char *sv, *c = strtok_r(cols, ",", &sv); c && !e->code; c = strtok_r(NULL, ",", &sv)) {
+		int fixed = !strcmp(c, "def");
+		for (int i = 0; AN_FIXED[i]; i++)
+			fixed |= !strcmp(c, AN_FIXED[i]);
+		char q[300];
+		ident(q, sizeof q, c);
+		if (!fixed) { /* a grouping key's column, untyped as adb.c adds them */
+			snprintf(sql, 2 * cap, "ALTER TABLE analysis_all ADD COLUMN %s", q);
+			sql_script(d, sql, e);
+		}
+		if (strcmp(c, "def"))
+			l += (size_t)snprintf(list + l, cap - l, "%s%s", l ? ", " : "", q);
+	}
+	if (!e->code) {
+		snprintf(sql, 2 * cap,
+			 "INSERT INTO analysis_def(campaign, tool, version, options, build, created)\n"
+			 "  SELECT campaign, tool, MAX(version), NULL, NULL, MAX(created) FROM analysis\n"
+			 "  GROUP BY campaign, tool ORDER BY MIN(rowid);\n"
+			 "INSERT INTO analysis_all(%s, def) SELECT %s, (SELECT MAX(d.id) FROM analysis_def d\n"
+			 "  WHERE d.campaign = a.campaign AND d.tool = a.tool) FROM analysis a;\n"
+			 "DROP TABLE analysis", list, list);
+		sql_script(d, sql, e);
+	}
+	free(list);
+	free(sql);
+	return e->code;
+}
+
 int schema_analysis(sql_db *d, sb_err *e)
 {
-	return sql_script(d, ANALYSIS, e);
+	if (sql_script(d, ANALYSIS, e) || analysis_migrate(d, e))
+		return e->code;
+	return sql_script(d, ANALYSIS_VIEW, e);
 }

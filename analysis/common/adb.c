@@ -1,9 +1,10 @@
-/* adb.c - campaign runs, parameter grouping and the `analysis` results table. */
+/* adb.c - campaign runs, parameter grouping and the analysis results tables. */
 #include "adb.h"
 
 #include "layout.h"
 #include "num.h"
 #include "params.h"
+#include "provenance.h"
 #include "schema.h"
 
 #include <errno.h>
@@ -29,7 +30,9 @@ void adb_close(adb *d)
 {
 	if (d->ins)
 		sqlite3_finalize(d->ins);
-	d->ins = NULL;
+	if (d->rins)
+		sqlite3_finalize(d->rins);
+	d->ins = d->rins = NULL;
 	sql_close(&d->db);
 }
 
@@ -338,8 +341,9 @@ void an_labels_free(char **labels, int ng)
 
 /* ---- results ---- */
 
-/* The columns every analysis table has besides the grouping keys' (adb.h). */
-static const char *const FIXED[] = {"campaign", "tool", "version", "grp", "key", "value", "lo", "hi", "n", "created", NULL};
+/* The columns analysis_all has besides the grouping keys' (adb.h). */
+static const char *const FIXED[] = {"campaign", "tool", "version", "grp", "key", "value", "lo", "hi", "n", "created",
+				    "def", NULL};
 /* The keys campaigns sweep most: their columns exist whichever tool ran first, so a
  * query that names them never fails on a table without them. */
 static const char *const COMMON_KEYS[] = {"radius_ratio", "depth", "width", "frequency", "amplitude", "n_grains",
@@ -373,15 +377,49 @@ static void ident(char *buf, size_t n, const char *name)
  * before the tools stored their keys, or by a tool grouping by other keys). */
 static int add_column(adb *d, const char *key, sb_err *e)
 {
-	if (!adb_key_column(key) || has(d, "analysis", key))
+	if (!adb_key_column(key) || has(d, "analysis_all", key))
 		return 0;
 	char q[200], sql[300];
 	ident(q, sizeof q, key);
-	snprintf(sql, sizeof sql, "ALTER TABLE analysis ADD COLUMN %s", q);
+	snprintf(sql, sizeof sql, "ALTER TABLE analysis_all ADD COLUMN %s", q);
 	return sql_script(&d->db, sql, e);
 }
 
-int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][48], int nk, sb_err *e)
+static void now_utc(char now[32])
+{
+	time_t t = time(NULL);
+	struct tm tm;
+	gmtime_r(&t, &tm);
+	strftime(now, 32, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* The definition being stored into d->def: an earlier one of the same campaign, tool,
+ * version and options deleted with its rows (a rerun replaces its own), a new one
+ * recorded (its id the largest yet: the newest). */
+static int define(adb *d, const char *campaign, const char *tool, const char *version, const char *options,
+		  sb_err *e)
+{
+	static const char *const del[] = {
+		"DELETE FROM analysis_all WHERE def IN (SELECT id FROM analysis_def WHERE campaign = ? AND tool = ?"
+		" AND version IS ? AND options IS ?)",
+		"DELETE FROM analysis_run WHERE def IN (SELECT id FROM analysis_def WHERE campaign = ? AND tool = ?"
+		" AND version IS ? AND options IS ?)",
+		"DELETE FROM analysis_def WHERE campaign = ? AND tool = ? AND version IS ? AND options IS ?"};
+	for (size_t i = 0; i < sizeof del / sizeof *del; i++)
+		if (sql_exec(&d->db, e, NULL, del[i], "tttt", campaign, tool, version, options))
+			return e->code;
+	char now[32];
+	now_utc(now);
+	if (sql_exec(&d->db, e, NULL,
+		     "INSERT INTO analysis_def(campaign, tool, version, options, build, created) VALUES (?, ?, ?, ?, ?, ?)",
+		     "tttttt", campaign, tool, version, options, prov_version(), now))
+		return e->code;
+	d->def = (long long)sqlite3_last_insert_rowid(d->db.h);
+	return 0;
+}
+
+int adb_store_begin(adb *d, const char *campaign, const char *tool, const char *version, const char *options,
+		    char keys[][48], int nk, sb_err *e)
 {
 	if (sql_script(&d->db, "BEGIN IMMEDIATE", e))
 		return e->code;
@@ -394,21 +432,17 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][
 	for (int k = 0; k < nk; k++)
 		if (add_column(d, keys[k], e))
 			goto fail;
-	if (sqlite3_prepare_v2(d->db.h, "DELETE FROM analysis WHERE campaign = ? AND tool = ?", -1, &st, NULL) != SQLITE_OK) {
+	if (define(d, campaign, tool, version, options, e))
+		goto fail;
+	if (sqlite3_prepare_v2(d->db.h,
+			       "INSERT OR REPLACE INTO analysis_run(def, campaign, tool, run, key, value, class)"
+			       " VALUES (?, ?, ?, ?, ?, ?, ?)", -1, &d->rins, NULL) != SQLITE_OK) {
 		dberr(d, e);
 		goto fail;
 	}
-	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
-	sqlite3_bind_text(st, 2, tool, -1, SQLITE_TRANSIENT);
-	if (sqlite3_step(st) != SQLITE_DONE) {
-		dberr(d, e);
-		goto fail;
-	}
-	sqlite3_finalize(st);
-	st = NULL;
 	/* the grouping keys' columns follow the fixed ten; a key without a column (one
 	 * named like a fixed column) is bound nowhere */
-	char sql[4096] = "INSERT OR REPLACE INTO analysis(campaign, tool, version, grp, key, value, lo, hi, n, created";
+	char sql[4096] = "INSERT OR REPLACE INTO analysis_all(campaign, tool, version, grp, key, value, lo, hi, n, created, def";
 	size_t l = strlen(sql);
 	d->nk = 0;
 	for (int k = 0; k < nk && k < AN_ADB_MAXKEYS; k++) {
@@ -421,7 +455,7 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][
 		d->col[k] = 1;
 	}
 	d->nk = nk < AN_ADB_MAXKEYS ? nk : AN_ADB_MAXKEYS;
-	l += (size_t)snprintf(sql + l, sizeof sql - l, ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?");
+	l += (size_t)snprintf(sql + l, sizeof sql - l, ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?");
 	for (int k = 0; k < d->nk; k++)
 		if (d->col[k])
 			l += (size_t)snprintf(sql + l, sizeof sql - l, ", ?");
@@ -433,6 +467,8 @@ int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][
 	return 0;
 fail:
 	sqlite3_finalize(st);
+	sqlite3_finalize(d->rins);
+	d->rins = NULL;
 	sqlite3_exec(d->db.h, "ROLLBACK", NULL, NULL, NULL);
 	return e->code;
 }
@@ -471,10 +507,7 @@ int adb_store(adb *d, const char *campaign, const char *tool, const char *versio
 	      const char *const *vals, const char *key, double value, double lo, double hi, long n, sb_err *e)
 {
 	char now[32];
-	time_t t = time(NULL);
-	struct tm tm;
-	gmtime_r(&t, &tm);
-	strftime(now, sizeof now, "%Y-%m-%dT%H:%M:%SZ", &tm);
+	now_utc(now);
 	sqlite3_stmt *st = d->ins;
 	sqlite3_reset(st);
 	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
@@ -487,9 +520,30 @@ int adb_store(adb *d, const char *campaign, const char *tool, const char *versio
 	bind_real(st, 8, hi);
 	sqlite3_bind_int64(st, 9, n);
 	sqlite3_bind_text(st, 10, now, -1, SQLITE_TRANSIENT);
-	for (int k = 0, c = 11; k < d->nk; k++)
+	sqlite3_bind_int64(st, 11, d->def);
+	for (int k = 0, c = 12; k < d->nk; k++)
 		if (d->col[k])
 			bind_typed(st, c++, vals ? vals[k] : NULL);
+	if (sqlite3_step(st) != SQLITE_DONE)
+		return dberr(d, e);
+	return 0;
+}
+
+int adb_store_run(adb *d, const char *campaign, const char *tool, const char *run, const char *key, double value,
+		  const char *cls, sb_err *e)
+{
+	sqlite3_stmt *st = d->rins;
+	sqlite3_reset(st);
+	sqlite3_bind_int64(st, 1, d->def);
+	sqlite3_bind_text(st, 2, campaign, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 3, tool, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 4, run, -1, SQLITE_TRANSIENT);
+	sqlite3_bind_text(st, 5, key, -1, SQLITE_TRANSIENT);
+	bind_real(st, 6, value);
+	if (cls)
+		sqlite3_bind_text(st, 7, cls, -1, SQLITE_TRANSIENT);
+	else
+		sqlite3_bind_null(st, 7);
 	if (sqlite3_step(st) != SQLITE_DONE)
 		return dberr(d, e);
 	return 0;
@@ -499,10 +553,15 @@ int adb_store_end(adb *d, int ok, sb_err *e)
 {
 	if (d->ins)
 		sqlite3_finalize(d->ins);
-	d->ins = NULL;
+	if (d->rins)
+		sqlite3_finalize(d->rins);
+	d->ins = d->rins = NULL;
+	/* a database the driver wrote shows the per-run observables in its runs view */
+	if (ok && has(d, "run", NULL) && schema_runs(&d->db, e))
+		ok = 0;
 	if (!ok) {
 		sqlite3_exec(d->db.h, "ROLLBACK", NULL, NULL, NULL);
-		return 0;
+		return e->code;
 	}
 	return sql_script(&d->db, "COMMIT", e);
 }

@@ -1,6 +1,7 @@
 /* adb.h - the analysis side of a campaign database: every run of a campaign with its
- * state, its parameters and output path, grouping by parameters, and the `analysis`
- * table where the tools store their derived numbers (prepared statements only). */
+ * state, its parameters and output path, grouping by parameters, and the tables where
+ * the tools store their derived numbers and per-run observables under the definition
+ * (options, versions) that produced them (prepared statements only). */
 #ifndef AN_ADB_H
 #define AN_ADB_H
 
@@ -41,9 +42,11 @@ typedef struct an_run {
 
 typedef struct adb {
 	sql_db db;          /* lib/sql.h */
-	sqlite3_stmt *ins;  /* INSERT into analysis, prepared by adb_store_begin */
+	sqlite3_stmt *ins;  /* INSERT into analysis_all, prepared by adb_store_begin */
 	int nk;             /* ... with the columns of these grouping keys: */
 	int col[AN_ADB_MAXKEYS]; /* 1 when key k has a column (adb_key_column) */
+	sqlite3_stmt *rins; /* INSERT into analysis_run, prepared likewise */
+	long long def;      /* the definition being stored: analysis_def.id */
 } adb;
 
 int adb_open(adb *d, const char *path, int writable, sb_err *e);
@@ -79,19 +82,32 @@ const char *an_str(const an_run *r, const char *key);
 int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels);
 void an_labels_free(char **labels, int ng);
 
-/* Storing results: BEGIN, create the table if missing, add the columns of the grouping
- * keys keys[0..nk) (and of the common grid keys: radius_ratio, depth, width, frequency,
- * amplitude, n_grains) when it lacks them, delete this tool's earlier rows for the
- * campaign; adb_store inserts one row (NaN value/lo/hi become NULL) with the group's
- * values of the keys, vals[0..nk) as text (NULL or "": NULL; stored typed: integer,
- * real or text), NULL in the other keys' columns; adb_store_end commits (ok != 0) or
- * rolls back. Table:
- *   analysis(campaign, tool, version, grp, key, value, lo, hi, n, created,
- *            radius_ratio, depth, ..., one column per grouping key) */
-int adb_store_begin(adb *d, const char *campaign, const char *tool, char keys[][48], int nk, sb_err *e);
+/* Storing results (docs/database.md, "Derived numbers"): BEGIN, create the tables if
+ * missing (an `analysis` table of an earlier version becomes analysis_all), add the
+ * columns of the grouping keys keys[0..nk) (and of the common grid keys: radius_ratio,
+ * depth, width, frequency, amplitude, n_grains) when analysis_all lacks them, and
+ * record the definition: the tool's version and its options in canonical form (the
+ * same options give the same text; cli_options) with the build (prov_version). The
+ * rows of an earlier definition of this campaign, tool, version and options are
+ * deleted (a rerun replaces its own rows); those of other definitions are kept, and
+ * the view `analysis` shows the newest. adb_store inserts one row (NaN value/lo/hi
+ * become NULL) with the group's values of the keys, vals[0..nk) as text (NULL or "":
+ * NULL; stored typed: integer, real or text), NULL in the other keys' columns;
+ * adb_store_end commits (ok != 0), with the `runs` view given a column for each
+ * per-run observable stored, or rolls back. Table:
+ *   analysis_all(campaign, tool, version, grp, key, value, lo, hi, n, created, def,
+ *                radius_ratio, depth, ..., one column per grouping key) */
+int adb_store_begin(adb *d, const char *campaign, const char *tool, const char *version, const char *options,
+		    char keys[][48], int nk, sb_err *e);
 int adb_store(adb *d, const char *campaign, const char *tool, const char *version, const char *grp,
 	      const char *const *vals, const char *key, double value, double lo, double hi, long n, sb_err *e);
-/* 1 when a grouping key gets a column: not empty, not named like one of the fixed ten. */
+/* The observable a tool computed for run (key, e.g. "phi"; NaN: NULL) and the run's
+ * class by it (e.g. "on", "off"; NULL: none), under the definition being stored:
+ * analysis_run, shown in the `runs` view as columns TOOL_KEY and TOOL_KEY_class. */
+int adb_store_run(adb *d, const char *campaign, const char *tool, const char *run, const char *key, double value,
+		  const char *cls, sb_err *e);
+/* 1 when a grouping key gets a column: not empty, not named like one of the fixed
+ * eleven. */
 int adb_key_column(const char *key);
 int adb_store_end(adb *d, int ok, sb_err *e);
 

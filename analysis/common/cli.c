@@ -43,6 +43,14 @@ static int is_flag(const char *name)
 	       !strcmp(name, "all-versions");
 }
 
+/* the options that say where output goes, or whether it is drawn or stored: not part
+ * of what a tool computes (cli_options) */
+static int is_output(const char *name)
+{
+	return !strcmp(name, "help") || !strcmp(name, "db") || !strcmp(name, "runs") || !strcmp(name, "out") ||
+	       !strcmp(name, "no-plot") || !strcmp(name, "no-store");
+}
+
 static int allowed_opt(const char *allowed, const char *name)
 {
 	char pat[64];
@@ -328,6 +336,62 @@ static int in_list(const char *const *l, const char *s)
 		if (!strcmp(*l, s))
 			return 1;
 	return 0;
+}
+
+/* Option name's value in effect into v (cli_options). */
+static void opt_value(const an_opts *o, const char *name, char *v, size_t n)
+{
+	size_t l = 0;
+	v[0] = 0;
+	if (!strcmp(name, "all-versions"))
+		snprintf(v, n, "%s", o->all_versions ? "yes" : "no");
+	else if (!strcmp(name, "boot"))
+		snprintf(v, n, "%ld", o->boot);
+	else if (!strcmp(name, "seed"))
+		snprintf(v, n, "%lu", o->seed);
+	else if (!strcmp(name, "level"))
+		snprintf(v, n, "%.15g", o->level);
+	else if (!strcmp(name, "threshold"))
+		snprintf(v, n, isnan(o->threshold) ? "halfway" : "%.15g", o->threshold);
+	else if (!strcmp(name, "skip"))
+		snprintf(v, n, "%.15g", o->skip);
+	else if (!strcmp(name, "band"))
+		snprintf(v, n, "%.15g:%.15g", o->band_lo, o->band_hi);
+	else if (!strcmp(name, "bins"))
+		snprintf(v, n, "%ld", o->bins);
+	else if (!strcmp(name, "smooth"))
+		snprintf(v, n, "%ld", o->smooth);
+	else if (!strcmp(name, "ratio"))
+		snprintf(v, n, isnan(o->ratio) ? "largest" : "%.15g", o->ratio);
+	else if (!strcmp(name, "by")) {
+		for (int i = 0; i < o->nby && l < n; i++)
+			l += (size_t)snprintf(v + l, n - l, "%s%s", i ? "," : "", o->by[i]);
+		if (o->nby < 0)
+			snprintf(v, n, "axes");
+	} else if (!strcmp(name, "freq")) {
+		for (int i = 0; i < o->nfreq && l < n; i++)
+			l += (size_t)snprintf(v + l, n - l, "%s%.15g", i ? "," : "", o->freqs[i]);
+		if (!o->nfreq)
+			snprintf(v, n, "all");
+	} else if (!strcmp(name, "where")) {
+		for (int i = 0; i < o->nwhere && l < n; i++)
+			l += (size_t)snprintf(v + l, n - l, "%s%s=%s", i ? "," : "", o->where_key[i], o->where_val[i]);
+		if (!o->nwhere)
+			snprintf(v, n, "all");
+	}
+}
+
+void cli_options(const an_opts *o, const char *allowed, char *buf, size_t n)
+{
+	size_t l = 0;
+	buf[0] = 0;
+	for (int i = 0; OPTS[i] && l < n; i++) {
+		if (is_output(OPTS[i]) || !allowed_opt(allowed, OPTS[i]))
+			continue;
+		char v[1024];
+		opt_value(o, OPTS[i], v, sizeof v);
+		l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", OPTS[i], v);
+	}
 }
 
 void cli_keys(const an_opts *o, char axes[][48], int na, const char *const *always, const char *const *drop,

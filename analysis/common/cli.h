@@ -49,6 +49,13 @@ typedef struct an_opts {
  * besides the common ones. Returns 0 (go on), -1 (help asked) or 1 (usage error in e:
  * an unknown option names the nearest one of the tool). */
 int cli_parse(an_opts *o, int argc, char **argv, const char *allowed, sb_err *e);
+/* The options that define a tool's numbers, in canonical form into buf: every option
+ * the tool takes (allowed, as for cli_parse) but the ones that only say where things
+ * go or whether they are drawn or stored (help, db, runs, out, no-plot, no-store), as
+ * "name=value" in cli's order, separated by spaces, with the value in effect (a default
+ * too, so that giving the default is the same definition as leaving it out; an unset
+ * one by the word for what the tool does then: "threshold=halfway", "by=axes"). */
+void cli_options(const an_opts *o, const char *allowed, char *buf, size_t n);
 /* The edit distance of two words (a swap of neighbours is one edit), and the option
  * of the tool (allowed as for cli_parse) nearest to name; NULL when none is near. */
 int cli_distance(const char *a, const char *b);

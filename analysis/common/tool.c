@@ -35,6 +35,9 @@ int tool_main(int argc, char **argv, const tool_spec *spec, void *s)
 	an_tool t;
 	memset(&t, 0, sizeof t);
 	t.o = &o;
+	t.allowed = spec->allowed;
+	t.x = x;
+	t.nx = spec->nx;
 	if (!(spec->init && spec->init(&t, s, x)) && !tool_open(&t, &o))
 		spec->run(&t, s);
 	if (spec->fini)
@@ -335,11 +338,29 @@ void tool_summary_acct(const an_tool *t, FILE *s, int j)
 	fputc('\n', s);
 }
 
+void tool_define(an_tool *t, const char *fmt, ...)
+{
+	size_t l = strlen(t->defn);
+	if (l + 2 >= sizeof t->defn)
+		return;
+	if (l)
+		t->defn[l++] = ' ';
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(t->defn + l, sizeof t->defn - l, fmt, ap);
+	va_end(ap);
+}
+
 int tool_store_begin(an_tool *t)
 {
 	if (t->o->no_store)
 		return 0;
-	return adb_store_begin(&t->d, t->o->campaign, t->o->tool, t->keys, t->nk, &t->e);
+	char opts[2048];
+	cli_options(t->o, t->allowed ? t->allowed : "", opts, sizeof opts);
+	xopt_options(t->x, t->nx, opts, sizeof opts);
+	if (*t->defn)
+		snprintf(opts + strlen(opts), sizeof opts - strlen(opts), "%s%s", *opts ? " " : "", t->defn);
+	return adb_store_begin(&t->d, t->o->campaign, t->o->tool, t->o->version, opts, t->keys, t->nk, &t->e);
 }
 
 /* group j's key values, as adb_store binds them */
@@ -353,6 +374,12 @@ void tool_store(an_tool *t, int j, const char *grp, const char *key, double valu
 	if (!t->o->no_store)
 		adb_store(&t->d, t->o->campaign, t->o->tool, t->o->version, grp, group_vals(t, j), key, value, lo, hi, n,
 			  &t->e);
+}
+
+void tool_store_run(an_tool *t, const an_run *r, const char *key, double value, const char *cls)
+{
+	if (!t->o->no_store && !t->e.code)
+		adb_store_run(&t->d, t->o->campaign, t->o->tool, r->id, key, value, cls, &t->e);
 }
 
 void tool_store_acct(an_tool *t, const char *grp, int j)

@@ -33,6 +33,12 @@ typedef struct an_tool {
 	char axes[AN_MAXKEYS][48]; /* the swept axes of the campaigns (pool_read) */
 	int na;
 	int nadded;     /* keys[nk - nadded..nk): differing between pooled campaigns */
+	/* what defines the stored numbers (tool_store_begin): the options the tool takes
+	 * (cli's, its own as given) and words it adds itself (tool_define) */
+	const char *allowed;
+	const xopt *x;
+	int nx;
+	char defn[512];
 	sb_err e;
 } an_tool;
 
@@ -149,13 +155,20 @@ int tool_accounting_csv(an_tool *t);
 FILE *tool_summary_csv(an_tool *t, const char *name, const char *head);
 void tool_summary_acct(const an_tool *t, FILE *s, int j);
 
-/* Rows of the analysis table (nothing under --no-store): begin replaces the tool's
- * earlier rows (and gives the table a column per grouping key), one row of group j
- * (its key values in their columns; j < 0: none), group j's accounting rows
- * (acct_store), and end commits when no error was kept, else rolls back and returns
- * the error. */
+/* Rows of the analysis tables (nothing under --no-store): begin records the definition
+ * (the options in canonical form, cli_options and xopt_options, then tool_define's
+ * words; the tool's version) and replaces the rows of an earlier run with the same
+ * definition, keeping other definitions' (adb_store_begin; and gives the table a column
+ * per grouping key), one row of group j (its key values in their columns; j < 0:
+ * none), the observable of run r and its class (cls NULL: none), group j's accounting
+ * rows (acct_store), and end commits when no error was kept, else rolls back and
+ * returns the error. */
 int tool_store_begin(an_tool *t);
 void tool_store(an_tool *t, int j, const char *grp, const char *key, double value, double lo, double hi, long n);
+void tool_store_run(an_tool *t, const an_run *r, const char *key, double value, const char *cls);
+/* A word of the definition the options do not say ("threshold=search 2"), added to
+ * the stored options (before tool_store_begin). */
+void tool_define(an_tool *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void tool_store_acct(an_tool *t, const char *grp, int j);
 int tool_store_end(an_tool *t);
 

@@ -142,3 +142,19 @@ int xopt_num(const xopt *x, double lo, double hi, double dflt, double *v, sb_err
 	*v = d;
 	return 0;
 }
+
+void xopt_options(const xopt *x, int nx, char *buf, size_t n)
+{
+	size_t l = strlen(buf);
+	for (int k = 0; k < nx && l < n; k++) {
+		double d;
+		if (!x[k].has_arg)
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", x[k].name, x[k].set ? "yes" : "no");
+		else if (!x[k].set)
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=default", l ? " " : "", x[k].name);
+		else if (!num_real(x[k].val, &d))
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%.15g", l ? " " : "", x[k].name, d);
+		else
+			l += (size_t)snprintf(buf + l, n - l, "%s%s=%s", l ? " " : "", x[k].name, x[k].val);
+	}
+}

@@ -30,6 +30,10 @@ int xopt_take(int *argc, char **argv, xopt *x, int nx, const char *allowed, sb_e
 int xopt_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, xopt *x, int nx, FILE *out,
 	      FILE *err);
 
+/* The own options in canonical form appended to buf (cli_options' words): " name=value"
+ * each, a number as %.15g, "default" when not given; a flag "yes" or "no". */
+void xopt_options(const xopt *x, int nx, char *buf, size_t n);
+
 /* The value of an own option as a number in [lo, hi] (dflt when not given); SB_EUSAGE
  * in e when it is not one. */
 int xopt_num(const xopt *x, double lo, double hi, double dflt, double *v, sb_err *e);

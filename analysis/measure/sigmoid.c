@@ -102,11 +102,11 @@ size_t sig_means(const double *x, const double *y, size_t n, double *ux, double 
 	return means_counts(x, y, n, ux, uy, NULL, NULL);
 }
 
-static double crossing(const double *ux, const double *uy, size_t m, double thr)
+/* The level thr stands for on the means uy[0..m), m >= 2 (NaN: their midpoint), and
+ * *sgn = 1 when they rise from the lowest to the highest x, else -1 (sig_level). */
+static double level_of(const double *uy, size_t m, double thr, double *sgn)
 {
-	if (m < 2)
-		return NAN;
-	double sgn = uy[m - 1] >= uy[0] ? 1 : -1;
+	*sgn = uy[m - 1] >= uy[0] ? 1 : -1;
 	if (isnan(thr)) {
 		double lo = uy[0], hi = uy[0];
 		for (size_t i = 1; i < m; i++) {
@@ -115,6 +115,15 @@ static double crossing(const double *ux, const double *uy, size_t m, double thr)
 		}
 		thr = 0.5 * (lo + hi);
 	}
+	return thr;
+}
+
+static double crossing(const double *ux, const double *uy, size_t m, double thr)
+{
+	if (m < 2)
+		return NAN;
+	double sgn;
+	thr = level_of(uy, m, thr, &sgn);
 	if (sgn * uy[0] >= sgn * thr)
 		return NAN; /* already above at the lowest x: no crossing inside the data */
 	for (size_t i = 1; i < m; i++)
@@ -124,6 +133,19 @@ static double crossing(const double *ux, const double *uy, size_t m, double thr)
 			return ux[i - 1] + u * (ux[i] - ux[i - 1]);
 		}
 	return NAN;
+}
+
+double sig_level(const double *x, const double *y, size_t n, double thr, int *rising)
+{
+	double *ux = malloc(sizeof *ux * (n ? n : 1)), *uy = malloc(sizeof *uy * (n ? n : 1));
+	double r = NAN, sgn = 1;
+	const size_t m = ux && uy ? sig_means(x, y, n, ux, uy) : 0;
+	if (m >= 2)
+		r = level_of(uy, m, thr, &sgn);
+	*rising = sgn > 0;
+	free(ux);
+	free(uy);
+	return r;
 }
 
 double sig_threshold(const double *x, const double *y, size_t n, double thr)

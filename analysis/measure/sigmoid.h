@@ -24,5 +24,10 @@ size_t sig_means(const double *x, const double *y, size_t n, double *ux, double 
  * interpolation between neighbours); thr = NaN takes the midpoint (min + max) / 2 of
  * the means. NaN when it never crosses or fewer than 2 distinct x. */
 double sig_threshold(const double *x, const double *y, size_t n, double thr);
+/* The level sig_threshold compares the means with: thr, or their midpoint when thr is
+ * NaN; *rising = 1 when the means rise from the lowest to the highest x (a point is
+ * past the threshold when it is >= the level then, <= it otherwise). NaN when there
+ * are fewer than 2 distinct x. */
+double sig_level(const double *x, const double *y, size_t n, double thr, int *rising);
 
 #endif

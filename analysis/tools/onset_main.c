@@ -20,6 +20,7 @@
 #include "measure/onsetfit.h"
 #include "measure/resolve.h"
 #include "measure/powerfit.h"
+#include "measure/sigmoid.h"
 
 #define VERSION "2"
 
@@ -98,7 +99,10 @@ static const char HELP[] =
 	"threshold_f (lo, hi), threshold_seed_sd, search_f (lo, hi: the search's onset, on a\n"
 	"campaign with one), and the accounting: runs_failed,\n"
 	"runs_failed_used, failed_used_s, failed_planned_s, runs_unusable, runs_unreadable,\n"
-	"runs_pending, runs_running, failed_STATUS per status.\n"
+	"runs_pending, runs_running, failed_STATUS per status; per run used (analysis_run, the\n"
+	"runs view's onset_phi and onset_phi_class): Phi and its class, on past the group's\n"
+	"threshold, off before it. The rows record the options that made them: a rerun with\n"
+	"the same options replaces its rows, one with others adds rows (docs/database.md).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
 	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
@@ -203,6 +207,8 @@ static int definition(an_tool *t, onset_state *s)
 		snprintf(th, sizeof th, "≥ %g in", s->thr);
 	snprintf(s->def, sizeof s->def, "first f with mean Φ %s band %g–%g, skip %g", th, s->fo.band_lo, s->fo.band_hi,
 		 s->fo.skip);
+	/* the stored rows' definition: the options say "halfway" when the search's threshold is taken */
+	tool_define(t, "onset=%s", s->def);
 	printf("# onset: %s (%s)\n", s->def,
 	       !from_search ? "this tool's; the campaign has no [onset] search over the flux"
 	       : s->differs ? "set on the command line: differs from the search's"
@@ -324,6 +330,21 @@ static int estimate_one(an_tool *t, onset_state *s, size_t np, onset_res *r)
 	return 0;
 }
 
+/* Group j's runs used, stored with their Phi and their class by the group's threshold
+ * (sig_level): "on" past it, "off" before it; none when the group has no level. */
+static void runs_store(an_tool *t, const onset_state *s, int j, size_t np)
+{
+	int rising;
+	const double lvl = sig_level(s->xs, s->ys, np, s->thr, &rising);
+	for (int i = 0; i < t->k; i++) {
+		const an_run *r = &t->runs[i];
+		if (r->group != j || !USED(r))
+			continue;
+		const int on = rising ? s->phi[i] >= lvl : s->phi[i] <= lvl;
+		tool_store_run(t, r, "phi", s->phi[i], isnan(lvl) || isnan(s->phi[i]) ? NULL : on ? "on" : "off");
+	}
+}
+
 /* Per group: the estimates into onset_seeds.csv, onset_summary.csv, the table and
  * the analysis table (storing begun here, ended by the caller). */
 static int estimate(an_tool *t, onset_state *s)
@@ -351,6 +372,7 @@ static int estimate(an_tool *t, onset_state *s)
 		else if (estimate_one(t, s, np, r))
 			break;
 		group_out(t, r, j, np, ratio, f, sum);
+		runs_store(t, s, j, np);
 	}
 	if (f)
 		fclose(f);
