@@ -34,7 +34,12 @@ command -v rsync >/dev/null || { fail ssh.setup "rsync is not installed (GNU par
 ssh-keygen -q -t ed25519 -N '' -f host_key && ssh-keygen -q -t ed25519 -N '' -f user_key || { fail ssh.setup keygen; finish; }
 mkdir -p -m 700 "$HOME/.ssh"
 AUTH="$TMP/authorized_keys"
-cp user_key.pub "$AUTH" && chmod 600 "$AUTH"
+# the sessions' HOME is an empty directory: bash, started by sshd, reads ~/.bashrc,
+# which is the account's and not under test (on the machine this was measured on it
+# started pyenv, a second of CPU and often several of waiting per session, past GNU
+# parallel's 10 s limit for a probe under load); the login directory, and with it the
+# remote work dir ~/.shakebox, stays the account's home
+mkdir -p "$TMP/home" && printf 'environment="HOME=%s" %s\n' "$TMP/home" "$(cat user_key.pub)" >"$AUTH" && chmod 600 "$AUTH"
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])' 2>/dev/null || echo $((20000 + RANDOM % 20000)))
 cat >sshd_config <<C
 ListenAddress 127.0.0.1
@@ -47,6 +52,7 @@ KbdInteractiveAuthentication no
 UsePAM no
 StrictModes no
 PidFile $TMP/sshd.pid
+PermitUserEnvironment yes
 C
 mkdir -p /run/sshd
 "$SSHD" -f "$TMP/sshd_config" -E "$TMP/sshd.log" || { fail ssh.setup "sshd did not start: $(cat sshd.log)"; finish; }
