@@ -9,9 +9,12 @@
 # waiting times (risen before the failure: an event; else censored at the failure) and
 # in the flux statistics (their periods before the failure used), the earlier version
 # left out by default and used with --all-versions, the unreadable file reported.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested; the engine stops the same runs at the same step in every build).
 # tier: slow: campaigns with failed, damaged and older-version runs, read by every tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 vals() { h5vals "$@"; } # lib.sh
@@ -38,9 +41,9 @@ max_overlap = 0.26'
 printf '[campaign]\nname = s\nseed = 2\nreplicates = 3\n[scene]\n%s\ntraj_rate = 100\nduration = 1.5\n[grid]\nradius_ratio = 0, 2\nfrequency = 4, 6, 8\n' "$SCENE" >s.campaign
 printf '[campaign]\nname = h\nseed = 3\nreplicates = 3\n[scene]\n%s\nradius_ratio = 2\nduration = 3\nramp = updown\nramp_from = 3\nramp_to = 8\n' "$SCENE" >h.campaign
 t0=$SECONDS
-"$STUDY" run s.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_s.log 2>&1
+"$DATA_STUDY" run s.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_s.log 2>&1
 rs=$?
-"$STUDY" run h.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_h.log 2>&1
+"$DATA_STUDY" run h.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_h.log 2>&1
 rh=$?
 echo "# campaigns: $((SECONDS - t0)) s"
 # exit 3: some runs failed (recorded)

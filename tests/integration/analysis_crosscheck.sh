@@ -5,9 +5,12 @@
 # the count-weighted displacement field (Fig. 1), the fraction risen (waiting); the
 # legs of an up-down ramp with a hold (the hold's periods left out, the running mean
 # kept within a leg); Fig. 1 and 3 of a campaign read without an intruder system.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested).
 # tier: slow: campaigns whose answers the tools must agree on
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 vals() { h5vals "$@"; } # lib.sh
@@ -25,9 +28,9 @@ printf '[campaign]\nname = c\nseed = 21\nreplicates = 2\n[scene]\n%s\nduration =
 printf '[campaign]\nname = d\nseed = 23\n[scene]\n%s\nradius_ratio = 2\nduration = 0.5\n[grid]\ndepth = 0, 1\nfrequency = 4, 6\n' "$(echo "$SCENE" | grep -v '^depth')" >d.campaign
 printf '[campaign]\nname = r\nseed = 22\nreplicates = 2\n[scene]\n%s\nradius_ratio = 0\nduration = 4.5\nramp = updown\nramp_from = 3\nramp_to = 7\nramp_hold = 0.5\n' "$SCENE" >r.campaign
 t0=$SECONDS
-"$STUDY" run c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_c.log 2>&1 &&
-	"$STUDY" run r.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_r.log 2>&1 &&
-	"$STUDY" run d.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_d.log 2>&1
+"$DATA_STUDY" run c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_c.log 2>&1 &&
+	"$DATA_STUDY" run r.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_r.log 2>&1 &&
+	"$DATA_STUDY" run d.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_d.log 2>&1
 rc=$?
 echo "# campaigns: $((SECONDS - t0)) s"
 [ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||

@@ -9,9 +9,12 @@
 # censored and counted; runs without a trajectory counted, not used; its own log-rank
 # test), and Fig. 4 with every replicate and the median run highlighted. Each output:
 # CSV, stored rows, PNG and PDF, nothing on stderr.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested).
 # tier: slow: campaigns that the referee checks must pass and fail
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 fig_ok() { [ -s "$1.png" ] && [ "$(head -c 4 "$1.png" | od -An -c | tr -d ' ')" = '211PNG' ] && [ "$(head -c 5 "$1.pdf")" = '%PDF-' ]; }
@@ -38,7 +41,7 @@ printf '[campaign]\nname = t\nseed = 3\nreplicates = 3\n[scene]\n%s\nflux = yes\
 printf '[campaign]\nname = w\nseed = 5\nreplicates = 3\n[scene]\n%s\nradius_ratio = 2\nfrequency = 7\nduration = 2\nstop = risen\nstop_after = 0.05\n[grid]\ntraj_rate = 0, 100\n' "$SCENE" >w.campaign
 t0=$SECONDS
 for c in t w; do
-	"$STUDY" run $c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_$c.log 2>&1 ||
+	"$DATA_STUDY" run $c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_$c.log 2>&1 ||
 		{ fail setup.campaigns "study $c: $(tail -c 300 study_$c.log)"; finish; }
 done
 echo "# campaigns: $((SECONDS - t0)) s"

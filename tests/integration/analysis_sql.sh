@@ -7,9 +7,12 @@
 # as the param table has them and NULL for keys that are not grouping keys; an
 # `analysis` table of an earlier version (without those columns) given them, its rows
 # kept.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested).
 # tier: slow: a campaign for the SQL examples
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 README="$REPO/docs/database.md"
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader -separator '|' R/study.db "$1"; }
@@ -39,7 +42,7 @@ sqlite3 R/study.db "CREATE TABLE analysis(campaign TEXT NOT NULL, tool TEXT NOT 
 # stop with status overlap (analysis_accounting.sh)
 printf '[campaign]\nname = sweep\nseed = 2\nreplicates = 2\n[scene]\nn_grains = 60\nwidth = 20\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 1\nflux = yes\nmax_overlap = 0.26\ntraj_rate = 100\nduration = 1.5\n[grid]\nradius_ratio = 0, 2\ndepth = 1, 2\nfrequency = 4, 6, 8\n' >sweep.campaign
 t0=$SECONDS
-"$STUDY" run sweep.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
+"$DATA_STUDY" run sweep.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
 nf=$(q "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state = 'failed'")
 [ "$(q "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state IN ('done', 'failed')")" = 24 ] && [ "$nf" -ge 1 ] &&
 	ok sql.setup.campaign || { fail sql.setup.campaign "$nf failed: $(tail -c 300 study.log)"; finish; }

@@ -4,9 +4,12 @@
 # campaign run by bin/study, then onset, waiting, figures and hysteresis on them:
 # exit codes, nothing on stderr, tables, CSV and PNG files, the rows stored in the `analysis` table,
 # reproducible bootstrap intervals on a second run, and the error paths.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested).
 # tier: slow: campaigns for every analysis tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }
@@ -22,8 +25,8 @@ flux = yes'
 printf '[campaign]\nname = t\nseed = 3\nreplicates = 2\n[scene]\n%s\nduration = 1\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$SCENE" >t.campaign
 printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nduration = 2.5\nramp = updown\nramp_from = 3\nramp_to = 7\n[grid]\nradius_ratio = 2\n' "$SCENE" >h.campaign
 t0=$SECONDS
-"$STUDY" run t.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_t.log 2>&1 &&
-	"$STUDY" run h.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_h.log 2>&1
+"$DATA_STUDY" run t.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_t.log 2>&1 &&
+	"$DATA_STUDY" run h.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_h.log 2>&1
 rc=$?
 echo "# campaigns: $((SECONDS - t0)) s"
 [ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||

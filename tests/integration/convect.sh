@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # convect.sh - bin/convect end to end on a tiny real campaign (150 grains in a 20 cm
 # box, fast preset, 6 s at 3 and 6 Hz, walls and periodic sides, field = yes and no,
-# 3 seeds: 24 runs, about 3 s of CPU in the release build): the table, CSV files,
+# 3 seeds: 24 runs, about 3 s of CPU in the release build, which runs it: the tool is
+# what is tested, lib.sh's data_driver_setup): the table, CSV files,
 # figure and stored rows; the runs without a field counted per group as unusable and
 # listed with why; every used run's S recomputed here from its file with h5dump and
 # awk (band rows from the cell size and the settled surface height, count-weighted
@@ -11,6 +12,7 @@
 # tier: slow: a campaign long enough for convection rolls
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 CONVECT="$BINDIR/convect"
 [ -x "$CONVECT" ] || { fail setup "$CONVECT is not an executable (run make)"; finish; }
@@ -21,7 +23,7 @@ rel() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { if (a == "nan" && b == "nan")
 
 printf '[campaign]\nname = cv\nseed = 3\nreplicates = 3\n[scene]\npreset = fast\nn_grains = 150\nwidth = 20\ndepth = 1\nradius_ratio = 0\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 1\nduration = 6\nfield_periods = 5\n[grid]\nsides = walls, periodic\nfrequency = 3, 6\nfield = yes, no\n' >cv.campaign
 t0=$SECONDS
-"$STUDY" run cv.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
+"$DATA_STUDY" run cv.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
 rc=$?
 echo "# campaign: $((SECONDS - t0)) s"
 [ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 24 ] && ok setup.campaign ||

@@ -7,9 +7,12 @@
 # with their band (from the step outline in waiting_km_band.csv), Fig. 1 as the box of
 # the runs' width with its walls, legends in words and symbols instead of parameter
 # keys; a PDF drawn again is the same file.
+# The campaigns are run by the release engine (lib.sh's data_driver_setup: the tools are
+# what is tested).
 # tier: slow: the campaigns of the paper figures, small
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 
 SCENE='n_grains = 60
@@ -25,7 +28,7 @@ printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nflux = yes\
 printf '[campaign]\nname = w\nseed = 5\nreplicates = 3\n[scene]\n%s\nduration = 1\nfrequency = 6\n[grid]\nradius_ratio = 2, 3\n' "$SCENE" >w.campaign
 t0=$SECONDS
 for c in t h w; do
-	"$STUDY" run $c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_$c.log 2>&1 ||
+	"$DATA_STUDY" run $c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_$c.log 2>&1 ||
 		{ fail setup.campaigns "study $c: $(tail -c 300 study_$c.log)"; finish; }
 done
 echo "# campaigns: $((SECONDS - t0)) s"

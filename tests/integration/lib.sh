@@ -139,5 +139,19 @@ analysis_tools_setup() {
 	done
 }
 
+# data_driver_setup : DATA_STUDY, a copy of the driver under test ($STUDY) in $TMP/data/
+# beside the release build of the engine ($SHAKE_DATA, default bin/shake, which make
+# check builds first), for a campaign that only makes the files a tool under test reads.
+# The sanitizer build of the engine runs long physics about eight times slower; its
+# paths are checked by the scripts that test the engine, and both builds write the same
+# bits (regression.sh). Without a release build, the engine under test is used.
+data_driver_setup() {
+	local rel=${SHAKE_DATA:-$REPO/bin/shake}
+	[ -x "$rel" ] || rel=$SHAKE
+	mkdir -p "$TMP/data" && cp "$STUDY" "$TMP/data/study" && cp "$rel" "$TMP/data/shake" ||
+		{ fail setup "cannot copy the driver and the engine to $TMP/data"; finish; }
+	DATA_STUDY=$TMP/data/study
+}
+
 # contains FILE STRING : fixed-string grep
 contains() { grep -qF -- "$2" "$1"; }

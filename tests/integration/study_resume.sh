@@ -21,7 +21,7 @@ radius_ratio = 2
 settle_ke = 1
 settle_min = 0.2
 amplitude = 1
-duration = 3
+duration = 1.5
 traj_rate = 200
 checkpoint_every = 0.1
 [grid]

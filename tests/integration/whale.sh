@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # whale.sh - bin/whale end to end on a tiny real campaign (100 grains, fast preset, 40 s
-# at 4 Hz, 𝓡 = 0, 2.5, 3 with 3 seeds: about 3 s of CPU in the release build): the
+# at 4 Hz, 𝓡 = 0, 2.5, 3 with 3 seeds: about 3 s of CPU in the release build, which runs
+# it: the tool is what is tested, lib.sh's data_driver_setup): the
 # table, CSV files, figure and stored rows; the runs without intruder not considered;
 # the runs that never rose listed and counted as the database says; and every
 # analysed run's window, top level, dives and period recomputed here from its file
@@ -10,6 +11,7 @@
 # tier: slow: a campaign of large beds
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
+data_driver_setup
 cd "$TMP" || exit 1
 WHALE="$BINDIR/whale"
 [ -x "$WHALE" ] || { fail setup "$WHALE is not an executable (run make)"; finish; }
@@ -24,7 +26,7 @@ rel() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { if (a == "nan" && b == "nan")
 # bed; the trajectory at 50 Hz.
 printf '[campaign]\nname = wh\nseed = 5\nreplicates = 3\n[scene]\npreset = fast\nn_grains = 100\nwidth = 24\ndepth = 1\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 2\nfrequency = 4\nduration = 40\ntraj_rate = 50\n[grid]\nradius_ratio = 0, 2.5, 3\n' >wh.campaign
 t0=$SECONDS
-"$STUDY" run wh.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
+"$DATA_STUDY" run wh.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
 rc=$?
 echo "# campaign: $((SECONDS - t0)) s"
 [ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 9 ] && ok setup.campaign ||
