@@ -938,9 +938,7 @@ static void write_results(h5w *h, const sb_sim *s, double t)
 		h5w_attr_double(h, r, "overlap_max_x", s->obs.ov_x);
 		h5w_attr_double(h, r, "overlap_max_y_box", s->obs.ov_y);
 	}
-	/* docs/model.md, "Waiting time": the first time the intruder's centre is one diameter
-	 * above its settled height. A run that ends first is right-censored: risen = 0 and
-	 * waiting_time = the time observed (the survival-analysis pair). */
+	/* the survival-analysis pair risen, waiting_time: docs/model.md, "Waiting time" */
 	if (s->intruder >= 0) {
 		h5w_attr_long(h, r, "risen", s->obs.risen);
 		h5w_attr_double(h, r, "waiting_time", s->obs.risen ? s->obs.wait_time : t);

@@ -8,8 +8,8 @@
  *             at ring_rate: mean sum |F| of the contact forces, mean |net force|,
  *             granular temperature, count and centre as a series (one journal record
  *             per sample), averaged over the run and over the window before the rise;
- *   waiting   time until the intruder first rises one diameter above its settled
- *             height (always on when there is an intruder; one compare per step).
+ *   waiting   the waiting time (docs/model.md, "Waiting time"; always on when there
+ *             is an intruder; one compare per step).
  * An observable that is off allocates nothing and is never called. */
 #ifndef SB_OBSERVE_H
 #define SB_OBSERVE_H
