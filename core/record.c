@@ -12,6 +12,7 @@ static const rec_col ENERGY[] = {REC_COLS_ENERGY(REC_COL_)};
 static const rec_col CONTACT[] = {REC_COLS_CONTACT(REC_COL_)}; /* per contact, after the frame's time and count */
 static const rec_col RING[] = {REC_COLS_RING(REC_COL_)};
 static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
+static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
 
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
@@ -48,6 +49,12 @@ static const sb_record TABLE[REC_N] = {
 			 .def = "per drive period (time and step: its end): kinetic_energy = the mean of the mobile "
 				"disks' sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = "
 				"samples_per_period); frequency = the drive's at the period's end"},
+	[REC_HEIGHT] = {"bed height", "bed_height_samples", RC_PHASE, FIXED(HEIGHT), .h5 = REC_H5_OBS "/bed_height",
+			.flags = RECF_OBS, .sample = sample_height,
+			.def = "per drive period (time and step: its end): com_height_box = the mean of the mobile "
+			       "disks' centre-of-mass height sum m y / sum m (box frame: above the box floor's rest "
+			       "position) at phases k/N, k = 1..N (N = samples_per_period); frequency = the drive's at "
+			       "the period's end"},
 };
 
 const sb_record *rec_table(void) { return TABLE; }

@@ -19,7 +19,8 @@ struct sb_sim;
  * journal tag is its index + 1 (REC_TAG; 0 is never one): a journal is read back only
  * by the build that wrote it (a checkpoint of another table, another REC_N, is not
  * resumed: checkpoint.c). A new row goes at the end. */
-enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_N };
+enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_HEIGHT,
+	      REC_N };
 #define REC_TAG(id) ((id) + 1)
 
 /* When a quantity is sampled (the clock a new row picks; run.c keeps them all):
@@ -65,6 +66,7 @@ enum {
 	X("time", "s") X("mean_force", "dyn") X("net_force", "dyn") X("temperature", "cm2 s-2") X("grains", "1") \
 	X("centre_x", "cm") X("centre_y", "cm")
 #define REC_COLS_KINETIC(X) X("time", "s") X("kinetic_energy", "erg")
+#define REC_COLS_HEIGHT(X) X("time", "s") X("com_height_box", "cm")
 
 #define REC_COL_COUNT_(name, unit) +1
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
@@ -84,7 +86,10 @@ enum {
 	  "force, normal, place; /observables/contacts, for force chains; 0 = none)")                            \
 	X(bed_kinetic_samples, INT, "", "0", 0, 100000,                                                           \
 	  "samples per drive period of the bed's kinetic energy (box frame), averaged per period "               \
-	  "(/observables/bed_kinetic) and over the run (bed_kinetic_mean); 0 = none")
+	  "(/observables/bed_kinetic) and over the run (bed_kinetic_mean); 0 = none")                           \
+	X(bed_height_samples, INT, "", "0", 0, 100000,                                                            \
+	  "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "        \
+	  "(/observables/bed_height) and over the run (bed_height_mean); 0 = none")
 
 /* One column of a journal record (for a variable record: of each of its items). */
 typedef struct rec_col {
@@ -146,7 +151,10 @@ long rec_len(const struct sb_sim *s, int id, const double *rec);
 	X(REC_TRAJ, intruder_mean_y_box, "cm", "mean intruder centre height over the trajectory rows, box frame") \
 	X(REC_KINETIC, bed_kinetic_mean, "erg",                                                                \
 	  "the mobile disks' kinetic energy (translation and rotation, box frame) averaged over the drive "     \
-	  "periods of the run, bed_kinetic_samples samples each; NULL when not recorded or no period ended")
+	  "periods of the run, bed_kinetic_samples samples each; NULL when not recorded or no period ended")    \
+	X(REC_HEIGHT, bed_height_mean, "cm",                                                                   \
+	  "the mobile disks' centre-of-mass height (box frame) averaged over the drive periods of the run, "   \
+	  "bed_height_samples samples each; NULL when not recorded or no period ended")
 
 #define REC_SUM_ENUM_(row, attr, unit, def) RSUM_##attr,
 enum rec_summary { REC_SUMMARIES(REC_SUM_ENUM_) RSUM_N };

@@ -121,3 +121,18 @@ int sample_kinetic(sb_sim *s, double t, sb_err *e)
 	const double row[REC_NCOLS(REC_COLS_KINETIC)] = {t, sim_kinetic(s)};
 	return PUT(s, REC_KINETIC, row, e);
 }
+
+/* The bed's centre-of-mass height: the mass-weighted mean y of the mobile disks in the
+ * box frame (above the floor's rest position: the box's own motion is not the bed's,
+ * as for com_height_box of the energy series); h5out averages a period's samples. */
+int sample_height(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	double my = 0, m = 0;
+	for (int i = 0; i < st->nm; i++) {
+		my += st->m[i] * st->q[C_Y][0][i];
+		m += st->m[i];
+	}
+	const double row[REC_NCOLS(REC_COLS_HEIGHT)] = {t, m > 0 ? my / m : 0};
+	return PUT(s, REC_HEIGHT, row, e);
+}

@@ -96,7 +96,8 @@ int main(void)
 	params_defaults(&s.sc);
 	s.intruder = -1;
 	s.sc.traj_rate = 100;
-	CHECK("record.on.off_by_default", !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX) && !rec_on(&s, REC_KINETIC),
+	CHECK("record.on.off_by_default",
+	      !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX) && !rec_on(&s, REC_KINETIC) && !rec_on(&s, REC_HEIGHT),
 	      "on");
 	CHECK("record.on.trajectory_needs_an_intruder", !rec_on(&s, REC_TRAJ), "on without an intruder");
 	s.intruder = 0;
@@ -107,6 +108,9 @@ int main(void)
 	s.sc.bed_kinetic_samples = 8;
 	CHECK("record.on.samples_per_period", rec_on(&s, REC_KINETIC) && rec_rate(&s, REC_KINETIC) == 8, "%d %g",
 	      rec_on(&s, REC_KINETIC), rec_rate(&s, REC_KINETIC));
+	s.sc.bed_height_samples = 3;
+	CHECK("record.on.bed_height",
+	      rec_on(&s, REC_HEIGHT) && rec_rate(&s, REC_HEIGHT) == 3 && R[REC_HEIGHT].clock == RC_PHASE, "%d %g", rec_on(&s, REC_HEIGHT), rec_rate(&s, REC_HEIGHT));
 	CHECK("record.rate.is_the_key", rec_rate(&s, REC_ENERGY) == 50 && rec_rate(&s, REC_TRAJ) == 100, "%g %g",
 	      rec_rate(&s, REC_ENERGY), rec_rate(&s, REC_TRAJ));
 
