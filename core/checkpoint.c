@@ -13,11 +13,13 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-/* 10: the recording counters are the table's (core/record.h), one array each, and the
- * header holds REC_N: a row added to the table changes the layout, and the format
- * (version/REC_N) says so. 09: the scene hash covers the key sides; the seam pairs are
- * rebuilt from xref like the list. */
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '0'};
+/* 11: a journal record is laid out by the table's columns (record.h), and a per-period
+ * row's holds no drive frequency (the writer takes it from the drive), so a journal
+ * an older engine wrote is not continued. 10: the recording counters are the table's
+ * (core/record.h), one array each, and the header holds REC_N: a row added to the
+ * table changes the layout, and the format (version/REC_N) says so. 09: the scene hash
+ * covers the key sides; the seam pairs are rebuilt from xref like the list. */
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '1'};
 
 typedef struct hw {
 	FILE *f;

@@ -18,6 +18,7 @@
  * Every dataset that holds data carries a Fletcher32 checksum per chunk.
  * Object time stamps are off, so two runs of one scene give identical files apart
  * from /provenance and /h5md (who ran it - the environment's USER - and which build). */
+#include <assert.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdlib.h>
@@ -190,38 +191,6 @@ static void write_field(h5w *h, const sb_sim *s, hid_t g, const dbuf *fd, long n
 	free(cnt);
 }
 
-/* The energy series (energy_rate): one element per column, sharing one clock. The
- * energies are the box frame's (the box's own motion is not the bed's). */
-static void write_energy(h5w *h, const sb_sim *s, hid_t g, const dbuf *en, long n)
-{
-	const rec_col *cols = rec_table()[REC_ENERGY].cols;
-	const size_t T = (size_t)n;
-	double *col = malloc(sizeof(double) * (T ? T : 1)), *t = NULL;
-	long *st = NULL;
-	if (!col || columns(s, en, JR_ENERGY_COLS, T, &t, &st)) {
-		h->bad = 1;
-	} else {
-		h5elem e0 = {.g = -1}, e;
-		for (int c = 1; c < JR_ENERGY_COLS; c++) {
-			for (size_t k = 0; k < T; k++)
-				col[k] = en->d[k * JR_ENERGY_COLS + c];
-			h5elem *el = c == 1 ? &e0 : &e;
-			h5w_elem_create(h, el, g, cols[c].name, T, 0, NULL, cols[c].unit, c == 1 ? NULL : &e0);
-			h5w_elem_all(h, el, st, t, col);
-			if (c > 1)
-				h5w_elem_close(&e);
-		}
-		h5w_elem_close(&e0);
-		h5w_attr_str(h, g, "definition",
-			     "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y xi^2 / 2 "
-			     "over the contacts; com_height_box = mass-weighted mean y of the mobile disks; max_overlap = "
-			     "largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")");
-	}
-	free(col);
-	free(t);
-	free(st);
-}
-
 /* The contact dump (contact_rate): frames of every contact, flattened - frame k's
  * contacts are rows offset[k] .. offset[k] + count[k] of the per-contact datasets (a
  * number of contacts that changes from frame to frame is not an H5MD element). */
@@ -237,7 +206,7 @@ static void write_contacts(h5w *h, const sb_sim *s, hid_t g, const dbuf *c, long
 		cnt[k] = c->d[pos + 1];
 		off[k] = (double)C;
 		C += (size_t)cnt[k];
-		pos += 2 + JR_CONTACT_COLS * (size_t)cnt[k];
+		pos += 2 + REC_NCOLS(REC_COLS_CONTACT) * (size_t)cnt[k];
 	}
 	double *col = malloc(sizeof(double) * (C ? C : 1));
 	if (!t || !cnt || !off || !col) {
@@ -247,14 +216,14 @@ static void write_contacts(h5w *h, const sb_sim *s, hid_t g, const dbuf *c, long
 		h5w_dset(h, g, "time", 1, &nf, t, "s");
 		h5w_dset(h, g, "count", 1, &nf, cnt, "1");
 		h5w_dset(h, g, "offset", 1, &nf, off, "1");
-		for (int k = 0; k < JR_CONTACT_COLS; k++) {
+		for (int k = 0; k < REC_NCOLS(REC_COLS_CONTACT); k++) {
 			size_t row = 0;
 			pos = 0;
 			for (long fr = 0; fr < F; fr++) {
 				const size_t n = (size_t)cnt[fr];
 				for (size_t q = 0; q < n; q++)
-					col[row++] = c->d[pos + 2 + JR_CONTACT_COLS * q + (size_t)k];
-				pos += 2 + JR_CONTACT_COLS * n;
+					col[row++] = c->d[pos + 2 + REC_NCOLS(REC_COLS_CONTACT) * q + (size_t)k];
+				pos += 2 + REC_NCOLS(REC_COLS_CONTACT) * n;
 			}
 			h5w_dset(h, g, cols[k].name, 1, &nc, col, cols[k].unit);
 		}
@@ -277,13 +246,13 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, 
 	const size_t T = (size_t)n;
 	double *col = malloc(sizeof(double) * 2 * (T ? T : 1)), *t = NULL;
 	long *st = NULL;
-	if (!col || columns(s, rg, JR_RING_COLS, T, &t, &st)) {
+	if (!col || columns(s, rg, REC_NCOLS(REC_COLS_RING), T, &t, &st)) {
 		h->bad = 1;
 	} else {
 		h5elem e0, e;
 		for (int c = OBS_RR_MEAN; c <= OBS_RR_N; c++) {
 			for (size_t k = 0; k < T; k++)
-				col[k] = rg->d[k * JR_RING_COLS + c];
+				col[k] = rg->d[k * REC_NCOLS(REC_COLS_RING) + c];
 			h5elem *el = c == OBS_RR_MEAN ? &e0 : &e;
 			h5w_elem_create(h, el, g, cols[c].name, T, 0, NULL, cols[c].unit, c == OBS_RR_MEAN ? NULL : &e0);
 			h5w_elem_all(h, el, st, t, col);
@@ -291,8 +260,8 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, 
 				h5w_elem_close(&e);
 		}
 		for (size_t k = 0; k < T; k++) {
-			col[2 * k] = rg->d[k * JR_RING_COLS + OBS_RR_CX];
-			col[2 * k + 1] = rg->d[k * JR_RING_COLS + OBS_RR_CY];
+			col[2 * k] = rg->d[k * REC_NCOLS(REC_COLS_RING) + OBS_RR_CX];
+			col[2 * k + 1] = rg->d[k * REC_NCOLS(REC_COLS_RING) + OBS_RR_CY];
 		}
 		const hsize_t two = 2;
 		h5w_elem_create(h, &e, g, "centre", T, 1, &two, cols[OBS_RR_CX].unit, &e0);
@@ -371,7 +340,7 @@ static void intruder_summary(h5w *h, const sb_sim *s, const double *traj, long T
 {
 	double ymax = -INFINITY, ymin = INFINITY, sum = 0, y = 0;
 	for (long k = 0; k < T; k++) {
-		const double *row = traj + k * JR_TRAJ_COLS;
+		const double *row = traj + k * REC_NCOLS(REC_COLS_TRAJ);
 		y = row[2] - sim_box_y(s, row[0]);
 		ymax = y > ymax ? y : ymax;
 		ymin = y < ymin ? y : ymin;
@@ -418,7 +387,7 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 		h->bad = 1;
 	} else {
 		for (size_t k = 0; k < n; k++) {
-			const double *r = traj + k * JR_TRAJ_COLS; /* t x y vx vy omega */
+			const double *r = traj + k * REC_NCOLS(REC_COLS_TRAJ); /* t x y vx vy omega */
 			t[k] = r[0];
 			st[k] = step_of(s, r[0]);
 			p[2 * k] = r[1];
@@ -641,58 +610,80 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 	H5Gclose(g);
 }
 
-/* The bed's kinetic energy per drive period (bed_kinetic_samples): the mean of each
- * period's N samples, at the period's end (its last sample), with the drive frequency
- * there; and its mean over the periods, a root attribute (a per-run summary). A
- * period whose samples the run did not finish is left out. */
-static void write_kinetic(h5w *h, const sb_sim *s, hid_t g, const dbuf *kb, long n)
+/* A fixed-length observable without a writer of its own (record.h's table): every value
+ * column an H5MD element, named and in the unit of the table's column, on the first
+ * one's clock, and the row's definition. A per-period row (RC_PHASE) is first reduced
+ * to one row per drive period: the mean of its N samples (time and step: the last
+ * one's, the period's end), with the drive frequency there as one more element; a
+ * period whose samples the run did not finish is left out. The row's summaries
+ * (record.h): the mean of its first value column over the rows written. */
+static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b, long n)
 {
-	const rec_col *cols = rec_table()[REC_KINETIC].cols;
-	const long N = s->sc.bed_kinetic_samples, P = N > 0 ? n / N : 0;
-	double *t = malloc(sizeof(double) * (size_t)(P ? P : 1)), *ke = malloc(sizeof(double) * (size_t)(P ? P : 1));
-	double *f = malloc(sizeof(double) * (size_t)(P ? P : 1)), sum = 0;
-	long *st = malloc(sizeof(long) * (size_t)(P ? P : 1));
-	if (!t || !ke || !f || !st) {
+	const sb_record *r = &rec_table()[id];
+	const long len = r->len, N = r->clock == RC_PHASE ? (long)rec_rate(s, id) : 1, T = N > 0 ? n / N : 0;
+	const size_t T1 = (size_t)(T ? T : 1);
+	double *d = malloc(sizeof(double) * T1 * (size_t)len), *col = malloc(sizeof(double) * T1);
+	double *t = malloc(sizeof(double) * T1);
+	long *st = malloc(sizeof(long) * T1);
+	if (!d || !col || !t || !st) {
 		h->bad = 1;
-	} else {
-		for (long p = 0; p < P; p++) {
-			double m = 0;
-			for (long k = 0; k < N; k++)
-				m += kb->d[(p * N + k) * JR_KINETIC_COLS + 1];
-			const double *last = kb->d + (p * N + N - 1) * JR_KINETIC_COLS;
-			ke[p] = m / (double)N;
-			t[p] = last[0];
-			st[p] = step_of(s, t[p]);
-			f[p] = last[2];
-			sum += ke[p];
-		}
-		h5elem e0, e;
-		h5w_elem_create(h, &e0, g, cols[1].name, (hsize_t)P, 0, NULL, cols[1].unit, NULL);
-		h5w_elem_all(h, &e0, st, t, ke);
-		h5w_elem_create(h, &e, g, cols[2].name, (hsize_t)P, 0, NULL, cols[2].unit, &e0);
-		h5w_elem_all(h, &e, NULL, NULL, f);
-		h5w_elem_close(&e);
-		h5w_elem_close(&e0);
-		h5w_attr_long(h, g, "samples_per_period", N);
-		h5w_attr_str(h, g, "definition",
-			     "per drive period (time and step: its end): kinetic_energy = the mean of the mobile disks' "
-			     "sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = samples_per_period); "
-			     "frequency = the drive's at the period's end");
-		if (P > 0)
-			h5w_attr_double(h, h->file, rec_summary_attr(RSUM_bed_kinetic_mean), sum / (double)P);
+		goto out;
 	}
+	for (long p = 0; p < T; p++) { /* row p: the mean of samples pN .. pN + N - 1 */
+		const double *last = b->d + (p * N + N - 1) * len;
+		for (long c = 1; c < len; c++) {
+			double m = b->d[p * N * len + c];
+			for (long k = 1; k < N; k++)
+				m += b->d[(p * N + k) * len + c];
+			d[p * len + c] = N > 1 ? m / (double)N : m;
+		}
+		t[p] = last[0];
+		st[p] = step_of(s, t[p]);
+	}
+	h5elem e0 = {.g = -1}, e;
+	for (long c = 1; c < len; c++) {
+		for (long p = 0; p < T; p++)
+			col[p] = d[p * len + c];
+		h5elem *el = c == 1 ? &e0 : &e;
+		h5w_elem_create(h, el, g, r->cols[c].name, (hsize_t)T, 0, NULL, r->cols[c].unit, c == 1 ? NULL : &e0);
+		h5w_elem_all(h, el, st, t, col);
+		if (c > 1)
+			h5w_elem_close(&e);
+	}
+	if (r->clock == RC_PHASE) {
+		for (long p = 0; p < T; p++)
+			col[p] = drive_freq(&s->drive, t[p]);
+		h5w_elem_create(h, &e, g, "frequency", (hsize_t)T, 0, NULL, "Hz", &e0);
+		h5w_elem_all(h, &e, NULL, NULL, col);
+		h5w_elem_close(&e);
+	}
+	h5w_elem_close(&e0);
+	if (r->clock == RC_PHASE)
+		h5w_attr_long(h, g, "samples_per_period", N);
+	if (r->def)
+		h5w_attr_str(h, g, "definition", r->def);
+	for (int k = 0; k < RSUM_N && T > 0; k++)
+		if (rec_summary_row(k) == id) {
+			double sum = 0;
+			for (long p = 0; p < T; p++)
+				sum += d[p * len + 1];
+			h5w_attr_double(h, h->file, rec_summary_attr(k), sum / (double)T);
+		}
+out:
+	free(d);
+	free(col);
 	free(t);
-	free(ke);
-	free(f);
 	free(st);
 }
 
-/* The writers of the groups of /observables, one per row of record.h's table with
- * RECF_OBS: the group (made from the row's path), the row's records, how many. */
+/* The groups of /observables whose layout is their own (a variable record, columns
+ * gathered into one element): a writer each, given the group (made from the row's
+ * path), the row's records and how many. Every other row with RECF_OBS is a
+ * fixed-length series, written by write_series from the table alone. */
 typedef void (*obs_writer)(h5w *h, const sb_sim *s, hid_t g, const dbuf *b, long n);
 static const obs_writer WRITERS[REC_N] = {
-	[REC_ENERGY] = write_energy, [REC_CONTACT] = write_contacts, [REC_FLUX] = write_flux,
-	[REC_FIELD] = write_field,   [REC_RING] = write_ring_series, [REC_KINETIC] = write_kinetic,
+	[REC_CONTACT] = write_contacts, [REC_FLUX] = write_flux, [REC_FIELD] = write_field,
+	[REC_RING] = write_ring_series,
 };
 
 static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t box, sb_err *e)
@@ -704,7 +695,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		/* the longest record: a fixed one, the scene's, or the largest contact frame */
 		long len = R[k].len;
 		if (k == REC_CONTACT)
-			len = 2 + JR_CONTACT_COLS * s->max_contacts;
+			len = 2 + REC_NCOLS(REC_COLS_CONTACT) * s->max_contacts;
 		else if (!len && (rec_on(s, k) || k == REC_SNAP))
 			len = rec_len(s, k, NULL);
 		cap = len > cap ? len : cap;
@@ -730,7 +721,9 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			break;
 		}
 		const int k = rec_by_tag(tag);
-		if (k == REC_SNAP) {
+		if (k < 0) {
+			rc = sb_errf(e, SB_EIO, "%s: corrupt journal record (tag %d, count %d)", s->journal_path, tag, count);
+		} else if (k == REC_SNAP) {
 			if (sw.k < K)
 				snap_row(h, &sw, s, buf);
 		} else if (k >= 0 && dbuf_add(&rec[k], buf, (size_t)count)) {
@@ -773,7 +766,11 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		for (int k = 0; k < REC_N; k++)
 			if ((R[k].flags & RECF_OBS) && rec_on(s, k)) {
 				hid_t g = h5w_group(h, h->file, R[k].h5, 0);
-				WRITERS[k](h, s, g, &rec[k], got[k]);
+				assert(WRITERS[k] || R[k].len > 0); /* record.h: rec_table_check */
+				if (WRITERS[k])
+					WRITERS[k](h, s, g, &rec[k], got[k]);
+				else
+					write_series(h, s, k, g, &rec[k], got[k]);
 				H5Gclose(g);
 			}
 	}
@@ -941,9 +938,7 @@ static void write_results(h5w *h, const sb_sim *s, double t)
 		h5w_attr_double(h, r, "overlap_max_x", s->obs.ov_x);
 		h5w_attr_double(h, r, "overlap_max_y_box", s->obs.ov_y);
 	}
-	/* docs/model.md, "Waiting time": the first time the intruder's centre is one diameter
-	 * above its settled height. A run that ends first is right-censored: risen = 0 and
-	 * waiting_time = the time observed (the survival-analysis pair). */
+	/* the survival-analysis pair risen, waiting_time: docs/model.md, "Waiting time" */
 	if (s->intruder >= 0) {
 		h5w_attr_long(h, r, "risen", s->obs.risen);
 		h5w_attr_double(h, r, "waiting_time", s->obs.risen ? s->obs.wait_time : t);

@@ -75,22 +75,11 @@ int journal_record(sb_journal *j, int tag, const double *data, int count, sb_err
 	return 0;
 }
 
-int journal_traj(sb_journal *j, const double row[JR_TRAJ_COLS], sb_err *e)
-{
-	if (put(j, JR_TRAJ, JR_TRAJ_COLS, e))
-		return e->code;
-	if (j->discard)
-		return 0;
-	if (fwrite(row, sizeof(double), JR_TRAJ_COLS, j->f) != JR_TRAJ_COLS)
-		return sb_errf(e, SB_EIO, "%s: write failed: %s", j->path, strerror(errno));
-	return 0;
-}
-
-int journal_snap(sb_journal *j, double t, const double *x, const double *y, const double *th,
+int journal_snap(sb_journal *j, int tag, double t, const double *x, const double *y, const double *th,
 		 const double *vx, const double *vy, sb_err *e)
 {
 	size_t n = (size_t)j->nm;
-	if (put(j, JR_SNAP, (int32_t)(1 + 5 * n), e))
+	if (put(j, tag, (int32_t)(1 + 5 * n), e))
 		return e->code;
 	if (j->discard)
 		return 0;
@@ -140,7 +129,7 @@ int journal_next(sb_jreader *r, double *buf, long cap, int *count, sb_err *e)
 		return 0;
 	if (got != 2)
 		return -sb_errf(e, SB_EIO, "journal: truncated record header");
-	if (h[0] < JR_TRAJ || h[0] > JR_LAST || h[1] < 0 || h[1] > cap)
+	if (h[0] < 1 || h[1] < 0 || h[1] > cap)
 		return -sb_errf(e, SB_EIO, "journal: corrupt record (tag %d, count %d)", h[0], h[1]);
 	if (fread(buf, sizeof(double), (size_t)h[1], r->f) != (size_t)h[1])
 		return -sb_errf(e, SB_EIO, "journal: truncated record");

@@ -7,8 +7,9 @@
 
 #include "crossing.h"
 #include "periodic.h"
+#include "record.h"
 
-_Static_assert(OBS_RING_COLS == JR_RING_COLS, "a ring sample's row is a JR_RING record");
+_Static_assert(OBS_RING_COLS == REC_NCOLS(REC_COLS_RING), "a ring sample's row is the ring's record (record.h)");
 
 static double *zalloc(size_t n, int *bad)
 {
@@ -217,7 +218,7 @@ int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, 
 	o->have_band = 1;
 	memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
 	memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
-	int rc = journal_record(jr, JR_FLUX, rec, obs_flux_len(o), e);
+	int rc = journal_record(jr, REC_TAG(REC_FLUX), rec, obs_flux_len(o), e);
 	free(rec);
 	if (rc)
 		return rc;
@@ -243,7 +244,7 @@ int obs_field(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *nfi
 	memcpy(rec + 2, o->sx, sizeof(double) * nc);
 	memcpy(rec + 2 + nc, o->sy, sizeof(double) * nc);
 	memcpy(rec + 2 + 2 * nc, o->cnt, sizeof(double) * nc);
-	int rc = journal_record(jr, JR_FIELD, rec, obs_field_len(o), e);
+	int rc = journal_record(jr, REC_TAG(REC_FIELD), rec, obs_field_len(o), e);
 	free(rec);
 	if (rc)
 		return rc;
@@ -359,7 +360,7 @@ int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_d
 {
 	double row[OBS_RING_COLS];
 	obs_ring_sample(o, st, intruder, t, inv_dt, row);
-	return journal_record(jr, JR_RING, row, OBS_RING_COLS, e);
+	return journal_record(jr, REC_TAG(REC_RING), row, OBS_RING_COLS, e);
 }
 
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))

@@ -8,8 +8,8 @@
  *             at ring_rate: mean sum |F| of the contact forces, mean |net force|,
  *             granular temperature, count and centre as a series (one journal record
  *             per sample), averaged over the run and over the window before the rise;
- *   waiting   time until the intruder first rises one diameter above its settled
- *             height (always on when there is an intruder; one compare per step).
+ *   waiting   the waiting time (docs/model.md, "Waiting time"; always on when there
+ *             is an intruder; one compare per step).
  * An observable that is off allocates nothing and is never called. */
 #ifndef SB_OBSERVE_H
 #define SB_OBSERVE_H
@@ -26,8 +26,8 @@ enum { OBS_RA_MEAN, OBS_RA_MEAN_LO, OBS_RA_SUM, OBS_RA_SUM_LO, OBS_RA_T, OBS_RA_
        OBS_RA_NET, OBS_RA_NET_LO, OBS_RING_ACC };
 /* ... and over the samples of the window before the rise (whole ring only) */
 enum { OBS_RB_MEAN, OBS_RB_NET, OBS_RB_T, OBS_RB_N, OBS_RB_SUM, OBS_RING_BEFORE };
-/* A sample's series row (journal record JR_RING): time, mean sum |F|, mean |net force|,
- * temperature, grains, centre x, centre y (box frame). */
+/* A sample's series row (the ring's journal record, record.h): time, mean sum |F|,
+ * mean |net force|, temperature, grains, centre x, centre y (box frame). */
 enum { OBS_RR_TIME, OBS_RR_MEAN, OBS_RR_NET, OBS_RR_T, OBS_RR_N, OBS_RR_CX, OBS_RR_CY, OBS_RING_COLS };
 
 typedef struct sb_obs {
@@ -94,8 +94,8 @@ int obs_flux_len(const sb_obs *o);   /* t, f, jtop[nl], jbot[nl] */
 int obs_field_len(const sb_obs *o);  /* t, periods, sx[ny*nx], sy[..], cnt[..] */
 
 /* A stroboscopic sample at time t (phase 0, box at rest position: lab = box frame),
- * drive frequency f, in three parts: the flux since the previous sample (a JR_FLUX
- * record, counted in *nflux), the field (a JR_FIELD record when a block is complete,
+ * drive frequency f, in three parts: the flux since the previous sample (a flux
+ * record, counted in *nflux), the field (a field record when a block is complete,
  * counted in *nfield), then the sample kept for the next one. Each part does nothing
  * when its observable is off. obs_sample is the three in order. */
 int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, sb_err *e);
@@ -109,7 +109,7 @@ int obs_ring_due(const sb_obs *o, long n);
 
 /* A ring sample at time t from the disks' |F| sums in o->fabs_sum (then cleared) and
  * their contact forces in st->f (the step's, unfused): added to the averages, its
- * series row in row[OBS_RING_COLS]. obs_ring also journals the row (JR_RING). */
+ * series row in row[OBS_RING_COLS]. obs_ring also journals the row (the ring's record). */
 void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, double *row);
 int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, sb_journal *jr, sb_err *e);
 

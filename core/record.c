@@ -6,80 +6,104 @@
 #include "params.h"
 #include "sample.h"
 
-static const rec_col TRAJ[] = {{"time", "s"}, {"x", "cm"}, {"y", "cm"}, {"vx", "cm s-1"}, {"vy", "cm s-1"},
-			       {"omega", "rad s-1"}};
-static const rec_col ENERGY[] = {{"time", "s"},         {"kinetic_translational", "erg"}, {"kinetic_rotational", "erg"},
-				 {"elastic", "erg"},    {"com_height_box", "cm"},         {"max_overlap", "1"},
-				 {"contacts", "1"}};
-/* per contact, after the frame's time and count */
-static const rec_col CONTACT[] = {{"id_a", "1"},     {"id_b", "1"},     {"normal_force", "dyn"}, {"tangential_force", "dyn"},
-				  {"normal_x", "1"}, {"normal_y", "1"}, {"x", "cm"},             {"y_box", "cm"}};
-static const rec_col RING[] = {{"time", "s"},          {"mean_force", "dyn"}, {"net_force", "dyn"}, {"temperature", "cm2 s-2"},
-			       {"grains", "1"},        {"centre_x", "cm"},    {"centre_y", "cm"}};
-
-static const rec_col KINETIC[] = {{"time", "s"}, {"kinetic_energy", "erg"}, {"frequency", "Hz"}};
-
-_Static_assert(sizeof KINETIC / sizeof *KINETIC == JR_KINETIC_COLS, "a kinetic sample's columns");
-_Static_assert(sizeof TRAJ / sizeof *TRAJ == JR_TRAJ_COLS, "a trajectory row's columns");
-_Static_assert(sizeof ENERGY / sizeof *ENERGY == JR_ENERGY_COLS, "an energy row's columns");
-_Static_assert(sizeof CONTACT / sizeof *CONTACT == JR_CONTACT_COLS, "a contact's columns");
-_Static_assert(sizeof RING / sizeof *RING == JR_RING_COLS, "a ring row's columns");
+#define REC_COL_(name, unit) {name, unit},
+static const rec_col TRAJ[] = {REC_COLS_TRAJ(REC_COL_)};
+static const rec_col ENERGY[] = {REC_COLS_ENERGY(REC_COL_)};
+static const rec_col CONTACT[] = {REC_COLS_CONTACT(REC_COL_)}; /* per contact, after the frame's time and count */
+static const rec_col RING[] = {REC_COLS_RING(REC_COL_)};
+static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
+static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
 
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
 static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
 static long field_len(const sb_sim *s, const double *rec) { (void)rec; return obs_field_len(&s->obs); }
 /* a contact frame: time, count, count contacts */
-static long contact_len(const sb_sim *s, const double *rec) { (void)s; return 2 + JR_CONTACT_COLS * (long)rec[1]; }
+static long contact_len(const sb_sim *s, const double *rec)
+{
+	(void)s;
+	return 2 + REC_NCOLS(REC_COLS_CONTACT) * (long)rec[1];
+}
 
-#define COLS(a) a, (int)(sizeof a / sizeof *a)
+/* a fixed-length row: its length and columns from one list */
+#define FIXED(a) .len = (int)(sizeof a / sizeof *a), .cols = a, .ncols = (int)(sizeof a / sizeof *a)
 
 static const sb_record TABLE[REC_N] = {
-	[REC_TRAJ] = {"trajectory", "traj_rate", RC_RATE, JR_TRAJ, JR_TRAJ_COLS, COLS(TRAJ), REC_H5_INTRUDER,
-		      RECF_INTRUDER, sample_traj, NULL},
-	[REC_SNAP] = {"snapshot", "snapshots", RC_STROBE, JR_SNAP, 0, NULL, 0, REC_H5_BED, 0, sample_snap, snap_len},
-	[REC_FLUX] = {"flux", "flux", RC_STROBE, JR_FLUX, 0, NULL, 0, REC_H5_FLUX, RECF_OBS, sample_flux, flux_len},
-	[REC_FIELD] = {"field", "field", RC_STROBE, JR_FIELD, 0, NULL, 0, REC_H5_FIELD, RECF_OBS, sample_field,
-		       field_len},
-	[REC_ENERGY] = {"energy", "energy_rate", RC_RATE, JR_ENERGY, JR_ENERGY_COLS, COLS(ENERGY), REC_H5_ENERGY,
-			RECF_OBS, sample_energy, NULL},
-	[REC_CONTACT] = {"contact", "contact_rate", RC_RATE, JR_CONTACT, 0, COLS(CONTACT), REC_H5_CONTACTS, RECF_OBS,
-			 sample_contacts, contact_len},
-	[REC_RING] = {"ring", "ring", RC_RING, JR_RING, JR_RING_COLS, COLS(RING), REC_H5_RING, RECF_OBS, sample_ring,
-		      NULL},
-	[REC_KINETIC] = {"bed kinetic energy", "bed_kinetic_samples", RC_PHASE, JR_KINETIC, JR_KINETIC_COLS,
-			 COLS(KINETIC), REC_H5_KINETIC, RECF_OBS, sample_kinetic, NULL},
+	[REC_TRAJ] = {"trajectory", "traj_rate", RC_RATE, FIXED(TRAJ), .h5 = REC_H5_INTRUDER, .flags = RECF_INTRUDER,
+		      .sample = sample_traj},
+	[REC_SNAP] = {"snapshot", "snapshots", RC_STROBE, .h5 = REC_H5_BED, .sample = sample_snap, .vlen = snap_len},
+	[REC_FLUX] = {"flux", "flux", RC_STROBE, .h5 = REC_H5_FLUX, .flags = RECF_OBS, .sample = sample_flux,
+		      .vlen = flux_len},
+	[REC_FIELD] = {"field", "field", RC_STROBE, .h5 = REC_H5_FIELD, .flags = RECF_OBS, .sample = sample_field,
+		       .vlen = field_len},
+	[REC_ENERGY] = {"energy", "energy_rate", RC_RATE, FIXED(ENERGY), .h5 = REC_H5_ENERGY, .flags = RECF_OBS,
+			.sample = sample_energy,
+			.def = "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y "
+			       "xi^2 / 2 over the contacts; com_height_box = mass-weighted mean y of the mobile disks; "
+			       "max_overlap = largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")"},
+	[REC_CONTACT] = {"contact", "contact_rate", RC_RATE, .cols = CONTACT, .ncols = REC_NCOLS(REC_COLS_CONTACT),
+			 .h5 = REC_H5_CONTACTS, .flags = RECF_OBS, .sample = sample_contacts, .vlen = contact_len},
+	[REC_RING] = {"ring", "ring", RC_RING, FIXED(RING), .h5 = REC_H5_RING, .flags = RECF_OBS, .sample = sample_ring},
+	[REC_KINETIC] = {"bed kinetic energy", "bed_kinetic_samples", RC_PHASE, FIXED(KINETIC),
+			 .h5 = REC_H5_OBS "/bed_kinetic", .flags = RECF_OBS, .sample = sample_kinetic,
+			 .def = "per drive period (time and step: its end): kinetic_energy = the mean of the mobile "
+				"disks' sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = "
+				"samples_per_period); frequency = the drive's at the period's end"},
+	[REC_HEIGHT] = {"bed height", "bed_height_samples", RC_PHASE, FIXED(HEIGHT), .h5 = REC_H5_OBS "/bed_height",
+			.flags = RECF_OBS, .sample = sample_height,
+			.def = "per drive period (time and step: its end): com_height_box = the mean of the mobile "
+			       "disks' centre-of-mass height sum m y / sum m (box frame: above the box floor's rest "
+			       "position) at phases k/N, k = 1..N (N = samples_per_period); frequency = the drive's at "
+			       "the period's end"},
 };
 
 const sb_record *rec_table(void) { return TABLE; }
 
-const char *rec_table_check(void)
+const char *rec_table_check(void) { return rec_rows_check(TABLE, REC_N); }
+
+const char *rec_rows_check(const sb_record *rows, int n)
 {
-	for (int k = 0; k < REC_N; k++) {
-		const sb_record *r = &TABLE[k];
+	for (int k = 0; k < n; k++) {
+		const sb_record *r = &rows[k];
 		const sb_param *p = r->key ? params_find(r->key) : NULL;
 		if (!r->name || !p)
 			return "a row without a name or with a key the parameter table lacks";
 		const enum sb_ptype want = r->clock == RC_RATE ? PT_REAL : r->clock == RC_PHASE ? PT_INT : PT_BOOL;
 		if (p->type != want)
 			return "a row's key is not of its clock's type (rate: real, per period: int, else yes/no)";
-		if (r->len > 0 ? r->ncols != r->len || !r->cols : !r->vlen)
-			return "a fixed-length row's columns differ from its length, or a variable row has no length function";
+		if (r->len > 0 ? r->ncols != r->len || !r->cols || strcmp(r->cols[0].name, "time") : !r->vlen)
+			return "a fixed-length row's columns differ from its length or do not start with time, or a "
+			       "variable row has no length function";
+		if (r->clock == RC_PHASE && r->len <= 1)
+			return "a per-period row without a fixed length and a value column (h5out averages its periods)";
 		if (!r->sample || !r->h5)
 			return "a row without a sampling function or a run-file group";
 		for (int j = 0; j < k; j++)
-			if (TABLE[j].tag == r->tag || !strcmp(TABLE[j].h5, r->h5))
-				return "two rows share a journal tag or a run-file group";
+			if (!strcmp(rows[j].h5, r->h5))
+				return "two rows share a run-file group";
+	}
+	for (int k = 0; k < RSUM_N; k++) {
+		const int row = rec_summary_row(k);
+		if (row < 0 || row >= n || (row != REC_TRAJ && (!(rows[row].flags & RECF_OBS) || rows[row].len < 2)))
+			return "a summary of a row that is neither the trajectory nor a fixed-length observable";
 	}
 	return NULL;
 }
 
-int rec_by_tag(int tag)
+int rec_by_tag(int tag) { return tag >= REC_TAG(0) && tag < REC_TAG(REC_N) ? tag - REC_TAG(0) : -1; }
+
+void rec_print_table(FILE *f)
 {
-	for (int k = 0; k < REC_N; k++)
-		if (TABLE[k].tag == tag)
-			return k;
-	return -1;
+	static const char *const clock[] = {[RC_RATE] = "rate", [RC_STROBE] = "strobe", [RC_RING] = "ring",
+					    [RC_PHASE] = "phase"};
+	fprintf(f, "name\tkey\tclock\ttag\tgroup\tcolumns\n");
+	for (int k = 0; k < REC_N; k++) {
+		const sb_record *r = &TABLE[k];
+		fprintf(f, "%s\t%s\t%s\t%d\t%s\t", r->name, r->key, clock[r->clock], REC_TAG(k), r->h5);
+		for (int c = 0; c < r->ncols; c++)
+			fprintf(f, "%s%s[%s]", c ? "," : "", r->cols[c].name, r->cols[c].unit);
+		fputc('\n', f);
+	}
 }
 
 /* The key's value in the scene: a rate (REAL), a count per period (INT) or a switch

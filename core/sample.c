@@ -3,21 +3,28 @@
 
 #include <stdlib.h>
 
+/* Journal a fixed-length row of record id (its tag, its length: record.h) and count it. */
+static int put(sb_sim *s, int id, const double *row, int len, sb_err *e)
+{
+	if (journal_record(&s->jr, REC_TAG(id), row, len, e))
+		return e->code;
+	s->rec_n[id]++;
+	return 0;
+}
+#define PUT(s, id, row, e) put(s, id, row, (int)(sizeof row / sizeof *row), e)
+
 int sample_traj(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	int i = s->intruder;
 	double idt = 1.0 / s->sc.dt;
-	double row[JR_TRAJ_COLS] = {t,
+	const double row[REC_NCOLS(REC_COLS_TRAJ)] = {t,
 				    st->q[C_X][0][i],
 				    st->q[C_Y][0][i] + sim_box_y(s, t),
 				    st->q[C_X][1][i] * idt,
 				    st->q[C_Y][1][i] * idt + sim_box_v(s, t),
 				    st->q[C_TH][1][i] * idt};
-	if (journal_traj(&s->jr, row, e))
-		return e->code;
-	s->rec_n[REC_TRAJ]++;
-	return 0;
+	return PUT(s, REC_TRAJ, row, e);
 }
 
 int sample_snap(sb_sim *s, double t, sb_err *e)
@@ -35,7 +42,7 @@ int sample_snap(sb_sim *s, double t, sb_err *e)
 		vx[i] = st->q[C_X][1][i] * idt;
 		vy[i] = st->q[C_Y][1][i] * idt + vb;
 	}
-	int rc = journal_snap(&s->jr, t, st->q[C_X][0], ylab, st->q[C_TH][0], vx, vy, e);
+	int rc = journal_snap(&s->jr, REC_TAG(REC_SNAP), t, st->q[C_X][0], ylab, st->q[C_TH][0], vx, vy, e);
 	free(lab);
 	if (rc)
 		return e->code;
@@ -59,11 +66,8 @@ int sample_energy(sb_sim *s, double t, sb_err *e)
 		m += st->m[i];
 	}
 	forces_contact_energy(&s->law, st, &s->nl, &el, &ov, &nc);
-	const double row[JR_ENERGY_COLS] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
-	if (journal_record(&s->jr, JR_ENERGY, row, JR_ENERGY_COLS, e))
-		return e->code;
-	s->rec_n[REC_ENERGY]++;
-	return 0;
+	const double row[REC_NCOLS(REC_COLS_ENERGY)] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
+	return PUT(s, REC_ENERGY, row, e);
 }
 
 /* One frame of the contact dump: every contact of the corrected state, its disks by
@@ -72,18 +76,18 @@ int sample_contacts(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	const long cap = (long)s->nl.nflat + s->nl.nseam; /* every pair of the list may touch */
-	double *rec = malloc(sizeof(double) * (size_t)(2 + JR_CONTACT_COLS * (cap > 0 ? cap : 1)));
+	double *rec = malloc(sizeof(double) * (size_t)(2 + REC_NCOLS(REC_COLS_CONTACT) * (cap > 0 ? cap : 1)));
 	if (!rec)
 		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");
 	const long n = forces_contacts(&s->law, st, &s->nl, 1.0 / s->sc.dt, rec + 2, cap);
 	rec[0] = t;
 	rec[1] = (double)n;
 	for (long k = 0; k < n; k++) { /* list indices -> the disks' ids */
-		double *c = rec + 2 + JR_CONTACT_COLS * k;
+		double *c = rec + 2 + REC_NCOLS(REC_COLS_CONTACT) * k;
 		c[0] = st->id[(int)c[0]];
 		c[1] = st->id[(int)c[1]];
 	}
-	int rc = journal_record(&s->jr, JR_CONTACT, rec, (int)(2 + JR_CONTACT_COLS * n), e);
+	int rc = journal_record(&s->jr, REC_TAG(REC_CONTACT), rec, (int)(2 + REC_NCOLS(REC_COLS_CONTACT) * n), e);
 	free(rec);
 	if (rc)
 		return rc;
@@ -111,13 +115,24 @@ int sample_ring(sb_sim *s, double t, sb_err *e)
 }
 
 /* The bed's kinetic energy (translation and rotation of the mobile disks, box frame:
- * the box's own motion is not the bed's) and the drive frequency; h5out averages a
- * period's samples. */
+ * the box's own motion is not the bed's); h5out averages a period's samples. */
 int sample_kinetic(sb_sim *s, double t, sb_err *e)
 {
-	const double row[JR_KINETIC_COLS] = {t, sim_kinetic(s), drive_freq(&s->drive, t)};
-	if (journal_record(&s->jr, JR_KINETIC, row, JR_KINETIC_COLS, e))
-		return e->code;
-	s->rec_n[REC_KINETIC]++;
-	return 0;
+	const double row[REC_NCOLS(REC_COLS_KINETIC)] = {t, sim_kinetic(s)};
+	return PUT(s, REC_KINETIC, row, e);
+}
+
+/* The bed's centre-of-mass height: the mass-weighted mean y of the mobile disks in the
+ * box frame (above the floor's rest position: the box's own motion is not the bed's,
+ * as for com_height_box of the energy series); h5out averages a period's samples. */
+int sample_height(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	double my = 0, m = 0;
+	for (int i = 0; i < st->nm; i++) {
+		my += st->m[i] * st->q[C_Y][0][i];
+		m += st->m[i];
+	}
+	const double row[REC_NCOLS(REC_COLS_HEIGHT)] = {t, m > 0 ? my / m : 0};
+	return PUT(s, REC_HEIGHT, row, e);
 }

@@ -14,5 +14,6 @@ int sample_flux(sb_sim *s, double t, sb_err *e);     /* crossings since the last
 int sample_field(sb_sim *s, double t, sb_err *e);    /* displacements since the last strobe */
 int sample_ring(sb_sim *s, double t, sb_err *e);     /* the ring around its centre */
 int sample_kinetic(sb_sim *s, double t, sb_err *e);  /* the bed's kinetic energy, box frame */
+int sample_height(sb_sim *s, double t, sb_err *e);   /* the bed's centre-of-mass height, box frame */
 
 #endif

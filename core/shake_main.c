@@ -51,13 +51,15 @@ static void usage(FILE *f)
 {
 	fprintf(f,
 		"usage: shake [SCENE] [key=value ...] [--profile]\n"
-		"       shake --help | --params | --version | --kernel-paths\n\n"
+		"       shake --help | --params | --records | --version | --kernel-paths\n\n"
 		"Simulates a vertically vibrated 2D box of soft disks (Poeschel & Herrmann 1995)\n"
 		"and writes one HDF5 file (output=...) with an XDMF sidecar for ParaView.\n"
 		"SCENE is an INI file of key = value lines (top level or [scene]); key=value\n"
 		"arguments override it. Without SCENE the paper preset is used.\n\n"
 		"  --help      this text and every scene key with unit, default and range\n"
 		"  --params    the parameter table as TSV (for tools)\n"
+		"  --records   the table of recorded quantities as TSV: name, key, clock, journal\n"
+		"              tag, run-file group, columns (for tools)\n"
 		"  --profile   time per phase of the step on stderr at the end\n"
 		"  --version   git hash of the build, the CPU and the force kernel's paths\n"
 		"  --kernel-paths  the force kernel's paths, one a line: name, runs here (yes/no),\n"
@@ -84,6 +86,10 @@ int main(int argc, char **argv)
 		}
 		if (!strcmp(a, "--params")) {
 			params_print_table(stdout);
+			return 0;
+		}
+		if (!strcmp(a, "--records")) {
+			rec_print_table(stdout);
 			return 0;
 		}
 		if (!strcmp(a, "--version")) {

@@ -17,7 +17,7 @@
 #   core-files      docs/engine.md's module table names every file of core/, and only those
 #   campaigns       campaigns/README.md names every campaign file, and only those
 #   run-file        docs/output.md's layout table against a run file with every
-#                   observable on: the same groups; every root and /provenance attribute
+#                   recorded quantity of `bin/shake --records` on: the same groups; every root and /provenance attribute
 #                   and every member of a listed group named in its row
 #   docs-map        README.md links every docs/*.md, and every docs/ file it names exists
 #   fuzz-inputs     docs/testing.md gives fuzz_quick.sh's number of inputs
@@ -154,9 +154,11 @@ same_set campaigns "campaigns/README.md's tables" "$TMP/camp.code" "$TMP/camp.do
 if [ -n "${DOCS_LISTS_CACHE:-}" ] && [ -s "$DOCS_LISTS_CACHE/all.h5" ]; then
 	cp "$DOCS_LISTS_CACHE/all.h5" "$TMP/all.h5"
 fi
-if [ -s "$TMP/all.h5" ] || (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 frequency=5 amplitude=1 \
-	settle_min=0.1 settle_ke=1 flux=yes field=yes field_periods=1 ring=yes energy_rate=50 \
-	contact_rate=20 traj_rate=50 bed_kinetic_samples=4 output=all.h5 >run.log 2>&1); then
+# every recorded quantity on, from the engine's table of them (shake --records: a rate
+# key at 20 Hz, a count per period at 4, a switch yes)
+ALL_ON=$("$SHAKE" --records | awk -F'\t' 'NR > 1 { print $2 "=" ($3 == "rate" ? 20 : $3 == "phase" ? 4 : "yes") }')
+if [ -s "$TMP/all.h5" ] || (cd "$TMP" && [ -n "$ALL_ON" ] && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 \
+	frequency=5 amplitude=1 settle_min=0.1 settle_ke=1 field_periods=1 $ALL_ON output=all.h5 >run.log 2>&1); then
 	H5="$TMP/all.h5"
 	[ -z "${DOCS_LISTS_CACHE:-}" ] || cp "$H5" "$DOCS_LISTS_CACHE/all.h5"
 	grep '^| `/' "$(doc docs/output.md)" >"$TMP/rows"

@@ -8,6 +8,7 @@
 
 #include "observe.h"
 #include "prepare.h"
+#include "record.h"
 #include "testlib.h"
 
 static char jpath[] = "/tmp/sb_obs_test_XXXXXX";
@@ -67,7 +68,7 @@ static void test_flux(void)
 	journal_sync(&jr, &off, &e);
 	journal_close(&jr);
 	double rec[22];
-	int n = read_back(JR_FLUX, rec, 22);
+	int n = read_back(REC_TAG(REC_FLUX), rec, 22);
 	CHECK("observe.flux.one_record", nf == 1 && n == 22, "nf %ld n %d", nf, n);
 	/* disk 0 (centre) rises 1.0 -> 4.2: crosses 1.5, 2.5, 3.5 upwards (+1 each)
 	 * disk 1 (centre) sinks 8.0 -> 3.0: crosses 7.5 .. 3.5 downwards (-1 each)
@@ -123,7 +124,7 @@ static void test_field(void)
 	journal_close(&jr);
 	int len = obs_field_len(&o);
 	double *rec = malloc(sizeof(double) * (size_t)len);
-	int n = read_back(JR_FIELD, rec, len);
+	int n = read_back(REC_TAG(REC_FIELD), rec, len);
 	CHECK("observe.field.one_block", nd == 1 && n == len && rec[1] == 3, "nd %ld n %d", nd, n);
 	size_t nc = (size_t)o.nx * o.ny;
 	double total = 0, worst = 0;

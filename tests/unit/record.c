@@ -1,7 +1,10 @@
 /* record.c - the table of recorded quantities (core/record.h) against the parameter
- * table and the journal: every row's key is a rate in Hz or a switch, its tag leads
- * back to it, a fixed record's columns are as many as its length with time first, its
- * group is where the readers look; and rec_on follows the key both ways. */
+ * table and the journal: every row's key is a rate in Hz, a count per period or a
+ * switch, and the keys REC_KEYS makes are the parameter table's rows and sb_scene's
+ * fields; its tag leads back to it; a fixed record's columns are as many as its length
+ * with time first, its group is where the readers look; rec_on follows the key both
+ * ways; the summaries belong to rows that can write them. */
+#include <stddef.h>
 #include <string.h>
 
 #include "record.h"
@@ -16,6 +19,29 @@ int main(void)
 	}
 	const sb_record *R = rec_table();
 	char id[128];
+	{ /* the check can fail: a copy of the table with one invariant broken at a time */
+		static sb_record B[REC_N];
+		static const rec_col notime[] = {{"kinetic_energy", "erg"}, {"time", "s"}};
+#define BROKEN(name, change)                                                                                     \
+	do {                                                                                                     \
+		memcpy(B, R, sizeof B);                                                                          \
+		change;                                                                                          \
+		const char *why_ = rec_rows_check(B, REC_N);                                                     \
+		CHECK("record.check." name, why_ != NULL, "a table with " name " passes");                      \
+	} while (0)
+		BROKEN("an_unknown_key", B[REC_ENERGY].key = "energy_rat");
+		BROKEN("a_key_of_another_type", B[REC_KINETIC].key = "energy_rate");
+		BROKEN("columns_not_its_length", B[REC_ENERGY].len = 6);
+		BROKEN("a_first_column_not_time", (B[REC_KINETIC].cols = notime, B[REC_KINETIC].ncols = 2));
+		BROKEN("a_variable_row_without_length", B[REC_FLUX].vlen = NULL);
+		BROKEN("a_variable_row_per_period", (B[REC_FLUX].clock = RC_PHASE, B[REC_FLUX].key = "bed_kinetic_samples"));
+		BROKEN("no_sampler", B[REC_RING].sample = NULL);
+		BROKEN("a_shared_group", B[REC_KINETIC].h5 = B[REC_ENERGY].h5);
+		BROKEN("a_summary_of_no_observable", B[REC_KINETIC].flags = 0);
+#undef BROKEN
+		memcpy(B, R, sizeof B);
+		CHECK("record.check.the_copy_passes", rec_rows_check(B, REC_N) == NULL, "%s", rec_rows_check(B, REC_N));
+	}
 	for (int k = 0; k < REC_N; k++) {
 		const sb_record *r = &R[k];
 		const sb_param *p = params_find(r->key);
@@ -26,7 +52,8 @@ int main(void)
 						   : p->type == PT_BOOL),
 		      "key '%s' of a row of clock %d", r->key, (int)r->clock);
 		snprintf(id, sizeof id, "record.%s.tag", r->name);
-		CHECK(id, rec_by_tag(r->tag) == k, "tag %d leads to row %d", r->tag, rec_by_tag(r->tag));
+		CHECK(id, REC_TAG(k) > 0 && rec_by_tag(REC_TAG(k)) == k, "tag %d leads to row %d", REC_TAG(k),
+		      rec_by_tag(REC_TAG(k)));
 		snprintf(id, sizeof id, "record.%s.columns", r->name);
 		CHECK(id,
 		      r->len > 0 ? r->ncols == r->len && !strcmp(r->cols[0].name, "time") && !strcmp(r->cols[0].unit, "s")
@@ -40,11 +67,28 @@ int main(void)
 		CHECK(id, r->sample != NULL, "no sampling function");
 		for (int j = 0; j < k; j++) {
 			snprintf(id, sizeof id, "record.%s.unique_vs_%s", r->name, R[j].name);
-			CHECK(id, strcmp(r->h5, R[j].h5) && strcmp(r->name, R[j].name) && r->tag != R[j].tag,
-			      "shares a name, group or tag");
+			CHECK(id, strcmp(r->h5, R[j].h5) && strcmp(r->name, R[j].name), "shares a name or group");
 		}
 	}
-	CHECK("record.tag.unknown", rec_by_tag(0) == -1 && rec_by_tag(99) == -1, "a tag no row has");
+	CHECK("record.tag.unknown", rec_by_tag(0) == -1 && rec_by_tag(REC_TAG(REC_N)) == -1 && rec_by_tag(-3) == -1,
+	      "a tag no row has");
+
+	/* the keys REC_KEYS makes: each a parameter row of its type, unit, default and
+	 * range, an output key, at the field of its name and C type */
+#define KEY_ROW_(k_, ty_, un_, df_, lo_, hi_, hp_)                                                           \
+	{                                                                                                        \
+		const sb_param *p = params_find(#k_);                                                            \
+		CHECK("record.keys." #k_,                                                                        \
+		      p && p->type == PT_##ty_ && !strcmp(p->unit, un_) && !strcmp(p->def, df_) && p->min == lo_ &&   \
+			      p->max == hi_ && p->flags == PF_OUT && !strcmp(p->help, hp_) &&                       \
+			      p->offset == offsetof(sb_scene, k_) &&                                                \
+			      sizeof(((sb_scene *)0)->k_) == sizeof(SB_SCENE_CTYPE_##ty_),                          \
+		      "the parameter row of %s", #k_);                                                           \
+		nkeys++;                                                                                         \
+	}
+	int nkeys = 0;
+	REC_KEYS(KEY_ROW_)
+	CHECK("record.keys.some", nkeys >= 4, "%d keys", nkeys);
 
 	/* rec_on reads the key: a rate of 0 is off, any other on; a switch likewise; the
 	 * trajectory needs an intruder */
@@ -52,7 +96,8 @@ int main(void)
 	params_defaults(&s.sc);
 	s.intruder = -1;
 	s.sc.traj_rate = 100;
-	CHECK("record.on.off_by_default", !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX) && !rec_on(&s, REC_KINETIC),
+	CHECK("record.on.off_by_default",
+	      !rec_on(&s, REC_ENERGY) && !rec_on(&s, REC_FLUX) && !rec_on(&s, REC_KINETIC) && !rec_on(&s, REC_HEIGHT),
 	      "on");
 	CHECK("record.on.trajectory_needs_an_intruder", !rec_on(&s, REC_TRAJ), "on without an intruder");
 	s.intruder = 0;
@@ -63,13 +108,21 @@ int main(void)
 	s.sc.bed_kinetic_samples = 8;
 	CHECK("record.on.samples_per_period", rec_on(&s, REC_KINETIC) && rec_rate(&s, REC_KINETIC) == 8, "%d %g",
 	      rec_on(&s, REC_KINETIC), rec_rate(&s, REC_KINETIC));
+	s.sc.bed_height_samples = 3;
+	CHECK("record.on.bed_height",
+	      rec_on(&s, REC_HEIGHT) && rec_rate(&s, REC_HEIGHT) == 3 && R[REC_HEIGHT].clock == RC_PHASE, "%d %g", rec_on(&s, REC_HEIGHT), rec_rate(&s, REC_HEIGHT));
 	CHECK("record.rate.is_the_key", rec_rate(&s, REC_ENERGY) == 50 && rec_rate(&s, REC_TRAJ) == 100, "%g %g",
 	      rec_rate(&s, REC_ENERGY), rec_rate(&s, REC_TRAJ));
 
 	/* a variable record's length: a contact frame of 3 contacts */
 	const double frame[2] = {0.5, 3};
-	CHECK("record.len.contact_frame", rec_len(&s, REC_CONTACT, frame) == 2 + 3 * JR_CONTACT_COLS, "%ld",
+	CHECK("record.len.contact_frame", rec_len(&s, REC_CONTACT, frame) == 2 + 3 * REC_NCOLS(REC_COLS_CONTACT), "%ld",
 	      rec_len(&s, REC_CONTACT, frame));
+
+	/* a fixed row's length is its column list's (the samplers' row arrays) */
+	CHECK("record.len.fixed", rec_len(&s, REC_TRAJ, NULL) == 6 && rec_len(&s, REC_ENERGY, NULL) == 7 &&
+					  rec_len(&s, REC_KINETIC, NULL) == REC_NCOLS(REC_COLS_KINETIC),
+	      "traj %ld energy %ld", rec_len(&s, REC_TRAJ, NULL), rec_len(&s, REC_ENERGY, NULL));
 
 	/* every summary belongs to a row and has a name of its own */
 	for (int k = 0; k < RSUM_N; k++) {
