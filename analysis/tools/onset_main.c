@@ -22,7 +22,7 @@
 #include "measure/powerfit.h"
 #include "measure/sigmoid.h"
 
-#define VERSION "2"
+#define VERSION "3" /* 3: the search's definition by default, the interval floor (resolve.c) */
 
 /* a run whose records are in the statistic: finished, or failed and used up to it */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
