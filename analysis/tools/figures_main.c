@@ -367,6 +367,18 @@ static int layout(an_tool *t, panels *P)
 	return tool_tally(t, stdout, "the runs of the panels drawn");
 }
 
+/* The end of every figure's script: its multiplot closed, the figure drawn (PNG and
+ * PDF), and its line in the output naming what it shows ("panel", "curve"). */
+static int plot_end(an_tool *t, FILE *f, const char *name, const char *script, const char *png, int drawn,
+		    const char *what)
+{
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# %s: %s (and .pdf, %d %s%s)\n", name, png, drawn, what, drawn == 1 ? "" : "s");
+	return 0;
+}
+
 /* ---- Fig. 1: displacement field ---- */
 
 /* One panel's field: the cells of its runs, count-weighted, on the grid of its first run. */
@@ -573,11 +585,7 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 			fprintf(f, "\nplot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
 				2 * r + sys, 0.25 * a->head);
 		}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig1: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig1", script, png, drawn, "panel");
 }
 
 /* fig1_field.csv and fig1.png */
@@ -720,11 +728,7 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 		}
 		fprintf(f, ", \\\n  0 with lines lc 'gray' notitle\n");
 	}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig3: %s (and .pdf, %d curve%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig3", script, png, drawn, "curve");
 }
 
 /* fig3_profile.csv, the table of the curves, their stored rows and fig3.png */
@@ -888,11 +892,7 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 		fprintf(f, ", \\\n  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' "
 			   "title 'free surface (t = 0)'\n", P->y0, P->surface);
 	}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig4: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig4", script, png, drawn, "panel");
 }
 
 /* fig4_traj.csv and fig4.png: one panel per radius ratio > 0 of the campaign (at most
