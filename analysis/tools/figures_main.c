@@ -16,9 +16,10 @@
 #include "common/fluxrun.h"
 #include "common/label.h"
 #include "common/tool.h"
+#include "measure/pool.h"
 #include "measure/traj.h"
 
-#define VERSION "4"
+#define VERSION "5"
 
 /* a run whose records are drawn: finished, or failed and used up to the failure */
 #define USED(r) ((r)->use == AN_USED || (r)->use == AN_PARTLY)
@@ -57,7 +58,7 @@ static double median_positive(const double *v, size_t n)
 
 static const char HELP[] =
 	"usage: figures CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--freq F1,F2,...]\n"
-	"               [--ratio R] [--skip FRAC] [--where KEY=VALUE ...] [--all-versions]\n"
+	"               [--ratio R] [--skip FRAC] [--level L] [--where KEY=VALUE ...] [--all-versions]\n"
 	"               [--no-plot] [--no-store]\n\n"
 	"The paper's figures from the fixed-frequency runs (ramp = none) of a\n"
 	"campaign, one row per frequency (--freq, default every frequency in the campaign,\n"
@@ -76,7 +77,11 @@ static const char HELP[] =
 	"  fig3.png  Fig. 3: Phi(D), the time-mean flux per height line over the periods of\n"
 	"            the panel's runs after the first FRAC of each (--skip, default 0.2),\n"
 	"            against the line height D above the bottom (/flux, flux = yes), both\n"
-	"            systems in one panel per frequency;\n"
+	"            systems in one panel per frequency, each curve in its band: the\n"
+	"            interval at level L (--level, default 0.95) of its mean across its\n"
+	"            runs (Student t with runs - 1 degrees of freedom, each run weighted\n"
+	"            by its periods; none for a curve of one run), the runs it rests on\n"
+	"            in each panel's title and the table's 'used';\n"
 	"  fig4.png  Fig. 4: the intruder's height y(t) above the box floor\n"
 	"            (/particles/intruder/position less the box motion A sin(2 pi f t)) at\n"
 	"            the highest selected frequency, one panel per radius ratio > 0: every\n"
@@ -93,9 +98,11 @@ static const char HELP[] =
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
 	"  --all-versions   also the runs of earlier versions of the campaign file (run.current = 0)\n"
 	"  --no-plot, --no-store\n\n"
-	"Writes fig1_field.csv, fig3_profile.csv, fig4_traj.csv and the figures; stores per\n"
+	"Writes fig1_field.csv, fig3_profile.csv (with the band: phi_lo, phi_hi),\n"
+	"fig4_traj.csv and the figures; stores per\n"
 	"panel of Fig. 3 in `analysis` (tool 'figures', grp 'fig3 f=F radius_ratio=R'):\n"
-	"phi_max (largest |Phi(D)|), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
+	"phi_max (largest |Phi(D)|; lo, hi: the band of |Phi| on its line, as the table's\n"
+	"phi_lo, phi_hi), half_height (lowest D where |Phi| >= phi_max / 2: how\n"
 	"deep the rolls reach), runs (used) and the accounting (runs_failed, runs_failed_used,\n"
 	"..., as onset --help lists).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
@@ -117,6 +124,8 @@ typedef struct panels {
 	int nf, nra;
 	double R;
 	int nsys;
+	double level;      /* Fig. 3's band (--level) */
+	int runs[64][2];   /* Fig. 3: the runs of each row's curves */
 } panels;
 
 static double sys_ratio(const panels *P, int sys)
@@ -367,6 +376,18 @@ static int layout(an_tool *t, panels *P)
 	return tool_tally(t, stdout, "the runs of the panels drawn");
 }
 
+/* The end of every figure's script: its multiplot closed, the figure drawn (PNG and
+ * PDF), and its line in the output naming what it shows ("panel", "curve"). */
+static int plot_end(an_tool *t, FILE *f, const char *name, const char *script, const char *png, int drawn,
+		    const char *what)
+{
+	fprintf(f, "unset multiplot\n");
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	printf("# %s: %s (and .pdf, %d %s%s)\n", name, png, drawn, what, drawn == 1 ? "" : "s");
+	return 0;
+}
+
 /* ---- Fig. 1: displacement field ---- */
 
 /* One panel's field: the cells of its runs, count-weighted, on the grid of its first run. */
@@ -573,11 +594,7 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 			fprintf(f, "\nplot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
 				2 * r + sys, 0.25 * a->head);
 		}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig1: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig1", script, png, drawn, "panel");
 }
 
 /* fig1_field.csv and fig1.png */
@@ -603,12 +620,15 @@ static int fig1(an_tool *t, const panels *P)
 
 /* ---- Fig. 3: Phi(D) ---- */
 
-/* One panel's profile: Phi(D) of its runs, pooled by their periods after the transient. */
+/* One panel's profile: Phi(D) of its runs, pooled by their periods after the
+ * transient; each run's own profile is kept for the band (measure/pool.h). */
 typedef struct profile {
 	size_t L;
-	double *sp, *sh; /* [L] sums of w * Phi and of w * D over the runs, w their periods */
+	double *phi;  /* [runs][L] each run's time-mean Phi per line */
+	double *sh;   /* [L] sums of w * D over the runs, w their periods */
+	double *w;    /* [runs] their periods after the transient */
 	double wsum;
-	int runs;
+	int runs, cap;
 } profile;
 
 static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
@@ -617,58 +637,80 @@ static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
 	if (fluxrun_load(r, &fd))
 		return; /* classified as usable: only a file changed since could fail */
 	if (!pr->runs) {
-		free(pr->sp);
 		free(pr->sh);
 		pr->L = fd.L;
-		pr->sp = calloc(pr->L ? pr->L : 1, sizeof *pr->sp);
 		pr->sh = calloc(pr->L ? pr->L : 1, sizeof *pr->sh);
 	}
-	double *prof = malloc(sizeof *prof * (fd.L ? fd.L : 1));
 	const size_t p0 = flux_first(&fd, fo);
 	/* the runs' periods pooled: a failed run weighs what it recorded */
 	const double w = fd.P > p0 ? (double)(fd.P - p0) : 0;
-	if (pr->sp && pr->sh && prof && fd.L == pr->L && w > 0) {
-		flux_profile(&fd, fo, prof);
-		for (size_t l = 0; l < pr->L; l++) {
-			pr->sp[l] += w * prof[l];
-			pr->sh[l] += w * fd.h[l];
-		}
-		pr->wsum += w;
-		pr->runs++;
+	if (pr->runs == pr->cap) {
+		const int cap = pr->cap ? 2 * pr->cap : 8;
+		double *phi = realloc(pr->phi, sizeof *phi * (size_t)cap * (pr->L ? pr->L : 1));
+		double *ws = realloc(pr->w, sizeof *ws * (size_t)cap);
+		if (phi)
+			pr->phi = phi;
+		if (ws)
+			pr->w = ws;
+		if (phi && ws)
+			pr->cap = cap;
 	}
-	free(prof);
+	if (pr->sh && pr->runs < pr->cap && fd.L == pr->L && w > 0) {
+		double *prof = pr->phi + (size_t)pr->runs * pr->L;
+		flux_profile(&fd, fo, prof);
+		for (size_t l = 0; l < pr->L; l++)
+			pr->sh[l] += w * fd.h[l];
+		pr->w[pr->runs++] = w;
+		pr->wsum += w;
+	}
 	flux_free(&fd);
 }
 
-/* Panel (r, sys)'s curve into f and its table row; its phi_max and half height. */
-static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
-			double *pm, double *half, int *headed)
+static void profile_free(profile *pr)
 {
-	*pm = 0;
+	free(pr->phi);
+	free(pr->sh);
+	free(pr->w);
+}
+
+/* Panel (r, sys)'s curve and band into f and its table row; its phi_max with the band
+ * of |Phi| on its line, and half height. */
+static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
+			pool_mean *pm, double *half, int *headed)
+{
+	pool_mean *m = malloc(sizeof *m * (pr->L ? pr->L : 1));
+	*pm = (pool_mean){0, 0, NAN, NAN, NAN};
 	*half = NAN;
-	for (size_t l = 0; l < pr->L; l++) {
-		fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d\n", r, sys, P->freqs[r], sys_ratio(P, sys), l,
-			pr->sh[l] / pr->wsum, pr->sp[l] / pr->wsum, pr->runs);
-		*pm = fmax(*pm, fabs(pr->sp[l] / pr->wsum));
+	for (size_t l = 0; m && l < pr->L; l++) {
+		pool_ci(pr->phi + l, pr->L, pr->w, (size_t)pr->runs, P->level, &m[l]);
+		fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d,%.17g,%.17g\n", r, sys, P->freqs[r], sys_ratio(P, sys), l,
+			pr->sh[l] / pr->wsum, m[l].mean, pr->runs, m[l].lo, m[l].hi);
+		if (fabs(m[l].mean) > pm->mean) {
+			/* the band of |Phi|: a negative Phi's mirrored */
+			const int neg = m[l].mean < 0;
+			*pm = (pool_mean){m[l].n, fabs(m[l].mean), m[l].se, neg ? -m[l].hi : m[l].lo, neg ? -m[l].lo : m[l].hi};
+		}
 	}
-	for (size_t l = 0; l < pr->L && isnan(*half); l++)
-		if (*pm > 0 && fabs(pr->sp[l] / pr->wsum) >= 0.5 * *pm)
+	for (size_t l = 0; m && l < pr->L && isnan(*half); l++)
+		if (pm->mean > 0 && fabs(m[l].mean) >= 0.5 * pm->mean)
 			*half = pr->sh[l] / pr->wsum;
+	free(m);
 	if (!(*headed)++)
-		printf("%-10s %-6s %5s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "half_height", "failed",
-		       "unfinished");
-	printf("%-10g %-6g %5d %10.4g %12.4g %6ld %10ld\n", P->freqs[r], sys_ratio(P, sys), pr->runs, *pm, *half,
-	       a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+		printf("%-10s %-6s %5s %10s %10s %10s %12s %6s %10s\n", "frequency", "R", "used", "phi_max", "phi_lo", "phi_hi",
+		       "half_height", "failed", "unfinished");
+	printf("%-10g %-6g %5d %10.4g %10.4g %10.4g %12.4g %6ld %10ld\n", P->freqs[r], sys_ratio(P, sys), pr->runs, pm->mean,
+	       pm->lo, pm->hi, *half, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
 }
 
 /* Panel (r, sys): its curve and table row when a run is drawn; its stored rows when
- * it has runs of any kind. Returns 1 when drawn. */
+ * it has runs of any kind. Returns the runs drawn (0: none). */
 static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int *headed)
 {
 	const int j = r * P->nsys + sys;
 	const an_acct *a = &t->A[j];
 	profile pr = {0};
-	double pm = 0, half = NAN;
+	pool_mean pm = {0, 0, NAN, NAN, NAN};
+	double half = NAN;
 	for (int i = 0; i < t->k; i++)
 		if (USED(&t->runs[i]) && t->runs[i].group == j)
 			profile_add(&pr, &t->runs[i], &P->fo);
@@ -681,72 +723,91 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int 
 		char g[128];
 		snprintf(g, sizeof g, "fig3 f=%g radius_ratio=%g", P->freqs[r], sys_ratio(P, sys));
 		if (pr.runs) {
-			tool_store(t, j, g, "phi_max", pm, NAN, NAN, pr.runs);
+			tool_store(t, j, g, "phi_max", pm.mean, pm.lo, pm.hi, pr.runs);
 			tool_store(t, j, g, "half_height", half, NAN, NAN, pr.runs);
 		}
 		tool_store(t, j, g, "runs", pr.runs, NAN, NAN, pr.runs);
 		tool_store_acct(t, g, j);
 	}
-	free(pr.sp);
-	free(pr.sh);
-	return pr.runs > 0;
+	profile_free(&pr);
+	return pr.runs;
+}
+
+/* Fig. 3's band in words, for the figure and the output */
+static void band_words(const panels *P, char *buf, size_t n)
+{
+	snprintf(buf, n, "%g %% CI of the mean over a curve's runs (Student t, each run weighted by its periods)",
+		 100 * P->level);
 }
 
 static int fig3_plot(an_tool *t, const panels *P, int drawn)
 {
-	char script[1400], png[1400], set[512], w[2][96];
+	char script[1400], png[1400], set[512], w[2][96], band[160];
 	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 100, script, png, sizeof script, &t->e);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	sys_words(P, 0, NAN, w[0], sizeof w[0]);
 	sys_words(P, 1, NAN, w[1], sizeof w[1]);
-	fprintf(f, "set multiplot layout %d,1 title \"Fig. 3: convective flux Φ through planes at height D%s%s\"\n"
-		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n",
-		P->nf, *set ? "\\n" : "", set);
+	band_words(P, band, sizeof band);
+	fprintf(f, "set multiplot layout %d,1 title \"Fig. 3: convective flux Φ through planes at height D%s%s\\n"
+		   "band: %s\"\n"
+		   "set xlabel 'D (cm above the floor)'\nset ylabel 'Φ (particles per period)'\n"
+		   "set style fill transparent solid 0.2 noborder\n",
+		P->nf, *set ? "\\n" : "", set, band);
 	for (int r = 0; r < P->nf; r++) {
 		/* one legend, below the last panel: the systems are the same in every row */
 		fprintf(f, "%s", r + 1 < P->nf ? "unset key\n" : "set key below height 1\n");
-		char fw[64];
+		/* the runs each band rests on, in the row's title */
+		char fw[64], title[320];
 		label_num(fw, sizeof fw, "frequency", P->freqs[r]);
+		int l = snprintf(title, sizeof title, "%s; runs:", fw);
+		for (int sys = 0; sys < P->nsys && l > 0 && (size_t)l < sizeof title; sys++)
+			l += snprintf(title + l, sizeof title - (size_t)l, "%s %d %s", sys ? "," : "", P->runs[r][sys], w[sys]);
 		fprintf(f, "set title ");
-		gp_str(f, fw);
+		gp_str(f, title);
 		fputc('\n', f);
-		fprintf(f, "plot 'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==0?$7:1/0) with linespoints pt 7 ps 0.5 lt 1 title ", r);
-		gp_str(f, w[0]);
-		if (P->nsys > 1) {
-			fprintf(f, ", \\\n  'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==1?$7:1/0) with linespoints pt 5 ps 0.5 lt 2 title ", r);
-			gp_str(f, w[1]);
+		fprintf(f, "plot ");
+		for (int sys = 0; sys < P->nsys; sys++) {
+			/* the band behind its curve; a curve of one run has none */
+			if (P->runs[r][sys] > 1)
+				fprintf(f, "'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==%d?$9:1/0):10 with filledcurves lt %d notitle, "
+					   "\\\n  ", r, sys, sys + 1);
+			fprintf(f, "'fig3_profile.csv' skip 1 using 6:($1==%d&&$2==%d?$7:1/0) with linespoints pt %d ps 0.5 lt %d title ",
+				r, sys, sys ? 5 : 7, sys + 1);
+			gp_str(f, w[sys]);
+			fprintf(f, ", \\\n  ");
 		}
-		fprintf(f, ", \\\n  0 with lines lc 'gray' notitle\n");
+		fprintf(f, "0 with lines lc 'gray' notitle\n");
 	}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig3: %s (and .pdf, %d curve%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig3", script, png, drawn, "curve");
 }
 
 /* fig3_profile.csv, the table of the curves, their stored rows and fig3.png */
-static int fig3(an_tool *t, const panels *P)
+static int fig3(an_tool *t, panels *P)
 {
 	char path[1400];
 	FILE *f = cli_fopen(t->o, "fig3_profile.csv", path, sizeof path, &t->e);
 	if (!f)
 		return t->e.code;
-	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs\n");
+	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs,phi_lo,phi_hi\n");
 	int drawn = 0, headed = 0;
 	for (int r = 0; r < P->nf; r++)
-		for (int sys = 0; sys < P->nsys; sys++)
-			drawn += fig3_panel(t, P, r, sys, f, &headed);
+		for (int sys = 0; sys < P->nsys; sys++) {
+			P->runs[r][sys] = fig3_panel(t, P, r, sys, f, &headed);
+			drawn += P->runs[r][sys] > 0;
+		}
 	fclose(f);
 	if (t->e.code)
 		return t->e.code;
-	if (!drawn)
+	if (!drawn) {
 		printf("# fig3: no run with flux = yes; skipped\n");
-	else if (!t->o->no_plot)
-		return fig3_plot(t, P, drawn);
-	return 0;
+		return 0;
+	}
+	char band[160];
+	band_words(P, band, sizeof band);
+	printf("# fig3: band: %s; it rests on a curve's used runs (none for one run)\n", band);
+	return t->o->no_plot ? 0 : fig3_plot(t, P, drawn);
 }
 
 /* ---- Fig. 4: intruder height ---- */
@@ -888,11 +949,7 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 		fprintf(f, ", \\\n  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' "
 			   "title 'free surface (t = 0)'\n", P->y0, P->surface);
 	}
-	fprintf(f, "unset multiplot\n");
-	if (tool_plot(t, f, script, png))
-		return t->e.code;
-	printf("# fig4: %s (and .pdf, %d panel%s)\n", png, drawn, drawn == 1 ? "" : "s");
-	return 0;
+	return plot_end(t, f, "fig4", script, png, drawn, "panel");
 }
 
 /* fig4_traj.csv and fig4.png: one panel per radius ratio > 0 of the campaign (at most
@@ -933,6 +990,7 @@ static int init(an_tool *t, void *vs, const xopt *x)
 	(void)x;
 	panels *P = vs;
 	P->fo = (flux_opts){0.4, 0.6, t->o->skip};
+	P->level = t->o->level;
 	return 0;
 }
 
@@ -950,7 +1008,7 @@ static int run(an_tool *t, void *vs)
 }
 
 static const tool_spec SPEC = {.name = "figures", .version = VERSION, .help = HELP,
-			       .allowed = " freq ratio skip where ", .init = init, .run = run};
+			       .allowed = " freq ratio skip level where ", .init = init, .run = run};
 
 int main(int argc, char **argv)
 {

@@ -21,7 +21,8 @@ int db_open(st_db *d, const char *path, int writable, sb_err *e)
 		return e->code;
 	if (db_begin(d, e))
 		return e->code;
-	if (schema_study(d, e)) {
+	/* an attempt's start (attempt_row): absent from files of earlier versions */
+	if (schema_study(d, e) || sql_ensure_column(d, "attempt", "started", "TEXT", e)) {
 		db_rollback(d);
 		return e->code;
 	}
@@ -133,14 +134,20 @@ int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t
 	return 0;
 }
 
+/* An attempt's row and its run's new state. Its start is the run's start when the
+ * driver saw the attempt begin (the run is 'running'), else `started` (the engine's
+ * own start from the run file, or NULL: not known). `now` may be NULL: the end is not
+ * known. */
 static int attempt_row(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
-		       const char *message, const char *host, const char *now, int has_wall, double wall,
-		       const char *state, sb_err *e)
+		       const char *message, const char *host, const char *started, const char *now, int has_wall,
+		       double wall, const char *state, sb_err *e)
 {
 	if (sql_exec(d, e, NULL,
-		    "INSERT INTO attempt(campaign, run, n, host, exit_code, status, message, finished, wall_seconds)"
-		    " VALUES (?1, ?2, (SELECT attempts + 1 FROM run WHERE campaign = ?1 AND id = ?2), ?3, ?4, ?5, ?6, ?7, ?8)",
-		    "tttlttt" "D", camp, id, host, exit_code, status, message, now, has_wall, wall))
+		    "INSERT INTO attempt(campaign, run, n, host, exit_code, status, message, started, finished, wall_seconds)"
+		    " VALUES (?1, ?2, (SELECT attempts + 1 FROM run WHERE campaign = ?1 AND id = ?2), ?3, ?4, ?5, ?6,"
+		    " COALESCE((SELECT started FROM run WHERE campaign = ?1 AND id = ?2 AND state = 'running'), ?7),"
+		    " ?8, ?9)",
+		    "tttlttttD", camp, id, host, exit_code, status, message, started, now, has_wall, wall))
 		return e->code;
 	return sql_exec(d, e, NULL,
 		       "UPDATE run SET attempts = attempts + 1, state = ?3, host = ?4, finished = ?5"
@@ -151,15 +158,16 @@ static int attempt_row(st_db *d, const char *camp, const char *id, long exit_cod
 int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
 	       const char *message, const char *host, const char *now, const char *state, sb_err *e)
 {
-	return attempt_row(d, camp, id, exit_code, status, message, host, now, 0, 0, state, e);
+	return attempt_row(d, camp, id, exit_code, status, message, host, NULL, now, 0, 0, state, e);
 }
 
 int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, const char *status,
 		    const char *message, const char *now, sb_err *e)
 {
 	const char *end = s ? h5sum_text(s, "end_time") : "";
+	const char *start = s ? h5sum_text(s, "start_time") : "";
 	return attempt_row(d, camp, id, s ? h5sum_int(s, "exit_code") : SB_EIO, status, message,
-			   s ? h5sum_text(s, "host") : "", end[0] ? end : now, s != NULL,
+			   s ? h5sum_text(s, "host") : "", start[0] ? start : NULL, end[0] ? end : now, s != NULL,
 			   s ? h5sum_real(s, "wall_seconds") : 0, "pending", e);
 }
 
@@ -217,13 +225,13 @@ int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const 
 	const char *status = h5sum_text(s, "status");
 	/* the run finished when the engine wrote its file, not when the driver read it */
 	const char *end = h5sum_text(s, "end_time");
-	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
-			h5sum_text(s, "host"), end[0] ? end : now, 1, h5sum_real(s, "wall_seconds"),
-			strcmp(status, "ok") ? "failed" : "done", e))
-		return e->code;
 	/* a run no driver saw start (a database rebuilt from the files): it started when
 	 * its file says the engine did */
 	const char *start = h5sum_text(s, "start_time");
+	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
+			h5sum_text(s, "host"), start[0] ? start : NULL, end[0] ? end : now, 1,
+			h5sum_real(s, "wall_seconds"), strcmp(status, "ok") ? "failed" : "done", e))
+		return e->code;
 	if (start[0] && sql_exec(d, e, NULL, "UPDATE run SET started = ?3 WHERE campaign = ?1 AND id = ?2 AND started IS NULL",
 				"ttt", camp, id, start))
 		return e->code;

@@ -663,7 +663,8 @@ int driver_run(const driver_opts *o, sb_err *e)
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
 	int rounds = d->adaptive || d->autorep; /* the grid grows pass by pass */
-	if (db_open(&d->db, dbp, 1, e) || (!rounds && (check_changes(d, e) || driver_record(d, e))))
+	if (db_open(&d->db, dbp, 1, e) || orphans(d, e) ||
+	    (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 
 	stop_signals();

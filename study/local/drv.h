@@ -88,6 +88,8 @@ void cache_state(drv *d, const char *key, char *st, size_t len);
 int on_start(drv *d, char *line, sb_err *e);
 int on_done(drv *d, int is_cache, char *line, sb_err *e);
 void unreported(drv *d, sb_err *e);
+/* the runs a killed driver left 'running': each an interrupted attempt, pending */
+int orphans(drv *d, sb_err *e);
 
 /* sweep.c: outputs finished while no driver listened, damaged ones, litter, failed
  * runs back in the queue (--retry-failed); the pending runs' indices in *pend */

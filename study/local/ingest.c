@@ -5,6 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <dirent.h>
+#include <fcntl.h>
+#include <time.h>
+#include <unistd.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 
 #include "h5sum.h"
@@ -326,3 +330,101 @@ void unreported(drv *d, sb_err *e)
 	}
 }
 
+
+/* The ISO time (db_now's form) a file was last written, "" if it is not there. */
+static void mtime_iso(const char *path, char *out, size_t len)
+{
+	struct stat sb;
+	struct tm tm;
+	out[0] = 0;
+	if (stat(path, &sb) == 0 && gmtime_r(&sb.st_mtime, &tm))
+		strftime(out, len, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* Is a run's lock free (its engine gone), waiting until `deadline` for an engine of
+ * the killed driver to stop: it had SIGTERM from GNU parallel and checkpoints. */
+static int lock_free(const char *path, time_t deadline)
+{
+	int fd = open(path, O_RDWR | O_NOFOLLOW);
+	if (fd < 0)
+		return 1; /* no lock file: no worker ever held it */
+	int got;
+	while (!(got = flock(fd, LOCK_EX | LOCK_NB) == 0) && time(NULL) < deadline)
+		nanosleep(&(struct timespec){0, 50000000}, NULL);
+	close(fd); /* releases it: the workers of this driver take it */
+	return got;
+}
+
+/* A driver killed outright (SIGKILL, its machine) leaves the runs it had started
+ * 'running' with no attempt recorded. The next `study run` records each as an
+ * interrupted attempt: its start as that driver saw it, its end the last write of its
+ * log or checkpoint (NULL when neither was written after the start), and why, with
+ * the engine's last word when its log has one from this attempt. A run that finished
+ * after all (its output is there) is left to the sweep, which ingests it; one whose
+ * engine still holds it past the wait is left to its next worker, which waits for it. */
+int orphans(drv *d, sb_err *e)
+{
+	sqlite3_stmt *q;
+	if (sql_exec(&d->db, e, &q,
+		    "SELECT id, COALESCE(started, '') FROM run WHERE campaign = ? AND state = 'running' ORDER BY id", "t",
+		    d->c.name))
+		return e->code;
+	/* read first: the writes below are transactions of their own */
+	struct orphan {
+		char id[128], started[32];
+	} *o = NULL;
+	size_t n = 0, cap = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		if (n == cap) {
+			struct orphan *m = realloc(o, (cap = cap ? 2 * cap : 16) * sizeof *o);
+			if (!m) {
+				sb_errf(e, SB_ENOMEM, "out of memory");
+				break;
+			}
+			o = m;
+		}
+		snprintf(o[n].id, sizeof o[n].id, "%s", (const char *)sqlite3_column_text(q, 0));
+		snprintf(o[n].started, sizeof o[n].started, "%s", (const char *)sqlite3_column_text(q, 1));
+		n++;
+	}
+	sqlite3_finalize(q);
+	const time_t deadline = time(NULL) + 10;
+	for (size_t i = 0; i < n && !e->code; i++) {
+		const char *id = o[i].id, *started = o[i].started;
+		char path[PATHX + 16], logt[32], ckt[32], msg[1024], why[1400];
+		layout_file(d->dir, 0, id, LAY_LOCK, path, sizeof path);
+		if (!safe_name(id) || !lock_free(path, deadline))
+			continue;
+		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
+		if (exists(path))
+			continue;
+		size_t l = strlen(path);
+		snprintf(path + l, sizeof path - l, ".ckpt"); /* the engine's, beside its output */
+		mtime_iso(path, ckt, sizeof ckt);
+		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
+		mtime_iso(path, logt, sizeof logt);
+		/* ISO times compare as strings; a file last written before the start is an
+		 * earlier attempt's */
+		const char *end = strcmp(logt, ckt) >= 0 ? logt : ckt;
+		if (!end[0] || strcmp(end, started) < 0)
+			end = NULL;
+		msg[0] = 0;
+		if (logt[0] && strcmp(logt, started) >= 0)
+			worker_last_message(path, 0, msg, sizeof msg);
+		/* (strstr: gcc sees the empty message of the path that read none) */
+		int intr = strstr(msg, "shake: interrupted") == msg;
+		if (intr)
+			snprintf(why, sizeof why, "%s (recorded by the next study run: its driver was killed)", msg);
+		else
+			snprintf(why, sizeof why, "its driver was killed while it ran (recorded by the next study run); %s%s",
+				 msg[0] ? "the engine's last word: " : "the engine left no word", msg);
+		if (db_begin(&d->db, e))
+			break;
+		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, "interrupted", why, "", end, "pending", e))
+			db_rollback(&d->db);
+		else
+			db_commit(&d->db, e);
+	}
+	free(o);
+	return e->code;
+}

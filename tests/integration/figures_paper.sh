@@ -3,7 +3,8 @@
 # run by bin/study (options given as --opt=value): each figure as a PNG and a PDF, both
 # written and not empty; nothing on any tool's stderr (no gnuplot warning) and no table
 # printed without rows; the gnuplot scripts draw what they should - the onset's f0 as a
-# line with its interval as a band and the Gamma axis on top, the Kaplan-Meier curves
+# line with its interval as a band and the Gamma axis on top, Fig. 3's band per line
+# against the runs' own profiles (bin/dumpflux) and at another level, the Kaplan-Meier curves
 # with their band (from the step outline in waiting_km_band.csv), Fig. 1 as the box of
 # the runs' width with its walls, legends in words and symbols instead of parameter
 # keys; a PDF drawn again is the same file.
@@ -136,6 +137,37 @@ grep -q "^set title 'no intruder, 5 Hz'" $G && grep -q "^set title '𝓡 = 2, 7 
 grep -q "title 'no intruder'" $A/fig3.gp && grep -q "title '𝓡 = 2'" $A/fig3.gp && grep -q "^set title '𝓡 = 2'" $A/fig4.gp &&
 	ok fig.fig34.words || fail fig.fig34.words "$(grep title $A/fig3.gp $A/fig4.gp)"
 for g in fig1 fig3 fig4; do no_keys fig.$g.no_raw_keys $A/$g.gp; done
+# Fig. 3's band, a known answer: per line the mean of the panel's two runs' profiles
+# (bin/dumpflux, the same periods) -+ t(0.95, 1 dof) s / sqrt(2) (equal weights: the
+# runs have the same periods), t = 12.706204736174707
+ids=$(sqlite3 R/study.db "SELECT id FROM runs WHERE campaign = 't' AND frequency = 5 AND radius_ratio = 0 ORDER BY id")
+for id in $ids; do "$BINDIR/dumpflux" run "R/t/$id.h5" | grep -v '^#'; done |
+	awk -F'\t' -v T=12.706204736174707 '{ n[$1]++; s[$1] += $3; v[$1, n[$1]] = $3 }
+		END { for (l in n) { m = s[l] / n[l]; q = 0; for (i = 1; i <= n[l]; i++) q += (v[l, i] - m)^2
+			sd = sqrt(q / (n[l] - 1)); h = T * sd / sqrt(n[l])
+			printf "%d %.12g %.12g %.12g %d\n", l, m, m - h, m + h, n[l] } }' | sort -n >band.want
+awk -F, 'NR > 1 && $3 == 5 && $2 == 0 { printf "%d %.12g %.12g %.12g %d\n", $5, $7, $9, $10, $8 }' $A/fig3_profile.csv >band.got
+paste -d' ' band.got band.want | awk '{ for (k = 2; k <= 4; k++) { d = $k - $(k + 5); if (d < 0) d = -d
+		if (d > 1e-9 * (1 + ($k < 0 ? -$k : $k))) bad = 1 } if ($1 != $6 || $5 != 2 || $10 != 2) bad = 1
+		if ($4 - $3 > 0) wide++ } END { exit !(NR == 80 && !bad && wide > 0) }' &&
+	ok fig.fig3.band_known_answer || fail fig.fig3.band_known_answer "$(paste -d' ' band.got band.want | head -n 3)"
+# the printed table: phi_max with the band of |Phi| on its line, as the CSV has them
+want=$(awk -F, 'NR > 1 && $3 == 5 && $2 == 0 { a = $7 < 0 ? -$7 : $7; if (a > m) { m = a; lo = $7 < 0 ? -$10 : $9; hi = $7 < 0 ? -$9 : $10 } }
+	END { printf "%.4g %.4g %.4g", m, lo, hi }' $A/fig3_profile.csv)
+got=$(awk '$1 == "5" && $2 == "0" { print $4, $5, $6 }' fig.figures.out)
+[ -n "$got" ] && [ "$got" = "$want" ] && grep -q '^frequency .* phi_max *phi_lo *phi_hi ' fig.figures.out &&
+	grep -q "^# fig3: band: 95 % CI of the mean over a curve's runs (Student t, each run weighted by its periods); it rests on a curve's used runs" fig.figures.out &&
+	ok fig.fig3.band_printed || fail fig.fig3.band_printed "table '$got', csv '$want': $(grep -E '^(frequency|5 |# fig3)' fig.figures.out)"
+# in the figure: a band behind each curve, named in the title, the runs in each row's title
+G=$A/fig3.gp
+[ "$(grep -c "using 6:(\$1==[0-9]&&\$2==[01]?\$9:1/0):10 with filledcurves lt [12] notitle" $G)" = 4 ] &&
+	grep -q "band: 95 % CI of the mean over a curve's runs" $G && grep -q "^set title '5 Hz; runs: 2 no intruder, 2 𝓡 = 2'" $G &&
+	ok fig.fig3.band_drawn || fail fig.fig3.band_drawn "$(grep -E 'title|filledcurves' $G | head -n 8)"
+# the other direction: at --level 0.5 the band is t(0.5, 1) / t(0.95, 1) = 1 / 12.706204736174707 as wide
+"$BINDIR/figures" t --runs=R --freq=5,7 --level=0.5 --no-plot --no-store --out=L50 >fig.l50.out 2>&1
+paste -d, <(awk -F, 'NR > 1 { printf "%.17g\n", $10 - $9 }' $A/fig3_profile.csv) <(awk -F, 'NR > 1 { printf "%.17g\n", $10 - $9 }' L50/fig3_profile.csv) |
+	awk -F, '$1 > 0 { r = $2 / $1 * 12.706204736174707; if (r < 1 - 1e-6 || r > 1 + 1e-6) bad = 1; n++ } END { exit !(n > 0 && !bad) }' &&
+	grep -q '^# fig3: band: 50 % CI' fig.l50.out && ok fig.fig3.band_level || fail fig.fig3.band_level "$(head -n 3 fig.l50.out)"
 # a campaign without flux or field: Fig. 4 only, and no table header without rows
 tool fig.figures_noflux figures w --runs=R
 figs fig.figures_noflux.fig4 $W fig4

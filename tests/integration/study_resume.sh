@@ -2,7 +2,8 @@
 # study_resume.sh - a campaign killed with SIGKILL at random moments (the driver
 # alone, or the driver with all its workers as in a crash) and run again ends with
 # the same database rows and bit-identical HDF5 outputs as an uninterrupted campaign;
-# SIGTERM stops it cleanly with exit code 7 and the runs resume from checkpoints.
+# SIGTERM stops it cleanly with exit code 7 and the runs resume from checkpoints; the
+# attempts a killed driver could not record are recorded by the next run.
 # tier: slow: campaigns killed at several moments and resumed
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
@@ -108,6 +109,37 @@ rc=$?
 same=0
 for f in REF/k/*.h5; do same_output "$f" "C/k/$(basename "$f")" && same=$((same + 1)); done
 [ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok ctrl_c.resumed_identical || fail ctrl_c.resumed_identical "exit $rc, $same of 6 identical"
+
+# the driver alone killed outright (SIGKILL): it records nothing, GNU parallel's
+# SIGTERM stops its engines with a checkpoint; the next study run records each run it
+# finds left running as an interrupted attempt (start, end, why), then resumes it
+"$STUDY" run k.campaign --runs "$TMP/D" --jobs 2 >d1.log 2>&1 &
+pid=$!
+for i in $(seq 200); do [ -n "$(ls D/k/*.ckpt 2>/dev/null)" ] && break; sleep 0.02; done
+kill -KILL $pid
+wait $pid 2>/dev/null
+left=$(sqlite3 D/study.db "SELECT COUNT(*) FROM run WHERE state = 'running'")
+[ "$left" -gt 0 ] && [ "$(sqlite3 D/study.db "SELECT COUNT(*) FROM attempt")" = 0 ] && ok killed_driver.left_running ||
+	fail killed_driver.left_running "$left runs left running, attempts: $(sqlite3 D/study.db "SELECT run, status FROM attempt")"
+"$STUDY" run k.campaign --runs "$TMP/D" --jobs 2 >d2.log 2>&1
+rc=$?
+# each with its start and an end not before it (the last write of its log or
+# checkpoint), and why; a run that finished after all has its one ok attempt instead
+intr=$(sqlite3 D/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'interrupted'")
+good=$(sqlite3 D/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'interrupted' AND n = 1 AND started IS NOT NULL
+	AND (finished IS NULL OR finished >= started) AND message LIKE '%its driver was killed%'")
+[ "$rc" -eq 0 ] && [ "$intr" -ge 1 ] && [ "$intr" -le "$left" ] && [ "$good" = "$intr" ] && ok killed_driver.recorded_interrupted ||
+	fail killed_driver.recorded_interrupted "exit $rc, $left left running: $(sqlite3 D/study.db "SELECT run, n, exit_code, status, started, finished, message FROM attempt WHERE status <> 'ok'")"
+# never twice: one ok attempt per run, the interrupted one before it
+[ "$(sqlite3 D/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'ok'")" = 6 ] &&
+	[ "$(sqlite3 D/study.db "SELECT COUNT(*) FROM attempt a WHERE status = 'ok' AND n <> 1 + (SELECT COUNT(*) FROM attempt b
+		WHERE b.run = a.run AND b.status = 'interrupted')")" = 0 ] && ok killed_driver.one_record_each ||
+	fail killed_driver.one_record_each "$(sqlite3 D/study.db "SELECT run, n, status FROM attempt")"
+n=$("$STUDY" status k --runs "$TMP/D" 2>&1 | grep -c ' interrupted: .*its driver was killed')
+[ "$n" = "$intr" ] && ok killed_driver.status_shows || fail killed_driver.status_shows "$n of $intr in: $("$STUDY" status k --runs "$TMP/D" 2>&1)"
+same=0
+for f in REF/k/*.h5; do same_output "$f" "D/k/$(basename "$f")" && same=$((same + 1)); done
+[ "$same" = 6 ] && ok killed_driver.resumed_identical || fail killed_driver.resumed_identical "$same of 6 identical"
 
 # a signal while the driver writes the runs' argument files, after the packings and
 # before GNU parallel starts, starts nothing: no run begins after the driver was told
