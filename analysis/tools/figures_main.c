@@ -16,7 +16,7 @@
 #include "common/fluxrun.h"
 #include "common/label.h"
 #include "common/tool.h"
-#include "measure/pool.h"
+#include "measure/wmean.h"
 #include "measure/traj.h"
 
 #define VERSION "5"
@@ -621,7 +621,7 @@ static int fig1(an_tool *t, const panels *P)
 /* ---- Fig. 3: Phi(D) ---- */
 
 /* One panel's profile: Phi(D) of its runs, pooled by their periods after the
- * transient; each run's own profile is kept for the band (measure/pool.h). */
+ * transient; each run's own profile is kept for the band (measure/wmean.h). */
 typedef struct profile {
 	size_t L;
 	double *phi;  /* [runs][L] each run's time-mean Phi per line */
@@ -676,19 +676,19 @@ static void profile_free(profile *pr)
 /* Panel (r, sys)'s curve and band into f and its table row; its phi_max with the band
  * of |Phi| on its line, and half height. */
 static void profile_out(const profile *pr, const panels *P, int r, int sys, const an_acct *a, FILE *f,
-			pool_mean *pm, double *half, int *headed)
+			wmean_res *pm, double *half, int *headed)
 {
-	pool_mean *m = malloc(sizeof *m * (pr->L ? pr->L : 1));
-	*pm = (pool_mean){0, 0, NAN, NAN, NAN};
+	wmean_res *m = malloc(sizeof *m * (pr->L ? pr->L : 1));
+	*pm = (wmean_res){0, 0, NAN, NAN, NAN};
 	*half = NAN;
 	for (size_t l = 0; m && l < pr->L; l++) {
-		pool_ci(pr->phi + l, pr->L, pr->w, (size_t)pr->runs, P->level, &m[l]);
+		wmean_ci(pr->phi + l, pr->L, pr->w, (size_t)pr->runs, P->level, &m[l]);
 		fprintf(f, "%d,%d,%.17g,%.17g,%zu,%.17g,%.17g,%d,%.17g,%.17g\n", r, sys, P->freqs[r], sys_ratio(P, sys), l,
 			pr->sh[l] / pr->wsum, m[l].mean, pr->runs, m[l].lo, m[l].hi);
 		if (fabs(m[l].mean) > pm->mean) {
 			/* the band of |Phi|: a negative Phi's mirrored */
 			const int neg = m[l].mean < 0;
-			*pm = (pool_mean){m[l].n, fabs(m[l].mean), m[l].se, neg ? -m[l].hi : m[l].lo, neg ? -m[l].lo : m[l].hi};
+			*pm = (wmean_res){m[l].n, fabs(m[l].mean), m[l].se, neg ? -m[l].hi : m[l].lo, neg ? -m[l].lo : m[l].hi};
 		}
 	}
 	for (size_t l = 0; m && l < pr->L && isnan(*half); l++)
@@ -709,7 +709,7 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int 
 	const int j = r * P->nsys + sys;
 	const an_acct *a = &t->A[j];
 	profile pr = {0};
-	pool_mean pm = {0, 0, NAN, NAN, NAN};
+	wmean_res pm = {0, 0, NAN, NAN, NAN};
 	double half = NAN;
 	for (int i = 0; i < t->k; i++)
 		if (USED(&t->runs[i]) && t->runs[i].group == j)

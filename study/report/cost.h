@@ -22,11 +22,20 @@ typedef struct cost_sum {
 	double sim;       /* simulated seconds of shaking */
 	double settle_grains[COST_NINTEG]; /* grains settled, per integrator */
 	double grain_steps[COST_NINTEG];   /* grains x shaking steps, per integrator */
+	/* at least (bound or stop_rule): the fewest runs (a search's chains by bisection
+	 * alone, the first batch of replicates; no run failing) and each run's shortest
+	 * duration under its stop rule (stop_skip for flux, stop_after for risen); no
+	 * settling */
+	long runs_lo;
+	double sim_lo;
+	double grain_steps_lo[COST_NINTEG];
 } cost_sum;
 
 /* Runs a replicate's chain of an [onset] search takes at most: the two ends and one
  * bisection per halving of [from, to] down to the tolerance. */
 long cost_chain_max(double from, double to, double tolerance);
+/* ... and at least: one bisection per halving, the ends not run. */
+long cost_chain_min(double from, double to, double tolerance);
 
 /* The campaign's cost per grid point (groups[p], g->points of them) and in total,
  * counted over g (an expanded grid: for a plain grid every run; for an [onset] search

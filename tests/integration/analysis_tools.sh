@@ -51,7 +51,7 @@ grep -q '^group .*sigmoid f0' onset.out && grep -q '^radius_ratio=0 depth=1 .* n
 	ok onset.csv || fail onset.csv "$(ls $A)"
 png_ok $A/onset.png && ok onset.png || fail onset.png "no PNG"
 [ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'onset' AND key IN ('sigmoid_f0', 'threshold_f')
-	AND version = '2' AND n = 6 AND created LIKE '20%'")" = 4 ] &&
+	AND version = '3' AND n = 6 AND created LIKE '20%'")" = 4 ] &&
 	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'seeds' AND value = 2")" = 2 ] &&
 	ok onset.db_rows || fail onset.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'onset'")"
 # the threshold estimate lies inside the sampled frequencies and its interval around it

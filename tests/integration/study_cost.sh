@@ -73,6 +73,15 @@ E
 "$STUDY" run --dry-run o.campaign --runs R 2>o.err
 grep -q '^  total: at most 16 runs, at most 16 min of simulated shaking, at most 2 packings to settle, CPU at most ' o.err &&
 	ok search.upper_bound || fail search.upper_bound "$(cat o.err)"
+# a stop rule: the grid's 2 runs at their full 12 s at most, at stop_skip = 5 s at least
+sed 's/^duration = 12$/duration = 12\nstop = flux\nflux = yes\nstop_skip = 5\nstop_flux_threshold = 1/' c.campaign >s.campaign
+"$STUDY" run --dry-run s.campaign --runs R 2>s.err
+grep -q '^  total: 2 runs, at most 24 s of simulated shaking (a stop rule may end runs earlier), 2 packings to settle, CPU at most ' s.err &&
+	grep -q '^         (at least 2 runs, 10 s of simulated shaking, CPU [0-9.e+]* s, if no run fails)$' s.err &&
+	ok stop.both_ends || fail stop.both_ends "$(cat s.err)"
+# ... and the other end: 2 replicates x 6 bisections (no ends), no stop rule: 60 s each
+grep -q '^         (at least 12 runs, 12 min of simulated shaking, CPU [0-9.e+]* [a-z]*, if no run fails)$' o.err &&
+	ok search.lower_bound || fail search.lower_bound "$(cat o.err)"
 [ ! -e R/o ] && [ ! -e R/study.db ] && ok search.nothing_run || fail search.nothing_run "$(find R)"
 # a search where the rate is not known: no bound claimed on a CPU time it cannot give
 "$STUDY" expand o.campaign --runs fresh >/dev/null 2>o2.err

@@ -1,4 +1,4 @@
-/* pool.h - the mean of runs' values pooled by their weights (their periods after the
+/* wmean.h - the mean of runs' values pooled by their weights (their periods after the
  * transient: a failed run weighs what it recorded) and its interval across the runs,
  * as Fig. 3 draws its band around each curve (docs/analysis.md, "figures").
  *
@@ -9,17 +9,17 @@
  *   se^2 = n/(n-1) * sum w_i^2 (x_i - m)^2 / (sum w_i)^2,
  * which is s^2/n for equal weights; the interval is m -+ t se with Student's t at the
  * level and n - 1 degrees of freedom. */
-#ifndef AN_POOL_H
-#define AN_POOL_H
+#ifndef AN_WMEAN_H
+#define AN_WMEAN_H
 
 #include <stddef.h>
 
-typedef struct pool_mean {
+typedef struct wmean_res {
 	size_t n;            /* runs with weight > 0 */
 	double mean, se, lo, hi; /* lo, hi, se NaN when n < 2; mean NaN when n = 0 */
-} pool_mean;
+} wmean_res;
 
 /* x[i * stride] and w[i] for i < n; runs of weight <= 0 are left out. */
-void pool_ci(const double *x, size_t stride, const double *w, size_t n, double level, pool_mean *m);
+void wmean_ci(const double *x, size_t stride, const double *w, size_t n, double level, wmean_res *m);
 
 #endif

@@ -1,11 +1,11 @@
-/* pool.c - a weighted pooled mean across runs and its Student-t interval (pool.h). */
-#include "pool.h"
+/* wmean.c - a weighted pooled mean across runs and its Student-t interval (pool.h). */
+#include "wmean.h"
 
 #include <math.h>
 
 #include "quantile.h"
 
-void pool_ci(const double *x, size_t stride, const double *w, size_t n, double level, pool_mean *m)
+void wmean_ci(const double *x, size_t stride, const double *w, size_t n, double level, wmean_res *m)
 {
 	m->n = 0;
 	m->mean = m->se = m->lo = m->hi = NAN;
