@@ -14,7 +14,8 @@
  * the caller's transaction. */
 int schema_study(sql_db *d, sb_err *e);
 /* The `runs` view anew when what it shows changed: after a tool stored per-run
- * observables of a (tool, key) the view has no column for yet. */
+ * observables of a (tool, key) the view has no column for yet; left as it is while the
+ * result table is an earlier version's (the driver brings both up to date). */
 int schema_runs(sql_db *d, sb_err *e);
 /* slurm_job, slurm_task */
 int schema_slurm(sql_db *d, sb_err *e);

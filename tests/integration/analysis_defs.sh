@@ -145,6 +145,19 @@ rc=$?
 	[ "$(DB=old.db q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND key = 'threshold_f'")" = 1 ] &&
 	[ "$(DB=old.db q "SELECT COUNT(onset_phi_class) FROM runs WHERE campaign = 't'")" = 6 ] &&
 	ok defs.old.tool_stores || fail defs.old.tool_stores "$(cat od2.err)"
+# a result table of an earlier driver (a result column fewer): after a tool stores, the
+# runs view still answers (it is rebuilt when the driver brings the table up to date)
+cp R/study.db oldres.db
+col=steps
+DB=oldres.db q "DROP VIEW runs; ALTER TABLE result DROP COLUMN $col;
+	CREATE VIEW runs AS SELECT r.campaign, r.id, r.state, s.risen FROM run r LEFT JOIN result s ON s.run = r.id"
+"$BINDIR/onset" t --db oldres.db --runs R --out "$TMP/or" --no-plot --boot 30 >or.out 2>or.err &&
+	[ "$(DB=oldres.db q "SELECT COUNT(*) FROM runs WHERE campaign = 't'" 2>&1)" = 6 ] &&
+	[ "$(DB=oldres.db q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND key = 'threshold_f'")" = 1 ] &&
+	ok defs.old_result.view_answers || fail defs.old_result.view_answers "$col: $(cat or.err; DB=oldres.db q "SELECT COUNT(*) FROM runs" 2>&1)"
+"$STUDY" run t.campaign --db "$TMP/oldres.db" --runs "$TMP/R" --no-progress >oldres_study.log 2>&1
+[ "$(DB=oldres.db q "SELECT COUNT($col) FROM runs WHERE campaign = 't'" 2>&1)" = 6 ] &&
+	ok defs.old_result.driver_updates || fail defs.old_result.driver_updates "$(tail -c 300 oldres_study.log)"
 # an old table that no driver opened: the tool migrates it itself
 cp R/study.db raw.db
 DB=raw.db q "DROP VIEW analysis; DROP TABLE analysis_all; DROP TABLE analysis_def; DROP TABLE analysis_run;
