@@ -15,7 +15,7 @@
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
 #   core-files      docs/engine.md's module table names every file of core/, and only those
-#   campaigns       campaigns/README.md names every campaign file, and only those
+#   campaigns       campaigns/README.md names every campaign file (campaigns/, reproduce/, examples/), and only those
 #   run-file        docs/output.md's layout table against a run file with every
 #                   recorded quantity of `bin/shake --records` on: the same groups; every root and /provenance attribute
 #                   and every member of a listed group named in its row
@@ -146,7 +146,7 @@ awk '/<!-- docs_lists core-files:/ { on = 1; next } on && /^\|/ { print; next } 
 same_set core-files "docs/engine.md's module table" "$TMP/core.code" "$TMP/core.doc"
 
 # --- the campaign files ---
-(cd "$REPO/campaigns" && ls *.campaign reproduce/*.campaign) >"$TMP/camp.code"
+(cd "$REPO/campaigns" && ls *.campaign reproduce/*.campaign examples/*.campaign) >"$TMP/camp.code"
 grep -o '^| `[^`]*\.campaign`' "$(doc campaigns/README.md)" | sed 's/^| `//; s/`$//' >"$TMP/camp.doc"
 same_set campaigns "campaigns/README.md's tables" "$TMP/camp.code" "$TMP/camp.doc"
 
