@@ -3,6 +3,7 @@
 
 #include "dirs.h"
 #include "drive.h"
+#include "inifile.h"
 #include "label.h"
 #include "layout.h"
 #include "num.h"
@@ -215,14 +216,59 @@ static int bad_opt(const char *tool, const char *arg, const char *allowed, int m
 	return sb_errf(e, SB_EUSAGE, "%.*s%s: unknown option (%s --help)", dashes, "--", name, tool);
 }
 
-/* A campaign of the command line: NAME, or DIR/NAME (campaign names have no '/'). */
+/* The [campaign] name of a campaign file, read with the driver's INI reader (the
+ * driver checks the file itself; here only the name is wanted). */
+typedef struct camp_name {
+	int in_campaign;
+	char *out;
+	size_t len;
+} camp_name;
+
+static int cn_section(void *user, const char *header, const char *name, int len, int line, sb_err *e)
+{
+	(void)header, (void)line, (void)e;
+	((camp_name *)user)->in_campaign = len == 8 && !strncmp(name, "campaign", 8);
+	return 0;
+}
+
+static int cn_key(void *user, const char *name, const char *value, int line, sb_err *e)
+{
+	(void)line, (void)e;
+	camp_name *c = user;
+	if (c->in_campaign && !strcmp(name, "name"))
+		snprintf(c->out, c->len, "%s", value);
+	return 0;
+}
+
+static int file_name(an_opts *o, an_camp *k, const char *arg, sb_err *e)
+{
+	camp_name c = {0, k->file_name, sizeof k->file_name};
+	k->file_name[0] = 0;
+	const inifile in = {arg, "campaign file", 100000, cn_section, cn_key, &c};
+	if (inifile_read(&in, e))
+		return e->code;
+	if (!k->file_name[0] || strchr(k->file_name, '/'))
+		return sb_errf(e, SB_EUSAGE, "%s: no [campaign] name = NAME in it (%s --help)", arg, o->tool);
+	k->name = k->file_name;
+	return 0;
+}
+
+/* A campaign of the command line: NAME, DIR/NAME (campaign names have no '/'), or a
+ * campaign file FILE.campaign (its [campaign] name, in the runs directory of --runs). */
 static int add_camp(an_opts *o, const char *arg, sb_err *e)
 {
 	if (o->ncamp == AN_MAXCAMP)
 		return sb_errf(e, SB_EUSAGE, "'%s': at most %d campaigns (%s --help)", arg, AN_MAXCAMP, o->tool);
 	an_camp *k = &o->camp[o->ncamp];
 	const char *sl = strrchr(arg, '/');
+	const size_t al = strlen(arg);
 	k->runs[0] = 0;
+	if (al > 9 && !strcmp(arg + al - 9, ".campaign")) {
+		if (file_name(o, k, arg, e))
+			return e->code;
+		o->ncamp++;
+		return 0;
+	}
 	k->name = sl ? sl + 1 : arg;
 	if (!*k->name || *k->name == '.')
 		return sb_errf(e, SB_EUSAGE, "'%s': expected a campaign's name, or DIR/NAME for one in the runs directory"

@@ -12,11 +12,12 @@
 #define AN_MAXKEYS 32
 #define AN_MAXCAMP 8
 
-/* One campaign of the command line: NAME (in the database of --runs/--db) or DIR/NAME
+/* One campaign of the command line: NAME or FILE.campaign (in the database of --runs/--db) or DIR/NAME
  * (its own runs directory DIR, with DIR/study.db): the layout of lib/layout.h. */
 typedef struct an_camp {
 	const char *name;
 	char db[1024], runs[1024];
+	char file_name[256]; /* a campaign file's [campaign] name (name points here) */
 } an_camp;
 
 typedef struct an_opts {

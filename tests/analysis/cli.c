@@ -4,6 +4,7 @@
  * value given to a flag are errors; and the words of parameters in figure text. */
 #include <math.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "common/cli.h"
 #include "common/label.h"
@@ -86,6 +87,34 @@ int main(void)
 					   !strcmp(o.db, "R/study.db") && !strcmp(o.out, "R/camp+other/analysis"),
 	      "rc %d n %d campaign %s db %s/%s runs %s out %s (%s)", rc, o.ncamp, o.campaign, o.camp[0].db, o.camp[1].db,
 	      o.camp[1].runs, o.out, e.msg);
+	/* a campaign file: its [campaign] name, in --runs' database; one without a name refused */
+	char cf[] = "/tmp/cli_test_XXXXXX";
+	const int fd = mkstemp(cf);
+	char cpath[64], bpath[64];
+	snprintf(cpath, sizeof cpath, "%s.campaign", cf);
+	snprintf(bpath, sizeof bpath, "%s.b.campaign", cf);
+	FILE *cfp = fopen(cpath, "w"), *bfp = fopen(bpath, "w");
+	if (cfp)
+		fputs("# a comment\n[campaign]\nname = amp   # the name\n[scene]\nname = not_this\n", cfp);
+	if (bfp)
+		fputs("[scene]\nname = x\n", bfp);
+	if (cfp)
+		fclose(cfp);
+	if (bfp)
+		fclose(bfp);
+	rc = parse(&o, &e, ONSET, ARGS(cpath, "--runs", "R"));
+	CHECK("cli.campaign_file", rc == 0 && o.ncamp == 1 && !strcmp(o.campaign, "amp") && !strcmp(o.db, "R/study.db"),
+	      "rc %d campaign %s db %s (%s)", rc, o.campaign ? o.campaign : "-", o.db, e.msg);
+	rc = parse(&o, &e, ONSET, ARGS(bpath));
+	CHECK("cli.campaign_file_no_name", rc == 1 && strstr(e.msg, "no [campaign] name = NAME"), "rc %d '%s'", rc, e.msg);
+	rc = parse(&o, &e, ONSET, ARGS("/nonexistent/x.campaign"));
+	CHECK("cli.campaign_file_missing", rc != 0 && strstr(e.msg, "/nonexistent/x.campaign"), "rc %d '%s'", rc, e.msg);
+	remove(cpath);
+	remove(bpath);
+	if (fd >= 0) {
+		close(fd);
+		remove(cf);
+	}
 	rc = parse(&o, &e, ONSET, ARGS("camp", "camp"));
 	CHECK("cli.campaign_twice", rc == 1 && strstr(e.msg, "campaign 'camp' of runs/study.db given twice"), "rc %d '%s'",
 	      rc, e.msg);
