@@ -189,23 +189,18 @@ questions_tools
 T_ALL=$(( $(date +%s) - T0 ))
 
 # What the campaigns cost a quiet machine: the engine's CPU seconds per step of the
-# paper's bed (950 grains), measured here for each integrator as the difference of two
-# runs (so settling drops out), kept in $W/calibration for later invocations (a second
-# call simulates nothing); a run's cost is then its steps times that, scaled with its
-# grains. The engine loop's wall time (the table's) counts the waiting for a busy CPU too.
-calibrate() { # INTEGRATOR-PRESET -> CPU seconds per step of the paper's bed
-	local cpu d out=$W/calibration.$1
-	[ -s "$out" ] && { cat "$out"; return; }
-	for d in 0.5 2.5; do
-		/usr/bin/time -f '%U %S' -o "$W/calib.time" bin/shake scenes/paper.scene preset="$1" radius_ratio=0 \
-			duration=$d snapshots=no traj_rate=0 output="$W/calib.h5" >/dev/null 2>&1 || return
-		cpu[${d%.*}]=$(awk '{ print $1 + $2 }' "$W/calib.time")
-	done
-	rm -f "$W/calib.h5" "$W/calib.xmf" "$W/calib.time"
-	awk -v a="${cpu[0]}" -v b="${cpu[2]}" -v dt="$([ "$1" = fast ] && echo 2e-4 || echo 5e-5)" \
-		'BEGIN { printf "%.4g\n", (b - a) / (2 / dt) }' | tee "$out"
+# paper's bed (950 grains), the rate bin/study measures once per engine build, CPU and
+# integrator for its cost before the start and keeps in RUNS/.calibration (study/report/
+# calib.c; docs/campaigns.md, "Cost before the start": --dry-run measures it or reads it
+# back); a run's cost is then its steps times that, scaled with its grains. The engine
+# loop's wall time (the table's) counts the waiting for a busy CPU too.
+calibrate() { # CAMPAIGN (its preset's integrator) -> CPU seconds per step of the paper's bed
+	local f
+	f=$("$STUDY" run "$1" --dry-run --runs "$RUNS" 2>&1 |
+		sed -n 's/^  rate: .*(\(.*\.calibration\/[0-9a-f]*\.[a-z0-9]*\.txt\))$/\1/p' | head -n 1)
+	[ -s "$f" ] && awk 'NR == 1 { printf "%.4g\n", $1 * 950 }' "$f"
 }
-C_FAST=$(calibrate fast) C_PAPER=$(calibrate paper)
+C_FAST=$(calibrate campaigns/reproduce/claim1_onset.campaign) C_PAPER=$(calibrate campaigns/reproduce/claim3_ring.campaign)
 
 # --- REPRODUCTION.md ----------------------------------------------------------------------
 # claim 1's onset search: its threshold, band and skip (what "convecting" means everywhere

@@ -29,6 +29,9 @@ grep -qE '^\*Integrator\* \(qr4_waiting\): preset fast \(verlet, Δt = 0.0002 s\
 grep -qE 'Log-rank test .*p = [0-9.e-]+ \(one diameter\)' "$R" && ok claim4.logrank || fail claim4.logrank "$(grep Log-rank "$R")"
 grep -q '10 runs: 10 done, 0 failed' "$R" && ok claim4.accounting || fail claim4.accounting "$(grep 'Runs:' "$R")"
 grep -q '| this invocation | .* 10 runs simulated |' "$R" && ok first.counts_runs || fail first.counts_runs "$(grep invocation "$R")"
+# the cost table's rates: the driver's measured ones (study/report/calib.c), not '?'
+grep -qE 'fast preset [0-9.e+-]+ s, paper preset [0-9.e+-]+ s per step of 950 grains' "$R" && ok first.rates ||
+	fail first.rates "$(grep 'per step' "$R")"
 for f in claim4_km claim4_fig4; do
 	[ -s "$W/figures/$f.png" ] && [ -s "$W/figures/$f.pdf" ] && grep -qF "](figures/$f.png)" "$R" && ok "figure.$f" ||
 		fail "figure.$f" "$f.png/.pdf missing from $W/figures or not linked from REPRODUCTION.md"
