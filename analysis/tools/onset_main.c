@@ -115,6 +115,7 @@ typedef struct onset_state {
 	double thr;      /* ... and threshold (NaN: halfway up the step) */
 	sdef sd;         /* the campaign's [onset] search, when it has one */
 	int differs;     /* a command-line option differs from the search's definition */
+	int pooled;      /* several campaigns: their common definition, no search beside */
 	char def[320];   /* the definition in words, for the table and the figure */
 	double *phi;     /* [k] Phi of considered run i (NaN: nothing usable) */
 	double *xs, *ys; /* one group's points: frequency, Phi */
@@ -182,10 +183,43 @@ static double classify(an_run *r, const flux_opts *fo)
  * skip, each unless the command line gives it (then the output says that the
  * definition differs from the search's); else the options' (the defaults: band
  * 0.4:0.6, skip 0.2, the threshold halfway up the step). */
+/* Several campaigns: their one definition when every one of them is in the first
+ * database and has a flux search with the same threshold, band and skip; else none
+ * (s->sd.found = 0), and the output says why. The searches' own estimates are per
+ * campaign (bin/onset NAME): none beside pooled groups. */
+static int pooled_definition(an_tool *t, onset_state *s)
+{
+	const an_opts *o = t->o;
+	const char *why = NULL;
+	memset(&s->sd, 0, sizeof s->sd);
+	for (int c = 0; c < o->ncamp && !why; c++) {
+		sdef x;
+		if (strcmp(o->camp[c].db, o->camp[0].db)) {
+			why = "a campaign of another database";
+			break;
+		}
+		if (sdef_load(&t->d, o->camp[c].name, &x, &t->e))
+			return t->e.code;
+		if (!x.found || !x.flux)
+			why = "a campaign without a search over the flux";
+		else if (c && (x.threshold != s->sd.threshold || x.band_lo != s->sd.band_lo ||
+			       x.band_hi != s->sd.band_hi || x.skip != s->sd.skip))
+			why = "their searches' definitions differ";
+		else
+			s->sd = x;
+	}
+	if (why) {
+		memset(&s->sd, 0, sizeof s->sd);
+		printf("# several campaigns, %s: no [onset] definition applies\n", why);
+	}
+	s->pooled = 1;
+	return 0;
+}
+
 static int definition(an_tool *t, onset_state *s)
 {
 	const an_opts *o = t->o;
-	if (sdef_load(&t->d, o->campaign, &s->sd, &t->e))
+	if (o->ncamp > 1 ? pooled_definition(t, s) : sdef_load(&t->d, o->campaign, &s->sd, &t->e))
 		return t->e.code;
 	const sdef *d = &s->sd;
 	s->thr = o->threshold;
@@ -211,10 +245,11 @@ static int definition(an_tool *t, onset_state *s)
 	/* the stored rows' definition: the options say "halfway" when the search's threshold is taken */
 	tool_define(t, "onset=%s", s->def);
 	printf("# onset: %s (%s)\n", s->def,
-	       !from_search ? "this tool's; the campaign has no [onset] search over the flux"
+	       !from_search ? (s->pooled ? "this tool's" : "this tool's; the campaign has no [onset] search over the flux")
 	       : s->differs ? "set on the command line: differs from the search's"
+	       : s->pooled  ? "the [onset] searches' definition, the same in every campaign"
 			    : "the [onset] search's definition");
-	if (from_search && s->differs)
+	if (from_search && s->differs && !s->pooled)
 		printf("# the search's: first f with |mean Φ| ≥ %g in band %g–%g, skip %g; its onset below is by that one\n",
 		       d->threshold, d->band_lo, d->band_hi, d->skip);
 	return 0;
@@ -386,7 +421,7 @@ static int estimate(an_tool *t, onset_state *s)
  * onset, both intervals, and whether they agree (overlap); stored as search_f. */
 static int beside(an_tool *t, onset_state *s)
 {
-	if (!s->sd.found)
+	if (!s->sd.found || s->pooled)
 		return 0;
 	const char **ids = malloc(sizeof *ids * (size_t)(t->k ? t->k : 1));
 	if (!ids)

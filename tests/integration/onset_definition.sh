@@ -104,4 +104,20 @@ grep -q "^# onset: first f with mean Φ ≥ 0.5 in band 0.35–0.65, skip 0.25 (
 "$ONSET" od --runs "$TMP/R" --out "$TMP/C" --no-plot --no-store --boot 200 --band 0.35:0.65 >c.out 2>&1
 grep -q "(the \[onset\] search's definition)" c.out && ! grep -q "differs" c.out &&
 	ok onset_def.onset.same_not_flagged || fail onset_def.onset.same_not_flagged "$(head -n 3 c.out)"
+
+# --- several campaigns: their common definition, or none when their searches differ ---
+# (the same search under other names, in the same database: the recorded ids are reused)
+pooled() { # NAME THRESHOLD
+	campaign | sed "s/^name = od$/name = $1/; s/^threshold = 0.3$/threshold = $2/" >"$1.campaign"
+	"$STUDY" run "$1.campaign" --runs "$TMP/R" --jobs 2 >"$1.log" 2>&1 || fail "onset_def.pooled.$1" "$(tail -c 300 "$1.log")"
+}
+pooled od2 0.3
+pooled od3 0.5
+"$ONSET" od od2 --runs "$TMP/R" --out "$TMP/P" --no-plot --no-store --boot 200 >p.out 2>&1
+grep -q "^# onset: first f with mean Φ ≥ 0.3 in band 0.35–0.65, skip 0.25 (the \[onset\] searches' definition, the same in every campaign)" p.out &&
+	! grep -q "search f \[CI\]" p.out && ok onset_def.pooled.same_definition || fail onset_def.pooled.same_definition "$(head -n 3 p.out)"
+"$ONSET" od od3 --runs "$TMP/R" --out "$TMP/Q" --no-plot --no-store --boot 200 >q.out 2>&1
+grep -q "^# several campaigns, their searches' definitions differ: no \[onset\] definition applies" q.out &&
+	grep -q "^# onset: first f with mean Φ halfway up the step of band 0.4–0.6, skip 0.2 (this tool's)" q.out &&
+	ok onset_def.pooled.definitions_differ || fail onset_def.pooled.definitions_differ "$(head -n 3 q.out)"
 finish
