@@ -2,7 +2,6 @@
 #include "boot.h"
 
 #include <gsl/gsl_sort.h>
-#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -58,7 +57,19 @@ size_t boot_percentile(double *v, size_t n, double level, double *lo, double *hi
 		return m;
 	gsl_sort(v, 1, m);
 	double a = 0.5 * (1 - level);
-	*lo = gsl_stats_quantile_from_sorted_data(v, 1, m, a);
-	*hi = gsl_stats_quantile_from_sorted_data(v, 1, m, 1 - a);
+	*lo = boot_quantile(v, m, a);
+	*hi = boot_quantile(v, m, 1 - a);
 	return m;
+}
+
+double boot_quantile(const double *v, size_t m, double f)
+{
+	const double index = f * (double)(m - 1);
+	const size_t l = (size_t)index;
+	const double d = index - (double)l;
+	if (l >= m - 1 || d == 0 || isinf(v[l]))
+		return v[l < m ? l : m - 1];
+	if (isinf(v[l + 1])) /* a weight on an unbounded value: the limit is unbounded */
+		return v[l + 1];
+	return (1 - d) * v[l] + d * v[l + 1];
 }

@@ -20,5 +20,10 @@ int boot_run(unsigned long seed, size_t n, size_t B, size_t k, boot_stat stat, v
 /* Percentile interval at level (0.95) of the finite values of v[0..n) (v is sorted
  * in place, NaNs moved to the end); returns their count, lo = hi = NaN when < 2. */
 size_t boot_percentile(double *v, size_t n, double level, double *lo, double *hi);
+/* The quantile f of m >= 1 sorted values that may hold -inf and +inf (a replicate known
+ * only to lie beyond every finite one, e.g. a censored median): GSL's interpolation
+ * (gsl_stats_quantile_from_sorted_data, to the bit on finite values), infinite when it
+ * falls on an infinite value or between one and its neighbour. */
+double boot_quantile(const double *sorted, size_t m, double f);
 
 #endif

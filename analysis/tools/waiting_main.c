@@ -15,6 +15,8 @@
 #include "common/cli.h"
 #include "common/tool.h"
 #include "common/xopt.h"
+#include "measure/bootdiff.h"
+#include "measure/kmboot.h"
 #include "measure/lowerrow.h"
 #include "measure/traj.h"
 
@@ -25,7 +27,8 @@
 
 static const char HELP[] =
 	"usage: waiting CAMPAIGN [--db FILE] [--runs DIR] [--out DIR] [--by KEYS] [--level L]\n"
-	"               [--bins N] [--fraction Q] [--all-versions] [--no-plot] [--no-store]\n\n"
+	"               [--bins N] [--fraction Q] [--diff KEY] [--boot N] [--seed S]\n"
+	"               [--all-versions] [--no-plot] [--no-store]\n\n"
 	"Waiting time of the intruder's rise (the engine's definition: docs/model.md, \"Waiting\n"
 	"time\"; a run that ends first is right-censored at the time it observed), read from\n"
 	"the root attributes `risen` and `waiting_time` of each run with an intruder\n"
@@ -64,6 +67,16 @@ static const char HELP[] =
 	"  --bins N      histogram bins over [0, longest observation] (default 10)\n"
 	"  --fraction Q  the second definition's fraction of the way to the surface (0 < Q <= 1,\n"
 	"                default 0.5)\n"
+	"  --diff KEY    the difference of the medians of groups alike in every grouping key\n"
+	"                but KEY: each group's median minus the one of the smallest KEY, with\n"
+	"                its percentile interval from the two groups' bootstraps (each over its\n"
+	"                runs, resampled apart) and whether 0 is inside. A median the curve never\n"
+	"                reaches is censored, not a number: the difference is then a bound\n"
+	"                (>X, <X, or none), and a resample's censored median bounds its\n"
+	"                replicate (the interval is conservative, unbounded on a side where\n"
+	"                too many are); waiting_diff.csv, stored key diff_median (lo, hi)\n"
+	"  --boot N      bootstrap replicates for --diff (default 1000); --seed S its seed\n"
+	"                (default 1)\n"
 	"  --all-versions  also the runs of earlier versions of the campaign file\n"
 	"                (run.current = 0, kept by study run --keep-old); by default the\n"
 	"                current grid's\n"
@@ -80,7 +93,8 @@ static const char HELP[] =
 	"waiting_way_summary.csv, waiting_way.png/.pdf\n"
 	"(both definitions' Kaplan-Meier curves); keys way_fraction, way_runs, way_risen,\n"
 	"way_censored, way_median (lo, hi), way_no_trajectory, way_stop_censored, and as group\n"
-	"'all groups' way_logrank_chi2, way_logrank_df, way_logrank_p.\n"
+	"'all groups' way_logrank_chi2, way_logrank_df, way_logrank_p. With --diff:\n"
+	"waiting_diff.csv and diff_median (lo, hi; n: the replicates; grp naming both groups).\n"
 	"Options take their value as --opt VALUE or --opt=VALUE. Figures are written as PNG\n"
 	"and PDF (vector) with their gnuplot scripts. A stored row has its group's value of\n"
 	"each grouping key in that key's column (radius_ratio, depth, ...; docs/analysis.md).\n";
@@ -133,6 +147,10 @@ typedef struct wait_state {
 	int *way_ev;        /* [k] 1 reached, 0 censored */
 	long *no_traj;      /* [ng] used runs without a trajectory */
 	long *stop_cens;    /* [ng] runs stopped by stop = risen before reaching the fraction */
+	/* --diff KEY: each group's bootstrap of its median over its runs (kmboot.h) */
+	const char *diff;   /* NULL: not given */
+	double *blo, *bhi;  /* [ng * B] group j's replicate k within [blo, bhi] */
+	size_t *bcens;      /* [ng] its replicates with a censored median */
 } wait_state;
 
 static void state_free(const an_tool *t, void *vs)
@@ -162,6 +180,9 @@ static void state_free(const an_tool *t, void *vs)
 	free(s->way_ev);
 	free(s->no_traj);
 	free(s->stop_cens);
+	free(s->blo);
+	free(s->bhi);
+	free(s->bcens);
 }
 
 /* Reads run r's rise (*rs: risen, *w: waiting time) and says what of it the statistic
@@ -763,9 +784,140 @@ static int plot_hist(an_tool *t, const wait_state *s)
 	return tool_plot(t, f, script, png);
 }
 
+/* ---- --diff KEY: the medians of several groups against each other ---- */
+
+/* Each group's bootstrap of its median over its used runs (kmboot.h), all from --seed
+ * so that bootdiff pairs them apart; nothing with --boot below 2. */
+static int diff_boot(an_tool *t, wait_state *s)
+{
+	const size_t B = t->o->boot > 1 ? (size_t)t->o->boot : 0, ng = (size_t)(t->ng > 0 ? t->ng : 1);
+	s->bcens = calloc(ng, sizeof *s->bcens);
+	s->blo = malloc(sizeof *s->blo * ng * (B ? B : 1));
+	s->bhi = malloc(sizeof *s->bhi * ng * (B ? B : 1));
+	if (!s->bcens || !s->blo || !s->bhi)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	for (int j = 0; B && j < t->ng; j++)
+		if (s->g[j].n && kmboot_median(s->g[j].t, s->g[j].ev, (size_t)s->g[j].n, B, t->o->seed, s->blo + j * B,
+					       s->bhi + j * B, &s->bcens[j]))
+			return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	return 0;
+}
+
+/* A limit of the interval as text: unbounded as -inf or +inf, none as - */
+static void limit_txt(char *b, size_t n, double v)
+{
+	if (isnan(v))
+		snprintf(b, n, "-");
+	else if (isinf(v))
+		snprintf(b, n, "%sinf", v < 0 ? "-" : "+");
+	else
+		snprintf(b, n, "%.3f", v);
+}
+
+/* The difference b - a of two medians as text: a number when both are reached, else
+ * the bound the longest observations give (>X: b's median is censored, <X: a's), or
+ * "censored" when both are. */
+static void diff_txt(char *buf, size_t n, double ma, double mb, double ta, double tb)
+{
+	if (!isnan(ma) && !isnan(mb))
+		snprintf(buf, n, "%.3f", mb - ma);
+	else if (!isnan(ma))
+		snprintf(buf, n, ">%.3f", tb - ma);
+	else if (!isnan(mb))
+		snprintf(buf, n, "<%.3f", mb - ta);
+	else
+		snprintf(buf, n, "censored");
+}
+
+/* One pair: group b against group a, the reference of its curve: the table row,
+ * waiting_diff.csv's row and the stored row. */
+static int diff_pair(an_tool *t, const wait_state *s, int a, int b, const char *lab, FILE *f)
+{
+	const size_t B = t->o->boot > 1 ? (size_t)t->o->boot : 0;
+	double l, h;
+	const double ma = km_median(&s->km[a], 0, &l, &h), mb = km_median(&s->km[b], 0, &l, &h);
+	const double ta = tmax_of(&s->g[a]), tb = tmax_of(&s->g[b]);
+	bootdiff_res d;
+	if (bootdiff_bounds(ma, mb, B ? s->blo + a * B : NULL, B ? s->bhi + a * B : NULL, B ? s->blo + b * B : NULL,
+			    B ? s->bhi + b * B : NULL, B, t->o->level, &d))
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	const char *cens = isnan(ma) ? isnan(mb) ? "both" : "a" : isnan(mb) ? "b" : "none";
+	char dt[48], lo[32], hi[32], ci[128], grp[1100];
+	diff_txt(dt, sizeof dt, ma, mb, ta, tb);
+	limit_txt(lo, sizeof lo, d.lo);
+	limit_txt(hi, sizeof hi, d.hi);
+	snprintf(ci, sizeof ci, "%s [%s, %s]", dt, lo, hi);
+	const char *z = d.zero == 1 ? "inside" : d.zero == 0 ? "excluded" : "-";
+	printf("%-30s %10g %10g %30s %9s %8zu %8zu %8s\n", lab, tool_num(t, b, s->diff), tool_num(t, a, s->diff), ci,
+	       strcmp(cens, "none") ? cens : "", B ? s->bcens[b] : 0, B ? s->bcens[a] : 0, z);
+	csv_text(f, t->labels[a]);
+	fputc(',', f);
+	csv_text(f, t->labels[b]);
+	fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%.17g,%.17g,%zu,%zu,%zu,%d\n", tool_num(t, a, s->diff),
+		tool_num(t, b, s->diff), ma, mb, ta, tb, cens, d.d, d.lo, d.hi, d.ok, B ? s->bcens[a] : 0,
+		B ? s->bcens[b] : 0, d.zero);
+	snprintf(grp, sizeof grp, "%s - %s", t->labels[b], t->labels[a]);
+	tool_store(t, b, grp, "diff_median", d.d, d.lo, d.hi, (long)d.ok);
+	return 0;
+}
+
+/* --diff KEY: per curve along KEY, each group's median against the one of the
+ * smallest KEY (as bin/onset --diff). */
+static int diff_out(an_tool *t, wait_state *s)
+{
+	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
+	char path[1400];
+	FILE *f = NULL;
+	if (!curve)
+		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
+	if ((nc = tool_curves(t, s->diff, curve)) < 0 || diff_boot(t, s) ||
+	    !(f = cli_fopen(t->o, "waiting_diff.csv", path, sizeof path, &t->e))) {
+		free(curve);
+		return t->e.code;
+	}
+	fprintf(f, "group_a,group_b,%s_a,%s_b,median_a,median_b,t_max_a,t_max_b,censored,difference,lo,hi,replicates,"
+		   "censored_replicates_a,censored_replicates_b,zero\n", s->diff, s->diff);
+	char how[160];
+	if (t->o->boot > 1)
+		snprintf(how, sizeof how, "%ld replicates from seed %lu", t->o->boot, t->o->seed);
+	else
+		snprintf(how, sizeof how, "no interval (--boot below 2)");
+	printf("\n# differences along %s: the median waiting time at each %s minus at the smallest (other keys equal);"
+	       " %g %% percentile interval from the two groups' bootstraps over their runs, resampled apart (%s); a"
+	       " censored median (S never reaches 1/2) is no number: the difference is then a bound, >X or <X, and a"
+	       " resample's censored median bounds its replicate (a side it leaves open: inf)\n",
+	       s->diff, s->diff, 100 * t->o->level, how);
+	printf("%-30s %10s %10s %30s %9s %8s %8s %8s\n", "groups alike but in", s->diff, "against",
+	       "median difference (s) [CI]", "censored", "cens_rep", "cens_ref", "0");
+	int pairs = 0;
+	for (int c = 0; c < nc && !t->e.code; c++) {
+		int a = -1;
+		for (int j = 0; j < t->ng; j++) /* the reference: the smallest KEY with used runs */
+			if (curve[j] == c && s->g[j].n && (a < 0 || tool_num(t, j, s->diff) < tool_num(t, a, s->diff)))
+				a = j;
+		char lab[512];
+		if (a >= 0)
+			tool_label_but(t, a, s->diff, lab, sizeof lab);
+		for (int b = 0, first = 1; a >= 0 && b < t->ng; b++) {
+			if (curve[b] != c || b == a || !s->g[b].n)
+				continue;
+			if (diff_pair(t, s, a, b, first ? lab : "", f))
+				break;
+			first = 0;
+			pairs++;
+		}
+	}
+	if (!pairs)
+		printf("# no two groups with used runs differ only in %s\n", s->diff);
+	fclose(f);
+	free(curve);
+	return t->e.code;
+}
+
 static int init(an_tool *t, void *vs, const xopt *x)
 {
 	wait_state *s = vs;
+	s->diff = x[1].set ? x[1].val : NULL;
 	return xopt_num(&x[0], 1e-6, 1, 0.5, &s->q, &t->e);
 }
 
@@ -774,7 +926,7 @@ static int run(an_tool *t, void *vs)
 	wait_state *s = vs;
 	if (consider(t, s) || groups(t, s) || cli_outdir(t->o, &t->e) || fit(t, s) || way(t, s) || runs_csv(t, s) ||
 	    tool_accounting_csv(t) || km_csv(t, s) || hist_csv(t, s) || way_csv(t, s) || summary(t, s) ||
-	    way_summary(t, s) || tool_store_end(t))
+	    way_summary(t, s) || (s->diff && diff_out(t, s)) || tool_store_end(t))
 		return t->e.code;
 	report(t, s);
 	if (!t->o->no_plot) {
@@ -782,13 +934,13 @@ static int run(an_tool *t, void *vs)
 			return t->e.code;
 		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", t->o->out);
 	}
-	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary}.csv\n",
-	       t->o->out);
+	printf("# csv: %s/waiting_{runs,km,km_band,hist,summary,accounting,way_runs,way_km,way_summary%s}.csv\n",
+	       t->o->out, s->diff ? ",diff" : "");
 	return 0;
 }
 
-static const tool_spec SPEC = {.name = "waiting", .version = VERSION, .help = HELP, .allowed = " by level bins ",
-			       .x = {{"fraction", 1, NULL, 0}}, .nx = 1, .init = init, .run = run, .fini = state_free};
+static const tool_spec SPEC = {.name = "waiting", .version = VERSION, .help = HELP, .allowed = " by level bins boot seed ",
+			       .x = {{"fraction", 1, NULL, 0}, {"diff", 1, NULL, 0}}, .nx = 2, .init = init, .run = run, .fini = state_free};
 
 int main(int argc, char **argv)
 {
