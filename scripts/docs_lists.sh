@@ -24,7 +24,8 @@
 # SHAKE and STUDY name the binaries (default: bin/shake, bin/study of this clone).
 # DOCS_OVERRIDE=DIR reads a doc from DIR/PATH where that file exists (check only): how
 # tests/integration/docs_lists.sh shows that a broken list fails. DOCS_LISTS_CACHE=DIR
-# keeps what the code says (the generated lists, the run file) in DIR for the next call.
+# keeps what the code says (the generated lists, the tools, the run file's groups and
+# the names in them) in DIR for the next call.
 set -u
 REPO=$(cd "$(dirname "$0")/.." && pwd)
 MODE=${1:-check}
@@ -123,9 +124,20 @@ generated test-tiers docs/testing.md '<!-- docs_lists test-tiers: begin -->' '<!
 generated study-options docs/campaigns.md '<!-- docs_lists study-options: begin -->' '<!-- docs_lists study-options: end -->' gen_study_options
 [ "$MODE" = write ] && exit 0
 
+# code NAME FUNC: what the code says (FUNC's output) in $TMP/NAME.code; with
+# DOCS_LISTS_CACHE, taken from there when an earlier call kept it, else kept there
+code() {
+	if [ -n "${DOCS_LISTS_CACHE:-}" ] && [ -f "$DOCS_LISTS_CACHE/$1.code" ]; then
+		cp "$DOCS_LISTS_CACHE/$1.code" "$TMP/$1.code"
+		return
+	fi
+	$2 >"$TMP/$1.code" || return 1
+	[ -z "${DOCS_LISTS_CACHE:-}" ] || cp "$TMP/$1.code" "$DOCS_LISTS_CACHE/$1.code"
+}
+
 # --- the tools: analysis/analysis.mk's AN_MAIN ---
-make -s --no-print-directory -C "$REPO" print-AN_MAIN | tr ' ' '\n' | grep . >"$TMP/tools.code"
-[ -s "$TMP/tools.code" ] || fail tools.code "make print-AN_MAIN printed no tool"
+tools_code() { make -s --no-print-directory -C "$REPO" print-AN_MAIN | tr ' ' '\n' | grep .; }
+code tools tools_code
 awk '/<!-- docs_lists tools:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
 	"$(doc docs/analysis.md)" | sed -n 's/^| `bin\/\([a-z_]*\)` |.*/\1/p' >"$TMP/tools.doc"
 same_set tools.docs_analysis "docs/analysis.md's table of tools" "$TMP/tools.code" "$TMP/tools.doc"
@@ -151,51 +163,57 @@ grep -o '^| `[^`]*\.campaign`' "$(doc campaigns/README.md)" | sed 's/^| `//; s/`
 same_set campaigns "campaigns/README.md's tables" "$TMP/camp.code" "$TMP/camp.doc"
 
 # --- the run file's layout ---
-if [ -n "${DOCS_LISTS_CACHE:-}" ] && [ -s "$DOCS_LISTS_CACHE/all.h5" ]; then
-	cp "$DOCS_LISTS_CACHE/all.h5" "$TMP/all.h5"
-fi
 # every recorded quantity on, from the engine's table of them (shake --records: a rate
 # key at 20 Hz, a count per period at 4, a switch yes)
-ALL_ON=$("$SHAKE" --records | awk -F'\t' 'NR > 1 { print $2 "=" ($3 == "rate" ? 20 : $3 == "phase" ? 4 : "yes") }')
-if [ -s "$TMP/all.h5" ] || (cd "$TMP" && [ -n "$ALL_ON" ] && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 \
-	frequency=5 amplitude=1 settle_min=0.1 settle_ke=1 field_periods=1 $ALL_ON output=all.h5 >run.log 2>&1); then
-	H5="$TMP/all.h5"
-	[ -z "${DOCS_LISTS_CACHE:-}" ] || cp "$H5" "$DOCS_LISTS_CACHE/all.h5"
+write_run_file() {
+	local all_on
+	[ -s "$TMP/all.h5" ] && return
+	all_on=$("$SHAKE" --records | awk -F'\t' 'NR > 1 { print $2 "=" ($3 == "rate" ? 20 : $3 == "phase" ? 4 : "yes") }')
+	[ -n "$all_on" ] && (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 frequency=5 amplitude=1 \
+		settle_min=0.1 settle_ke=1 field_periods=1 $all_on output=all.h5 >run.log 2>&1) && [ -s "$TMP/all.h5" ]
+}
+# its groups, one a line
+run_groups() {
+	write_run_file || return 1
+	h5ls "$TMP/all.h5" | awk '$2 == "Group" { print "/" $1 }' | grep -vx '/particles\|/observables'
+	for g in particles observables; do h5ls "$TMP/all.h5/$g" | awk -v g="$g" '$2 == "Group" { print "/" g "/" $1 }'; done
+}
+# what the doc must name in its groups' rows, as "GROUP<TAB>SEP<TAB>NAME": the root's and
+# /provenance's own attributes (SEP @), and every member of /particles/*, /observables/*
+# and /final (SEP /)
+run_names() {
+	local g
+	write_run_file || return 1
+	for g in / /provenance; do
+		h5dump -H -g "$g" "$TMP/all.h5" 2>/dev/null | awk -v d="$([ "$g" = / ] && echo 3 || echo 6)" -v g="$g" '
+			match($0, /^ *ATTRIBUTE "/) && RLENGTH - 11 == d { s = $0; sub(/^ *ATTRIBUTE "/, "", s); sub(/".*/, "", s); print g "\t@\t" s }'
+	done
+	while read -r g; do
+		case "$g" in /particles/* | /observables/* | /final) ;; *) continue ;; esac
+		h5ls "$TMP/all.h5$g" 2>/dev/null | awk -v g="$g" '{ print g "\t/\t" $1 }'
+	done <"$TMP/groups.code"
+}
+if code groups run_groups && code names run_names; then
 	grep '^| `/' "$(doc docs/output.md)" >"$TMP/rows"
 	sed 's/^| `\([^`]*\)`.*/\1/' "$TMP/rows" | grep -vx '/' >"$TMP/groups.doc"
-	{
-		h5ls "$H5" | awk '$2 == "Group" { print "/" $1 }' | grep -vx '/particles\|/observables'
-		for g in particles observables; do h5ls "$H5/$g" | awk -v g="$g" '$2 == "Group" { print "/" g "/" $1 }'; done
-	} >"$TMP/groups.code"
 	same_set run-file.groups "docs/output.md's layout table" "$TMP/groups.code" "$TMP/groups.doc"
-	row() { awk -v p="$1" 'index($0, "| `" p "`") == 1 { print; exit }' "$TMP/rows"; }
-	# attrs GROUP: the names of GROUP's own attributes
-	attrs() {
-		h5dump -H -g "$1" "$H5" 2>/dev/null | awk -v d="$([ "$1" = / ] && echo 3 || echo 6)" '
-			match($0, /^ *ATTRIBUTE "/) && RLENGTH - 11 == d { s = $0; sub(/^ *ATTRIBUTE "/, "", s); sub(/".*/, "", s); print s }'
-	}
-	# unnamed ROW SEP: the names on stdin that ROW does not hold as a word, as " GROUP SEP NAME"
-	unnamed() {
-		awk -v r="$(row "$1")" -v g="$1" -v s="$2" '{
-			n = $1; hit = 0; rest = r
+	# the names that their group's row (the first row whose first cell is the group) does
+	# not hold as a word, as " GROUP SEP NAME"
+	bad=$(awk -F'\t' '
+		FNR == NR { split($0, c, "`"); if (!(c[2] in row)) row[c[2]] = $0; next }
+		{
+			g = $1; n = $3; hit = 0; rest = row[g]
 			while ((i = index(rest, n)) > 0) {
 				b = i > 1 ? substr(rest, i - 1, 1) : " "; a = substr(rest, i + length(n), 1)
 				if (b !~ /[A-Za-z0-9_]/ && a !~ /[A-Za-z0-9_]/) { hit = 1; break }
 				rest = substr(rest, i + 1)
 			}
-			if (!hit) printf " %s%s%s", g, s, n
-		}'
-	}
-	bad=
-	for g in / /provenance; do bad="$bad$(attrs "$g" | unnamed "$g" @)"; done
-	while read -r g; do
-		case "$g" in /particles/* | /observables/* | /final) ;; *) continue ;; esac
-		bad="$bad$(h5ls "$H5$g" 2>/dev/null | unnamed "$g" /)"
-	done <"$TMP/groups.code"
+			if (!hit) printf " %s%s%s", g, $2, n
+		}' "$TMP/rows" "$TMP/names.code")
 	[ -z "$bad" ] && ok run-file.members ||
 		fail run-file.members "in the run file but not in docs/output.md's row of its group:$bad"
 else
-	fail run-file "the engine did not write a run file: $(tail -n 3 "$TMP/run.log")"
+	fail run-file "the engine did not write a run file: $(tail -n 3 "$TMP/run.log" 2>/dev/null)"
 fi
 
 # --- the number of inputs of make check's fuzz run ---

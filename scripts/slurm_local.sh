@@ -32,8 +32,10 @@ stop_pid() {
 	kill -9 "$p" 2>/dev/null
 }
 
+# (Debian's python3, whose standard library is enough: the first python3 on PATH may be a
+# pyenv shim that costs most of a second a call)
 free_port() {
-	python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])' 2>/dev/null ||
+	/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])' 2>/dev/null ||
 		echo $((20000 + RANDOM % 20000))
 }
 

@@ -8,6 +8,10 @@ STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
 export SHAKE STUDY
 
+# what the code says is the same for every call below: computed by the first, kept
+export DOCS_LISTS_CACHE="$TMP/cache"
+mkdir -p "$DOCS_LISTS_CACHE"
+
 # --- the docs as they are ---
 SHAKE="$SHAKE" STUDY="$STUDY" bash "$REPO/scripts/docs_lists.sh" check >"$TMP/check.out" 2>&1
 rc=$?
@@ -15,11 +19,12 @@ cat "$TMP/check.out"
 NOK=$((NOK + $(grep -c '^ok ' "$TMP/check.out")))
 NFAIL=$((NFAIL + $(grep -c '^FAIL ' "$TMP/check.out")))
 [ "$rc" -eq 0 ] || grep -q '^FAIL ' "$TMP/check.out" || fail docs_lists.exit "check exited $rc without a FAIL line"
-
-# what the code says is the same for every call below: computed once
-export DOCS_LISTS_CACHE="$TMP/cache"
-mkdir -p "$DOCS_LISTS_CACHE"
-DOCS_LISTS_CACHE="$DOCS_LISTS_CACHE" bash "$REPO/scripts/docs_lists.sh" check >/dev/null 2>&1
+# every list the code gives was kept for the calls below (else each would compute it again)
+missing=
+for f in scene-keys.new result-columns.new test-tiers.new study-options.new tools.code groups.code names.code; do
+	[ -s "$DOCS_LISTS_CACHE/$f" ] || missing="$missing $f"
+done
+[ -z "$missing" ] && ok cache.kept || fail cache.kept "scripts/docs_lists.sh did not keep$missing in DOCS_LISTS_CACHE"
 
 # --- broken on purpose: ID DOC SED-SCRIPT [FAILS] -> the checks FAILS (default: ID), and
 # no other, must fail ---

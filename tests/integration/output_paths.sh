@@ -18,7 +18,9 @@ PROMPT=5 # seconds: "before anything runs", with room for the sanitizer build
 D="$TMP/d"
 mkdir "$D"
 echo "the target" >"$TMP/target"
-# make_node NAME KIND : a fresh node of KIND at $D/NAME
+# make_node NAME KIND : a fresh node of KIND at $D/NAME (a socket by Debian's python3: the
+# first python3 on PATH may be a pyenv shim, most of a second a call, and the standard
+# library is all it needs)
 make_node() {
 	rm -rf "${D:?}/$1"
 	case $2 in
@@ -26,7 +28,7 @@ make_node() {
 	chardev) mknod "$D/$1" c 1 3 ;; # /dev/null's numbers, here
 	dir) mkdir "$D/$1" ;;
 	symlink) ln -s "$TMP/target" "$D/$1" ;;
-	socket) python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$D/$1" ;;
+	socket) /usr/bin/python3 -c 'import socket, sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' "$D/$1" ;;
 	esac
 }
 # same_node NAME KIND : it is still that node (and the link still points at the target,

@@ -252,8 +252,9 @@ njobs=$(q $DB "SELECT COUNT(*) FROM slurm_job")
 # --- the same results as the uninterrupted local run ---
 # columns that say when, where and how often, not what: attempts (the stopped run has
 # two), host, started, finished, wall_seconds
+# (Debian's python3: the first on PATH may be a pyenv shim, most of a second a call)
 strip() {
-	python3 -c '
+	/usr/bin/python3 -c '
 import csv, sys
 drop = {"attempts", "host", "started", "finished", "wall_seconds"}
 r = csv.reader(open(sys.argv[1], newline=""))
