@@ -162,8 +162,8 @@ for round in $(seq 1 "$ROUNDS"); do
 done
 
 # --- a full disk under a campaign (a small tmpfs): the launching stops at the first
-# write that fails, wherever it is (an argument file, the HDF5 file, after a run is
-# done), no run is marked failed; with room again the same command completes it ---
+# write that fails, wherever it is (an argument file, the HDF5 file, the database as
+# SQLite says it: "database or disk is full", after a run is done), no run is marked failed; with room again the same command completes it ---
 FULL="$TMP/full"
 mkdir -p "$FULL"
 if mount -t tmpfs -o size=200k tmpfs "$FULL" 2>/dev/null; then
@@ -175,7 +175,7 @@ if mount -t tmpfs -o size=200k tmpfs "$FULL" 2>/dev/null; then
 		ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" "$STUDY" run f.campaign --runs "$FULL" --jobs 1 --no-cache >full.$size.log 2>&1
 		rc=$?
 		nf=$(q "$FULL/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'failed'")
-		[ "$rc" = 2 ] && [ "$nf" = 0 ] && grep -Eq 'No space left on device|I/O fault' full.$size.log &&
+		[ "$rc" = 2 ] && [ "$nf" = 0 ] && grep -Eq 'No space left on device|I/O fault|study.db: database or disk is full' full.$size.log &&
 			ok "full_disk.$size.stops_none_failed" ||
 			fail "full_disk.$size.stops_none_failed" "exit $rc, failed $nf: $(tail -n 2 full.$size.log | cut -c1-300)"
 		mount -o remount,size=64m "$FULL"
