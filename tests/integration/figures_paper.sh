@@ -63,18 +63,19 @@ A=R/t/analysis
 tool fig.onset onset t --runs=R --boot=40 --seed=3
 figs fig.onset.png_pdf $A onset
 G=$A/onset.gp
-# per group with an estimate: a dashed line at it and a band over its interval, in the
-# group's colour, named in the legend
-nmark=$(awk -F, 'NR > 1 && ($6 != "nan" || $11 != "nan")' $A/onset_summary.csv | wc -l)
+# per group with an onset (the threshold crossing: docs/analysis.md, "One onset per
+# campaign"): a dashed line at it and a band over its interval, in the group's colour,
+# named in the legend
+nmark=$(awk -F, 'NR > 1 && $11 != "nan"' $A/onset_summary.csv | wc -l)
 nline=$(grep -c '^set arrow [0-9]* from .* graph 0 to .* graph 1 nohead lt [0-9]* dt 2' $G)
 nband=$(grep -c '^set object [0-9]* rect from .* graph 0 to .* graph 1 behind fc lt [0-9]* fs transparent solid' $G)
-nkey=$(grep -oE "keyentry with lines lt [0-9]+ dt 2 lw 1.5 title '(f₀|threshold f) = [0-9.]+ Hz" $G | wc -l)
+nkey=$(grep -oE "keyentry with lines lt [0-9]+ dt 2 lw 1.5 title 'onset f = [0-9.]+ Hz" $G | wc -l)
 [ "$nmark" -ge 1 ] && [ "$nline" = "$nmark" ] && [ "$nkey" = "$nmark" ] && [ "$nband" -ge 1 ] && [ "$nband" -le "$nmark" ] &&
 	ok fig.onset.f0_line_and_band || fail fig.onset.f0_line_and_band "groups $nmark, lines $nline, bands $nband, legend $nkey"
-# the line of a group whose sigmoid was accepted is at its f0, the band its interval
-row=$(awk -F, 'NR > 1 && $5 == 1 && $7 != "nan" { print; exit }' $A/onset_summary.csv)
+# the line of a group with an onset is at it (not at the sigmoid's f0), the band its interval
+row=$(awk -F, 'NR > 1 && $11 != "nan" && $12 != "nan" { print; exit }' $A/onset_summary.csv)
 if [ -n "$row" ]; then
-	f0=$(echo "$row" | awk -F, '{ print $6 }') lo=$(echo "$row" | awk -F, '{ print $7 }')
+	f0=$(echo "$row" | awk -F, '{ print $11 }') lo=$(echo "$row" | awk -F, '{ print $12 }')
 	grep -q "^set arrow [0-9]* from $f0, graph 0" $G && grep -q "^set object [0-9]* rect from $lo, graph 0" $G &&
 		ok fig.onset.f0_values || fail fig.onset.f0_values "f0 $f0, lo $lo not in $G"
 fi
