@@ -3,6 +3,7 @@
 #include "drive.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "units.h"
 
@@ -102,4 +103,54 @@ double drive_gamma(double A, double f, double g)
 double drive_velocity(double A, double f)
 {
 	return A * SB_TWO_PI * f;
+}
+
+double drive_axis(int kind, double A, double f, double g)
+{
+	switch (kind) {
+	case AXIS_GAMMA:
+		return drive_gamma(A, f, g);
+	case AXIS_VELOCITY:
+		return drive_velocity(A, f);
+	default:
+		return f;
+	}
+}
+
+double drive_axis_freq(int kind, double x, double A, double g)
+{
+	if (kind != AXIS_GAMMA && kind != AXIS_VELOCITY)
+		return x;
+	if (!(x > 0) || !(A > 0))
+		return NAN;
+	/* in this order: a campaign's derived frequencies (printed to 12 digits) read as
+	 * they always have, so that a resumed campaign names the same runs */
+	return kind == AXIS_GAMMA ? sqrt(x * g / A) / SB_TWO_PI : x / (SB_TWO_PI * A);
+}
+
+/* the frequency's unit is the parameter table's too (tests/unit/drive_axis.c checks) */
+static const struct {
+	const char *name, *unit;
+} AXES[AXIS_N] = {
+	[AXIS_FREQUENCY] = {"frequency", "Hz"},
+	[AXIS_GAMMA] = {"gamma", ""},
+	[AXIS_VELOCITY] = {"velocity", "cm/s"},
+};
+
+const char *drive_axis_name(int kind)
+{
+	return kind >= 0 && kind < AXIS_N ? AXES[kind].name : "?";
+}
+
+const char *drive_axis_unit(int kind)
+{
+	return kind >= 0 && kind < AXIS_N ? AXES[kind].unit : "";
+}
+
+int drive_axis_kind(const char *name)
+{
+	for (int k = 0; k < AXIS_N; k++)
+		if (name && !strcmp(AXES[k].name, name))
+			return k;
+	return -1;
 }

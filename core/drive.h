@@ -32,4 +32,22 @@ double drive_gamma(double A, double f, double g);
  * definition: the campaign axis velocity and the analysis tools' velocity axis use it. */
 double drive_velocity(double A, double f);
 
+/* The axes a drive is measured on: its frequency f, Gamma (drive_gamma) or its peak
+ * velocity v (drive_velocity). The one table of their names ("frequency", "gamma",
+ * "velocity": the campaign files' words and the tools' --axis) and units ("Hz", "",
+ * "cm/s"); the campaign's search axes (docs/campaigns.md, "Axes in Gamma and v") and
+ * the figures' axes use it. */
+enum sb_axis { AXIS_FREQUENCY, AXIS_GAMMA, AXIS_VELOCITY, AXIS_N };
+
+/* The value on axis kind of a drive of amplitude A (cm) at frequency f (Hz) under
+ * gravity g (cm/s^2); f itself for AXIS_FREQUENCY (or another kind). */
+double drive_axis(int kind, double A, double f, double g);
+/* The inverse: the frequency (Hz) at which a drive of amplitude A reaches x on axis
+ * kind; NaN unless x > 0 and A > 0 (x itself on the frequency axis). */
+double drive_axis_freq(int kind, double x, double A, double g);
+/* Its name and unit ("?" and "" for another kind); the kind of a name, -1 for another. */
+const char *drive_axis_name(int kind);
+const char *drive_axis_unit(int kind);
+int drive_axis_kind(const char *name);
+
 #endif

@@ -33,12 +33,12 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 	/* output = none: no run file, hence no journal to assemble it from and no
 	 * checkpoint to resume into it (params_validate refuses asking for one) */
 	if (!params_no_output(sc)) {
-		snprintf(s->journal_path, sizeof s->journal_path, "%s.journal", sc->output);
+		snprintf(s->journal_path, sizeof s->journal_path, "%s" SB_JOURNAL_EXT, sc->output);
 		sim_xmf_path(sc->output, s->xmf_path, sizeof s->xmf_path);
 		if (sc->checkpoint[0])
 			snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s", sc->checkpoint);
 		else
-			snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s.ckpt", sc->output);
+			snprintf(s->ckpt_path, sizeof s->ckpt_path, "%s" SB_CKPT_EXT, sc->output);
 	}
 	prov_init(&s->prov);
 	(void)e;

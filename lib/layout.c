@@ -3,6 +3,8 @@
 
 #include <stdio.h>
 
+#include "sim.h"
+
 int layout_db(const char *runs, const char *db, char *out, size_t len)
 {
 	if (db)
@@ -23,8 +25,10 @@ int layout_calibration(const char *runs, const char *tag, char *out, size_t len)
 
 int layout_file(const char *dir, int cache, const char *id, enum lay_kind kind, char *out, size_t len)
 {
-	static const char *const sub[2][4] = {{"", "jobs/", "jobs/", "logs/"}, {"cache/", "cache/", "cache/", "cache/"}};
-	static const char *const ext[4] = {".h5", ".args", ".lock", ".log"};
+	static const char *const sub[2][LAY_NKINDS] = {{"", "jobs/", "jobs/", "logs/", "", ""},
+						       {"cache/", "cache/", "cache/", "cache/", "cache/", "cache/"}};
+	static const char *const ext[LAY_NKINDS] = {".h5", ".args", ".lock", ".log", ".h5" SB_JOURNAL_EXT,
+						    ".h5" SB_CKPT_EXT};
 	return snprintf(out, len, "%s%s%s%s%s", dir, dir[0] ? "/" : "", sub[cache != 0][kind], id, ext[kind]);
 }
 

@@ -3,6 +3,7 @@
  *
  *   RUNS/study.db                          the database
  *   RUNS/NAME/ID.h5                        a run's output (its existence is completion)
+ *   RUNS/NAME/ID.h5.{journal,ckpt}         the engine's, beside the output while it runs
  *   RUNS/NAME/jobs/ID.args, jobs/ID.lock   its argument file and per-run lock
  *   RUNS/NAME/logs/ID.log                  the engine's stderr, every attempt
  *   RUNS/NAME/cache/KEY.{args,h5,txt,log,lock}  a shared packing
@@ -21,7 +22,8 @@
 
 #include <stddef.h>
 
-enum lay_kind { LAY_OUTPUT, LAY_ARGS, LAY_LOCK, LAY_LOG };
+/* LAY_JOURNAL and LAY_CKPT: the engine's own (core/sim.h), beside a run's output */
+enum lay_kind { LAY_OUTPUT, LAY_ARGS, LAY_LOCK, LAY_LOG, LAY_JOURNAL, LAY_CKPT, LAY_NKINDS };
 
 /* RUNS/study.db (runs NULL: "runs"); db when given. */
 int layout_db(const char *runs, const char *db, char *out, size_t len);

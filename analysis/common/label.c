@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "drive.h"
 #include "params.h"
 
 /* The words of a key: the format of its value and unit (two %s: the number or text,
@@ -35,23 +36,22 @@ static const struct {
 };
 
 /* The symbol of a key on a figure's axis; the rows of WORDS that name one, and the
- * drive's derived axes (axis.h), which are no keys of the parameter table: their unit
- * is here (v's cm/s: A in cm times f in Hz). */
+ * drive's derived axes (core/drive.h), which are no keys of the parameter table: their
+ * unit is drive_axis_unit's. */
 static const struct {
-	const char *key, *symbol, *unit;
+	const char *key, *symbol;
 } AXES[] = {
-	{"frequency", "f", NULL},
-	{"gamma", "Γ", ""},
-	{"velocity", "v", "cm/s"},
+	{"frequency", "f"},
+	{"gamma", "Γ"},
+	{"velocity", "v"},
 };
 
 void label_unit(char *buf, size_t n, const char *key)
 {
 	const sb_param *p = params_find(key);
 	const char *u = p ? p->unit : "";
-	for (size_t i = 0; !p && i < sizeof AXES / sizeof *AXES; i++)
-		if (!strcmp(AXES[i].key, key) && AXES[i].unit)
-			u = AXES[i].unit;
+	if (!p && drive_axis_kind(key) >= 0)
+		u = drive_axis_unit(drive_axis_kind(key));
 	size_t l = 0;
 	if (n)
 		buf[0] = 0;

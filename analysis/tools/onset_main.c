@@ -64,7 +64,7 @@ static const char HELP[] =
 	"  --db FILE, --runs DIR, --out DIR   as for every tool (waiting --help)\n"
 	"  --by KEYS        group by these parameters (comma separated)\n"
 	"  --boot N         bootstrap replicates (default 1000); --seed S its seed (default 1)\n"
-	"  --level L        confidence level (default 0.95)\n"
+	"  --level L        confidence level (default: the [onset] search's, else 0.95)\n"
 	"  --sensitivity    also how the onset depends on the measuring band and on the sampled\n"
 	"                   frequency range: both estimates again for the bands 0.2:0.4, 0.4:0.6\n"
 	"                   and 0.6:0.8 of the surface height and for the sampled range without\n"
@@ -124,6 +124,7 @@ typedef struct onset_state {
 	int sens;        /* --sensitivity given */
 	const char *diff, *fit; /* --diff KEY, --fit KEY (NULL: not given) */
 	int axis;        /* --axis (axis.h) */
+	double level;    /* the intervals' level: --level, else the search's, else 0.95 */
 } onset_state;
 
 static int state_alloc(an_tool *t, onset_state *s)
@@ -234,6 +235,13 @@ static int definition(an_tool *t, onset_state *s)
 			s->fo.skip = d->skip;
 		s->differs = s->thr != d->threshold || s->fo.band_lo != d->band_lo || s->fo.band_hi != d->band_hi ||
 			     s->fo.skip != d->skip;
+	}
+	/* the intervals at the search's level, so that "agree" compares like with like */
+	s->level = o->level;
+	if (d->found && !o->level_set && d->level > 0 && d->level < 1 && d->level != o->level) {
+		s->level = d->level;
+		tool_define(t, "level=%.15g", s->level);
+		printf("# intervals at %g %%: the [onset] search's level (--level sets another)\n", 100 * s->level);
 	}
 	char th[64];
 	if (isnan(s->thr))
@@ -360,7 +368,7 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 static int estimate_one(an_tool *t, onset_state *s, size_t np, onset_res *r)
 {
 	const an_opts *o = t->o;
-	if (onset_estimate(s->xs, s->ys, s->us, np, s->thr, (size_t)(o->boot > 1 ? o->boot : 0), o->seed, o->level, r))
+	if (onset_estimate(s->xs, s->ys, s->us, np, s->thr, (size_t)(o->boot > 1 ? o->boot : 0), o->seed, s->level, r))
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	resolve_grid(r->thr, &r->thr_lo, &r->thr_hi, s->xs, np);
 	return 0;
@@ -480,19 +488,15 @@ static double est(const onset_res *r, int e, double *lo, double *hi, const doubl
 /* --diff KEY: per curve along KEY, each group against the one of the smallest KEY. */
 static int diff_out(an_tool *t, onset_state *s)
 {
-	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
-	char path[1400];
-	FILE *f = NULL;
+	int nc;
+	FILE *f;
+	int *curve = tool_curves_csv(t, s->diff, "onset_diff.csv", &nc, &f);
 	if (!curve)
-		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
-	if ((nc = tool_curves(t, s->diff, curve)) < 0 || !(f = cli_fopen(t->o, "onset_diff.csv", path, sizeof path, &t->e))) {
-		free(curve);
-		return t->e.code ? t->e.code : sb_errf(&t->e, SB_EUSAGE, "--diff %s: no groups", s->diff);
-	}
+		return t->e.code;
 	fprintf(f, "group_a,group_b,%s_a,%s_b,estimate,difference,lo,hi,replicates,zero\n", s->diff, s->diff);
 	printf("\n# differences along %s: the onset at each %s minus at the smallest (other keys equal); %g %% "
 	       "percentile interval from the two groups' bootstraps over their seeds, resampled apart\n", s->diff,
-	       s->diff, 100 * t->o->level);
+	       s->diff, 100 * s->level);
 	printf("%-30s %10s %10s %-12s %30s %8s\n", "groups alike but in", s->diff, "against", "estimate",
 	       "difference (Hz) [CI]", "0");
 	int pairs = 0;
@@ -514,7 +518,7 @@ static int diff_out(an_tool *t, onset_state *s)
 				const double *ra, *rb;
 				const double va = est(&s->R[a], e, &la, &ha, &ra), vb = est(&s->R[b], e, &lb, &hb, &rb);
 				bootdiff_res d;
-				if (bootdiff_run(va, vb, ra, rb, ra && rb && s->R[a].B == s->R[b].B ? s->R[a].B : 0, t->o->level,
+				if (bootdiff_run(va, vb, ra, rb, ra && rb && s->R[a].B == s->R[b].B ? s->R[a].B : 0, s->level,
 						 &d)) {
 					sb_errf(&t->e, SB_ENOMEM, "out of memory");
 					break;
@@ -566,12 +570,12 @@ static int fit_curve(an_tool *t, onset_state *s, const int *curve, int c, int e,
 	}
 	powerfit_res P;
 	int rc = reps ? 0 : -1;
-	if (!rc && m && powerfit_fit(x, y, lo, hi, m, t->o->level, &P))
+	if (!rc && m && powerfit_fit(x, y, lo, hi, m, s->level, &P))
 		m = 0; /* fewer than two points: said below */
 	if (!rc && m && allrep && B > 1 && (rep = malloc(sizeof *rep * m * B))) {
 		for (size_t i = 0; i < m; i++)
 			memcpy(rep + i * B, reps[i], sizeof *rep * B);
-		rc = powerfit_boot(x, lo, hi, rep, m, B, t->o->level, &P);
+		rc = powerfit_boot(x, lo, hi, rep, m, B, s->level, &P);
 	}
 	if (!rc && first >= 0) {
 		char lab[512], grp[600], ci[64], cc[64], ref[128] = "";
@@ -610,19 +614,15 @@ static int fit_curve(an_tool *t, onset_state *s, const int *curve, int c, int e,
 /* --fit KEY: per curve along KEY and estimate, f_on = c KEY^p. */
 static int fit_out(an_tool *t, onset_state *s)
 {
-	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
-	char path[1400];
-	FILE *f = NULL;
+	int nc;
+	FILE *f;
+	int *curve = tool_curves_csv(t, s->fit, "onset_fit.csv", &nc, &f);
 	if (!curve)
-		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
-	if ((nc = tool_curves(t, s->fit, curve)) < 0 || !(f = cli_fopen(t->o, "onset_fit.csv", path, sizeof path, &t->e))) {
-		free(curve);
 		return t->e.code;
-	}
 	fprintf(f, "groups,estimate,points,weighted,p,p_lo,p_hi,p_se,p_cov_lo,p_cov_hi,c,chi2,boot_ok\n");
 	printf("\n# power law f_on = c %s^p: weighted least squares on log f against log %s, weights from the onsets'"
 	       " %g %% intervals; p's interval: percentile bootstrap over the groups' own replicates (the covariance's"
-	       " beside it)\n", s->fit, s->fit, 100 * t->o->level);
+	       " beside it)\n", s->fit, s->fit, 100 * s->level);
 	printf("%-30s %-12s %6s %26s %18s %10s %s\n", "groups alike but in", "estimate", "points", "p [CI]",
 	       "covariance CI", "c", "interval, reference exponents");
 	for (int c = 0; c < nc && !t->e.code; c++)
@@ -800,9 +800,9 @@ static int on_axis(const an_tool *t, const onset_state *s, int j, double *m, dou
 		return 1;
 	if (!tool_group_drive(t, j, &A, &g))
 		return 0;
-	*m = axis_of(s->axis, A, *m, g);
-	*lo = axis_of(s->axis, A, *lo, g);
-	*hi = axis_of(s->axis, A, *hi, g);
+	*m = drive_axis(s->axis, A, *m, g);
+	*lo = drive_axis(s->axis, A, *lo, g);
+	*hi = drive_axis(s->axis, A, *hi, g);
 	return 1;
 }
 
@@ -815,7 +815,7 @@ static int plot(an_tool *t, const onset_state *s)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set title \"Convective flux Φ through the plane at %.2f–%.2f of the bed height\\n%s%sdashed: onset = %s;"
-		   " band: %g %% CI\"\n", s->fo.band_lo, s->fo.band_hi, set, *set ? "; " : "", s->def, 100 * o->level);
+		   " band: %g %% CI\"\n", s->fo.band_lo, s->fo.band_hi, set, *set ? "; " : "", s->def, 100 * s->level);
 	if (s->axis == AXIS_FREQUENCY)
 		gp_xlabel(f, "frequency");
 	else {
@@ -871,7 +871,7 @@ static int plot(an_tool *t, const onset_state *s)
 			continue;
 		char u[32];
 		const char *xs = s->axis == AXIS_FREQUENCY ? "onset f" : s->axis == AXIS_GAMMA ? "onset Γ" : "onset v";
-		label_unit(u, sizeof u, axis_name(s->axis));
+		label_unit(u, sizeof u, drive_axis_name(s->axis));
 		if (isfinite(lo) && isfinite(hi))
 			snprintf(mark, sizeof mark, "%s = %.3g%s%s [%.3g, %.3g]", xs, m, *u ? " " : "", u, lo, hi);
 		else
@@ -893,7 +893,7 @@ static int init(an_tool *t, void *vs, const xopt *x)
 	s->sens = x[0].set;
 	s->diff = x[1].set ? x[1].val : NULL;
 	s->fit = x[2].set ? x[2].val : NULL;
-	if ((s->axis = x[3].set ? axis_parse(x[3].val) : AXIS_FREQUENCY) < 0)
+	if ((s->axis = x[3].set ? drive_axis_kind(x[3].val) : AXIS_FREQUENCY) < 0)
 		return sb_errf(&t->e, SB_EUSAGE, "--axis: expected one of frequency|gamma|velocity, got '%s'", x[3].val);
 	return 0;
 }

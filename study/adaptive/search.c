@@ -171,10 +171,10 @@ static int look(void *ctx, double x)
 	srch_group *gr = &s->groups[w->group];
 	if (cls == AD_FAILED && !gr->reason[0]) {
 		char at[64];
-		if (s->c->onset.axis == AX_FREQUENCY)
+		if (s->c->onset.axis == AXIS_FREQUENCY)
 			snprintf(at, sizeof at, "%.12g Hz", f);
 		else
-			snprintf(at, sizeof at, "%s %.12g (%.12g Hz)", axes_name(s->c->onset.axis), x, f);
+			snprintf(at, sizeof at, "%s %.12g (%.12g Hz)", drive_axis_name(s->c->onset.axis), x, f);
 		snprintf(gr->reason, sizeof gr->reason, "replicate %ld at %s: %s", w->replicate, at, why);
 	}
 	if (s->nsteps == s->capsteps) {
@@ -280,10 +280,10 @@ int search_member(const campaign *c, long points, long replicate, double frequen
 	ad_range range = {o->from, o->to, o->tolerance};
 	if (replicate < 1 || replicate > AD_MAX_REPLICATES)
 		return 0;
-	if (o->axis == AX_FREQUENCY && !adapt_member(&range, frequency))
+	if (o->axis == AXIS_FREQUENCY && !adapt_member(&range, frequency))
 		return 0;
 	for (long p = 0; p < points; p++) {
-		if (o->axis != AX_FREQUENCY) {
+		if (o->axis != AXIS_FREQUENCY) {
 			/* each group has its own frequencies: the point's amplitude maps them */
 			struct member_map m = {c, {0}};
 			grid_point_scene(c, p, &m.scene);
@@ -333,7 +333,7 @@ int search_store(const search *s, st_db *db, sb_err *e)
 		"INSERT INTO onset_search(campaign, observable, axis, freq_from, freq_to, tolerance, threshold, band_lo,"
 		" band_hi, skip, replicates, max_replicates, batch, target, level, state, updated)"
 		" VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-		"tttdddDDDDtllDdtt", c->name, flux ? "flux" : "rise", axes_name(o->axis), o->from, o->to, o->tolerance,
+		"tttdddDDDDtllDdtt", c->name, flux ? "flux" : "rise", drive_axis_name(o->axis), o->from, o->to, o->tolerance,
 		flux, o->threshold, flux, o->band_lo, flux, o->band_hi, flux, o->skip, reps,
 		o->autorep ? o->max_replicates : o->replicates, o->autorep ? o->batch : o->replicates, o->autorep,
 		o->target, o->level, !search_done(s) ? "searching" : blocked ? "blocked" : "done", now);
@@ -381,8 +381,8 @@ int search_store(const search *s, st_db *db, sb_err *e)
 /* "4 Hz (Gamma 1.93, v 75.4 cm/s)" */
 static void drive_text(const sb_scene *s, double f, char *buf, size_t len)
 {
-	snprintf(buf, len, "%.6g Hz (Gamma %.3g, v %.3g cm/s)", f, axes_gamma(s->amplitude, f, s->gravity),
-		 axes_velocity(s->amplitude, f));
+	snprintf(buf, len, "%.6g Hz (Gamma %.3g, v %.3g cm/s)", f, drive_gamma(s->amplitude, f, s->gravity),
+		 drive_velocity(s->amplitude, f));
 }
 
 int search_preview(const campaign *c, long group, char *buf, size_t len)
@@ -401,7 +401,7 @@ int search_preview(const campaign *c, long group, char *buf, size_t len)
 	 * closes on them */
 	size_t l = (size_t)snprintf(buf, len, "group %s (amplitude %g cm): first point %s; range %s to %s\n", label,
 				    s.amplitude, at[0], at[1], at[2]);
-	double limit, gamma = axes_gamma(s.amplitude, f[0], s.gravity);
+	double limit, gamma = drive_gamma(s.amplitude, f[0], s.gravity);
 	const char *what = axes_model_fails(gamma, &limit);
 	if (what && l < len)
 		snprintf(buf + l, len - l, "warning: group %s: the first point, %.6g Hz, is at Gamma %.3g, at or above %g "

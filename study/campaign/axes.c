@@ -10,9 +10,6 @@
 #include "drive.h"
 #include "units.h"
 
-/* 2 pi f: the drive's angular frequency, as the engine's drive has it */
-#define AX_TWO_PI SB_TWO_PI
-
 /* 12 significant digits, as a campaign's ranges and the search's midpoints are
  * printed (adapt_mid): a derived value reads as written, and so hashes the same */
 static double printed(double x)
@@ -22,51 +19,21 @@ static double printed(double x)
 	return strtod(buf, NULL);
 }
 
-double axes_gamma(double amplitude, double frequency, double gravity)
-{
-	return drive_gamma(amplitude, frequency, gravity); /* Gamma's one definition */
-}
-
-double axes_velocity(double amplitude, double frequency)
-{
-	return drive_velocity(amplitude, frequency); /* v's one definition */
-}
-
-double axes_value(int kind, double amplitude, double frequency, double gravity)
-{
-	switch (kind) {
-	case AX_GAMMA:
-		return axes_gamma(amplitude, frequency, gravity);
-	case AX_VELOCITY:
-		return axes_velocity(amplitude, frequency);
-	default:
-		return frequency;
-	}
-}
-
 double axes_frequency(int kind, double x, double amplitude, double gravity)
 {
-	if (!(x > 0) || !(amplitude > 0))
-		return kind == AX_FREQUENCY ? x : NAN;
-	switch (kind) {
-	case AX_GAMMA:
-		return printed(sqrt(x * gravity / amplitude) / AX_TWO_PI);
-	case AX_VELOCITY:
-		return printed(x / (AX_TWO_PI * amplitude));
-	default:
-		return x;
-	}
+	const double f = drive_axis_freq(kind, x, amplitude, gravity);
+	return kind == AXIS_FREQUENCY || isnan(f) ? f : printed(f);
 }
 
 double axes_amplitude(int kind, double x, double frequency, double gravity)
 {
 	if (!(x > 0) || !(frequency > 0))
 		return NAN;
-	double w = AX_TWO_PI * frequency;
+	double w = SB_TWO_PI * frequency;
 	switch (kind) {
-	case AX_GAMMA:
+	case AXIS_GAMMA:
 		return printed(x * gravity / (w * w));
-	case AX_VELOCITY:
+	case AXIS_VELOCITY:
 		return printed(x / w);
 	default:
 		return NAN;
@@ -75,29 +42,8 @@ double axes_amplitude(int kind, double x, double frequency, double gravity)
 
 void axes_drive(double gamma, double velocity, double gravity, double *amplitude, double *frequency)
 {
-	*frequency = printed(gamma * gravity / velocity / AX_TWO_PI);
-	*amplitude = axes_amplitude(AX_VELOCITY, velocity, *frequency, gravity);
-}
-
-static const char *const NAMES[AX_NKINDS] = {"frequency", "gamma", "velocity"};
-static const char *const UNITS[AX_NKINDS] = {"Hz", "", "cm/s"};
-
-const char *axes_name(int kind)
-{
-	return kind >= 0 && kind < AX_NKINDS ? NAMES[kind] : "?";
-}
-
-const char *axes_unit(int kind)
-{
-	return kind >= 0 && kind < AX_NKINDS ? UNITS[kind] : "";
-}
-
-int axes_kind(const char *name)
-{
-	for (int k = 0; k < AX_NKINDS; k++)
-		if (!strcmp(NAMES[k], name))
-			return k;
-	return -1;
+	*frequency = printed(gamma * gravity / velocity / SB_TWO_PI);
+	*amplitude = axes_amplitude(AXIS_VELOCITY, velocity, *frequency, gravity);
 }
 
 /* Where the model is known to fail, one row per limit; docs/model.md, "Where the model

@@ -42,7 +42,7 @@ int campaign_key_reserved(const char *key)
 
 int campaign_key_derived(const char *key)
 {
-	return axes_kind(key) > AX_FREQUENCY;
+	return drive_axis_kind(key) > AXIS_FREQUENCY;
 }
 
 static void trim(char *s)
@@ -588,12 +588,12 @@ static int in_range(double x, double lo, double hi, int lo_open, int hi_open)
 	return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
 }
 
-/* " (Hz)" for a key in the search's axis ("" for Gamma, which has no unit) */
-static const char *onset_unit_text(const cp_onset *o, const struct onset_keydef *k)
+/* the unit of a key in the search's axis ("Hz"), "" for Gamma (which has none) and
+ * for the keys in no axis */
+static const char *onset_unit(const cp_onset *o, const struct onset_keydef *k)
 {
-	static const char *const text[AX_NKINDS] = {" (Hz)", "", " (cm/s)"};
 	int in_axis = k->kind == OK_FREQ || !strcmp(k->name, "tolerance") || !strcmp(k->name, "target");
-	return in_axis ? text[o->axis] : "";
+	return in_axis ? drive_axis_unit(o->axis) : "";
 }
 
 static int onset_key(cp_onset *o, int line, const char *where, const char *name, const char *value, sb_err *e)
@@ -630,7 +630,7 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 		return 0;
 	case OK_AXIS:
 		/* what the range is in: each group's frequency follows from its amplitude */
-		o->axis = axes_kind(value);
+		o->axis = drive_axis_kind(value);
 		if (o->axis < 0)
 			return sb_errf(e, SB_EUSAGE, "%s: axis: expected one of frequency|gamma|velocity, got '%s'", where,
 				       value);
@@ -675,9 +675,10 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 	default:
 		range_text(lo, hi, k->min_open, k->max_open, rt, sizeof rt);
 		if (!parse_num(value, &x) || !in_range(x, lo, hi, k->min_open, k->max_open))
-			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s%s%s, got '%s'", where, name, rt,
-				       onset_unit_text(o, k), o->axis_line ? " with axis = " : "",
-				       o->axis_line ? axes_name(o->axis) : "", value);
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s%s%s%s%s, got '%s'", where, name,
+				       rt, *onset_unit(o, k) ? " (" : "", onset_unit(o, k), *onset_unit(o, k) ? ")" : "",
+				       o->axis_line ? " with axis = " : "",
+				       o->axis_line ? drive_axis_name(o->axis) : "", value);
 		*dv = x;
 		return 0;
 	}
@@ -693,7 +694,7 @@ static int onset_finish(campaign *c, int campaign_replicates_line, sb_err *e)
 		if (!*onset_line(o, need[i]))
 			return sb_errf(e, SB_EUSAGE, "%s:%d: [onset] has no %s%s", p, o->line, need[i],
 				       i ? "" : " (rise or flux)");
-	const char *ax = axes_name(o->axis), *unit = axes_unit(o->axis);
+	const char *ax = drive_axis_name(o->axis), *unit = drive_axis_unit(o->axis);
 	if (!(o->to > o->from))
 		return sb_errf(e, SB_EUSAGE, "%s:%d: to: expected a %s above from = %g (line %d), got %g", p,
 			       o->to_line, ax, o->from, o->from_line, o->to);

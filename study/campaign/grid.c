@@ -87,7 +87,7 @@ static int scene_derive(const campaign *c, const long *digit, sb_scene *s, sb_er
 {
 	int lg = 0, lv = 0;
 	double gm = derived_at(c, digit, "gamma", &lg), v = derived_at(c, digit, "velocity", &lv);
-	int kind = lg ? AX_GAMMA : AX_VELOCITY, line = lg ? lg : lv;
+	int kind = lg ? AXIS_GAMMA : AXIS_VELOCITY, line = lg ? lg : lv;
 	double x = lg ? gm : v, f = s->frequency, A = s->amplitude;
 	if (c->derive == CP_DERIVE_FREQUENCY)
 		f = axes_frequency(kind, x, A, s->gravity);
@@ -111,7 +111,7 @@ static int scene_derive(const campaign *c, const long *digit, sb_scene *s, sb_er
 			else
 				snprintf(at, sizeof at, "and velocity = %.12g cm/s", v);
 			return sb_errf(e, SB_EUSAGE, "%s: %s: %s = %.12g %s needs %s = %s, outside (%g, %g]", where,
-				       axes_name(kind), axes_name(kind), x, at, key[k], buf, p->min, p->max);
+				       drive_axis_name(kind), drive_axis_name(kind), x, at, key[k], buf, p->min, p->max);
 		}
 		if (params_set(s, key[k], buf, where, e))
 			return e->code;
@@ -232,17 +232,17 @@ static int onset_group_check(const campaign *c, long p, sb_scene *s, sb_err *e)
 	if (o->observable == CP_OBS_FLUX && !s->flux)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: observable: flux needs the flux records: set flux = yes under "
 			       "[scene] (group %s has flux = no)", c->path, o->observable_line, label);
-	if (o->axis != AX_FREQUENCY && !(s->amplitude > 0))
+	if (o->axis != AXIS_FREQUENCY && !(s->amplitude > 0))
 		return sb_errf(e, SB_EUSAGE, "%s:%d: axis: a search in %s needs an amplitude above 0, but group %s has "
-			       "amplitude = %g", c->path, o->axis_line, axes_name(o->axis), label, s->amplitude);
+			       "amplitude = %g", c->path, o->axis_line, drive_axis_name(o->axis), label, s->amplitude);
 	double ends[2] = {o->from, o->to};
 	for (int k = 0; k < 2; k++) {
 		char at[128];
 		s->frequency = grid_onset_frequency(c, s, ends[k]);
-		if (o->axis == AX_FREQUENCY)
+		if (o->axis == AXIS_FREQUENCY)
 			snprintf(at, sizeof at, "frequency=%.12g", ends[k]);
 		else
-			snprintf(at, sizeof at, "%s=%.12g frequency=%.12g", axes_name(o->axis), ends[k], s->frequency);
+			snprintf(at, sizeof at, "%s=%.12g frequency=%.12g", drive_axis_name(o->axis), ends[k], s->frequency);
 		if (point_check(c, p, s, at, e))
 			return e->code;
 	}

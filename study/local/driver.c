@@ -300,10 +300,9 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 			fprintf(stderr, "study: %s: run %s starts from packing cache/%s.txt, which is missing: its "
 				"argument file is written again\n", d->c.name, r->id, ak);
 			char p[PATHX + 16];
-			int l = layout_file(d->dir, 0, r->id, LAY_OUTPUT, p, sizeof p - 16);
-			snprintf(p + l, sizeof p - (size_t)l, ".ckpt");
+			layout_file(d->dir, 0, r->id, LAY_CKPT, p, sizeof p);
 			unlink(p);
-			snprintf(p + l, sizeof p - (size_t)l, ".journal");
+			layout_file(d->dir, 0, r->id, LAY_JOURNAL, p, sizeof p);
 			unlink(p);
 			if (unlink(args)) {
 				sb_errf(e, SB_EIO, "%s: cannot remove: %s", args, strerror(errno));
@@ -598,9 +597,9 @@ static void onset_summary(drv *d)
 		long found = 0;
 		for (long k = 0; k < gr->nrep; k++)
 			found += gr->reps[k].state == AD_FOUND;
-		const char *unit = axes_unit(o->axis);
+		const char *unit = drive_axis_unit(o->axis);
 		fprintf(stderr, "study: %s: %s: onset %s%s%s%s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld "
-			"runs: %s%s%s%s\n", d->c.name, gr->label, o->axis == AX_GAMMA ? "Gamma " : "", est,
+			"runs: %s%s%s%s\n", d->c.name, gr->label, o->axis == AXIS_GAMMA ? "Gamma " : "", est,
 			isnan(gr->iv.est) ? " (no replicate answered)" : *unit ? " " : "", isnan(gr->iv.est) ? "" : unit,
 			100 * o->level, lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found, gr->runs,
 			adapt_gstate_name(gr->state), gr->state == AD_G_BLOCKED ? " (" : "",

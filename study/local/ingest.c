@@ -398,8 +398,7 @@ int orphans(drv *d, sb_err *e)
 		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 		if (exists(path))
 			continue;
-		size_t l = strlen(path);
-		snprintf(path + l, sizeof path - l, ".ckpt"); /* the engine's, beside its output */
+		layout_file(d->dir, 0, id, LAY_CKPT, path, sizeof path);
 		mtime_iso(path, ckt, sizeof ckt);
 		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
 		mtime_iso(path, logt, sizeof logt);

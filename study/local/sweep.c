@@ -46,11 +46,10 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
  * of processes that are gone. */
 static void remove_litter(drv *d, const char *id)
 {
-	static const char *const stale[] = {".ckpt", ".journal"}; /* the engine's, beside its output */
+	static const enum lay_kind stale[] = {LAY_CKPT, LAY_JOURNAL};
 	char p[PATHX + 256];
 	for (size_t k = 0; k < sizeof stale / sizeof *stale; k++) {
-		int l = layout_file(d->dir, 0, id, LAY_OUTPUT, p, sizeof p - 16);
-		snprintf(p + l, sizeof p - (size_t)l, "%s", stale[k]);
+		layout_file(d->dir, 0, id, stale[k], p, sizeof p);
 		unlink(p);
 	}
 	DIR *dd = opendir(d->dir);

@@ -146,11 +146,11 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	else
 		fprintf(out, "the intruder's rise (risen)");
 	/* the range is in the search's axis: Hz, Gamma (no unit) or cm/s; NULL in an older database */
-	int kind = axes_kind(col(q, 15));
-	const char *unit = kind < 0 ? "Hz" : axes_unit(kind);
+	int kind = drive_axis_kind(col(q, 15));
+	const char *unit = drive_axis_unit(kind < 0 ? AXIS_FREQUENCY : kind);
 	char sp[4];
 	snprintf(sp, sizeof sp, "%s", *unit ? " " : "");
-	fprintf(out, ", %s%s to %s%s%s, tolerance %s%s%s;\n", kind == AX_GAMMA ? "Gamma " : "",
+	fprintf(out, ", %s%s to %s%s%s, tolerance %s%s%s;\n", kind == AXIS_GAMMA ? "Gamma " : "",
 		num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32), sp, unit, num_or(q, 3, "?", b[2], 32), sp, unit);
 	if (!strcmp(col(q, 8), "auto"))
 		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s%s%s wide\n",
@@ -167,8 +167,8 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 		    "t", name))
 		return e->code;
 	char on[32], in[32];
-	snprintf(on, sizeof on, "onset (%s)", kind == AX_GAMMA ? "Gamma" : unit);
-	snprintf(in, sizeof in, "interval (%s)", kind == AX_GAMMA ? "Gamma" : unit);
+	snprintf(on, sizeof on, "onset (%s)", kind == AXIS_GAMMA ? "Gamma" : unit);
+	snprintf(in, sizeof in, "interval (%s)", kind == AXIS_GAMMA ? "Gamma" : unit);
 	fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s\n", "group", "replicates", "searching",
 		"found", "below", "above", "blocked", "runs", on, in, "width", "state");
 	while (sqlite3_step(q) == SQLITE_ROW) {

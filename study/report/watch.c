@@ -102,8 +102,7 @@ static watch_run *find_run(watch *w, const char *id)
 static void sample(watch *w, watch_run *r, double now, double started, long attempts)
 {
 	char jp[4400];
-	int l = layout_file(w->dir, 0, r->id, LAY_OUTPUT, jp, sizeof jp - 16);
-	snprintf(jp + l, sizeof jp - (size_t)l, ".journal");
+	layout_file(w->dir, 0, r->id, LAY_JOURNAL, jp, sizeof jp);
 	jtail j = {r->offset, r->ino, r->t};
 	int known = jtail_poll(&j, jp);
 	r->offset = j.offset;

@@ -4,7 +4,10 @@
 #include <math.h>
 #include <stdio.h>
 
+#include <string.h>
+
 #include "drive.h"
+#include "params.h"
 #include "testlib.h"
 
 static void test_ramp(void)
@@ -159,8 +162,38 @@ static void test_gamma(void)
 	CHECK_REL("drive.velocity.is_peak_velocity", drive_v(&d, 0), drive_velocity(2, 3.2), 1e-14);
 }
 
+/* The axes' one table: each name reads back as its kind, an unknown name or kind is
+ * refused, the frequency's unit is the parameter table's, and drive_axis_freq undoes
+ * drive_axis (Gamma 0.824 at the paper's 3.2 Hz and 2 cm is 3.2 Hz again). */
+static void test_axes(void)
+{
+	char id[64];
+	for (int k = 0; k < AXIS_N; k++) {
+		snprintf(id, sizeof id, "drive.axis.%s.name", drive_axis_name(k));
+		CHECK(id, drive_axis_kind(drive_axis_name(k)) == k, "%d", drive_axis_kind(drive_axis_name(k)));
+		snprintf(id, sizeof id, "drive.axis.%s.round_trip", drive_axis_name(k));
+		const double x = drive_axis(k, 2, 3.2, 981);
+		CHECK_REL(id, drive_axis_freq(k, x, 2, 981), 3.2, 1e-14);
+	}
+	CHECK("drive.axis.unknown_name", drive_axis_kind("Gamma") == -1 && drive_axis_kind("") == -1 &&
+						 drive_axis_kind(NULL) == -1,
+	      "%d", drive_axis_kind("Gamma"));
+	CHECK("drive.axis.unknown_kind", !strcmp(drive_axis_name(AXIS_N), "?") && !strcmp(drive_axis_unit(-1), ""),
+	      "%s", drive_axis_name(AXIS_N));
+	const sb_param *f = params_find("frequency");
+	CHECK("drive.axis.frequency_unit_is_the_tables", f && !strcmp(f->unit, drive_axis_unit(AXIS_FREQUENCY)),
+	      "table '%s', axis '%s'", f ? f->unit : "(none)", drive_axis_unit(AXIS_FREQUENCY));
+	CHECK_REL("drive.axis.gamma_value", drive_axis(AXIS_GAMMA, 2, 3.2, 981), drive_gamma(2, 3.2, 981), 0);
+	CHECK_REL("drive.axis.velocity_value", drive_axis(AXIS_VELOCITY, 2, 3.2, 981), drive_velocity(2, 3.2), 0);
+	CHECK("drive.axis.freq_needs_positive", isnan(drive_axis_freq(AXIS_GAMMA, -1, 2, 981)) &&
+						   isnan(drive_axis_freq(AXIS_VELOCITY, 1, 0, 981)) &&
+						   drive_axis_freq(AXIS_FREQUENCY, -1, 0, 981) == -1,
+	      "%g", drive_axis_freq(AXIS_GAMMA, -1, 2, 981));
+}
+
 int main(void)
 {
+	test_axes();
 	test_gamma();
 	test_ramp();
 	test_ramp_down();

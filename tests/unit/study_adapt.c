@@ -147,7 +147,7 @@ static int synth_look(void *ctx, double f)
 /* A group of amplitude *ctx cm searched in Gamma: the frequency of point x */
 static double gamma_freq(void *ctx, double x)
 {
-	return axes_frequency(AX_GAMMA, x, *(const double *)ctx, 981);
+	return axes_frequency(AXIS_GAMMA, x, *(const double *)ctx, 981);
 }
 
 /* Walks the replicate round by round (each round makes one more result known, as
@@ -637,7 +637,7 @@ static void test_section(void)
 	snprintf(text, sizeof text, "[campaign]\nname = t\nseed = 1\n[grid]\namplitude = 1, 2, 3\n[onset]\n"
 		 "observable = rise\naxis = gamma\nfrom = 0.5\nto = 2.5\ntolerance = 0.1\n");
 	rc = sf_expand(text, &c, &g, &e);
-	int fok = !rc && c.onset.axis == AX_GAMMA && g.points == 3;
+	int fok = !rc && c.onset.axis == AXIS_GAMMA && g.points == 3;
 	for (long p = 0; fok && p < 3; p++) {
 		sb_scene sc;
 		grid_point_scene(&c, p, &sc);
