@@ -261,14 +261,23 @@ int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_
 
 /* ---- grouping ---- */
 
-static char (*g_keys)[48];
-static int g_nk;
+/* the grouping keys; each element sorted carries them, so that qsort's comparator
+ * needs no state of its own */
+typedef struct {
+	char (*keys)[48];
+	int nk;
+} group_keys;
 
-static int cmp_runs(const an_run *a, const an_run *b)
+typedef struct {
+	an_run *r;
+	const group_keys *g;
+} keyed_run;
+
+static int cmp_runs(const group_keys *g, const an_run *a, const an_run *b)
 {
-	for (int k = 0; k < g_nk; k++) {
-		const char *sa = an_str(a, g_keys[k]), *sb = an_str(b, g_keys[k]);
-		double va = an_num(a, g_keys[k], NAN), vb = an_num(b, g_keys[k], NAN);
+	for (int k = 0; k < g->nk; k++) {
+		const char *sa = an_str(a, g->keys[k]), *sb = an_str(b, g->keys[k]);
+		double va = an_num(a, g->keys[k], NAN), vb = an_num(b, g->keys[k], NAN);
 		if (!isnan(va) && !isnan(vb)) {
 			if (va != vb)
 				return va < vb ? -1 : 1;
@@ -281,11 +290,11 @@ static int cmp_runs(const an_run *a, const an_run *b)
 	return 0;
 }
 
-static int cmp_ptr(const void *a, const void *b)
+static int cmp_keyed(const void *a, const void *b)
 {
-	const an_run *x = *(an_run *const *)a, *y = *(an_run *const *)b;
-	int c = cmp_runs(x, y);
-	return c ? c : strcmp(x->id, y->id);
+	const keyed_run *x = a, *y = b;
+	int c = cmp_runs(x->g, x->r, y->r);
+	return c ? c : strcmp(x->r->id, y->r->id);
 }
 
 int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels)
@@ -293,7 +302,8 @@ int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels)
 	*labels = NULL;
 	if (n <= 0)
 		return 0;
-	an_run **p = malloc(sizeof *p * (size_t)n);
+	const group_keys g = {keys, nk};
+	keyed_run *p = malloc(sizeof *p * (size_t)n);
 	char **lab = malloc(sizeof *lab * (size_t)n);
 	if (!p || !lab) {
 		free(p);
@@ -301,18 +311,16 @@ int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels)
 		return -1;
 	}
 	for (int i = 0; i < n; i++)
-		p[i] = &r[i];
-	g_keys = keys;
-	g_nk = nk;
-	qsort(p, (size_t)n, sizeof *p, cmp_ptr);
+		p[i] = (keyed_run){&r[i], &g};
+	qsort(p, (size_t)n, sizeof *p, cmp_keyed);
 	int ng = 0;
 	for (int i = 0; i < n; i++) {
-		if (i == 0 || cmp_runs(p[i - 1], p[i])) {
+		if (i == 0 || cmp_runs(&g, p[i - 1].r, p[i].r)) {
 			char buf[1024] = "";
 			size_t l = 0;
 			for (int k = 0; k < nk && l < sizeof buf; k++) {
-				const char *v = an_str(p[i], keys[k]);
-				double x = an_num(p[i], keys[k], NAN);
+				const char *v = an_str(p[i].r, keys[k]);
+				double x = an_num(p[i].r, keys[k], NAN);
 				if (!isnan(x))
 					l += (size_t)snprintf(buf + l, sizeof buf - l, "%s%s=%g", k ? " " : "", keys[k], x);
 				else
@@ -325,7 +333,7 @@ int an_group_runs(an_run *r, int n, char keys[][48], int nk, char ***labels)
 				strcpy(lab[ng], buf);
 			ng++;
 		}
-		p[i]->group = ng - 1;
+		p[i].r->group = ng - 1;
 	}
 	free(p);
 	*labels = lab;

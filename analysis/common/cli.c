@@ -119,8 +119,10 @@ static int set_opt(an_opts *o, const char *name, const char *v, const char **db,
 		if (num(e, name, v, 0, 4294967295.0, &x))
 			return 1;
 		o->seed = (unsigned long)x;
-	} else if (!strcmp(name, "level"))
+	} else if (!strcmp(name, "level")) {
+		o->level_set = 1;
 		return num(e, name, v, 0.5, 0.999, &o->level);
+	}
 	else if (!strcmp(name, "threshold")) {
 		o->threshold_set = 1;
 		return num(e, name, v, -1e12, 1e12, &o->threshold);

@@ -34,7 +34,7 @@ typedef struct an_opts {
 	int nby;              /* -1: default keys */
 	double band_lo, band_hi, skip;
 	double threshold;     /* NaN: midpoint of the means */
-	int band_set, skip_set, threshold_set; /* given on the command line (not the defaults) */
+	int band_set, skip_set, threshold_set, level_set; /* given on the command line (not the defaults) */
 	long bins, smooth;
 	double freqs[16];
 	int nfreq;

@@ -247,6 +247,22 @@ int tool_curves(an_tool *t, const char *along, int *curve)
 	return nc;
 }
 
+int *tool_curves_csv(an_tool *t, const char *along, const char *name, int *nc, FILE **f)
+{
+	char path[1400];
+	int *curve = malloc(sizeof *curve * (size_t)(t->ng > 0 ? t->ng : 1));
+	*f = NULL;
+	if (!curve) {
+		sb_errf(&t->e, SB_ENOMEM, "out of memory");
+		return NULL;
+	}
+	if ((*nc = tool_curves(t, along, curve)) < 0 || !(*f = cli_fopen(t->o, name, path, sizeof path, &t->e))) {
+		free(curve);
+		return NULL;
+	}
+	return curve;
+}
+
 double tool_num(const an_tool *t, int j, const char *key)
 {
 	const int k = key_index(t, key);

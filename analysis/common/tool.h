@@ -123,6 +123,10 @@ void tool_curve_legend(const an_tool *t, const int *curve, size_t stride, int nc
  * their number, or -1 (a usage error in t->e, naming the keys) when along is not a
  * grouping key. */
 int tool_curves(an_tool *t, const char *along, int *curve);
+/* The start of a table per curve (--diff, --fit): the curves along a grouping key
+ * (tool_curves) and the CSV `name` opened in the output directory. Returns curve
+ * (t->ng ints, the caller frees it) with *nc curves and *f open, or NULL (t->e says why). */
+int *tool_curves_csv(an_tool *t, const char *along, const char *name, int *nc, FILE **f);
 /* Group j's value of a grouping key as a number (NaN: none or no number); its label
  * without that key ("radius_ratio=0 depth=1"; "all" when nothing else). */
 double tool_num(const an_tool *t, int j, const char *key);

@@ -865,16 +865,12 @@ static int diff_pair(an_tool *t, const wait_state *s, int a, int b, const char *
  * smallest KEY (as bin/onset --diff). */
 static int diff_out(an_tool *t, wait_state *s)
 {
-	int *curve = malloc(sizeof *curve * (size_t)(t->ng ? t->ng : 1)), nc;
-	char path[1400];
-	FILE *f = NULL;
+	int nc;
+	FILE *f;
+	/* the bootstraps first: nothing is written when they cannot be */
+	int *curve = diff_boot(t, s) ? NULL : tool_curves_csv(t, s->diff, "waiting_diff.csv", &nc, &f);
 	if (!curve)
-		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
-	if ((nc = tool_curves(t, s->diff, curve)) < 0 || diff_boot(t, s) ||
-	    !(f = cli_fopen(t->o, "waiting_diff.csv", path, sizeof path, &t->e))) {
-		free(curve);
 		return t->e.code;
-	}
 	fprintf(f, "group_a,group_b,%s_a,%s_b,median_a,median_b,t_max_a,t_max_b,censored,difference,lo,hi,replicates,"
 		   "censored_replicates_a,censored_replicates_b,zero\n", s->diff, s->diff);
 	char how[160];

@@ -96,6 +96,16 @@ awk -v t="$thr" 'BEGIN { split(t, v, " ") } { if ($1 < v[1]) a = $1; else if (b 
 [ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'od' AND tool = 'onset' AND key = 'search_f'")" = 1 ] &&
 	ok onset_def.onset.search_stored || fail onset_def.onset.search_stored "no search_f row"
 
+# the intervals at the search's level (0.5 here), so that "agree" compares like with
+# like; --level sets another, and then nothing is taken from the search
+grep -q "^# intervals at 50 %: the \[onset\] search's level" a.out &&
+	[ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis_def WHERE campaign = 'od' AND tool = 'onset'
+		AND options LIKE '%level=0.5%'")" = 1 ] && ok onset_def.onset.level_from_search ||
+	fail onset_def.onset.level_from_search "$(head -n 4 a.out; sqlite3 R/study.db "SELECT options FROM analysis_def")"
+"$ONSET" od --runs "$TMP/R" --out "$TMP/L" --no-plot --no-store --boot 200 --level 0.8 >l.out 2>&1
+! grep -q "^# intervals at" l.out && grep -q "its 50 % interval" l.out && ok onset_def.onset.level_given ||
+	fail onset_def.onset.level_given "$(head -n 4 l.out)"
+
 # --- an option that changes the definition is flagged; one that repeats it is not ---
 "$ONSET" od --runs "$TMP/R" --out "$TMP/B" --no-plot --no-store --boot 200 --threshold 0.5 >b.out 2>&1
 grep -q "^# onset: first f with mean Φ ≥ 0.5 in band 0.35–0.65, skip 0.25 (set on the command line: differs from the search's)" b.out &&
