@@ -3,6 +3,24 @@
 
 #include <string.h>
 
+/* The binary files a user may name by mistake where a text file belongs (the campaign's
+ * database for its campaign file, a run file for its scene), known by how they begin. */
+static const char *binary_kind(const char *s, long len)
+{
+	static const struct {
+		const char *magic, *what;
+	} KINDS[] = {
+		{"SQLite format 3", "a SQLite database"},
+		{"\x89HDF", "an HDF5 file"},
+	};
+	for (size_t k = 0; k < sizeof KINDS / sizeof *KINDS; k++) {
+		const size_t m = strlen(KINDS[k].magic);
+		if ((size_t)len >= m && !memcmp(s, KINDS[k].magic, m))
+			return KINDS[k].what;
+	}
+	return NULL;
+}
+
 int textline_next(textline *t, char *str, int num, sb_err *e)
 {
 	int ch = 0;
@@ -39,6 +57,11 @@ int textline_next(textline *t, char *str, int num, sb_err *e)
 		return -1;
 	}
 	t->line++;
+	const char *binary = t->line == 1 ? binary_kind(str, len) : NULL;
+	if (binary) {
+		sb_errf(e, SB_EUSAGE, "%s: %s, not a %s (a %s is text)", t->path, binary, t->kind, t->kind);
+		return -1;
+	}
 	if (nul) {
 		sb_errf(e, SB_EUSAGE, "%s:%d: NUL byte in column %ld (a %s is text)", t->path, t->line, nul, t->kind);
 		return -1;

@@ -61,7 +61,7 @@ int main(void)
 		CHECK("inifile.tmpdir", 0, "mkdtemp failed");
 		return tl_done();
 	}
-	char path[256], want[512];
+	char path[256], want[512], id[64];
 	sb_err e;
 	seen s = {0};
 	int rc = read_text("ok.ini",
@@ -124,6 +124,35 @@ int main(void)
 	const inifile dir = {tmpdir, "test file", 100, on_section, on_key, &s};
 	rc = inifile_read(&dir, &e);
 	CHECK("inifile.directory_refused", rc == SB_EUSAGE && strstr(e.msg, tmpdir), "rc %d '%s'", rc, e.msg);
+
+	/* a database or a run file named where a text file belongs is named as what it is
+	 * (not "NUL byte in column 16"); text that only begins like one is still text */
+	static const struct {
+		const char *name, *bytes, *what;
+		size_t n;
+	} BIN[] = {
+		{"study.db", "SQLite format 3\0\x10\0\x02\x02", "a SQLite database", 21},
+		{"run.h5", "\x89HDF\r\n\x1a\n\0\0\0\0", "an HDF5 file", 12},
+	};
+	for (size_t k = 0; k < sizeof BIN / sizeof *BIN; k++) {
+		snprintf(path, sizeof path, "%s/%s", tmpdir, BIN[k].name);
+		FILE *f = fopen(path, "wb");
+		if (f) {
+			fwrite(BIN[k].bytes, 1, BIN[k].n, f);
+			fclose(f);
+		}
+		memset(&s, 0, sizeof s);
+		memset(&e, 0, sizeof e);
+		const inifile bin = {path, "test file", 100, on_section, on_key, &s};
+		rc = inifile_read(&bin, &e);
+		snprintf(want, sizeof want, "%s: %s, not a test file", path, BIN[k].what);
+		snprintf(id, sizeof id, "inifile.binary.%s", BIN[k].name);
+		CHECK(id, rc == SB_EUSAGE && !strncmp(e.msg, want, strlen(want)), "rc %d '%s'", rc, e.msg);
+	}
+	memset(&s, 0, sizeof s);
+	rc = read_text("sqlite.ini", "SQLite = format 3\n", &s, 100, 1, &e, path, sizeof path);
+	CHECK("inifile.binary.text_alike", rc == 0 && !strcmp(s.log, "1:SQLite=format 3\n"), "rc %d '%s' %s", rc,
+	      e.msg, s.log);
 
 	char cmd[300];
 	snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
