@@ -228,6 +228,13 @@ int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const 
 	/* a run no driver saw start (a database rebuilt from the files): it started when
 	 * its file says the engine did */
 	const char *start = h5sum_text(s, "start_time");
+	/* a worker launched again for a run whose file an earlier one had finished (the
+	 * driver killed before it read it) marked the run started after the file's end:
+	 * the file's start is the truth then, for the run and so for this attempt */
+	if (start[0] && end[0] &&
+	    sql_exec(d, e, NULL, "UPDATE run SET started = ?3 WHERE campaign = ?1 AND id = ?2 AND started > ?4",
+		     "tttt", camp, id, start, end))
+		return e->code;
 	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
 			h5sum_text(s, "host"), start[0] ? start : NULL, end[0] ? end : now, 1,
 			h5sum_real(s, "wall_seconds"), strcmp(status, "ok") ? "failed" : "done", e))

@@ -35,8 +35,10 @@ ref_ms=$((($(date +%s%N) - t0) / 1000000))
 echo "# uninterrupted campaign (6 runs, 2 jobs): $ref_ms ms"
 [ "$rc" -eq 0 ] && ok reference || { fail reference "exit $rc: $(tail -c 300 ref.log)"; finish; }
 
-# kill at random moments within the reference duration; odd kills hit the driver only
-# (its workers finish or stop on their own), even kills the whole process group
+# kill at random moments within the reference duration; odd kills hit the driver only,
+# even kills its process group (the driver and GNU parallel; parallel starts each job in
+# a process group of its own, so in both cases the workers and engines finish or stop
+# on their own)
 ckpts=0
 for k in 1 2 3 4; do
 	setsid "$STUDY" run k.campaign --runs "$TMP/K" --jobs 2 >"kill$k.log" 2>&1 &
@@ -53,6 +55,12 @@ echo "# checkpoints seen between kills: $ckpts"
 "$STUDY" run k.campaign --runs "$TMP/K" --jobs 2 >final.log 2>&1
 rc=$?
 [ "$rc" -eq 0 ] && ok resume.completes || fail resume.completes "exit $rc: $(tail -c 400 final.log)"
+# a run (and an attempt) never ends before it starts, even when a worker launched again
+# finds the file an earlier one finished (the file's start is the truth then)
+bad=$(sqlite3 K/study.db "SELECT (SELECT COUNT(*) FROM run WHERE started > finished) +
+	(SELECT COUNT(*) FROM attempt WHERE started > finished)")
+[ "$bad" = 0 ] && ok resume.times_ordered ||
+	fail resume.times_ordered "$bad rows end before they start: $(sqlite3 K/study.db "SELECT id, started, finished FROM run WHERE started > finished")"
 rows() {
 	sqlite3 -batch "$1" "SELECT id, state, status, exit_code, steps, replicate, printf('%.17g|%.17g|%.17g|%.17g', frequency,
 		intruder_final_y_box, intruder_max_y_box, settle_time), from_cache, seed FROM runs ORDER BY id"
@@ -93,7 +101,7 @@ same=0
 for f in REF/k/*.h5; do same_output "$f" "T/k/$(basename "$f")" particles settle settle_steps settle_time && same=$((same + 1)); done
 [ "$rc" -eq 0 ] && [ "$same" = 6 ] && ok term.resumed_identical || fail term.resumed_identical "exit $rc, $same of 6 identical"
 
-# Ctrl-C reaches the whole process group (driver, parallel, workers, engines): exit 7,
+# Ctrl-C reaches the driver's process group, and the driver passes it on to its jobs: exit 7,
 # every stopped run recorded as interrupted with its engine's message, then resumed
 setsid "$STUDY" run k.campaign --runs "$TMP/C" --jobs 2 >int1.log 2>&1 &
 pid=$!
