@@ -137,6 +137,13 @@ $(BUILD)/version.h: FORCE | build/.deps-ok
 $(BUILD)/core/provenance.o: ALLCFLAGS += -I$(BUILD)
 FORCE:
 
+# The sanitizer build compiles the engine's hot loops (the force kernel, the
+# integrator, the step) at -O2, still instrumented: a run of the suite costs about a
+# quarter less, and ASan and UBSan check every access as before.
+ifeq ($(SAN),1)
+$(BUILD)/core/integrate.o $(BUILD)/core/step.o $(KV_ISAS:%=$(BUILD)/core/kvec_%.o): ALLCFLAGS += -O2
+endif
+
 $(LIB): $(CORE_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")
 	$(Q)rm -f $@ && ar rcs $@ $^
@@ -162,17 +169,19 @@ $(FAULT_SHIM): tests/faults/iofail.c | build/.deps-ok
 tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
-# the integration scripts; the release bin/shake runs the regression test too, on
-# every kernel path this CPU has. It ends with "N passed, N failed". The two builds
-# one after the other: they share build/fuzz and build/faults.
+# the integration scripts; the release programs (make all) run the regression test on
+# every kernel path this CPU has, and the campaigns whose engine is not what a script
+# tests. The release build of the test programs is not needed: the suite runs none of
+# them. It ends with "N passed, N failed". The two builds one after the other: they
+# share build/fuzz and build/faults.
 check: build/.deps-ok
-	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all tests
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all
 	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) SAN=1 tests
 	$(Q)T='$(T)' TEST_JOBS=$(NPROC) bash tests/run.sh
 
 # make check without the scripts whose header says "# tier: slow" (tests/run.sh)
 quick: build/.deps-ok
-	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all tests
+	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) all
 	$(Q)$(MAKE) --no-print-directory $(BUILD_JOBS) SAN=1 tests
 	$(Q)T='$(T)' TEST_JOBS=$(NPROC) bash tests/run.sh --quick
 
