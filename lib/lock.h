@@ -1,7 +1,7 @@
 /* lock.h - the runs directory's lock protocol: one driver per campaign and database.
  * A driver (`study run`, `study submit`) holds an exclusive flock on
  * RUNS/NAME/.driver.lock and on DB.NAME.lock beside the database while it works; a
- * reader never waits for either (study/README.md, "What `study run` does", step 2). */
+ * reader never waits for either (docs/driver.md, "What `study run` does", step 2). */
 #ifndef LIB_LOCK_H
 #define LIB_LOCK_H
 

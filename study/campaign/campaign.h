@@ -20,7 +20,7 @@ enum cp_seeds { CP_SEEDS_DERIVED, CP_SEEDS_LITERAL };
 enum cp_observable { CP_OBS_NONE, CP_OBS_RISE, CP_OBS_FLUX };
 
 /* [onset]: instead of a frequency axis, the onset frequency of an observable per
- * group of the other axes, searched by bisection per replicate (study/README.md,
+ * group of the other axes, searched by bisection per replicate (docs/driver.md,
  * "Adaptive onset search"). Lines are 0 for keys the file did not give. */
 typedef struct cp_onset {
 	int line;                 /* the section's header; 0: no [onset] */
@@ -45,7 +45,7 @@ typedef struct cp_onset {
 
 /* [campaign] replicates = auto on a grid: per grid point (every axis but the
  * replicate), batches of replicates until the interval of a result of its runs is at
- * most target wide (study/README.md, "Replicates until the answer is sharp"). Lines
+ * most target wide (docs/driver.md, "Replicates until the answer is sharp"). Lines
  * are 0 for keys the file did not give. */
 enum cp_result { CP_RES_MEDIAN_WAIT, CP_RES_RISE_FRACTION, CP_RES_MEAN_FLUX };
 typedef struct cp_auto {

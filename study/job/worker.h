@@ -24,7 +24,7 @@ void worker_last_message(const char *log, long from, char *out, size_t len);
  * its own (SIGSEGV, SIGBUS, SIGILL, SIGABRT, SIGFPE): a bug or a broken binary, which a
  * second attempt repeats, so the run is failed, never retried; any other signal
  * (SIGKILL of the OOM killer, SIGTERM of an admin or a scheduler) is a transient kill
- * (study/README.md, "Retry what is transient"). The one classification of
+ * (docs/driver.md, "Retry what is transient"). The one classification of
  * `study run` and of the Slurm tasks' results. */
 int worker_crashed(long code);
 

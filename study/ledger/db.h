@@ -1,7 +1,7 @@
 /* db.h - the study database (SQLite): campaigns, runs, their parameters, every
  * attempt, results and packing caches. Only the driver writes it; WAL lets sqlite3
  * read while a campaign runs. The schema (lib/schema.c) is documented in
- * study/README.md. */
+ * docs/database.md. */
 #ifndef ST_DB_H
 #define ST_DB_H
 

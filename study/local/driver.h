@@ -23,7 +23,7 @@ typedef struct driver_opts {
 
 #define DRIVER_RETRIES 2
 
-/* Driver exit codes (documented in study/README.md). */
+/* Driver exit codes (documented in docs/campaigns.md). */
 enum { DRV_OK = 0, DRV_USAGE = 1, DRV_IO = 2, DRV_FAILED = 3, DRV_BUSY = 4, DRV_INTERRUPTED = 7 };
 
 int driver_run(const driver_opts *o, sb_err *e);

@@ -1,6 +1,6 @@
 /* packing.h - the packing cache as its files say: the packing a run's argument file
  * starts it from, and whether a packing's particle file exists. The files decide,
- * not the database (study/README.md, "What `study run` does"). */
+ * not the database (docs/driver.md, "What `study run` does"). */
 #ifndef ST_PACKING_H
 #define ST_PACKING_H
 

@@ -1,5 +1,5 @@
 /* adapt.c - brackets, chains, the interval over replicates and the replicates a
- * group needs (see adapt.h; the reasoning is in study/README.md). */
+ * group needs (see adapt.h; the reasoning is in docs/driver.md). */
 #include "adapt.h"
 
 #include <math.h>

@@ -2,7 +2,7 @@
  * from the classes of its runs, the next frequency it needs, the interval of the
  * onset over replicates, and when a group needs more replicates. The driver side
  * (search.c) feeds it the classes of the runs; tests feed it a synthetic classifier.
- * The reasoning is in study/README.md, "Adaptive onset search". */
+ * The reasoning is in docs/driver.md, "Adaptive onset search". */
 #ifndef ST_ADAPT_H
 #define ST_ADAPT_H
 

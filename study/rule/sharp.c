@@ -1,5 +1,5 @@
 /* sharp.c - a grid point's result, its interval, and when it needs more replicates
- * (see sharp.h; the reasoning is in study/README.md). */
+ * (see sharp.h; the reasoning is in docs/driver.md). */
 #include "sharp.h"
 
 #include <math.h>

@@ -3,7 +3,7 @@
  * right-censoring, the rise fraction, the mean flux) and whether the point needs
  * another batch of replicates. The driver side (sharpen.c) feeds it the runs'
  * results from the database; tests feed it synthetic ones. The reasoning is in
- * study/README.md, "Replicates until the answer is sharp". */
+ * docs/driver.md, "Replicates until the answer is sharp". */
 #ifndef ST_SHARP_H
 #define ST_SHARP_H
 

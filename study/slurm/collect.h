@@ -10,7 +10,7 @@
 /* RUNS/NAME/slurm: the array script, the task files, the tasks' logs */
 #define SLURM_SUB "slurm"
 
-/* CREATE TABLE IF NOT EXISTS slurm_job, slurm_task (study/README.md, "Schema"). */
+/* CREATE TABLE IF NOT EXISTS slurm_job, slurm_task (docs/database.md). */
 int slurm_tables(st_db *db, sb_err *e);
 
 /* Every task of the campaign's arrays not yet accounted for: its log's START/DONE

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# study_adaptive.sh - the [onset] search with the real engine (study/README.md,
+# study_adaptive.sh - the [onset] search with the real engine (docs/driver.md,
 # "Adaptive onset search"). A tiny bed whose intruder's rise is measured first on a
 # fixed frequency grid holding every point the search can ask for; the search must
 # find, replicate by replicate, the bracket a bisection over those measurements gives,

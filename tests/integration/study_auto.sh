@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# study_auto.sh - replicates = auto on a fixed grid (study/README.md, "Replicates until
+# study_auto.sh - replicates = auto on a fixed grid (docs/driver.md, "Replicates until
 # the answer is sharp") with the real engine: a grid of two points whose intruder
 # rises within a fraction of a second; a loose target stops every point after its
 # first batch, a tight one at max_replicates; the runs are those of a fixed grid with

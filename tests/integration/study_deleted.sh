@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # study_deleted.sh - a deleted run directory or packing cache never wedges a campaign
-# (study/README.md, "Deleted files"): the database's rows are not the files, so after
+# (docs/driver.md, "Deleted files"): the database's rows are not the files, so after
 # `rm -rf runs/NAME/cache`, `rm -rf runs/NAME` (the database elsewhere, or beside it)
 # or the cache deleted while the campaign runs, `study run` builds the packings again,
 # writes the argument files that named them again, runs what is missing and ends with

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # study_locks.sh - one driver per campaign and database, and no writing through links
-# (study/README.md, "What `study run` does", step 2, and "Safety"): a second driver
+# (docs/driver.md, "What `study run` does", step 2, and "Safety"): a second driver
 # on the same --db with another --runs is refused with exit 4 while the first runs; a
 # symbolic link planted in the campaign directory (logs/, jobs/, cache/, the directory
 # itself, the joblog) is refused naming the path, and nothing is written where it

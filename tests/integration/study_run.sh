@@ -94,9 +94,9 @@ rc=$?
 [ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(hits) FROM caches")" = "3 9" ] && ok extend.cache_reused ||
 	fail extend.cache_reused "$(q $DB "SELECT key, hits FROM caches")"
 
-# --- the example queries of docs/database.md and study/README.md, pasted as a user
+# --- the example queries of docs/database.md and docs/driver.md, pasted as a user
 # would (on campaign t) ---
-cat "$REPO/docs/database.md" "$REPO/study/README.md" | sed -n '/^```sql$/,/^```$/p' | grep -v '^```' |
+cat "$REPO/docs/database.md" "$REPO/docs/driver.md" | sed -n '/^```sql$/,/^```$/p' | grep -v '^```' |
 	sed "s/'demo'/'t'/g; s/'claim4_waiting_time'/'t'/g" >examples.sql
 nq=0 nbad=0
 while IFS= read -r -d ';' stmt; do

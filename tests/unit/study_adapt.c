@@ -1,5 +1,5 @@
 /* study_adapt.c - the adaptive onset search's pure logic (study/rule/adapt.c) against
- * study/README.md, "Adaptive onset search": a replicate's bracket from its runs (the
+ * docs/driver.md, "Adaptive onset search": a replicate's bracket from its runs (the
  * last off -> on switch, unobserved ends confirmed, out-of-range onsets reported, flips
  * flagged), chains walked from results alone (the same results give the same points),
  * the order-statistic interval of the median over replicates (its ranks, censored and

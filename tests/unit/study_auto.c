@@ -1,5 +1,5 @@
 /* study_auto.c - replicates until the answer is sharp, the pure logic (study/rule/sharp.c)
- * against study/README.md, "Replicates until the answer is sharp": the first batch,
+ * against docs/driver.md, "Replicates until the answer is sharp": the first batch,
  * the median wait's order-statistic interval with right-censoring (a run that did not
  * rise counts as at least its observed time) and its Kaplan-Meier estimate, the rise
  * fraction's and the mean flux's intervals, a point that waits for its runs, and a

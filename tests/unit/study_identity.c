@@ -1,4 +1,4 @@
-/* study_identity.c - what identifies a run (study/README.md "Run identity",
+/* study_identity.c - what identifies a run (docs/driver.md "Run identity",
  * docs/campaigns.md "Replicates and seeds"): run ids, engine seeds and packing-cache
  * keys. The same parameters give the same id in any file, order or spelling; every key
  * but the driver's own changes the id; the engine seed derives from the campaign seed,
@@ -14,7 +14,7 @@
 #include "study_files.h"
 #include "testlib.h"
 
-/* The keys the driver owns (study/README.md) and those that change only how the state
+/* The keys the driver owns (docs/driver.md) and those that change only how the state
  * is saved (checkpoint_every, compression): not in a run's id. */
 static const char *const DRIVER_KEYS[] = {"output", "checkpoint", "restart", "write_particles", "write_lammps",
 					  "progress", "run_id", "checkpoint_every", "compression", NULL};
