@@ -33,7 +33,7 @@ compare_params() {
 	local name type want got dt
 	while IFS=$'\t' read -r name type want; do
 		got=$(attr "$f" "/parameters/$name")
-		dt=$(h5dump -a "/parameters/$name" "$f" 2>/dev/null | awk '/DATATYPE/ { print $2; exit }')
+		dt=$(attrtype "$f" "/parameters/$name")
 		case "$type" in
 		real)
 			want=$(awk -v x="$want" 'BEGIN { printf "%.17g", x + 0 }')

@@ -42,12 +42,51 @@ shake_run() { # stderr-file args...
 	"$SHAKE" "$@" >"$errf" 2>&1
 }
 
-# attr FILE PATH : value of a scalar attribute (strings without quotes), %.17g for reals;
-# empty when it does not exist.
-attr() {
-	h5dump -m %.17g -a "$2" "$1" 2>/dev/null | awk '
-		/^ *\(0\): / { sub(/^ *\(0\): /, ""); if ($0 ~ /^".*"$/) $0 = substr($0, 2, length($0) - 2); print; exit }'
+# h5attrs FILE : every attribute of an HDF5 file into a table, "PATH<TAB>TYPE<TAB>VALUE"
+# a line (TYPE as h5dump names it, H5T_IEEE_F64LE; VALUE the first line of its data,
+# %.17g for reals, a string without its quotes); REPLY = the table's path. One h5dump
+# per version of the file (made again unless the table is newer than the file), kept
+# under $TMP: on these machines a start of h5dump costs about 30 ms (its forty shared
+# libraries) and every fork is dear, and a script reads hundreds of attributes.
+h5attrs() {
+	[ -f "$1" ] || return 1
+	REPLY="$TMP/.h5attrs/${1//\//%}"
+	[ -e "$REPLY" ] && [ "$REPLY" -nt "$1" ] && return 0
+	mkdir -p "$TMP/.h5attrs"
+	h5dump -m %.17g -w 0 -A "$1" 2>/dev/null | awk -v OFS='\t' '
+		function path(   i, p) {
+			for (i = 1; i < n; i++)
+				if (kind[i] == "GROUP" || kind[i] == "DATASET")
+					p = name[i] == "/" ? "" : p "/" name[i]
+			return p "/" name[n]
+		}
+		/^ *\(0\): / { if (kind[n] == "DATA" && kind[n - 1] == "ATTRIBUTE" && !got) {
+				v = $0; sub(/^ *\(0\): /, "", v); if (v ~ /^".*"$/) v = substr(v, 2, length(v) - 2)
+				val = v; got = 1 }
+			next }
+		/^ *DATATYPE / && kind[n] == "ATTRIBUTE" { type = $2 }
+		/\{ *$/ { n++; kind[n] = $1; name[n] = ""
+			if ($1 == "GROUP" || $1 == "DATASET" || $1 == "ATTRIBUTE") {
+				v = $0; sub(/^[^"]*"/, "", v); sub(/" *\{ *$/, "", v); name[n] = v }
+			if ($1 == "ATTRIBUTE") { type = ""; val = ""; got = 0 }
+			next }
+		/^ *\} *$/ { if (kind[n] == "ATTRIBUTE") print path(), type, val
+			n--; next }' >"$REPLY.$$" && mv "$REPLY.$$" "$REPLY"
 }
+
+# attr FILE PATH : value of a scalar attribute (strings without quotes), %.17g for reals;
+# empty when it does not exist. attrtype FILE PATH : its type (H5T_STD_I64LE, ...).
+# A path the table does not list (none such, or an object reached through a second hard
+# link, which h5dump shows once) is asked of h5dump itself.
+attr_field() { # FIELD FILE PATH
+	h5attrs "$2" || return 0
+	awk -F'\t' -v p="$3" -v k="$1" '$1 == p { print $k; found = 1; exit } END { exit !found }' "$REPLY" && return 0
+	h5dump -m %.17g -w 0 -a "$3" "$2" 2>/dev/null | awk -v k="$1" '
+		k == 2 && /^ *DATATYPE / { print $2; exit }
+		k == 3 && /^ *\(0\): / { sub(/^ *\(0\): /, ""); if ($0 ~ /^".*"$/) $0 = substr($0, 2, length($0) - 2); print; exit }'
+}
+attr() { attr_field 3 "$1" "$2"; }
+attrtype() { attr_field 2 "$1" "$2"; }
 
 # dims FILE DATASET : "d0 d1" (or "d0") of a dataset; empty when it does not exist.
 dims() {
