@@ -3,6 +3,7 @@
 # (every dataset and root attribute, compared as %.17g text and with h5diff), whatever
 # the working directory, relative or absolute output path, scene file or command line,
 # progress output or --profile; another seed gives another file.
+# tier: slow: the same run a dozen ways, each compared with h5diff
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

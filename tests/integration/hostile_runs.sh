@@ -8,6 +8,7 @@
 # parameter that is no number in the database, make the run unusable with the reason;
 # a run whose grouping key is missing or no number makes the tool refuse the campaign.
 # The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
+# tier: slow: a campaign whose files are then made hostile, read by every tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"

@@ -6,6 +6,7 @@
 # defaults, prints the search's onset beside its own with both intervals and whether
 # they overlap, and says so when an option changes the definition; a campaign whose
 # stop_flux_threshold or band differs from [onset]'s is refused with file, line and key.
+# tier: slow: four small [onset] searches run with the engine
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 ONSET="$(dirname "$SHAKE")/onset"

@@ -8,6 +8,7 @@
 # has the period as its x box; too narrow a period and too wide an intruder are refused
 # naming the keys; runs from the particle files (text, LAMMPS) written after settling
 # are the run that settled.
+# tier: slow: a shaken scene on every kernel path, stopped and resumed
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 

@@ -6,6 +6,7 @@
 # and by bin/study's sweep (the run was done, its file goes to damaged/ and it runs
 # again), never read as numbers.
 # The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
+# tier: slow: campaigns whose files are swapped, linked and damaged, then swept
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"

@@ -6,6 +6,7 @@
 # is an upper bound; and the estimate meets the CPU the real run takes within a factor
 # of 2 either way.
 # tier: alone: compares a measured CPU time with an estimate
+# tier: slow: a campaign run for real, its CPU measured, and the engine calibrated
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }

@@ -4,6 +4,7 @@
 # each reached (from its journal), counts and an ETA from the simulated seconds per
 # second measured over the runs in flight; it ends by itself when the campaign does,
 # and at once on Ctrl-C. `study run --progress` prints the same look as one line.
+# tier: slow: campaigns watched while they run, at the pace of their runs
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
