@@ -674,11 +674,12 @@ static int onset_key(cp_onset *o, int line, const char *where, const char *name,
 		/* fall through */
 	default:
 		range_text(lo, hi, k->min_open, k->max_open, rt, sizeof rt);
-		if (!parse_num(value, &x) || !in_range(x, lo, hi, k->min_open, k->max_open))
+		if (!parse_num(value, &x) || !in_range(x, lo, hi, k->min_open, k->max_open)) {
+			const char *u = onset_unit(o, k);
 			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s%s%s%s%s%s, got '%s'", where, name,
-				       rt, *onset_unit(o, k) ? " (" : "", onset_unit(o, k), *onset_unit(o, k) ? ")" : "",
-				       o->axis_line ? " with axis = " : "",
+				       rt, *u ? " (" : "", u, *u ? ")" : "", o->axis_line ? " with axis = " : "",
 				       o->axis_line ? drive_axis_name(o->axis) : "", value);
+		}
 		*dv = x;
 		return 0;
 	}
