@@ -2,8 +2,17 @@
 # run.sh - the suite: the sanitizer build of every unit and physics test binary, then
 # every integration script against the sanitizer build of bin/shake, TEST_JOBS (default:
 # the CPUs) at a time. Each test prints "ok ID" or "FAIL ID: why"; a program that dies
-# without saying FAIL counts as one failure. One line per test in a fixed order whatever
-# finishes first; ends with "N passed, N failed" and exits non-zero on any failure.
+# without saying FAIL counts as one failure, and so does a program that reports no check
+# at all (neither ok, FAIL nor SKIP) or runs past its time limit (below). A check that
+# cannot run says "SKIP ID: why" and is shown and counted, never silently dropped. One line
+# per test in a fixed order whatever finishes first; then the ten slowest tests; ends with
+# "N passed, N failed, N skipped" and exits non-zero on any failure.
+#
+# Time limits (TEST_TIMEOUT overrides both, in seconds): a test program or a script of the
+# quick tier gets 300 s, a script marked slow 900 s. Each is about three times the slowest
+# such test's wall time in a clean-clone CI on 2 cores (docs/testing.md, "Time limits"), so a
+# hang ends the test, not the suite: it is killed with its process group and reported as
+# FAIL with the last lines it printed.
 #
 #   bash tests/run.sh [--quick] [PATTERN]   # PATTERN: an extended regex on the test names
 #   bash tests/run.sh --tiers               # the marked scripts as a Markdown table
@@ -56,7 +65,12 @@ jobs=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
 case $jobs in '' | *[!0-9]* | 0) echo "run.sh: TEST_JOBS must be a whole number >= 1, got '$jobs'" >&2; exit 2 ;; esac
 
 # --- the tests: names, commands, how they run ---
-names=() cmds=() alone=() first=()
+LIMIT_QUICK=300 LIMIT_SLOW=900
+if [ -n "${TEST_TIMEOUT:-}" ]; then
+	case $TEST_TIMEOUT in *[!0-9]* | 0) echo "run.sh: TEST_TIMEOUT must be a whole number of seconds >= 1, got '$TEST_TIMEOUT'" >&2; exit 2 ;; esac
+	LIMIT_QUICK=$TEST_TIMEOUT LIMIT_SLOW=$TEST_TIMEOUT
+fi
+names=() cmds=() alone=() first=() limit=()
 add() { # name alone(0/1) slow-first(0/1) command
 	local n=$1 a=$2 s=$3
 	shift 3
@@ -64,6 +78,7 @@ add() { # name alone(0/1) slow-first(0/1) command
 		[[ $n =~ $pattern ]] || return 0
 	fi
 	names+=("$n") alone+=("$a") first+=("$s") cmds+=("$*")
+	if [ "$s" = 1 ]; then limit+=("$LIMIT_SLOW"); else limit+=("$LIMIT_QUICK"); fi
 }
 for t in build/san/tests/*/*; do
 	[ -x "$t" ] && [ -f "$t" ] || continue
@@ -100,26 +115,39 @@ launch() { # index: runs the test in the background; DIR/i.rc gets "status secon
 	local i=$1
 	(
 		t0=$(date +%s%N)
-		eval "${cmds[i]}" >"$D/$i.log" 2>&1 </dev/null
+		# timeout makes itself a process group and signals all of it: the engines and
+		# helpers a hung script started end with it
+		timeout -k 10 "${limit[i]}" bash -c "${cmds[i]}" >"$D/$i.log" 2>&1 </dev/null
 		rc=$?
 		echo "$rc $((($(date +%s%N) - t0) / 1000000))" >"$D/$i.tmp" && mv "$D/$i.tmp" "$D/$i.rc"
 	) &
 }
 
-pass=0 fail=0 sum_ms=0
+pass=0 fail=0 skipped=0 sum_ms=0 times=()
 report() { # index: the test's lines, from its log
-	local i=$1 name=${names[$1]} log="$D/$1.log" rc ms p f
+	local i=$1 name=${names[$1]} log="$D/$1.log" rc ms p f k
 	read -r rc ms <"$D/$i.rc"
 	p=$(grep -c '^ok ' "$log")
 	f=$(grep -c '^FAIL ' "$log")
-	grep -E '^(FAIL|ok |SKIP )' "$log" | sed 's/^/  /' | grep -v '^  ok ' || true
-	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+	# a skip in any spelling is shown and counted: a check that cannot run is news
+	k=$(grep -ciE '^(# )?skip[ :]' "$log")
+	grep -iE '^(FAIL|ok |(# )?skip[ :])' "$log" | sed -E 's/^(# )?[sS][kK][iI][pP][ :]/SKIP /; s/^/  /' | grep -v '^  ok ' || true
+	if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+		echo "  FAIL $name: timed out after ${limit[i]} s (run.sh's limit for its tier); its output ends:"
+		tail -n 15 "$log" | sed 's/^/    /'
+		f=$((f + 1))
+	elif [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
 		echo "  FAIL $name: exited with status $rc without reporting a failure; its output ends:"
 		tail -n 15 "$log" | sed 's/^/    /'
 		f=1
+	elif [ "$p" -eq 0 ] && [ "$f" -eq 0 ] && [ "$k" -eq 0 ]; then
+		echo "  FAIL $name: reported no check (no ok, FAIL or SKIP line); its output ends:"
+		tail -n 15 "$log" | sed 's/^/    /'
+		f=1
 	fi
-	pass=$((pass + p)) fail=$((fail + f)) sum_ms=$((sum_ms + ms))
-	printf '%-48s %3d ok %3d failed  (%ds)\n' "$name" "$p" "$f" $(((ms + 500) / 1000))
+	pass=$((pass + p)) fail=$((fail + f)) skipped=$((skipped + k)) sum_ms=$((sum_ms + ms))
+	times+=("$ms $name")
+	printf '%-48s %3d ok %3d failed%s  (%ds)\n' "$name" "$p" "$f" "$([ "$k" -gt 0 ] && echo " $k skipped")" $(((ms + 500) / 1000))
 }
 
 t_start=$(date +%s%N)
@@ -147,6 +175,8 @@ for i in "${late[@]}"; do
 	flush
 done
 flush
+echo "# the slowest tests (s of wall time):"
+printf '%s\n' "${times[@]}" | sort -rn | head -n 10 | awk '{ printf "#   %6.1f  %s\n", $1 / 1000, $2 }'
 echo "# $n tests, $jobs at a time: $((($(date +%s%N) - t_start) / 1000000000)) s of wall time, $((sum_ms / 1000)) s summed over the tests"
-echo "$pass passed, $fail failed"
+echo "$pass passed, $fail failed, $skipped skipped"
 [ "$fail" -eq 0 ]

@@ -38,8 +38,13 @@ int main(void)
 	 * is 0.889 - 1.96*0.105 = 0.683; the upper band at t = 6 is 0.339 + 1.96*0.173 > 0.5
 	 * and at t = 8 it is 0: the interval is [3, 8] */
 	double se1 = (8.0 / 9) * sqrt(1.0 / 72), se3 = (16.0 / 21) * sqrt(1.0 / 72 + 1.0 / 42);
-	CHECK("km.hand.bands", 8.0 / 9 - 1.959964 * se1 > 0.5 && 16.0 / 21 - 1.959964 * se3 < 0.5,
-	      "hand-computed bands wrong: %g %g", 8.0 / 9 - 1.959964 * se1, 16.0 / 21 - 1.959964 * se3);
+	/* the code's standard errors at t = 1 and 3 are the hand-computed ones that place
+	 * the interval's lower end at 3 */
+	CHECK_REL("km.greenwood.t1", k.se[0], se1, 1e-12);
+	CHECK_REL("km.greenwood.t3", k.se[2], se3, 1e-12);
+	CHECK("km.bands.lower_crosses_at_t3", km_at(&k, 1) - 1.959964 * k.se[0] > 0.5 && km_at(&k, 3) - 1.959964 * k.se[2] < 0.5,
+	      "bands from the fit: %g at t=1, %g at t=3", km_at(&k, 1) - 1.959964 * k.se[0],
+	      km_at(&k, 3) - 1.959964 * k.se[2]);
 	CHECK("km.median.ci", lo == 3 && hi == 8, "interval [%g, %g], want [3, 8]", lo, hi);
 	km_free(&k);
 

@@ -85,8 +85,15 @@ tool rolls_quarter rolls t --runs R --fraction=0.25 --no-store --no-plot --out "
 paste -d, rolls_half.csv q/rolls_runs.csv | awk -F, -v b="$(col $R1 roll_bottom)" -v n="$(head -n 1 $R1 | tr ',' '\n' | wc -l)" '
 	NR > 1 && $(n + b) > $b + 1e-9 { bad = 1 } END { exit bad }' && ok rolls.fraction_monotone ||
 	fail rolls.fraction_monotone "a bottom rose with --fraction 0.25"
-"$BINDIR/rolls" --help | grep -q -- '--fraction Q' && "$BINDIR/rolls" t --runs R --fractoin 0.3 2>&1 | grep -q 'did you mean --fraction' &&
-	"$BINDIR/rolls" t --runs R --fraction 2 >/dev/null 2>&1; [ $? = 1 ] && ok rolls.options || fail rolls.options "help or errors"
+# each part on its own: the help names the option, a misspelling is named, and a
+# fraction out of range is refused with exit 1 (a ';' here once cut the chain)
+"$BINDIR/rolls" --help | grep -q -- '--fraction Q' && ok rolls.options.help || fail rolls.options.help "no --fraction Q in --help"
+"$BINDIR/rolls" t --runs R --fractoin 0.3 2>&1 | grep -q 'did you mean --fraction' && ok rolls.options.misspelt ||
+	fail rolls.options.misspelt "--fractoin not named"
+"$BINDIR/rolls" t --runs R --fraction 2 >"$TMP/rf.out" 2>&1
+rc=$?
+[ "$rc" = 1 ] && grep -q 'fraction' "$TMP/rf.out" && ok rolls.options.range ||
+	fail rolls.options.range "--fraction 2: exit $rc, $(head -c 200 "$TMP/rf.out")"
 
 # ---- onset --sensitivity ----
 tool sens onset t --runs R --boot 40 --sensitivity

@@ -46,7 +46,7 @@ if tmpfs full size=48k; then
 	done
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
 else
-	echo "skip full_disk: cannot mount a tmpfs here (not root?)"
+	skip errors.full_disk "cannot mount a tmpfs here (not root?)"
 fi
 
 # --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---
@@ -73,10 +73,10 @@ if tmpfs ro size=1m; then
 			! grep -q "another study driver" ro.log && ok read_only.io_not_busy ||
 			fail read_only.io_not_busy "exit $rc: $(tail -n 2 ro.log)"
 	else
-		echo "skip read_only: cannot remount a tmpfs read-only here"
+		skip errors.read_only "cannot remount a tmpfs read-only here"
 	fi
 else
-	echo "skip read_only: cannot mount a tmpfs here (not root?)"
+	skip errors.read_only "cannot mount a tmpfs here (not root?)"
 fi
 
 # --- a crashing engine: failed with its signal, not run again ---

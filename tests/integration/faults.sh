@@ -187,7 +187,7 @@ if mount -t tmpfs -o size=200k tmpfs "$FULL" 2>/dev/null; then
 		umount "$FULL"
 	done
 else
-	echo "# skip full_disk: cannot mount a tmpfs here (not root?)"
+	skip faults.full_disk "cannot mount a tmpfs here (not root?)"
 fi
 
 # --- a second driver on the same campaign: refused with its own exit code ---

@@ -56,14 +56,17 @@ runs() {
 }
 
 # sigterm_within ID SECONDS_BEFORE SECONDS_AFTER args... : SIGTERM after SECONDS_BEFORE
-# ends bin/shake within SECONDS_AFTER (exit code in $STOP_RC, log in ID.log)
+# ends bin/shake within SECONDS_AFTER (exit code in $STOP_RC, log in ID.log; STOP_ALIVE
+# is 1 when the process was still running to receive the signal)
 sigterm_within() {
 	local id=$1 before=$2 after=$3
 	shift 3
 	"$SHAKE" "$@" progress=no >"$TMP/$id.log" 2>&1 &
 	local pid=$! k
 	sleep "$before"
-	kill -TERM "$pid" 2>/dev/null
+	# STOP_ALIVE=1: the signal reached a running process
+	STOP_ALIVE=0
+	kill -TERM "$pid" 2>/dev/null && STOP_ALIVE=1
 	for ((k = 0; k < after * 10; k++)); do
 		kill -0 "$pid" 2>/dev/null || break
 		sleep 0.1
@@ -99,12 +102,21 @@ refused sizes.walls.sides "wall_spacing|wall_height|wall disks|at most 1000000" 
 refused sizes.mass_underflow "mass_factor|density|positive and finite" \
 	"${FAST[@]}" duration=0 mass_factor=1e-300 density=1e-300 dt_guard=off
 
-# SIGTERM in a placement that cannot end (the overflow above) ends the process
-if sigterm_within stop.sigterm.runaway_placement 1 5 duration=0 n_grains=5 width=1e7 r_min=1e-3 r_max=1e-3 \
+# SIGTERM while a bed settles for far longer than the test waits (a bed 2 10^4 cm wide,
+# every key in range, at a step of 10^-7 s: minutes of settling) ends the process with
+# exit 7 and its word; the process must still be running when the signal comes, or the
+# check would say nothing
+if sigterm_within stop.sigterm.long_settling 1 5 duration=0 n_grains=5 width=2e4 r_min=1e-3 r_max=1e-3 \
 	dt=1e-7 radius_ratio=0 output="$TMP/sig1.h5"; then
-	ok stop.sigterm.runaway_placement
+	if [ "$STOP_ALIVE" != 1 ]; then
+		fail stop.sigterm.long_settling "the run had ended before the SIGTERM (exit $STOP_RC): $(tail -n 1 "$TMP/stop.sigterm.long_settling.log")"
+	elif [ "$STOP_RC" = 7 ] && grep -q 'interrupted' "$TMP/stop.sigterm.long_settling.log"; then
+		ok stop.sigterm.long_settling
+	else
+		fail stop.sigterm.long_settling "exit $STOP_RC, want 7 and 'interrupted': $(tail -n 1 "$TMP/stop.sigterm.long_settling.log")"
+	fi
 else
-	fail stop.sigterm.runaway_placement "still running 5 s after SIGTERM"
+	fail stop.sigterm.long_settling "still running 5 s after SIGTERM"
 fi
 # SIGTERM while a 2 10^5-atom LAMMPS file is read (velocities listed last to first): the
 # reading took seconds per 10^5 atoms, deaf to SIGTERM

@@ -12,14 +12,22 @@ trap 'rm -rf "$TMP"' EXIT
 
 ok() { echo "ok $1"; NOK=$((NOK + 1)); }
 fail() { echo "FAIL $1: $2"; NFAIL=$((NFAIL + 1)); }
+# skip ID WHY : a check that cannot run here; tests/run.sh shows and counts it
+skip() { echo "SKIP $1: $2"; NSKIP=$((NSKIP + 1)); }
+NSKIP=0
 # check ID WHY COMMAND... : ok when the command succeeds
 check() {
 	local id=$1 why=$2
 	shift 2
 	if "$@"; then ok "$id"; else fail "$id" "$why"; fi
 }
+# a script that reached its end without one check has tested nothing: that fails
 finish() {
 	[ "$NFAIL" -eq 0 ] || exit 1
+	if [ $((NOK + NSKIP)) -eq 0 ]; then
+		echo "FAIL ${0##*/}: ran no check"
+		exit 1
+	fi
 	exit 0
 }
 

@@ -45,7 +45,7 @@ same_node() {
 }
 
 KINDS="fifo chardev dir symlink socket"
-mknod "$TMP/probe" c 1 3 2>/dev/null || { KINDS="fifo dir symlink socket"; echo "skip chardev: mknod is not allowed here"; }
+mknod "$TMP/probe" c 1 3 2>/dev/null || { KINDS="fifo dir symlink socket"; skip output_paths.chardev "mknod is not allowed here"; }
 rm -f "$TMP/probe"
 
 # --- refused before anything runs, left as it was, nothing written beside it ---

@@ -25,13 +25,13 @@ PATH="$PATH:/usr/sbin"
 if ! have_slurm; then
 	bash "$REPO/scripts/deps.sh" >"$TMP/deps.log" 2>&1
 	if ! have_slurm; then
-		echo "skip slurm: the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
-		exit 0
+		skip slurm "the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
+		finish
 	fi
 fi
 if [ "$(id -u)" -ne 0 ]; then
-	echo "skip slurm: slurmd must run as root to start jobs, and this is uid $(id -u)"
-	exit 0
+	skip slurm "slurmd must run as root to start jobs, and this is uid $(id -u)"
+	finish
 fi
 
 CL="$TMP/cluster"
