@@ -16,8 +16,10 @@ W=24
 SCENE=(n_grains=150 width=$W radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 duration=3
 	"${GENTLE[@]}" sides=periodic flux=yes field=yes field_periods=4 snapshots=yes traj_rate=100 progress=no)
 
-if ! shake_run p.log "${SCENE[@]}" output=p.h5 write_lammps=p.data write_particles=p.txt; then
-	fail periodic.run "exit $?: $(tail -n 3 p.log)"
+shake_run p.log "${SCENE[@]}" output=p.h5 write_lammps=p.data write_particles=p.txt
+rc=$?
+if [ $rc != 0 ]; then
+	fail periodic.run "exit $rc: $(tail -n 3 p.log)"
 	finish
 fi
 ok periodic.run
@@ -101,8 +103,8 @@ wait $pid
 rc=$?
 if [ "$rc" -ne 7 ]; then
 	fail periodic.resume.interrupted "exit $rc (want 7: the run ended before the signal?): $(tail -n 2 r1.log)"
-elif ! "$SHAKE" "${SCENE[@]}" checkpoint_every=0.25 output=r.h5 >r2.log 2>&1; then
-	fail periodic.resume.run "exit $?: $(tail -n 2 r2.log)"
+elif "$SHAKE" "${SCENE[@]}" checkpoint_every=0.25 output=r.h5 >r2.log 2>&1; rc=$?; [ $rc != 0 ]; then
+	fail periodic.resume.run "exit $rc: $(tail -n 2 r2.log)"
 else
 	fin r.h5 >r.txt
 	cmp -s ref.txt r.txt && ok periodic.resume.same_end || fail periodic.resume.same_end "$(diff ref.txt r.txt | grep -c '^<') values differ"

@@ -15,8 +15,11 @@ REL="$REPO/bin/shake"
 # picks) and compare with the reference
 compare() {
 	local id=$1 bin=$2 c=$3 path=${4:-auto} out="$TMP/$1.h5"
-	if ! SHAKEBOX_KERNEL=$path regress_run "$bin" "$c" "$out" >"$TMP/$id.log" 2>&1; then
-		fail "$id.run" "exit $?: $(head -c 300 "$TMP/$id.log")"
+	local rc
+	SHAKEBOX_KERNEL=$path regress_run "$bin" "$c" "$out" >"$TMP/$id.log" 2>&1
+	rc=$?
+	if [ $rc != 0 ]; then
+		fail "$id.run" "exit $rc: $(head -c 300 "$TMP/$id.log")"
 		return
 	fi
 	regress_reduce "$out" >"$TMP/$id.txt"

@@ -152,7 +152,9 @@ grep -Eq '^t +9 +9 +0 +0 ' list.out && grep -Eq '^f +2 +1 +1 +0 ' list.out && ok
 "$STUDY" export t --runs "$TMP/R" -o t.csv 2>export.err
 head -n 1 t.csv | grep -q '^campaign,id,state,attempts,replicate,.*frequency.*,intruder_final_y_box' &&
 	[ "$(wc -l <t.csv)" = 10 ] && ok export.csv || fail export.csv "$(head -c 300 t.csv) $(cat export.err)"
-"$STUDY" export nosuch --runs "$TMP/R" >/dev/null 2>&1 && fail export.unknown "exit 0" || ok export.unknown
+"$STUDY" export nosuch --runs "$TMP/R" >/dev/null 2>exp.err
+rc=$?
+[ $rc = 1 ] && grep -q "nosuch" exp.err && ok export.unknown || fail export.unknown "exit $rc: $(head -n 1 exp.err)"
 # the database answers while a driver holds it (WAL): a reader during a run
 "$STUDY" run t3.campaign --runs "$TMP/R" --retry-failed >/dev/null 2>&1 &
 pid=$!
