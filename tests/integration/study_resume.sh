@@ -185,7 +185,7 @@ victim=
 for i in $(seq 300); do
 	for w in $(pgrep -f "exec $TMP/W/k run" 2>/dev/null); do
 		id=$({ tr '\0' '\n' <"/proc/$w/cmdline"; } 2>/dev/null | tail -n 1)
-		e=$(pgrep -P "$w" 2>/dev/null | head -n 1)
+		e=$(pgrep -x -P "$w" shake 2>/dev/null | head -n 1) # the engine, never a helper the worker started
 		if [ -n "$e" ] && [ -e "W/k/$id.h5.ckpt" ]; then victim=$id; kill -KILL "$e"; break 2; fi
 	done
 	sleep 0.02

@@ -31,7 +31,7 @@ kill_engine() {
 	for i in $(seq 500); do
 		for w in $(pgrep -f "exec $1 run" 2>/dev/null); do
 			id=$({ tr '\0' '\n' <"/proc/$w/cmdline"; } 2>/dev/null | tail -n 1)
-			e=$(pgrep -P "$w" 2>/dev/null | head -n 1)
+			e=$(pgrep -x -P "$w" shake 2>/dev/null | head -n 1) # the engine, never a helper the worker started
 			if [ -n "$e" ] && [ "$e" != "${2:-}" ] && [ -e "$1/$id.h5.ckpt" ]; then kill -KILL "$e" && echo "$e" && return 0; fi
 		done
 		sleep 0.02
