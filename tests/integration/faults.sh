@@ -64,7 +64,10 @@ for round in $(seq 1 "$ROUNDS"); do
 	if [ "$round" = 1 ]; then
 		touch trig # armed from the start: the first run to finish hits it
 	else
-		(sleep "$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.3 + 2 * rand() }')" && touch trig) &
+		# the moment is drawn here, not in the subshell (bash reseeds RANDOM there)
+		at=$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", 0.3 + 2 * rand() }')
+		echo "# round $round: the fault armed at $at s"
+		(sleep "$at" && touch trig) &
 	fi
 	LD_PRELOAD="$SHIM" IOFAIL_TRIGGER="$TMP/trig" IOFAIL_MATCH=".h5.tmp" \
 		"$STUDY" run f.campaign --runs "$R" --jobs 1 --no-cache >io$round.log 2>&1

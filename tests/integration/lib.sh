@@ -10,6 +10,12 @@ NOK=0
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/shake-it.XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
 
+# Random moments (kills, faults) come from bash's RANDOM, seeded here and printed, so a
+# failure reproduces: TEST_SEED=N bash tests/integration/NAME.sh
+TEST_SEED=${TEST_SEED:-$(($(date +%s%N) % 1000000007))}
+RANDOM=$TEST_SEED
+echo "# random moments: TEST_SEED=$TEST_SEED"
+
 ok() { echo "ok $1"; NOK=$((NOK + 1)); }
 fail() { echo "FAIL $1: $2"; NFAIL=$((NFAIL + 1)); }
 # skip ID WHY : a check that cannot run here; tests/run.sh shows and counts it
@@ -42,6 +48,24 @@ FAST=(n_grains=60 width=20 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2
 # Gentle shaking (Gamma = A (2 pi f)^2 / g = 0.64) that an exact number of periods
 # fits into (1/f = 0.25 s).
 GENTLE=(frequency=4 amplitude=1)
+
+# term_at_checkpoint LOG OUT args... : runs $SHAKE args with output=OUT in the
+# background and sends SIGTERM once OUT.ckpt exists (a state, not a fraction of an
+# earlier run's wall time, which a loaded machine makes a race); returns the exit code
+# (7: interrupted, as wanted)
+term_at_checkpoint() {
+	local log=$1 out=$2 pid i
+	shift 2
+	"$SHAKE" "$@" output="$out" progress=no >"$log" 2>&1 &
+	pid=$!
+	for ((i = 0; i < 1200; i++)); do
+		[ -e "$out.ckpt" ] && break
+		kill -0 $pid 2>/dev/null || break
+		sleep 0.05
+	done
+	kill -TERM $pid 2>/dev/null
+	wait $pid
+}
 
 # shake_run LOG args... : runs $SHAKE with stdout+stderr into LOG; returns its exit code
 shake_run() { # stderr-file args...

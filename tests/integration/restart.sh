@@ -106,12 +106,15 @@ killed_and_resumed() {
 }
 
 # a random-ish moment: one of the first 12 of the run's 20 checkpoints
-moment() { echo $((RANDOM % 12 + 1)); }
+# (drawn in this shell: a $(...) subshell would reseed RANDOM, and TEST_SEED would not
+# reproduce it)
+moment() { MOMENT=$((RANDOM % 12 + 1)); }
 
 # --- gear5 ---
 reference gear5_ref || finish
 killed_and_resumed gear5_kill_early gear5_ref KILL 1
-killed_and_resumed gear5_kill_late gear5_ref KILL "$(moment)"
+moment
+killed_and_resumed gear5_kill_late gear5_ref KILL "$MOMENT"
 
 # --- SIGTERM, and what a checkpoint of other physics does ---
 physics_checks() { # ID OUT : called while the interrupted run's checkpoint exists
@@ -138,7 +141,8 @@ physics_checks() { # ID OUT : called while the interrupted run's checkpoint exis
 	# (that run removes the checkpoint it was pointed at when it ends: put it back)
 	cp "$TMP/saved.ckpt" "$out.ckpt"
 }
-ON_INTERRUPTED=physics_checks killed_and_resumed gear5_term gear5_ref TERM "$(moment)"
+moment
+ON_INTERRUPTED=physics_checks killed_and_resumed gear5_term gear5_ref TERM "$MOMENT"
 
 # restart = yes needs a checkpoint
 "$SHAKE" "${SCENE[@]}" restart=yes output="$TMP/none.h5" >"$TMP/yes.log" 2>&1
@@ -166,7 +170,8 @@ fi
 # --- verlet ---
 SCENE+=(integrator=verlet)
 reference verlet_ref || finish
-killed_and_resumed verlet_kill verlet_ref KILL "$(moment)"
+moment
+killed_and_resumed verlet_kill verlet_ref KILL "$MOMENT"
 # gear5 and verlet differ (the comparison can fail)
 if same_output "$TMP/gear5_ref.h5" "$TMP/verlet_ref.h5" output integrator 2>/dev/null; then
 	fail integrators_differ "verlet gave the same file as gear5"
@@ -177,6 +182,7 @@ fi
 #     the checkpoint and their records in the journal ---
 OBS=(flux=yes field=yes field_periods=3 ring=yes ring_every=7 ramp=updown ramp_from=3.5 ramp_to=4.5)
 if reference obs_ref "${OBS[@]}"; then
-	killed_and_resumed obs_kill obs_ref KILL "$(moment)" "${OBS[@]}"
+	moment
+	killed_and_resumed obs_kill obs_ref KILL "$MOMENT" "${OBS[@]}"
 fi
 finish
