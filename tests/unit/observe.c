@@ -86,6 +86,52 @@ static void test_flux(void)
 	state_free(&st);
 }
 
+/* With periodic sides a disk that crosses the seam x = 0 = W while it rises is near
+ * the seam, an outer column: its crossings count into j_bot. The plain midpoint of
+ * 39.5 and 0.5 is the box centre (20), which would count them into j_top. */
+static void test_flux_seam(void)
+{
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.flux = 1;
+	sc.flux_lines = 10;
+	sc.sides = SIDES_PERIODIC;
+	sb_state st = {0};
+	sb_err e = {0};
+	/* box [0, 40): centre columns |x - 20| < 10; disk 0 moves right across the seam,
+	 * disk 1 left across it, disk 2 stays in the centre; all three rise 1.0 -> 4.2
+	 * (lines 1.5, 2.5, 3.5) */
+	double x0[3] = {39.5, 0.5, 20}, y0[3] = {1.0, 1.0, 1.0};
+	double x1[3] = {0.5, 39.5, 20}, y1[3] = {4.2, 4.2, 4.2};
+	for (int i = 0; i < 3; i++)
+		prepare_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
+	sb_obs o;
+	int rc = obs_init(&o, &sc, &st, -1, 10.0, 0, 40, &e);
+	CHECK("observe.flux.seam.init", rc == 0 && o.period == 40, "rc %d period %g %s", rc, o.period, e.msg);
+	sb_journal jr;
+	journal_open(&jr, jpath, st.nm, -1, &e);
+	long nf = 0, nd = 0;
+	set_pos(&st, x0, y0);
+	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	set_pos(&st, x1, y1);
+	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	long off;
+	journal_sync(&jr, &off, &e);
+	journal_close(&jr);
+	double rec[22];
+	int n = read_back(REC_TAG(REC_FLUX), rec, 22);
+	int good = nf == 1 && n == 22;
+	for (int l = 0; l < 10 && good; l++) {
+		double top = l >= 1 && l <= 3 ? 1 : 0, bot = l >= 1 && l <= 3 ? 2 : 0;
+		good = rec[2 + l] == top && rec[12 + l] == bot;
+	}
+	CHECK("observe.flux.seam.minimum_image", good,
+	      "the seam crossers counted in the wrong columns: top[1..3] %g %g %g (want 1), bot[1..3] %g %g %g (want 2)",
+	      rec[3], rec[4], rec[5], rec[13], rec[14], rec[15]);
+	obs_free(&o);
+	state_free(&st);
+}
+
 static void test_field(void)
 {
 	sb_scene sc;
@@ -256,6 +302,7 @@ int main(void)
 	if (fd >= 0)
 		close(fd);
 	test_flux();
+	test_flux_seam();
 	test_field();
 	test_ring();
 	test_band_rule();

@@ -174,6 +174,21 @@ static void test_chains(void)
 	      rounds == 6 && p.nobs == 6, "state %s [%g, %g] rounds %d obs %d", adapt_state_name(p.state), p.lo, p.hi,
 	      rounds, p.nobs);
 
+	/* a range that halves exactly onto the tolerance stops there: 0.8 Hz in three
+	 * halvings is 0.1 Hz, but the midpoints are printed to 12 digits and 3.0 - 2.9 is
+	 * 0.10000000000000009 in doubles; a stop rule without the slack (hi - lo < tol, or
+	 * <= tol exactly) asks for a fourth midpoint */
+	{
+		const ad_range R8 = {2.5, 3.3, 0.1};
+		synth s8 = {.f0 = 2.95, .fail_at = NAN};
+		ad_rep p8;
+		int r8 = synth_search(&R8, &s8, &p8);
+		CHECK("adapt.walk.halves_onto_tolerance", p8.state == AD_FOUND && r8 == 3 && p8.nobs == 3 &&
+		      p8.lo < s8.f0 && s8.f0 <= p8.hi,
+		      "state %s [%.17g, %.17g] after %d rounds, %d points (want 3)", adapt_state_name(p8.state), p8.lo,
+		      p8.hi, r8, p8.nobs);
+	}
+
 	/* the same results give the same points, in the same order */
 	synth s2 = s;
 	ad_rep p2;
