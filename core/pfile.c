@@ -363,11 +363,16 @@ static int read_lammps(lreader *r, dlist *l, sb_err *e)
 				if (n < 0 || n > l->max)
 					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %lld atoms: expected at most %d (10^7 grains, an intruder and the walls of a box)",
 						      path, r->line, n, l->max);
-			} else if (nf == 4 && f[2].n == 3 && f[3].n == 3 && (f[2].s[0] == 'x' || f[2].s[0] == 'y') &&
+			} else if (nf >= 4 && f[2].n == 3 && f[3].n == 3 && (f[2].s[0] == 'x' || f[2].s[0] == 'y') &&
 				   f[3].s[0] == f[2].s[0] && !strncmp(f[2].s + 1, "lo", 2) && !strncmp(f[3].s + 1, "hi", 2)) {
 				const int a = f[2].s[0] == 'y';
 				double lo = 0, hi = 0;
-				if (num_real_n(f[0].s, f[0].n, &lo) || num_real_n(f[1].s, f[1].n, &hi) || !(lo < hi))
+				/* read whole: "0 20 xlo xhi extra" was taken for another header line
+				 * and the box went unread */
+				if (nf != 4)
+					err = sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'lo hi %clo %chi', got words after %chi", path,
+						      r->line, "xy"[a], "xy"[a], "xy"[a]);
+				else if (num_real_n(f[0].s, f[0].n, &lo) || num_real_n(f[1].s, f[1].n, &hi) || !(lo < hi))
 					err = sb_errf(e, SB_EUSAGE, "%s:%ld: %clo %chi: expected finite decimal numbers lo < hi", path,
 						      r->line, "xy"[a], "xy"[a]);
 				box[a][0] = lo;

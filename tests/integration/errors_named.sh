@@ -90,7 +90,7 @@ echo "shake: about to crash" >&2
 kill -"$CRASH_SIGNAL" $$
 W
 chmod +x bin/shake
-for sig in SEGV ABRT; do
+for sig in SEGV BUS ILL ABRT FPE; do
 	sed "s/^name = c/name = k$sig/" c.campaign >k$sig.campaign
 	CRASH_SIGNAL=$sig bin/study run k$sig.campaign --runs "$TMP/K" --no-cache --jobs 1 --retries 2 >k$sig.log 2>&1
 	rc=$?
