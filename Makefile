@@ -75,7 +75,7 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check quick bench bench-accuracy stress demo help clean tests faults fuzz reproduce docs
+.PHONY: all deps check quick bench bench-accuracy stress demo help clean tests faults fuzz mutate reproduce docs
 all: $(SHAKE)
 
 help:
@@ -98,6 +98,7 @@ help:
 	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"
 	@echo "make faults     fault injection: I/O faults at random moments, damaged outputs, deleted run dirs, litter (FAULT_ROUNDS=8)"
 	@echo "make figures    regenerate analysis/figures/ (PNG and PDF, and the tools' tables) from campaigns/figures/ (FIG_JOBS=2)"
+	@echo "make mutate     plant the bugs of tests/mutate/mutations.tsv one at a time, run the tests named for each: caught or survived"
 	@echo "make fuzz       mutation fuzzing of scene, campaign and particle files, and of run files (HDF5) read"
 	@echo "                by every analysis tool and study run, against the sanitizer build"
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
@@ -200,6 +201,10 @@ BUILD_JOBS = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(NPROC))
 # directories and packing caches, litter, a second driver) against the sanitizer
 # build; FAULT_ROUNDS rounds (make check runs one).
 FAULT_ROUNDS ?= 8
+# not in make check: a sanitizer build in a scratch copy, then one rebuild and test run per bug
+mutate: build/.deps-ok
+	$(Q)bash tests/mutate/mutate.sh $(ID)
+
 faults: build/.deps-ok
 	$(Q)$(MAKE) --no-print-directory SAN=1 tests
 	$(Q)FAULT_ROUNDS=$(FAULT_ROUNDS) SHAKE=$(CURDIR)/build/san/bin/shake bash tests/integration/faults.sh
