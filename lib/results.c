@@ -38,7 +38,7 @@ static const rcol TABLE[] = {
 	 "final minus settled height of the intruder centre, box frame", RF_DERIVED},
 	{"risen", RT_INT, "@risen", "",
 	 "1 when the intruder rose (docs/model.md, \"Waiting time\"), else 0 (right-censored); NULL without "
-	 "intruder", 0},
+	 "intruder", RF_FLAG},
 	{"waiting_time", RT_REAL, "@waiting_time", "s",
 	 "when risen = 1 the first time it did (the waiting time), else the time observed "
 	 "(the censoring time, also for a run that failed before its intruder rose)", 0},
@@ -57,7 +57,7 @@ static const rcol TABLE[] = {
 	{"wall_seconds", RT_REAL, "/provenance@loop_seconds", "s", "wall-clock time of the shaking loop (not CPU time: on a loaded machine it is longer)", 0},
 	{"host", RT_TEXT, "/provenance@host", "", "machine that ran it", RF_NOVIEW},
 	{"git_hash", RT_TEXT, "/provenance@git_hash", "", "engine version", 0},
-	{"git_dirty", RT_INT, "/provenance@git_dirty", "", "1 when built from a modified tree", 0},
+	{"git_dirty", RT_INT, "/provenance@git_dirty", "", "1 when built from a modified tree", RF_FLAG},
 	{"start_time", RT_TEXT, "/provenance@start_time", "", "when the engine started (UTC)", RF_NOVIEW},
 	{"end_time", RT_TEXT, "/provenance@end_time", "", "when the engine wrote the file (UTC)", RF_NOVIEW},
 };

@@ -15,6 +15,7 @@ enum {
 	RF_CACHE = 1,   /* a run started from the packing cache takes it from the cache's row */
 	RF_DERIVED = 2, /* not stored: an SQL expression over other columns, in the runs view */
 	RF_NOVIEW = 4,  /* stored, but left out of the runs view (the run table has it) */
+	RF_FLAG = 8,    /* 0 or 1 (or NULL): a value read back from the database is checked */
 };
 
 typedef struct rcol {

@@ -192,7 +192,8 @@ static int runs_view(sql_db *d, sb_err *e)
 		return e->code;
 	if (sqlite3_step(ob) == SQLITE_ROW)
 		nob = sqlite3_column_int(ob, 0);
-	sqlite3_finalize(ob);
+	if (sql_done(d, ob, e))
+		return e->code;
 	size_t cap = 4096 + n * 256 + nr * 128 + (size_t)nob * 1024;
 	char *sql = malloc(cap);
 	if (!sql)
@@ -299,6 +300,134 @@ int schema_runs(sql_db *d, sb_err *e)
 	if (!result_current(d))
 		return 0;
 	return runs_view(d, e);
+}
+
+static const char *const RUN_TABLES[] = {"campaign", "run", "param", "attempt", "result", "cache", NULL};
+
+int schema_lost(sql_db *d, int all, char *lost, size_t len, sb_err *e)
+{
+	sqlite3_stmt *st;
+	lost[0] = 0;
+	int have = 0;
+	size_t l = 0;
+	for (int i = 0; RUN_TABLES[i] && (all || i < 3); i++) {
+		if (sql_exec(d, e, &st, "SELECT 1 FROM sqlite_schema WHERE type = 'table' AND name = ?", "t", RUN_TABLES[i]))
+			return e->code;
+		int yes = sqlite3_step(st) == SQLITE_ROW;
+		if (sql_done(d, st, e))
+			return e->code;
+		have += yes;
+		if (!yes && l < len)
+			l += (size_t)snprintf(lost + l, len - l, "%s%s", l ? ", " : "", RUN_TABLES[i]);
+	}
+	if (!have) /* a new database */
+		lost[0] = 0;
+	return 0;
+}
+
+int schema_complete(sql_db *d, int all, sb_err *e)
+{
+	char lost[128];
+	if (schema_lost(d, all, lost, sizeof lost, e) || !lost[0])
+		return e->code;
+	return sb_errf(e, SB_EIO, "%s: lacks table %s (dropped, or not a study database): study run on the campaign "
+		       "file rebuilds it from the campaign and run files (docs/database.md, \"A damaged database\")",
+		       d->path, lost);
+}
+
+int schema_runs_lost(sql_db *d, const char *campaign, sb_err *e)
+{
+	sqlite3_stmt *st;
+	if (sql_exec(d, e, &st,
+		     "SELECT EXISTS (SELECT 1 FROM campaign WHERE name = ?1), EXISTS (SELECT 1 FROM run WHERE campaign = ?1)",
+		     "t", campaign))
+		return e->code;
+	const int lost = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) && !sqlite3_column_int(st, 1);
+	if (sql_done(d, st, e) || !lost)
+		return e->code;
+	char why[512];
+	if (sql_check(d, why, sizeof why))
+		return sb_errf(e, SB_EIO, "%s: the database is corrupt (quick_check: %s): %s", d->path, why, SQL_REBUILD);
+	return sb_errf(e, SB_EIO, "%s: campaign '%s' is recorded without any run (the rows of table run were lost): "
+		       "study run on its campaign file records them again from the run files (docs/database.md, "
+		       "\"A damaged database\")", d->path, campaign);
+}
+
+int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, char *why, size_t wlen, sb_err *e)
+{
+	sqlite3_stmt *st;
+	int bad = 0;
+	if (run)
+		run[0] = 0;
+	why[0] = 0;
+	/* each distinct value once: a campaign of 20 000 runs has few besides the seeds */
+	if (sql_exec(d, e, &st,
+		     "SELECT key, value, typeof(value), MIN(run) FROM param WHERE campaign = ? GROUP BY key, value", "t",
+		     campaign))
+		return e->code;
+	sb_scene *sc = malloc(sizeof *sc);
+	if (!sc) {
+		sqlite3_finalize(st);
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	}
+	params_defaults(sc);
+	while (!bad && sqlite3_step(st) == SQLITE_ROW) {
+		const char *key = (const char *)sqlite3_column_text(st, 0);
+		const sb_param *p = key ? params_find(key) : NULL;
+		if (!p) /* a key of another engine version: not this parser's to judge */
+			continue;
+		char txt[SB_STR_MAX + 8];
+		if (sqlite3_column_type(st, 1) == SQLITE_FLOAT) /* all 17 digits */
+			snprintf(txt, sizeof txt, "%.17g", sqlite3_column_double(st, 1));
+		else
+			snprintf(txt, sizeof txt, "%s", sqlite3_column_text(st, 1) ? (const char *)sqlite3_column_text(st, 1) : "");
+		sb_err pe = {0};
+		if (sqlite3_column_type(st, 1) == SQLITE_NULL)
+			sb_errf(&pe, SB_EUSAGE, "NULL");
+		else
+			params_set(sc, key, txt, "", &pe);
+		if (pe.code) {
+			bad = 1;
+			if (run)
+				snprintf(run, rlen, "%s", (const char *)sqlite3_column_text(st, 3));
+			snprintf(why, wlen, "run %s: %s = '%s' in table param: %s", (const char *)sqlite3_column_text(st, 3), key,
+				 txt, pe.msg[0] == ':' ? pe.msg + 2 : pe.msg);
+		}
+	}
+	free(sc);
+	if (sql_done(d, st, e) || bad)
+		return e->code ? e->code : bad;
+	size_t n;
+	const rcol *t = results_table(&n);
+	for (size_t i = 0; i < n && !bad && !e->code; i++) {
+		if (!(t[i].flags & RF_FLAG))
+			continue;
+		char sql[256];
+		snprintf(sql, sizeof sql, "SELECT run, quote(%s) FROM result WHERE campaign = ? AND %s NOT IN (0, 1) LIMIT 1",
+			 t[i].name, t[i].name);
+		if (sql_exec(d, e, &st, sql, "t", campaign))
+			return e->code;
+		if (sqlite3_step(st) == SQLITE_ROW) {
+			bad = 1;
+			if (run)
+				snprintf(run, rlen, "%s", (const char *)sqlite3_column_text(st, 0));
+			snprintf(why, wlen, "run %s: %s = %s in table result: expected 0 or 1 (NULL: none)",
+				 (const char *)sqlite3_column_text(st, 0), t[i].name, (const char *)sqlite3_column_text(st, 1));
+		}
+		sql_done(d, st, e);
+	}
+	return e->code ? e->code : bad;
+}
+
+int schema_values(sql_db *d, const char *campaign, sb_err *e)
+{
+	char why[1200];
+	int r = schema_bad_value(d, campaign, NULL, 0, why, sizeof why, e);
+	if (r <= 0 || e->code)
+		return e->code;
+	return sb_errf(e, SB_EIO, "%s: campaign '%s': %s: a value no run can have (edited or damaged): study run on its "
+		       "campaign file writes it again from the campaign and run files (docs/database.md, \"A damaged "
+		       "database\")", d->path, campaign, why);
 }
 
 int schema_slurm(sql_db *d, sb_err *e)

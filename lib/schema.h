@@ -17,6 +17,24 @@ int schema_study(sql_db *d, sb_err *e);
  * observables of a (tool, key) the view has no column for yet; left as it is while the
  * result table is an earlier version's (the driver brings both up to date). */
 int schema_runs(sql_db *d, sb_err *e);
+/* The driver's run tables (campaign, run, param; with all: attempt, result, cache)
+ * that a study database lacks, as "run, param" in lost ("" for none, and for a new
+ * database, which has none of them): a DROP TABLE, a tool gone wrong. */
+int schema_lost(sql_db *d, int all, char *lost, size_t len, sb_err *e);
+/* A reader's check of the same: an error naming the table and what to do. */
+int schema_complete(sql_db *d, int all, sb_err *e);
+/* A campaign recorded without a single run (the driver records a campaign and its runs
+ * in one transaction) is a database that lost rows: an error naming it corrupt (a
+ * quick check) or the rows lost, with what to do. Nothing when the campaign is not
+ * recorded or has runs. */
+int schema_runs_lost(sql_db *d, const char *campaign, sb_err *e);
+/* A value of campaign's rows that no run can have, as a file's would be refused: a
+ * parameter the engine's parser refuses (ramp = 3), a result flag not 0 or 1 (risen =
+ * 2). Returns 1 and names the first in why (its run in run, if run is not NULL), 0 when
+ * every value is possible; e for a failing query. */
+int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, char *why, size_t wlen, sb_err *e);
+/* The same, as a reader's error naming the value and what to do. */
+int schema_values(sql_db *d, const char *campaign, sb_err *e);
 /* slurm_job, slurm_task */
 int schema_slurm(sql_db *d, sb_err *e);
 /* analysis_def (a tool's invocation: options, versions), analysis_all (its numbers:

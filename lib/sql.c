@@ -5,6 +5,79 @@
 #include <stdio.h>
 #include <string.h>
 
+static int sql_fail(sql_db *d, int rc, sb_err *e);
+
+int sql_check(sql_db *d, char *why, size_t len)
+{
+	sqlite3_stmt *st;
+	why[0] = 0;
+	/* quick_check: every page's structure and every row's format, not the indexes'
+	 * contents (those integrity_check adds); half a second on an 80 MB database */
+	int rc = sqlite3_prepare_v2(d->h, "PRAGMA quick_check(3)", -1, &st, NULL);
+	if (rc != SQLITE_OK) {
+		snprintf(why, len, "%s", sqlite3_errmsg(d->h));
+		return (rc & 0xff) == SQLITE_CORRUPT || (rc & 0xff) == SQLITE_NOTADB;
+	}
+	size_t l = 0;
+	int bad = 0;
+	while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+		const char *t = (const char *)sqlite3_column_text(st, 0);
+		/* findings, not the heading of each attached database before them */
+		if (t && !strncmp(t, "*** in database ", 16))
+			t = strchr(t, '\n') ? strchr(t, '\n') + 1 : "";
+		if (t && *t && strcmp(t, "ok") && l < len) {
+			l += (size_t)snprintf(why + l, len - l, "%s%s", bad ? "; " : "", t);
+			bad = 1;
+		}
+		/* one line: a message that names the fault in a sentence */
+		for (char *c = why; *c; c++)
+			if (*c == '\n')
+				*c = ' ';
+	}
+	if (rc != SQLITE_DONE && !bad) {
+		snprintf(why, len, "%s", sqlite3_errmsg(d->h));
+		bad = (rc & 0xff) == SQLITE_CORRUPT || (rc & 0xff) == SQLITE_NOTADB;
+	}
+	sqlite3_finalize(st);
+	return bad;
+}
+
+/* The one place an SQLite failure becomes an error: a corrupt database, or one that
+ * lacks a table, is named so with what to do, not in SQLite's words alone
+ * (docs/database.md, "A damaged database"). */
+static int sql_fail(sql_db *d, int rc, sb_err *e)
+{
+	char msg[512], why[512];
+	snprintf(msg, sizeof msg, "%s", sqlite3_errmsg(d->h));
+	int code = rc & 0xff;
+	if (code == SQLITE_CORRUPT || code == SQLITE_NOTADB) {
+		sql_check(d, why, sizeof why);
+		int more = why[0] && strcmp(why, msg);
+		return sb_errf(e, SB_EIO, "%s: the database is corrupt (%s%s%s): %s", d->path, msg,
+			       more ? "; quick_check: " : "", more ? why : "", SQL_REBUILD);
+	}
+	if (!strncmp(msg, "no such table: ", 15))
+		return sb_errf(e, SB_EIO, "%s: %s: the database lacks a table it should have (dropped, or not a study "
+			       "database): study run on the campaign file rebuilds it from the run files (docs/database.md, "
+			       "\"A damaged database\")", d->path, msg);
+	return sb_errf(e, SB_EIO, "%s: %s", d->path, msg);
+}
+
+int sql_done(sql_db *d, sqlite3_stmt *st, sb_err *e)
+{
+	int rc = sqlite3_finalize(st);
+	if (rc != SQLITE_OK && !e->code)
+		return sql_fail(d, rc, e);
+	return e->code;
+}
+
+int sql_failed(sql_db *d, int rc, sb_err *e)
+{
+	if (rc == SQLITE_OK || rc == SQLITE_ROW || rc == SQLITE_DONE)
+		return e->code;
+	return sql_fail(d, rc, e);
+}
+
 int sql_open(sql_db *d, const char *path, int flags, sb_err *e)
 {
 	memset(d, 0, sizeof *d);
@@ -17,7 +90,53 @@ int sql_open(sql_db *d, const char *path, int flags, sb_err *e)
 	}
 	/* readers wait for the driver's short write transactions instead of failing */
 	sqlite3_busy_timeout(d->h, 60000);
-	return 0;
+	if (sql_probe(d, e))
+		sql_close(d);
+	return e->code;
+}
+
+int sql_probe(sql_db *d, sb_err *e)
+{
+	/* the first row of every table, read from its own b-tree (NOT INDEXED: a lookup
+	 * by key would read an index and miss the table's pages): a root page zeroed or
+	 * overwritten is found on open, for well under a millisecond, where a query of
+	 * that table would fail later or, worse, a report of it come out empty */
+	sqlite3_stmt *st;
+	int rc = sqlite3_prepare_v2(d->h, "SELECT name FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE 'sqlite_%'"
+				    " ORDER BY name", -1, &st, NULL);
+	if (rc != SQLITE_OK)
+		return sql_fail(d, rc, e);
+	char names[64][128];
+	int n = 0;
+	while ((rc = sqlite3_step(st)) == SQLITE_ROW && n < 64)
+		snprintf(names[n++], sizeof names[0], "%s", (const char *)sqlite3_column_text(st, 0));
+	if (rc != SQLITE_DONE && rc != SQLITE_ROW) {
+		sql_fail(d, rc, e);
+		sqlite3_finalize(st);
+		return e->code;
+	}
+	sqlite3_finalize(st);
+	for (int i = 0; i < n && !e->code; i++) {
+		char sql[400], q[300];
+		size_t l = 0;
+		q[l++] = '"';
+		for (const char *c = names[i]; *c && l < sizeof q - 3; c++) {
+			if (*c == '"')
+				q[l++] = '"';
+			q[l++] = *c;
+		}
+		q[l++] = '"';
+		q[l] = 0;
+		snprintf(sql, sizeof sql, "SELECT 1 FROM %s NOT INDEXED LIMIT 1", q);
+		rc = sqlite3_prepare_v2(d->h, sql, -1, &st, NULL);
+		if (rc != SQLITE_OK)
+			return sql_fail(d, rc, e);
+		rc = sqlite3_step(st);
+		sqlite3_finalize(st); /* done reading, before the quick check sql_fail makes */
+		if (rc != SQLITE_ROW && rc != SQLITE_DONE)
+			sql_fail(d, rc, e);
+	}
+	return e->code;
 }
 
 void sql_close(sql_db *d)
@@ -30,8 +149,9 @@ void sql_close(sql_db *d)
 int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...)
 {
 	sqlite3_stmt *st = NULL;
-	if (sqlite3_prepare_v2(d->h, sql, -1, &st, NULL) != SQLITE_OK)
-		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+	int prc = sqlite3_prepare_v2(d->h, sql, -1, &st, NULL);
+	if (prc != SQLITE_OK)
+		return sql_fail(d, prc, e);
 	va_list ap;
 	va_start(ap, fmt);
 	int k = 1;
@@ -67,20 +187,20 @@ int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const ch
 	int rc;
 	while ((rc = sqlite3_step(st)) == SQLITE_ROW)
 		;
+	if (rc != SQLITE_DONE) {
+		sql_fail(d, rc, e);
+		sqlite3_finalize(st);
+		return e->code;
+	}
 	sqlite3_finalize(st);
-	if (rc != SQLITE_DONE)
-		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
 	return 0;
 }
 
 int sql_script(sql_db *d, const char *sql, sb_err *e)
 {
-	char *msg = NULL;
-	if (sqlite3_exec(d->h, sql, NULL, NULL, &msg) != SQLITE_OK) {
-		sb_errf(e, SB_EIO, "%s: %s", d->path, msg ? msg : sqlite3_errmsg(d->h));
-		sqlite3_free(msg);
-		return e->code;
-	}
+	int rc = sqlite3_exec(d->h, sql, NULL, NULL, NULL);
+	if (rc != SQLITE_OK)
+		return sql_fail(d, rc, e);
 	return 0;
 }
 

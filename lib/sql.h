@@ -9,9 +9,15 @@
 
 #include "err.h"
 
+/* What to do with a corrupt database (every message that names one ends with it). */
+#define SQL_REBUILD                                                                                          \
+	"move it aside with its -wal and -shm files and run study run on each campaign file: it is rebuilt "   \
+	"from the run files (docs/database.md, \"A damaged database\")"
+
 typedef struct sql_db {
 	sqlite3 *h;
 	char path[1024]; /* named in every message */
+	char note[1400]; /* what opening it repaired (study/ledger/db.c), for the caller to say */
 } sql_db;
 
 /* Open path with SQLITE_OPEN_* flags; a reader waits up to a minute for a writer's
@@ -25,6 +31,17 @@ void sql_close(sql_db *d);
 int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...);
 /* Statements separated by semicolons, no parameters (a schema, BEGIN, COMMIT). */
 int sql_script(sql_db *d, const char *sql, sb_err *e);
+/* Finalize a statement the caller stepped: an error of its last step (a corrupt page
+ * read half-way through the rows) into e, as sql_exec's own. Returns e->code. */
+int sql_done(sql_db *d, sqlite3_stmt *st, sb_err *e);
+/* rc of a call the caller made (sqlite3_step, sqlite3_prepare_v2) into e, as sql_exec's
+ * errors: nothing for OK, ROW and DONE. Returns e->code. */
+int sql_failed(sql_db *d, int rc, sb_err *e);
+/* The root page of every table read (sql_open does): a corrupt one named so in e. */
+int sql_probe(sql_db *d, sb_err *e);
+/* PRAGMA quick_check: 1 when the database is corrupt (why: the first findings), 0 when
+ * it is sound. Costs a read of the whole file: for a failure, never on every open. */
+int sql_check(sql_db *d, char *why, size_t len);
 /* Columns of a table, as "a,b,c," ("" when the table does not exist). */
 void sql_columns(sql_db *d, const char *table, char *out, size_t len);
 /* A column added since the table was first created (older databases lack it): added

@@ -14,16 +14,23 @@
 #include <string.h>
 #include <time.h>
 
+/* the last SQLite failure, named as every reader of the database names it (sql.h) */
 static int dberr(adb *d, sb_err *e)
 {
-	return sb_errf(e, SB_EIO, "%s: %s", d->db.path, sqlite3_errmsg(d->db.h));
+	int rc = sqlite3_errcode(d->db.h);
+	return sql_failed(&d->db, rc == SQLITE_OK ? SQLITE_ERROR : rc, e);
 }
 
 int adb_open(adb *d, const char *path, int writable, sb_err *e)
 {
 	memset(d, 0, sizeof *d);
 	/* the driver may be writing: sql_open waits for its short transactions */
-	return sql_open(&d->db, path, writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY, e);
+	if (sql_open(&d->db, path, writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY, e))
+		return e->code;
+	/* the tables every tool reads; attempt and result may be an older driver's */
+	if (schema_complete(&d->db, 0, e))
+		sql_close(&d->db);
+	return e->code;
 }
 
 void adb_close(adb *d)
@@ -71,8 +78,7 @@ int adb_campaign_exists(adb *d, const char *campaign, int *yes, sb_err *e)
 		return dberr(d, e);
 	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
 	*yes = sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) > 0;
-	sqlite3_finalize(st);
-	return 0;
+	return sql_done(&d->db, st, e);
 }
 
 const char *an_str(const an_run *r, const char *key)
@@ -211,15 +217,22 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 			x->val[x->nparam] = dup_text(sqlite3_column_text(ps, 1));
 			x->nparam++;
 		}
-		sqlite3_reset(ps);
+		if (sqlite3_reset(ps) != SQLITE_OK && !e->code)
+			dberr(d, e);
 		if (e->code)
 			break;
 		check_params(x);
 	}
 	if (!e->code && rc != SQLITE_DONE && rc != SQLITE_ROW)
-		dberr(d, e);
+		sql_failed(&d->db, rc, e);
 	sqlite3_finalize(st);
 	sqlite3_finalize(ps);
+	/* a campaign recorded without a single run is a database that lost rows (the
+	 * driver records a campaign and its runs together): corrupt, or a table emptied */
+	if (!e->code && k == 0)
+		schema_runs_lost(&d->db, campaign, e);
+	if (!e->code)
+		schema_values(&d->db, campaign, e);
 	if (e->code) {
 		adb_runs_free(r, k);
 		return e->code;
@@ -249,14 +262,14 @@ int adb_axes(adb *d, const char *campaign, char axes[][48], int max, int *n, sb_
 	if (sqlite3_prepare_v2(d->db.h, "SELECT axes FROM campaign WHERE name = ?", -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
 	sqlite3_bind_text(st, 1, campaign, -1, SQLITE_TRANSIENT);
-	if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_text(st, 0)) {
+	int rc = sqlite3_step(st);
+	if (rc == SQLITE_ROW && sqlite3_column_text(st, 0)) {
 		char buf[2048];
 		snprintf(buf, sizeof buf, "%s", (const char *)sqlite3_column_text(st, 0));
 		for (char *sv, *tok = strtok_r(buf, " ,", &sv); tok && *n < max; tok = strtok_r(NULL, " ,", &sv))
 			snprintf(axes[(*n)++], 48, "%s", tok);
 	}
-	sqlite3_finalize(st);
-	return 0;
+	return sql_done(&d->db, st, e);
 }
 
 /* ---- grouping ---- */

@@ -215,9 +215,19 @@ static int float_range(cp_axis *a, sb_scene *scratch, char *item, const char *wh
 		snprintf(ct, sizeof ct, count < 1e15 ? "%.0f" : "%.3g", count);
 	if (axis_room(a, count, ct, item, where, e))
 		return e->code;
+	double prev = NAN;
 	for (long k = 0; k < (long)count; k++) {
 		char buf[64];
 		snprintf(buf, sizeof buf, "%.12g", lo + (double)k * step);
+		/* beyond 12 digits a value would read as another: one outside the range
+		 * (1.0000000000001 is "1"), or the one before it again */
+		double v = strtod(buf, NULL);
+		if (v < lo || v > hi || v == prev)
+			return sb_errf(e, SB_EUSAGE, "%s: %s: range '%s': value %ld, %.17g, reads as %s, %s, with the 12 "
+				       "significant digits a range's values keep (so that they are the written-out list's); "
+				       "write the values as a list", where, a->key, item, k + 1, lo + (double)k * step, buf,
+				       v == prev ? "the one before it" : "outside the range");
+		prev = v;
 		if (value_add(a, scratch, buf, where, e))
 			return e->code;
 	}
@@ -261,6 +271,22 @@ int campaign_axis_parse(cp_axis *a, const char *key, const char *text, const cha
 	char *copy = strdup(text);
 	if (!copy)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
+	/* an empty item ("15," or "2,,3") is a value left out, not nothing: refused rather
+	 * than dropped (strtok_r below skips them) */
+	int nitem = 1;
+	for (const char *s = text, *c; ; s = c + 1, nitem++) {
+		c = strchr(s, ',');
+		const char *end = c ? c : s + strlen(s);
+		while (s < end && (*s == ' ' || *s == '\t'))
+			s++;
+		if (s == end && (c || nitem > 1)) {
+			free(copy);
+			return sb_errf(e, SB_EUSAGE, "%s: %s: item %d of '%s' is empty (a comma with no value %s it)", where, key,
+				       nitem, text, c ? "before" : "after");
+		}
+		if (!c)
+			break;
+	}
 	sb_scene scratch;
 	params_defaults(&scratch);
 	char *save = NULL;

@@ -101,9 +101,12 @@ int changes_check(const changes_ctx *x, sb_err *e)
 		nd += st && !strcmp(st, "done");
 		nf += st && !strcmp(st, "failed");
 	}
-	sqlite3_finalize(q);
-	if (!ns)
-		return 0;
+	if (sql_done(x->db, q, e) || !ns) {
+		for (long i = 0; i < ns; i++)
+			free(stale[i]);
+		free(stale);
+		return e->code;
+	}
 	if (!x->keep_old && !x->forget_old) {
 		/* what changed: per key, the values of the runs that left against the grid's */
 		char msg[3000];

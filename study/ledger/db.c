@@ -10,6 +10,29 @@
 
 #include "schema.h"
 
+/* A study database that lacks some of the driver's run tables (schema_lost) is
+ * repaired, opened to write, as the files allow (docs/database.md, "A damaged database"): a table gone is created anew
+ * and refilled from the campaign file (campaign, param: driver_record) or the run files
+ * (result: the sweep); without run or attempt the rows of the four tables that hang
+ * together by run are cleared and rebuilt from the run files as for a deleted database
+ * (the attempts that left no file are lost then, as there). */
+static int repair(st_db *d, const char *lost, sb_err *e)
+{
+	char list[160];
+	snprintf(list, sizeof list, ", %s,", lost);
+	if (strstr(list, " run,") || strstr(list, " attempt,")) {
+		if (sql_script(d, "DELETE FROM attempt; DELETE FROM result; DELETE FROM param; DELETE FROM run", e))
+			return e->code;
+		snprintf(d->note, sizeof d->note,
+			 "%s: lacked table %s: the runs of every campaign in it are recorded again, each by study run "
+			 "on its campaign file, from the run files (attempts that left no file are lost)", d->path, lost);
+	} else {
+		snprintf(d->note, sizeof d->note, "%s: lacked table %s: made again, its rows from the campaign and "
+			 "run files as study run on each campaign file reads them", d->path, lost);
+	}
+	return 0;
+}
+
 int db_open(st_db *d, const char *path, int writable, sb_err *e)
 {
 	int flags = writable ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
@@ -21,8 +44,10 @@ int db_open(st_db *d, const char *path, int writable, sb_err *e)
 		return e->code;
 	if (db_begin(d, e))
 		return e->code;
+	char lost[128];
 	/* an attempt's start (attempt_row): absent from files of earlier versions */
-	if (schema_study(d, e) || sql_ensure_column(d, "attempt", "started", "TEXT", e)) {
+	if (schema_lost(d, 1, lost, sizeof lost, e) || schema_study(d, e) ||
+	    sql_ensure_column(d, "attempt", "started", "TEXT", e) || (lost[0] && repair(d, lost, e))) {
 		db_rollback(d);
 		return e->code;
 	}
@@ -85,9 +110,17 @@ int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s
 		    " VALUES (?, ?, ?, ?, ?, ?)",
 		    "ttllt" "t", c->name, r->id, r->replicate, r->seed, r->cache_key, now))
 		return e->code;
-	if (sqlite3_changes(d->h) == 0) /* known run: its parameters are already recorded */
-		return sql_exec(d, e, NULL, "UPDATE run SET current = 1 WHERE campaign = ? AND id = ? AND current = 0",
-			       "tt", c->name, r->id);
+	if (sqlite3_changes(d->h) == 0) { /* known run: its parameters are recorded, unless lost */
+		sqlite3_stmt *q;
+		if (sql_exec(d, e, NULL, "UPDATE run SET current = 1 WHERE campaign = ? AND id = ? AND current = 0", "tt",
+			     c->name, r->id) ||
+		    sql_exec(d, e, &q, "SELECT EXISTS (SELECT 1 FROM param WHERE campaign = ? AND run = ?)", "tt", c->name,
+			     r->id))
+			return e->code;
+		const int has = sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int(q, 0);
+		if (sql_done(d, q, e) || has)
+			return e->code;
+	}
 	size_t n;
 	const sb_param *t = params_table(&n);
 	sqlite3_stmt *st;
@@ -108,8 +141,9 @@ int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s
 			sqlite3_bind_double(st, 4, *(const double *)base);
 		else
 			sqlite3_bind_text(st, 4, v, -1, SQLITE_TRANSIENT);
-		if (sqlite3_step(st) != SQLITE_DONE) {
-			sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
+		int rc = sqlite3_step(st);
+		if (rc != SQLITE_DONE) {
+			sql_failed(d, rc, e);
 			break;
 		}
 		sqlite3_reset(st);
@@ -130,8 +164,7 @@ int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t
 		snprintf(state, len, "%s", (const char *)sqlite3_column_text(st, 0));
 		*attempts = (long)sqlite3_column_int64(st, 1);
 	}
-	sqlite3_finalize(st);
-	return 0;
+	return sql_done(d, st, e);
 }
 
 /* An attempt's row and its run's new state. Its start is the run's start when the
@@ -214,10 +247,10 @@ int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb
 		k++;
 	}
 	int rc = sqlite3_step(st);
-	sqlite3_finalize(st);
 	if (rc != SQLITE_DONE)
-		return sb_errf(e, SB_EIO, "%s: %s", d->path, sqlite3_errmsg(d->h));
-	return 0;
+		sql_failed(d, rc, e);
+	sqlite3_finalize(st);
+	return e->code;
 }
 
 int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e)

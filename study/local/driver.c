@@ -17,6 +17,7 @@
 #include "h5sum.h"
 #include "layout.h"
 #include "lock.h"
+#include "schema.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
 #include "campaign/axes.h"
@@ -124,7 +125,22 @@ int driver_record(drv *d, sb_err *e)
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
 		return e->code;
-	db_campaign_put(&d->db, &d->c, now, e);
+	/* a value no run can have (edited, damaged) is dropped and written again: a
+	 * parameter from the campaign file (db_run_add, below), a result from the run file
+	 * (the sweep reads a done run's file again when its row is gone) */
+	for (int k = 0; k < 10000 && !e->code; k++) {
+		char run[128], why[1200];
+		if (schema_bad_value(&d->db, d->c.name, run, sizeof run, why, sizeof why, e) != 1)
+			break;
+		fprintf(stderr, "study: %s: %s: a value no run can have: written again from the %s file\n", d->c.name, why,
+			strstr(why, "in table result") ? "run" : "campaign");
+		sql_exec(&d->db, e, NULL,
+			 strstr(why, "in table result") ? "DELETE FROM result WHERE campaign = ? AND run = ?"
+							 : "DELETE FROM param WHERE campaign = ? AND run = ?",
+			 "tt", d->c.name, run);
+	}
+	if (!e->code)
+		db_campaign_put(&d->db, &d->c, now, e);
 	for (long i = 0; i < d->g.n && !e->code; i++) {
 		sb_scene s;
 		grid_scene(&d->g, &d->g.runs[i], &s);
@@ -662,7 +678,11 @@ int driver_run(const driver_opts *o, sb_err *e)
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
 	int rounds = d->adaptive || d->autorep; /* the grid grows pass by pass */
-	if (db_open(&d->db, dbp, 1, e) || orphans(d, e) ||
+	if (db_open(&d->db, dbp, 1, e))
+		goto out;
+	if (d->db.note[0])
+		fprintf(stderr, "study: %s\n", d->db.note);
+	if (orphans(d, e) ||
 	    (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 

@@ -387,7 +387,7 @@ int orphans(drv *d, sb_err *e)
 		snprintf(o[n].started, sizeof o[n].started, "%s", (const char *)sqlite3_column_text(q, 1));
 		n++;
 	}
-	sqlite3_finalize(q);
+	sql_done(&d->db, q, e);
 	const time_t deadline = time(NULL) + 10;
 	for (size_t i = 0; i < n && !e->code; i++) {
 		const char *id = o[i].id, *started = o[i].started;

@@ -11,6 +11,7 @@
 
 #include "csv.h"
 #include "layout.h"
+#include "schema.h"
 #include "campaign/axes.h"
 #include "ledger/db.h"
 #include "rule/adapt.h"
@@ -22,7 +23,11 @@ static int open_ro(st_db *d, const char *path, sb_err *e)
 {
 	if (access(path, R_OK) != 0)
 		return sb_errf(e, SB_EUSAGE, "%s: no study database (run a campaign first)", path);
-	return db_open(d, path, 0, e);
+	if (db_open(d, path, 0, e))
+		return e->code;
+	if (schema_complete(d, 1, e))
+		db_close(d);
+	return e->code;
 }
 
 static int campaign_known(st_db *d, const char *name, sb_err *e)
@@ -31,10 +36,11 @@ static int campaign_known(st_db *d, const char *name, sb_err *e)
 	if (sql_exec(d, e, &q, "SELECT 1 FROM campaign WHERE name = ?", "t", name))
 		return e->code;
 	int found = sqlite3_step(q) == SQLITE_ROW;
-	sqlite3_finalize(q);
+	if (sql_done(d, q, e))
+		return e->code;
 	if (!found)
 		return sb_errf(e, SB_EUSAGE, "campaign '%s' is not in %s (study list shows the campaigns)", name, d->path);
-	return 0;
+	return schema_runs_lost(d, name, e);
 }
 
 static const char *col(sqlite3_stmt *q, int i)
@@ -74,7 +80,7 @@ static double throughput(st_db *d, const char *name)
 		if (n >= 1 && span > 0)
 			rate = (double)n / span;
 	}
-	sqlite3_finalize(q);
+	sql_done(d, q, &e);
 	return rate;
 }
 
@@ -94,7 +100,7 @@ static const char *num_or(sqlite3_stmt *q, int i, const char *none, char *buf, s
 /* A grid with replicates = auto, as the driver's last pass left it (sharpen.c): per
  * point the replicates so far, the runs used, waiting and failed, the result's
  * estimate and the interval it reached. Nothing for other campaigns. */
-static void autorep_status(st_db *d, const char *name, FILE *out)
+static int autorep_status(st_db *d, const char *name, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
 	sb_err qe = {0};
@@ -102,7 +108,7 @@ static void autorep_status(st_db *d, const char *name, FILE *out)
 		    "SELECT grp, result, replicates, used, waiting, failed, estimate, ci_lo, ci_hi, width, target, level,"
 		    " batch, max_replicates, state, updated FROM auto_point WHERE campaign = ? ORDER BY point",
 		    "t", name))
-		return; /* an older database: no auto_point */
+		return 0; /* an older database: no auto_point */
 	int first = 1;
 	while (sqlite3_step(q) == SQLITE_ROW) {
 		char b[4][32];
@@ -120,7 +126,7 @@ static void autorep_status(st_db *d, const char *name, FILE *out)
 			col(q, 5), num_or(q, 6, "none", b[0], sizeof b[0]), iv, num_or(q, 9, "inf", b[3], sizeof b[3]),
 			col(q, 14));
 	}
-	sqlite3_finalize(q);
+	return sql_done(d, q, e);
 }
 
 static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
@@ -132,10 +138,8 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 		    " max_replicates, batch, target, level, state, updated, axis FROM onset_search WHERE campaign = ?",
 		    "t", name))
 		return 0; /* an older database: no onset tables */
-	if (sqlite3_step(q) != SQLITE_ROW) {
-		sqlite3_finalize(q);
-		return 0;
-	}
+	if (sqlite3_step(q) != SQLITE_ROW)
+		return sql_done(d, q, e);
 	char b[8][32];
 	double level = sqlite3_column_double(q, 12);
 	fprintf(out, "  onset search (%s; last pass %s): ", col(q, 13), col(q, 14));
@@ -160,7 +164,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 			adapt_min_replicates(level));
 	else
 		fprintf(out, "    replicates %s; %g%% interval over them\n", col(q, 8), 100 * level);
-	sqlite3_finalize(q);
+	sql_done(d, q, e);
 	if (sql_exec(d, e, &q,
 		    "SELECT grp, replicates, searching, found, below, above, blocked, nonmonotone, runs, estimate, ci_lo,"
 		    " ci_hi, width, state, reason FROM onset_group WHERE campaign = ? ORDER BY point",
@@ -181,7 +185,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 		if (*col(q, 14)) /* why a blocked group cannot finish */
 			fprintf(out, "      %s blocked: %s\n", col(q, 0), col(q, 14));
 	}
-	sqlite3_finalize(q);
+	sql_done(d, q, e);
 	/* every replicate's bracket: "3 [2.68, 2.69]"; "5 [2.6, ~3.2] running 2.75" when
 	 * an end was not run (~: the range's end, assumed); "< 2.5", "> 3.2" out of range */
 	if (sql_exec(d, e, &q,
@@ -220,8 +224,7 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 	}
 	if (width)
 		fprintf(out, "\n");
-	sqlite3_finalize(q);
-	return 0;
+	return sql_done(d, q, e);
 }
 
 /* Why runs failed, by status (physics failures are never retried: the engine is
@@ -243,7 +246,7 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 	}
 	if (!first)
 		fputc('\n', out);
-	sqlite3_finalize(q);
+	sql_done(d, q, e);
 	if (sql_exec(d, e, &q,
 		    "SELECT a.status, COUNT(*), SUM(r.state = 'done') FROM attempt a JOIN run r ON r.campaign = a.campaign"
 		    " AND r.id = a.run WHERE a.campaign = ? AND a.status IN ('killed', 'io', 'lost') GROUP BY a.status"
@@ -259,8 +262,7 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 	}
 	if (!first)
 		fputc('\n', out);
-	sqlite3_finalize(q);
-	return 0;
+	return sql_done(d, q, e);
 }
 
 /* A search's or replicates = auto's runs still to come, at most: the runs pending or
@@ -277,7 +279,7 @@ static long runs_left_at_most(st_db *d, const char *name, long now, sb_err *e)
 	if (sqlite3_step(q) == SQLITE_ROW) {
 		const long chain = cost_chain_max(sqlite3_column_double(q, 0), sqlite3_column_double(q, 1),
 						  sqlite3_column_double(q, 2));
-		sqlite3_finalize(q);
+		sql_done(d, q, e);
 		if (sql_exec(d, e, &q,
 			    "SELECT (SELECT COALESCE(SUM(MAX(0, ?2 - runs)), 0) FROM onset_replicate WHERE campaign = ?1"
 			    " AND state = 'searching'), (SELECT COALESCE(SUM(MAX(0, s.max_replicates - g.replicates)), 0)"
@@ -288,7 +290,7 @@ static long runs_left_at_most(st_db *d, const char *name, long now, sb_err *e)
 		if (sqlite3_step(q) == SQLITE_ROW)
 			more = sqlite3_column_int64(q, 0) + chain * sqlite3_column_int64(q, 1);
 	} else {
-		sqlite3_finalize(q);
+		sql_done(d, q, e);
 		if (sql_exec(d, e, &q,
 			    "SELECT COUNT(*), COALESCE(SUM(MAX(0, max_replicates - replicates)), 0) FROM auto_point"
 			    " WHERE campaign = ? AND state IN ('running', 'more')",
@@ -297,7 +299,7 @@ static long runs_left_at_most(st_db *d, const char *name, long now, sb_err *e)
 		if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int64(q, 0) > 0)
 			more = sqlite3_column_int64(q, 1);
 	}
-	sqlite3_finalize(q);
+	sql_done(d, q, e);
 	return more < 0 ? -1 : now + more;
 }
 
@@ -324,7 +326,7 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		/* a search or replicates = auto: the whole campaign's work, at most */
 		const long left = pending + running > 0 ? runs_left_at_most(d, name, pending + running, e) : -1;
 		if (e->code) {
-			sqlite3_finalize(q);
+			sql_done(d, q, e);
 			return e->code;
 		}
 		const long todo = left >= 0 ? left : pending + running;
@@ -352,10 +354,10 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 			}
 		}
 	}
-	sqlite3_finalize(q);
-	if (onset_status(d, name, out, e))
+	if (sql_done(d, q, e) || onset_status(d, name, out, e))
 		return e->code;
-	autorep_status(d, name, out);
+	if (autorep_status(d, name, out, e))
+		return e->code;
 	if (sql_exec(d, e, &q,
 		    "SELECT f.run, f.attempt, f.exit_code, f.status, f.message, f.state FROM failures f"
 		    " WHERE f.campaign = ? ORDER BY f.state, f.run, f.attempt",
@@ -370,7 +372,7 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 		fprintf(out, "    %s #%s exit %s %s: %s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3), col(q, 4),
 			!strcmp(st, "failed") ? "" : !strcmp(st, "done") ? "  [run again: done]" : "  [resumable]");
 	}
-	sqlite3_finalize(q);
+	sql_done(d, q, e);
 	return failure_summary(d, name, out, e);
 }
 
@@ -388,9 +390,10 @@ int report_status(const char *db_path, const char *name, int jobs, FILE *out, sb
 			while (!e->code && sqlite3_step(q) == SQLITE_ROW) {
 				char n[128];
 				snprintf(n, sizeof n, "%s", col(q, 0));
-				status_one(&d, n, jobs, out, e);
+				if (!schema_runs_lost(&d, n, e))
+					status_one(&d, n, jobs, out, e);
 			}
-			sqlite3_finalize(q);
+			sql_done(&d, q, e);
 		}
 	}
 	db_close(&d);
@@ -419,7 +422,7 @@ int report_list(const char *db_path, FILE *out, sb_err *e)
 			fprintf(out, "%-24s %6s %6s %6s %7s  %-20s %s (%s)%s%s%s\n", col(q, 0), col(q, 1), col(q, 2), col(q, 3),
 				col(q, 4), col(q, 5), col(q, 6), col(q, 7), col(q, 8)[0] ? " [failed: " : "", col(q, 8),
 				col(q, 8)[0] ? "]" : "");
-		sqlite3_finalize(q);
+		sql_done(&d, q, e);
 	}
 	db_close(&d);
 	return e->code;
@@ -431,7 +434,7 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 	if (open_ro(&d, db_path, e))
 		return e->code;
 	sqlite3_stmt *q;
-	if (!campaign_known(&d, name, e) &&
+	if (!campaign_known(&d, name, e) && !schema_values(&d, name, e) &&
 	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
 		int nc = sqlite3_column_count(q);
 		for (int i = 0; i < nc; i++) {
@@ -454,7 +457,7 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 			}
 			fputc('\n', out);
 		}
-		sqlite3_finalize(q);
+		sql_done(&d, q, e);
 	}
 	db_close(&d);
 	return e->code;
@@ -494,7 +497,7 @@ int report_watch(const char *db_path, const char *runs_dir, const char *name, do
 		layout_campaign(runs_dir ? runs_dir : "runs", col(q, 0), dir, sizeof dir);
 		watch_init(&w[nw++], col(q, 0), dir);
 	}
-	sqlite3_finalize(q);
+	sql_done(&d, q, e);
 	struct sigaction sa, old_int, old_term;
 	memset(&sa, 0, sizeof sa);
 	sa.sa_handler = on_watch_signal; /* no SA_RESTART: the sleep ends at once */

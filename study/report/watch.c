@@ -154,7 +154,8 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		snprintf(axes, sizeof axes, "%s", col(q, 5));
 		pending_T = sqlite3_column_double(q, 6);
 	}
-	sqlite3_finalize(q);
+	if (sql_done(db, q, e))
+		return e->code;
 
 	/* the speed of one run, from the last runs to finish: simulated time over the
 	 * shaking loop's wall time */
@@ -166,7 +167,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		     "t", w->name)) {
 		if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_double(q, 1) > 0)
 			speed = sqlite3_column_double(q, 0) / sqlite3_column_double(q, 1);
-		sqlite3_finalize(q);
+		sql_done(db, q, e);
 	}
 	if (e->code)
 		return e->code;
@@ -201,7 +202,8 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		double t = r->t >= 0 ? r->t : rate > 0 && started > 0 ? rate * (now - started) : 0;
 		left += r->T > t ? r->T - t : 0;
 	}
-	sqlite3_finalize(q);
+	if (sql_done(db, q, e))
+		return e->code;
 	/* forget the runs no longer in flight */
 	long k = 0;
 	for (long i = 0; i < w->nruns; i++)

@@ -163,7 +163,11 @@ static void test_axis_values(void)
 	axis_is("study.grid.axis.first_occurrence_kept", "frequency", "2.8, 2.6, 2.80", "2.8,2.6");
 	axis_is("study.grid.axis.int_duplicates", "depth", "3, 1, 3, 2, 1", "3,1,2");
 	axis_is("study.grid.axis.enum_duplicates", "integrator", "verlet, gear5, verlet", "verlet,gear5");
-	axis_is("study.grid.axis.blank_items", "depth", " 1 ,, 2 ,", "1,2");
+	/* an empty item is a value left out: refused, naming it (it was dropped silently) */
+	static const char *const trailing[] = {"depth", "item 2 of '15,' is empty", NULL};
+	axis_refused("study.grid.axis.empty_item_trailing", "depth", "15,", trailing);
+	static const char *const inner[] = {"depth", "item 2 of ' 1 ,, 2' is empty", NULL};
+	axis_refused("study.grid.axis.empty_item_inner", "depth", " 1 ,, 2", inner);
 	/* many duplicates: the first occurrences, in order */
 	cp_axis a;
 	sb_err e = {0};
@@ -173,7 +177,16 @@ static void test_axis_values(void)
 	CHECK("study.grid.axis.many_duplicates", order, "rc %d (%s), %ld values", rc, e.msg, rc ? 0 : a.n);
 	axis_free(&a);
 	static const char *const none[] = {"depth", "no values", NULL};
-	axis_refused("study.grid.axis.empty_refused", "depth", " , ", none);
+	axis_refused("study.grid.axis.empty_refused", "depth", "  ", none);
+	static const char *const commas[] = {"depth", "item 1 of ' , ' is empty", NULL};
+	axis_refused("study.grid.axis.only_commas_refused", "depth", " , ", commas);
+	/* a range past 12 significant digits: its values would read as others */
+	static const char *const digits[] = {"frequency", "range '1.0000000000001:1.0000000000003:1e-13'", "value 1",
+					     "outside the range", "write the values as a list", NULL};
+	axis_refused("study.grid.range.refused.past_12_digits", "frequency", "1.0000000000001:1.0000000000003:1e-13",
+		     digits);
+	static const char *const collapse[] = {"frequency", "value 2", "the one before it", NULL};
+	axis_refused("study.grid.range.refused.values_collapse", "frequency", "1:1.0000000000003:1e-13", collapse);
 
 	/* in a campaign: a duplicated axis value is no second run */
 	campaign c;

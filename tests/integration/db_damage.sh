@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# db_damage.sh - a damaged study database is named, never read as empty (docs/database.md,
+# "A damaged database"): a table's root page zeroed makes status, export, run and a tool
+# say the database is corrupt with what to do, exit non-zero, and after the database is
+# moved aside study run rebuilds it to the same export; a dropped table makes the readers
+# name the table, and study run rebuilds it from the campaign and run files to the same
+# export; a value no run can have (risen = 2, ramp = 3) is refused by the readers and
+# rewritten from the run file by study run.
+. "$(dirname "$0")/lib.sh"
+STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+WAITING="$(dirname "$SHAKE")/waiting"
+[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+cd "$TMP" || exit 1
+
+# one tiny campaign (4 runs of 40 grains, 0.2 s), built once; every case works on a copy
+cat >t.campaign <<'EOF'
+[campaign]
+name = t
+seed = 5
+replicates = 2
+[scene]
+n_grains = 40
+width = 16
+radius_ratio = 2
+depth = 1
+settle_ke = 1
+settle_min = 0.2
+duration = 0.2
+traj_rate = 100
+snapshots = no
+[grid]
+frequency = 4, 5
+EOF
+"$STUDY" run t.campaign --runs "$TMP/R" --jobs 2 --no-progress >build.log 2>&1 || { fail setup "exit $?: $(tail -n 3 build.log)"; finish; }
+sqlite3 R/study.db "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
+# timing columns aside (started is when a driver saw the run start)
+strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "started") s = i } { $s = ""; print }' OFS=, "$1"; }
+"$STUDY" export t --runs R >good.csv || fail setup "export of the undamaged database"
+
+fresh() { rm -rf D; cp -r R D; }
+# reads NAME WORDS: status, export, list, run and bin/waiting all exit non-zero naming WORDS
+reads() {
+	local name=$1 words=$2 bad=""
+	"$STUDY" status t --runs D >st.out 2>st.err; local rs=$?
+	"$STUDY" export t --runs D >ex.out 2>ex.err; local re=$?
+	"$STUDY" list --runs D >li.out 2>li.err; local rl=$?
+	"$WAITING" t --runs D --no-plot --no-store >wa.out 2>wa.err; local rw=$?
+	[ "$rs" = 2 ] && grep -q "$words" st.err || bad="$bad status exit $rs: $(head -c 300 st.err);"
+	[ "$re" = 2 ] && grep -q "$words" ex.err || bad="$bad export exit $re: $(head -c 300 ex.err);"
+	[ "$rl" = 2 ] && grep -q "$words" li.err || bad="$bad list exit $rl: $(head -c 300 li.err);"
+	# the tools read attempt and result when they are there (a database of an older driver lacks them)
+	[ "$rw" = 2 ] && grep -q "$words" wa.err || [ "$name" = dropped_attempt ] || bad="$bad waiting exit $rw: $(head -c 300 wa.err);"
+	[ -z "$bad" ] && ok "$name.readers_refuse" || fail "$name.readers_refuse" "$bad"
+}
+rebuilt() { # NAME: study run restores the undamaged export
+	"$STUDY" export t --runs D >after.csv 2>&1
+	cmp -s <(strip good.csv) <(strip after.csv) && ok "$1.rebuilt_export_equal" ||
+		fail "$1.rebuilt_export_equal" "$(diff <(strip good.csv) <(strip after.csv) | head -n 3 | cut -c1-300)"
+}
+
+# --- a table's root page zeroed: corrupt, in every reader and in study run ---
+for tb in run campaign param; do
+	fresh
+	ps=$(sqlite3 D/study.db "PRAGMA page_size")
+	rp=$(sqlite3 D/study.db "SELECT rootpage FROM sqlite_schema WHERE type = 'table' AND name = '$tb'")
+	dd if=/dev/zero of=D/study.db bs="$ps" seek=$((rp - 1)) count=1 conv=notrunc 2>/dev/null
+	reads "zeroed_$tb" "the database is corrupt.*move it aside"
+	"$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
+	rc=$?
+	[ "$rc" = 2 ] && grep -q "study.db: the database is corrupt" run.log && ok "zeroed_$tb.run_refuses" ||
+		fail "zeroed_$tb.run_refuses" "exit $rc: $(tail -n 2 run.log)"
+	# what the message says to do
+	mv D/study.db D/study.db.bad
+	rm -f D/study.db-wal D/study.db-shm
+	"$STUDY" run t.campaign --runs D --no-progress >run2.log 2>&1 || fail "zeroed_$tb.rebuild" "exit $?: $(tail -n 2 run2.log)"
+	rebuilt "zeroed_$tb"
+done
+
+# --- a table dropped: named by the readers, rebuilt by study run ---
+for tb in run param campaign attempt; do
+	fresh
+	sqlite3 D/study.db "DROP TABLE $tb"
+	reads "dropped_$tb" "table $tb"
+	"$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
+	rc=$?
+	[ "$rc" = 0 ] && grep -q "lacked table $tb" run.log && grep -q "4 done, 0 failed" run.log && ok "dropped_$tb.run_repairs" ||
+		fail "dropped_$tb.run_repairs" "exit $rc: $(tail -n 3 run.log)"
+	rebuilt "dropped_$tb"
+	"$STUDY" run t.campaign --runs D --no-progress >run3.log 2>&1 && "$WAITING" t --runs D --no-plot --no-store >wa.out 2>&1 &&
+		ok "dropped_$tb.tool_after" || fail "dropped_$tb.tool_after" "$(tail -n 2 run3.log wa.out)"
+done
+
+# --- a value no run can have: refused by the readers, rewritten by study run ---
+fresh
+sqlite3 D/study.db "UPDATE result SET risen = 2 WHERE run = (SELECT MIN(run) FROM result)"
+"$STUDY" export t --runs D >ex.out 2>ex.err
+rc=$?
+[ "$rc" = 2 ] && grep -q "risen = 2.*expected" ex.err && ok values.risen_export_refused ||
+	fail values.risen_export_refused "exit $rc: $(head -c 300 ex.err)"
+"$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && grep -q "risen = 2 in table result: expected 0 or 1.*written again from the run file" run.log && ok values.risen_rewritten ||
+	fail values.risen_rewritten "exit $rc: $(tail -n 2 run.log)"
+rebuilt values_risen
+fresh
+sqlite3 D/study.db "UPDATE param SET value = '3' WHERE key = 'ramp' AND run = (SELECT MIN(run) FROM param)"
+"$WAITING" t --runs D --no-plot --no-store >wa.out 2>wa.err
+rc=$?
+[ "$rc" != 0 ] && grep -q "ramp = '3'" wa.err && ok values.ramp_tool_refused ||
+	fail values.ramp_tool_refused "exit $rc: $(head -c 300 wa.err)"
+"$STUDY" export t --runs D >ex.out 2>ex.err
+rc=$?
+[ "$rc" = 2 ] && grep -q "ramp = '3'" ex.err && ok values.ramp_export_refused ||
+	fail values.ramp_export_refused "exit $rc: $(head -c 300 ex.err)"
+"$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && rebuilt values_ramp || fail values.ramp_rewritten "exit $rc: $(tail -n 2 run.log)"
+finish
