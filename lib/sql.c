@@ -3,7 +3,11 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
 
 static int sql_fail(sql_db *d, int rc, sb_err *e);
 
@@ -56,11 +60,127 @@ static int sql_fail(sql_db *d, int rc, sb_err *e)
 		return sb_errf(e, SB_EIO, "%s: the database is corrupt (%s%s%s): %s", d->path, msg,
 			       more ? "; quick_check: " : "", more ? why : "", SQL_REBUILD);
 	}
+	if (code == SQLITE_BUSY) {
+		char who[400];
+		sql_lock_holder(d, who, sizeof who);
+		return sb_errf(e, SB_EIO, "%s: %s: waited %d s for %s, which holds the database's lock; try again when it "
+			       "has ended", d->path, msg, SQL_WAIT_MS / 1000, who[0] ? who : "another process");
+	}
 	if (!strncmp(msg, "no such table: ", 15))
 		return sb_errf(e, SB_EIO, "%s: %s: the database lacks a table it should have (dropped, or not a study "
 			       "database): study run on the campaign file rebuilds it from the run files (docs/database.md, "
 			       "\"A damaged database\")", d->path, msg);
 	return sb_errf(e, SB_EIO, "%s: %s", d->path, msg);
+}
+
+static long long now_ms(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (long long)t.tv_sec * 1000 + t.tv_nsec / 1000000;
+}
+
+void sql_lock_holder(const sql_db *d, char *out, size_t len)
+{
+	out[0] = 0;
+	/* SQLite's locks are POSIX record locks on the database file (rollback journal)
+	 * or on its -shm file (WAL): /proc/locks lists each with its pid and the file's
+	 * device and inode */
+	unsigned long long ino[3];
+	int ni = 0;
+	const char *suffix[3] = {"", "-shm", "-journal"};
+	for (int k = 0; k < 3; k++) {
+		char p[1100];
+		struct stat st;
+		snprintf(p, sizeof p, "%s%s", d->path, suffix[k]);
+		if (stat(p, &st) == 0)
+			ino[ni++] = (unsigned long long)st.st_ino;
+	}
+	FILE *f = fopen("/proc/locks", "r");
+	if (!f)
+		return;
+	char line[256];
+	long me = (long)getpid(), pid = 0;
+	while (!pid && fgets(line, sizeof line, f)) {
+		long p;
+		unsigned long long i;
+		char type[16];
+		/* "1: POSIX  ADVISORY  WRITE 1234 08:01:5678 0 EOF" (a "->" marks a waiter) */
+		if (strstr(line, "->") || sscanf(line, "%*d: %15s %*s %*s %ld %*x:%*x:%llu", type, &p, &i) != 3)
+			continue;
+		for (int k = 0; k < ni; k++)
+			if (i == ino[k] && p != me)
+				pid = p;
+	}
+	fclose(f);
+	if (!pid)
+		return;
+	char cp[64], cmd[256] = "";
+	snprintf(cp, sizeof cp, "/proc/%ld/cmdline", pid);
+	FILE *c = fopen(cp, "r");
+	if (c) {
+		size_t n = fread(cmd, 1, sizeof cmd - 1, c);
+		fclose(c);
+		/* one line: the arguments' NULs and any control character become spaces, and a
+		 * long command line is cut */
+		for (size_t k = 0; k < n; k++)
+			if ((unsigned char)cmd[k] < 0x20)
+				cmd[k] = ' ';
+		while (n > 0 && cmd[n - 1] == ' ')
+			n--;
+		cmd[n] = 0;
+		if (n > 80)
+			snprintf(cmd + 77, sizeof cmd - 77, "...");
+	}
+	snprintf(out, len, "process %ld%s%s%s", pid, cmd[0] ? " (" : "", cmd, cmd[0] ? ")" : "");
+}
+
+struct sql_wait {
+	char path[1024];        /* the sql_db's, for the message */
+	long long t0;           /* the wait's start (ms, monotonic) */
+	int said;               /* told once */
+	void (*on_wait)(void *ctx, const char *msg);
+	void *ctx;
+};
+
+/* SQLite's busy handler: wait with growing naps up to SQL_WAIT_MS, telling on_wait once
+ * after SQL_SAY_MS (a reader silent for a minute looks hung). 0 ends the wait: the
+ * statement fails with SQLITE_BUSY, and sql_fail names the holder. */
+static int sql_busy(void *p, int n)
+{
+	struct sql_wait *w = p;
+	if (n == 0) {
+		w->t0 = now_ms();
+		w->said = 0;
+	}
+	long long waited = now_ms() - w->t0;
+	if (waited >= SQL_WAIT_MS)
+		return 0;
+	if (waited >= SQL_SAY_MS && !w->said && w->on_wait) {
+		char who[400], msg[1600];
+		sql_db d = {.wait = NULL};
+		snprintf(d.path, sizeof d.path, "%s", w->path);
+		sql_lock_holder(&d, who, sizeof who);
+		snprintf(msg, sizeof msg, "%s: waiting for %s, which holds the database's lock (up to %d s)", w->path,
+			 who[0] ? who : "another process", SQL_WAIT_MS / 1000);
+		w->on_wait(w->ctx, msg);
+		w->said = 1;
+	}
+	sqlite3_sleep(n < 5 ? 1 << n : 50);
+	return 1;
+}
+
+void sql_on_wait(sql_db *d, void (*f)(void *ctx, const char *msg), void *ctx)
+{
+	if (d->wait) {
+		d->wait->on_wait = f;
+		d->wait->ctx = ctx;
+	}
+}
+
+void sql_say_stderr(void *ctx, const char *msg)
+{
+	fprintf(stderr, "%s: %s\n", ctx ? (const char *)ctx : "sqlite", msg);
 }
 
 int sql_done(sql_db *d, sqlite3_stmt *st, sb_err *e)
@@ -89,7 +209,12 @@ int sql_open(sql_db *d, const char *path, int flags, sb_err *e)
 		return e->code;
 	}
 	/* readers wait for the driver's short write transactions instead of failing */
-	sqlite3_busy_timeout(d->h, 60000);
+	if (!(d->wait = calloc(1, sizeof *d->wait))) {
+		sql_close(d);
+		return sb_errf(e, SB_ENOMEM, "%s: out of memory", path);
+	}
+	snprintf(d->wait->path, sizeof d->wait->path, "%s", d->path);
+	sqlite3_busy_handler(d->h, sql_busy, d->wait);
 	if (sql_probe(d, e))
 		sql_close(d);
 	return e->code;
@@ -144,6 +269,8 @@ void sql_close(sql_db *d)
 	if (d->h)
 		sqlite3_close(d->h);
 	d->h = NULL;
+	free(d->wait);
+	d->wait = NULL;
 }
 
 int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...)

@@ -14,15 +14,30 @@
 	"move it aside with its -wal and -shm files and run study run on each campaign file: it is rebuilt "   \
 	"from the run files (docs/database.md, \"A damaged database\")"
 
+/* How long a statement waits for another process's transaction before it fails, and
+ * after how long the wait is said (sql_on_wait). */
+enum { SQL_WAIT_MS = 60000, SQL_SAY_MS = 2000 };
+
 typedef struct sql_db {
 	sqlite3 *h;
 	char path[1024]; /* named in every message */
 	char note[1400]; /* what opening it repaired (study/ledger/db.c), for the caller to say */
+	/* the wait for a lock held elsewhere (sql.c), allocated: SQLite's busy handler
+	 * keeps its address, which a copy of this struct must not change */
+	struct sql_wait *wait;
 } sql_db;
 
-/* Open path with SQLITE_OPEN_* flags; a reader waits up to a minute for a writer's
- * transaction. */
+/* Open path with SQLITE_OPEN_* flags; a statement waits up to SQL_WAIT_MS for another
+ * process's transaction, then fails naming the process that holds the lock. */
 int sql_open(sql_db *d, const char *path, int flags, sb_err *e);
+/* Tell f(ctx, message) once per wait when a statement has waited SQL_SAY_MS for a lock
+ * (the message names the holder where the system says it); sql_say_stderr prints it as
+ * "CTX: message" on stderr, for a program's main to choose. */
+void sql_on_wait(sql_db *d, void (*f)(void *ctx, const char *msg), void *ctx);
+void sql_say_stderr(void *ctx, const char *msg);
+/* Who holds a lock on the database or its -shm/-journal file: "process PID (COMMAND)",
+ * or "" when the system does not say (/proc/locks). */
+void sql_lock_holder(const sql_db *d, char *out, size_t len);
 void sql_close(sql_db *d);
 
 /* Prepared statement, bound from fmt: 't' text (NULL: null), 'l' long, 'd' double, 'n'

@@ -27,6 +27,7 @@ int adb_open(adb *d, const char *path, int writable, sb_err *e)
 	/* the driver may be writing: sql_open waits for its short transactions */
 	if (sql_open(&d->db, path, writable ? SQLITE_OPEN_READWRITE : SQLITE_OPEN_READONLY, e))
 		return e->code;
+	sql_on_wait(&d->db, sql_say_stderr, "analysis");
 	/* the tables every tool reads; attempt and result may be an older driver's */
 	if (schema_complete(&d->db, 0, e))
 		sql_close(&d->db);

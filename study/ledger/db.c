@@ -38,6 +38,8 @@ int db_open(st_db *d, const char *path, int writable, sb_err *e)
 	int flags = writable ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
 	if (sql_open(d, path, flags, e))
 		return e->code;
+	/* a wait for another process's lock is said after SQL_SAY_MS, with its holder */
+	sql_on_wait(d, sql_say_stderr, "study");
 	if (!writable)
 		return 0;
 	if (sql_script(d, "PRAGMA journal_mode = WAL; PRAGMA synchronous = NORMAL;", e))

@@ -115,4 +115,23 @@ rc=$?
 "$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
 rc=$?
 [ "$rc" = 0 ] && rebuilt values_ramp || fail values.ramp_rewritten "exit $rc: $(tail -n 2 run.log)"
+
+# --- a lock held elsewhere: the wait is said, with its holder, and ends with the lock ---
+fresh
+# an exclusive transaction held for 4 s by another process (python3's sqlite3: its
+# pid is the holder the message must name)
+/usr/bin/python3 -c 'import sqlite3, time, sys
+c = sqlite3.connect(sys.argv[1], isolation_level=None); c.execute("BEGIN EXCLUSIVE")
+c.execute("UPDATE campaign SET name = name"); print("held", flush=True); time.sleep(4); c.execute("COMMIT")' \
+	D/study.db >holder.out 2>&1 &
+holder=$!
+for _ in $(seq 100); do grep -q held holder.out && break; sleep 0.05; done
+# (a writer: in WAL mode readers do not wait for one)
+t0=$(date +%s%N)
+"$STUDY" run t.campaign --runs D --no-progress >lk.out 2>lk.err
+rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
+wait $holder
+[ "$rc" = 0 ] && grep -q "D/study.db: waiting for process $holder (/usr/bin/python3 -c import sqlite3.*which holds the database's lock (up to 60 s)" lk.err &&
+	[ "$ms" -ge 2000 ] && [ "$(grep -c waiting lk.err)" = 1 ] && ok lock.wait_said_with_holder ||
+	fail lock.wait_said_with_holder "exit $rc after $ms ms: $(head -c 300 lk.err)"
 finish
