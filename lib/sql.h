@@ -15,7 +15,9 @@ typedef struct sql_db {
 } sql_db;
 
 /* Open path with SQLITE_OPEN_* flags; a reader waits up to a minute for a writer's
- * transaction. */
+ * transaction. Refused when something other than a regular file stands at path or at
+ * a side file (-journal, -wal, -shm), and, without SQLITE_OPEN_CREATE, when the file
+ * is empty. */
 int sql_open(sql_db *d, const char *path, int flags, sb_err *e);
 void sql_close(sql_db *d);
 
