@@ -126,8 +126,8 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	sb_err ae = {0};
 	FILE *f = fs_open_input(args, "argument file", 1 << 20, SB_EIO, &ae);
 	if (!f) {
-		char why[1100];
-		snprintf(why, sizeof why, "exec: %s", access(args, F_OK) ? "missing argument file" : ae.msg);
+		char why[1024]; /* report_done's length: the message's end is what may go */
+		snprintf(why, sizeof why, "exec: %.1000s", access(args, F_OK) ? "missing argument file" : ae.msg);
 		report_done(name, 2, host, 0, why);
 		return 2; /* not transferred to this host: parallel --retries tries another */
 	}
