@@ -2,14 +2,23 @@
 #include "layout.h"
 
 #include <stdio.h>
+#include <string.h>
 
 #include "sim.h"
+
+#define LAY_DB "study.db"
 
 int layout_db(const char *runs, const char *db, char *out, size_t len)
 {
 	if (db)
 		return snprintf(out, len, "%s", db);
-	return snprintf(out, len, "%s/study.db", runs ? runs : "runs");
+	return snprintf(out, len, "%s/" LAY_DB, runs ? runs : "runs");
+}
+
+int layout_reserved(const char *name, const char *db_file)
+{
+	const char *f = db_file ? db_file : LAY_DB;
+	return *f && !strncmp(name, f, strlen(f));
 }
 
 int layout_campaign(const char *runs, const char *name, char *out, size_t len)

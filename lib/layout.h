@@ -40,5 +40,10 @@ int layout_cache_particles(const char *dir, const char *key, char *out, size_t l
 int layout_sub(const char *dir, const char *sub, char *out, size_t len);
 /* dir/SUB/ID.attemptN.h5: an output set aside */
 int layout_aside(const char *dir, const char *sub, const char *id, long attempt, char *out, size_t len);
+/* 1 when a campaign named name would take, as RUNS/NAME, a name of the runs directory's
+ * own files: the database's (db_file: its file name, NULL for study.db) and those kept
+ * beside it (SQLite's -journal, -wal, -shm, the driver's .NAME.lock), which all begin
+ * with it. */
+int layout_reserved(const char *name, const char *db_file);
 
 #endif

@@ -9,6 +9,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "fsutil.h"
+
 static int sql_fail(sql_db *d, int rc, sb_err *e);
 
 int sql_check(sql_db *d, char *why, size_t len)
@@ -198,11 +200,45 @@ int sql_failed(sql_db *d, int rc, sb_err *e)
 	return sql_fail(d, rc, e);
 }
 
+/* The database and the files SQLite keeps beside it: each is nothing or a regular file
+ * (docs/database.md). SQLite writes its pages into whatever it opens: a
+ * device would take them (a block device's first pages), a FIFO would hang every
+ * reader and writer, a link would put the campaign's record elsewhere. */
+static int sql_paths(const char *path, sb_err *e)
+{
+	static const char *const side[] = {"", "-journal", "-wal", "-shm"};
+	for (size_t i = 0; i < sizeof side / sizeof *side; i++) {
+		char p[1100];
+		const char *kind;
+		snprintf(p, sizeof p, "%s%s", path, side[i]);
+		if (!fs_replaceable(p, &kind))
+			return sb_errf(e, SB_EIO, "%s: %s stands there, not a regular file: the database %s is not opened "
+				       "(remove it)", p, kind, path);
+	}
+	return 0;
+}
+
+/* A reader's database that holds nothing: a file of 0 bytes (and no write-ahead log
+ * holding its pages) opens as a database without tables. */
+static int sql_empty(const char *path)
+{
+	char wal[1100];
+	struct stat st;
+	snprintf(wal, sizeof wal, "%s-wal", path);
+	return stat(path, &st) == 0 && st.st_size == 0 && (stat(wal, &st) != 0 || st.st_size == 0);
+}
+
 int sql_open(sql_db *d, const char *path, int flags, sb_err *e)
 {
 	memset(d, 0, sizeof *d);
 	snprintf(d->path, sizeof d->path, "%s", path);
-	if (sqlite3_open_v2(path, &d->h, flags, NULL) != SQLITE_OK) {
+	if (sql_paths(path, e))
+		return e->code;
+	if (!(flags & SQLITE_OPEN_CREATE) && sql_empty(path))
+		return sb_errf(e, SB_EUSAGE, "%s: an empty file (0 bytes): no campaigns in it (study run makes the "
+			       "database)", path);
+	/* NOFOLLOW: a link that comes between the check and the open is refused too */
+	if (sqlite3_open_v2(path, &d->h, flags | SQLITE_OPEN_NOFOLLOW, NULL) != SQLITE_OK) {
 		sb_errf(e, SB_EIO, "%s: cannot open database: %s", path, d->h ? sqlite3_errmsg(d->h) : "out of memory");
 		sqlite3_close(d->h);
 		d->h = NULL;

@@ -28,7 +28,9 @@ typedef struct sql_db {
 } sql_db;
 
 /* Open path with SQLITE_OPEN_* flags; a statement waits up to SQL_WAIT_MS for another
- * process's transaction, then fails naming the process that holds the lock. */
+ * process's transaction, then fails naming the process that holds the lock. Refused
+ * when something other than a regular file stands at path or at a side file
+ * (-journal, -wal, -shm), and, without SQLITE_OPEN_CREATE, when the file is empty. */
 int sql_open(sql_db *d, const char *path, int flags, sb_err *e);
 /* Tell f(ctx, message) once per wait when a statement has waited SQL_SAY_MS for a lock
  * (the message names the holder where the system says it); sql_say_stderr prints it as

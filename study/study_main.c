@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fsutil.h"
 #include "results.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
@@ -287,14 +288,20 @@ static int cmd_report(const study_args *o)
 	} else if (o->bit == OPTS_LIST) {
 		report_list(dbp, stdout, &e);
 	} else {
-		FILE *out = o->outfile ? fopen(o->outfile, "w") : stdout;
-		if (!out) {
-			fprintf(stderr, "study: %s: %s\n", o->outfile, strerror(errno));
-			return 2;
-		}
-		report_export(dbp, name, out, &e);
-		if (o->outfile && fclose(out) && !e.code)
-			sb_errf(&e, SB_EIO, "%s: cannot write", o->outfile);
+		/* --out FILE: written whole or not at all, only over nothing or a regular
+		 * file (a link is not followed, a FIFO does not hang the export) */
+		sb_file sf = {0};
+		const char *kind;
+		if (o->outfile && !fs_replaceable(o->outfile, &kind))
+			sb_errf(&e, SB_EIO, "%s: %s stands there, not a regular file: not written", o->outfile, kind);
+		else if (o->outfile)
+			fs_open_tmp(&sf, o->outfile, &e);
+		if (!e.code)
+			report_export(dbp, name, o->outfile ? sf.f : stdout, &e);
+		if (o->outfile && sf.f && e.code)
+			fs_abort(&sf);
+		else if (o->outfile && sf.f)
+			fs_commit(&sf, &e);
 	}
 	if (e.code) {
 		fprintf(stderr, "study: %s\n", e.msg);

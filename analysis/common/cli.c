@@ -3,6 +3,7 @@
 
 #include "dirs.h"
 #include "drive.h"
+#include "fsutil.h"
 #include "inifile.h"
 #include "label.h"
 #include "layout.h"
@@ -464,15 +465,33 @@ void cli_keys(const an_opts *o, char axes[][48], int na, const char *const *alwa
 
 int cli_outdir(const an_opts *o, sb_err *e)
 {
-	return dirs_make(o->out, e);
+	/* the engine's rule for what it writes (docs/output.md): the output directory is
+	 * one, not a link to somewhere else (written through, it would put the files
+	 * outside the runs directory) nor a FIFO or device */
+	struct stat st;
+	if (lstat(o->out, &st) == 0 && !S_ISDIR(st.st_mode))
+		return sb_errf(e, SB_EIO, "%s: %s stands there, not a directory: nothing written (remove it, or give "
+			       "--out)", o->out, fs_kind((unsigned)st.st_mode));
+	if (dirs_make(o->out, e))
+		return e->code;
+	if (lstat(o->out, &st) || !S_ISDIR(st.st_mode)) /* one that came meanwhile */
+		return sb_errf(e, SB_EIO, "%s: not a directory: nothing written", o->out);
+	return 0;
 }
 
 FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_err *e)
 {
 	snprintf(path, len, "%s/%s", o->out, name);
-	FILE *f = fopen(path, "w");
-	if (!f)
+	/* only over nothing or a regular file: a link is not followed, a FIFO would hang
+	 * the tool, a device swallow the table (fs_create) */
+	const int fd = fs_create(path, 0, e);
+	if (fd < 0)
+		return NULL;
+	FILE *f = fdopen(fd, "w");
+	if (!f) {
 		sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
+		close(fd);
+	}
 	return f;
 }
 
@@ -487,14 +506,28 @@ void gp_str(FILE *f, const char *s)
 	fputc('\'', f);
 }
 
+/* A figure's path: nothing or a regular file may stand there (fs_replaceable). */
+static int gp_target(const char *path, sb_err *e)
+{
+	const char *kind;
+	if (!fs_replaceable(path, &kind))
+		return sb_errf(e, SB_EIO, "%s: %s stands there, not a regular file: not written", path, kind);
+	return 0;
+}
+
 FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, char *png, size_t len, sb_err *e)
 {
-	char n[256];
+	char n[256], pdf[1400];
+	snprintf(png, len, "%s/%s.png", o->out, name);
+	snprintf(pdf, sizeof pdf, "%s/%s.pdf", o->out, name);
+	/* gnuplot opens the figures itself, following what stands there: a node at
+	 * either is refused before anything of the figure is written */
+	if (gp_target(png, e) || gp_target(pdf, e))
+		return NULL;
 	snprintf(n, sizeof n, "%s.gp", name);
 	FILE *f = cli_fopen(o, n, script, len, e);
 	if (!f)
 		return NULL;
-	snprintf(png, len, "%s/%s.png", o->out, name);
 	/* data files and the figures are named relative to the output directory */
 	fprintf(f, "cd ");
 	gp_str(f, o->out);
@@ -502,14 +535,17 @@ FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, ch
 	 * is the PNG's layout on w/100 x h/100 inches with 10-pt letters, so that scaled to
 	 * a page's width (7 in) its letters are about 7 pt. The text is UTF-8 (Φ, 𝓡, f₀),
 	 * taken literally (noenhanced: an underscore stays one). */
+	/* gp_run has gnuplot draw into temporary names (gp_tmp, fs_tmp_name's suffix) that
+	 * it renames into place; run by hand, the script writes the figures themselves */
 	fprintf(f, "\nset encoding utf8\nset datafile separator ','\n"
+		   "gp_tmp = exists('gp_tmp') ? gp_tmp : ''\n"
 		   "do for [gp_fmt in 'png pdf'] {\n"
 		   "if (gp_fmt eq 'png') {\n"
 		   "  set terminal pngcairo size %d,%d font 'sans,10' noenhanced\n"
 		   "} else {\n"
 		   "  set terminal pdfcairo size %.2fin,%.2fin font 'sans,10' fontscale 1 noenhanced\n"
 		   "}\n"
-		   "set output '%s.'.gp_fmt\n"
+		   "set output '%s.'.gp_fmt.gp_tmp\n"
 		   "unset object\nunset arrow\nunset label\nset grid lc rgb '#dddddd' lw 0.5 dt 1\nset key below height 1\n",
 		w, h, w / 100.0, h / 100.0, name);
 	return f;
@@ -593,13 +629,33 @@ static int pdf_undate(const char *pdf, sb_err *e)
 	return 0;
 }
 
+/* The temporary a figure is drawn into (fs_tmp_name), made here as an empty regular
+ * file: gnuplot truncates what stands at it, and never meets a node planted there. */
+static int gp_tmp_file(const char *path, char *tmp, size_t n, sb_err *e)
+{
+	fs_tmp_name(path, tmp, n);
+	const int fd = fs_create(tmp, 0, e);
+	if (fd < 0)
+		return e->code;
+	close(fd);
+	return 0;
+}
+
 int gp_run(const char *script, const char *png, sb_err *e)
 {
-	char pdf[1400];
+	char pdf[1400], tpng[1500], tpdf[1500], suffix[64], def[96];
 	with_ext(pdf, sizeof pdf, png, "pdf");
-	unlink(png);
-	unlink(pdf);
-	char *argv[] = {"gnuplot", (char *)script, NULL};
+	if (gp_target(png, e) || gp_target(pdf, e))
+		return e->code;
+	if (gp_tmp_file(png, tpng, sizeof tpng, e))
+		return e->code;
+	if (gp_tmp_file(pdf, tpdf, sizeof tpdf, e)) {
+		unlink(tpng);
+		return e->code;
+	}
+	snprintf(suffix, sizeof suffix, "%s", tpng + strlen(png));
+	snprintf(def, sizeof def, "gp_tmp='%s'", suffix);
+	char *argv[] = {"gnuplot", "-e", def, (char *)script, NULL};
 	pid_t pid;
 	posix_spawn_file_actions_t fa;
 	posix_spawn_file_actions_init(&fa);
@@ -608,15 +664,19 @@ int gp_run(const char *script, const char *png, sb_err *e)
 	posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", 0, 0);
 	int rc = posix_spawnp(&pid, "gnuplot", &fa, NULL, argv, environ);
 	posix_spawn_file_actions_destroy(&fa);
-	if (rc)
-		return sb_errf(e, SB_EIO, "cannot run gnuplot: %s", strerror(rc));
-	int st;
-	if (waitpid(pid, &st, 0) < 0 || !WIFEXITED(st) || WEXITSTATUS(st))
-		return sb_errf(e, SB_EIO, "%s: gnuplot failed", script);
+	int st, r = 0;
 	struct stat sb;
-	if (stat(png, &sb) || !sb.st_size)
-		return sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, png);
-	if (stat(pdf, &sb) || !sb.st_size)
-		return sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, pdf);
-	return pdf_undate(pdf, e);
+	if (rc)
+		r = sb_errf(e, SB_EIO, "cannot run gnuplot: %s", strerror(rc));
+	else if (waitpid(pid, &st, 0) < 0 || !WIFEXITED(st) || WEXITSTATUS(st))
+		r = sb_errf(e, SB_EIO, "%s: gnuplot failed", script);
+	else if (stat(tpng, &sb) || !sb.st_size)
+		r = sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, png);
+	else if (stat(tpdf, &sb) || !sb.st_size)
+		r = sb_errf(e, SB_EIO, "%s: gnuplot wrote no %s", script, pdf);
+	else if (!(r = pdf_undate(tpdf, e)) && !(r = fs_rename_durable(tpng, png, e)))
+		r = fs_rename_durable(tpdf, pdf, e);
+	unlink(tpng); /* gone when renamed; a figure drawn in part is not left */
+	unlink(tpdf);
+	return r;
 }

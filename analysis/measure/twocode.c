@@ -100,34 +100,85 @@ int tc_flip_p(const double *d, size_t n, int rank, double *p, int *exact, sb_err
 	return 0;
 }
 
-double tc_mcnemar_power(long n, double pa, double pb, double alpha)
+/* What every power of one n and alpha shares: whether the discordant counts (b, c) are
+ * significant (sig[m(m+1)/2 + b], m = b + c: the sign test's two GSL tails per cell
+ * are most of the cost) and lgamma(i + 1) for i = 0..n. Computed once, the search of
+ * tc_mcnemar_detect over up to 1000 differences costs sums only, with the same terms
+ * in the same order as before. */
+typedef struct mc_table {
+	long n;
+	unsigned char *sig;
+	double *lgf;
+} mc_table;
+
+static int mc_init(mc_table *t, long n, double alpha)
 {
-	if (n < 1 || !(pa >= 0 && pa <= 1) || !(pb >= 0 && pb <= 1))
-		return NAN;
+	t->n = n;
+	t->sig = malloc((size_t)(n + 1) * (size_t)(n + 2) / 2);
+	t->lgf = malloc(sizeof *t->lgf * (size_t)(n + 1));
+	if (!t->sig || !t->lgf)
+		return -1;
+	for (long m = 0; m <= n; m++)
+		for (long b = 0; b <= m; b++)
+			t->sig[m * (m + 1) / 2 + b] = tc_sign_p(b, m) < alpha;
+	for (long i = 0; i <= n; i++)
+		t->lgf[i] = lgamma((double)i + 1);
+	return 0;
+}
+
+static void mc_free(mc_table *t)
+{
+	free(t->sig);
+	free(t->lgf);
+}
+
+static double mc_power(const mc_table *t, double pa, double pb)
+{
+	const long n = t->n;
 	const double q1 = pa * (1 - pb), q2 = pb * (1 - pa), q0 = 1 - q1 - q2;
+	/* each term whole in logarithms: the trinomial coefficient alone passes DBL_MAX
+	 * from n ~ 650 beds on (inf times an underflowed power made the sum NaN, taken as
+	 * power 1); a probability 0 contributes only where its count is 0 (0^0 = 1) */
+	const double l1 = log(q1), l2 = log(q2), l0 = log(fmax(0, q0));
 	double pw = 0;
 	for (long b = 0; b <= n; b++)
 		for (long c = 0; b + c <= n; c++) {
-			if (!(tc_sign_p(b, b + c) < alpha))
+			const long m = b + c;
+			if (!t->sig[m * (m + 1) / 2 + b])
 				continue;
 			const long r = n - b - c;
-			const double lg = lgamma((double)n + 1) - lgamma((double)b + 1) - lgamma((double)c + 1) -
-					  lgamma((double)r + 1);
-			pw += exp(lg) * pow(q1, (double)b) * pow(q2, (double)c) * pow(q0, (double)r);
+			const double lg = t->lgf[n] - t->lgf[b] - t->lgf[c] - t->lgf[r];
+			pw += exp(lg + (b ? (double)b * l1 : 0) + (c ? (double)c * l2 : 0) + (r ? (double)r * l0 : 0));
 		}
 	return fmin(1, pw);
 }
 
+double tc_mcnemar_power(long n, double pa, double pb, double alpha)
+{
+	if (n < 1 || n > TC_MCNEMAR_MAX || !(pa >= 0 && pa <= 1) || !(pb >= 0 && pb <= 1))
+		return NAN;
+	mc_table t;
+	const double pw = mc_init(&t, n, alpha) ? NAN : mc_power(&t, pa, pb);
+	mc_free(&t);
+	return pw;
+}
+
 double tc_mcnemar_detect(long n, double p0, int dir, double alpha, double power)
 {
-	if (n < 1 || !(p0 >= 0 && p0 <= 1) || (dir != 1 && dir != -1))
+	if (n < 1 || n > TC_MCNEMAR_MAX || !(p0 >= 0 && p0 <= 1) || (dir != 1 && dir != -1))
 		return NAN;
-	for (int k = 1; k <= 1000; k++) {
-		const double delta = k * 1e-3, pb = p0 + dir * delta;
-		if (pb < -1e-12 || pb > 1 + 1e-12)
-			break;
-		if (tc_mcnemar_power(n, p0, fmin(1, fmax(0, pb)), alpha) >= power)
-			return delta;
-	}
-	return NAN;
+	mc_table t;
+	double found = NAN;
+	if (!mc_init(&t, n, alpha))
+		for (int k = 1; k <= 1000; k++) {
+			const double delta = k * 1e-3, pb = p0 + dir * delta;
+			if (pb < -1e-12 || pb > 1 + 1e-12)
+				break;
+			if (mc_power(&t, p0, fmin(1, fmax(0, pb))) >= power) {
+				found = delta;
+				break;
+			}
+		}
+	mc_free(&t);
+	return found;
 }

@@ -33,6 +33,10 @@ int tc_flip_p(const double *d, size_t n, int rank, double *p, int *exact, sb_err
  * discordant counts (b, c), trinomial with probabilities pa(1 - pb), pb(1 - pa). */
 double tc_mcnemar_power(long n, double pa, double pb, double alpha);
 
+/* The most beds the power is computed for (NaN above): the sum has n^2/2 terms per
+ * difference tried, up to 1000 differences; at this n, a few seconds. */
+#define TC_MCNEMAR_MAX 1000
+
 /* The smallest difference delta (in steps of 0.001) such that pb = p0 + dir * delta
  * (dir = +1 or -1, pb within [0, 1]) is detected with at least `power`; NaN when no
  * such pb exists. */

@@ -11,11 +11,15 @@
 #include <string.h>
 
 #include "flux.h"
+#include "fsutil.h"
 #include "quantile.h"
 #include "measure/dumpflux.h"
 #include "measure/lowerrow.h"
 #include "measure/pairdiff.h"
 #include "measure/twocode.h"
+
+#define TC_STR2(x) #x
+#define TC_STR(x) TC_STR2(x)
 
 static const char *HELP =
 	"usage: dumpflux run RUN.h5 [--skip FRAC] [--periods]\n"
@@ -67,7 +71,7 @@ static const char *HELP =
 	"         power N P0   'up down': the smallest differences up and down from the\n"
 	"                      fraction P0 that McNemar's exact test at 1 - L detects with\n"
 	"                      80 % power over N beds, the codes' outcomes independent given\n"
-	"                      the bed (nan: none within [0, 1]).\n";
+	"                      the bed (nan: none within [0, 1]); N at most " TC_STR(TC_MCNEMAR_MAX) ".\n";
 
 static int usage(const char *msg)
 {
@@ -203,14 +207,23 @@ static int cmd_dump(int argc, char **argv)
 	return 0;
 }
 
+/* A text input, a regular file only (docs/inputs.md, "Files": a FIFO would hang the
+ * read, a device never end); NULL when refused, said on stderr. */
+static FILE *open_input(const char *path, const char *what)
+{
+	sb_err e = {0};
+	FILE *f = fs_open_input(path, what, 0, SB_EIO, &e);
+	if (!f)
+		fprintf(stderr, "dumpflux: %s\n", e.msg);
+	return f;
+}
+
 /* A profile TSV (line, height, phi) into h[], phi[] (L values; *L set by the first). */
 static int read_profile(const char *path, size_t *L, double **h, double **phi)
 {
-	FILE *f = fopen(path, "r");
-	if (!f) {
-		fprintf(stderr, "dumpflux: %s: cannot read: %s\n", path, strerror(errno));
+	FILE *f = open_input(path, "profile");
+	if (!f)
 		return 2;
-	}
 	char line[512];
 	size_t n = 0, cap = 0;
 	double *hh = NULL, *pp = NULL;
@@ -364,11 +377,9 @@ static void describe(double *v, size_t n, double level, double *mean, double *ha
 
 static int stats_paired(const char *path, double level)
 {
-	FILE *f = fopen(path, "r");
-	if (!f) {
-		fprintf(stderr, "dumpflux: %s: cannot read: %s\n", path, strerror(errno));
+	FILE *f = open_input(path, "paired file");
+	if (!f)
 		return 2;
-	}
 	char line[512];
 	size_t n = 0, cap = 0, row = 0;
 	double *a = NULL, *b = NULL, *d = NULL;
@@ -471,8 +482,10 @@ static int cmd_stats(int argc, char **argv)
 		return na == 2 ? stats_paired(arg[1], level) : usage("stats paired: one file of rows 'a b'");
 	if (want == -2) {
 		double p0;
-		if (na != 3 || !count(arg[1], &v[0]) || v[0] < 1 || !num(arg[2], &p0) || p0 < 0 || p0 > 1)
-			return usage("stats power: N (beds, >= 1) and P0 (a fraction)");
+		/* the sum grows as N^2 per difference tried: bounded, at most a few seconds */
+		if (na != 3 || !count(arg[1], &v[0]) || v[0] < 1 || v[0] > TC_MCNEMAR_MAX || !num(arg[2], &p0) || p0 < 0 ||
+		    p0 > 1)
+			return usage("stats power: N (beds, 1 to " TC_STR(TC_MCNEMAR_MAX) ") and P0 (a fraction in [0, 1])");
 		printf("%.3f\t%.3f\n", tc_mcnemar_detect(v[0], p0, 1, 1 - level, 0.8),
 		       tc_mcnemar_detect(v[0], p0, -1, 1 - level, 0.8));
 		return 0;

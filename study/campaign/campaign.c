@@ -12,6 +12,7 @@
 #include "num.h"
 #include "axes.h"
 #include "inifile.h"
+#include "layout.h"
 #include "words.h"
 #include "rule/adapt.h"
 #include "safe.h"
@@ -451,7 +452,14 @@ static int campaign_key(struct rd *r, const char *where, const char *name, const
 		if (!safe_name(value))
 			return sb_errf(e, SB_EUSAGE, "%s: name: '%s' is not a valid campaign name "
 				       "(1-64 of [A-Za-z0-9_.-], not starting with '.' or '-')", where, value);
+		/* RUNS/NAME is the campaign's directory: it must not be the database or a
+		 * file beside it (docs/driver.md, "Safety") */
+		if (layout_reserved(value, NULL))
+			return sb_errf(e, SB_EUSAGE, "%s: name: '%s' is a name of the runs directory's own files (the "
+				       "database study.db and the files beside it: -journal, -wal, -shm, .NAME.lock); "
+				       "choose a name that does not begin with 'study.db'", where, value);
 		snprintf(c->name, sizeof c->name, "%s", value);
+		c->name_line = r->line;
 		r->seen_name = 1;
 	} else if (!strcmp(name, "description")) {
 		snprintf(c->description, sizeof c->description, "%s", value);

@@ -83,6 +83,7 @@ enum cp_derive { CP_DERIVE_NONE, CP_DERIVE_FREQUENCY, CP_DERIVE_AMPLITUDE, CP_DE
 typedef struct campaign {
 	char path[SB_STR_MAX];
 	char name[80];
+	int name_line;
 	char description[1024];
 	char scene_file[SB_STR_MAX];    /* resolved: relative to the campaign file's directory */
 	unsigned long long seed;        /* campaign seed */

@@ -353,11 +353,17 @@ int opts_parse(study_args *a, int argc, char **argv, sb_err *e)
 			o = find_long(arg + 2, len);
 			inl = eq ? eq + 1 : NULL;
 		} else {
-			o = arg[2] ? NULL : find_short(arg[1]);
+			/* -j 2 and, as getopt reads it, -j2: the rest of the word is the value
+			 * (a flag takes none; flags are not bundled) */
+			o = find_short(arg[1]);
+			if (o && arg[2] && o->type == OT_FLAG)
+				o = NULL;
+			else if (o && arg[2])
+				inl = arg + 2;
 		}
 		if (!o)
 			return unknown(c, arg, e);
-		snprintf(shown, sizeof shown, "%.*s", (int)strcspn(arg, "="), arg);
+		snprintf(shown, sizeof shown, "%.*s", arg[1] == '-' ? (int)strcspn(arg, "=") : 2, arg);
 		if (!(o->cmds & c->bit)) {
 			char by[256];
 			command_list(o, by, sizeof by);

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "fsutil.h"
 #include "layout.h"
 #include "params.h"
 #include "campaign/safe.h"
@@ -50,7 +51,8 @@ static void clean(char *s)
 void worker_last_message(const char *log, long from, char *out, size_t len)
 {
 	out[0] = 0;
-	FILE *f = fopen(log, "r");
+	sb_err e = {0};
+	FILE *f = fs_open_input(log, "run log", 0, SB_EIO, &e); /* a regular file only (docs/inputs.md) */
 	if (!f)
 		return;
 	if (from > 0)
@@ -120,9 +122,13 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		return 0;
 	}
 
-	FILE *f = fopen(args, "r");
+	/* a regular file only (docs/inputs.md, "Files"): a FIFO would hang the worker */
+	sb_err ae = {0};
+	FILE *f = fs_open_input(args, "argument file", 1 << 20, SB_EIO, &ae);
 	if (!f) {
-		report_done(name, 2, host, 0, "exec: missing argument file");
+		char why[1024]; /* report_done's length: the message's end is what may go */
+		snprintf(why, sizeof why, "exec: %.1000s", access(args, F_OK) ? "missing argument file" : ae.msg);
+		report_done(name, 2, host, 0, why);
 		return 2; /* not transferred to this host: parallel --retries tries another */
 	}
 	char *argv[129]; /* the engine, 126 lines of the argument file, run_id, NULL */

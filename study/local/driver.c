@@ -5,6 +5,8 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <libgen.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -640,6 +642,24 @@ static void autorep_summary(drv *d)
 	}
 }
 
+/* A database given with --db in the runs directory: the campaign's directory must not
+ * take its name or that of a file beside it (layout_reserved; campaign_load has refused
+ * those of study.db). */
+static int name_free(const drv *d, sb_err *e)
+{
+	char db[PATHLEN], dir[PATHLEN], real[PATH_MAX];
+	if (!d->o->db_path)
+		return 0;
+	snprintf(db, sizeof db, "%s", d->o->db_path);
+	snprintf(dir, sizeof dir, "%s", d->o->db_path);
+	const char *file = basename(db);
+	if (!realpath(dirname(dir), real) || strcmp(real, d->root) || !layout_reserved(d->c.name, file))
+		return 0;
+	return sb_errf(e, SB_EUSAGE, "%s:%d: name: '%s' is a name of the runs directory's own files (the database %s "
+		       "and the files beside it: -journal, -wal, -shm, .NAME.lock); choose a name that does not begin "
+		       "with '%s'", d->c.path, d->c.name_line, d->c.name, d->o->db_path, file);
+}
+
 int driver_run(const driver_opts *o, sb_err *e)
 {
 	drv *d = calloc(1, sizeof *d);
@@ -665,6 +685,8 @@ int driver_run(const driver_opts *o, sb_err *e)
 		sb_errf(e, SB_EUSAGE, "%s: path too long", d->root);
 		goto out;
 	}
+	if (name_free(d, e))
+		goto out;
 	/* the campaign name is checked ([A-Za-z0-9_.-], no leading dot): this stays inside root */
 	layout_campaign(d->root, d->c.name, d->dir, sizeof d->dir);
 	if (driver_dirs(d, driver_subdirs, DRIVER_NSUB, e))

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fsutil.h"
 #include "layout.h"
 #include "campaign/safe.h"
 
@@ -16,7 +17,8 @@ void packing_of_args(const char *dir, const char *id, char *key, size_t len)
 	char p[4400], line[1200];
 	key[0] = 0;
 	layout_file(dir, 0, id, LAY_ARGS, p, sizeof p);
-	FILE *f = fopen(p, "r");
+	sb_err e = {0};
+	FILE *f = fs_open_input(p, "argument file", 1 << 20, SB_EIO, &e); /* a regular file only */
 	if (!f)
 		return;
 	while (fgets(line, sizeof line, f)) {

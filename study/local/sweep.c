@@ -10,10 +10,47 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
 #include "dirs.h"
+#include "fsutil.h"
 #include "h5sum.h"
 #include "layout.h"
 #include "drv.h"
+
+/* Whatever stands at path (a link itself, not what it points to) moved to keep, only
+ * over nothing or a regular file: a node planted at keep is neither replaced nor
+ * written (fs_rename_durable). */
+static int move_aside(const char *path, const char *keep, sb_err *e)
+{
+	sb_err re = {0};
+	if (fs_rename_durable(path, keep, &re))
+		return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, re.msg);
+	return 0;
+}
+
+/* 1 when something stands at path (lstat: a dangling link too) */
+static int present(const char *path)
+{
+	struct stat st;
+	return lstat(path, &st) == 0;
+}
+
+/* Why a done run's file cannot be its record, or NULL when it can be read (h5sum_read,
+ * error in re): missing, or not a regular file at the name (a link to elsewhere, the
+ * engine's rule for its outputs, docs/output.md) - moved aside as a damaged file is. */
+static const char *done_unreadable(const char *path, const char *id, sb_err *re, char *buf, size_t n)
+{
+	struct stat st;
+	h5sum s;
+	if (lstat(path, &st))
+		return "the output file is missing";
+	if (!S_ISREG(st.st_mode)) {
+		snprintf(buf, n, "%s stands at its output file, not a regular file", fs_kind((unsigned)st.st_mode));
+		return buf;
+	}
+	return h5sum_read(path, id, &s, re) ? re->msg : NULL;
+}
 
 /* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
  * is recorded with the reason, the result row goes, and the run is pending again. */
@@ -21,13 +58,13 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
 {
 	char path[PATHX], keep[PATHX + 64], now[32];
 	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
-	if (exists(path)) {
+	if (present(path)) {
 		layout_sub(d->dir, "damaged", keep, sizeof keep);
 		if (dirs_own(keep, e))
 			return e->code;
 		layout_aside(d->dir, "damaged", id, att, keep, sizeof keep);
-		if (rename(path, keep))
-			return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
+		if (move_aside(path, keep, e))
+			return e->code;
 	}
 	fprintf(stderr, "study: %s: run %s was done but %s: run again\n", d->c.name, id, why);
 	db_now(now, sizeof now);
@@ -106,10 +143,11 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			/* a finished run's file is read again on every sweep: a truncated or
 			 * deleted one puts the run back in the queue instead of shrinking its
 			 * group silently */
-			h5sum s;
 			sb_err re = {0};
-			if (!exists(path) || h5sum_read(path, r->id, &s, &re)) {
-				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
+			char buf[128];
+			const char *why = done_unreadable(path, r->id, &re, buf, sizeof buf);
+			if (why) {
+				if (requeue_damaged(d, r->id, att, why, e))
 					return e->code;
 				queued = 1;
 			}
@@ -134,8 +172,8 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			if (exists(path)) {
 				char keep[PATHX];
 				layout_aside(d->dir, "failed", r->id, att, keep, sizeof keep);
-				if (rename(path, keep))
-					return sb_errf(e, SB_EIO, "%s: cannot move aside: %s", path, strerror(errno));
+				if (move_aside(path, keep, e))
+					return e->code;
 			}
 			if (db_begin(&d->db, e))
 				return e->code;

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "fsutil.h"
 #include "layout.h"
 #include "params.h"
 #include "provenance.h"
@@ -118,7 +119,9 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 	layout_calibration(runs, NULL, dir, sizeof dir);
 	layout_calibration(runs, tag, path, sizeof path);
 
-	FILE *f = fopen(path, "r");
+	/* a regular file only: a FIFO planted there would hang the driver */
+	sb_err re = {0};
+	FILE *f = fs_open_input(path, "calibration", 1 << 20, SB_EIO, &re);
 	if (f) {
 		char date[64] = "";
 		const int got = fscanf(f, "%lg %lg %63s", &k->step, &k->settle, date);
@@ -176,16 +179,17 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 	remove(xmf);
 	calib_fit(cpu[0], ceil(CAL_SHORT / s.dt - 1e-9), cpu[1], ceil(cal_long / s.dt - 1e-9), s.n_grains, k);
 
-	char date[32], tmp[4300];
+	char date[32];
 	prov_now(date);
-	snprintf(tmp, sizeof tmp, "%.4000s/%.100s.tmp", dir, tag);
-	f = fopen(tmp, "w");
-	if (!f)
-		return sb_errf(e, SB_EIO, "%s: %s", tmp, strerror(errno));
-	fprintf(f, "%.6g %.6g %s\n# CPU s per grain-step, CPU s per grain of a settling, when; measured with %s on:\n%s",
+	/* through a temporary (fsutil.h): a reader never sees half of it, and nothing but a
+	 * regular file at its name is replaced */
+	sb_file sf;
+	if (fs_open_tmp(&sf, path, e))
+		return e->code;
+	fprintf(sf.f, "%.6g %.6g %s\n# CPU s per grain-step, CPU s per grain of a settling, when; measured with %s on:\n%s",
 		k->step, k->settle, date, preset, version);
-	if (fclose(f) || rename(tmp, path))
-		return sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
+	if (fs_commit(&sf, e))
+		return e->code;
 	const double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
 	snprintf(k->source, sizeof k->source, "%s, measured now in %.1f s (%.4200s)", integ, secs, path);
 	return 0;

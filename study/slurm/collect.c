@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "dirs.h"
+#include "fsutil.h"
 #include "layout.h"
 #include "lock.h"
 #include "schema.h"
@@ -96,7 +97,8 @@ static int tlog_read(drv *d, long job, long index, tlog *t, sb_err *e)
 	memset(t, 0, sizeof *t);
 	char p[PATHX + 64];
 	snprintf(p, sizeof p, "%s/" SLURM_SUB "/logs/%ld_%ld.out", d->dir, job, index);
-	FILE *f = fopen(p, "r");
+	sb_err fe = {0};
+	FILE *f = fs_open_input(p, "Slurm task log", 0, SB_EIO, &fe); /* a regular file only */
 	if (!f)
 		return 0;
 	t->exists = 1;
