@@ -4,6 +4,11 @@
 #     the system's word for it, never a crash at exit (HDF5 1.10 closes a file whose
 #     close failed a second time in its exit handler: core/h5md.c, h5w_init), and no
 #     temporary file is left;
+#   * a full disk found only when HDF5 closes a dataset (its last chunks are written
+#     then; staged with the build/faults/iofail.so shim, IOFAIL_CLOSE) is the same I/O
+#     fault: exit 2, nothing at the run file's name (never a sealed file holding zeros
+#     where the chunks belong), the finished run kept as a checkpoint, and the same
+#     command then writes the file;
 #   * a read-only runs directory is an I/O fault of `study run` (exit 2, the lock file
 #     and why), not "another study driver" (exit 4, which only a held lock is);
 #   * an engine that crashes (SIGSEGV, SIGABRT) has failed - recorded with its signal,
@@ -47,6 +52,29 @@ if tmpfs full size=48k; then
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
 else
 	echo "skip full_disk: cannot mount a tmpfs here (not root?)"
+fi
+
+# --- a full disk at a dataset's close (its chunk flush): exit 2, no file at the final
+# name; run again, the finished run is written from its checkpoint ---
+SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+if [ -f "$SHIM" ]; then
+	mkdir closing
+	LD_PRELOAD="$SHIM" IOFAIL_CLOSE=.h5.tmp. ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing.log 2>&1
+	rc=$?
+	left=$(cd closing && ls -A | tr '\n' ' ')
+	[ "$rc" = 2 ] && [ "$left" = "r.h5.ckpt r.h5.journal " ] &&
+		grep -q "^shake: $TMP/closing/r.h5.tmp.[0-9]*: writing the HDF5 output failed: No space left on device" closing.log &&
+		grep -q "^shake: checkpoint $TMP/closing/r.h5.ckpt holds the finished run" closing.log &&
+		ok full_disk.at_dataset_close || fail full_disk.at_dataset_close "exit $rc, files [$left]: $(head -c 300 closing.log)"
+	"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing2.log 2>&1
+	rc=$?
+	left=$(cd closing && ls -A | tr '\n' ' ')
+	[ "$rc" = 0 ] && [ "$left" = "r.h5 r.xmf " ] && grep -q "^shake: resuming from" closing2.log &&
+		[ "$(attr "$TMP/closing/r.h5" /status)" = ok ] && ok full_disk.at_dataset_close.then_written ||
+		fail full_disk.at_dataset_close.then_written "exit $rc, files [$left]: $(head -c 300 closing2.log)"
+else
+	fail full_disk.at_dataset_close "$SHIM is missing (make tests builds it)"
 fi
 
 # --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---
