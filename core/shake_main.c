@@ -154,9 +154,10 @@ int main(int argc, char **argv)
 		free(s);
 		return e.code;
 	}
+	const int progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
 	s->stop = &g_stop;
 	s->profile = profile;
-	s->progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
+	s->progress = progress;
 
 	int loaded = sc.restart == TRI_NO ? 0 : ckpt_load(s, &e);
 	if (loaded < 0 || e.code) {
@@ -167,9 +168,14 @@ int main(int argc, char **argv)
 	}
 	if (loaded) { /* always said: a log must show that a run continued another */
 		fprintf(stderr, "shake: resuming from %s at t = %.4f s\n", s->ckpt_path, s->step * sc.dt);
-	} else if (s->warning[0]) { /* a checkpoint it could not use */
+	} else if (s->warning[0]) { /* a checkpoint it could not use: the run starts over */
 		fprintf(stderr, "shake: warning: %s\n", s->warning);
-		s->warning[0] = 0;
+		/* from a fresh setup: the checkpoint may have been read in part */
+		sim_free(s);
+		sim_init(s, &sc, &e);
+		s->stop = &g_stop;
+		s->profile = profile;
+		s->progress = progress;
 	}
 	if (!loaded) {
 		if (s->progress)
