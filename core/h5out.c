@@ -750,19 +750,23 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			}
 			pos += (size_t)l;
 		}
-	for (int k = 0; k < REC_N && !rc; k++)
+	/* (a write that failed stopped the reading: said as that, by the caller) */
+	for (int k = 0; k < REC_N && !rc && !h->bad; k++)
 		if (got[k] != s->rec_n[k])
 			rc = sb_errf(e, SB_EIO, "%s: journal holds %ld %s records, expected %ld", s->journal_path, got[k],
 				     R[k].name, s->rec_n[k]);
+	/* a journal not read to its end (a write that failed first, a short journal) has
+	 * not the records the counters say: nothing more is copied, the file is not kept */
+	const int whole = !rc && !h->bad;
 	if (s->intruder >= 0) {
-		write_intruder(h, s, parts, rec[REC_TRAJ].d, (long)T);
-		if (!rc && T > 0)
+		write_intruder(h, s, parts, rec[REC_TRAJ].d, whole ? (long)T : 0);
+		if (whole && T > 0)
 			intruder_summary(h, s, rec[REC_TRAJ].d, (long)T);
 	}
 	int obs_on = 0;
 	for (int k = 0; k < REC_N; k++)
 		obs_on |= (R[k].flags & RECF_OBS) && rec_on(s, k);
-	if (!rc && obs_on) {
+	if (whole && obs_on) {
 		h5w_close_obj(h, h5w_group(h, h->file, REC_H5_OBS, 0));
 		for (int k = 0; k < REC_N; k++)
 			if ((R[k].flags & RECF_OBS) && rec_on(s, k)) {
@@ -775,7 +779,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 				h5w_close_obj(h, g);
 			}
 	}
-	if (!rc && s->obs.ring_on)
+	if (whole && s->obs.ring_on)
 		write_ring(h, s, s->step * s->sc.dt);
 	for (int k = 0; k < REC_N; k++)
 		free(rec[k].d);

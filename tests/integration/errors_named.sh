@@ -50,6 +50,23 @@ if tmpfs full size=48k; then
 		MOUNTS=()
 	done
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
+	# a smaller run (a campaign's), whose journal fits and whose HDF5 file fails at its
+	# first closes, before the journal is copied: said as the write that failed, never
+	# a crash on the records not copied, no file at the name
+	bad=""
+	for size in 28k 32k 36k 44k; do
+		tmpfs full "size=$size" || { bad="$bad $size:mount"; continue; }
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$SHAKE" n_grains=40 width=16 radius_ratio=2 settle_ke=1 \
+			settle_min=0.2 duration=0.4 checkpoint_every=0.1 traj_rate=100 snapshots=no frequency=4 progress=no \
+			output="$TMP/full/r.h5" >"small.$size.log" 2>&1
+		rc=$?
+		if [ "$rc" != 2 ] || [ -e full/r.h5 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)$' "small.$size.log"; then
+			bad="$bad $size:exit=$rc,$(ls full | tr '\n' ' '),$(grep -m1 -E 'shake: |SEGV|Sanitizer|runtime error' "small.$size.log" | cut -c1-160)"
+		fi
+		umount full
+		MOUNTS=()
+	done
+	[ -z "$bad" ] && ok full_disk.small_run_exit_2 || fail full_disk.small_run_exit_2 "$bad"
 else
 	echo "skip full_disk: cannot mount a tmpfs here (not root?)"
 fi
