@@ -213,6 +213,15 @@ int main(int argc, char **argv)
 	} else if (no_output) {
 		if (code)
 			fprintf(stderr, "shake: %s (output = none: not recorded)\n", s->status_msg);
+	} else if (code == SB_EIO) {
+		/* a write that failed while the run shook (its journal, a checkpoint on a full
+		 * disk) is the machine's fault, not the run's outcome: no run file records it
+		 * (a driver would take that file for the run's end and fail the run); the last
+		 * good checkpoint and its journal stay, and the same command resumes there
+		 * (docs/scene.md, "Exit codes") */
+		journal_close(&s->jr);
+		fprintf(stderr, "shake: %s; no run file written%s\n", s->status_msg,
+			sc.checkpoint_every > 0 ? ": run again to resume from the last checkpoint" : "");
 	} else {
 		sb_err e2 = {0};
 		const double w0 = sb_now();

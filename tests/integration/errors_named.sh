@@ -50,9 +50,9 @@ if tmpfs full size=48k; then
 		MOUNTS=()
 	done
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
-	# a smaller run (a campaign's), whose journal fits and whose HDF5 file fails at its
-	# first closes, before the journal is copied: said as the write that failed, never
-	# a crash on the records not copied, no file at the name
+	# a smaller run (a campaign's), whose journal fits and whose checkpoint or HDF5 file
+	# does not (at its first closes, before the journal is copied): said as the write
+	# that failed, never a crash on the records not copied, no file at the name
 	bad=""
 	for size in 28k 32k 36k 44k; do
 		tmpfs full "size=$size" || { bad="$bad $size:mount"; continue; }
@@ -60,7 +60,7 @@ if tmpfs full size=48k; then
 			settle_min=0.2 duration=0.4 checkpoint_every=0.1 traj_rate=100 snapshots=no frequency=4 progress=no \
 			output="$TMP/full/r.h5" >"small.$size.log" 2>&1
 		rc=$?
-		if [ "$rc" != 2 ] || [ -e full/r.h5 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)$' "small.$size.log"; then
+		if [ "$rc" != 2 ] || [ -e full/r.h5 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)' "small.$size.log"; then
 			bad="$bad $size:exit=$rc,$(ls full | tr '\n' ' '),$(grep -m1 -E 'shake: |SEGV|Sanitizer|runtime error' "small.$size.log" | cut -c1-160)"
 		fi
 		umount full
@@ -90,6 +90,19 @@ if [ -f "$SHIM" ]; then
 	[ "$rc" = 0 ] && [ "$left" = "r.h5 r.xmf " ] && grep -q "^shake: resuming from" closing2.log &&
 		[ "$(attr "$TMP/closing/r.h5" /status)" = ok ] && ok full_disk.at_dataset_close.then_written ||
 		fail full_disk.at_dataset_close.then_written "exit $rc, files [$left]: $(head -c 300 closing2.log)"
+	# a checkpoint that cannot be written while the run shakes: exit 2, no run file (a
+	# driver would ingest it as the run's end, failed), the same command then completes
+	touch ckpt.trig
+	LD_PRELOAD="$SHIM" IOFAIL_TRIGGER="$TMP/ckpt.trig" IOFAIL_MATCH=.ckpt.tmp IOFAIL_ERRNO=28 \
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/c.h5" >ckptfail.log 2>&1
+	rc=$?
+	[ "$rc" = 2 ] && [ ! -e closing/c.h5 ] && grep -q "^shake: .*c.h5.ckpt.*No space left on device; no run file written" ckptfail.log &&
+		ok full_disk.checkpoint_no_run_file || fail full_disk.checkpoint_no_run_file "exit $rc, $(ls closing | tr '\n' ' '): $(head -c 300 ckptfail.log)"
+	"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/c.h5" >ckptfail2.log 2>&1
+	rc=$?
+	[ "$rc" = 0 ] && [ "$(attr "$TMP/closing/c.h5" /status)" = ok ] && ok full_disk.checkpoint_then_complete ||
+		fail full_disk.checkpoint_then_complete "exit $rc: $(head -c 300 ckptfail2.log)"
 else
 	fail full_disk.at_dataset_close "$SHIM is missing (make tests builds it)"
 fi
