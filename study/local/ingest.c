@@ -11,6 +11,7 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 
+#include "fsutil.h"
 #include "h5sum.h"
 #include "layout.h"
 #include "campaign/safe.h"
@@ -291,6 +292,23 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		return 0; /* output still on its way back from a remote host: the final sweep */
 	long ix = r - d->g.runs;
 	char now[32];
+	/* a checkpoint of other arguments beside a run whose argument file was written
+	 * again (its directory deleted while an engine still ran there, which then wrote
+	 * it): the driver's own stale file, not the run's fault; it goes, and the run is
+	 * prepared and run again */
+	if (code == SB_EUSAGE && strstr(msg, ".h5.ckpt: written by a run with other parameters")) {
+		char p[PATHX + 16];
+		const char *kind;
+		layout_file(d->dir, 0, name, LAY_CKPT, p, sizeof p);
+		if (fs_replaceable(p, &kind))
+			unlink(p);
+		layout_file(d->dir, 0, name, LAY_JOURNAL, p, sizeof p);
+		if (fs_replaceable(p, &kind))
+			unlink(p);
+		d->outcome[ix] = 'm';
+		db_now(now, sizeof now);
+		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
+	}
 	if (code != SB_EINTR && code < 128 && input_gone(d, name)) {
 		/* its argument file or its packing was deleted while the campaign ran (the
 		 * engine cannot open them, or the worker found no argument file): no fault
