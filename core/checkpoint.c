@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/stat.h>
 
 #include "fsutil.h"
 #include "checkpoint.h"
@@ -200,6 +201,28 @@ int ckpt_load(sb_sim *s, sb_err *e)
 		uint64_t want = r.h, got = 0;
 		if (r.bad || fread(&got, sizeof got, 1, f) != 1 || got != want)
 			err = sb_errf(e, SB_EIO, "%s: checkpoint damaged (checksum mismatch)", path);
+	}
+	/* the checkpoint resumes into its journal cut to the length it stored: without it
+	 * (gone with a run directory deleted while the run wrote; docs/scene.md, "Determinism,
+	 * checkpoints, restart"), or shorter (cutting would pad it with zeros), the records
+	 * since the start are lost, and restart = auto starts over - time lost, not a fault
+	 * of the disk. The checkpoint goes first: a new journal beside it would be taken
+	 * for its own by the next restart. */
+	struct stat js;
+	const int jst = lstat(s->journal_path, &js), nojournal = jst != 0 && errno == ENOENT;
+	if (!err && (nojournal || (!jst && S_ISREG(js.st_mode) && js.st_size < x.joff))) {
+		if (s->sc.restart == TRI_YES)
+			err = sb_errf(e, SB_EUSAGE, "%s: restart = yes, but its journal %s %s; remove the checkpoint or set restart = auto",
+				      path, s->journal_path, nojournal ? "is missing" : "is shorter than the checkpoint says");
+		else {
+			snprintf(s->warning, sizeof s->warning, "%.200s: its journal %.200s %s: starting the run over", path,
+				 s->journal_path, nojournal ? "is missing" : "is shorter than the checkpoint says");
+			unlink(path);
+			free(x.xref);
+			free(x.yref);
+			fclose(f);
+			return 0;
+		}
 	}
 	if (!err)
 		err = journal_open(&s->jr, s->journal_path, s->st.nm, x.joff, e);

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -37,6 +38,34 @@ int fs_replaceable(const char *path, const char **kind)
 		return 1; /* nothing there (or nothing to see: the write will say why) */
 	*kind = fs_kind((unsigned)st.st_mode);
 	return 0;
+}
+
+/* path with its directory part resolved (realpath), or as given when the directory
+ * cannot be resolved (then the write will say why); a trailing "/." or "/" is not a
+ * file name a run writes, so the base name is kept as given. */
+static void resolved(const char *path, char *out, size_t len)
+{
+	char d[4096], b[4096], *real;
+	snprintf(d, sizeof d, "%s", path);
+	snprintf(b, sizeof b, "%s", path);
+	real = realpath(dirname(d), NULL);
+	if (!real) {
+		snprintf(out, len, "%s", path);
+		return;
+	}
+	snprintf(out, len, "%s/%s", strcmp(real, "/") ? real : "", basename(b));
+	free(real);
+}
+
+int fs_same_file(const char *a, const char *b)
+{
+	char ra[8192], rb[8192];
+	resolved(a, ra, sizeof ra);
+	resolved(b, rb, sizeof rb);
+	if (!strcmp(ra, rb))
+		return 1;
+	struct stat sa, sb;
+	return lstat(a, &sa) == 0 && lstat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 int fs_create(const char *path, int rdwr, sb_err *e)

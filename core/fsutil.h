@@ -34,6 +34,11 @@ int fs_rename_durable(const char *tmp, const char *path, sb_err *e);
 /* May a run put a file at path: nothing stands there, or a regular file (a symbolic
  * link is not followed)? When not, *kind says what stands there ("a FIFO"). */
 int fs_replaceable(const char *path, const char **kind);
+/* Do two output paths name the same file: the same path once the directory part is
+ * resolved (realpath: "./a.h5" and "a.h5", a path through a directory's symbolic link),
+ * or the same existing file (device and inode, lstat). Two outputs of one run at one
+ * path would have one delete or overwrite the other (docs/output.md). */
+int fs_same_file(const char *a, const char *b);
 /* "a directory", "a character device", ... for a st_mode. */
 const char *fs_kind(unsigned mode);
 

@@ -162,9 +162,9 @@ int h5id_seal(hid_t f, sb_err *e)
 	hid_t sp = H5Screate(H5S_SCALAR), t = H5Tcopy(H5T_C_S1);
 	H5Tset_size(t, sizeof dgst);
 	hid_t a = H5Acreate2(f, H5ID_DIGEST_ATTR, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-	const int bad = a < 0 || H5Awrite(a, t, dgst) < 0;
-	if (a >= 0)
-		H5Aclose(a);
+	int bad = a < 0 || H5Awrite(a, t, dgst) < 0;
+	if (a >= 0 && H5Aclose(a) < 0)
+		bad = 1;
 	H5Tclose(t);
 	H5Sclose(sp);
 	return bad ? sb_errf(e, SB_EIO, "cannot write the %s attribute", H5ID_DIGEST_ATTR) : 0;

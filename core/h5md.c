@@ -47,6 +47,13 @@ void h5w_last_error(char *buf, size_t len)
 		snprintf(buf, len, "%.*s", (int)strcspn(d, "\n"), d);
 }
 
+void h5w_fail(h5w *h)
+{
+	if (!h->bad)
+		h5w_last_error(h->why, sizeof h->why);
+	h->bad = 1;
+}
+
 int h5w_create(h5w *h, const char *path, int deflate_level)
 {
 	memset(h, 0, sizeof *h);
@@ -83,7 +90,7 @@ int h5w_close(h5w *h)
 	H5Pclose(h->gcpl);
 	H5Pclose(h->ogcpl);
 	if (H5Fclose(h->file) < 0)
-		h->bad = 1;
+		h5w_fail(h);
 	return h->bad ? -1 : 0;
 }
 
@@ -91,8 +98,9 @@ static void attr_write(h5w *h, hid_t obj, const char *name, hid_t ftype, hid_t m
 {
 	hid_t a = H5Acreate2(obj, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT);
 	if (a < 0 || H5Awrite(a, mtype, v) < 0)
-		h->bad = 1;
-	H5Aclose(a);
+		h5w_fail(h);
+	if (a >= 0 && H5Aclose(a) < 0)
+		h5w_fail(h);
 	H5Sclose(sp);
 }
 
@@ -129,7 +137,7 @@ void h5w_attr_strs(h5w *h, hid_t obj, const char *name, const char *const *v, in
 		w = strlen(v[i]) + 1 > w ? strlen(v[i]) + 1 : w;
 	char buf[8][32];
 	if (n > 8 || w > sizeof buf[0]) {
-		h->bad = 1;
+		h5w_fail(h);
 		return;
 	}
 	memset(buf, 0, sizeof buf);
@@ -150,7 +158,7 @@ hid_t h5w_group(h5w *h, hid_t loc, const char *name, int ordered)
 {
 	hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, ordered ? h->ogcpl : h->gcpl, H5P_DEFAULT);
 	if (g < 0)
-		h->bad = 1;
+		h5w_fail(h);
 	return g;
 }
 
@@ -228,9 +236,9 @@ void h5w_dset(h5w *h, hid_t loc, const char *name, int rank, const hsize_t *dims
 	for (int r = 0; r < rank; r++)
 		total *= dims[r];
 	if (d < 0 || (total > 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
-		h->bad = 1;
+		h5w_fail(h);
 	unit_attr(h, d, unit);
-	H5Dclose(d);
+	h5w_close_obj(h, d);
 	H5Pclose(p);
 	H5Sclose(sp);
 }
@@ -241,9 +249,9 @@ void h5w_dset_int(h5w *h, hid_t loc, const char *name, hsize_t n, const int *dat
 	hid_t p = dcpl_for(h, 1, &n, sizeof(int));
 	hid_t d = H5Dcreate2(loc, name, H5T_STD_I32LE, sp, H5P_DEFAULT, p, H5P_DEFAULT);
 	if (d < 0 || (n > 0 && H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
-		h->bad = 1;
+		h5w_fail(h);
 	unit_attr(h, d, unit);
-	H5Dclose(d);
+	h5w_close_obj(h, d);
 	H5Pclose(p);
 	H5Sclose(sp);
 }
@@ -254,7 +262,7 @@ static hid_t clock_dset(h5w *h, hid_t g, const char *name, hid_t type, hsize_t T
 	hid_t p = dcpl_for(h, 1, &T, 8);
 	hid_t d = H5Dcreate2(g, name, type, sp, H5P_DEFAULT, p, H5P_DEFAULT);
 	if (d < 0)
-		h->bad = 1;
+		h5w_fail(h);
 	H5Pclose(p);
 	H5Sclose(sp);
 	return d;
@@ -281,7 +289,7 @@ int h5w_elem_create_as(h5w *h, h5elem *el, hid_t loc, const char *name, hsize_t 
 	if (clock) {
 		if (H5Lcreate_hard(clock->g, "step", el->g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
 		    H5Lcreate_hard(clock->g, "time", el->g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)
-			h->bad = 1;
+			h5w_fail(h);
 	} else {
 		el->own_clock = 1;
 		el->step = clock_dset(h, el->g, "step", H5T_STD_I64LE, T);
@@ -294,7 +302,7 @@ int h5w_elem_create_as(h5w *h, h5elem *el, hid_t loc, const char *name, hsize_t 
 	H5Pclose(p);
 	H5Sclose(sp);
 	if (el->value < 0)
-		h->bad = 1;
+		h5w_fail(h);
 	unit_attr(h, el->value, unit);
 	return h->bad ? -1 : 0;
 }
@@ -313,7 +321,7 @@ static void rows_write(h5w *h, hid_t d, hid_t mtype, int rank, const hsize_t *di
 	hid_t msp = H5Screate_simple(rank, cnt, NULL);
 	if (H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, cnt, NULL) < 0 ||
 	    H5Dwrite(d, mtype, msp, fsp, H5P_DEFAULT, data) < 0)
-		h->bad = 1;
+		h5w_fail(h);
 	H5Sclose(msp);
 	H5Sclose(fsp);
 }
@@ -334,7 +342,7 @@ void h5w_elem_all(h5w *h, h5elem *el, const long *steps, const double *times, co
 	if (el->own_clock && T > 0) {
 		long long *s = H5allocate_memory(sizeof(long long) * T, 0);
 		if (!s) {
-			h->bad = 1;
+			h5w_fail(h);
 			return;
 		}
 		for (hsize_t k = 0; k < T; k++)
@@ -346,15 +354,19 @@ void h5w_elem_all(h5w *h, h5elem *el, const long *steps, const double *times, co
 	rows_write(h, el->value, H5T_NATIVE_DOUBLE, el->rank, el->dims, 0, T, values);
 }
 
-void h5w_elem_close(h5elem *el)
+void h5w_close_obj(h5w *h, hid_t id)
+{
+	if (id >= 0 && H5Oclose(id) < 0)
+		h5w_fail(h);
+}
+
+void h5w_elem_close(h5w *h, h5elem *el)
 {
 	if (el->own_clock) {
-		H5Dclose(el->step);
-		H5Dclose(el->time);
+		h5w_close_obj(h, el->step);
+		h5w_close_obj(h, el->time);
 	}
-	if (el->value >= 0)
-		H5Dclose(el->value);
-	if (el->g >= 0)
-		H5Gclose(el->g);
+	h5w_close_obj(h, el->value);
+	h5w_close_obj(h, el->g);
 	el->g = el->value = el->step = el->time = -1;
 }

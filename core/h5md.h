@@ -14,6 +14,7 @@ typedef struct h5w {
 	hid_t gcpl;  /* groups: no time stamps, so equal runs give equal files */
 	hid_t ogcpl; /* the same, iterated in creation order */
 	int bad;     /* sticky: some call failed */
+	char why[256]; /* HDF5's word on the first failure ("No space left on device") */
 	int level;   /* deflate level of the large datasets (0: none) */
 } h5w;
 
@@ -22,6 +23,10 @@ typedef struct h5w {
 void h5w_init(void);
 /* The innermost message on HDF5's error stack ("" when there is none). */
 void h5w_last_error(char *buf, size_t len);
+
+/* Mark the writer failed (bad), keeping HDF5's innermost message of the first failure:
+ * later calls clear its error stack, and the first fault is the cause. */
+void h5w_fail(h5w *h);
 
 /* Open a new file (truncating) with the property lists above; < 0 on failure. */
 int h5w_create(h5w *h, const char *path, int deflate_level);
@@ -70,6 +75,11 @@ int h5w_elem_create_as(h5w *h, h5elem *el, hid_t loc, const char *name, hsize_t 
 void h5w_elem_row(h5w *h, h5elem *el, hsize_t k, long step, double t, const double *row);
 /* All rows at once: steps and times (NULL when shared), values [T][tail...]. */
 void h5w_elem_all(h5w *h, h5elem *el, const long *steps, const double *times, const double *values);
-void h5w_elem_close(h5elem *el);
+void h5w_elem_close(h5w *h, h5elem *el);
+
+/* Close a group or a dataset (id < 0: nothing). Checked: a dataset's chunks are written
+ * when it closes, and a full disk then fails the close, not any earlier write; a file
+ * sealed after an unchecked close would hold zeros where they belong (docs/output.md). */
+void h5w_close_obj(h5w *h, hid_t id);
 
 #endif

@@ -100,7 +100,7 @@ static void write_flux(h5w *h, const sb_sim *s, hid_t g, const dbuf *fl, long n)
 	double *jt = malloc(sizeof(double) * (P ? P : 1) * nl), *jb = malloc(sizeof(double) * (P ? P : 1) * nl);
 	double *phi = malloc(sizeof(double) * (P ? P : 1) * nl);
 	if (columns(s, fl, (size_t)len, P, &t, &st) || !f || !jt || !jb || !phi) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		for (size_t k = 0; k < P; k++) {
 			const double *r = fl->d + k * len;
@@ -117,14 +117,14 @@ static void write_flux(h5w *h, const sb_sim *s, hid_t g, const dbuf *fl, long n)
 		h5w_elem_all(h, &e0, st, t, phi);
 		h5w_elem_create(h, &e, g, "j_top", P, 1, &tail, "1", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, jt);
-		h5w_elem_close(&e);
+		h5w_elem_close(h, &e);
 		h5w_elem_create(h, &e, g, "j_bot", P, 1, &tail, "1", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, jb);
-		h5w_elem_close(&e);
+		h5w_elem_close(h, &e);
 		h5w_elem_create(h, &e, g, "frequency", P, 0, NULL, "Hz", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, f);
-		h5w_elem_close(&e);
-		h5w_elem_close(&e0);
+		h5w_elem_close(h, &e);
+		h5w_elem_close(h, &e0);
 		h5w_dset(h, g, "heights", 1, &tail, o->hline, "cm");
 		h5w_attr_str(h, g, "definition",
 			     "per period (between successive phase-0 samples; time and step: the period's end): j_top = "
@@ -152,7 +152,7 @@ static void write_field(h5w *h, const sb_sim *s, hid_t g, const dbuf *fd, long n
 	double *ux = malloc(sizeof(double) * (B ? B : 1) * nc), *uy = malloc(sizeof(double) * (B ? B : 1) * nc);
 	double *cnt = malloc(sizeof(double) * (B ? B : 1) * nc);
 	if (columns(s, fd, (size_t)len, B, &t, &st) || !ux || !uy || !cnt) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		for (size_t k = 0; k < B; k++) {
 			const double *r = fd->d + k * len;
@@ -170,11 +170,11 @@ static void write_field(h5w *h, const sb_sim *s, hid_t g, const dbuf *fd, long n
 		h5w_elem_all(h, &e0, st, t, ux);
 		h5w_elem_create(h, &e, g, "uy", B, 2, tail, "cm", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, uy);
-		h5w_elem_close(&e);
+		h5w_elem_close(h, &e);
 		h5w_elem_create(h, &e, g, "count", B, 2, tail, "1", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, cnt);
-		h5w_elem_close(&e);
-		h5w_elem_close(&e0);
+		h5w_elem_close(h, &e);
+		h5w_elem_close(h, &e0);
 		h5w_attr_double(h, g, "cell", o->cell);
 		h5w_attr_double(h, g, "x0", o->x0);
 		h5w_attr_long(h, g, "periods_per_block", o->K);
@@ -210,7 +210,7 @@ static void write_contacts(h5w *h, const sb_sim *s, hid_t g, const dbuf *c, long
 	}
 	double *col = malloc(sizeof(double) * (C ? C : 1));
 	if (!t || !cnt || !off || !col) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		const hsize_t nf = (hsize_t)F, nc = (hsize_t)C;
 		h5w_dset(h, g, "time", 1, &nf, t, "s");
@@ -247,7 +247,7 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, 
 	double *col = malloc(sizeof(double) * 2 * (T ? T : 1)), *t = NULL;
 	long *st = NULL;
 	if (!col || columns(s, rg, REC_NCOLS(REC_COLS_RING), T, &t, &st)) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		h5elem e0, e;
 		for (int c = OBS_RR_MEAN; c <= OBS_RR_N; c++) {
@@ -257,7 +257,7 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, 
 			h5w_elem_create(h, el, g, cols[c].name, T, 0, NULL, cols[c].unit, c == OBS_RR_MEAN ? NULL : &e0);
 			h5w_elem_all(h, el, st, t, col);
 			if (c != OBS_RR_MEAN)
-				h5w_elem_close(&e);
+				h5w_elem_close(h, &e);
 		}
 		for (size_t k = 0; k < T; k++) {
 			col[2 * k] = rg->d[k * REC_NCOLS(REC_COLS_RING) + OBS_RR_CX];
@@ -266,8 +266,8 @@ static void write_ring_series(h5w *h, const sb_sim *s, hid_t g, const dbuf *rg, 
 		const hsize_t two = 2;
 		h5w_elem_create(h, &e, g, "centre", T, 1, &two, cols[OBS_RR_CX].unit, &e0);
 		h5w_elem_all(h, &e, NULL, NULL, col);
-		h5w_elem_close(&e);
-		h5w_elem_close(&e0);
+		h5w_elem_close(h, &e);
+		h5w_elem_close(h, &e0);
 		h5w_attr_str(h, g, "definition",
 			     "one row per ring sample, over the grains whose centres lie inner..outer cm (/ring) from "
 			     "centre (box frame): mean_force = mean over them of the sum of the magnitudes of each grain's "
@@ -330,7 +330,7 @@ static void write_ring(h5w *h, const sb_sim *s, double t_end)
 		     "forces plus weight, lab frame; dyn), temperature = half the mean squared velocity fluctuation "
 		     "about the ring's mean velocity (cm^2/s^2); _lower: grains below the centre; _before: the "
 		     "samples at before_from <= t < before_to, before the intruder rose (docs/model.md, \"Ring force\")");
-	H5Gclose(g);
+	h5w_close_obj(h, g);
 }
 
 /* The intruder's height over the recorded trajectory rows in the box frame (the
@@ -384,7 +384,7 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 	double *w = malloc(sizeof(double) * (n ? n : 1)), *t = malloc(sizeof(double) * (n ? n : 1));
 	long *st = malloc(sizeof(long) * (n ? n : 1));
 	if (!p || !v || !w || !t || !st) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		for (size_t k = 0; k < n; k++) {
 			const double *r = traj + k * REC_NCOLS(REC_COLS_TRAJ); /* t x y vx vy omega */
@@ -402,15 +402,15 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 		h5w_elem_all(h, &e0, st, t, p);
 		h5w_elem_create(h, &e, g, "velocity", n, 2, tail, "cm s-1", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, v);
-		h5w_elem_close(&e);
+		h5w_elem_close(h, &e);
 		h5w_elem_create(h, &e, g, "angular_velocity", n, 1, &one, "rad s-1", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, w);
-		h5w_elem_close(&e);
-		h5w_elem_close(&e0);
+		h5w_elem_close(h, &e);
+		h5w_elem_close(h, &e0);
 		const int id = s->st.id[s->intruder], sp = KIND_INTRUDER;
 		h5w_dset_int(h, g, "id", 1, &id, "1");
 		h5w_dset_int(h, g, "species", 1, &sp, "1");
-		H5Gclose(plain_box(h, s, g, 0));
+		h5w_close_obj(h, plain_box(h, s, g, 0));
 		h5w_attr_long(h, g, "index", s->intruder);
 	}
 	free(p);
@@ -418,7 +418,7 @@ static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *t
 	free(w);
 	free(t);
 	free(st);
-	H5Gclose(g);
+	h5w_close_obj(h, g);
 }
 
 /* The box of /particles/bed: the side walls' inner faces and the highest wall disk's
@@ -481,14 +481,14 @@ static void snap_row(h5w *h, snapw *w, const sb_sim *s, const double *rec)
 	w->k++;
 }
 
-static void snap_close(snapw *w)
+static void snap_close(h5w *h, snapw *w)
 {
 	if (w->pos.g > 0) {
-		h5w_elem_close(&w->offv);
-		h5w_elem_close(&w->off);
-		h5w_elem_close(&w->ang);
-		h5w_elem_close(&w->vel);
-		h5w_elem_close(&w->pos);
+		h5w_elem_close(h, &w->offv);
+		h5w_elem_close(h, &w->off);
+		h5w_elem_close(h, &w->ang);
+		h5w_elem_close(h, &w->vel);
+		h5w_elem_close(h, &w->pos);
 	}
 	free(w->p);
 	free(w->v);
@@ -506,8 +506,8 @@ static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t 
 		hid_t src = H5Gopen2(bed, names[q], H5P_DEFAULT);
 		if (g < 0 || src < 0 || H5Lcreate_hard(src, "step", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
 		    H5Lcreate_hard(src, "time", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0)
-			h->bad = 1;
-		H5Gclose(src);
+			h5w_fail(h);
+		h5w_close_obj(h, src);
 		hsize_t vd[3] = {K, n, 3}, sd[3] = {K, n, 2}, start[3] = {0, 0, 0};
 		hid_t vsp = H5Screate_simple(3, vd, NULL), ssp = H5Screate_simple(3, sd, NULL);
 		H5Sselect_hyperslab(vsp, H5S_SELECT_SET, start, NULL, sd, NULL);
@@ -518,20 +518,20 @@ static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t 
 		H5Pset_fill_value(p, H5T_NATIVE_DOUBLE, &zero);
 		H5Pset_obj_track_times(p, 0);
 		if (H5Pset_virtual(p, vsp, ".", path, ssp) < 0)
-			h->bad = 1;
+			h5w_fail(h);
 		H5Sselect_all(vsp);
 		hid_t d = H5Dcreate2(g, "value", ftype, vsp, H5P_DEFAULT, p, H5P_DEFAULT);
 		/* no unit attribute: MDAnalysis refuses units it does not know (cm) even when
 		 * told not to convert; the unit is that of the dataset this one shows */
 		if (d < 0)
-			h->bad = 1;
+			h5w_fail(h);
 		else
 			h5w_attr_str(h, d, "unit_of_source", units[q]);
-		H5Dclose(d);
+		h5w_close_obj(h, d);
 		H5Pclose(p);
 		H5Sclose(vsp);
 		H5Sclose(ssp);
-		H5Gclose(g);
+		h5w_close_obj(h, g);
 	}
 	hid_t b = h5w_group(h, xyz, "box", 0);
 	/* no edges: MDAnalysis reads box/edges as a time series (edges/value) and would
@@ -539,7 +539,7 @@ static void write_xyz(h5w *h, hid_t xyz, hid_t bed, hsize_t K, hsize_t n, hid_t 
 	static const char *const none3[3] = {"none", "none", "none"}, *const px3[3] = {"periodic", "none", "none"};
 	h5w_attr_long(h, b, "dimension", 3);
 	h5w_attr_strs(h, b, "boundary", periodic ? px3 : none3, 3);
-	H5Gclose(b);
+	h5w_close_obj(h, b);
 	h5w_attr_str(h, xyz, "description",
 		     "/particles/bed as a flat 3-D system (z = 0): virtual datasets, no storage of their own");
 }
@@ -550,7 +550,7 @@ static void disk_constants(h5w *h, const sb_state *st, hid_t g, int i0, int i1)
 	const hsize_t n = (hsize_t)(i1 - i0);
 	int *ki = malloc(sizeof(int) * (n ? n : 1));
 	if (!ki) {
-		h->bad = 1;
+		h5w_fail(h);
 		return;
 	}
 	for (hsize_t i = 0; i < n; i++)
@@ -594,7 +594,7 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 	disk_constants(h, st, g, st->nm, st->n);
 	double *p = malloc(sizeof(double) * 2 * (nw ? nw : 1));
 	if (!p) {
-		h->bad = 1;
+		h5w_fail(h);
 	} else {
 		for (hsize_t i = 0; i < nw; i++) {
 			p[2 * i] = st->q[C_X][0][st->nm + (int)i];
@@ -603,11 +603,11 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 		h5w_dset(h, g, "position", 2, dims, p, "cm");
 	}
 	free(p);
-	H5Gclose(plain_box(h, s, g, 0));
+	h5w_close_obj(h, plain_box(h, s, g, 0));
 	h5w_attr_str(h, g, "description",
 		     "position: the wall disks with the box at rest (lab frame at phase 0, where every snapshot is "
 		     "taken); at time t add /particles/bed/box/offset minus its value at rest");
-	H5Gclose(g);
+	h5w_close_obj(h, g);
 }
 
 /* A fixed-length observable without a writer of its own (record.h's table): every value
@@ -626,7 +626,7 @@ static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b
 	double *t = malloc(sizeof(double) * T1);
 	long *st = malloc(sizeof(long) * T1);
 	if (!d || !col || !t || !st) {
-		h->bad = 1;
+		h5w_fail(h);
 		goto out;
 	}
 	for (long p = 0; p < T; p++) { /* row p: the mean of samples pN .. pN + N - 1 */
@@ -648,16 +648,16 @@ static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b
 		h5w_elem_create(h, el, g, r->cols[c].name, (hsize_t)T, 0, NULL, r->cols[c].unit, c == 1 ? NULL : &e0);
 		h5w_elem_all(h, el, st, t, col);
 		if (c > 1)
-			h5w_elem_close(&e);
+			h5w_elem_close(h, &e);
 	}
 	if (r->clock == RC_PHASE) {
 		for (long p = 0; p < T; p++)
 			col[p] = drive_freq(&s->drive, t[p]);
 		h5w_elem_create(h, &e, g, "frequency", (hsize_t)T, 0, NULL, "Hz", &e0);
 		h5w_elem_all(h, &e, NULL, NULL, col);
-		h5w_elem_close(&e);
+		h5w_elem_close(h, &e);
 	}
-	h5w_elem_close(&e0);
+	h5w_elem_close(h, &e0);
 	if (r->clock == RC_PHASE)
 		h5w_attr_long(h, g, "samples_per_period", N);
 	if (r->def)
@@ -707,8 +707,9 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	sw.pos.g = -1;
 	if (!buf || (K > 0 && snap_open(h, &sw, s, bed, box, K))) {
 		free(buf);
-		snap_close(&sw);
-		return sb_errf(e, SB_ENOMEM, "out of memory writing the output");
+		snap_close(h, &sw);
+		/* a failed HDF5 call (a full disk) is said by the caller, with HDF5's word */
+		return h->bad ? 0 : sb_errf(e, SB_ENOMEM, "out of memory writing the output");
 	}
 	sb_jreader r = {0};
 	/* a run that failed while preparing has no journal */
@@ -734,7 +735,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	if (rc == 1)
 		rc = 0;
 	const long ks = (long)sw.k;
-	snap_close(&sw);
+	snap_close(h, &sw);
 	/* the journal holds what the counters say, record by record */
 	long got[REC_N] = {0};
 	got[REC_SNAP] = ks;
@@ -749,20 +750,24 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 			}
 			pos += (size_t)l;
 		}
-	for (int k = 0; k < REC_N && !rc; k++)
+	/* (a write that failed stopped the reading: said as that, by the caller) */
+	for (int k = 0; k < REC_N && !rc && !h->bad; k++)
 		if (got[k] != s->rec_n[k])
 			rc = sb_errf(e, SB_EIO, "%s: journal holds %ld %s records, expected %ld", s->journal_path, got[k],
 				     R[k].name, s->rec_n[k]);
+	/* a journal not read to its end (a write that failed first, a short journal) has
+	 * not the records the counters say: nothing more is copied, the file is not kept */
+	const int whole = !rc && !h->bad;
 	if (s->intruder >= 0) {
-		write_intruder(h, s, parts, rec[REC_TRAJ].d, (long)T);
-		if (!rc && T > 0)
+		write_intruder(h, s, parts, rec[REC_TRAJ].d, whole ? (long)T : 0);
+		if (whole && T > 0)
 			intruder_summary(h, s, rec[REC_TRAJ].d, (long)T);
 	}
 	int obs_on = 0;
 	for (int k = 0; k < REC_N; k++)
 		obs_on |= (R[k].flags & RECF_OBS) && rec_on(s, k);
-	if (!rc && obs_on) {
-		H5Gclose(h5w_group(h, h->file, REC_H5_OBS, 0));
+	if (whole && obs_on) {
+		h5w_close_obj(h, h5w_group(h, h->file, REC_H5_OBS, 0));
 		for (int k = 0; k < REC_N; k++)
 			if ((R[k].flags & RECF_OBS) && rec_on(s, k)) {
 				hid_t g = h5w_group(h, h->file, R[k].h5, 0);
@@ -771,10 +776,10 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 					WRITERS[k](h, s, g, &rec[k], got[k]);
 				else
 					write_series(h, s, k, g, &rec[k], got[k]);
-				H5Gclose(g);
+				h5w_close_obj(h, g);
 			}
 	}
-	if (!rc && s->obs.ring_on)
+	if (whole && s->obs.ring_on)
 		write_ring(h, s, s->step * s->sc.dt);
 	for (int k = 0; k < REC_N; k++)
 		free(rec[k].d);
@@ -788,7 +793,7 @@ static void write_final(h5w *h, const sb_sim *s, double t)
 	const hsize_t n = (hsize_t)st->n;
 	double *v = malloc(sizeof(double) * (n ? n : 1) * 6);
 	if (!v) {
-		h->bad = 1;
+		h5w_fail(h);
 		return;
 	}
 	double idt = 1.0 / s->sc.dt, yb = sim_box_y(s, t), vb = sim_box_v(s, t);
@@ -809,7 +814,7 @@ static void write_final(h5w *h, const sb_sim *s, double t)
 	h5w_attr_double(h, g, "time", t);
 	h5w_attr_str(h, g, "description",
 		     "every disk at the end: the mobile ones (/particles/bed), then the walls (/particles/walls)");
-	H5Gclose(g);
+	h5w_close_obj(h, g);
 	free(v);
 }
 
@@ -891,12 +896,12 @@ static void write_h5md(h5w *h)
 	hid_t a = h5w_group(h, g, "author", 0);
 	const char *user = getenv("USER");
 	h5w_attr_str(h, a, "name", user && *user ? user : "unknown");
-	H5Gclose(a);
+	h5w_close_obj(h, a);
 	hid_t c = h5w_group(h, g, "creator", 0);
 	h5w_attr_str(h, c, "name", "shakebox");
 	h5w_attr_str(h, c, "version", prov_version());
-	H5Gclose(c);
-	H5Gclose(g);
+	h5w_close_obj(h, c);
+	h5w_close_obj(h, g);
 }
 
 /* The run's status and results: attributes of the root. */
@@ -960,7 +965,7 @@ static void write_provenance(h5w *h, const sb_sim *s)
 	h5w_attr_str(h, g, "start_time", p.start_time);
 	h5w_attr_str(h, g, "end_time", p.end_time);
 	h5w_attr_double(h, g, "loop_seconds", s->loop_seconds);
-	H5Gclose(g);
+	h5w_close_obj(h, g);
 }
 
 int h5out_write(const sb_sim *s, const char *path, sb_err *e)
@@ -985,7 +990,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	write_h5md(&h);
 	hid_t g = h5w_group(&h, h.file, "parameters", 0);
 	write_params(&h, g, &s->sc);
-	H5Gclose(g);
+	h5w_close_obj(&h, g);
 	write_results(&h, s, t);
 	write_provenance(&h, s);
 
@@ -1001,18 +1006,22 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 		if (!rc)
 			write_xyz(&h, xyz, bed, (hsize_t)s->rec_n[REC_SNAP], (hsize_t)s->st.nm,
 				  s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE, s->nl.period > 0);
-		H5Gclose(xyz);
+		h5w_close_obj(&h, xyz);
 	}
-	H5Gclose(box);
-	H5Gclose(bed);
-	H5Gclose(parts);
+	h5w_close_obj(&h, box);
+	h5w_close_obj(&h, bed);
+	h5w_close_obj(&h, parts);
 	write_final(&h, s, t);
 	/* last: the digest covers every attribute written above (core/h5id.h) */
 	if (!rc && !h.bad)
 		rc = h5id_seal(h.file, e);
 	if (h5w_close(&h) && !rc) {
-		char why[256];
-		h5w_last_error(why, sizeof why);
+		const char *why = h.why; /* the first failure; else the close's own */
+		char last[256];
+		if (!why[0]) {
+			h5w_last_error(last, sizeof last);
+			why = last;
+		}
 		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed%s%s", tmp, why[0] ? ": " : "", why);
 	}
 	if (!rc)

@@ -154,9 +154,10 @@ int main(int argc, char **argv)
 		free(s);
 		return e.code;
 	}
+	const int progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
 	s->stop = &g_stop;
 	s->profile = profile;
-	s->progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
+	s->progress = progress;
 
 	int loaded = sc.restart == TRI_NO ? 0 : ckpt_load(s, &e);
 	if (loaded < 0 || e.code) {
@@ -167,9 +168,14 @@ int main(int argc, char **argv)
 	}
 	if (loaded) { /* always said: a log must show that a run continued another */
 		fprintf(stderr, "shake: resuming from %s at t = %.4f s\n", s->ckpt_path, s->step * sc.dt);
-	} else if (s->warning[0]) { /* a checkpoint it could not use */
+	} else if (s->warning[0]) { /* a checkpoint it could not use: the run starts over */
 		fprintf(stderr, "shake: warning: %s\n", s->warning);
-		s->warning[0] = 0;
+		/* from a fresh setup: the checkpoint may have been read in part */
+		sim_free(s);
+		sim_init(s, &sc, &e);
+		s->stop = &g_stop;
+		s->profile = profile;
+		s->progress = progress;
 	}
 	if (!loaded) {
 		if (s->progress)
@@ -207,6 +213,15 @@ int main(int argc, char **argv)
 	} else if (no_output) {
 		if (code)
 			fprintf(stderr, "shake: %s (output = none: not recorded)\n", s->status_msg);
+	} else if (code == SB_EIO) {
+		/* a write that failed while the run shook (its journal, a checkpoint on a full
+		 * disk) is the machine's fault, not the run's outcome: no run file records it
+		 * (a driver would take that file for the run's end and fail the run); the last
+		 * good checkpoint and its journal stay, and the same command resumes there
+		 * (docs/scene.md, "Exit codes") */
+		journal_close(&s->jr);
+		fprintf(stderr, "shake: %s; no run file written%s\n", s->status_msg,
+			sc.checkpoint_every > 0 ? ": run again to resume from the last checkpoint" : "");
 	} else {
 		sb_err e2 = {0};
 		const double w0 = sb_now();

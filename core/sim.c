@@ -180,7 +180,20 @@ int sim_check_outputs(const sb_sim *s, sb_err *e)
 		{"write_particles", sc->write_particles, ""},
 		{"write_lammps", sc->write_lammps, ""},
 	};
-	for (size_t k = 0; k < sizeof out / sizeof *out; k++) {
+	const size_t n = sizeof out / sizeof *out;
+	/* two outputs at one file: the run would delete (the journal and checkpoint at
+	 * its end) or overwrite one with the other, and say nothing (docs/output.md) */
+	for (size_t k = 0; k < n; k++)
+		for (size_t j = k + 1; j < n && out[k].path[0]; j++) {
+			if (!out[j].path[0] || (k == 0 && params_no_output(sc)) || !fs_same_file(out[k].path, out[j].path))
+				continue;
+			return sb_errf(e, SB_EUSAGE,
+				       "%s: %s: '%s'%s is the same file as %s: '%s'%s (%s): one would delete or overwrite "
+				       "the other; give them different paths",
+				       params_where(sc, out[j].key), out[j].key, out[j].path, out[j].what, out[k].key,
+				       out[k].path, out[k].what, params_where(sc, out[k].key));
+		}
+	for (size_t k = 0; k < n; k++) {
 		const char *kind;
 		if (!out[k].path[0] || (k == 0 && params_no_output(sc)) || fs_replaceable(out[k].path, &kind))
 			continue;

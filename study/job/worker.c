@@ -93,10 +93,19 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	gethostname(host, sizeof host - 1);
 	clean(host);
 	int is_cache = !strcmp(kind, "cache");
-	if ((!is_cache && strcmp(kind, "run")) || !safe_name(name) || chdir(dir) != 0) {
+	if ((!is_cache && strcmp(kind, "run")) || !safe_name(name)) {
 		/* exit codes as the engine's: 1 a job that can never run (the driver marks it
 		 * failed), 2 an I/O fault (the run stays pending and the driver stops) */
-		report_done(name, 1, host, 0, "exec: bad job (kind must be run or cache, a plain name, an existing dir)");
+		report_done(name, 1, host, 0, "exec: bad job (kind must be run or cache, the name a plain one)");
+		return 0;
+	}
+	if (chdir(dir) != 0) {
+		/* the campaign's directory deleted while it ran (the driver finds the job's
+		 * input gone and prepares it again), or one it may not enter: not the run's
+		 * fault, never a failed run */
+		char m[900];
+		snprintf(m, sizeof m, "exec: cannot enter the campaign's directory %.700s: %s", dir, strerror(errno));
+		report_done(name, 2, host, 0, m);
 		return 0;
 	}
 	char args[600], log[600], out[600], lockp[600];

@@ -708,6 +708,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	    (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 
+	reserve_make(d); /* room for the last records on a full disk (reserve.c) */
 	stop_signals();
 	if (o->progress < 0 ? isatty(2) : o->progress) {
 		d->watch = malloc(sizeof *d->watch);
@@ -737,6 +738,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 			launch(d, npend, e);
 	}
 	sb_err se = {0};
+	owed_settle(d, &se); /* before the counts: no run this driver started is left 'running' */
 	sweep(d, NULL, &npend, &se); /* outputs that came back after their DONE line */
 	if (rounds && !e->code && !se.code) {
 		/* the state after the last round, for study status */
@@ -778,6 +780,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 		sb_errf(e, DRV_FAILED, "%s: %ld runs failed (study status %s lists the reasons)", d->c.name, failed,
 			d->c.name);
 out:
+	reserve_release(d);
 	free(d->pend);
 	free(d->names);
 	free(d->cache_ok);

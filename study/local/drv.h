@@ -41,6 +41,9 @@ typedef struct drv {
 	char *outcome;        /* per grid run, its last launch: 0 nothing heard, 'k' killed,
 			       * 'i' I/O, 'l' lost, 'h' stopped by the driver, 'r' recorded,
 			       * 'm' its input (argument file, packing) deleted under it */
+	int reserve;          /* the database's reserve is held (reserve.c) */
+	struct owed *owed;    /* attempts the database would not take, to be written again
+			       * before the driver ends (ingest.c) */
 	struct watch *watch;  /* the progress line's look; NULL: no progress line */
 	int progress_tty;     /* the progress line rewrites itself (stderr is a terminal) */
 } drv;
@@ -88,8 +91,17 @@ void cache_state(drv *d, const char *key, char *st, size_t len);
 int on_start(drv *d, char *line, sb_err *e);
 int on_done(drv *d, int is_cache, char *line, sb_err *e);
 void unreported(drv *d, sb_err *e);
+/* The attempts the database would not take when they came (a full disk), written now;
+ * each one that still cannot be is said on stderr. Frees them. */
+int owed_settle(drv *d, sb_err *e);
 /* the runs a killed driver left 'running': each an interrupted attempt, pending */
 int orphans(drv *d, sb_err *e);
+
+/* reserve.c: room on the campaign's disk held from the start (reserve_make), given
+ * back for the last records after a full disk stopped the launching (reserve_release:
+ * 1 when there was some to give) */
+void reserve_make(drv *d);
+int reserve_release(drv *d);
 
 /* sweep.c: outputs finished while no driver listened, damaged ones, litter, failed
  * runs back in the queue (--retry-failed); the pending runs' indices in *pend */

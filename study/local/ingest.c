@@ -11,6 +11,7 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 
+#include "fsutil.h"
 #include "h5sum.h"
 #include "layout.h"
 #include "campaign/safe.h"
@@ -75,6 +76,8 @@ static int recover_kept(drv *d, const char *id, sb_err *e)
 	}
 }
 
+static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep, sb_err *e);
+
 int ingest_run(drv *d, const char *id, sb_err *e)
 {
 	char path[PATHX], now[32];
@@ -84,10 +87,26 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	sb_err re = {0};
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (recover_kept(d, id, e)) {
-		db_rollback(&d->db);
+	if (ingest_file(d, id, path, now, &s, &re, e)) {
+		db_rollback(&d->db); /* a full disk: the final sweep tries again (owed_settle) */
 		return e->code;
 	}
+	d->n_ingested++;
+	const grid_run *gr = grid_find(&d->g, id);
+	if (gr && d->outcome)
+		d->outcome[gr - d->g.runs] = 'r';
+	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
+		d->n_failed_now++;
+	return 0;
+}
+
+/* A run's file into the database, within the caller's transaction (committed here). */
+static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep, sb_err *e)
+{
+	h5sum s;
+	sb_err re = {0};
+	if (recover_kept(d, id, e))
+		return e->code;
 	if (h5sum_read(path, id, &s, &re)) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
 	} else {
@@ -110,17 +129,9 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 		if (!e->code)
 			db_ingest(&d->db, d->c.name, id, &s, now, e);
 	}
-	if (e->code) {
-		db_rollback(&d->db);
-		return e->code;
-	}
-	d->n_ingested++;
-	const grid_run *gr = grid_find(&d->g, id);
-	if (gr && d->outcome)
-		d->outcome[gr - d->g.runs] = 'r';
-	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
-		d->n_failed_now++;
-	return db_commit(&d->db, e);
+	*sp = s;
+	*rep = re;
+	return e->code ? e->code : db_commit(&d->db, e);
 }
 
 int ingest_cache(drv *d, const char *key, sb_err *e)
@@ -152,6 +163,80 @@ void cache_state(drv *d, const char *key, char *st, size_t len)
 	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
 		snprintf(st, len, "%s", (const char *)sqlite3_column_text(q, 0));
 	sqlite3_finalize(q);
+}
+
+/* An attempt the database would not take when it came. */
+struct owed {
+	struct owed *next;
+	long ix, code;
+	char status[24], msg[1024], host[256], end[32], state[16];
+};
+
+/* Records an attempt of grid run ix (its run's state becomes `state`). One the database
+ * would not take (a full disk: "database or disk is full") is kept and written again
+ * before the driver ends (owed_settle, with the room reserve.c held), so that no run it started is left 'running' to
+ * be taken for one whose driver was killed; and it stops the launching as an I/O fault
+ * would, since every later run would end the same way. */
+static int attempt(drv *d, long ix, long code, const char *status, const char *msg, const char *host,
+		   const char *end, const char *state, sb_err *e)
+{
+	const char *id = d->g.runs[ix].id;
+	if (!db_begin(&d->db, e)) {
+		if (!db_attempt(&d->db, d->c.name, id, code, status, msg, host, end, state, e) && !db_commit(&d->db, e))
+			return 0;
+		db_rollback(&d->db);
+	}
+	struct owed *o = calloc(1, sizeof *o);
+	if (o) {
+		*o = (struct owed){d->owed, ix, code, "", "", "", "", ""};
+		snprintf(o->status, sizeof o->status, "%s", status);
+		snprintf(o->msg, sizeof o->msg, "%s", msg);
+		snprintf(o->host, sizeof o->host, "%s", host);
+		snprintf(o->end, sizeof o->end, "%s", end);
+		snprintf(o->state, sizeof o->state, "%s", state);
+		d->owed = o;
+	}
+	if (!d->io_fault) {
+		d->io_fault = 1;
+		snprintf(d->io_msg, sizeof d->io_msg, "the database would not record run %s: %s", id, e->msg);
+		stop_halt(); /* no new jobs; running ones checkpoint */
+	}
+	return e->code;
+}
+
+int owed_settle(drv *d, sb_err *e)
+{
+	/* every engine has stopped: the room held since the start is for these writes
+	 * and the final sweep's (space freed while engines ran went to them) */
+	if (d->owed || d->io_fault)
+		reserve_release(d);
+	/* oldest first: the list is newest first, and a run's later attempt decides its state */
+	struct owed *rev = NULL;
+	while (d->owed) {
+		struct owed *o = d->owed;
+		d->owed = o->next;
+		o->next = rev;
+		rev = o;
+	}
+	while (rev) {
+		struct owed *o = rev;
+		rev = o->next;
+		const char *id = d->g.runs[o->ix].id;
+		sb_err le = {0};
+		int bad = db_begin(&d->db, &le) ||
+			  db_attempt(&d->db, d->c.name, id, o->code, o->status, o->msg, o->host, o->end, o->state, &le) ||
+			  db_commit(&d->db, &le);
+		if (bad) {
+			db_rollback(&d->db);
+			fprintf(stderr, "study: %s: run %s ended (%s%s%s) but the database would not record it: %s; the next "
+				"study run records it as interrupted\n", d->c.name, id, o->status, o->msg[0] ? ": " : "", o->msg,
+				le.msg);
+			if (!e->code)
+				sb_errf(e, le.code, "%s", le.msg);
+		}
+		free(o);
+	}
+	return e->code;
 }
 
 /* Is a run's input gone: its argument file, or the packing that file starts it from? */
@@ -207,19 +292,30 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		return 0; /* output still on its way back from a remote host: the final sweep */
 	long ix = r - d->g.runs;
 	char now[32];
+	/* a checkpoint of other arguments beside a run whose argument file was written
+	 * again (its directory deleted while an engine still ran there, which then wrote
+	 * it): the driver's own stale file, not the run's fault; it goes, and the run is
+	 * prepared and run again */
+	if (code == SB_EUSAGE && strstr(msg, ".h5.ckpt: written by a run with other parameters")) {
+		char p[PATHX + 16];
+		const char *kind;
+		layout_file(d->dir, 0, name, LAY_CKPT, p, sizeof p);
+		if (fs_replaceable(p, &kind))
+			unlink(p);
+		layout_file(d->dir, 0, name, LAY_JOURNAL, p, sizeof p);
+		if (fs_replaceable(p, &kind))
+			unlink(p);
+		d->outcome[ix] = 'm';
+		db_now(now, sizeof now);
+		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
+	}
 	if (code != SB_EINTR && code < 128 && input_gone(d, name)) {
 		/* its argument file or its packing was deleted while the campaign ran (the
 		 * engine cannot open them, or the worker found no argument file): no fault
 		 * of the run's nor of the machine's; launch() prepares it again */
 		d->outcome[ix] = 'm';
 		db_now(now, sizeof now);
-		if (db_begin(&d->db, e))
-			return e->code;
-		if (db_attempt(&d->db, d->c.name, name, code, "missing_input", msg, host, now, "pending", e)) {
-			db_rollback(&d->db);
-			return e->code;
-		}
-		return db_commit(&d->db, e);
+		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
 	}
 	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
 	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
@@ -244,21 +340,18 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 			     : code >= 128     ? "killed"
 			     : lost            ? "lost"
 					       : sb_code_name((int)code);
+	/* an engine on a full disk may not get its last words into its log either */
+	if (!msg[0] && io)
+		msg = "exit 2 (I/O) and no word in its log (a full disk takes no log line either)";
 	if (io && !d->io_fault) {
 		d->io_fault = 1;
 		snprintf(d->io_msg, sizeof d->io_msg, "run %s: %s", name, msg);
 		stop_halt(); /* no new jobs; running ones checkpoint */
 	}
 	db_now(now, sizeof now);
-	if (db_begin(&d->db, e))
-		return e->code;
-	if (db_attempt(&d->db, d->c.name, name, code, status, msg, host, now, resumable ? "pending" : "failed", e)) {
-		db_rollback(&d->db);
-		return e->code;
-	}
 	if (!resumable)
 		d->n_failed_now++;
-	return db_commit(&d->db, e);
+	return attempt(d, ix, code, status, msg, host, now, resumable ? "pending" : "failed", e);
 }
 
 int on_start(drv *d, char *line, sb_err *e)
@@ -295,7 +388,8 @@ int on_start(drv *d, char *line, sb_err *e)
  * recorded as an interrupted attempt with the engine's last words; it stays pending. */
 void unreported(drv *d, sb_err *e)
 {
-	for (long i = 0; i < d->g.n && !e->code; i++) {
+	/* every one, also after one the database would not take (it is owed) */
+	for (long i = 0; i < d->g.n; i++) {
 		if (d->started[i] != 1)
 			continue;
 		d->started[i] = 2;
@@ -318,15 +412,15 @@ void unreported(drv *d, sb_err *e)
 			intr = 0;
 		}
 		db_now(now, sizeof now);
-		if (db_begin(&d->db, e))
-			return;
-		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, lost ? "lost" : "interrupted",
-			       msg[0] && !lost ? msg : lost ? "the job ended without its outcome (worker killed or host lost)"
-							    : "stopped with the driver",
-			       "", now, "pending", e))
-			db_rollback(&d->db);
-		else
-			db_commit(&d->db, e);
+		sb_err le = {0};
+		attempt(d, i, intr ? SB_EINTR : -1, lost ? "lost" : "interrupted",
+			msg[0] && !lost ? msg
+			: lost          ? "the job ended without its outcome (worker killed or host lost)"
+			: d->io_fault   ? "stopped by the driver after an I/O fault"
+					: "stopped with the driver",
+			"", now, "pending", &le);
+		if (le.code && !e->code)
+			*e = le;
 	}
 }
 

@@ -2,12 +2,19 @@
  * tests (root ignores a read-only directory, so chmod cannot stage one). While the file
  * named by IOFAIL_TRIGGER exists, opening for writing or renaming a path that contains
  * one of the ':'-separated strings of IOFAIL_MATCH fails with errno IOFAIL_ERRNO
- * (default EROFS). Reads are never touched. */
+ * (default EROFS). Reads are never touched.
+ * A full disk found only when HDF5 closes a dataset: while IOFAIL_CLOSE names a string,
+ * every write (pwrite, write) made inside H5Dclose or H5Oclose to a file whose path
+ * contains it fails with ENOSPC, the other writes go through. A dataset's last chunks
+ * are written when it closes, and the file's metadata after them, so a writer that
+ * ignores the close's failure goes on to seal and rename a file that holds zeros in
+ * place of those chunks (docs/testing.md, "Hostile input and faults"). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,4 +129,71 @@ int renameat2(int fd1, const char *from, int fd2, const char *to, unsigned flags
 	if (armed(from) || armed(to))
 		return -1;
 	return real_renameat2(fd1, from, fd2, to, flags);
+}
+
+/* --- failures inside HDF5's dataset close (IOFAIL_CLOSE) --- */
+static int in_close; /* the process is inside H5Dclose or H5Oclose */
+
+static int close_armed(int fd)
+{
+	const char *match = getenv("IOFAIL_CLOSE");
+	if (!in_close || !match || !*match)
+		return 0;
+	char link[64], path[4096];
+	snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+	ssize_t n = readlink(link, path, sizeof path - 1);
+	if (n <= 0)
+		return 0;
+	path[n] = 0;
+	if (!strstr(path, match))
+		return 0;
+	errno = ENOSPC;
+	return 1;
+}
+
+typedef ssize_t (*pwrite_fn)(int, const void *, size_t, off_t);
+typedef ssize_t (*write_fn)(int, const void *, size_t);
+typedef int64_t shim_hid; /* HDF5 1.10's hid_t and herr_t, without its headers */
+typedef int (*close_fn)(shim_hid);
+
+ssize_t pwrite(int fd, const void *buf, size_t n, off_t off)
+{
+	REAL(pwrite, pwrite_fn);
+	if (close_armed(fd))
+		return -1;
+	return real_pwrite(fd, buf, n, off);
+}
+
+ssize_t pwrite64(int fd, const void *buf, size_t n, off_t off)
+{
+	REAL(pwrite64, pwrite_fn);
+	if (close_armed(fd))
+		return -1;
+	return real_pwrite64(fd, buf, n, off);
+}
+
+ssize_t write(int fd, const void *buf, size_t n)
+{
+	REAL(write, write_fn);
+	if (close_armed(fd))
+		return -1;
+	return real_write(fd, buf, n);
+}
+
+int H5Dclose(shim_hid id)
+{
+	REAL(H5Dclose, close_fn);
+	in_close++;
+	int rc = real_H5Dclose(id);
+	in_close--;
+	return rc;
+}
+
+int H5Oclose(shim_hid id)
+{
+	REAL(H5Oclose, close_fn);
+	in_close++;
+	int rc = real_H5Oclose(id);
+	in_close--;
+	return rc;
 }

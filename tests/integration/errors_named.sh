@@ -4,6 +4,11 @@
 #     the system's word for it, never a crash at exit (HDF5 1.10 closes a file whose
 #     close failed a second time in its exit handler: core/h5md.c, h5w_init), and no
 #     temporary file is left;
+#   * a full disk found only when HDF5 closes a dataset (its last chunks are written
+#     then; staged with the build/faults/iofail.so shim, IOFAIL_CLOSE) is the same I/O
+#     fault: exit 2, nothing at the run file's name (never a sealed file holding zeros
+#     where the chunks belong), the finished run kept as a checkpoint, and the same
+#     command then writes the file;
 #   * a read-only runs directory is an I/O fault of `study run` (exit 2, the lock file
 #     and why), not "another study driver" (exit 4, which only a held lock is);
 #   * an engine that crashes (SIGSEGV, SIGABRT) has failed - recorded with its signal,
@@ -45,8 +50,61 @@ if tmpfs full size=48k; then
 		MOUNTS=()
 	done
 	[ -z "$bad" ] && ok full_disk.exit_2_said_so || fail full_disk.exit_2_said_so "$bad"
+	# a smaller run (a campaign's), whose journal fits and whose checkpoint or HDF5 file
+	# does not (at its first closes, before the journal is copied): said as the write
+	# that failed, never a crash on the records not copied, no file at the name
+	bad=""
+	for size in 28k 32k 36k 44k; do
+		tmpfs full "size=$size" || { bad="$bad $size:mount"; continue; }
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$SHAKE" n_grains=40 width=16 radius_ratio=2 settle_ke=1 \
+			settle_min=0.2 duration=0.4 checkpoint_every=0.1 traj_rate=100 snapshots=no frequency=4 progress=no \
+			output="$TMP/full/r.h5" >"small.$size.log" 2>&1
+		rc=$?
+		if [ "$rc" != 2 ] || [ -e full/r.h5 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)' "small.$size.log"; then
+			bad="$bad $size:exit=$rc,$(ls full | tr '\n' ' '),$(grep -m1 -E 'shake: |SEGV|Sanitizer|runtime error' "small.$size.log" | cut -c1-160)"
+		fi
+		umount full
+		MOUNTS=()
+	done
+	[ -z "$bad" ] && ok full_disk.small_run_exit_2 || fail full_disk.small_run_exit_2 "$bad"
 else
 	skip errors.full_disk "cannot mount a tmpfs here (not root?)"
+fi
+
+# --- a full disk at a dataset's close (its chunk flush): exit 2, no file at the final
+# name; run again, the finished run is written from its checkpoint ---
+SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+if [ -f "$SHIM" ]; then
+	mkdir closing
+	LD_PRELOAD="$SHIM" IOFAIL_CLOSE=.h5.tmp. ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing.log 2>&1
+	rc=$?
+	left=$(cd closing && ls -A | tr '\n' ' ')
+	[ "$rc" = 2 ] && [ "$left" = "r.h5.ckpt r.h5.journal " ] &&
+		grep -q "^shake: $TMP/closing/r.h5.tmp.[0-9]*: writing the HDF5 output failed: No space left on device" closing.log &&
+		grep -q "^shake: checkpoint $TMP/closing/r.h5.ckpt holds the finished run" closing.log &&
+		ok full_disk.at_dataset_close || fail full_disk.at_dataset_close "exit $rc, files [$left]: $(head -c 300 closing.log)"
+	"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing2.log 2>&1
+	rc=$?
+	left=$(cd closing && ls -A | tr '\n' ' ')
+	[ "$rc" = 0 ] && [ "$left" = "r.h5 r.xmf " ] && grep -q "^shake: resuming from" closing2.log &&
+		[ "$(attr "$TMP/closing/r.h5" /status)" = ok ] && ok full_disk.at_dataset_close.then_written ||
+		fail full_disk.at_dataset_close.then_written "exit $rc, files [$left]: $(head -c 300 closing2.log)"
+	# a checkpoint that cannot be written while the run shakes: exit 2, no run file (a
+	# driver would ingest it as the run's end, failed), the same command then completes
+	touch ckpt.trig
+	LD_PRELOAD="$SHIM" IOFAIL_TRIGGER="$TMP/ckpt.trig" IOFAIL_MATCH=.ckpt.tmp IOFAIL_ERRNO=28 \
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/c.h5" >ckptfail.log 2>&1
+	rc=$?
+	[ "$rc" = 2 ] && [ ! -e closing/c.h5 ] && grep -q "^shake: .*c.h5.ckpt.*No space left on device; no run file written" ckptfail.log &&
+		ok full_disk.checkpoint_no_run_file || fail full_disk.checkpoint_no_run_file "exit $rc, $(ls closing | tr '\n' ' '): $(head -c 300 ckptfail.log)"
+	"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/c.h5" >ckptfail2.log 2>&1
+	rc=$?
+	[ "$rc" = 0 ] && [ "$(attr "$TMP/closing/c.h5" /status)" = ok ] && ok full_disk.checkpoint_then_complete ||
+		fail full_disk.checkpoint_then_complete "exit $rc: $(head -c 300 ckptfail2.log)"
+else
+	fail full_disk.at_dataset_close "$SHIM is missing (make tests builds it)"
 fi
 
 # --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---

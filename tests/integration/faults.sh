@@ -13,8 +13,9 @@
 #     `study run` or at a random moment while one runs, is built and run again: every
 #     run ends done, none failed, the export equals an uninterrupted campaign's;
 #   * a real full disk (a small tmpfs, root only) under a campaign stops the launching
-#     wherever the first write fails, marks no run failed, and the same command
-#     completes the campaign once there is room;
+#     wherever the first write fails, marks no run failed, leaves none 'running' (the
+#     runs it stopped are recorded, even when the database is on the full disk), and
+#     the same command completes the campaign once there is room;
 #   * a second driver on the same campaign is refused with its own exit code (4).
 # `make faults` runs it with FAULT_ROUNDS rounds of the I/O fault armed at random
 # moments; `make check` runs one round armed from the start.
@@ -181,6 +182,13 @@ if mount -t tmpfs -o size=200k tmpfs "$FULL" 2>/dev/null; then
 		[ "$rc" = 2 ] && [ "$nf" = 0 ] && grep -Eq 'No space left on device|I/O fault|study.db: database or disk is full' full.$size.log &&
 			ok "full_disk.$size.stops_none_failed" ||
 			fail "full_disk.$size.stops_none_failed" "exit $rc, failed $nf: $(tail -n 2 full.$size.log | cut -c1-300)"
+		# the runs it stopped are recorded, with the reason, before it exits: none is left
+		# 'running' (the next driver would record it as one whose driver was killed), and
+		# a fault without the engine's word (its log is on the full disk too) says so
+		nr=0
+		[ ! -f "$FULL/study.db" ] || nr=$(q "$FULL/study.db" "SELECT COUNT(*) FROM run WHERE campaign = 'f' AND state = 'running'" 2>&1)
+		[ "${nr:-0}" = 0 ] && ! grep -Eq 'I/O fault \(run [0-9a-f]+: \)' full.$size.log && ok "full_disk.$size.none_left_running" ||
+			fail "full_disk.$size.none_left_running" "running $nr: $(tail -n 2 full.$size.log | cut -c1-300)"
 		mount -o remount,size=64m "$FULL"
 		ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" "$STUDY" run f.campaign --runs "$FULL" --jobs 2 --no-cache >full.$size.resume.log 2>&1
 		rc=$?

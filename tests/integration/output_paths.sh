@@ -126,6 +126,49 @@ for kind in symlink fifo chardev; do
 done
 rm -rf "${D:?}"/*
 
+# --- two output keys at one file: refused before anything runs (exit 1), naming both
+# keys and where each was set; nothing written, what stood there left as it was. Each
+# pair the run would otherwise resolve by deleting or overwriting one of them. ---
+mkdir "$D/real" && ln -s real "$D/via" # a directory reached through a symbolic link
+# id|arguments (the scene is FAST, GENTLE, duration=0.5)|the later key|the earlier key
+SAME=("ckpt_is_output|output=$D/r.h5 checkpoint=$D/r.h5 checkpoint_every=0.25|checkpoint|output"
+	"particles_is_ckpt|output=$D/r.h5 write_particles=$D/r.h5.ckpt|write_particles|output"
+	"particles_is_journal|output=$D/r.h5 write_particles=$D/r.h5.journal|write_particles|output"
+	"particles_is_output|output=$D/r.h5 write_particles=$D/r.h5|write_particles|output"
+	"particles_is_xmf|output=$D/r.h5 write_particles=$D/r.xmf|write_particles|output"
+	"ckpt_is_xmf|output=$D/r.h5 checkpoint=$D/r.xmf checkpoint_every=0.25|checkpoint|output"
+	"particles_is_lammps|output=$D/r.h5 write_particles=$D/bed.txt write_lammps=$D/bed.txt|write_lammps|write_particles"
+	"lammps_is_output_none|output=none write_particles=$D/bed.txt write_lammps=$D/./bed.txt|write_lammps|write_particles"
+	"dot_slash|output=$D/r.h5 checkpoint=$D/./r.h5 checkpoint_every=0.25|checkpoint|output"
+	"dir_symlink|output=$D/real/r.h5 write_particles=$D/via/r.xmf|write_particles|output"
+	"relative|output=r.h5 write_lammps=$D/r.h5|write_lammps|output")
+for c in "${SAME[@]}"; do
+	IFS='|' read -r name args later earlier <<<"$c"
+	id="same_file.$name"
+	rm -rf "${D:?}"/*.* "${D:?}"/real/*
+	echo "stood here" >"$D/r.h5"
+	before=$(cd "$D" && ls -AR | tr '\n' ' ')
+	# shellcheck disable=SC2086 # args holds key=value words without blanks
+	(cd "$D" && timeout -k 5 "$LIMIT" "$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 $args >"$TMP/$id.log" 2>&1)
+	rc=$?
+	after=$(cd "$D" && ls -AR | tr '\n' ' ')
+	[ "$rc" = 1 ] && [ "$before" = "$after" ] && [ "$(cat "$D/r.h5")" = "stood here" ] &&
+		grep -q "^shake: command line: $later: '[^']*'.* is the same file as $earlier: '[^']*'.* (command line): one would delete or overwrite the other" "$id.log" &&
+		ok "$id" || fail "$id" "exit $rc, files [$before] -> [$after]: $(head -c 300 "$id.log")"
+done
+# where each key was set: a scene file's line and the command line
+printf 'output = %s\nwrite_lammps = %s\n' "$D/r.h5" "$D/r.xmf" >"$TMP/same.scene"
+"$SHAKE" "$TMP/same.scene" "${FAST[@]}" write_lammps="$D/r.h5.journal" >same_where.log 2>&1
+rc=$?
+[ "$rc" = 1 ] && grep -q "^shake: command line: write_lammps: '$D/r.h5.journal' is the same file as output: '$D/r.h5.journal' (its journal) ($TMP/same.scene:1)" same_where.log &&
+	ok same_file.where_set || fail same_file.where_set "exit $rc: $(head -c 300 same_where.log)"
+# paths that differ still run (the check is not a blanket refusal)
+"$SHAKE" "${FAST[@]}" duration=0 output="$D/real/r.h5" write_particles="$D/via/r.txt" write_lammps="$D/r.txt" >same_ok.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && [ -s "$D/real/r.h5" ] && [ -s "$D/real/r.txt" ] && [ -s "$D/r.txt" ] && ok same_file.different_run ||
+	fail same_file.different_run "exit $rc: $(head -c 300 same_ok.log)"
+rm -rf "${D:?}"/*
+
 # --- a regular file is replaced, as before (a run again over its old file) ---
 echo old >"$D/again.h5"
 "$SHAKE" "${FAST[@]}" "${GENTLE[@]}" output="$D/again.h5" >again.log 2>&1 && [ "$(h5param "$D/again.h5" output)" = "$D/again.h5" ] &&

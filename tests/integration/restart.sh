@@ -5,6 +5,9 @@
 # kill moments with gear5 and one with verlet. SIGTERM exits with code 7, leaves a
 # checkpoint, and the rerun resumes to the same file. A checkpoint of other physics is
 # refused (code 1) unless restart = no; restart = yes without a checkpoint is refused.
+# A checkpoint whose journal is missing or shorter than it says (a run directory deleted
+# while the run wrote), or a journal without its checkpoint, starts the run over: exit 0
+# with a note, the same file as an uninterrupted run; restart = yes refuses the former.
 # tier: slow: five runs of 2.5 s, each killed and resumed
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
@@ -166,6 +169,50 @@ if [ "$rc" -eq 7 ]; then
 else
 	fail sigterm_nockpt.code7 "exit $rc after SIGTERM 0.1 s into the shaking of a ~1 s run"
 fi
+
+# --- a checkpoint without its journal, or with a short one, and a journal without its
+# checkpoint: the run starts over (a note, not a fault), and ends as an uninterrupted
+# one; restart = yes, which asks to continue, is refused (exit 1) and touches nothing ---
+SMALL=("${FAST[@]}" "${GENTLE[@]}" duration=1 checkpoint_every=0.25)
+"$SHAKE" "${SMALL[@]}" output="$TMP/small_ref.h5" >"$TMP/small_ref.log" 2>&1 || fail orphan.reference "exit $?: $(head -c 300 "$TMP/small_ref.log")"
+# orphan ID MODE : a run stopped by SIGTERM (its checkpoint written at the stop), then
+# MODE done to its files, then the same command again
+orphan() {
+	local id=$1 mode=$2 out="$TMP/$1.h5" rc note
+	"$SHAKE" "${SMALL[@]}" output="$out" >"$TMP/$id.1.log" 2>&1 &
+	local pid=$!
+	wait_ckpts "$out.ckpt" $pid 1 >/dev/null && kill -TERM $pid 2>/dev/null
+	wait $pid
+	rc=$?
+	[ "$rc" = 7 ] && [ -s "$out.ckpt" ] && [ -s "$out.journal" ] || { fail "orphan.$id" "setup: exit $rc: $(head -c 300 "$TMP/$id.1.log")"; return; }
+	case $mode in
+	nojournal) note="is missing" && rm "$out.journal" ;;
+	short) note="is shorter than the checkpoint says" && truncate -s 12 "$out.journal" ;;
+	nockpt) rm "$out.ckpt" ;;
+	esac
+	if [ "$mode" != nockpt ]; then
+		cp "$out.ckpt" "$TMP/$id.saved"
+		"$SHAKE" "${SMALL[@]}" restart=yes output="$out" >"$TMP/$id.yes.log" 2>&1
+		rc=$?
+		[ "$rc" = 1 ] && [ ! -e "$out" ] && cmp -s "$out.ckpt" "$TMP/$id.saved" &&
+			grep -q "^shake: $out.ckpt: restart = yes, but its journal $out.journal $note; remove the checkpoint or set restart = auto" "$TMP/$id.yes.log" &&
+			ok "orphan.$id.restart_yes_refused" || fail "orphan.$id.restart_yes_refused" "exit $rc: $(head -c 300 "$TMP/$id.yes.log")"
+	fi
+	"$SHAKE" "${SMALL[@]}" output="$out" >"$TMP/$id.2.log" 2>&1
+	rc=$?
+	if [ "$mode" = nockpt ]; then
+		! grep -q "resuming" "$TMP/$id.2.log"
+	else
+		grep -q "^shake: warning: $out.ckpt: its journal $out.journal $note: starting the run over" "$TMP/$id.2.log"
+	fi
+	local said=$?
+	[ "$rc" = 0 ] && [ "$said" = 0 ] && [ ! -e "$out.ckpt" ] && [ ! -e "$out.journal" ] &&
+		same_output "$TMP/small_ref.h5" "$out" output && ok "orphan.$id.started_over" ||
+		fail "orphan.$id.started_over" "exit $rc, files $(ls "$TMP/$id"* | tr '\n' ' '): $(head -c 300 "$TMP/$id.2.log")"
+}
+orphan ckpt_without_journal nojournal
+orphan ckpt_with_short_journal short
+orphan journal_without_ckpt nockpt
 
 # --- verlet ---
 SCENE+=(integrator=verlet)

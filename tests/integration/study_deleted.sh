@@ -6,7 +6,9 @@
 # writes the argument files that named them again, runs what is missing and ends with
 # every run done and files bit-identical to an undisturbed campaign's. A done run whose
 # output was deleted is run again (recorded as a `damaged` attempt); --no-cache makes a
-# run whose packing is gone settle itself instead.
+# run whose packing is gone settle itself instead. A job whose campaign directory is gone
+# when its worker starts is reported as such (exit 2: not the run's fault, its input
+# is prepared again), never as a "bad job" that fails the run.
 # tier: slow: campaigns whose outputs and caches are deleted and run again
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
@@ -130,4 +132,11 @@ if grep -q "lost .* input while the campaign ran" m.log; then
 else
 	skip midrun.recorded_missing_input "every run had read its packing before the deletion (nothing to recover this time)"
 fi
+# a job whose campaign directory was deleted before its worker started: said so, exit 2
+# (the driver finds its input gone and prepares it again), never "bad job" (exit 1, the
+# run failed)
+"$STUDY" exec "$TMP/gone" run 0123456789abcdef >gone.out 2>&1
+rc=$?
+[ "$rc" = 0 ] && grep -q "^STUDY-DONE	0123456789abcdef	2	[^	]*	0.000	exec: cannot enter the campaign's directory $TMP/gone: No such file or directory$" gone.out &&
+	ok deleted_dir.worker_says_so || fail deleted_dir.worker_says_so "exit $rc: $(head -c 300 gone.out)"
 finish
