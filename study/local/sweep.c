@@ -82,6 +82,20 @@ static int has_result(drv *d, const char *id)
 	return found;
 }
 
+/* The seal of the run's file as recorded when it was done ("" when none: a database or
+ * a file of an earlier version). */
+static void recorded_seal(drv *d, const char *id, char seal[17])
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	seal[0] = 0;
+	if (sql_exec(&d->db, &e, &q, "SELECT file_seal FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
+		return;
+	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
+		snprintf(seal, 17, "%s", (const char *)sqlite3_column_text(q, 0));
+	sqlite3_finalize(q);
+}
+
 /* Ingest every output that exists but is not recorded (finished while no driver was
  * listening), and with --retry-failed put failed runs back in the queue. Returns the
  * pending runs' indices in *pend. */
@@ -108,7 +122,9 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			 * group silently */
 			h5sum s;
 			sb_err re = {0};
-			if (!exists(path) || h5sum_read(path, r->id, &s, &re)) {
+			char seal[17];
+			recorded_seal(d, r->id, seal);
+			if (!exists(path) || h5sum_read_sealed(path, r->id, seal, &s, &re)) {
 				if (requeue_damaged(d, r->id, att, exists(path) ? re.msg : "the output file is missing", e))
 					return e->code;
 				queued = 1;
