@@ -255,9 +255,14 @@ static int hash_rest(int fd, off_t off, uint64_t *h, unsigned long long *bytes)
 		n += (unsigned long long)r;
 		const size_t len = have + (size_t)r, whole = len / 8 * 8;
 		for (size_t k = 0; k < whole; k += 8) {
-			uint64_t w = 0;
+			uint64_t w;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+			memcpy(&w, buf + k, 8); /* the bytes' little-endian value, in one load */
+#else
+			w = 0;
 			for (int b = 7; b >= 0; b--)
 				w = w << 8 | buf[k + (size_t)b];
+#endif
 			x ^= w;
 			x *= 1099511628211ULL;
 		}

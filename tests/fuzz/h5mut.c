@@ -652,7 +652,13 @@ static int flip(const char *file, const char *path)
 	hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
 	hid_t d = f >= 0 ? H5Dopen2(f, path, H5P_DEFAULT) : -1;
 	haddr_t at = HADDR_UNDEF;
-	hsize_t size = 0;
+	hsize_t size = 0, base = 0;
+	/* HDF5's addresses count from its superblock, after the user block (the seal) */
+	hid_t cp = f >= 0 ? H5Fget_create_plist(f) : -1;
+	if (cp < 0 || H5Pget_userblock(cp, &base) < 0)
+		base = 0;
+	if (cp >= 0)
+		H5Pclose(cp);
 	if (d >= 0) {
 		hid_t pl = H5Dget_create_plist(d);
 		if (H5Pget_layout(pl) == H5D_CHUNKED) {
@@ -676,7 +682,7 @@ static int flip(const char *file, const char *path)
 	FILE *fp = fopen(file, "r+b");
 	if (!fp)
 		return -1;
-	const long pos = (long)(at + size / 2);
+	const long pos = (long)(base + at + size / 2);
 	int c = fseek(fp, pos, SEEK_SET) ? EOF : fgetc(fp);
 	int bad = c == EOF || fseek(fp, pos, SEEK_SET) || fputc(c ^ 0x10, fp) == EOF;
 	return fclose(fp) || bad ? -1 : 0;
