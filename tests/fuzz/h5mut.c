@@ -33,6 +33,8 @@
  *     --random SEED             one random change: a dataset's shape, type or values, an
  *                               attribute's type, shape or value, an object deleted or
  *                               turned into the other kind, a link to another dataset,
+ *                               a dataset pointing out of the file (external link or
+ *                               storage, virtual dataset: /dev/zero, nothing, itself),
  *                               or bytes (truncation, bit flips, a block overwritten);
  *                               what it did goes to stderr; the seal is renewed for
  *                               half of the seeds
@@ -333,13 +335,15 @@ static const char *pick_object(hid_t f, const char *ds)
 	return below(3) && ngroups ? groups[below((size_t)ngroups)] : ds ? ds : "/";
 }
 
+static int elsewhere(hid_t f, const char *path, const char *file, int kind);
+
 static int random_structured(hid_t f)
 {
 	/* the changes that readers trusted most (values, attributes, shapes) more often */
-	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8};
+	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8, 9, 9};
 	const char *ds = pick_dataset();
 	const int op = OPS[below(sizeof OPS / sizeof *OPS)];
-	if ((op <= 2 || op == 6 || op == 7) && !ds)
+	if ((op <= 2 || op == 6 || op == 7 || op == 9) && !ds)
 		return -1;
 	switch (op) {
 	case 0: { /* a dataset's shape */
@@ -504,6 +508,16 @@ static int random_structured(hid_t f)
 		fprintf(stderr, "huge series of %s: %d of them (%llu rows of %llu ...)\n", box, n,
 			(unsigned long long)orig[0], (unsigned long long)dims[1]);
 		return n ? 0 : -1;
+	}
+	case 9: { /* a dataset pointing out of the file: an external link, external storage
+		   * or a virtual dataset, at a device that never ends, at nothing, or at the
+		   * file itself */
+		static const char *const TO[] = {"/dev/zero", "/nonexistent/other.h5", "."};
+		static const char *const HOW[] = {"external link", "external storage", "virtual dataset"};
+		const int how = (int)below(3);
+		const char *to = TO[below(3)];
+		fprintf(stderr, "%s %s -> %s\n", HOW[how], ds, to);
+		return elsewhere(f, ds, to, how);
 	}
 	case 6: { /* a hard link to another dataset (another shape) */
 		const char *other = dsets[below((size_t)ndsets)];
