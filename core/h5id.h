@@ -1,7 +1,9 @@
 /* h5id.h - a run file's identity and integrity: the format it declares, the run it
- * claims to be and a digest of its attributes (docs/inputs.md, "Run files"). The engine
- * seals a file with h5id_seal as the last thing it writes; the study driver and the
- * analysis tools check it with h5id_check before they believe a value of it. */
+ * claims to be, a digest of its attributes and a seal over all of its bytes
+ * (docs/inputs.md, "Run files"). The engine digests a file with h5id_seal as the last
+ * thing it writes into it and seals it with h5id_file_seal once HDF5 has closed it;
+ * the readers check the seal (h5id_file_check, through h5r_open) before HDF5 parses a
+ * byte, and the rest with h5id_check before they believe a value of it. */
 #ifndef SB_H5ID_H
 #define SB_H5ID_H
 
@@ -11,11 +13,32 @@
 #include "err.h"
 
 /* The root attribute naming the file's layout, and the layout this engine writes.
- * shakebox-run-3 added the run id and the digest; files of H5ID_FORMAT_OLD have
- * neither and are read with a note (docs/inputs.md, "Run files"). */
+ * shakebox-run-3 added the run id and the digest, shakebox-run-4 the seal of the whole
+ * file; files of the older formats are read with a note (docs/inputs.md, "Run files"):
+ * run-3 with its attributes' digest checked, run-2 unchecked. */
 #define H5ID_FORMAT_ATTR "format"
-#define H5ID_FORMAT "shakebox-run-3"
+#define H5ID_FORMAT "shakebox-run-4"
+#define H5ID_FORMAT_OLD3 "shakebox-run-3"
 #define H5ID_FORMAT_OLD "shakebox-run-2"
+
+/* The seal: HDF5's user block, the file's first H5ID_SEAL_BYTES bytes (HDF5 then
+ * finds its superblock right after it), holds the text
+ *   "shakebox-seal 1\nfnv1a64w HEX16\nbytes N\n"
+ * and zeros: HEX16 the hash of every byte after the block (FNV-1a/64 over 8-byte
+ * little-endian words, the last one padded with zeros, then N mixed in), N their count.
+ * Written after HDF5 closed the file; a reader checks it before HDF5 reads anything. */
+#define H5ID_SEAL_BYTES 512
+
+/* Writes the seal into the user block of the closed HDF5 file at path (made with a
+ * user block of H5ID_SEAL_BYTES). */
+int h5id_file_seal(const char *path, sb_err *e);
+
+/* Checks the seal of the file at path (a regular file) before anything parses it:
+ * seal holds its 16 hex digits, or "" when the file has no user block (an older file:
+ * HDF5's signature at byte 0). SB_EIO, naming path, when the user block is no seal,
+ * the bytes after it do not hash to it (a bit flipped, a value edited), or HDF5's
+ * signature is at neither place. */
+int h5id_file_check(const char *path, char seal[17], sb_err *e);
 
 /* Where the run's id sits: the scene key run_id (set by the study driver's worker for
  * every run, the campaign's id of the run; "" for a run outside a campaign), recorded
@@ -39,12 +62,13 @@ int h5id_seal(hid_t f, sb_err *e);
 enum h5id_note {
 	H5ID_OK = 0,
 	H5ID_UNSEALED = 1, /* a file of H5ID_FORMAT_OLD: neither id nor digest to check */
+	H5ID_OLD3 = 2,     /* a file of H5ID_FORMAT_OLD3: no seal, only the attributes' digest */
 };
 
-/* The file is a run file of this engine's format, its attributes match its digest,
- * and, when want_id is not NULL, it claims to be run want_id. An error names path and
- * what mismatched (SB_EIO). *note (may be NULL) says whether an older file was let
- * through unchecked. */
+/* The file is a run file of this engine's format, sealed (a user block: h5r_open has
+ * checked the seal), its attributes match its digest, and, when want_id is not NULL, it
+ * claims to be run want_id. An error names path and what mismatched (SB_EIO). *note
+ * (may be NULL) says whether an older file was let through less checked. */
 int h5id_check(hid_t f, const char *path, const char *want_id, int *note, sb_err *e);
 
 #endif

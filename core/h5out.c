@@ -1024,6 +1024,9 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 		}
 		rc = sb_errf(e, SB_EIO, "%s: writing the HDF5 output failed%s%s", tmp, why[0] ? ": " : "", why);
 	}
+	/* the seal covers every byte HDF5 wrote, so it comes after HDF5 closed the file */
+	if (!rc)
+		rc = h5id_file_seal(tmp, e);
 	if (!rc)
 		rc = fs_fsync_path(tmp, e);
 	if (!rc)

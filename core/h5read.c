@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
+#include "h5id.h"
 
 /* A filtered (compressed) chunk holds at most this many times its stored bytes:
  * deflate, the engine's filter, packs at most 1032:1 (zlib's technical notes), and
@@ -15,16 +16,124 @@
 /* The longest fixed-length string attribute read: run files hold names and messages. */
 #define H5R_STR_MAX (1 << 20)
 
-int h5r_open(const char *path, hid_t *f, sb_err *e)
+int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal[17], sb_err *e)
 {
 	*f = -1;
+	seal[0] = 0;
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 	if (fs_check_input(path, "run file", SB_EIO, e))
 		return e->code;
+	/* HDF5 parses what it reads with less care than a hostile file needs (a flipped
+	 * bit in its global heap ran strlen past a buffer): the bytes are checked first */
+	if (h5id_file_check(path, seal, e))
+		return e->code;
+	if (want_seal && want_seal[0] && strcmp(seal, want_seal))
+		return sb_errf(e, SB_EIO, "%s: sealed %s, but the database recorded %.16s when the run was done: not "
+			       "the file the engine wrote for it (copied, replaced, or edited and sealed again)", path,
+			       seal[0] ? seal : "not at all (an older format)", want_seal);
 	*f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (*f < 0)
 		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file", path);
+	if (h5r_contained(*f, path, e)) {
+		H5Fclose(*f);
+		*f = -1;
+		return e->code;
+	}
 	return 0;
+}
+
+int h5r_open(const char *path, hid_t *f, sb_err *e)
+{
+	char seal[17];
+	return h5r_open_sealed(path, NULL, f, seal, e);
+}
+
+typedef struct cctx {
+	const char *path;
+	sb_err *e;
+	int err;
+} cctx;
+
+static herr_t contained_link(hid_t g, const char *name, const H5L_info_t *info, void *data)
+{
+	cctx *c = data;
+	if (info->type == H5L_TYPE_HARD)
+		return 0;
+	char val[512] = "";
+	const char *file = NULL, *obj = NULL;
+	if (info->type != H5L_TYPE_ERROR && info->u.val_size > 0 && info->u.val_size <= sizeof val &&
+	    H5Lget_val(g, name, val, sizeof val, H5P_DEFAULT) >= 0) {
+		val[sizeof val - 1] = 0;
+		unsigned flags;
+		if (info->type == H5L_TYPE_EXTERNAL && H5Lunpack_elink_val(val, info->u.val_size, &flags, &file, &obj) < 0)
+			file = obj = NULL;
+	}
+	if (info->type == H5L_TYPE_EXTERNAL)
+		c->err = sb_errf(c->e, SB_EIO, "%s: /%s is an external link (to %.200s:%.200s): a run file holds only its "
+				 "own objects", c->path, name, file ? file : "?", obj ? obj : "?");
+	else if (info->type == H5L_TYPE_SOFT)
+		c->err = sb_errf(c->e, SB_EIO, "%s: /%s is a soft link (to %.200s): a run file holds only hard links",
+				 c->path, name, val);
+	else
+		c->err = sb_errf(c->e, SB_EIO, "%s: /%s is a link of user-defined type %d: a run file holds only hard "
+				 "links", c->path, name, (int)info->type);
+	return 1;
+}
+
+static herr_t contained_object(hid_t f, const char *name, const H5O_info_t *info, void *data)
+{
+	cctx *c = data;
+	if (info->type != H5O_TYPE_DATASET)
+		return 0;
+	hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+	hid_t pl = d >= 0 ? H5Dget_create_plist(d) : -1;
+	if (pl < 0) {
+		c->err = sb_errf(c->e, SB_EIO, "%s: /%s: cannot open dataset", c->path, name);
+	} else if (H5Pget_external_count(pl) != 0) {
+		char ext[256] = "?";
+		off_t off;
+		hsize_t size;
+		if (H5Pget_external(pl, 0, sizeof ext, ext, &off, &size) < 0)
+			snprintf(ext, sizeof ext, "?");
+		c->err = sb_errf(c->e, SB_EIO, "%s: /%s keeps its data in another file (%.200s): a run file holds its own "
+				 "data", c->path, name, ext);
+	} else if (H5Pget_layout(pl) == H5D_VIRTUAL) {
+		size_t n = 0;
+		if (H5Pget_virtual_count(pl, &n) < 0)
+			c->err = sb_errf(c->e, SB_EIO, "%s: /%s: cannot read its virtual mappings", c->path, name);
+		for (size_t k = 0; k < n && !c->err; k++) {
+			char src[256] = "", dset[512] = "";
+			const ssize_t ls = H5Pget_virtual_filename(pl, k, src, sizeof src);
+			const ssize_t ld = H5Pget_virtual_dsetname(pl, k, dset, sizeof dset);
+			if (ls < 0 || ld < 0 || (size_t)ls >= sizeof src || (size_t)ld >= sizeof dset)
+				c->err = sb_errf(c->e, SB_EIO, "%s: /%s: cannot read its virtual mapping %zu", c->path, name, k);
+			else if (strcmp(src, "."))
+				c->err = sb_errf(c->e, SB_EIO, "%s: /%s is a virtual dataset of another file (%.200s:%.200s): a "
+						 "run file's are views of its own datasets", c->path, name, src, dset);
+			else if (!h5r_exists(f, dset))
+				c->err = sb_errf(c->e, SB_EIO, "%s: /%s is a virtual dataset of %.200s, which the file does not "
+						 "hold", c->path, name, dset);
+		}
+	}
+	if (pl >= 0)
+		H5Pclose(pl);
+	if (d >= 0)
+		H5Dclose(d);
+	return c->err ? 1 : 0;
+}
+
+int h5r_contained(hid_t f, const char *path, sb_err *e)
+{
+	cctx c = {path, e, 0};
+	/* links first: H5Ovisit does not follow external or soft links, so what they point
+	 * at would pass unseen, and opening it is what must not happen */
+	if (H5Lvisit(f, H5_INDEX_NAME, H5_ITER_INC, contained_link, &c) < 0 && !c.err)
+		return sb_errf(e, SB_EIO, "%s: cannot visit the file's links", path);
+	if (c.err)
+		return c.err;
+	if (H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, contained_object, &c, H5O_INFO_BASIC) < 0 && !c.err)
+		return sb_errf(e, SB_EIO, "%s: cannot visit the file's objects", path);
+	return c.err;
 }
 
 void h5r_close(hid_t f)

@@ -13,8 +13,22 @@
 #include "err.h"
 
 /* Opens a run file read-only: SB_EIO when it is no regular file (a FIFO would block
- * the open) or no HDF5 file. */
+ * the open), its seal does not match its bytes (h5id_file_check, before HDF5 reads
+ * any of them), it is no HDF5 file, or it reaches outside itself (h5r_contained). */
 int h5r_open(const char *path, hid_t *f, sb_err *e);
+/* ... and seal gets the file's seal ("" for an older, unsealed file), which must be
+ * want_seal when that is neither NULL nor "" (the seal the study driver recorded when
+ * the run was done: a file copied, replaced or edited and sealed again differs), checked
+ * before HDF5 opens the file. */
+int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal[17], sb_err *e);
+
+/* The file holds only itself: every link is a hard link (no external link, whose
+ * target another file is, nor a soft or user-defined one; the engine writes none), no
+ * dataset keeps its data in external files, and a virtual dataset's every source is a
+ * dataset of this file ("."). Checked from the links and the datasets' creation
+ * properties, before any data is read: a FIFO or another campaign's file named there
+ * is never opened. An error names the object and what it points at. */
+int h5r_contained(hid_t f, const char *path, sb_err *e);
 void h5r_close(hid_t f);
 int h5r_exists(hid_t f, const char *path);
 

@@ -8,7 +8,38 @@
 #include "h5read.h"
 #include "h5sum.h"
 #include "layout.h"
+#include "params.h"
 #include "runfile.h"
+
+/* What the engine writes (core/crossing.c, core/observe.c): the lines at the slice
+ * midpoints of the settled bed, surface (l + 1/2) / L, so increasing, above the floor
+ * and below the surface the group records; each period's frequency that of the drive,
+ * above 0 and at most the scene's largest; the periods' times from 0 on, in order. A
+ * file with other values (heights reversed or constant, a frequency of 0 or 1e30) is
+ * refused, naming the value: a band or a period count made of them would be a number
+ * of nothing (and GSL's solvers abort on some). */
+static int flux_ranges(const flux_data *d, double surface, const char *path, sb_err *e)
+{
+	const double fmax = params_find("frequency")->max;
+	for (size_t l = 0; l < d->L; l++) {
+		if (!(d->h[l] > (l ? d->h[l - 1] : 0)))
+			return sb_errf(e, SB_EIO, "%s: /observables/flux/heights[%zu] = %g: the lines rise from above the "
+				       "floor (%s %g)", path, l, d->h[l], l ? "the line below is at" : "the floor is at",
+				       l ? d->h[l - 1] : 0.0);
+		if (isfinite(surface) && !(d->h[l] < surface))
+			return sb_errf(e, SB_EIO, "%s: /observables/flux/heights[%zu] = %g: not below the surface the "
+				       "group records (%g)", path, l, d->h[l], surface);
+	}
+	for (size_t p = 0; p < d->P; p++) {
+		if (!(d->f[p] > 0 && d->f[p] <= fmax))
+			return sb_errf(e, SB_EIO, "%s: /observables/flux/frequency/value[%zu] = %g: a drive frequency is in "
+				       "(0, %g] Hz", path, p, d->f[p], fmax);
+		if (!(d->t[p] >= (p ? d->t[p - 1] : 0)))
+			return sb_errf(e, SB_EIO, "%s: /observables/flux/phi/time[%zu] = %g: the periods' times run from 0 "
+				       "in order", path, p, d->t[p]);
+	}
+	return 0;
+}
 
 int flux_read(const char *path, flux_data *d, sb_err *e)
 {
@@ -57,11 +88,19 @@ int flux_read(const char *path, flux_data *d, sb_err *e)
 				return e->code;
 			}
 	d->surface = NAN;
-	if (h5r_attr_num(f, RUNFILE_FLUX, "surface_height", &d->surface))
+	double own = NAN;
+	const int has_own = h5r_attr_num(f, RUNFILE_FLUX, "surface_height", &own) == 0;
+	if (has_own)
+		d->surface = own;
+	else
 		h5r_attr_num(f, "/", "surface_height", &d->surface);
 	if (!isfinite(d->surface) && d->L)
 		d->surface = d->h[d->L - 1] * d->L / (d->L - 0.5); /* lines sit at slice midpoints */
 	h5r_close(f);
+	if (flux_ranges(d, has_own ? own : NAN, path, e)) {
+		flux_free(d);
+		return e->code;
+	}
 	return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "h5id.h"
 #include "h5read.h"
 #include "runfile.h"
+#include "runvals.h"
 
 /* One column: an attribute (OBJ@NAME) or a dataset's rows (PATH#rows). An attribute
  * or dataset that is there but not what the column needs (an array where one value
@@ -69,6 +70,11 @@ static void read_column(hid_t f, const rcol *c, h5val *v, int *bad, sb_err *e)
 
 int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e)
 {
+	return h5sum_read_sealed(path, want_id, NULL, s, e);
+}
+
+int h5sum_read_sealed(const char *path, const char *want_id, const char *want_seal, h5sum *s, sb_err *e)
+{
 	memset(s, 0, sizeof *s);
 	size_t n;
 	const rcol *t = results_table(&n);
@@ -76,7 +82,10 @@ int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e)
 		return sb_errf(e, SB_ENOMEM, "results table larger than H5SUM_MAX");
 	hid_t f;
 	sb_err oe = {0};
-	if (h5r_open(path, &f, &oe)) /* a FIFO is refused before the open could wait for a writer */
+	char seal[17];
+	/* a FIFO is refused before the open could wait for a writer, changed bytes before
+	 * HDF5 parses them */
+	if (h5r_open_sealed(path, want_seal, &f, seal, &oe))
 		return sb_errf(e, oe.code, "%s", oe.msg);
 	/* nothing of a file is believed before it is known to be the run it claims to be */
 	if (h5id_check(f, path, want_id, &s->unsealed, &oe)) {
@@ -86,8 +95,18 @@ int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e)
 	int bad = 0;
 	sb_err why = {0};
 	for (size_t i = 0; i < n; i++)
-		if (!(t[i].flags & RF_DERIVED))
+		if (!strcmp(t[i].where, RESULTS_SEAL)) {
+			snprintf(s->v[i].s, sizeof s->v[i].s, "%s", seal);
+			s->v[i].has = seal[0] != 0;
+		} else if (!(t[i].flags & RF_DERIVED)) {
 			read_column(f, &t[i], &s->v[i], &bad, &why);
+		}
+	/* values the engine cannot have written: a waiting time beyond the run's end */
+	sb_err ve = {0};
+	if (!bad && runvals_check(f, path, &ve)) {
+		h5r_close(f);
+		return sb_errf(e, ve.code, "%s", ve.msg);
+	}
 	/* the scene's parameters are attributes of /parameters (H5MD) */
 	if (h5r_exists(f, RUNFILE_PARAMS) && h5r_attr_str(f, RUNFILE_PARAMS, "particles", s->particles,
 							   sizeof s->particles) < 0) {

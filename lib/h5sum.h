@@ -19,7 +19,7 @@ typedef struct h5val {
 typedef struct h5sum {
 	h5val v[H5SUM_MAX]; /* indexed like results_table() */
 	char particles[H5SUM_TEXT]; /* the run's particles parameter: the packing it started from */
-	int unsealed;       /* enum h5id_note: an older file, its identity and data unchecked */
+	int unsealed;       /* enum h5id_note: an older file, its identity or data unchecked */
 } h5sum;
 
 /* Read every stored column; an error when the file cannot be opened, is not run
@@ -27,6 +27,10 @@ typedef struct h5sum {
  * cannot be read, a dataset's data fails its checksum (h5r_verify) or the run's status
  * is missing (not a complete run file). */
 int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e);
+/* ... and the file's seal (column file_seal) must be want_seal unless that is NULL or
+ * "" (what the database recorded: a file replaced, or edited and sealed again, differs);
+ * the values checked against their ranges too (lib/runvals.h). */
+int h5sum_read_sealed(const char *path, const char *want_id, const char *want_seal, h5sum *s, sb_err *e);
 
 /* A column by name: "" / 0 when absent. */
 const char *h5sum_text(const h5sum *s, const char *name);

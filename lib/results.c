@@ -60,6 +60,10 @@ static const rcol TABLE[] = {
 	{"git_dirty", RT_INT, "/provenance@git_dirty", "", "1 when built from a modified tree", RF_FLAG},
 	{"start_time", RT_TEXT, "/provenance@start_time", "", "when the engine started (UTC)", RF_NOVIEW},
 	{"end_time", RT_TEXT, "/provenance@end_time", "", "when the engine wrote the file (UTC)", RF_NOVIEW},
+	/* not an attribute: the user block before HDF5's bytes (h5sum.c reads it) */
+	{"file_seal", RT_TEXT, RESULTS_SEAL, "",
+	 "the file's seal (core/h5id.h) when the run was recorded: a reader refuses a file that differs from it; "
+	 "NULL for an older, unsealed file", RF_NOVIEW},
 };
 
 const rcol *results_table(size_t *n)

@@ -28,6 +28,9 @@ typedef struct rcol {
 	int flags;
 } rcol;
 
+/* The where of the file_seal column: the seal in the file's user block. */
+#define RESULTS_SEAL "(user block)"
+
 const rcol *results_table(size_t *n);
 /* Index of a column by name, -1 if none. */
 int results_find(const char *name);

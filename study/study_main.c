@@ -1,5 +1,6 @@
 /* study_main.c - bin/study: campaigns of bin/shake runs. Only this file prints and exits. */
 #include <errno.h>
+#include <gsl/gsl_errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -312,6 +313,7 @@ static int cmd_report(const study_args *o)
 
 int main(int argc, char **argv)
 {
+	gsl_set_error_handler_off(); /* statuses are checked: GSL's default handler aborts */
 	if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
 		opts_usage(argc < 2 ? stderr : stdout);
 		return argc < 2 ? 1 : 0;

@@ -10,6 +10,10 @@
 #include "h5id.h"
 #include "h5read.h"
 #include "cli.h"
+#include "num.h"
+#include "params.h"
+#include "runfile.h"
+#include "runvals.h"
 
 static const char *const USE[AN_NUSE] = {"used", "failed_used", "unusable", "unreadable", "pending", "running"};
 
@@ -30,6 +34,29 @@ void acct_set(an_run *r, int use, double used_s, double planned_s, const char *f
 		vsnprintf(r->why, sizeof r->why, fmt, ap);
 		va_end(ap);
 	}
+}
+
+/* The database's parameters of run r are the file's (/parameters): a value edited in
+ * the database (frequency 15 made 25) would move the run to another group of every
+ * tool. The keys compared are the numbers that make the run what it is (its
+ * preparation, dynamics and length: core/params.h), the ones a run's id is made of, as
+ * numbers (the database may hold 15 as 15.0); not where and what it writes
+ * (checkpoint_every: the driver sets it for every run), nor the choices the driver
+ * resolves for a run (settle = auto is no for a run from the packing cache). A key the
+ * file does not record (an older engine's) is not compared. */
+static int same_params(hid_t f, const an_run *r, sb_err *e)
+{
+	for (int i = 0; i < r->nparam; i++) {
+		const sb_param *p = params_find(r->key[i]);
+		double fv, dv;
+		if (!p || !r->val[i] || !(p->flags & (PF_PREP | PF_DYN | PF_LEN)) || (p->flags & (PF_DRIVER | PF_NOID)) ||
+		    (p->type != PT_INT && p->type != PT_REAL) || h5r_attr_num(f, RUNFILE_PARAMS, p->name, &fv))
+			continue;
+		if (num_real(r->val[i], &dv) || !(fabs(fv - dv) <= 1e-12 * fmax(fabs(fv), fabs(dv))))
+			return sb_errf(e, SB_EIO, "%s: %s = %.17g in the file, '%.60s' in the database: the database does "
+				       "not describe this run", r->path, p->name, fv, r->val[i]);
+	}
+	return 0;
 }
 
 int acct_classify(an_run *r)
@@ -55,24 +82,30 @@ int acct_classify(an_run *r)
 			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no such file", r->path);
 		return 1;
 	}
-	/* the file must be the run the database says it is: another run's file copied or
-	 * linked into place, or attributes changed after the engine wrote them, make it
-	 * unreadable (core/h5id.h); its data's checksums are HDF5's to verify as the tool
-	 * reads them */
+	/* the file must be the one the driver recorded (its seal, checked before HDF5 reads
+	 * a byte of it) and the run the database says it is: another run's file copied or
+	 * linked into place, or a file changed after the engine wrote it, make it unreadable
+	 * (core/h5id.h); so do parameters of the database that are not the file's, and
+	 * values the engine cannot have written (runvals.h); its data's checksums are
+	 * HDF5's to verify as the tool reads them */
 	hid_t f;
 	sb_err e = {0};
 	int note = H5ID_OK;
-	if (h5r_open(r->path, &f, &e) || h5id_check(f, r->path, r->id, &note, &e)) {
+	char seal[17];
+	if (h5r_open_sealed(r->path, r->seal, &f, seal, &e) || h5id_check(f, r->path, r->id, &note, &e) ||
+	    runvals_check(f, r->path, &e) || same_params(f, r, &e)) {
 		h5r_close(f); /* -1 when it did not open: nothing */
-		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s", e.msg);
+		/* a value that is no number is there to read, and unusable */
+		acct_set(r, e.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", e.msg);
 		return 1;
 	}
 	h5r_close(f);
 	static int noted;
-	if (note == H5ID_UNSEALED && !noted++)
-		fprintf(stderr, "note: %s: format %s, written before run files named their run and carried "
-			"checksums: such files are read unchecked (docs/inputs.md, \"Run files\")\n", r->path,
-			H5ID_FORMAT_OLD);
+	if (note != H5ID_OK && !noted++)
+		fprintf(stderr, "note: %s: format %s, written before run files %s: such files are read %s "
+			"(docs/inputs.md, \"Run files\")\n", r->path, note == H5ID_UNSEALED ? H5ID_FORMAT_OLD : H5ID_FORMAT_OLD3,
+			note == H5ID_UNSEALED ? "named their run and carried checksums" : "were sealed whole",
+			note == H5ID_UNSEALED ? "unchecked" : "with their attributes' digest checked, their data's seal not");
 	return 0;
 }
 

@@ -158,10 +158,11 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 			snprintf(last[c], sizeof last[c], "NULL");
 	}
 	snprintf(sql, sizeof sql,
-		 "SELECT r.id, r.replicate, r.seed, r.state, %s, COALESCE(%s, %s), COALESCE(%s, %s), %s FROM run r %s"
+		 "SELECT r.id, r.replicate, r.seed, r.state, %s, COALESCE(%s, %s), COALESCE(%s, %s), %s, %s FROM run r %s"
 		 " WHERE r.campaign = ? ORDER BY r.id",
 		 cur, res ? "s.status" : "NULL", last[0], res && has(d, "result", "message") ? "s.message" : "NULL", last[1],
 		 res && has(d, "result", "status_time") ? "s.status_time" : "NULL",
+		 res && has(d, "result", "file_seal") ? "s.file_seal" : "NULL",
 		 res ? "LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id" : "");
 	if (sqlite3_prepare_v2(d->db.h, sql, -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
@@ -195,6 +196,7 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		snprintf(x->message, sizeof x->message, "%s",
 			 sqlite3_column_text(st, 6) ? (const char *)sqlite3_column_text(st, 6) : "");
 		x->status_time = sqlite3_column_type(st, 7) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 7);
+		snprintf(x->seal, sizeof x->seal, "%s", sqlite3_column_text(st, 8) ? (const char *)sqlite3_column_text(st, 8) : "");
 		x->used_s = x->planned_s = NAN;
 		char dir[1200];
 		layout_campaign(runs_dir, campaign, dir, sizeof dir);

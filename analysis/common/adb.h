@@ -28,6 +28,8 @@ typedef struct an_run {
 	char status[32];    /* result.status, else the last attempt's; "" when none */
 	char message[400];  /* ... and its message */
 	double status_time; /* result.status_time (s): when the run ended or failed; NaN if unknown */
+	char seal[17];      /* result.file_seal: the seal of the file the driver recorded ("" when
+			     * none: an older file or database); acct_classify holds the file to it */
 	/* what became of the run in a tool's statistic, set by the tool (acct.h) */
 	int use;            /* an_use */
 	double used_s;      /* a failed run used up to its failure: the seconds used */

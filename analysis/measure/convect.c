@@ -142,13 +142,13 @@ int convect_read(const char *path, convect_field *f, sb_err *e)
 		convect_free(f);
 		return sb_errf(e, SB_EIO, "%s: /observables/field datasets have inconsistent shapes", path);
 	}
-	/* a count or displacement that is no number: the engine writes none (an empty cell
-	 * is 0), so the file is unusable, not a cell to skip */
+	/* a count or displacement that is no number, or a negative count: the engine writes
+	 * none (an empty cell is 0), so the file is unusable, not a cell to skip */
 	const size_t nv = d1[0] * d1[1] * d1[2];
 	for (size_t q = 0; q < nv; q++)
-		if (!isfinite(f->ux[q]) || !isfinite(f->uy[q]) || !isfinite(f->n[q])) {
-			sb_errf(e, SB_ENAN, "%s: /observables/field value %zu (ux %g, uy %g, count %g): not a finite number",
-				path, q, f->ux[q], f->uy[q], f->n[q]);
+		if (!isfinite(f->ux[q]) || !isfinite(f->uy[q]) || !isfinite(f->n[q]) || f->n[q] < 0) {
+			sb_errf(e, SB_ENAN, "%s: /observables/field value %zu (ux %g, uy %g, count %g): not a finite number%s",
+				path, q, f->ux[q], f->uy[q], f->n[q], f->n[q] < 0 ? " (or a negative count)" : "");
 			convect_free(f);
 			return e->code;
 		}

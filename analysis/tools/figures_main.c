@@ -16,6 +16,7 @@
 #include "common/fluxrun.h"
 #include "common/label.h"
 #include "common/tool.h"
+#include "measure/convect.h"
 #include "measure/wmean.h"
 #include "measure/traj.h"
 
@@ -281,13 +282,14 @@ static void classify_data(an_run *r, const flux_opts *fo)
 }
 
 /* ... and what Fig. 1 and Fig. 4 read of it later is checked now, as the accounting
- * is printed before they are drawn: a displacement field whose shape the file cannot
- * hold makes the run unreadable, and a run with an intruder whose rise is no number
- * (Fig. 4 orders the runs by it) unusable. */
+ * is printed before they are drawn: a run recorded with field = yes whose displacement
+ * field cannot be read whole (missing, a shape the file cannot hold, a chunk that fails
+ * its checksum, a cell size that is no length) is unreadable, one whose field holds a
+ * value that is no number (a count of inf) unusable, through the reader bin/convect
+ * uses; and a run with an intruder whose rise is no number (Fig. 4 orders the runs by
+ * it) is unusable. Fig. 1 then adds exactly the runs counted used. */
 static void classify(an_run *r, const flux_opts *fo)
 {
-	static const char *const FIELD[] = {RUNFILE_FIELD_UX, RUNFILE_FIELD_UY,
-					    RUNFILE_FIELD_COUNT, NULL};
 	classify_data(r, fo);
 	if (r->use != AN_USED && r->use != AN_PARTLY)
 		return;
@@ -295,19 +297,28 @@ static void classify(an_run *r, const flux_opts *fo)
 	sb_err he = {0};
 	if (h5r_open(r->path, &h, &he))
 		return; /* classify_data read it */
-	int rank;
-	size_t dims[8], n;
-	for (int k = 0; FIELD[k] && h5r_exists(h, RUNFILE_FIELD); k++)
-		if (h5r_shape(h, FIELD[k], &rank, dims, &n, &he)) {
-			acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: %s", r->path, he.msg);
-			fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
-			break;
-		}
+	const char *fld = an_str(r, "field");
+	const int has = h5r_exists(h, RUNFILE_FIELD), want = has || (fld && !strcmp(fld, "yes"));
 	double rs, w;
-	if ((r->use == AN_USED || r->use == AN_PARTLY) && an_num(r, "radius_ratio", 0) > 0 &&
-	    traj_rise(h, r->path, &rs, &w, &he) == SB_ENAN)
+	if (an_num(r, "radius_ratio", 0) > 0 && traj_rise(h, r->path, &rs, &w, &he) == SB_ENAN)
 		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", he.msg);
 	h5r_close(h);
+	if (!want || (r->use != AN_USED && r->use != AN_PARTLY))
+		return;
+	convect_field cf;
+	sb_err fe = {0};
+	if (!has) {
+		acct_set(r, AN_UNREADABLE, NAN, NAN, "%s: no /observables/field, though the run was recorded with "
+			 "field = yes", r->path);
+		fprintf(stderr, "figures: warning: %s (counted as unreadable)\n", r->why);
+		return;
+	}
+	if (convect_read(r->path, &cf, &fe)) {
+		acct_set(r, fe.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", fe.msg);
+		fprintf(stderr, "figures: warning: %s (counted as %s)\n", r->why, acct_use_name(r->use));
+		return;
+	}
+	convect_free(&cf);
 }
 
 /* The rows (--freq, else the campaign's frequencies, at most MAXROWS), the systems
@@ -405,63 +416,58 @@ static void field_free(field *fl)
 	free(fl->sc);
 }
 
-/* Adds a run's field (dims d, cell size and left edge from h). The grid is one mean
- * diameter of the run's own grains, so replicates differ slightly: the panel takes the
- * grid of its first run, and every run's cells go, by their centres, into the cell of
- * that grid that holds them. */
-static void field_sum(field *fl, hid_t h, const size_t d[3], const double *ux, const double *uy, const double *cn)
+/* Adds a run's field (read and checked by convect_read, as classify did). The grid is
+ * one mean diameter of the run's own grains, so replicates differ slightly: the panel
+ * takes the grid of its first run, and every run's cells go, by their centres, into
+ * the cell of that grid that holds them. */
+static int field_sum(field *fl, const convect_field *cf)
 {
-	double ci = 0, xi = 0;
-	h5r_attr_num(h, RUNFILE_FIELD, "cell", &ci);
-	h5r_attr_num(h, RUNFILE_FIELD, "x0", &xi);
-	if (!(ci > 0))
-		return;
+	const double ci = cf->cell, xi = cf->x0;
 	if (!fl->runs) {
 		field_free(fl);
-		fl->ny = d[1];
-		fl->nx = d[2];
-		fl->sx = calloc(d[1] * d[2], sizeof *fl->sx);
-		fl->sy = calloc(d[1] * d[2], sizeof *fl->sy);
-		fl->sc = calloc(d[1] * d[2], sizeof *fl->sc);
+		fl->ny = cf->ny;
+		fl->nx = cf->nx;
+		fl->sx = calloc(cf->ny * cf->nx, sizeof *fl->sx);
+		fl->sy = calloc(cf->ny * cf->nx, sizeof *fl->sy);
+		fl->sc = calloc(cf->ny * cf->nx, sizeof *fl->sc);
 		fl->cell = ci;
 		fl->x0 = xi;
+		if (!fl->sx || !fl->sy || !fl->sc)
+			return -1;
 	}
-	for (size_t b = 0; fl->sx && fl->sy && fl->sc && b < d[0]; b++)
-		for (size_t rr = 0; rr < d[1]; rr++)
-			for (size_t c = 0; c < d[2]; c++) {
-				const size_t q = (b * d[1] + rr) * d[2] + c;
-				const double n = cn[q];
+	for (size_t b = 0; b < cf->B; b++)
+		for (size_t rr = 0; rr < cf->ny; rr++)
+			for (size_t c = 0; c < cf->nx; c++) {
+				const size_t q = (b * cf->ny + rr) * cf->nx + c;
+				const double n = cf->n[q];
 				const double gx = floor((xi + ((double)c + 0.5) * ci - fl->x0) / fl->cell);
 				const double gy = floor(((double)rr + 0.5) * ci / fl->cell);
 				if (!(n > 0) || gx < 0 || gy < 0 || gx >= (double)fl->nx || gy >= (double)fl->ny)
 					continue;
 				const size_t g = (size_t)gy * fl->nx + (size_t)gx;
-				fl->sx[g] += n * ux[q];
-				fl->sy[g] += n * uy[q];
+				fl->sx[g] += n * cf->ux[q];
+				fl->sy[g] += n * cf->uy[q];
 				fl->sc[g] += n;
 			}
-	fl->runs += fl->sx != NULL;
+	fl->runs++;
+	return 0;
 }
 
-/* Adds run r's /field to fl when it has a readable one. */
-static void field_add(field *fl, const an_run *r)
+/* Adds run r's field to fl when it has one (field = no: none to add). A run counted
+ * used whose field can no longer be read (the file changed since classify) stops the
+ * figure: a panel made of fewer runs than the accounting says is not drawn. */
+static int field_add(field *fl, const an_run *r, sb_err *e)
 {
-	hid_t h;
-	sb_err he = {0};
-	if (h5r_open(r->path, &h, &he))
-		return;
-	double *ux = NULL, *uy = NULL, *cn = NULL;
-	size_t d1[3], d2[3], d3[3];
-	int rk;
-	if (h5r_exists(h, RUNFILE_FIELD) && !h5r_read(h, RUNFILE_FIELD_UX, &ux, &rk, d1, &he) &&
-	    !h5r_read(h, RUNFILE_FIELD_UY, &uy, &rk, d2, &he) &&
-	    !h5r_read(h, RUNFILE_FIELD_COUNT, &cn, &rk, d3, &he) && rk == 3 &&
-	    !memcmp(d1, d2, sizeof d1) && !memcmp(d1, d3, sizeof d1))
-		field_sum(fl, h, d1, ux, uy, cn);
-	free(ux);
-	free(uy);
-	free(cn);
-	h5r_close(h);
+	convect_field cf;
+	sb_err fe = {0};
+	const int rc = convect_read(r->path, &cf, &fe);
+	if (rc == SB_EUSAGE)
+		return 0;
+	if (rc)
+		return sb_errf(e, SB_EIO, "%s (counted as used)", fe.msg);
+	const int bad = field_sum(fl, &cf);
+	convect_free(&cf);
+	return bad ? sb_errf(e, SB_ENOMEM, "out of memory") : 0;
 }
 
 /* The arrows of every panel on one scale. The scale is the 95th percentile of the
@@ -522,8 +528,8 @@ static void field_arrows(const field *fl, arrows *a, FILE *f, const panels *P, i
 }
 
 /* Every panel's field, in two passes (f NULL: the lengths, to find the common scale;
- * then the rows into f); the panels drawn. */
-static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f)
+ * then the rows into f); the panels drawn, or -1 with the error in e. */
+static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f, sb_err *e)
 {
 	int drawn = 0;
 	for (int r = 0; r < P->nf; r++)
@@ -532,8 +538,10 @@ static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f)
 			for (int i = 0; i < t->k; i++) {
 				const an_run *run = &t->runs[i];
 				if (USED(run) && near(an_num(run, "frequency", NAN), P->freqs[r]) &&
-				    near(an_num(run, "radius_ratio", 0), sys_ratio(P, sys)))
-					field_add(&fl, run);
+				    near(an_num(run, "radius_ratio", 0), sys_ratio(P, sys)) && field_add(&fl, run, e)) {
+					field_free(&fl);
+					return -1;
+				}
 			}
 			if (fl.runs && fl.sx && fl.sy && fl.sc) {
 				field_arrows(&fl, a, f, P, r, sys);
@@ -606,11 +614,16 @@ static int fig1(an_tool *t, const panels *P)
 		return t->e.code;
 	fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
 	arrows a = {.xlo = INFINITY, .xhi = -INFINITY, .head = 1};
-	fig1_pass(t, P, &a, NULL);
+	int drawn = fig1_pass(t, P, &a, NULL, &t->e);
 	a.umax = percentile(a.lens, a.n, 0.95);
-	const int drawn = fig1_pass(t, P, &a, f);
+	if (drawn >= 0)
+		drawn = fig1_pass(t, P, &a, f, &t->e);
 	free(a.lens);
 	fclose(f);
+	if (drawn < 0) {
+		remove(path); /* no half-made table beside an accounting it contradicts */
+		return t->e.code;
+	}
 	if (!drawn)
 		printf("# fig1: no run with field = yes; skipped\n");
 	else if (!t->o->no_plot)

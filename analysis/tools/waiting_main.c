@@ -542,6 +542,12 @@ static int way(an_tool *t, wait_state *s)
 		const int ev = rc == 0 ? traj_fraction(&tr, s->q, &w) : -1;
 		if (rc > 1)
 			fprintf(stderr, "waiting: warning: %s (no second waiting time: counted as without a trajectory)\n", e.msg);
+		else if (rc == 0 && ev < 0)
+			/* a trajectory without the levels the way is measured between: said as such,
+			 * not taken for a run without a trajectory */
+			fprintf(stderr, "waiting: warning: %s: no settled intruder height or surface height "
+				"(intruder_settled_y %g, surface_height %g): no second waiting time, counted with the runs "
+				"without one\n", r->path, tr.y0, tr.surface);
 		if (ev < 0)
 			s->no_traj[r->group]++;
 		else {

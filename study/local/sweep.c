@@ -39,7 +39,8 @@ static int present(const char *path)
 /* Why a done run's file cannot be its record, or NULL when it can be read (h5sum_read,
  * error in re): missing, or not a regular file at the name (a link to elsewhere, the
  * engine's rule for its outputs, docs/output.md) - moved aside as a damaged file is. */
-static const char *done_unreadable(const char *path, const char *id, sb_err *re, char *buf, size_t n)
+static const char *done_unreadable(const char *path, const char *id, const char *seal, sb_err *re, char *buf,
+				   size_t n)
 {
 	struct stat st;
 	h5sum s;
@@ -49,7 +50,7 @@ static const char *done_unreadable(const char *path, const char *id, sb_err *re,
 		snprintf(buf, n, "%s stands at its output file, not a regular file", fs_kind((unsigned)st.st_mode));
 		return buf;
 	}
-	return h5sum_read(path, id, &s, re) ? re->msg : NULL;
+	return h5sum_read_sealed(path, id, seal, &s, re) ? re->msg : NULL;
 }
 
 /* A done run whose file is damaged or gone: the file moves to damaged/, the attempt
@@ -119,6 +120,20 @@ static int has_result(drv *d, const char *id)
 	return found;
 }
 
+/* The seal of the run's file as recorded when it was done ("" when none: a database or
+ * a file of an earlier version). */
+static void recorded_seal(drv *d, const char *id, char seal[17])
+{
+	sqlite3_stmt *q;
+	sb_err e = {0};
+	seal[0] = 0;
+	if (sql_exec(&d->db, &e, &q, "SELECT file_seal FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id))
+		return;
+	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_text(q, 0))
+		snprintf(seal, 17, "%s", (const char *)sqlite3_column_text(q, 0));
+	sqlite3_finalize(q);
+}
+
 /* Ingest every output that exists but is not recorded (finished while no driver was
  * listening), and with --retry-failed put failed runs back in the queue. Returns the
  * pending runs' indices in *pend. */
@@ -144,8 +159,9 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 			 * deleted one puts the run back in the queue instead of shrinking its
 			 * group silently */
 			sb_err re = {0};
-			char buf[128];
-			const char *why = done_unreadable(path, r->id, &re, buf, sizeof buf);
+			char buf[128], seal[17];
+			recorded_seal(d, r->id, seal);
+			const char *why = done_unreadable(path, r->id, seal, &re, buf, sizeof buf);
 			if (why) {
 				if (requeue_damaged(d, r->id, att, why, e))
 					return e->code;

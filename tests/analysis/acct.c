@@ -5,6 +5,7 @@
  * the versions rule. */
 #include <hdf5.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -91,7 +92,10 @@ int main(void)
 	 * same file under another run's id is not */
 	char path[] = "/tmp/acct-run-XXXXXX";
 	int fd = mkstemp(path);
-	hid_t f = fd < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+	H5Pset_userblock(fcpl, H5ID_SEAL_BYTES);
+	hid_t f = fd < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+	H5Pclose(fcpl);
 	if (fd >= 0)
 		close(fd);
 	sb_err e = {0};
@@ -109,16 +113,39 @@ int main(void)
 	H5Tclose(ty);
 	H5Sclose(sp);
 	H5Fclose(f);
+	made = made && !h5id_file_seal(path, &e);
+	char seal[17] = "";
+	made = made && !h5id_file_check(path, seal, &e) && strlen(seal) == 16;
 	x = run(0, "done", "ok", AN_USED);
 	snprintf(x.path, sizeof x.path, "%s", path);
 	snprintf(x.id, sizeof x.id, "%s", id);
-	CHECK("acct.classify.existing_file_is_the_tools", made && acct_classify(&x) == 0, "made %d, use %d: %s", made,
-	      x.use, x.why);
+	CHECK("acct.classify.existing_file_is_the_tools", made && acct_classify(&x) == 0, "made %d, use %d: %s %s", made,
+	      x.use, x.why, e.msg);
+	/* ... and with the seal the database recorded; another seal is another file */
+	snprintf(x.seal, sizeof x.seal, "%s", seal);
+	CHECK("acct.classify.recorded_seal", made && acct_classify(&x) == 0, "use %d: %s", x.use, x.why);
+	x = run(0, "done", "ok", AN_USED);
+	snprintf(x.path, sizeof x.path, "%s", path);
+	snprintf(x.id, sizeof x.id, "%s", id);
+	snprintf(x.seal, sizeof x.seal, "%s", "0123456789abcdef");
+	CHECK("acct.classify.other_seal", made && acct_classify(&x) == 1 && x.use == AN_UNREADABLE &&
+	      strstr(x.why, "but the database recorded 0123456789abcdef"), "use %d: %s", x.use, x.why);
 	x = run(0, "done", "ok", AN_USED);
 	snprintf(x.path, sizeof x.path, "%s", path);
 	snprintf(x.id, sizeof x.id, "%s", "fedcba9876543210");
 	CHECK("acct.classify.another_runs_file", made && acct_classify(&x) == 1 && x.use == AN_UNREADABLE,
 	      "made %d, use %d", made, x.use);
+	/* one byte after the seal changed: refused before HDF5 reads the file */
+	FILE *fp = fopen(path, "r+b");
+	int c = fp && !fseek(fp, -3, SEEK_END) ? fgetc(fp) : EOF;
+	const int flipped = c != EOF && !fseek(fp, -3, SEEK_END) && fputc(c ^ 1, fp) != EOF;
+	if (fp)
+		fclose(fp);
+	x = run(0, "done", "ok", AN_USED);
+	snprintf(x.path, sizeof x.path, "%s", path);
+	snprintf(x.id, sizeof x.id, "%s", id);
+	CHECK("acct.classify.changed_byte", flipped && acct_classify(&x) == 1 && x.use == AN_UNREADABLE &&
+	      strstr(x.why, "its bytes do not match its seal"), "use %d: %s", x.use, x.why);
 	unlink(path);
 
 	/* versions: an earlier version's run is counted, and left out unless asked for */

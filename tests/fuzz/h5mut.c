@@ -10,19 +10,34 @@
  *                               nan, inf or -inf)
  *     --attr OBJ NAME VALUE     attribute NAME of OBJ := the scalar double VALUE
  *     --attr-array OBJ NAME N   attribute NAME of OBJ := N doubles
+ *     --attr-str OBJ NAME TEXT  attribute NAME of OBJ := the string TEXT
  *     --delete PATH             unlink PATH
  *     --flip PATH               one bit of the stored bytes of dataset PATH's data
  *                               flipped behind HDF5's back (in its first chunk), as a
  *                               failing disk would
+ *     --elink PATH FILE         PATH becomes an external link to FILE:PATH
+ *     --extern PATH FILE        PATH becomes a dataset of its shape (doubles) whose data
+ *                               is kept in FILE (HDF5's external storage)
+ *     --vds PATH FILE           PATH becomes a virtual dataset of FILE:PATH, its shape
+ *     --flip-vds-name           the NUL after a virtual dataset's source file name "."
+ *                               (in the global heap, which no checksum covers) changed
+ *                               to 'x', behind HDF5's back
  *     --stale-digest            (anywhere) the attribute digest is left as it was;
  *                               without it every change through HDF5 is sealed again
  *                               (core/h5id.h), so that the readers' checks behind the
  *                               digest are what is tested
+ *     --stale-seal              (anywhere) the file's seal (its user block) is left as
+ *                               it was; without it the file is sealed again after the
+ *                               last operation, bytes included (h5id_file_seal), as a
+ *                               hostile hand would, so the checks behind it are tested
  *     --random SEED             one random change: a dataset's shape, type or values, an
  *                               attribute's type, shape or value, an object deleted or
  *                               turned into the other kind, a link to another dataset,
+ *                               a dataset pointing out of the file (external link or
+ *                               storage, virtual dataset: /dev/zero, nothing, itself),
  *                               or bytes (truncation, bit flips, a block overwritten);
- *                               what it did goes to stderr
+ *                               what it did goes to stderr; the seal is renewed for
+ *                               half of the seeds
  * Exit 0, or 2 when an operation could not be applied (the message on stderr). */
 #define _GNU_SOURCE
 #include <hdf5.h>
@@ -320,13 +335,15 @@ static const char *pick_object(hid_t f, const char *ds)
 	return below(3) && ngroups ? groups[below((size_t)ngroups)] : ds ? ds : "/";
 }
 
+static int elsewhere(hid_t f, const char *path, const char *file, int kind);
+
 static int random_structured(hid_t f)
 {
 	/* the changes that readers trusted most (values, attributes, shapes) more often */
-	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8};
+	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8, 9, 9};
 	const char *ds = pick_dataset();
 	const int op = OPS[below(sizeof OPS / sizeof *OPS)];
-	if ((op <= 2 || op == 6 || op == 7) && !ds)
+	if ((op <= 2 || op == 6 || op == 7 || op == 9) && !ds)
 		return -1;
 	switch (op) {
 	case 0: { /* a dataset's shape */
@@ -492,6 +509,16 @@ static int random_structured(hid_t f)
 			(unsigned long long)orig[0], (unsigned long long)dims[1]);
 		return n ? 0 : -1;
 	}
+	case 9: { /* a dataset pointing out of the file: an external link, external storage
+		   * or a virtual dataset, at a device that never ends, at nothing, or at the
+		   * file itself */
+		static const char *const TO[] = {"/dev/zero", "/nonexistent/other.h5", "."};
+		static const char *const HOW[] = {"external link", "external storage", "virtual dataset"};
+		const int how = (int)below(3);
+		const char *to = TO[below(3)];
+		fprintf(stderr, "%s %s -> %s\n", HOW[how], ds, to);
+		return elsewhere(f, ds, to, how);
+	}
 	case 6: { /* a hard link to another dataset (another shape) */
 		const char *other = dsets[below((size_t)ndsets)];
 		fprintf(stderr, "link %s -> %s\n", ds, other);
@@ -561,6 +588,68 @@ static int random_bytes(const char *path)
 	return fclose(fp) ? -1 : 0;
 }
 
+/* The shape of dataset path (rank into *r), or -1. */
+static int shape_of(hid_t f, const char *path, int *r, hsize_t *dims)
+{
+	hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+	hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+	*r = sp >= 0 ? H5Sget_simple_extent_dims(sp, dims, NULL) : -1;
+	if (sp >= 0)
+		H5Sclose(sp);
+	if (d >= 0)
+		H5Dclose(d);
+	return *r < 1 ? -1 : 0;
+}
+
+/* PATH pointing into another file: an external link, external storage or a virtual
+ * dataset (kind 0, 1, 2) of FILE */
+static int elsewhere(hid_t f, const char *path, const char *file, int kind)
+{
+	hsize_t dims[8];
+	int r;
+	if (kind && shape_of(f, path, &r, dims))
+		return -1;
+	if (H5Ldelete(f, path, H5P_DEFAULT) < 0)
+		return -1;
+	if (kind == 0)
+		return H5Lcreate_external(file, path, f, path, H5P_DEFAULT, H5P_DEFAULT) < 0 ? -1 : 0;
+	hid_t sp = H5Screate_simple(r, dims, NULL), pl = H5Pcreate(H5P_DATASET_CREATE);
+	int bad = 0;
+	if (kind == 1) {
+		bad = H5Pset_external(pl, file, 0, H5F_UNLIMITED) < 0;
+	} else {
+		hid_t src = H5Screate_simple(r, dims, NULL);
+		bad = H5Pset_virtual(pl, sp, file, path, src) < 0;
+		H5Sclose(src);
+	}
+	hid_t d = bad ? -1 : H5Dcreate2(f, path, H5T_IEEE_F64LE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
+	bad = d < 0;
+	if (d >= 0)
+		H5Dclose(d);
+	H5Pclose(pl);
+	H5Sclose(sp);
+	return bad ? -1 : 0;
+}
+
+/* The first ".\0/" in the file's bytes (a virtual dataset's source file "." and the
+ * start of its source dataset's path, in the global heap): its NUL becomes 'x'. */
+static int flip_vds_name(const char *file)
+{
+	FILE *fp = fopen(file, "r+b");
+	if (!fp)
+		return -1;
+	int a = 0, b = 0, c, found = 0;
+	long at = 0;
+	while (!found && (c = fgetc(fp)) != EOF) {
+		found = a == '.' && b == 0 && c == '/';
+		a = b;
+		b = c;
+		at++;
+	}
+	int bad = !found || fseek(fp, at - 2, SEEK_SET) || fputc('x', fp) == EOF;
+	return fclose(fp) || bad ? -1 : 0;
+}
+
 /* A new digest over the attributes as they now are, unless asked not to. */
 static int stale;
 static void reseal(hid_t f)
@@ -577,7 +666,13 @@ static int flip(const char *file, const char *path)
 	hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
 	hid_t d = f >= 0 ? H5Dopen2(f, path, H5P_DEFAULT) : -1;
 	haddr_t at = HADDR_UNDEF;
-	hsize_t size = 0;
+	hsize_t size = 0, base = 0;
+	/* HDF5's addresses count from its superblock, after the user block (the seal) */
+	hid_t cp = f >= 0 ? H5Fget_create_plist(f) : -1;
+	if (cp < 0 || H5Pget_userblock(cp, &base) < 0)
+		base = 0;
+	if (cp >= 0)
+		H5Pclose(cp);
 	if (d >= 0) {
 		hid_t pl = H5Dget_create_plist(d);
 		if (H5Pget_layout(pl) == H5D_CHUNKED) {
@@ -601,7 +696,7 @@ static int flip(const char *file, const char *path)
 	FILE *fp = fopen(file, "r+b");
 	if (!fp)
 		return -1;
-	const long pos = (long)(at + size / 2);
+	const long pos = (long)(base + at + size / 2);
 	int c = fseek(fp, pos, SEEK_SET) ? EOF : fgetc(fp);
 	int bad = c == EOF || fseek(fp, pos, SEEK_SET) || fputc(c ^ 0x10, fp) == EOF;
 	return fclose(fp) || bad ? -1 : 0;
@@ -611,26 +706,39 @@ int main(int argc, char **argv)
 {
 	if (argc < 3)
 		die("%s", "usage: h5mut IN OUT [--shape PATH DIMS | --set PATH INDEX VALUE | --attr OBJ NAME VALUE | "
-			  "--attr-array OBJ NAME N | --delete PATH | --flip PATH | --stale-digest | --random SEED] ...");
+			  "--attr-array OBJ NAME N | --attr-str OBJ NAME TEXT | --delete PATH | --flip PATH | --elink PATH FILE | --extern PATH FILE | "
+			  "--vds PATH FILE | --flip-vds-name | --stale-digest | --stale-seal | --random SEED] ...");
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 	if (copy_file(argv[1], argv[2]))
 		die("cannot copy to %s", argv[2]);
-	int bytes = 0;
-	for (int i = 3; i < argc; i++)
+	int bytes = 0, stale_seal = 0;
+	for (int i = 3; i < argc; i++) {
 		if (!strcmp(argv[i], "--stale-digest"))
 			stale = 1;
+		if (!strcmp(argv[i], "--stale-seal"))
+			stale_seal = 1;
+	}
 	for (int i = 3; i < argc; i++) {
 		const char *op = argv[i];
-		if (!strcmp(op, "--stale-digest"))
+		if (!strcmp(op, "--stale-digest") || !strcmp(op, "--stale-seal"))
 			continue;
+		if (!strcmp(op, "--flip-vds-name")) {
+			if (flip_vds_name(argv[2]))
+				die("%s: no virtual dataset's source name found", argv[2]);
+			continue;
+		}
 		if (!strcmp(op, "--flip")) {
 			if (i + 1 > argc - 1 || flip(argv[2], argv[i + 1]))
 				die("cannot flip a bit of %s", i + 1 < argc ? argv[i + 1] : "?");
 			i++;
 			continue;
 		}
-		const int need = !strcmp(op, "--set") || !strcmp(op, "--attr") || !strcmp(op, "--attr-array") ? 3
-				 : !strcmp(op, "--shape")					       ? 2
+		const int need = !strcmp(op, "--set") || !strcmp(op, "--attr") || !strcmp(op, "--attr-array") ||
+						 !strcmp(op, "--attr-str")
+					 ? 3
+				 : !strcmp(op, "--shape") || !strcmp(op, "--elink") || !strcmp(op, "--extern") ||
+						 !strcmp(op, "--vds")
+					 ? 2
 				 : !strcmp(op, "--delete") || !strcmp(op, "--random")		       ? 1
 												       : -1;
 		if (need < 0 || i + need > argc - 1)
@@ -638,6 +746,8 @@ int main(int argc, char **argv)
 		if (!strcmp(op, "--random")) {
 			rs = strtoull(argv[i + 1], NULL, 10);
 			rnd();
+			if (below(2))
+				stale_seal = 1;
 			/* a third of the inputs change bytes, the rest the structure */
 			if (below(3) == 0) {
 				bytes = 1;
@@ -671,10 +781,14 @@ int main(int argc, char **argv)
 			rc = set_value(f, argv[i + 1], strtoull(argv[i + 2], NULL, 10), value_of(argv[i + 3]));
 		} else if (!strcmp(op, "--attr")) {
 			rc = new_attr(f, argv[i + 1], argv[i + 2], 0, value_of(argv[i + 3]), 0, NULL);
+		} else if (!strcmp(op, "--attr-str")) {
+			rc = new_attr(f, argv[i + 1], argv[i + 2], 3, 0, 0, argv[i + 3]);
 		} else if (!strcmp(op, "--attr-array")) {
 			rc = new_attr(f, argv[i + 1], argv[i + 2], 1, 1.0, strtol(argv[i + 3], NULL, 10), NULL);
 		} else if (!strcmp(op, "--delete")) {
 			rc = H5Ldelete(f, argv[i + 1], H5P_DEFAULT) < 0 ? -1 : 0;
+		} else if (!strcmp(op, "--elink") || !strcmp(op, "--extern") || !strcmp(op, "--vds")) {
+			rc = elsewhere(f, argv[i + 1], argv[i + 2], !strcmp(op, "--elink") ? 0 : !strcmp(op, "--extern") ? 1 : 2);
 		}
 		if (!rc)
 			reseal(f);
@@ -682,6 +796,13 @@ int main(int argc, char **argv)
 		if (rc)
 			die("%s failed", op);
 		i += need;
+	}
+	/* a file of a user block (the engine's) is sealed anew; an older one has none */
+	sb_err e = {0};
+	char seal[17];
+	if (!stale_seal && h5id_file_check(argv[2], seal, &e)) {
+		sb_err se = {0};
+		h5id_file_seal(argv[2], &se); /* a file cut short of its superblock stays as it is */
 	}
 	return 0;
 }

@@ -7,7 +7,15 @@
 # file belongs is refused at once; NaN in Φ, the heights, risen or waiting_time, and a
 # parameter that is no number in the database, make the run unusable with the reason;
 # a run whose grouping key is missing or no number makes the tool refuse the campaign.
-# The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
+# A file whose bytes do not match its seal (a flipped bit anywhere, the global heap's
+# virtual-dataset source name included), or whose seal is not the one the database
+# recorded, is refused before HDF5 parses it; links, external storage and virtual
+# datasets that leave the file are refused without being opened (a FIFO: no hang);
+# values the engine cannot write and database parameters that are not the file's make
+# the run unreadable; Fig. 1 counts a run whose field it cannot use.
+# The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them (and seals
+# them again, as a hostile hand would), and `fresh` records the new seal in the copy's
+# database, so that the checks behind the seal are what is tested; `planted` does not.
 # tier: slow: a campaign whose files are then made hostile, read by every tool
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
@@ -27,14 +35,23 @@ ID=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radiu
 ID0=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none'")
 
-# fresh NAME [RUN H5MUT-OPS...]: a copy NAME of the runs with RUN's file changed
-fresh() {
+# seal FILE: the seal in FILE's user block ("" when none)
+seal() { head -c 64 "$1" | sed -n 's/^fnv1a64w \([0-9a-f]*\)$/\1/p'; }
+# planted NAME [RUN H5MUT-OPS...]: a copy NAME of the runs with RUN's file changed
+planted() {
 	local d=$1 id=${2:-}
 	rm -rf "$d" && cp -r R "$d" || return 1
 	[ -n "$id" ] || return 0
 	shift 2
 	"$H5MUT" "$d/fz/$id.h5" "$d/fz/$id.h5.new" "$@" && mv "$d/fz/$id.h5.new" "$d/fz/$id.h5" ||
 		{ fail "setup.$d" "h5mut $*"; return 1; }
+}
+# fresh NAME [RUN H5MUT-OPS...]: the same, the new seal recorded in NAME's database
+# (a database without the column, an earlier version's, is left as it is)
+fresh() {
+	planted "$@" || return 1
+	[ -z "${2:-}" ] || q "$1" "UPDATE result SET file_seal = '$(seal "$1/fz/$2.h5")' WHERE run = '$2'" 2>/dev/null
+	return 0
 }
 
 # tool_on ID TOOL DIR: runs TOOL on DIR's campaign (TOOL.out, TOOL.err in DIR); returns
@@ -154,6 +171,110 @@ for t in onset waiting figures; do
 done
 fresh M2 && q M2 "UPDATE param SET value = 'abc' WHERE run = '$ID' AND key = 'radius_ratio'"
 refused group.not_a_number.onset onset M2 "run $ID" "radius_ratio = 'abc'"
+
+# ---- the seal: a changed byte is refused before HDF5 parses the file ----
+# one bit of the global heap, the NUL after bed_xyz's source name ".": HDF5 1.10.8 ran
+# strlen past its buffer in every reader (ASan), the release build read on silently
+planted V1 "$ID" --flip-vds-name --stale-seal
+for t in onset waiting ring whale; do
+	counted seal.vds_name.$t $t V1 "$ID" unreadable "its bytes do not match its seal"
+done
+ingested seal.vds_name.study V1 "its bytes do not match its seal"
+# a value edited through HDF5 (Fletcher32 computed anew) without sealing again
+planted V2 "$ID" --set /observables/flux/phi/value 3 7 --stale-seal
+counted seal.edited.onset onset V2 "$ID" unreadable "its bytes do not match its seal"
+# sealed again by hand, or another run's (another campaign's) sealed file in its place:
+# not the seal the driver recorded, refused before HDF5 opens it
+planted V3 "$ID" --set /observables/flux/phi/value 3 7
+counted seal.resealed.onset onset V3 "$ID" unreadable "but the database recorded"
+planted V4 && cp R/fz/"$ID0".h5 V4/fz/"$ID".h5
+counted seal.other_file.rolls rolls V4 "$ID" unreadable "but the database recorded"
+# the done run's file resealed: the sweep puts the run back in the queue as damaged
+timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs V3 --jobs 1 --no-progress >V3.study.log 2>&1
+[ -e V3/fz/damaged/"$ID".attempt1.h5 ] && grep -qF "but the database recorded" V3.study.log &&
+	[ "$(q V3 "SELECT state FROM run WHERE id = '$ID'")" = done ] && ok seal.resealed.study ||
+	fail seal.resealed.study "$(ls V3/fz/damaged 2>&1) $(tail -c 300 V3.study.log)"
+# a shakebox-run-2 file (read unchecked, older) where the database recorded a sealed one
+planted V5 "$ID0" --attr-str / format shakebox-run-2 && cp V5/fz/"$ID0".h5 V5/fz/"$ID".h5
+counted seal.format2.waiting waiting V5 "$ID" unreadable "but the database recorded"
+# ... and one without a seal at all (its user block cut off: HDF5 finds its superblock
+# at byte 0 then)
+planted V6 "$ID0" --attr-str / format shakebox-run-2 && tail -c +513 V6/fz/"$ID0".h5 >V6/fz/"$ID".h5 &&
+	counted seal.format2_unsealed.waiting waiting V6 "$ID" unreadable "sealed not at all (an older format), but the database recorded"
+
+# ---- nothing outside the file: links, external storage and virtual datasets ----
+mkfifo pipe && cp R/fz/"$ID0".h5 other.h5
+PHI=/observables/flux/phi/value
+for how in elink extern vds; do
+	for to in pipe other; do
+		tgt=$TMP/pipe
+		[ $to = other ] && tgt=$TMP/other.h5
+		fresh X "$ID" --$how $PHI "$tgt" || { fail outside.$how.$to "h5mut --$how"; continue; }
+		for t in onset rolls figures; do
+			counted outside.$how.$to.$t $t X "$ID" unreadable "$PHI"
+		done
+		timeout -k 5 "$LIMIT" "$BINDIR/dumpflux" run X/fz/"$ID".h5 >X/d.out 2>X/d.err
+		rc=$?
+		[ $rc = 2 ] && grep -qF "$PHI" X/d.err && grep -qE "another file|external link" X/d.err &&
+			ok outside.$how.$to.dumpflux || fail outside.$how.$to.dumpflux "exit $rc: $(head -c 300 X/d.err)"
+	done
+done
+fresh X "$ID" --elink $PHI "$TMP/pipe"
+ingested outside.elink.study X "is an external link"
+# bin/dumpflux run checked neither a file's format nor its digest
+for how in "digest|--stale-digest --attr / steps 5|do not match their digest" \
+	"format|--attr-str / format shakebox-run-9|format 'shakebox-run-9'"; do
+	IFS='|' read -r name ops needle <<<"$how"
+	# shellcheck disable=SC2086
+	fresh D "$ID" $ops || { fail dumpflux.$name "h5mut $ops"; continue; }
+	timeout -k 5 "$LIMIT" "$BINDIR/dumpflux" run D/fz/"$ID".h5 >D/d.out 2>D/d.err
+	rc=$?
+	[ $rc = 2 ] && grep -qF "$needle" D/d.err && [ ! -s D/d.out ] && ok dumpflux.$name ||
+		fail dumpflux.$name "exit $rc: $(head -c 300 D/d.err)"
+done
+
+# ---- values the engine cannot write ----
+range() { # ID TOOL NEEDLE H5MUT-OPS...
+	local id=$1 t=$2 n=$3
+	shift 3
+	fresh Y "$ID" "$@" && counted "$id" "$t" Y "$ID" unreadable "$n" || fail "$id" "h5mut $*"
+}
+range range.heights_reversed.onset onset "heights[1] = 0.001: the lines rise" --set /observables/flux/heights 1 0.001
+h0=$(h5dump -m %.17g -d /observables/flux/heights -y -w 0 R/fz/"$ID".h5 | sed -n 's/^ *\([0-9][0-9.e+-]*\),.*/\1/p' | head -1)
+range range.heights_constant.rolls rolls "heights[1] = $(printf %g "$h0"): the lines rise" --set /observables/flux/heights 1 "$h0"
+range range.heights_negative.onset onset "heights[0] = -1" --set /observables/flux/heights 0 -1
+# rolls aborted in GSL (exit 134) on this one finite height
+range range.height_1e308.rolls rolls "= 1e+308" --set /observables/flux/heights 7 1e308
+range range.frequency_0.onset onset "frequency/value[2] = 0" --set /observables/flux/frequency/value 2 0
+range range.frequency_1e30.rolls rolls "frequency/value[2] = 1e+30" --set /observables/flux/frequency/value 2 1e30
+range range.param_frequency.onset onset "frequency: expected a number in [0, 1000]" --attr /parameters frequency 1e30
+range range.waiting_time.waiting waiting "waiting_time = 1e+09 s, after the run's end" --attr / waiting_time 1e9
+range range.surface_0.whale whale "surface_height = 0" --attr / surface_height 0
+range range.surface_neg.figures figures "surface_height = -10" --attr / surface_height -10
+fresh Y "$ID" --attr / intruder_radius inf
+counted range.intruder_radius.whale whale Y "$ID" unusable "intruder_radius = inf"
+fresh Y "$ID" --attr / waiting_time 1e9
+ingested range.waiting_time.study Y "waiting_time = 1e+09 s, after the run's end"
+# waiting left a run with a surface height that is no number out of its second
+# definition "without a trajectory"; it is unusable, and says why
+fresh Y "$ID" --attr / surface_height nan
+counted range.surface_nan.waiting waiting Y "$ID" unusable "surface_height = nan"
+
+# ---- the database's parameters are the file's ----
+fresh P && q P "UPDATE param SET value = 25 WHERE run = '$ID' AND key = 'frequency'"
+for t in onset waiting figures; do
+	counted params.frequency_edited.$t $t P "$ID" unreadable "frequency = 20 in the file, '25' in the database"
+done
+
+# ---- Fig. 1: a run whose field cannot be used is counted so ----
+fresh G1 "$ID" --set /observables/field/count/value 0 inf
+counted fig1.count_inf.figures figures G1 "$ID" unusable "not a finite number"
+fresh G2 "$ID" --delete /observables/field
+counted fig1.deleted.figures figures G2 "$ID" unreadable "no /observables/field"
+fresh G3 "$ID" --flip /observables/field/ux/value
+counted fig1.flipped_chunk.figures figures G3 "$ID" unreadable "checksum error"
+fresh G4 "$ID" --attr /observables/field cell 0
+counted fig1.cell_0.figures figures G4 "$ID" unreadable "no field cell size"
 
 # and the unchanged runs are used by every tool
 fresh U

@@ -4,7 +4,9 @@
 # a bit flipped in a dataset's stored bytes and a root attribute changed after the engine
 # wrote it are each found, by the analysis tools (the run is unreadable, with the reason)
 # and by bin/study's sweep (the run was done, its file goes to damaged/ and it runs
-# again), never read as numbers.
+# again), never read as numbers. The first check is the file's seal against the one
+# the database recorded (docs/inputs.md, "Run files"); `recorded` puts the new file's
+# seal in the database, so that the checks behind it are tested too.
 # The runs are tests/fuzz/runs.campaign's; build/fuzz/h5mut changes them.
 # tier: slow: campaigns whose files are swapped, linked and damaged, then swept
 . "$(dirname "$0")/lib.sh"
@@ -71,30 +73,41 @@ swept() {
 }
 
 fresh() { rm -rf "$1" && cp -a R "$1"; }
+# recorded DIR: DIR's database holds the seal of run $ID's file as it now is
+recorded() {
+	q "$1" "UPDATE result SET file_seal = '$(head -c 64 "$1/fz/$ID.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$ID'"
+}
+SEALED="but the database recorded"
 
 # (a) run A's file copied over run B's
 fresh C && cp "C/fz/$ID0.h5" "C/fz/$ID.h5"
-unreadable copied.waiting waiting C "holds run '$ID0', not run '$ID'"
+unreadable copied.waiting waiting C "$SEALED"
+recorded C
 unreadable copied.figures figures C "holds run '$ID0', not run '$ID'"
 swept copied.study C "holds run '$ID0', not run '$ID'"
 
 # (b) another campaign's file linked into place
 fresh L && rm "L/fz/$ID.h5" && ln -s "../other/$IDO.h5" "L/fz/$ID.h5"
-unreadable linked.waiting waiting L "holds run '$IDO', not run '$ID'"
+unreadable linked.waiting waiting L "$SEALED"
+recorded L
 unreadable linked.onset onset L "holds run '$IDO', not run '$ID'"
 swept linked.study L "holds run '$IDO', not run '$ID'"
 [ -f "L/other/$IDO.h5" ] && [ ! -L "L/other/$IDO.h5" ] && ok linked.target_untouched ||
 	fail linked.target_untouched "the other campaign's file moved"
 
-# (c) a bit of a dataset's stored data flipped behind HDF5's back
-fresh B && "$H5MUT" "B/fz/$ID.h5" B/x.h5 --flip /observables/flux/phi/value && mv B/x.h5 "B/fz/$ID.h5" ||
+# (c) a bit of a dataset's stored data flipped behind HDF5's back: its seal no longer
+# matches; sealed again, its chunk's Fletcher32 checksum does not
+fresh B1 && "$H5MUT" "B1/fz/$ID.h5" B1/x.h5 --flip /observables/flux/phi/value --stale-seal &&
+	mv B1/x.h5 "B1/fz/$ID.h5" || fail setup.flip "h5mut --flip"
+unreadable flipped.seal.onset onset B1 "its bytes do not match its seal"
+fresh B && "$H5MUT" "B/fz/$ID.h5" B/x.h5 --flip /observables/flux/phi/value && mv B/x.h5 "B/fz/$ID.h5" && recorded B ||
 	fail setup.flip "h5mut --flip"
 unreadable flipped.onset onset B "checksum error"
 unreadable flipped.rolls rolls B "checksum error"
 swept flipped.study B "checksum error"
 
 # (d) a root attribute changed after the engine wrote it (steps: what the run did)
-fresh A && "$H5MUT" "A/fz/$ID.h5" A/x.h5 --stale-digest --attr / steps 5 && mv A/x.h5 "A/fz/$ID.h5" ||
+fresh A && "$H5MUT" "A/fz/$ID.h5" A/x.h5 --stale-digest --attr / steps 5 && mv A/x.h5 "A/fz/$ID.h5" && recorded A ||
 	fail setup.attr "h5mut --attr"
 unreadable attribute.waiting waiting A "do not match their digest"
 unreadable attribute.figures figures A "do not match their digest"
