@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "crossing.h"
 #include "observe.h"
 #include "prepare.h"
 #include "record.h"
@@ -130,6 +131,37 @@ static void test_flux_seam(void)
 	      rec[3], rec[4], rec[5], rec[13], rec[14], rec[15]);
 	obs_free(&o);
 	state_free(&st);
+}
+
+/* The crossing rule at its edges (core/crossing.h): upwards yp < h <= y, downwards
+ * y < h <= yp. A disk that ends exactly on a line has crossed it; one that starts on it
+ * and moves up has not crossed it again; one that sinks from it has crossed it down. */
+static void test_crossing_edges(void)
+{
+	double h[10], top[10], bot[10];
+	crossing_lines(10, 10, h); /* 0.5, 1.5, ..., 9.5 */
+	/* one disk at the centre column: x0 = 0, x1 = 40 */
+	const double xc[1] = {20};
+	struct {
+		const char *id;
+		double y0, y1;
+		int line, want; /* the one line counted (-1: none) and its sign */
+	} c[] = {
+		{"crossing.ends_on_line_up", 1.6, 2.5, 2, +1},
+		{"crossing.starts_on_line_up", 2.5, 3.0, -1, 0},
+		{"crossing.starts_on_line_down", 2.5, 2.0, 2, -1},
+		{"crossing.ends_on_line_down", 3.0, 2.5, -1, 0},
+	};
+	for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+		memset(top, 0, sizeof top);
+		memset(bot, 0, sizeof bot);
+		const double yp[1] = {c[k].y0}, y[1] = {c[k].y1};
+		crossing_count(1, xc, yp, xc, y, 0, 40, 10, 10, h, top, bot);
+		int good = 1;
+		for (int l = 0; l < 10; l++)
+			good &= top[l] == (l == c[k].line ? c[k].want : 0) && bot[l] == 0;
+		CHECK(c[k].id, good, "%g -> %g: top[1..3] %g %g %g", c[k].y0, c[k].y1, top[1], top[2], top[3]);
+	}
 }
 
 static void test_field(void)
@@ -303,6 +335,7 @@ int main(void)
 		close(fd);
 	test_flux();
 	test_flux_seam();
+	test_crossing_edges();
 	test_field();
 	test_ring();
 	test_band_rule();
