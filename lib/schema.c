@@ -353,7 +353,8 @@ int schema_runs_lost(sql_db *d, const char *campaign, sb_err *e)
 		       "\"A damaged database\")", d->path, campaign);
 }
 
-int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, char *why, size_t wlen, sb_err *e)
+int schema_bad_value(sql_db *d, const char *campaign, int numbers, char *run, size_t rlen, char *why, size_t wlen,
+		     sb_err *e)
 {
 	sqlite3_stmt *st;
 	int bad = 0;
@@ -375,6 +376,8 @@ int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, ch
 		const char *key = (const char *)sqlite3_column_text(st, 0);
 		const sb_param *p = key ? params_find(key) : NULL;
 		if (!p) /* a key of another engine version: not this parser's to judge */
+			continue;
+		if (!numbers && (p->type == PT_INT || p->type == PT_REAL))
 			continue;
 		char txt[SB_STR_MAX + 8];
 		if (sqlite3_column_type(st, 1) == SQLITE_FLOAT) /* all 17 digits */
@@ -419,10 +422,10 @@ int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, ch
 	return e->code ? e->code : bad;
 }
 
-int schema_values(sql_db *d, const char *campaign, sb_err *e)
+int schema_values(sql_db *d, const char *campaign, int numbers, sb_err *e)
 {
 	char why[1200];
-	int r = schema_bad_value(d, campaign, NULL, 0, why, sizeof why, e);
+	int r = schema_bad_value(d, campaign, numbers, NULL, 0, why, sizeof why, e);
 	if (r <= 0 || e->code)
 		return e->code;
 	return sb_errf(e, SB_EIO, "%s: campaign '%s': %s: a value no run can have (edited or damaged): study run on its "

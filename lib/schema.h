@@ -30,11 +30,15 @@ int schema_complete(sql_db *d, int all, sb_err *e);
 int schema_runs_lost(sql_db *d, const char *campaign, sb_err *e);
 /* A value of campaign's rows that no run can have, as a file's would be refused: a
  * parameter the engine's parser refuses (ramp = 3), a result flag not 0 or 1 (risen =
- * 2). Returns 1 and names the first in why (its run in run, if run is not NULL), 0 when
- * every value is possible; e for a failing query. */
-int schema_bad_value(sql_db *d, const char *campaign, char *run, size_t rlen, char *why, size_t wlen, sb_err *e);
+ * 2). Number parameters only when numbers is 1: the analysis tools count a run whose
+ * number is no finite number unusable, with the reason, and go on with the others
+ * (docs/inputs.md), where the driver writes every such value again. Returns 1 and
+ * names the first in why (its run in run, if run is not NULL), 0 when every value is
+ * possible; e for a failing query. */
+int schema_bad_value(sql_db *d, const char *campaign, int numbers, char *run, size_t rlen, char *why, size_t wlen,
+		     sb_err *e);
 /* The same, as a reader's error naming the value and what to do. */
-int schema_values(sql_db *d, const char *campaign, sb_err *e);
+int schema_values(sql_db *d, const char *campaign, int numbers, sb_err *e);
 /* slurm_job, slurm_task */
 int schema_slurm(sql_db *d, sb_err *e);
 /* analysis_def (a tool's invocation: options, versions), analysis_all (its numbers:

@@ -235,7 +235,7 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 	if (!e->code && k == 0)
 		schema_runs_lost(&d->db, campaign, e);
 	if (!e->code)
-		schema_values(&d->db, campaign, e);
+		schema_values(&d->db, campaign, 0, e);
 	if (e->code) {
 		adb_runs_free(r, k);
 		return e->code;

@@ -132,7 +132,7 @@ int driver_record(drv *d, sb_err *e)
 	 * (the sweep reads a done run's file again when its row is gone) */
 	for (int k = 0; k < 10000 && !e->code; k++) {
 		char run[128], why[1200];
-		if (schema_bad_value(&d->db, d->c.name, run, sizeof run, why, sizeof why, e) != 1)
+		if (schema_bad_value(&d->db, d->c.name, 1, run, sizeof run, why, sizeof why, e) != 1)
 			break;
 		fprintf(stderr, "study: %s: %s: a value no run can have: written again from the %s file\n", d->c.name, why,
 			strstr(why, "in table result") ? "run" : "campaign");

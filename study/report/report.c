@@ -434,7 +434,7 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 	if (open_ro(&d, db_path, e))
 		return e->code;
 	sqlite3_stmt *q;
-	if (!campaign_known(&d, name, e) && !schema_values(&d, name, e) &&
+	if (!campaign_known(&d, name, e) && !schema_values(&d, name, 1, e) &&
 	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
 		int nc = sqlite3_column_count(q);
 		for (int i = 0; i < nc; i++) {

@@ -163,6 +163,13 @@ fresh S3 "$ID" --attr / waiting_time inf
 ingested nan.waiting_time.study S3 "waiting_time = inf"
 fresh N5 && q N5 "UPDATE param SET value = 'nan' WHERE run = '$ID' AND key = 'frequency'"
 counted nan.param.onset onset N5 "$ID" unusable "frequency = 'nan'"
+# the other values docs/inputs.md names ('' and Inf), and a key every run has missing
+fresh N6 && q N6 "UPDATE param SET value = '' WHERE run = '$ID' AND key = 'amplitude'"
+counted empty.param.onset onset N6 "$ID" unusable "amplitude = ''"
+fresh N7 && q N7 "UPDATE param SET value = 'Inf' WHERE run = '$ID' AND key = 'duration'"
+counted inf.param.waiting waiting N7 "$ID" unusable "duration = 'Inf'"
+fresh N8 && q N8 "DELETE FROM param WHERE run = '$ID' AND key = 'width'"
+counted missing.param.width.onset onset N8 "$ID" unusable "width"
 # a group whose key is missing or no number is refused (figures pooled the run with
 # an intruder among those without one: radius_ratio read as 0)
 fresh M && q M "DELETE FROM param WHERE run = '$ID' AND key = 'radius_ratio'"
