@@ -8,7 +8,9 @@
 # nothing written through a link; an empty database is named empty; a campaign named
 # after the runs directory's own files is refused with file, line and key; a done run
 # whose file became a dangling link is moved aside into damaged/ and run again, and a
-# node planted at its damaged/ name is not renamed over; -j2 is read as -j 2;
+# node planted at its damaged/ name is not renamed over; -j2 is read as -j 2; a full
+# disk under a tool's output directory (a small tmpfs, root only) is exit 2 naming the
+# table and the system's word, the earlier tables kept whole, no temporary left;
 # dumpflux stats power refuses a bed count it cannot compute quickly. The devices are
 # made here with /dev/null's numbers (mknod, root only; said with a SKIP line otherwise).
 # tier: slow: a campaign, then about 150 invocations of the tools and the driver refused
