@@ -166,12 +166,15 @@ int fs_rename_durable(const char *tmp, const char *path, sb_err *e)
 int fs_commit(sb_file *o, sb_err *e)
 {
 	int bad = fflush(o->f) != 0 || ferror(o->f) || fsync(fileno(o->f)) != 0;
-	int saved = errno;
-	bad |= fclose(o->f) != 0;
+	int saved = bad ? errno : 0; /* a write's failure (a full disk) is the one to say */
+	if (fclose(o->f) != 0 && !bad) { /* NFS, for one, reports a failed write only here */
+		bad = 1;
+		saved = errno;
+	}
 	o->f = NULL;
 	if (bad) {
 		unlink(o->tmp);
-		return sb_errf(e, SB_EIO, "%s: write failed: %s", o->path, strerror(saved ? saved : errno));
+		return sb_errf(e, SB_EIO, "%s: write failed: %s", o->path, strerror(saved ? saved : EIO));
 	}
 	int rc = fs_rename_durable(o->tmp, o->path, e);
 	if (rc)

@@ -479,20 +479,32 @@ int cli_outdir(const an_opts *o, sb_err *e)
 	return 0;
 }
 
-FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_err *e)
+int cli_open_out(const an_opts *o, const char *name, sb_file *out, sb_err *e)
 {
-	snprintf(path, len, "%s/%s", o->out, name);
+	char path[sizeof out->path];
+	const char *kind;
+	snprintf(path, sizeof path, "%s/%s", o->out, name);
 	/* only over nothing or a regular file: a link is not followed, a FIFO would hang
-	 * the tool, a device swallow the table (fs_create) */
-	const int fd = fs_create(path, 0, e);
-	if (fd < 0)
-		return NULL;
-	FILE *f = fdopen(fd, "w");
-	if (!f) {
-		sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
-		close(fd);
+	 * the tool, a device swallow the table; refused before anything is written (the
+	 * rename into place checks again, fs_commit) */
+	if (!fs_replaceable(path, &kind))
+		return sb_errf(e, SB_EIO, "%s: %s stands there, not a regular file: not written", path, kind);
+	/* written under a temporary name beside it and renamed into place when complete
+	 * (fsutil.h): a reader never sees half a table, a failed write keeps the old one */
+	return fs_open_tmp(out, path, e);
+}
+
+int cli_close_out(sb_file *out, sb_err *e)
+{
+	if (!out->f)
+		return 0;
+	if (e->code) { /* an error on the way: the table is not complete */
+		fs_abort(out);
+		return e->code;
 	}
-	return f;
+	/* fs_commit's message names the file and the system's word ("No space left on
+	 * device"); the temporary is gone either way */
+	return fs_commit(out, e);
 }
 
 void gp_str(FILE *f, const char *s)
@@ -515,7 +527,7 @@ static int gp_target(const char *path, sb_err *e)
 	return 0;
 }
 
-FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, char *png, size_t len, sb_err *e)
+FILE *gp_open(const an_opts *o, const char *name, int w, int h, sb_file *script, char *png, size_t len, sb_err *e)
 {
 	char n[256], pdf[1400];
 	snprintf(png, len, "%s/%s.png", o->out, name);
@@ -525,9 +537,9 @@ FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, ch
 	if (gp_target(png, e) || gp_target(pdf, e))
 		return NULL;
 	snprintf(n, sizeof n, "%s.gp", name);
-	FILE *f = cli_fopen(o, n, script, len, e);
-	if (!f)
+	if (cli_open_out(o, n, script, e))
 		return NULL;
+	FILE *f = script->f;
 	/* data files and the figures are named relative to the output directory */
 	fprintf(f, "cd ");
 	gp_str(f, o->out);
@@ -554,7 +566,6 @@ FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, ch
 void gp_close(FILE *f)
 {
 	fprintf(f, "}\nset output\n");
-	fclose(f);
 }
 
 void gp_xlabel(FILE *f, const char *key)

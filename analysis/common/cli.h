@@ -8,6 +8,7 @@
 #include "csv.h" /* the tools' CSV text fields: csv_text */
 #include "err.h"
 #include "adb.h"
+#include "fsutil.h"
 
 #define AN_MAXKEYS 32
 #define AN_MAXCAMP 8
@@ -68,21 +69,28 @@ void cli_keys(const an_opts *o, char axes[][48], int na, const char *const *alwa
 	      char keys[][48], int *nk);
 
 /* mkdir -p of o->out, refused when something other than a directory stands there (a
- * link too: docs/output.md); out/name created for writing (path returned in path) only
- * over nothing or a regular file (fs_create). */
+ * link too: docs/output.md). */
 int cli_outdir(const an_opts *o, sb_err *e);
-FILE *cli_fopen(const an_opts *o, const char *name, char *path, size_t len, sb_err *e);
+/* out/name for writing (out->f; its path out->path), only over nothing or a regular
+ * file, through a temporary in the same directory (fs_open_tmp). cli_close_out
+ * renames it into place after a checked flush, fsync and close (fs_commit), or, when
+ * e holds an error already, removes it: either way no temporary is left, and a table
+ * not written whole leaves the earlier one at its name. 0 or the error (SB_EIO naming
+ * the file and the system's word). */
+int cli_open_out(const an_opts *o, const char *name, sb_file *out, sb_err *e);
+int cli_close_out(sb_file *out, sb_err *e);
 /* A gnuplot single-quoted string. */
 void gp_str(FILE *f, const char *s);
 /* Runs gnuplot on the script (no shell); 0 when it exits 0 and wrote png and the PDF
  * beside it (same name, .pdf), both not empty. They are drawn into temporary names and
  * renamed into place (fsutil.h), only over nothing or a regular file. */
 int gp_run(const char *script, const char *png, sb_err *e);
-/* Opens a gnuplot script out/name.gp that draws its body twice, into out/name.png
- * (pngcairo, w x h pixels) and out/name.pdf (pdfcairo, vector): it writes the loop's
- * head, the caller the body (settings and plots, UTF-8 text), gp_close the loop's end.
- * Refused (NULL) when something other than a regular file stands at a figure's path. */
-FILE *gp_open(const an_opts *o, const char *name, int w, int h, char *script, char *png, size_t len, sb_err *e);
+/* Opens a gnuplot script out/name.gp (cli_open_out into script) that draws its body
+ * twice, into out/name.png (pngcairo, w x h pixels) and out/name.pdf (pdfcairo,
+ * vector): it writes the loop's head, the caller the body (settings and plots, UTF-8
+ * text), gp_close the loop's end (then cli_close_out and gp_run). Refused (NULL) when
+ * something other than a regular file stands at a figure's path. */
+FILE *gp_open(const an_opts *o, const char *name, int w, int h, sb_file *script, char *png, size_t len, sb_err *e);
 void gp_close(FILE *f);
 /* The x axis's label for a key of the parameter table, its unit the table's
  * (label_axis: "frequency f (Hz)"). */

@@ -253,14 +253,13 @@ int tool_curves(an_tool *t, const char *along, int *curve)
 
 int *tool_curves_csv(an_tool *t, const char *along, const char *name, int *nc, FILE **f)
 {
-	char path[1400];
 	int *curve = malloc(sizeof *curve * (size_t)(t->ng > 0 ? t->ng : 1));
 	*f = NULL;
 	if (!curve) {
 		sb_errf(&t->e, SB_ENOMEM, "out of memory");
 		return NULL;
 	}
-	if ((*nc = tool_curves(t, along, curve)) < 0 || !(*f = cli_fopen(t->o, name, path, sizeof path, &t->e))) {
+	if ((*nc = tool_curves(t, along, curve)) < 0 || !(*f = tool_out_open(t, name))) {
 		free(curve);
 		return NULL;
 	}
@@ -330,20 +329,18 @@ int tool_tally(an_tool *t, FILE *out, const char *fmt, ...)
 
 int tool_accounting_csv(an_tool *t)
 {
-	char name[128], path[1400];
+	char name[128];
 	snprintf(name, sizeof name, "%s_accounting.csv", t->o->tool);
-	FILE *f = cli_fopen(t->o, name, path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, name);
 	if (!f)
 		return t->e.code;
 	acct_runs_csv(f, t->runs, t->k, t->labels);
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 FILE *tool_summary_csv(an_tool *t, const char *name, const char *head)
 {
-	char path[1400];
-	FILE *s = cli_fopen(t->o, name, path, sizeof path, &t->e);
+	FILE *s = tool_out_open(t, name);
 	if (!s)
 		return NULL;
 	fputs(head, s);
@@ -415,9 +412,51 @@ int tool_store_end(an_tool *t)
 	return t->e.code;
 }
 
+/* the slot of the open output f, or a free one for f NULL; NULL when none */
+static sb_file *out_slot(an_tool *t, const FILE *f)
+{
+	for (size_t i = 0; i < sizeof t->out / sizeof t->out[0]; i++)
+		if (t->out[i].f == f)
+			return &t->out[i];
+	return NULL;
+}
+
+FILE *tool_out_open(an_tool *t, const char *name)
+{
+	sb_file *o = out_slot(t, NULL);
+	if (!o) { /* a tool writes at most a few tables at once */
+		sb_errf(&t->e, SB_EIO, "%s/%s: too many output files open at once", t->o->out, name);
+		return NULL;
+	}
+	return cli_open_out(t->o, name, o, &t->e) ? NULL : o->f;
+}
+
+int tool_out_close(an_tool *t, FILE *f)
+{
+	sb_file *o = f ? out_slot(t, f) : NULL;
+	if (o)
+		cli_close_out(o, &t->e);
+	return t->e.code;
+}
+
+FILE *tool_gp_open(an_tool *t, const char *name, int w, int h, char *script, char *png, size_t len)
+{
+	sb_file *o = out_slot(t, NULL);
+	if (!o) {
+		sb_errf(&t->e, SB_EIO, "%s/%s.gp: too many output files open at once", t->o->out, name);
+		return NULL;
+	}
+	FILE *f = gp_open(t->o, name, w, h, o, png, len, &t->e);
+	if (f)
+		snprintf(script, len, "%s", o->path);
+	return f;
+}
+
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png)
 {
 	gp_close(f);
+	if (tool_out_close(t, f))
+		return t->e.code;
 	return gp_run(script, png, &t->e);
 }
 
@@ -443,6 +482,12 @@ int tool_close(an_tool *t, FILE *err)
 	/* an error between tool_store_begin and tool_store_end leaves nothing half stored */
 	if (t->d.ins)
 		adb_store_end(&t->d, 0, &t->e);
+	for (size_t i = 0; i < sizeof t->out / sizeof t->out[0]; i++)
+		if (t->out[i].f) { /* left open by a step that failed: not complete */
+			if (!t->e.code) /* every step closes what it wrote; this one is a slip */
+				sb_errf(&t->e, SB_EIO, "%s: not closed: not written", t->out[i].path);
+			fs_abort(&t->out[i]);
+		}
 	free(t->A);
 	for (int i = 0; t->gval && i < t->ng * t->nk; i++)
 		free(t->gval[i]);

@@ -39,6 +39,9 @@ typedef struct an_tool {
 	const xopt *x;
 	int nx;
 	char defn[512];
+	/* the output files open now (tool_out_open), written under temporary names:
+	 * tool_close removes those a failed step left open */
+	sb_file out[6];
 	sb_err e;
 } an_tool;
 
@@ -176,7 +179,16 @@ void tool_define(an_tool *t, const char *fmt, ...) __attribute__((format(printf,
 void tool_store_acct(an_tool *t, const char *grp, int j);
 int tool_store_end(an_tool *t);
 
-/* Closes a gnuplot script (gp_open) and runs it. */
+/* An output file out/name (cli_open_out: through a temporary, renamed into place
+ * complete), NULL with the error in t->e. tool_out_close puts it in place (or, when
+ * t->e holds an error, removes it) and returns t->e.code: a failed write (a full
+ * disk) is an I/O error naming the file, never a truncated table at its name. One
+ * left open is removed by tool_close. */
+FILE *tool_out_open(an_tool *t, const char *name);
+int tool_out_close(an_tool *t, FILE *f);
+/* gp_open's script, opened as tool_out_open does. */
+FILE *tool_gp_open(an_tool *t, const char *name, int w, int h, char *script, char *png, size_t len);
+/* Closes a gnuplot script (tool_gp_open), puts it in place and runs it. */
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png);
 
 /* The closing lines: the accounting table, the campaigns each group drew from when

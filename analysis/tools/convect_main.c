@@ -266,8 +266,7 @@ static int groups(an_tool *t, convect_state *s)
 /* convect_runs.csv: every considered run */
 static int runs_csv(an_tool *t, const convect_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "convect_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "convect_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,state,use");
@@ -295,8 +294,7 @@ static int runs_csv(an_tool *t, const convect_state *s)
 		else
 			fprintf(f, ",,,,,,nan,nan,nan,\n");
 	}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* "0.123 [0.100, 0.150] (5)", "0.123 [-, -] (1)" or "- (0)" */
@@ -383,18 +381,15 @@ static void points(const an_tool *t, const convect_state *s, FILE *pts)
 /* convect_summary.csv, convect_points.csv, the table and the stored rows */
 static int summary(an_tool *t, const convect_state *s)
 {
-	char path[1400];
 	FILE *sum = tool_summary_csv(t, "convect_summary.csv",
 				     "group,frequency,runs,blocks,no_field,strength,strength_sd,strength_lo,strength_hi,"
 				     "strength_boot_lo,strength_boot_hi,strength_u,strength_u_sd,strength_u_lo,"
 				     "strength_u_hi,strength_u_boot_lo,strength_u_boot_hi,band_lo,band_hi,skip,level");
 	if (!sum)
 		return t->e.code;
-	FILE *pts = cli_fopen(t->o, "convect_points.csv", path, sizeof path, &t->e);
-	if (!pts) {
-		fclose(sum);
-		return t->e.code;
-	}
+	FILE *pts = tool_out_open(t, "convect_points.csv");
+	if (!pts)
+		return tool_out_close(t, sum);
 	fprintf(pts, "group_index,curve,frequency,runs,strength,strength_lo,strength_hi,strength_u,strength_u_lo,"
 		     "strength_u_hi,persistent,persistent_lo,persistent_hi\n");
 	printf("# roll strength S = sqrt(sum n uy^2 / sum n) over the cells in %g..%g of the settled surface height, per "
@@ -410,9 +405,8 @@ static int summary(an_tool *t, const convect_state *s)
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
 	points(t, s, pts);
-	fclose(sum);
-	fclose(pts);
-	return t->e.code;
+	tool_out_close(t, sum);
+	return tool_out_close(t, pts);
 }
 
 /* The closing lines: the accounting, then every run left out, by name, with why. */
@@ -478,7 +472,7 @@ static void panel(FILE *f, const an_tool *t, const convect_state *s, int col, co
 static int plot(an_tool *t, const convect_state *s)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "convect", 1100, 520, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "convect", 1100, 520, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

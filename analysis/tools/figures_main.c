@@ -581,7 +581,7 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 	const int cols = P->nsys > 1 ? P->nsys : (P->nf < 3 ? P->nf : 3), rows = (P->nf * P->nsys + cols - 1) / cols;
 	const int pw = cols > 1 ? 450 : 600, aw = pw - 80;
 	const int ph = (int)(aw * (y1 - y0) / (x1 - x0)) + 80;
-	FILE *f = gp_open(t->o, "fig1", pw * cols, ph * rows + 50, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "fig1", pw * cols, ph * rows + 50, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -608,8 +608,7 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 /* fig1_field.csv and fig1.png */
 static int fig1(an_tool *t, const panels *P)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "fig1_field.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "fig1_field.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
@@ -619,11 +618,10 @@ static int fig1(an_tool *t, const panels *P)
 	if (drawn >= 0)
 		drawn = fig1_pass(t, P, &a, f, &t->e);
 	free(a.lens);
-	fclose(f);
-	if (drawn < 0) {
-		remove(path); /* no half-made table beside an accounting it contradicts */
+	/* no half-made table beside an accounting it contradicts: one not written whole
+	 * is not put in place (tool_out_close) */
+	if (tool_out_close(t, f) || drawn < 0)
 		return t->e.code;
-	}
 	if (!drawn)
 		printf("# fig1: no run with field = yes; skipped\n");
 	else if (!t->o->no_plot)
@@ -756,7 +754,7 @@ static void band_words(const panels *P, char *buf, size_t n)
 static int fig3_plot(an_tool *t, const panels *P, int drawn)
 {
 	char script[1400], png[1400], set[512], w[2][96], band[160];
-	FILE *f = gp_open(t->o, "fig3", 800, 270 * P->nf + 100, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "fig3", 800, 270 * P->nf + 100, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -799,8 +797,7 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 /* fig3_profile.csv, the table of the curves, their stored rows and fig3.png */
 static int fig3(an_tool *t, panels *P)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "fig3_profile.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "fig3_profile.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "row,system,frequency,radius_ratio,line,D,phi,runs,phi_lo,phi_hi\n");
@@ -810,8 +807,7 @@ static int fig3(an_tool *t, panels *P)
 			P->runs[r][sys] = fig3_panel(t, P, r, sys, f, &headed);
 			drawn += P->runs[r][sys] > 0;
 		}
-	fclose(f);
-	if (t->e.code)
+	if (tool_out_close(t, f))
 		return t->e.code;
 	if (!drawn) {
 		printf("# fig3: no run with flux = yes; skipped\n");
@@ -923,7 +919,7 @@ static int fig4_traj(const an_tool *t, f4panel *P, int p, FILE *f)
 static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "fig4", 800, 290 * drawn + 110, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "fig4", 800, 290 * drawn + 110, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -969,8 +965,7 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
  * 8), at the highest row's frequency, every replicate */
 static int fig4(an_tool *t, const panels *P)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "fig4_traj.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "fig4_traj.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "panel,radius_ratio,run,replicate,index,t,y,y_box,representative\n");
@@ -980,7 +975,8 @@ static int fig4(an_tool *t, const panels *P)
 	for (int q = 0; q < P->nra && drawn < 8; q++)
 		if (fig4_panel(t, f4, P->ratios[q], &F[drawn]) && fig4_traj(t, &F[drawn], drawn, f))
 			drawn++;
-	fclose(f);
+	if (tool_out_close(t, f))
+		return t->e.code;
 	char fw[64];
 	label_num(fw, sizeof fw, "frequency", f4);
 	if (!drawn)

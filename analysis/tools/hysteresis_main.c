@@ -177,16 +177,14 @@ static int run_periods(an_tool *t, hyst_state *s, int i, FILE *f)
 /* hysteresis_periods.csv, and the points of every group's branches */
 static int periods(an_tool *t, hyst_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "hysteresis_periods.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "hysteresis_periods.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,branch,period,frequency,phi,phi_smooth,use\n");
 	for (int i = 0; i < t->k; i++)
 		if ((t->runs[i].use == AN_USED || t->runs[i].use == AN_PARTLY) && run_periods(t, s, i, f))
 			break;
-	fclose(f);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 /* Group j's estimates: its table row, its summary row, its stored rows. */
@@ -236,15 +234,14 @@ static int estimate(an_tool *t, hyst_state *s)
 		}
 		group_out(t, &s->G[j], &s->R[j], j, sum);
 	}
-	fclose(sum);
-	return t->e.code;
+	return tool_out_close(t, sum);
 }
 
 /* hysteresis.png and .pdf: every group's points and fitted sigmoid per leg, Gamma on top */
 static int plot(an_tool *t, const hyst_state *s)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "hysteresis", 1000, 600, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "hysteresis", 1000, 600, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

@@ -290,8 +290,7 @@ static int groups(an_tool *t, onset_state *s)
 /* onset_runs.csv: Phi of every run used, by group */
 static int runs_csv(an_tool *t, const onset_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "onset_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "onset_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s,axis_x\n");
@@ -307,8 +306,7 @@ static int runs_csv(an_tool *t, const onset_state *s)
 				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), fr, s->phi[i],
 				acct_use_name(r->use), r->used_s, axis_run(s->axis, r));
 		}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* Group j's points (frequency, Phi, seed) into xs, ys, us; their number. *ratio is
@@ -393,9 +391,7 @@ static void runs_store(an_tool *t, const onset_state *s, int j, size_t np)
  * the analysis table (storing begun here, ended by the caller). */
 static int estimate(an_tool *t, onset_state *s)
 {
-	const an_opts *o = t->o;
-	char path[1400];
-	FILE *f = cli_fopen(o, "onset_seeds.csv", path, sizeof path, &t->e), *sum = NULL;
+	FILE *f = tool_out_open(t, "onset_seeds.csv"), *sum = NULL;
 	if (f)
 		sum = tool_summary_csv(t, "onset_summary.csv",
 				       "group,intruder,runs,seeds,sigmoid_ok,sigmoid_f0,sigmoid_f0_lo,sigmoid_f0_hi,"
@@ -418,11 +414,8 @@ static int estimate(an_tool *t, onset_state *s)
 		group_out(t, r, j, np, ratio, f, sum);
 		runs_store(t, s, j, np);
 	}
-	if (f)
-		fclose(f);
-	if (sum)
-		fclose(sum);
-	return t->e.code;
+	tool_out_close(t, f);
+	return tool_out_close(t, sum);
 }
 
 /* The [onset] search's own estimate of each group beside this tool's threshold
@@ -541,9 +534,8 @@ static int diff_out(an_tool *t, onset_state *s)
 	}
 	if (!pairs)
 		printf("# no two groups with usable runs differ only in %s\n", s->diff);
-	fclose(f);
 	free(curve);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 /* One curve's fit of estimate e: its points, the fit, the table row, CSV and stored rows. */
@@ -628,9 +620,8 @@ static int fit_out(an_tool *t, onset_state *s)
 	for (int c = 0; c < nc && !t->e.code; c++)
 		for (int e = 0; e < NEST && !t->e.code; e++)
 			fit_curve(t, s, curve, c, e, f);
-	fclose(f);
 	free(curve);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 /* ---- --sensitivity: the onset again for other bands and a trimmed frequency range ---- */
@@ -754,9 +745,8 @@ static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE 
 /* --sensitivity: onset_sensitivity.csv and the table (rows stored beside the main ones). */
 static int sensitivity(an_tool *t, onset_state *s)
 {
-	char path[1400];
 	double *pb = malloc(sizeof *pb * (size_t)(NBAND * (t->k ? t->k : 1)));
-	FILE *f = pb ? cli_fopen(t->o, "onset_sensitivity.csv", path, sizeof path, &t->e) : NULL;
+	FILE *f = pb ? tool_out_open(t, "onset_sensitivity.csv") : NULL;
 	if (!pb)
 		sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	if (!f) {
@@ -773,9 +763,8 @@ static int sensitivity(an_tool *t, onset_state *s)
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		if (acct_used(&t->A[j]))
 			sens_group(t, s, pb, j, f);
-	fclose(f);
 	free(pb);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 /* The onset a figure marks for group j: the threshold crossing of the definition (the
@@ -808,9 +797,8 @@ static int on_axis(const an_tool *t, const onset_state *s, int j, double *m, dou
 
 static int plot(an_tool *t, const onset_state *s)
 {
-	const an_opts *o = t->o;
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(o, "onset", 1000, 600, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "onset", 1000, 600, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

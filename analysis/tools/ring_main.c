@@ -290,8 +290,7 @@ static int estimate(an_tool *t, ring_state *s)
 /* ring_runs.csv: every considered run's numbers and use */
 static int runs_csv(an_tool *t, const ring_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "ring_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "ring_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,state,use,risen,samples_before,before_from,before_to,"
@@ -305,8 +304,7 @@ static int runs_csv(an_tool *t, const ring_state *s)
 			r->state, acct_use_name(r->use), is_intruder(r) ? x->risen : 0, x->samples, x->from, x->to, x->v[0],
 			x->v[1], x->v[2], x->centre_y);
 	}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 static void ci_text(char *buf, size_t n, const ring_est *e)
@@ -373,8 +371,7 @@ static int summary(an_tool *t, const ring_state *s)
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
-	fclose(sum);
-	return t->e.code;
+	return tool_out_close(t, sum);
 }
 
 /* The closing lines: the accounting, what censored means here, groups without a
@@ -402,8 +399,7 @@ static void report(const an_tool *t, const ring_state *s)
 /* ring_ratios.csv (the figure's data): curve, quantity, frequency, ratio, lo, hi */
 static int ratios_csv(an_tool *t, const ring_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "ring_ratios.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "ring_ratios.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "curve,quantity,frequency,ratio,lo,hi,group\n");
@@ -414,8 +410,7 @@ static int ratios_csv(an_tool *t, const ring_state *s)
 			csv_text(f, t->labels[j]);
 			fputc('\n', f);
 		}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* The legend of curve c: the keys other than the frequency whose values differ
@@ -453,7 +448,7 @@ static int plot(an_tool *t, const ring_state *s)
 	const double span = fhi > flo ? fhi - flo : 0.2, dx = 0.012 * span;
 	ylo = fmin(ylo, 0.95);
 	yhi = fmax(yhi, 1.2);
-	FILE *f = gp_open(t->o, "ring", 900, 600, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "ring", 900, 600, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

@@ -336,8 +336,7 @@ static int comparisons(an_tool *t, rolls_state *s)
 /* rolls_runs.csv: every used run's reach */
 static int runs_csv(an_tool *t, const rolls_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "rolls_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "rolls_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,frequency,radius_ratio,surface,phi_max,sign,max_line,roll_bottom,"
@@ -354,8 +353,7 @@ static int runs_csv(an_tool *t, const rolls_state *s)
 				r->seed, an_num(r, "frequency", NAN), an_num(r, "radius_ratio", 0), s->pr[i].surface, q->phi_max,
 				q->sign, q->lmax, q->bottom, q->reach, q->to_floor, acct_use_name(r->use), r->used_s);
 		}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 static void ci(char *b, size_t n, double v, double lo, double hi)
@@ -396,22 +394,17 @@ static int summary(an_tool *t, const rolls_state *s)
 		tool_store(t, j, L, "to_floor", (double)s->floor[j], NAN, NAN, n);
 		tool_store_acct(t, L, j);
 	}
-	fclose(sum);
-	return t->e.code;
+	return tool_out_close(t, sum);
 }
 
 /* Per comparison: rolls_diff.csv, rolls_profile.csv, the table and the stored rows. */
 static int diffs(an_tool *t, const rolls_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "rolls_diff.csv", path, sizeof path, &t->e), *p = NULL;
+	FILE *f = tool_out_open(t, "rolls_diff.csv"), *p = NULL;
 	if (f)
-		p = cli_fopen(t->o, "rolls_profile.csv", path, sizeof path, &t->e);
-	if (!p) {
-		if (f)
-			fclose(f);
-		return t->e.code;
-	}
+		p = tool_out_open(t, "rolls_profile.csv");
+	if (!p)
+		return tool_out_close(t, f);
 	fprintf(f, "comparison,group,partner,runs_with,runs_without,reach_with,reach_without,reach_diff,reach_diff_lo,"
 		   "reach_diff_hi,reach_diff_df,roll_bottom_diff,roll_bottom_diff_lo,roll_bottom_diff_hi,lines,lines_differ\n");
 	fprintf(p, "comparison,group,line,D,phi_without,phi_without_lo,phi_without_hi,phi_with,phi_with_lo,phi_with_hi,"
@@ -448,8 +441,9 @@ static int diffs(an_tool *t, const rolls_state *s)
 		tool_store(t, c->w, g, "runs_with", (double)c->rw.n, NAN, NAN, (long)c->rw.n);
 		tool_store(t, c->w, g, "runs_without", (double)c->rn.n, NAN, NAN, (long)c->rn.n);
 	}
-	fclose(f);
-	fclose(p);
+	tool_out_close(t, f);
+	if (tool_out_close(t, p))
+		return t->e.code;
 	if (s->nc)
 		printf("# differences with - without intruder, Welch intervals at %g %%: the runs with and without intruder"
 		       " start from different packings (the driver's seed depends on radius_ratio), so they are independent"
@@ -466,7 +460,7 @@ static int diffs(an_tool *t, const rolls_state *s)
 static int plot(an_tool *t, const rolls_state *s)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "rolls", 1100, 300 * s->nc + 110, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "rolls", 1100, 300 * s->nc + 110, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

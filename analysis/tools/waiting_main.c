@@ -284,8 +284,7 @@ static int fit(an_tool *t, wait_state *s)
 /* waiting_runs.csv: each used run's time and event */
 static int runs_csv(an_tool *t, const wait_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "waiting_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "waiting_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,state,use\n");
@@ -297,8 +296,7 @@ static int runs_csv(an_tool *t, const wait_state *s)
 			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->g[j].t[i], s->g[j].ev[i],
 				r->state, acct_use_name(r->use));
 		}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* waiting_km_band.csv: group j's confidence band as the outline of steps (the band
@@ -320,20 +318,17 @@ static void band_csv(FILE *b, const an_tool *t, const wait_state *s, int j)
 /* waiting_km.csv: the survival curves, each starting at (0, 1), and their bands */
 static int km_csv(an_tool *t, const wait_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "waiting_km.csv", path, sizeof path, &t->e), *b;
+	FILE *f = tool_out_open(t, "waiting_km.csv"), *b;
 	if (!f)
 		return t->e.code;
-	if (!(b = cli_fopen(t->o, "waiting_km_band.csv", path, sizeof path, &t->e))) {
-		fclose(f);
-		return t->e.code;
-	}
+	if (!(b = tool_out_open(t, "waiting_km_band.csv")))
+		return tool_out_close(t, f);
 	fprintf(b, "group_index,t,lo,hi\n");
 	for (int j = 0; j < t->ng; j++) {
 		fprintf(b, "%d,0,1,1\n", j);
 		band_csv(b, t, s, j);
 	}
-	fclose(b);
+	tool_out_close(t, b);
 	fprintf(f, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
 	for (int j = 0; j < t->ng; j++) {
 		const km_curve *km = &s->km[j];
@@ -348,8 +343,7 @@ static int km_csv(an_tool *t, const wait_state *s)
 				S, se, fmax(0, S - s->z * se), fmin(1, S + s->z * se));
 		}
 	}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* The risen runs of group j whose waiting time is in bin b of bins (the last bin
@@ -369,9 +363,8 @@ static long hist_count(const wait_state *s, int j, long b, long bins)
 /* waiting_hist.csv: the risen runs' waiting times, bins common to every group */
 static int hist_csv(an_tool *t, const wait_state *s)
 {
-	char path[1400];
 	const long bins = t->o->bins;
-	FILE *f = cli_fopen(t->o, "waiting_hist.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "waiting_hist.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,lo,hi,count\n");
@@ -382,8 +375,7 @@ static int hist_csv(an_tool *t, const wait_state *s)
 			csv_text(f, t->labels[j]);
 			fprintf(f, ",%.17g,%.17g,%ld\n", b * s->bw, (b + 1) * s->bw, c);
 		}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* Group j's summary: its table row, its summary row, its stored rows. */
@@ -510,7 +502,8 @@ static int summary(an_tool *t, const wait_state *s)
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
-	fclose(sum);
+	if (tool_out_close(t, sum))
+		return t->e.code;
 	logrank_out(t, s->g, "", "");
 	lower_out(t, s);
 	return t->e.code;
@@ -570,15 +563,11 @@ static int way(an_tool *t, wait_state *s)
 /* waiting_way_runs.csv (both definitions of every used run) and waiting_way_km.csv */
 static int way_csv(an_tool *t, const wait_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "waiting_way_runs.csv", path, sizeof path, &t->e), *k = NULL;
+	FILE *f = tool_out_open(t, "waiting_way_runs.csv"), *k = NULL;
 	if (f)
-		k = cli_fopen(t->o, "waiting_way_km.csv", path, sizeof path, &t->e);
-	if (!k) {
-		if (f)
-			fclose(f);
-		return t->e.code;
-	}
+		k = tool_out_open(t, "waiting_way_km.csv");
+	if (!k)
+		return tool_out_close(t, f);
 	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,way_time,way_risen,trajectory,use\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < t->k; i++) {
@@ -591,7 +580,7 @@ static int way_csv(an_tool *t, const wait_state *s)
 				s->way_t[i], isnan(s->way_t[i]) ? 0 : s->way_ev[i], isnan(s->way_t[i]) ? "no" : "yes",
 				acct_use_name(r->use));
 		}
-	fclose(f);
+	tool_out_close(t, f);
 	fprintf(k, "group_index,group,t,n_risk,events,censored,S,se,lo,hi\n");
 	for (int j = 0; j < t->ng; j++) {
 		const km_curve *km = &s->km2[j];
@@ -605,8 +594,7 @@ static int way_csv(an_tool *t, const wait_state *s)
 				km->s[i], km->se[i], fmax(0, km->s[i] - s->z * km->se[i]), fmin(1, km->s[i] + s->z * km->se[i]));
 		}
 	}
-	fclose(k);
-	return 0;
+	return tool_out_close(t, k);
 }
 
 /* "12.345 [1.234, >6]" into b: a median and its interval, limits not reached as >t_max */
@@ -667,7 +655,8 @@ static int way_summary(an_tool *t, const wait_state *s)
 		stop += s->stop_cens[j];
 		none += s->no_traj[j];
 	}
-	fclose(sum);
+	if (tool_out_close(t, sum))
+		return t->e.code;
 	logrank_out(t, s->g2, "way_", "second definition: ");
 	if (none)
 		printf("# %ld used run%s without a trajectory (traj_rate = 0, or none recorded): no second waiting time, left"
@@ -683,7 +672,7 @@ static int way_summary(an_tool *t, const wait_state *s)
 static int plot_way(an_tool *t, const wait_state *s)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "waiting_way", 900, 560, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "waiting_way", 900, 560, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -731,7 +720,7 @@ static void report(const an_tool *t, const wait_state *s)
 static int plot_km(an_tool *t)
 {
 	char script[1400], png[1400], set[512];
-	FILE *f = gp_open(t->o, "waiting_km", 900, 560, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "waiting_km", 900, 560, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -761,7 +750,7 @@ static int plot_hist(an_tool *t, const wait_state *s)
 {
 	char script[1400], png[1400], set[512];
 	const double bw = s->bw;
-	FILE *f = gp_open(t->o, "waiting_hist", 900, 560, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "waiting_hist", 900, 560, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
@@ -911,9 +900,8 @@ static int diff_out(an_tool *t, wait_state *s)
 	}
 	if (!pairs)
 		printf("# no two groups with used runs differ only in %s\n", s->diff);
-	fclose(f);
 	free(curve);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 static int init(an_tool *t, void *vs, const xopt *x)

@@ -297,8 +297,7 @@ static int trends(an_tool *t, whale_state *s)
 /* whale_runs.csv: every considered run */
 static int runs_csv(an_tool *t, const whale_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "whale_runs.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "whale_runs.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,group,run,replicate,seed,state,use,radius_ratio,risen,waiting_time,status,window_from,"
@@ -327,8 +326,7 @@ static int runs_csv(an_tool *t, const whale_state *s)
 			w->depth_max, w->rate, w->mean, w->rms, o->spec.period, o->spec.share, o->spec.edge,
 			r->group >= 0 && s->g[r->group].rep == i);
 	}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* "41.2 [38.0, 44.9] (7)" or "-" when there is no mean */
@@ -403,8 +401,7 @@ static void curve_words(const an_tool *t, const whale_state *s, int c, int vary,
 static int trend_out(an_tool *t, const whale_state *s)
 {
 	static const char *const TK[3] = {"period", "depth", "rate"};
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "whale_trend.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "whale_trend.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "curve,set,quantity,runs,radius_ratios,rho,p,permutations\n");
@@ -434,15 +431,13 @@ static int trend_out(an_tool *t, const whale_state *s)
 			tool_store(t, -1, grp, key, tr->p, NAN, NAN, (long)tr->n);
 		}
 	}
-	fclose(f);
-	return t->e.code;
+	return tool_out_close(t, f);
 }
 
 /* whale_summary.csv, whale_points.csv (the figure's), the table, the stored rows and
  * the trends (storing begun here, ended by the caller). */
 static int summary(an_tool *t, const whale_state *s)
 {
-	char path[1400];
 	FILE *sum = tool_summary_csv(t, "whale_summary.csv",
 				     "group,radius_ratio,runs,risen,not_risen,no_trajectory,too_short,analysed,with_period,"
 				     "period,period_lo,period_hi,period_n,spec_period,spec_period_lo,spec_period_hi,"
@@ -450,11 +445,9 @@ static int summary(an_tool *t, const whale_state *s)
 				     "rms_hi,rms_n,spec_edge,top,dive_cm,skip_s,representative_period,representative");
 	if (!sum)
 		return t->e.code;
-	FILE *pts = cli_fopen(t->o, "whale_points.csv", path, sizeof path, &t->e);
-	if (!pts) {
-		fclose(sum);
-		return t->e.code;
-	}
+	FILE *pts = tool_out_open(t, "whale_points.csv");
+	if (!pts)
+		return tool_out_close(t, sum);
 	fprintf(pts, "group_index,curve,radius_ratio,period,period_lo,period_hi,spec_period,spec_lo,spec_hi,depth,"
 		     "depth_lo,depth_hi,rate,rate_lo,rate_hi,rms,rms_lo,rms_hi\n");
 	printf("# window: from the rise + %g s to the end of the trajectory; a dive: %g intruder radi%s below the top level "
@@ -466,8 +459,8 @@ static int summary(an_tool *t, const whale_state *s)
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum, pts);
-	fclose(sum);
-	fclose(pts);
+	tool_out_close(t, sum);
+	tool_out_close(t, pts);
 	return t->e.code ? t->e.code : trend_out(t, s);
 }
 
@@ -515,8 +508,7 @@ static void report(const an_tool *t, const whale_state *s)
  * per drive period, time since its rise */
 static int traces_csv(an_tool *t, const whale_state *s)
 {
-	char path[1400];
-	FILE *f = cli_fopen(t->o, "whale_traces.csv", path, sizeof path, &t->e);
+	FILE *f = tool_out_open(t, "whale_traces.csv");
 	if (!f)
 		return t->e.code;
 	fprintf(f, "group_index,run,t,t_since_rise,y,top,dive_level\n");
@@ -529,8 +521,8 @@ static int traces_csv(an_tool *t, const whale_state *s)
 		size_t n;
 		sb_err e = {0};
 		if (whale_trace(t->runs[i].path, o->wait, o->drive_f > 0 ? 1 / o->drive_f : 0, &tt, &yy, &n, &e)) {
-			fclose(f);
-			return sb_errf(&t->e, e.code, "%s", e.msg);
+			sb_errf(&t->e, e.code, "%s", e.msg);
+			return tool_out_close(t, f); /* removed: not complete */
 		}
 		for (size_t m = 0; m < n; m++)
 			fprintf(f, "%d,%s,%.17g,%.17g,%.17g,%.17g,%.17g\n", j, t->runs[i].id, tt[m], tt[m] - o->wait, yy[m],
@@ -538,8 +530,7 @@ static int traces_csv(an_tool *t, const whale_state *s)
 		free(tt);
 		free(yy);
 	}
-	fclose(f);
-	return 0;
+	return tool_out_close(t, f);
 }
 
 /* One panel of a quantity against R: per curve the means, their intervals as bars
@@ -591,7 +582,7 @@ static int plot(an_tool *t, const whale_state *s)
 		xhi = fmax(xhi, s->g[j].ratio);
 	}
 	const double pad = xhi > xlo ? 0.12 * (xhi - xlo) : 0.5;
-	FILE *f = gp_open(t->o, "whale", 1100, 900, script, png, sizeof script, &t->e);
+	FILE *f = tool_gp_open(t, "whale", 1100, 900, script, png, sizeof script);
 	if (!f)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);

@@ -8,7 +8,9 @@
 # nothing written through a link; an empty database is named empty; a campaign named
 # after the runs directory's own files is refused with file, line and key; a done run
 # whose file became a dangling link is moved aside into damaged/ and run again, and a
-# node planted at its damaged/ name is not renamed over; -j2 is read as -j 2;
+# node planted at its damaged/ name is not renamed over; -j2 is read as -j 2; a full
+# disk under a tool's output directory (a small tmpfs, root only) is exit 2 naming the
+# table and the system's word, the earlier tables kept whole, no temporary left;
 # dumpflux stats power refuses a bed count it cannot compute quickly. The devices are
 # made here with /dev/null's numbers (mknod, root only; said with a SKIP line otherwise).
 # tier: slow: a campaign, then about 150 invocations of the tools and the driver refused
@@ -89,6 +91,35 @@ done
 "$BINDIR/onset" fz --runs R --no-store >onset.log 2>&1 && [ -s $A/onset.png ] && [ -s $A/onset.pdf ] &&
 	[ -z "$(ls $A | grep '\.tmp\.')" ] && ok out.figures_renamed_into_place ||
 	fail out.figures_renamed_into_place "$(ls $A | tr '\n' ' '): $(tail -c 300 onset.log)"
+
+# --- a full disk under the tools' output (a small tmpfs, root only): the write that
+# fails is an I/O error naming the file and the system's word; the tables written
+# before stay as they were, whole; no temporary is left; in a fresh directory nothing
+# is put at a table's name ---
+FULL=$TMP/full
+mkdir -p "$FULL"
+if mount -t tmpfs -o size=256k tmpfs "$FULL" 2>/dev/null; then
+	trap 'umount "$FULL" 2>/dev/null; rm -rf "$TMP"' EXIT # before lib.sh's rm -rf meets the mount
+	W=$FULL/w
+	# the earlier tables with one histogram bin; the rewrite with 1000 would need more
+	# room than the old histogram frees (a table truncated in place runs out of disk)
+	"$BINDIR/waiting" fz --runs R --no-store --no-plot --bins 1 --out "$W" >full0.log 2>&1 && [ -s "$W/waiting_km.csv" ] &&
+		cp -r "$W" keep && ok full.first_written || fail full.first_written "$(tail -c 300 full0.log)"
+	dd if=/dev/zero of="$FULL/fill" bs=4k >/dev/null 2>&1 # until the disk is full
+	"$BINDIR/waiting" fz --runs R --no-store --no-plot --bins 1000 --out "$W" >full1.log 2>full1.err
+	rc=$?
+	[ "$rc" = 2 ] && grep -qE "^waiting: $W/waiting_[a-z_]+\.csv: write failed: No space left on device$" full1.err &&
+		ok full.write_failed_named || fail full.write_failed_named "exit $rc, stderr: $(head -c 300 full1.err)"
+	diff -r keep "$W" >full.diff 2>&1 && ok full.old_tables_kept || fail full.old_tables_kept "$(head -c 300 full.diff)"
+	"$BINDIR/onset" fz --runs R --no-store --no-plot --out "$FULL/new" >full2.log 2>full2.err
+	rc=$?
+	[ "$rc" = 2 ] && grep -qF "$FULL/new/onset_" full2.err && grep -qF ": write failed: No space left on device" full2.err &&
+		[ -z "$(ls -A "$FULL/new")" ] && ok full.nothing_at_the_name ||
+		fail full.nothing_at_the_name "exit $rc, $(ls -A "$FULL/new" | tr '\n' ' '), stderr: $(head -c 300 full2.err)"
+	umount "$FULL"
+else
+	skip full.tool_outputs "cannot mount a tmpfs here (not root?)"
+fi
 
 # --- the database and its side files, for the writer and the readers ---
 cp -r R D
