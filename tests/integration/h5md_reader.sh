@@ -15,7 +15,7 @@ shake_run s.log "${FAST[@]}" "${GENTLE[@]}" duration=1 snapshots=yes output=s.h5
 shake_run f.log "${FAST[@]}" "${GENTLE[@]}" duration=1 snapshots=yes snapshot_precision=double output=f.h5 ||
 	{ fail run_single "exit $?: $(tail -n 2 f.log)"; finish; }
 
-"$PY" - s.h5 f.h5 2>py.err <<'PY'
+"$PY" - s.h5 f.h5 >py.out 2>py.err <<'PY'
 import sys, warnings
 warnings.filterwarnings("ignore")
 import numpy as np, h5py
@@ -105,5 +105,14 @@ r = H5MDReader(sys.argv[2], convert_units=False)
 check("double.mda_reads", all(np.array_equal(ts.positions[:, :2], D[ts.frame].astype(np.float32)) for ts in r))
 PY
 rc=$?
+# the checks Python made, counted here as this script's own (finish fails a script
+# that made none)
+while IFS= read -r l; do
+	case $l in
+	"ok "*) ok "${l#ok }" ;;
+	"FAIL "*) l=${l#FAIL }; fail "${l%%: *}" "${l#*: }" ;;
+	*) echo "$l" ;;
+	esac
+done <py.out
 [ "$rc" -eq 0 ] || fail python "exit $rc: $(grep -v xdrlib py.err | tail -n 3)"
 finish

@@ -91,7 +91,8 @@ fresh L && rm "L/fz/$ID.h5" && ln -s "../other/$IDO.h5" "L/fz/$ID.h5"
 unreadable linked.waiting waiting L "$SEALED"
 recorded L
 unreadable linked.onset onset L "holds run '$IDO', not run '$ID'"
-swept linked.study L "holds run '$IDO', not run '$ID'"
+# (the sweep refuses the link itself: a done run's file must be a regular file)
+swept linked.study L "a symbolic link stands at its output file, not a regular file"
 [ -f "L/other/$IDO.h5" ] && [ ! -L "L/other/$IDO.h5" ] && ok linked.target_untouched ||
 	fail linked.target_untouched "the other campaign's file moved"
 
