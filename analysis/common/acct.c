@@ -59,6 +59,20 @@ static int same_params(hid_t f, const an_run *r, sb_err *e)
 	return 0;
 }
 
+/* The database's status of run r (result.status, docs/database.md) is the file's
+ * @status, which it was copied from: a status edited in the database ('ok' made
+ * 'nonsense', or a failure made ok) would be reported as the run's without a word. A
+ * file without @status (it is checked where it is read) or a run without a status in
+ * the database is not compared. */
+static int same_status(hid_t f, const an_run *r, sb_err *e)
+{
+	char fs[sizeof r->status];
+	if (!r->status[0] || h5r_attr_str(f, "/", "status", fs, sizeof fs) || !strcmp(fs, r->status))
+		return 0;
+	return sb_errf(e, SB_EIO, "%s: status = '%s' in the file, '%s' in the database: the database does not "
+		       "describe this run", r->path, fs, r->status);
+}
+
 int acct_classify(an_run *r)
 {
 	const int failed = !strcmp(r->state, "failed");
@@ -93,7 +107,7 @@ int acct_classify(an_run *r)
 	int note = H5ID_OK;
 	char seal[17];
 	if (h5r_open_sealed(r->path, r->seal, &f, seal, &e) || h5id_check(f, r->path, r->id, &note, &e) ||
-	    runvals_check(f, r->path, &e) || same_params(f, r, &e)) {
+	    runvals_check(f, r->path, &e) || same_params(f, r, &e) || same_status(f, r, &e)) {
 		h5r_close(f); /* -1 when it did not open: nothing */
 		/* a value that is no number is there to read, and unusable */
 		acct_set(r, e.code == SB_ENAN ? AN_UNUSABLE : AN_UNREADABLE, NAN, NAN, "%s", e.msg);

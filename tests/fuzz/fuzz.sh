@@ -8,7 +8,13 @@
 #   FUZZ_SEED     PRNG seed (default 1): input k is the same for the same seed and corpus
 #   FUZZ_TIMEOUT  seconds after which a run is a hang (default 10)
 #   FUZZ_RSS_MB   memory (MB) past which ASan stops a run and reports it (default 1024)
-#   FUZZ_TARGETS  comma-separated subset of scene,campaign,particles,runfile (default all)
+#   FUZZ_TARGETS  comma-separated subset of scene,campaign,particles,runfile and of the
+#                 families resealed,links,database,paths (tests/fuzz/families.sh says
+#                 what each is and what counts as silent; default all)
+#   FUZZ_FAMILY_INPUTS  inputs per family (default 0: half of FUZZ_SECONDS for the
+#                 families, half for the text and run-file targets)
+#   FUZZ_FAMILY_ONLY  FAMILY:K: only input K of that family, its files kept (a finding's
+#                 reproduction)
 #   FUZZ_OUT      findings directory, emptied first (default build/fuzz/findings)
 #   FUZZ_WORK     scratch directory (default build/fuzz/work)
 #   FUZZ_SHAKE, FUZZ_STUDY, FUZZ_BIN, FUZZ_H5MUT  the binaries (default
@@ -21,6 +27,15 @@ SECONDS_LIMIT="${FUZZ_SECONDS:-600}"
 INPUTS="${FUZZ_INPUTS:-0}"
 SEED="${FUZZ_SEED:-1}"
 FUZZ_TARGETS="${FUZZ_TARGETS:-}"
+# the families (families.sh) apart from fuzz.c's targets
+FAMILIES="" TEXT_TARGETS=""
+for t in ${FUZZ_TARGETS//,/ }; do
+	case $t in resealed | links | database | paths) FAMILIES+="${FAMILIES:+,}$t" ;; *) TEXT_TARGETS+="${TEXT_TARGETS:+,}$t" ;; esac
+done
+[ -z "$FUZZ_TARGETS" ] && FAMILIES=resealed,links,database,paths
+[ -n "${FUZZ_FAMILY_ONLY:-}" ] && FAMILIES=${FUZZ_FAMILY_ONLY%%:*} TEXT_TARGETS=none
+[ -n "$FUZZ_TARGETS" ] && [ -z "$TEXT_TARGETS" ] && TEXT_TARGETS=none
+FUZZ_TARGETS=$TEXT_TARGETS
 TIMEOUT="${FUZZ_TIMEOUT:-10}"
 OUT="${FUZZ_OUT:-build/fuzz/findings}"
 WORK="${FUZZ_WORK:-build/fuzz/work}"
@@ -113,7 +128,7 @@ args=(--shake "$SHAKE" --study "$STUDY" --seed "$SEED" --timeout "$TIMEOUT" --ou
 # Run-file seeds: tests/fuzz/runs.campaign run by the study driver (a few seconds), its
 # runs directory kept twice: all done (what the analysis tools read) and all pending
 # (what `study run` ingests, every file once, with nothing left to run).
-case ",${FUZZ_TARGETS:-runfile}," in
+case ",${FUZZ_TARGETS:-runfile},${FAMILIES:+runfile}," in
 *,runfile,*)
 	for b in "$H5MUT" "$(dirname "$SHAKE")"/{onset,hysteresis,waiting,figures,rolls,ring,whale,convect}; do
 		[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
@@ -124,6 +139,8 @@ case ",${FUZZ_TARGETS:-runfile}," in
 	# no seal recorded: a mutated file sealed again (half of them) then reaches the
 	# checks behind the seal, not only the database's record of it (which
 	# tests/integration/hostile_runs.sh tests)
+	# ... and a copy with the seals recorded, for the families
+	cp -r "$C/runfile/done" "$C/runfile/sealed" || exit 2
 	sqlite3 "$C/runfile/done/study.db" "UPDATE result SET file_seal = NULL" || exit 2
 	cp -r "$C/runfile/done" "$C/runfile/pending" &&
 		sqlite3 "$C/runfile/pending/study.db" "UPDATE run SET state = 'pending'; DELETE FROM result;" || exit 2
@@ -133,11 +150,48 @@ case ",${FUZZ_TARGETS:-runfile}," in
 	;;
 esac
 for t in ${FUZZ_TARGETS//,/ }; do args+=(--target "$t"); done
-[ "$SECONDS_LIMIT" != 0 ] && args+=(--seconds "$SECONDS_LIMIT")
+# the time shared: half for fuzz.c's targets, half for the families
+FAM_INPUTS="${FUZZ_FAMILY_INPUTS:-0}" FAM_SECONDS=0 TEXT_SECONDS=$SECONDS_LIMIT
+if [ -n "$FAMILIES" ] && [ "$TEXT_TARGETS" != none ] && [ "$SECONDS_LIMIT" != 0 ] && [ "$FAM_INPUTS" = 0 ]; then
+	TEXT_SECONDS=$((SECONDS_LIMIT / 2)) FAM_SECONDS=$((SECONDS_LIMIT - SECONDS_LIMIT / 2))
+elif [ -n "$FAMILIES" ] && [ "$FAM_INPUTS" = 0 ]; then
+	FAM_SECONDS=$SECONDS_LIMIT
+fi
+[ "$TEXT_SECONDS" != 0 ] && args+=(--seconds "$TEXT_SECONDS")
 [ "$INPUTS" != 0 ] && args+=(--inputs "$INPUTS")
 for f in scenes/*.scene "$C/small.scene" "$C/observe.scene"; do args+=(--scene "$f"); done
 for f in campaigns/*.campaign; do args+=(--campaign "$f"); done
 if [ "$PARTICLES" = 1 ]; then
 	for f in "$C"/bed.txt "$C"/bed.data "$C"/bed0.txt "$C"/bed0.data "$C"/bed_short.txt; do args+=(--particles "$f"); done
 fi
-exec "$FUZZ" "${args[@]}"
+rc=0
+if [ "$TEXT_TARGETS" != none ]; then
+	"$FUZZ" "${args[@]}" | tee "$WORK/fuzz.log"
+	rc=${PIPESTATUS[0]}
+	[ "$rc" -gt 1 ] && exit "$rc"
+fi
+if [ -n "$FAMILIES" ]; then
+	FUZZ_FAMILIES=$FAMILIES FUZZ_FAMILY_INPUTS=$FAM_INPUTS FUZZ_FAMILY_SECONDS=$FAM_SECONDS FUZZ_SEED=$SEED \
+		FUZZ_TIMEOUT=$TIMEOUT FUZZ_OUT=$OUT FUZZ_WORK=$WORK FUZZ_SHAKE=$SHAKE FUZZ_STUDY=$STUDY FUZZ_H5MUT=$H5MUT \
+		bash tests/fuzz/families.sh "$C/runfile/sealed" "$C/runfile/fz.campaign" | tee "$WORK/families.log"
+	frc=${PIPESTATUS[0]}
+	[ "$frc" -gt 1 ] && exit "$frc"
+	[ "$frc" = 1 ] && rc=1
+fi
+# one table: fuzz.c's targets (a sanitizer report or an undocumented exit code counted
+# as a crash, an input that must be refused and was not as silent) and the families
+if [ "$TEXT_TARGETS" != none ] && [ -s "$OUT/summary.tsv" ]; then
+	line=$(grep -m1 '^fuzz: [0-9]* inputs in' "$WORK/fuzz.log")
+	{
+		for t in scene campaign particles runfile; do
+			n=$(sed -n "s/.*[(, ]$t \\([0-9]*\\).*/\\1/p" <<<"$line")
+			[ "${n:-0}" = 0 ] && continue
+			awk -F'\t' -v t="$t" -v n="$n" 'NR > 1 && $2 == t { if ($1 == "hang") h += $3; else if ($1 == "accepted") s += $3; else c += $3 }
+				END { printf "%s %d %d %d %d\n", t, n, c, h, s }' "$OUT/summary.tsv"
+		done
+		[ -n "$FAMILIES" ] && sed -n 's/^fuzz: \(resealed\|links\|database\|paths\) /\1 /p' "$WORK/families.log"
+	} | awk 'BEGIN { printf "fuzz: %-9s %7s %8s %6s %7s\n", "family", "inputs", "crashes", "hangs", "silent" }
+		{ printf "fuzz: %-9s %7d %8d %6d %7d\n", $1, $2, $3, $4, $5; n += $2; c += $3; h += $4; s += $5 }
+		END { printf "fuzz: %-9s %7d %8d %6d %7d\n", "total", n, c, h, s }'
+fi
+exit "$rc"

@@ -38,6 +38,17 @@
  *                               or bytes (truncation, bit flips, a block overwritten);
  *                               what it did goes to stderr; the seal is renewed for
  *                               half of the seeds
+ *     --random-structure SEED   one random change of the structure or the values made
+ *                               through HDF5 (as --random, without changes of the bytes
+ *                               or links out of the file), always sealed again: the
+ *                               `resealed` family of `make fuzz` (tests/fuzz/families.sh)
+ *     --random-link SEED FIFO OTHER
+ *                               a dataset (mostly one a tool reads) made an external
+ *                               link, a soft link (dangling, to a group, to another
+ *                               dataset, to itself), external storage or a virtual
+ *                               dataset, pointing at the FIFO, at the file OTHER, at
+ *                               the file itself or at nothing; always sealed again: the
+ *                               `links` family
  * Exit 0, or 2 when an operation could not be applied (the message on stderr). */
 #define _GNU_SOURCE
 #include <hdf5.h>
@@ -337,12 +348,13 @@ static const char *pick_object(hid_t f, const char *ds)
 
 static int elsewhere(hid_t f, const char *path, const char *file, int kind);
 
-static int random_structured(hid_t f)
+static int random_structured(hid_t f, int inside)
 {
-	/* the changes that readers trusted most (values, attributes, shapes) more often */
+	/* the changes that readers trusted most (values, attributes, shapes) more often;
+	 * inside: none that points out of the file (op 9) */
 	static const int OPS[] = {0, 0, 1, 2, 2, 3, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8, 9, 9};
 	const char *ds = pick_dataset();
-	const int op = OPS[below(sizeof OPS / sizeof *OPS)];
+	const int op = OPS[below(sizeof OPS / sizeof *OPS - (inside ? 2 : 0))];
 	if ((op <= 2 || op == 6 || op == 7 || op == 9) && !ds)
 		return -1;
 	switch (op) {
@@ -631,6 +643,31 @@ static int elsewhere(hid_t f, const char *path, const char *file, int kind)
 	return bad ? -1 : 0;
 }
 
+/* One dataset pointing elsewhere (the links family): how and where drawn from the seed;
+ * fifo and other are paths the driver made (a FIFO, another run file), file the file
+ * itself. What it did goes to stderr. */
+static int random_link(hid_t f, const char *file, const char *fifo, const char *other)
+{
+	const char *ds = pick_dataset();
+	if (!ds)
+		return -1;
+	static const char *const HOW[] = {"external link", "soft link", "external storage", "virtual dataset"};
+	const int how = (int)below(4);
+	if (how == 1) {
+		/* dangling, a group, another dataset, itself (a loop HDF5 stops) */
+		const int k = (int)below(4);
+		const char *to = k == 0 ? "/nonexistent/value" : k == 1 ? "/observables" : k == 2 ? dsets[below((size_t)ndsets)] : ds;
+		fprintf(stderr, "soft link %s -> %s\n", ds, to);
+		H5Ldelete(f, ds, H5P_DEFAULT);
+		return H5Lcreate_soft(to, f, ds, H5P_DEFAULT, H5P_DEFAULT) < 0 ? -1 : 0;
+	}
+	const int w = (int)below(4);
+	/* a virtual dataset names its own file "." */
+	const char *to = w == 0 ? fifo : w == 1 ? other : w == 2 ? (how == 3 && below(2) ? "." : file) : "/nonexistent/other.h5";
+	fprintf(stderr, "%s %s -> %s\n", HOW[how], ds, to);
+	return elsewhere(f, ds, to, how == 0 ? 0 : how == 2 ? 1 : 2);
+}
+
 /* The first ".\0/" in the file's bytes (a virtual dataset's source file "." and the
  * start of its source dataset's path, in the global heap): its NUL becomes 'x'. */
 static int flip_vds_name(const char *file)
@@ -707,7 +744,7 @@ int main(int argc, char **argv)
 	if (argc < 3)
 		die("%s", "usage: h5mut IN OUT [--shape PATH DIMS | --set PATH INDEX VALUE | --attr OBJ NAME VALUE | "
 			  "--attr-array OBJ NAME N | --attr-str OBJ NAME TEXT | --delete PATH | --flip PATH | --elink PATH FILE | --extern PATH FILE | "
-			  "--vds PATH FILE | --flip-vds-name | --stale-digest | --stale-seal | --random SEED] ...");
+			  "--vds PATH FILE | --flip-vds-name | --stale-digest | --stale-seal | --random SEED | --random-structure SEED | --random-link SEED FIFO OTHER] ...");
 	H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 	if (copy_file(argv[1], argv[2]))
 		die("cannot copy to %s", argv[2]);
@@ -739,10 +776,31 @@ int main(int argc, char **argv)
 				 : !strcmp(op, "--shape") || !strcmp(op, "--elink") || !strcmp(op, "--extern") ||
 						 !strcmp(op, "--vds")
 					 ? 2
-				 : !strcmp(op, "--delete") || !strcmp(op, "--random")		       ? 1
-												       : -1;
+				 : !strcmp(op, "--delete") || !strcmp(op, "--random") ||
+						 !strcmp(op, "--random-structure")
+					 ? 1
+				 : !strcmp(op, "--random-link") ? 3
+								: -1;
 		if (need < 0 || i + need > argc - 1)
 			die("bad operation '%s'", op);
+		if (!strcmp(op, "--random-structure") || !strcmp(op, "--random-link")) {
+			rs = strtoull(argv[i + 1], NULL, 10);
+			rnd();
+			hid_t f = H5Fopen(argv[2], H5F_ACC_RDWR, H5P_DEFAULT);
+			if (f < 0)
+				die("cannot open %s", argv[2]);
+			list_objects(f);
+			int rc = -1;
+			for (int tries = 0; tries < 8 && rc; tries++)
+				rc = !strcmp(op, "--random-link") ? random_link(f, argv[2], argv[i + 2], argv[i + 3])
+								  : random_structured(f, 1);
+			reseal(f);
+			H5Fclose(f);
+			if (rc)
+				die("%s: no change could be made", op);
+			i += need;
+			continue;
+		}
 		if (!strcmp(op, "--random")) {
 			rs = strtoull(argv[i + 1], NULL, 10);
 			rnd();
@@ -758,7 +816,7 @@ int main(int argc, char **argv)
 				list_objects(f);
 				int rc = -1;
 				for (int tries = 0; tries < 8 && rc; tries++)
-					rc = random_structured(f);
+					rc = random_structured(f, 0);
 				reseal(f);
 				H5Fclose(f);
 				if (below(4) == 0)

@@ -272,6 +272,12 @@ fresh P && q P "UPDATE param SET value = 25 WHERE run = '$ID' AND key = 'frequen
 for t in onset waiting figures; do
 	counted params.frequency_edited.$t $t P "$ID" unreadable "frequency = 20 in the file, '25' in the database"
 done
+# ... and so is its status (make fuzz, family database: figures reported 'nonsense' as
+# a used run's status, exit 0)
+fresh S && q S "UPDATE result SET status = 'nonsense' WHERE run = '$ID'"
+for t in onset figures; do
+	counted params.status_edited.$t $t S "$ID" unreadable "status = 'ok' in the file, 'nonsense' in the database"
+done
 
 # ---- Fig. 1: a run whose field cannot be used is counted so ----
 fresh G1 "$ID" --set /observables/field/count/value 0 inf
