@@ -2,7 +2,8 @@
 # documented_errors.sh - errors the docs promise, each with its exit code and its words:
 # settling that does not converge (exit 6, docs/scene.md), a particle file over 8 GiB, a
 # LAMMPS box line with words after it (docs/inputs.md), inf/nan/subnormal numbers on the
-# command line, a campaign file that is a directory or a device.
+# command line, an HDF5 file of another program and a text file where a run file
+# belongs, a campaign file that is a directory or a device.
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 cd "$TMP" || exit 1
@@ -48,6 +49,13 @@ for v in inf -inf nan Infinity 1e-320 0x10; do
 		"$SHAKE" "${FAST[@]}" frequency="$v" duration=0 output=n.h5
 done
 expect cmdline.dt.subnormal 1 "command line: dt: " "$SHAKE" "${FAST[@]}" dt=4.9e-324 duration=0 output=n.h5
+
+# --- a file that is no run file of this engine, where a run file belongs ---
+DUMPFLUX="$(dirname "$SHAKE")/dumpflux"
+/usr/bin/python3 -c 'import h5py, sys; f = h5py.File(sys.argv[1], "w"); f["x"] = [1, 2, 3]; f.close()' foreign.h5
+expect runfile.foreign_hdf5 2 "foreign.h5: not a shakebox run file \(no format attribute\)" "$DUMPFLUX" run foreign.h5
+echo "hello" >text.h5
+expect runfile.not_hdf5 2 "text.h5: not a shakebox run file \(no HDF5 signature at byte 0 or 512\)" "$DUMPFLUX" run text.h5
 
 # --- a campaign file that is a directory or a device ---
 mkdir cdir
