@@ -21,7 +21,9 @@ int schema_runs(sql_db *d, sb_err *e);
  * that a study database lacks, as "run, param" in lost ("" for none, and for a new
  * database, which has none of them): a DROP TABLE, a tool gone wrong. */
 int schema_lost(sql_db *d, int all, char *lost, size_t len, sb_err *e);
-/* A reader's check of the same: an error naming the table and what to do. */
+/* A reader's check of the same: an error naming the table and what to do; then the
+ * indexes of run and campaign against their tables (a damaged index is corruption that
+ * PRAGMA quick_check does not see). */
 int schema_complete(sql_db *d, int all, sb_err *e);
 /* A campaign recorded without a single run (the driver records a campaign and its runs
  * in one transaction) is a database that lost rows: an error naming it corrupt (a
