@@ -182,7 +182,7 @@ int h5id_check(hid_t f, const char *path, const char *want_id, int *note, sb_err
 	const int rf = h5r_attr_str(f, "/", H5ID_FORMAT_ATTR, fmt, sizeof fmt);
 	if (rf)
 		return sb_errf(e, SB_EIO, "%s: not a shakebox run file (%s)", path,
-			       rf > 0 ? "no format attribute" : "its format attribute is not one string");
+			       rf > 0 ? "no format attribute" : "its format attribute is not one string of at most 1 MiB");
 	if (!strcmp(fmt, H5ID_FORMAT_OLD)) {
 		/* written before run ids and digests: nothing to check it against */
 		if (note)

@@ -57,6 +57,20 @@ expect runfile.foreign_hdf5 2 "foreign.h5: not a shakebox run file \(no format a
 echo "hello" >text.h5
 expect runfile.not_hdf5 2 "text.h5: not a shakebox run file \(no HDF5 signature at byte 0 or 512\)" "$DUMPFLUX" run text.h5
 
+# a string attribute longer than 1 MiB (docs/inputs.md) is not read: a run file whose
+# format attribute is 2 MiB, sealed again (build/fuzz/h5mut), is no run file; the same
+# file resealed without the change is read
+H5MUT="$REPO/build/fuzz/h5mut"
+"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" flux=yes duration=0.5 output=r.h5 >r.log 2>&1 || fail runfile.setup "$(tail -n 2 r.log)"
+"$H5MUT" r.h5 ctl.h5 --attr-str / description resealed >h5m.log 2>&1 || fail runfile.setup "$(cat h5m.log)"
+expect runfile.resealed_control 0 "" "$DUMPFLUX" run ctl.h5
+cp r.h5 long.h5
+/usr/bin/python3 -c 'import h5py, numpy, sys
+f = h5py.File(sys.argv[1], "a"); del f.attrs["format"]; f.attrs.create("format", numpy.bytes_(b"x" * (2 << 20))); f.close()' long.h5
+"$H5MUT" long.h5 long2.h5 --attr-str / description resealed >h5m.log 2>&1 || fail runfile.setup "$(cat h5m.log)"
+expect runfile.string_over_1MiB 2 "long2.h5: not a shakebox run file \(its format attribute is not one string of at most 1 MiB\)" \
+	"$DUMPFLUX" run long2.h5
+
 # --- a campaign file that is a directory or a device ---
 mkdir cdir
 expect campaign.directory 1 "cdir: is a directory, not a regular file: a campaign file must be a regular file" \
