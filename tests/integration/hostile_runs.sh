@@ -151,6 +151,16 @@ counted nan.phi.rolls rolls N1 "$ID" unusable "phi/value[3] = nan"
 counted nan.phi.figures figures N1 "$ID" unusable "phi/value[3] = nan"
 fresh N2 "$ID" --set /observables/flux/heights 2 inf
 counted nan.heights.onset onset N2 "$ID" unusable "heights[2] = inf"
+# NaN where docs/inputs.md says every value is checked: a flux time, a flux frequency,
+# the field, the intruder's trajectory
+fresh N9 "$ID" --set /observables/flux/phi/time 1 nan
+counted nan.flux_time.onset onset N9 "$ID" unusable "phi/time[1] = nan: not a finite number"
+fresh N10 "$ID" --set /observables/flux/frequency/value 1 nan
+counted nan.flux_frequency.onset onset N10 "$ID" unusable "frequency/value[1] = nan: not a finite number"
+fresh N11 "$ID" --set /observables/field/ux/value 0 nan
+counted nan.field.convect convect N11 "$ID" unusable "nan"
+fresh N12 "$ID" --set /particles/intruder/position/value 3 nan
+counted nan.trajectory.whale whale N12 "$ID" unusable "nan"
 fresh N3 "$ID" --attr / waiting_time nan
 counted nan.waiting_time.waiting waiting N3 "$ID" unusable "waiting_time = nan"
 counted nan.waiting_time.figures figures N3 "$ID" unusable "waiting_time = nan"
