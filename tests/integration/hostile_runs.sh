@@ -219,6 +219,18 @@ counted seal.format2.waiting waiting V5 "$ID" unreadable "but the database recor
 planted V6 "$ID0" --attr-str / format shakebox-run-2 && tail -c +513 V6/fz/"$ID0".h5 >V6/fz/"$ID".h5 &&
 	counted seal.format2_unsealed.waiting waiting V6 "$ID" unreadable "sealed not at all (an older format), but the database recorded"
 
+# ---- HDF5 crashing while it walks a file: the reader refuses the file and lives ----
+# HDF5 1.10.8 frees a wild pointer in H5Lvisit on a dense link table overwritten with
+# 0xff and sealed again (make fuzz, run-file input 43 of seed 1); with no seal recorded
+# the readers walk a file first in a child process. The shim makes H5Lvisit crash so on
+# the run's file (the crash, not the one file's layout, is what is tested).
+SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+planted W1 && q W1 "UPDATE result SET file_seal = NULL"
+for t in waiting whale; do
+	LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+		counted h5walk_crash.$t $t W1 "$ID" unreadable "the HDF5 library failed while walking the file's links and objects"
+done
+
 # ---- nothing outside the file: links, external storage and virtual datasets ----
 mkfifo pipe && cp R/fz/"$ID0".h5 other.h5
 PHI=/observables/flux/phi/value
