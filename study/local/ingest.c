@@ -240,14 +240,20 @@ int owed_settle(drv *d, sb_err *e)
 }
 
 /* Is a run's input gone: its argument file, or the packing that file starts it from? */
-static int input_gone(drv *d, const char *id)
+static int input_gone(drv *d, const char *id, char *why, size_t n)
 {
 	char args[PATHX], key[64];
 	layout_file(d->dir, 0, id, LAY_ARGS, args, sizeof args);
-	if (!exists(args))
+	if (!exists(args)) {
+		snprintf(why, n, "its argument file %s was deleted while the campaign ran", args);
 		return 1;
+	}
 	packing_of_args(d->dir, id, key, sizeof key);
-	return key[0] && !packing_present(d->dir, key);
+	if (key[0] && !packing_present(d->dir, key)) {
+		snprintf(why, n, "its packing %s was deleted from the cache while the campaign ran", key);
+		return 1;
+	}
+	return 0;
 }
 
 /* A DONE line from a worker: the output file decides; without one, the exit code. */
@@ -309,13 +315,15 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		db_now(now, sizeof now);
 		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
 	}
-	if (code != SB_EINTR && code < 128 && input_gone(d, name)) {
+	char gone[PATHX + 96];
+	if (code != SB_EINTR && code < 128 && input_gone(d, name, gone, sizeof gone)) {
 		/* its argument file or its packing was deleted while the campaign ran (the
 		 * engine cannot open them, or the worker found no argument file): no fault
-		 * of the run's nor of the machine's; launch() prepares it again */
+		 * of the run's nor of the machine's; launch() prepares it again. The worker
+		 * may have said nothing (it found no file to run): the attempt says what went */
 		d->outcome[ix] = 'm';
 		db_now(now, sizeof now);
-		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
+		return attempt(d, ix, code, "missing_input", msg[0] ? msg : gone, host, now, "pending", e);
 	}
 	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
 	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
