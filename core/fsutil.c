@@ -2,9 +2,11 @@
 #define _GNU_SOURCE /* renameat2 and RENAME_NOREPLACE (glibc 2.28) */
 #include "fsutil.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -13,6 +15,35 @@
 void fs_tmp_name(const char *path, char *out, size_t len)
 {
 	snprintf(out, len, "%s.tmp.%ld", path, (long)getpid());
+	fs_clear_litter(path);
+}
+
+void fs_clear_litter(const char *path)
+{
+	char d[4096], b[4096];
+	snprintf(d, sizeof d, "%s", path);
+	snprintf(b, sizeof b, "%s", path);
+	const char *dir = dirname(d), *base = basename(b);
+	const size_t lb = strlen(base);
+	DIR *dd = opendir(dir);
+	if (!dd)
+		return;
+	for (struct dirent *de; (de = readdir(dd));) {
+		if (strncmp(de->d_name, base, lb) || strncmp(de->d_name + lb, ".tmp.", 5))
+			continue;
+		char *end;
+		const long pid = strtol(de->d_name + lb + 5, &end, 10);
+		/* a process that is gone: kill(pid, 0) says so with ESRCH (a live one of another
+		 * user's says EPERM, and its file stays) */
+		if (*end || pid <= 0 || pid == (long)getpid() || kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+			continue;
+		char p[8192];
+		struct stat st;
+		snprintf(p, sizeof p, "%s/%s", dir, de->d_name);
+		if (lstat(p, &st) == 0 && S_ISREG(st.st_mode))
+			unlink(p);
+	}
+	closedir(dd);
 }
 
 const char *fs_kind(unsigned mode)

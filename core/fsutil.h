@@ -24,8 +24,15 @@ void fs_abort(sb_file *o);              /* close and remove the temporary */
  * refused, never followed or written. A file descriptor, or -1 with the message. */
 int fs_create(const char *path, int rdwr, sb_err *e);
 
-/* Temporary name for `path` (same directory), for writers that open files themselves. */
+/* Temporary name for `path` (same directory), for writers that open files themselves.
+ * Clears the litter of earlier writers of path first (fs_clear_litter). */
 void fs_tmp_name(const char *path, char *out, size_t len);
+/* Removes path.tmp.PID where PID is a process that is gone (a writer killed before its
+ * rename: SIGKILL, the OOM killer, a power cut) and a regular file stands: its
+ * temporary would otherwise stay beside the output for good. A live writer's, this
+ * process's and anything not a regular file are left. On a directory shared between
+ * hosts a PID is only this host's: a writer elsewhere must not share the path. */
+void fs_clear_litter(const char *path);
 int fs_fsync_path(const char *path, sb_err *e);
 /* Rename tmp to path, only over nothing or a regular file (fsutil.c), then fsync the
  * directory. */

@@ -121,6 +121,24 @@ else
 	skip full.tool_outputs "cannot mount a tmpfs here (not root?)"
 fi
 
+# --- a killed tool's temporaries: the next writer of the same table clears them ---
+# (SIGKILL comes before the rename; fs_clear_litter) a dead process's NAME.tmp.PID goes,
+# a live one's and a node planted at such a name stay
+L=$TMP/litter
+mkdir -p "$L"
+dead=$(sh -c 'echo $$') # a process that has ended
+echo half >"$L/waiting_km.csv.tmp.$dead"
+echo half >"$L/waiting_km.gp.tmp.$dead"
+echo live >"$L/waiting_km.csv.tmp.$$"
+mkfifo "$L/waiting_runs.csv.tmp.$dead"
+"$BINDIR/waiting" fz --runs R --no-store --out "$L" >litter.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && [ ! -e "$L/waiting_km.csv.tmp.$dead" ] && [ ! -e "$L/waiting_km.gp.tmp.$dead" ] &&
+	ok litter.dead_writer_cleared || fail litter.dead_writer_cleared "exit $rc: $(ls "$L" | grep tmp | tr '\n' ' ')"
+[ "$(cat "$L/waiting_km.csv.tmp.$$" 2>/dev/null)" = live ] && [ -p "$L/waiting_runs.csv.tmp.$dead" ] &&
+	[ -z "$(ls "$L" | grep '\.tmp\.' | grep -v -e "\.tmp\.$$\$" -e "^waiting_runs.csv.tmp.$dead\$")" ] &&
+	ok litter.live_and_nodes_kept || fail litter.live_and_nodes_kept "$(ls "$L" | grep tmp | tr '\n' ' ')"
+
 # --- the database and its side files, for the writer and the readers ---
 cp -r R D
 for kind in $KINDS; do
