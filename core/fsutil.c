@@ -194,7 +194,7 @@ int fs_rename_durable(const char *tmp, const char *path, sb_err *e)
 	return fs_fsync_path(dirname(dir), e);
 }
 
-int fs_commit(sb_file *o, sb_err *e)
+int fs_finish(sb_file *o, sb_err *e)
 {
 	int bad = fflush(o->f) != 0 || ferror(o->f) || fsync(fileno(o->f)) != 0;
 	int saved = bad ? errno : 0; /* a write's failure (a full disk) is the one to say */
@@ -207,6 +207,13 @@ int fs_commit(sb_file *o, sb_err *e)
 		unlink(o->tmp);
 		return sb_errf(e, SB_EIO, "%s: write failed: %s", o->path, strerror(saved ? saved : EIO));
 	}
+	return 0;
+}
+
+int fs_commit(sb_file *o, sb_err *e)
+{
+	if (fs_finish(o, e))
+		return e->code;
 	int rc = fs_rename_durable(o->tmp, o->path, e);
 	if (rc)
 		unlink(o->tmp); /* still there when the rename failed; gone when it did not */

@@ -18,6 +18,10 @@ int fs_open_tmp(sb_file *o, const char *path, sb_err *e);
 int fs_commit(sb_file *o, sb_err *e);   /* flush, fsync, close, rename, fsync dir; the
 					* temporary is removed when that fails */
 void fs_abort(sb_file *o);              /* close and remove the temporary */
+/* fs_commit's first half: flush, fsync and close the temporary (removed when that
+ * fails), not yet renamed: a writer of several files puts them in place together
+ * (fs_rename_durable), all or none. */
+int fs_finish(sb_file *o, sb_err *e);
 
 /* Creates (or truncates) path for writing, read too if rdwr, only where nothing or a
  * regular file stands: a symbolic link, FIFO, device, socket or directory there is

@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int tool_args(an_opts *o, int argc, char **argv, const char *help, const char *allowed, FILE *out, FILE *err)
 {
@@ -434,9 +435,22 @@ FILE *tool_out_open(an_tool *t, const char *name)
 int tool_out_close(an_tool *t, FILE *f)
 {
 	sb_file *o = f ? out_slot(t, f) : NULL;
-	if (o)
-		cli_close_out(o, &t->e);
-	return t->e.code;
+	if (!o)
+		return t->e.code;
+	if (t->e.code) { /* an error on the way: the table is not complete */
+		fs_abort(o);
+		return t->e.code;
+	}
+	if (fs_finish(o, &t->e))
+		return t->e.code;
+	sb_file *d = realloc(t->done, (size_t)(t->ndone + 1) * sizeof *d);
+	if (!d) {
+		unlink(o->tmp);
+		return sb_errf(&t->e, SB_EIO, "%s: out of memory", o->path);
+	}
+	t->done = d;
+	t->done[t->ndone++] = *o;
+	return 0;
 }
 
 FILE *tool_gp_open(an_tool *t, const char *name, int w, int h, char *script, char *png, size_t len)
@@ -457,7 +471,37 @@ int tool_plot(an_tool *t, FILE *f, const char *script, const char *png)
 	gp_close(f);
 	if (tool_out_close(t, f))
 		return t->e.code;
-	return gp_run(script, png, &t->e);
+	char **p = realloc(t->plots, (size_t)(2 * t->nplots + 2) * sizeof *p);
+	if (!p)
+		return sb_errf(&t->e, SB_EIO, "%s: out of memory", png);
+	t->plots = p;
+	p[2 * t->nplots] = strdup(script);
+	p[2 * t->nplots + 1] = strdup(png);
+	t->nplots++;
+	if (!p[2 * t->nplots - 2] || !p[2 * t->nplots - 1])
+		return sb_errf(&t->e, SB_EIO, "%s: out of memory", png);
+	return 0;
+}
+
+/* Every finished output in place, then the figures drawn from them; or, after an
+ * error, every finished output removed (the earlier tables stay as they were). */
+static void place_outputs(an_tool *t)
+{
+	int i = 0;
+	for (; !t->e.code && i < t->ndone; i++)
+		if (fs_rename_durable(t->done[i].tmp, t->done[i].path, &t->e))
+			unlink(t->done[i].tmp);
+	for (; i < t->ndone; i++)
+		unlink(t->done[i].tmp);
+	for (int k = 0; !t->e.code && k < t->nplots; k++)
+		gp_run(t->plots[2 * k], t->plots[2 * k + 1], &t->e);
+	for (int k = 0; k < 2 * t->nplots; k++)
+		free(t->plots[k]);
+	free(t->plots);
+	free(t->done);
+	t->plots = NULL;
+	t->done = NULL;
+	t->nplots = t->ndone = 0;
 }
 
 long tool_partly(const an_tool *t)
@@ -488,6 +532,7 @@ int tool_close(an_tool *t, FILE *err)
 				sb_errf(&t->e, SB_EIO, "%s: not closed: not written", t->out[i].path);
 			fs_abort(&t->out[i]);
 		}
+	place_outputs(t);
 	free(t->A);
 	for (int i = 0; t->gval && i < t->ng * t->nk; i++)
 		free(t->gval[i]);

@@ -42,6 +42,14 @@ typedef struct an_tool {
 	/* the output files open now (tool_out_open), written under temporary names:
 	 * tool_close removes those a failed step left open */
 	sb_file out[6];
+	/* the outputs finished (tool_out_close) and the figures asked for (tool_plot),
+	 * put in place by tool_close only when every step succeeded: a run of the tool
+	 * replaces all of its tables or none (a full disk at the ninth leaves the eight
+	 * earlier ones as they were) */
+	sb_file *done;
+	int ndone;
+	char **plots; /* [2 * nplots]: script, png; malloc'd */
+	int nplots;
 	sb_err e;
 } an_tool;
 
@@ -180,15 +188,17 @@ void tool_store_acct(an_tool *t, const char *grp, int j);
 int tool_store_end(an_tool *t);
 
 /* An output file out/name (cli_open_out: through a temporary, renamed into place
- * complete), NULL with the error in t->e. tool_out_close puts it in place (or, when
- * t->e holds an error, removes it) and returns t->e.code: a failed write (a full
- * disk) is an I/O error naming the file, never a truncated table at its name. One
- * left open is removed by tool_close. */
+ * complete), NULL with the error in t->e. tool_out_close finishes it (or, when t->e
+ * holds an error, removes it) and returns t->e.code: a failed write (a full disk) is an
+ * I/O error naming the file, never a truncated table at its name. Every finished output
+ * is put in place by tool_close, together, when no step failed; else all are removed
+ * and the earlier tables stay. One left open is removed by tool_close. */
 FILE *tool_out_open(an_tool *t, const char *name);
 int tool_out_close(an_tool *t, FILE *f);
 /* gp_open's script, opened as tool_out_open does. */
 FILE *tool_gp_open(an_tool *t, const char *name, int w, int h, char *script, char *png, size_t len);
-/* Closes a gnuplot script (tool_gp_open), puts it in place and runs it. */
+/* Closes a gnuplot script (tool_gp_open) as tool_out_close does; tool_close runs it
+ * once the tables it reads are in place. */
 int tool_plot(an_tool *t, FILE *f, const char *script, const char *png);
 
 /* The closing lines: the accounting table, the campaigns each group drew from when

@@ -139,6 +139,20 @@ rc=$?
 	[ -z "$(ls "$L" | grep '\.tmp\.' | grep -v -e "\.tmp\.$$\$" -e "^waiting_runs.csv.tmp.$dead\$")" ] &&
 	ok litter.live_and_nodes_kept || fail litter.live_and_nodes_kept "$(ls "$L" | grep tmp | tr '\n' ' ')"
 
+# --- a tool replaces all of its tables or none ---
+# waiting writes its histogram before its summary: with a node planted at the summary
+# the run is refused, and the histogram written before it is not put in place either
+A=$TMP/allornone
+"$BINDIR/waiting" fz --runs R --no-store --no-plot --bins 1 --out "$A" >aon0.log 2>&1 && cp -r "$A" aon.keep ||
+	fail all_or_none.setup "$(tail -c 300 aon0.log)"
+rm -f "$A/waiting_summary.csv" && mkdir "$A/waiting_summary.csv" && rm -rf aon.keep/waiting_summary.csv &&
+	mkdir aon.keep/waiting_summary.csv
+"$BINDIR/waiting" fz --runs R --no-store --no-plot --bins 1000 --out "$A" >aon1.log 2>aon1.err
+rc=$?
+[ "$rc" = 2 ] && grep -qF "waiting_summary.csv: a directory stands there" aon1.err && diff -r aon.keep "$A" >aon.diff 2>&1 &&
+	[ -z "$(ls "$A" | grep '\.tmp\.')" ] && ok all_or_none.earlier_tables_kept ||
+	fail all_or_none.earlier_tables_kept "exit $rc: $(head -c 200 aon1.err) $(head -c 300 aon.diff)"
+
 # --- the database and its side files, for the writer and the readers ---
 cp -r R D
 for kind in $KINDS; do
