@@ -12,6 +12,7 @@
 
 #include "fsutil.h"
 #include "h5id.h"
+#include "h5md.h"
 
 /* A filtered (compressed) chunk holds at most this many times its stored bytes:
  * deflate, the engine's filter, packs at most 1032:1 (zlib's technical notes), and
@@ -50,7 +51,11 @@ static int walk_isolated(const char *path, sb_err *e)
 		sb_err ce = {0, ""};
 		char dg[17];
 		const hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-		int rc = f < 0 ? sb_errf(&ce, SB_EIO, "%s: cannot open HDF5 file", path) : h5r_contained(f, path, &ce);
+		char why[256] = "";
+		if (f < 0)
+			h5w_last_error(why, sizeof why);
+		int rc = f < 0 ? sb_errf(&ce, SB_EIO, "%s: cannot open HDF5 file%s%s", path, why[0] ? ": " : "", why)
+			       : h5r_contained(f, path, &ce);
 		if (!rc && h5id_digest(f, dg, &ce))
 			rc = sb_errf(&ce, SB_EIO, "%s: %s", path, ce.msg);
 		if (rc) {
@@ -110,8 +115,11 @@ int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal
 	if (!(want_seal && want_seal[0]) && walk_isolated(path, e))
 		return e->code;
 	*f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-	if (*f < 0)
-		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file", path);
+	if (*f < 0) {
+		char why[256] = "";
+		h5w_last_error(why, sizeof why); /* HDF5's word: not HDF5, a lock held, ... */
+		return sb_errf(e, SB_EIO, "%s: cannot open HDF5 file%s%s", path, why[0] ? ": " : "", why);
+	}
 	if (h5r_contained(*f, path, e)) {
 		H5Fclose(*f);
 		*f = -1;
