@@ -54,7 +54,7 @@ EOF
 "$STUDY" export f --runs "$TMP/REF" >ref.csv
 # export without the columns that say when, where and how often (not what)
 strip() {
-	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
+	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|from_cache|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
 		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
 }
 
