@@ -7,7 +7,7 @@
 #
 # Generated (between "<!-- docs_lists NAME: begin -->" and "... end -->" markers, or
 # study's own "<!-- study columns: begin/end -->"):
-#   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
+#   scene-keys      docs/scene.md        from `bin/shake --params` (core/scene/params.c's table)
 #   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
 #   test-tiers      docs/testing.md      from `tests/run.sh --tiers` (the scripts' "# tier:" lines)
 #   study-options   docs/campaigns.md    from `bin/study options` (study/cli/opts.c's table)
@@ -146,7 +146,7 @@ awk 'NR > 1 && /^$/ && seen { exit } /^[^#]/ { seen = 1; print }' "$(doc analysi
 same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tools.code" "$TMP/tools.room"
 
 # --- the files of core/ ---
-(cd "$REPO/core" && ls) >"$TMP/core.code"
+(cd "$REPO/core" && find . -type f ! -name README.md | sed "s#^\./##" | sort) >"$TMP/core.code"
 awk '/<!-- docs_lists core-files:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
 	"$(doc docs/engine.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
 	while read -r f; do

@@ -9,7 +9,7 @@
 #include "params.h"
 
 /* The words of a key: the format of its value and unit (two %s: the number or text,
- * then the unit of the parameter table, core/params.c, as a reader writes it) and, for
+ * then the unit of the parameter table, core/scene/params.c, as a reader writes it) and, for
  * radius_ratio, what 0 means. One row per key a campaign sweeps or a reader looks for;
  * the symbols are docs/model.md's. */
 static const struct {
@@ -36,7 +36,7 @@ static const struct {
 };
 
 /* The symbol of a key on a figure's axis; the rows of WORDS that name one, and the
- * drive's derived axes (core/drive.h), which are no keys of the parameter table: their
+ * drive's derived axes (core/model/drive.h), which are no keys of the parameter table: their
  * unit is drive_axis_unit's. */
 static const struct {
 	const char *key, *symbol;

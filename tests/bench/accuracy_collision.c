@@ -24,7 +24,7 @@
 #include <time.h>
 
 #include "collision_analytic.h"
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "units.h"

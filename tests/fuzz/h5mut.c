@@ -24,7 +24,7 @@
  *                               to 'x', behind HDF5's back
  *     --stale-digest            (anywhere) the attribute digest is left as it was;
  *                               without it every change through HDF5 is sealed again
- *                               (core/h5id.h), so that the readers' checks behind the
+ *                               (core/io/h5id.h), so that the readers' checks behind the
  *                               digest are what is tested
  *     --stale-seal              (anywhere) the file's seal (its user block) is left as
  *                               it was; without it the file is sealed again after the
@@ -288,7 +288,7 @@ static const char *const ATTRS[] = {"risen", "waiting_time", "status", "status_t
 				    "frequency", "radius_ratio", "ramp", "duration", "exit_code", "steps", "particles",
 				    "format", "stopped_by"};
 #define NATTRS (sizeof ATTRS / sizeof *ATTRS)
-/* ... and where they look for them (the tools, core/h5read.c's callers; lib/h5sum.c) */
+/* ... and where they look for them (the tools, core/io/h5read.c's callers; lib/h5sum.c) */
 static const struct {
 	const char *obj, *name;
 } READ_ATTRS[] = {

@@ -28,7 +28,7 @@
 #include <string.h>
 
 #include "collision_analytic.h"
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -83,7 +83,7 @@ static double osc_error(int integ, long nsteps, double c0) /* c0 > 0: override *
 }
 
 /* The oscillator integrated by the test's own code, from the literature's coefficients
- * and not from core/integrate.c: Gear's predictor-corrector on the scaled derivatives
+ * and not from core/model/integrate.c: Gear's predictor-corrector on the scaled derivatives
  * q_k = dt^k/k! y^(k) (Gear, Numerical Initial Value Problems in ODEs, 1971; the
  * coefficients for forces that depend on the velocity, as Allen & Tildesley, Computer
  * Simulation of Liquids, 1987, app. E list them: 6 values 3/16, 251/360, 1, 11/18, 1/6,
@@ -269,7 +269,7 @@ int main(void)
 	}
 	/* The engine's trajectory is the literature scheme's to round-off: |difference| /
 	 * amplitude <= 1e-9 at N = 64 and 256, where the integration errors themselves are
-	 * 7e-5 .. 2e-2 (N = 64) and 8e-8 .. 1.4e-3 (N = 256). Planted in core/integrate.c,
+	 * 7e-5 .. 2e-2 (N = 64) and 8e-8 .. 1.4e-3 (N = 256). Planted in core/model/integrate.c,
 	 * gear5's corrector 3/20 instead of 3/16 moved the end by 5.0e-5 (N = 64) and 5.1e-8
 	 * (N = 256) of the amplitude, gear4's 19/9 instead of 19/90 by 1.2e-2 and 4.5e-5 (the
 	 * order checks above let gear4's pass); round-off was <= 2.4e-15. */

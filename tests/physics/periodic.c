@@ -21,7 +21,7 @@
 
 #include "observe.h"
 #include "periodic.h"
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"

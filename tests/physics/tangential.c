@@ -22,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"

@@ -1,4 +1,4 @@
-/* drive.c - the box motion (core/drive.h): the phase of every drive, frequency ramps
+/* drive.c - the box motion (core/model/drive.h): the phase of every drive, frequency ramps
  * up, down and up-and-down included, is continuous with rate f(t), and the velocity
  * and acceleration are the derivatives of the displacement. */
 #include <math.h>

@@ -1,4 +1,4 @@
-/* kernel.c - the force kernel module (core/kernel.h), on every path of this build the
+/* kernel.c - the force kernel module (core/force/kernel.h), on every path of this build the
  * CPU can run (the others are named on SKIP lines): the forces it gives are those of
  * the contact law applied pair by pair in list order with m_eff = 1 / (1/m_i + 1/m_j)
  * (forces_pair), in st->f and through the fused corrector's path; the ring's |F| sums
@@ -14,7 +14,7 @@
 
 #include "bigmem.h"
 #include "kernel.h"
-#include "prepare.h"
+#include "place.h"
 #include "testlib.h"
 
 /* a bed of n grains scattered over W x H (overlapping: every pair a contact candidate)

@@ -13,7 +13,7 @@
 
 #include "kernel.h"
 #include "nlist.h"
-#include "prepare.h"
+#include "place.h"
 #include "testlib.h"
 
 static int cmp_pair(const void *a, const void *b)

@@ -8,7 +8,7 @@
 
 #include "crossing.h"
 #include "observe.h"
-#include "prepare.h"
+#include "place.h"
 #include "record.h"
 #include "testlib.h"
 
@@ -133,7 +133,7 @@ static void test_flux_seam(void)
 	state_free(&st);
 }
 
-/* The crossing rule at its edges (core/crossing.h): upwards yp < h <= y, downwards
+/* The crossing rule at its edges (core/model/crossing.h): upwards yp < h <= y, downwards
  * y < h <= yp. A disk that ends exactly on a line has crossed it; one that starts on it
  * and moves up has not crossed it again; one that sinks from it has crossed it down. */
 static void test_crossing_edges(void)

@@ -1,4 +1,4 @@
-/* record.c - the table of recorded quantities (core/record.h) against the parameter
+/* record.c - the table of recorded quantities (core/scene/record.h) against the parameter
  * table and the journal: every row's key is a rate in Hz, a count per period or a
  * switch, and the keys REC_KEYS makes are the parameter table's rows and sb_scene's
  * fields; its tag leads back to it; a fixed record's columns are as many as its length

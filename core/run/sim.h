@@ -1,4 +1,4 @@
-/* sim.h - one run's state and setup. Its phases have their own modules: prep.h
+/* sim.h - one run's state and setup. Its phases have their own modules: prepare.h
  * (preparation), step.h (one step), run.h (the shaking loop), checkpoint.h, h5out.h. */
 #ifndef SB_SIM_H
 #define SB_SIM_H
@@ -73,7 +73,7 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e);
 void sim_free(sb_sim *s);
 
 /* Derived quantities of a state in place (intruder, box bounds, the force kernel and
- * the neighbour list); used by the preparation (prep.h) and by a restart. */
+ * the neighbour list); used by the preparation (prepare.h) and by a restart. */
 int sim_derive(sb_sim *s, sb_err *e);
 /* Set up the observables for the state at t = 0 (also after a restart). */
 int sim_obs_init(sb_sim *s, sb_err *e);

@@ -70,7 +70,7 @@ struct sb_scene {
 	char write_particles[SB_STR_MAX];
 	char write_lammps[SB_STR_MAX];
 	int progress;        /* enum sb_tristate */
-	char run_id[SB_STR_MAX]; /* the campaign's id of the run, recorded for h5id_check (core/h5id.h) */
+	char run_id[SB_STR_MAX]; /* the campaign's id of the run, recorded for h5id_check (core/io/h5id.h) */
 	/* observables (observe.h) */
 	int flux;
 	long flux_lines;

@@ -136,7 +136,7 @@ void obs_free(sb_obs *o)
 int obs_flux_len(const sb_obs *o) { return 2 + 2 * o->nlines; }
 int obs_field_len(const sb_obs *o) { return 2 + 3 * o->nx * o->ny; }
 
-/* Crossings between the previous and this sample (core/crossing.h). With periodic
+/* Crossings between the previous and this sample (core/model/crossing.h). With periodic
  * sides a disk's x midpoint is taken through the minimum image and wrapped into the
  * period (a disk that crossed the seam is near it, not at the box centre); given as
  * both samples' x, crossing_count's midpoint is that number exactly. */

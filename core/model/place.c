@@ -1,5 +1,5 @@
-/* prepare.c - loose placement of grains and intruder on a lattice, walls of disks. */
-#include "prepare.h"
+/* place.c - loose placement of grains and intruder on a lattice, walls of disks. */
+#include "place.h"
 
 #include <gsl/gsl_rng.h>
 #include <math.h>

@@ -12,7 +12,7 @@
 #include "h5out.h"
 #include "kernel.h"
 #include "provenance.h"
-#include "prep.h"
+#include "prepare.h"
 #include "run.h"
 #include "sim.h"
 #include "validate.h"

@@ -14,7 +14,7 @@
  *   /final        every disk at the end (lab frame): x, y, vx, vy, omega, theta and
  *                 id, species, radius, mass
  *   /provenance   git hash, compiler, flags, host, CPU model, force kernel path, times
- *   /@digest      the attributes' digest, written last (core/h5id.h)
+ *   /@digest      the attributes' digest, written last (core/io/h5id.h)
  * Every dataset that holds data carries a Fletcher32 checksum per chunk.
  * Object time stamps are off, so two runs of one scene give identical files apart
  * from /provenance and /h5md (who ran it - the environment's USER - and which build). */
@@ -1012,7 +1012,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	h5w_close_obj(&h, bed);
 	h5w_close_obj(&h, parts);
 	write_final(&h, s, t);
-	/* last: the digest covers every attribute written above (core/h5id.h) */
+	/* last: the digest covers every attribute written above (core/io/h5id.h) */
 	if (!rc && !h.bad)
 		rc = h5id_seal(h.file, e);
 	if (h5w_close(&h) && !rc) {

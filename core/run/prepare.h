@@ -1,6 +1,6 @@
-/* prep.h - preparing a run (prep.c). */
-#ifndef SB_PREP_H
-#define SB_PREP_H
+/* prepare.h - preparing a run (prepare.c). */
+#ifndef SB_PREPARE_H
+#define SB_PREPARE_H
 
 #include "sim.h"
 

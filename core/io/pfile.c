@@ -13,7 +13,7 @@
 #include "guard.h"
 #include "num.h"
 #include "periodic.h"
-#include "prepare.h"
+#include "place.h"
 #include "textline.h"
 
 /* What a particle file may hold. A line is at most PF_LINE_MAX characters (the

@@ -1,6 +1,6 @@
 /* crossing.h - the crossings of height lines between two stroboscopic samples, the
  * counting behind the flux Phi(D) (docs/model.md, "Flux Phi(D)"): one definition, used
- * by the engine during a run (core/observe.c) and by the analysis of position dumps
+ * by the engine during a run (core/model/observe.c) and by the analysis of position dumps
  * written by other codes (analysis/measure/dumpflux.c). */
 #ifndef SB_CROSSING_H
 #define SB_CROSSING_H

@@ -51,7 +51,7 @@ int h5r_shape(hid_t f, const char *path, int *rank, size_t dims[8], size_t *coun
 int h5r_read(hid_t f, const char *path, double **data, int *rank, size_t dims[3], sb_err *e);
 
 /* Every dataset's data read once, so that HDF5 verifies the Fletcher32 checksum of
- * each chunk (core/h5md.c writes one on every dataset with data): an error names the
+ * each chunk (core/io/h5md.c writes one on every dataset with data): an error names the
  * dataset ("checksum error" when the bytes changed after they were written). Datasets
  * without the filter (older files) are only checked as h5r_shape does. */
 int h5r_verify(hid_t f, sb_err *e);

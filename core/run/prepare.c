@@ -1,7 +1,7 @@
-/* prep.c - preparation: the disks placed or read, the bed settled without vibration
+/* prepare.c - preparation: the disks placed or read, the bed settled without vibration
  * until its kinetic energy has decayed, the settled state made canonical (what a
  * particle file of it holds) and put into the box frame (docs/model.md, "Preparation"). */
-#include "prep.h"
+#include "prepare.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -10,7 +10,7 @@
 #include "clock.h"
 #include "dtguard.h"
 #include "pfile.h"
-#include "prepare.h"
+#include "place.h"
 #include "step.h"
 
 static int cmp_double(const void *a, const void *b)

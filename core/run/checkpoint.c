@@ -17,7 +17,7 @@
 /* 11: a journal record is laid out by the table's columns (record.h), and a per-period
  * row's holds no drive frequency (the writer takes it from the drive), so a journal
  * an older engine wrote is not continued. 10: the recording counters are the table's
- * (core/record.h), one array each, and the header holds REC_N: a row added to the
+ * (core/scene/record.h), one array each, and the header holds REC_N: a row added to the
  * table changes the layout, and the format (version/REC_N) says so. 09: the scene hash
  * covers the key sides; the seam pairs are rebuilt from xref like the list. */
 static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '1'};
@@ -150,7 +150,7 @@ int ckpt_load(sb_sim *s, sb_err *e)
 	hw_get(&r, hdr, sizeof hdr);
 	int err = 0;
 	/* the format: the version, and how many quantities the engine records (a row added
-	 * to core/record.h's table adds a pair of counters) */
+	 * to core/scene/record.h's table adds a pair of counters) */
 	char fmt[40], mine[40];
 	snprintf(fmt, sizeof fmt, "%.2s/%d", m + 6, (int)hdr[3]);
 	snprintf(mine, sizeof mine, "%.2s/%d", MAGIC + 6, REC_N);

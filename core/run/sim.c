@@ -1,6 +1,6 @@
 /* sim.c - a run's setup: the scene's derived quantities (intruder, box bounds, the
  * force kernel and the neighbour list), the observables at t = 0, the box motion, and
- * the files a finished run leaves. The run's phases live in prep.c (preparation),
+ * the files a finished run leaves. The run's phases live in prepare.c (preparation),
  * step.c (one step) and run.c (the shaking loop). */
 #include "sim.h"
 

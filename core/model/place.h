@@ -1,7 +1,7 @@
-/* prepare.h - building the initial scene: wall disks, loose placement of the grains
+/* place.h - building the initial scene: wall disks, loose placement of the grains
  * and the intruder (before settling), or a state read from a particle file. */
-#ifndef SB_PREPARE_H
-#define SB_PREPARE_H
+#ifndef SB_PLACE_H
+#define SB_PLACE_H
 
 #include "params.h"
 #include "state.h"
