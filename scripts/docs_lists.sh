@@ -14,7 +14,7 @@
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
-#   core-files      docs/engine.md's module table names every file of core/, and only those
+#   core-files      core/README.md's table of files names every file of core/, and only those
 #   campaigns       campaigns/README.md names every campaign file (campaigns/, reproduce/, examples/), and only those
 #   run-file        docs/output.md's layout table against a run file with every
 #                   recorded quantity of `bin/shake --records` on: the same groups; every root and /provenance attribute
@@ -148,14 +148,14 @@ same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tool
 # --- the files of core/ ---
 (cd "$REPO/core" && find . -type f ! -name README.md | sed "s#^\./##" | sort) >"$TMP/core.code"
 awk '/<!-- docs_lists core-files:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
-	"$(doc docs/engine.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
+	"$(doc core/README.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
 	while read -r f; do
 		case "$f" in
 		*.\[ch\]) echo "${f%.\[ch\]}.c"; echo "${f%.\[ch\]}.h" ;;
 		*) echo "$f" ;;
 		esac
 	done >"$TMP/core.doc"
-same_set core-files "docs/engine.md's module table" "$TMP/core.code" "$TMP/core.doc"
+same_set core-files "core/README.md's table of files" "$TMP/core.code" "$TMP/core.doc"
 
 # --- the campaign files ---
 (cd "$REPO/campaigns" && ls *.campaign reproduce/*.campaign examples/*.campaign) >"$TMP/camp.code"

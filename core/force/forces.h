@@ -1,6 +1,7 @@
-/* forces.h - Cundall-Strack contact forces (docs/model.md, "Contact law") over the
- * Verlet list: the law in plain C (the reference of the vector kernel, kernel.h), the
- * seam pairs, and the scans of the contacts. */
+/* forces.h - the contact forces (docs/model.md, "Contact law": a linear spring-dashpot
+ * normal force and a viscous tangential force capped by Coulomb friction; no shear
+ * spring) over the Verlet list: the law in plain C (the reference of the vector
+ * kernel, kernel.h), the seam pairs, and the scans of the contacts. */
 #ifndef SB_FORCES_H
 #define SB_FORCES_H
 

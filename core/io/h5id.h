@@ -1,9 +1,8 @@
-/* h5id.h - a run file's identity and integrity: the format it declares, the run it
- * claims to be, a digest of its attributes and a seal over all of its bytes
- * (docs/inputs.md, "Run files"). The engine digests a file with h5id_seal as the last
- * thing it writes into it and seals it with h5id_file_seal once HDF5 has closed it;
- * the readers check the seal (h5id_file_check, through h5r_open) before HDF5 parses a
- * byte, and the rest with h5id_check before they believe a value of it. */
+/* h5id.h - a run file's identity: the format it declares, the run it claims to be and
+ * a digest of its attributes (docs/inputs.md, "Run files"). The engine digests a file
+ * with h5id_seal as the last thing it writes into it (and then seals its bytes:
+ * h5seal.h); the readers check the rest with h5id_check, after h5r_open checked the
+ * seal, before they believe a value of it. */
 #ifndef SB_H5ID_H
 #define SB_H5ID_H
 
@@ -20,25 +19,6 @@
 #define H5ID_FORMAT "shakebox-run-4"
 #define H5ID_FORMAT_OLD3 "shakebox-run-3"
 #define H5ID_FORMAT_OLD "shakebox-run-2"
-
-/* The seal: HDF5's user block, the file's first H5ID_SEAL_BYTES bytes (HDF5 then
- * finds its superblock right after it), holds the text
- *   "shakebox-seal 1\nfnv1a64w HEX16\nbytes N\n"
- * and zeros: HEX16 the hash of every byte after the block (FNV-1a/64 over 8-byte
- * little-endian words, the last one padded with zeros, then N mixed in), N their count.
- * Written after HDF5 closed the file; a reader checks it before HDF5 reads anything. */
-#define H5ID_SEAL_BYTES 512
-
-/* Writes the seal into the user block of the closed HDF5 file at path (made with a
- * user block of H5ID_SEAL_BYTES). */
-int h5id_file_seal(const char *path, sb_err *e);
-
-/* Checks the seal of the file at path (a regular file) before anything parses it:
- * seal holds its 16 hex digits, or "" when the file has no user block (an older file:
- * HDF5's signature at byte 0). SB_EIO, naming path, when the user block is no seal,
- * the bytes after it do not hash to it (a bit flipped, a value edited), or HDF5's
- * signature is at neither place. */
-int h5id_file_check(const char *path, char seal[17], sb_err *e);
 
 /* Where the run's id sits: the scene key run_id (set by the study driver's worker for
  * every run, the campaign's id of the run; "" for a run outside a campaign), recorded

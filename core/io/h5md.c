@@ -1,6 +1,6 @@
 /* h5md.c - HDF5 writing in the H5MD 1.1 conventions (see h5md.h). */
 #include "h5md.h"
-#include "h5id.h"
+#include "h5seal.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -61,8 +61,8 @@ int h5w_create(h5w *h, const char *path, int deflate_level)
 	h->level = deflate_level;
 	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
 	H5Pset_obj_track_times(fcpl, 0);
-	/* room for the seal h5id_file_seal writes once the file is closed (core/io/h5id.h) */
-	H5Pset_userblock(fcpl, H5ID_SEAL_BYTES);
+	/* room for the seal h5seal_write writes once the file is closed (core/io/h5seal.h) */
+	H5Pset_userblock(fcpl, H5SEAL_BYTES);
 	/* the root lists h5md first, as readers that take the first group expect */
 	H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
 	h->gcpl = H5Pcreate(H5P_GROUP_CREATE);

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
-#include "h5id.h"
+#include "h5seal.h"
 
 /* A filtered (compressed) chunk holds at most this many times its stored bytes:
  * deflate, the engine's filter, packs at most 1032:1 (zlib's technical notes), and
@@ -25,7 +25,7 @@ int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal
 		return e->code;
 	/* HDF5 parses what it reads with less care than a hostile file needs (a flipped
 	 * bit in its global heap ran strlen past a buffer): the bytes are checked first */
-	if (h5id_file_check(path, seal, e))
+	if (h5seal_check(path, seal, e))
 		return e->code;
 	if (want_seal && want_seal[0] && strcmp(seal, want_seal))
 		return sb_errf(e, SB_EIO, "%s: sealed %s, but the database recorded %.16s when the run was done: not "

@@ -13,7 +13,7 @@
 #include "err.h"
 
 /* Opens a run file read-only: SB_EIO when it is no regular file (a FIFO would block
- * the open), its seal does not match its bytes (h5id_file_check, before HDF5 reads
+ * the open), its seal does not match its bytes (h5seal_check, before HDF5 reads
  * any of them), it is no HDF5 file, or it reaches outside itself (h5r_contained). */
 int h5r_open(const char *path, hid_t *f, sb_err *e);
 /* ... and seal gets the file's seal ("" for an older, unsealed file), which must be

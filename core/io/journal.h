@@ -10,6 +10,13 @@
 
 #include "err.h"
 
+/* The engine's files beside its run file OUT while it runs: OUT.journal (the records
+ * the run file is assembled from) and OUT.ckpt (the checkpoint, unless checkpoint =
+ * names another); a finished run removes both. The driver names them by these too
+ * (lib/layout.h, LAY_JOURNAL and LAY_CKPT). */
+#define SB_JOURNAL_EXT ".journal"
+#define SB_CKPT_EXT ".ckpt"
+
 typedef struct sb_journal {
 	FILE *f;
 	char path[4200];

@@ -7,9 +7,6 @@
 
 #include "crossing.h"
 #include "periodic.h"
-#include "record.h"
-
-_Static_assert(OBS_RING_COLS == REC_NCOLS(REC_COLS_RING), "a ring sample's row is the ring's record (record.h)");
 
 static double *zalloc(size_t n, int *bad)
 {
@@ -198,16 +195,13 @@ int obs_band_answered(const sb_obs *o, double min_n, double se, double thr, doub
 	return on || off;
 }
 
-int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, sb_err *e)
+int obs_flux_due(const sb_obs *o) { return o->flux_on && o->have_prev; }
+
+void obs_flux(sb_obs *o, const sb_state *st, double t, double f, double *rec)
 {
-	if (!o->flux_on || !o->have_prev)
-		return 0;
 	const double *x = st->q[C_X][0], *y = st->q[C_Y][0];
 	flux_count(o, x, y);
 	const int n = o->nlines;
-	double *rec = malloc(sizeof(double) * (size_t)obs_flux_len(o));
-	if (!rec)
-		return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
 	rec[0] = t;
 	rec[1] = f;
 	/* the band's flux of this period: Phi = j_top - j_bot, averaged over its lines */
@@ -218,42 +212,30 @@ int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, 
 	o->have_band = 1;
 	memcpy(rec + 2, o->jtop, sizeof(double) * (size_t)n);
 	memcpy(rec + 2 + n, o->jbot, sizeof(double) * (size_t)n);
-	int rc = journal_record(jr, REC_TAG(REC_FLUX), rec, obs_flux_len(o), e);
-	free(rec);
-	if (rc)
-		return rc;
-	(*nflux)++;
 	memset(o->jtop, 0, sizeof(double) * (size_t)n);
 	memset(o->jbot, 0, sizeof(double) * (size_t)n);
-	return 0;
 }
 
-int obs_field(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *nfield, sb_err *e)
+int obs_field_add(sb_obs *o, const sb_state *st)
 {
 	if (!o->field_on || !o->have_prev)
 		return 0;
 	field_add(o, st->q[C_X][0], st->q[C_Y][0]);
-	if (++o->kdone < o->K)
-		return 0;
+	return ++o->kdone >= o->K;
+}
+
+void obs_field_take(sb_obs *o, double t, double *rec)
+{
 	size_t nc = (size_t)o->nx * o->ny;
-	double *rec = malloc(sizeof(double) * (size_t)obs_field_len(o));
-	if (!rec)
-		return sb_errf(e, SB_ENOMEM, "out of memory for the field record");
 	rec[0] = t;
 	rec[1] = o->K;
 	memcpy(rec + 2, o->sx, sizeof(double) * nc);
 	memcpy(rec + 2 + nc, o->sy, sizeof(double) * nc);
 	memcpy(rec + 2 + 2 * nc, o->cnt, sizeof(double) * nc);
-	int rc = journal_record(jr, REC_TAG(REC_FIELD), rec, obs_field_len(o), e);
-	free(rec);
-	if (rc)
-		return rc;
-	(*nfield)++;
 	o->kdone = 0;
 	memset(o->sx, 0, sizeof(double) * nc);
 	memset(o->sy, 0, sizeof(double) * nc);
 	memset(o->cnt, 0, sizeof(double) * nc);
-	return 0;
 }
 
 void obs_strobe_keep(sb_obs *o, const sb_state *st)
@@ -263,15 +245,6 @@ void obs_strobe_keep(sb_obs *o, const sb_state *st)
 	memcpy(o->xp, st->q[C_X][0], sizeof(double) * (size_t)o->nm);
 	memcpy(o->yp, st->q[C_Y][0], sizeof(double) * (size_t)o->nm);
 	o->have_prev = 1;
-}
-
-int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
-	       long *nfield, sb_err *e)
-{
-	if (obs_flux(o, st, t, f, jr, nflux, e) || obs_field(o, st, t, jr, nfield, e))
-		return e->code;
-	obs_strobe_keep(o, st);
-	return 0;
 }
 
 /* First step at or after time k * interval (run.c's schedule). */
@@ -354,13 +327,6 @@ void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, doub
 	row[OBS_RR_CX] = cx;
 	row[OBS_RR_CY] = cy;
 	memset(o->fabs_sum, 0, sizeof(double) * (size_t)st->n);
-}
-
-int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, sb_journal *jr, sb_err *e)
-{
-	double row[OBS_RING_COLS];
-	obs_ring_sample(o, st, intruder, t, inv_dt, row);
-	return journal_record(jr, REC_TAG(REC_RING), row, OBS_RING_COLS, e);
 }
 
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))

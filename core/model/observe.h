@@ -15,7 +15,6 @@
 #define SB_OBSERVE_H
 
 #include "err.h"
-#include "journal.h"
 #include "params.h"
 #include "state.h"
 
@@ -95,23 +94,27 @@ int obs_field_len(const sb_obs *o);  /* t, periods, sx[ny*nx], sy[..], cnt[..] *
 
 /* A stroboscopic sample at time t (phase 0, box at rest position: lab = box frame),
  * drive frequency f, in three parts: the flux since the previous sample (a flux
- * record, counted in *nflux), the field (a field record when a block is complete,
- * counted in *nfield), then the sample kept for the next one. Each part does nothing
- * when its observable is off. obs_sample is the three in order. */
-int obs_flux(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, sb_err *e);
-int obs_field(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *nfield, sb_err *e);
+ * record), the field (a field record when a block is complete), then the sample kept
+ * for the next one. The records go where the caller wants them (the run's journal:
+ * core/run/sample.c, which knows their tags); this module keeps the accumulators.
+ * obs_flux_due: flux is on and there is a previous sample; then obs_flux writes the
+ * record into rec[obs_flux_len] and starts the next period's counts.
+ * obs_field_add: adds the displacements since the previous sample (field on, a previous
+ * sample); 1 when a block is complete, then obs_field_take writes the record into
+ * rec[obs_field_len] and starts the next block. */
+int obs_flux_due(const sb_obs *o);
+void obs_flux(sb_obs *o, const sb_state *st, double t, double f, double *rec);
+int obs_field_add(sb_obs *o, const sb_state *st);
+void obs_field_take(sb_obs *o, double t, double *rec);
 void obs_strobe_keep(sb_obs *o, const sb_state *st);
-int obs_sample(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux,
-	       long *nfield, sb_err *e);
 
 /* Is a ring sample due at step n? */
 int obs_ring_due(const sb_obs *o, long n);
 
 /* A ring sample at time t from the disks' |F| sums in o->fabs_sum (then cleared) and
  * their contact forces in st->f (the step's, unfused): added to the averages, its
- * series row in row[OBS_RING_COLS]. obs_ring also journals the row (the ring's record). */
+ * series row in row[OBS_RING_COLS] (the ring's record, journaled by core/run/sample.c). */
 void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, double *row);
-int obs_ring(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, sb_journal *jr, sb_err *e);
 
 /* Serialise the accumulators for a checkpoint: io(ctx, pointer, bytes) per field. */
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t));

@@ -27,11 +27,13 @@
 
 #include "fsutil.h"
 #include "h5id.h"
+#include "h5seal.h"
 #include "h5md.h"
 #include "h5out.h"
 #include "kernel.h"
 #include "provenance.h"
 #include "record.h"
+#include "sample.h"
 
 /* The engine step of a recorded time (times are step * dt exactly). */
 static long step_of(const sb_sim *s, double t) { return lround(t / s->sc.dt); }
@@ -620,7 +622,7 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b, long n)
 {
 	const sb_record *r = &rec_table()[id];
-	const long len = r->len, N = r->clock == RC_PHASE ? (long)rec_rate(s, id) : 1, T = N > 0 ? n / N : 0;
+	const long len = r->len, N = r->clock == RC_PHASE ? (long)rec_rate(&s->sc, id) : 1, T = N > 0 ? n / N : 0;
 	const size_t T1 = (size_t)(T ? T : 1);
 	double *d = malloc(sizeof(double) * T1 * (size_t)len), *col = malloc(sizeof(double) * T1);
 	double *t = malloc(sizeof(double) * T1);
@@ -696,8 +698,8 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		long len = R[k].len;
 		if (k == REC_CONTACT)
 			len = 2 + REC_NCOLS(REC_COLS_CONTACT) * s->max_contacts;
-		else if (!len && (rec_on(s, k) || k == REC_SNAP))
-			len = rec_len(s, k, NULL);
+		else if (!len && (sample_on(s, k) || k == REC_SNAP))
+			len = sample_len(s, k, NULL);
 		cap = len > cap ? len : cap;
 		any |= s->rec_n[k];
 	}
@@ -743,7 +745,7 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		for (size_t pos = 0; k != REC_SNAP && pos < rec[k].n; got[k]++) {
 			/* every record holds a time and one more value; one that runs past the end
 			 * (a damaged journal) is counted as none */
-			const long l = rec[k].n - pos >= 2 ? rec_len(s, k, rec[k].d + pos) : -1;
+			const long l = rec[k].n - pos >= 2 ? sample_len(s, k, rec[k].d + pos) : -1;
 			if (l < 2 || (size_t)l > rec[k].n - pos) {
 				got[k] = -1;
 				break;
@@ -765,11 +767,11 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	}
 	int obs_on = 0;
 	for (int k = 0; k < REC_N; k++)
-		obs_on |= (R[k].flags & RECF_OBS) && rec_on(s, k);
+		obs_on |= (R[k].flags & RECF_OBS) && sample_on(s, k);
 	if (whole && obs_on) {
 		h5w_close_obj(h, h5w_group(h, h->file, REC_H5_OBS, 0));
 		for (int k = 0; k < REC_N; k++)
-			if ((R[k].flags & RECF_OBS) && rec_on(s, k)) {
+			if ((R[k].flags & RECF_OBS) && sample_on(s, k)) {
 				hid_t g = h5w_group(h, h->file, R[k].h5, 0);
 				assert(WRITERS[k] || R[k].len > 0); /* record.h: rec_table_check */
 				if (WRITERS[k])
@@ -1026,7 +1028,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	}
 	/* the seal covers every byte HDF5 wrote, so it comes after HDF5 closed the file */
 	if (!rc)
-		rc = h5id_file_seal(tmp, e);
+		rc = h5seal_write(tmp, e);
 	if (!rc)
 		rc = fs_fsync_path(tmp, e);
 	if (!rc)

@@ -4,12 +4,14 @@
  * overlap record's threshold. */
 #include "run.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "checkpoint.h"
 #include "clock.h"
+#include "sample.h"
 #include "step.h"
 
 /* First step at or after time k * interval: integer schedule, no drift. */
@@ -32,12 +34,14 @@ typedef struct sched {
  * and no phase row is sampled either. */
 static void sched_init(sched *c, const sb_sim *s)
 {
+	/* every row a sampler, of its length (sample.h; the rows themselves: sim_init) */
+	assert(!sample_table_check());
 	const sb_record *R = rec_table();
 	const int drive = s->sc.ramp != RAMP_NONE || s->sc.frequency > 0;
 	c->strobe = 0;
 	for (int k = 0; k < REC_N; k++) {
-		c->on[k] = rec_on(s, k) && (R[k].clock != RC_PHASE || drive);
-		c->interval[k] = c->on[k] ? R[k].clock == RC_RATE ? 1.0 / rec_rate(s, k) : rec_rate(s, k) : 0;
+		c->on[k] = sample_on(s, k) && (R[k].clock != RC_PHASE || drive);
+		c->interval[k] = c->on[k] ? R[k].clock == RC_RATE ? 1.0 / rec_rate(&s->sc, k) : rec_rate(&s->sc, k) : 0;
 		c->strobe |= R[k].clock == RC_STROBE && c->on[k];
 	}
 	c->strobe = c->strobe && drive;
@@ -92,13 +96,13 @@ static int record(sb_sim *s, const sched *c, sb_err *e)
 	for (int k = 0; k < REC_N; k++) {
 		if ((R[k].clock != RC_RATE && R[k].clock != RC_PHASE) || !due(s, c, k, s->step))
 			continue;
-		if (R[k].sample(s, t, e))
+		if (sample_take(s, k, t, e))
 			return e->code;
 		s->rec_next[k] = R[k].clock == RC_RATE ? due_step(s->rec_n[k], c->interval[k], sc->dt) : phase_next(s, c, k);
 	}
 	if (strobe_due(s, c, s->step)) {
 		for (int k = 0; k < REC_N; k++)
-			if (R[k].clock == RC_STROBE && c->on[k] && R[k].sample(s, t, e))
+			if (R[k].clock == RC_STROBE && c->on[k] && sample_take(s, k, t, e))
 				return e->code;
 		obs_strobe_keep(&s->obs, &s->st);
 		s->n_strobe++;
@@ -194,7 +198,7 @@ int sim_run(sb_sim *s, sb_err *e)
 			      ring ? s->obs.fabs_sum : NULL, e))
 			break;
 		s->step = n1;
-		if (ring && rec_table()[REC_RING].sample(s, t1, e))
+		if (ring && sample_take(s, REC_RING, t1, e))
 			break;
 		TIC(PH_RECORD);
 		if (record(s, &c, e))

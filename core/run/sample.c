@@ -13,7 +13,7 @@ static int put(sb_sim *s, int id, const double *row, int len, sb_err *e)
 }
 #define PUT(s, id, row, e) put(s, id, row, (int)(sizeof row / sizeof *row), e)
 
-int sample_traj(sb_sim *s, double t, sb_err *e)
+static int sample_traj(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	int i = s->intruder;
@@ -27,7 +27,7 @@ int sample_traj(sb_sim *s, double t, sb_err *e)
 	return PUT(s, REC_TRAJ, row, e);
 }
 
-int sample_snap(sb_sim *s, double t, sb_err *e)
+static int sample_snap(sb_sim *s, double t, sb_err *e)
 {
 	sb_state *st = &s->st;
 	/* lab frame: shift y by y_box(t) and vy by v_box(t) */
@@ -52,7 +52,7 @@ int sample_snap(sb_sim *s, double t, sb_err *e)
 
 /* One row of the energy series (box frame; the state is the corrected one of a
  * step nobody fused). */
-int sample_energy(sb_sim *s, double t, sb_err *e)
+static int sample_energy(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	const double idt = 1.0 / s->sc.dt;
@@ -72,7 +72,7 @@ int sample_energy(sb_sim *s, double t, sb_err *e)
 
 /* One frame of the contact dump: every contact of the corrected state, its disks by
  * id (box frame). */
-int sample_contacts(sb_sim *s, double t, sb_err *e)
+static int sample_contacts(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	const long cap = (long)s->nl.nflat + s->nl.nseam; /* every pair of the list may touch */
@@ -96,27 +96,72 @@ int sample_contacts(sb_sim *s, double t, sb_err *e)
 	return 0;
 }
 
-int sample_flux(sb_sim *s, double t, sb_err *e)
+/* The flux record of a strobe (when one is due: obs_flux_due), journaled and counted. */
+static int flux_put(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *n, sb_err *e)
 {
-	return obs_flux(&s->obs, &s->st, t, drive_freq(&s->drive, t), &s->jr, &s->rec_n[REC_FLUX], e);
-}
-
-int sample_field(sb_sim *s, double t, sb_err *e)
-{
-	return obs_field(&s->obs, &s->st, t, &s->jr, &s->rec_n[REC_FIELD], e);
-}
-
-int sample_ring(sb_sim *s, double t, sb_err *e)
-{
-	if (obs_ring(&s->obs, &s->st, s->intruder, t, 1.0 / s->sc.dt, &s->jr, e))
-		return e->code;
-	s->rec_n[REC_RING]++;
+	if (!obs_flux_due(o))
+		return 0;
+	double *rec = malloc(sizeof(double) * (size_t)obs_flux_len(o));
+	if (!rec)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the flux record");
+	obs_flux(o, st, t, f, rec);
+	int rc = journal_record(jr, REC_TAG(REC_FLUX), rec, obs_flux_len(o), e);
+	free(rec);
+	if (rc)
+		return rc;
+	(*n)++;
 	return 0;
+}
+
+/* The field's sample of a strobe; its record when a block is complete, journaled and
+ * counted. */
+static int field_put(sb_obs *o, const sb_state *st, double t, sb_journal *jr, long *n, sb_err *e)
+{
+	if (!obs_field_add(o, st))
+		return 0;
+	double *rec = malloc(sizeof(double) * (size_t)obs_field_len(o));
+	if (!rec)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the field record");
+	obs_field_take(o, t, rec);
+	int rc = journal_record(jr, REC_TAG(REC_FIELD), rec, obs_field_len(o), e);
+	free(rec);
+	if (rc)
+		return rc;
+	(*n)++;
+	return 0;
+}
+
+int sample_obs_strobe(sb_obs *o, const sb_state *st, double t, double f, sb_journal *jr, long *nflux, long *nfield,
+		      sb_err *e)
+{
+	if (flux_put(o, st, t, f, jr, nflux, e) || field_put(o, st, t, jr, nfield, e))
+		return e->code;
+	obs_strobe_keep(o, st);
+	return 0;
+}
+
+static int sample_flux(sb_sim *s, double t, sb_err *e)
+{
+	return flux_put(&s->obs, &s->st, t, drive_freq(&s->drive, t), &s->jr, &s->rec_n[REC_FLUX], e);
+}
+
+static int sample_field(sb_sim *s, double t, sb_err *e)
+{
+	return field_put(&s->obs, &s->st, t, &s->jr, &s->rec_n[REC_FIELD], e);
+}
+
+_Static_assert(OBS_RING_COLS == REC_NCOLS(REC_COLS_RING), "a ring sample's row is the ring's record (record.h)");
+
+static int sample_ring(sb_sim *s, double t, sb_err *e)
+{
+	double row[OBS_RING_COLS];
+	obs_ring_sample(&s->obs, &s->st, s->intruder, t, 1.0 / s->sc.dt, row);
+	return PUT(s, REC_RING, row, e);
 }
 
 /* The bed's kinetic energy (translation and rotation of the mobile disks, box frame:
  * the box's own motion is not the bed's); h5out averages a period's samples. */
-int sample_kinetic(sb_sim *s, double t, sb_err *e)
+static int sample_kinetic(sb_sim *s, double t, sb_err *e)
 {
 	const double row[REC_NCOLS(REC_COLS_KINETIC)] = {t, sim_kinetic(s)};
 	return PUT(s, REC_KINETIC, row, e);
@@ -125,7 +170,7 @@ int sample_kinetic(sb_sim *s, double t, sb_err *e)
 /* The bed's centre-of-mass height: the mass-weighted mean y of the mobile disks in the
  * box frame (above the floor's rest position: the box's own motion is not the bed's,
  * as for com_height_box of the energy series); h5out averages a period's samples. */
-int sample_height(sb_sim *s, double t, sb_err *e)
+static int sample_height(sb_sim *s, double t, sb_err *e)
 {
 	const sb_state *st = &s->st;
 	double my = 0, m = 0;
@@ -135,4 +180,53 @@ int sample_height(sb_sim *s, double t, sb_err *e)
 	}
 	const double row[REC_NCOLS(REC_COLS_HEIGHT)] = {t, m > 0 ? my / m : 0};
 	return PUT(s, REC_HEIGHT, row, e);
+}
+
+/* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
+static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
+static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
+static long field_len(const sb_sim *s, const double *rec) { (void)rec; return obs_field_len(&s->obs); }
+/* a contact frame: time, count, count contacts */
+static long contact_len(const sb_sim *s, const double *rec)
+{
+	(void)s;
+	return 2 + REC_NCOLS(REC_COLS_CONTACT) * (long)rec[1];
+}
+
+static const sb_sampler TABLE[REC_N] = {
+	[REC_TRAJ] = {sample_traj, NULL},
+	[REC_SNAP] = {sample_snap, snap_len},
+	[REC_FLUX] = {sample_flux, flux_len},
+	[REC_FIELD] = {sample_field, field_len},
+	[REC_ENERGY] = {sample_energy, NULL},
+	[REC_CONTACT] = {sample_contacts, contact_len},
+	[REC_RING] = {sample_ring, NULL},
+	[REC_KINETIC] = {sample_kinetic, NULL},
+	[REC_HEIGHT] = {sample_height, NULL},
+};
+
+const sb_sampler *sample_table(void) { return TABLE; }
+
+const char *sample_rows_check(const sb_sampler *rows, int n)
+{
+	const sb_record *R = rec_table();
+	for (int k = 0; k < n && k < REC_N; k++) {
+		if (!rows[k].take)
+			return "a row without a sampling function";
+		if (!R[k].len != !!rows[k].vlen)
+			return "a variable row without a length function, or a fixed-length row with one";
+	}
+	return n == REC_N ? NULL : "not one sampler per row of the table";
+}
+
+const char *sample_table_check(void) { return sample_rows_check(TABLE, REC_N); }
+
+int sample_take(sb_sim *s, int id, double t, sb_err *e) { return TABLE[id].take(s, t, e); }
+
+int sample_on(const sb_sim *s, int id) { return rec_on(&s->sc, s->intruder >= 0, id); }
+
+long sample_len(const sb_sim *s, int id, const double *rec)
+{
+	const sb_record *r = &rec_table()[id];
+	return r->len > 0 ? r->len : TABLE[id].vlen(s, rec);
 }

@@ -84,12 +84,6 @@ void sim_cleanup_files(sb_sim *s);
  * device, FIFO, socket, directory or symbolic link there is refused, naming the key,
  * where it was set and what stands there (the rename at the end would replace it). */
 int sim_check_outputs(const sb_sim *s, sb_err *e);
-/* The engine's files beside its run file OUT while it runs: OUT.journal (the records
- * the run file is assembled from) and OUT.ckpt (the checkpoint, unless checkpoint =
- * names another); a finished run removes both. The driver names them by these too
- * (lib/layout.h, LAY_JOURNAL and LAY_CKPT). */
-#define SB_JOURNAL_EXT ".journal"
-#define SB_CKPT_EXT ".ckpt"
 /* The XDMF sidecar of a run file: RUN.h5 -> RUN.xmf, else PATH.xmf. */
 void sim_xmf_path(const char *h5path, char *out, size_t len);
 

@@ -37,9 +37,6 @@ const sb_preset PRESETS[] = {
 	{NULL, {NULL}},
 };
 
-/* A row made from record.h's REC_KEYS. */
-#define REC_KEY_ROW_(key, type, unit, def, min, max, help) {#key, type(key), unit, def, min, max, NULL, PF_OUT, help},
-
 /* Defaults are the `paper` preset (docs/model.md); every row names its unit. */
 static const sb_param TABLE[] = {
 	/* --- preparation --- */
@@ -158,8 +155,21 @@ static const sb_param TABLE[] = {
 	{"output", STR(output), "", "run.h5", 0, 0, NULL, PF_OUT | PF_DRIVER,
 	 "HDF5 output file (an XDMF sidecar .xmf is written beside it; a path where something other than a "
 	 "regular file stands is refused); none = no run file, no journal, no checkpoint (a file named none: ./none)"},
-	/* the keys of one recorded quantity each (record.h, REC_KEYS) */
-	REC_KEYS(REC_KEY_ROW_)
+	/* the keys of one recorded quantity each (its row of core/scene/record.c names it) */
+	{"traj_rate", REAL(traj_rate), "Hz", "100", 0, 1e6, NULL, PF_OUT,
+	 "samples per second of the intruder trajectory (0 = none)"},
+	{"energy_rate", REAL(energy_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
+	 "samples per second of the energy series (kinetic: translational and rotational, elastic, "
+	 "centre-of-mass height, largest overlap; /observables/energy; 0 = none)"},
+	{"contact_rate", REAL(contact_rate), "Hz", "0", 0, 1e6, NULL, PF_OUT,
+	 "samples per second of the contact dump (every contact: the two disks, normal and tangential "
+	 "force, normal, place; /observables/contacts, for force chains; 0 = none)"},
+	{"bed_kinetic_samples", INT(bed_kinetic_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the bed's kinetic energy (box frame), averaged per period "
+	 "(/observables/bed_kinetic) and over the run (bed_kinetic_mean); 0 = none"},
+	{"bed_height_samples", INT(bed_height_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "
+	 "(/observables/bed_height) and over the run (bed_height_mean); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0"},
 	{"snapshot_precision", ENUM(snapshot_precision), "", "single", 0, 0, "double|single", PF_OUT,
@@ -218,7 +228,7 @@ static const sb_param TABLE[] = {
 };
 
 #define NTABLE (sizeof TABLE / sizeof TABLE[0])
-_Static_assert(NTABLE <= SB_NKEYS, "sb_scene.src needs a row per key: raise SB_NKEYS");
+_Static_assert(NTABLE == SB_NKEYS, "SB_NKEYS (params.h) is the number of rows of the table");
 
 int params_no_output(const sb_scene *s)
 {

@@ -7,10 +7,9 @@
 #include <stdio.h>
 
 #include "err.h"
-#include "record.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 80  /* at least the number of keys (checked in params.c) */
+#define SB_NKEYS 77  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
@@ -20,11 +19,6 @@ enum sb_sides { SIDES_WALLS, SIDES_PERIODIC };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 /* where the ring observable is centred (docs/model.md, "Ring force") */
 enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
-
-/* A field of a key that record.h's REC_KEYS describes. */
-#define SB_SCENE_CTYPE_REAL double
-#define SB_SCENE_CTYPE_INT long
-#define SB_SCENE_FIELD_(key, type, unit, def, min, max, help) SB_SCENE_CTYPE_##type key;
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
 struct sb_scene {
@@ -60,7 +54,8 @@ struct sb_scene {
 	double stop_after, stop_skip, stop_flux_se, stop_flux_lo, stop_flux_hi, stop_flux_threshold, stop_flux_k;
 	/* recording and files */
 	char output[SB_STR_MAX];
-	REC_KEYS(SB_SCENE_FIELD_) /* the recorded quantities' own keys (record.h) */
+	double traj_rate, energy_rate, contact_rate; /* the recorded quantities' own keys (record.c) */
+	long bed_kinetic_samples, bed_height_samples;
 	int snapshots;
 	int snapshot_precision; /* 0 double, 1 single (the default) */
 	long compression;

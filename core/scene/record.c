@@ -3,8 +3,6 @@
 
 #include <string.h>
 
-#include "params.h"
-#include "sample.h"
 
 #define REC_COL_(name, unit) {name, unit},
 static const rec_col TRAJ[] = {REC_COLS_TRAJ(REC_COL_)};
@@ -14,43 +12,28 @@ static const rec_col RING[] = {REC_COLS_RING(REC_COL_)};
 static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
 static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
 
-/* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
-static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
-static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
-static long field_len(const sb_sim *s, const double *rec) { (void)rec; return obs_field_len(&s->obs); }
-/* a contact frame: time, count, count contacts */
-static long contact_len(const sb_sim *s, const double *rec)
-{
-	(void)s;
-	return 2 + REC_NCOLS(REC_COLS_CONTACT) * (long)rec[1];
-}
-
 /* a fixed-length row: its length and columns from one list */
 #define FIXED(a) .len = (int)(sizeof a / sizeof *a), .cols = a, .ncols = (int)(sizeof a / sizeof *a)
 
 static const sb_record TABLE[REC_N] = {
-	[REC_TRAJ] = {"trajectory", "traj_rate", RC_RATE, FIXED(TRAJ), .h5 = REC_H5_INTRUDER, .flags = RECF_INTRUDER,
-		      .sample = sample_traj},
-	[REC_SNAP] = {"snapshot", "snapshots", RC_STROBE, .h5 = REC_H5_BED, .sample = sample_snap, .vlen = snap_len},
-	[REC_FLUX] = {"flux", "flux", RC_STROBE, .h5 = REC_H5_FLUX, .flags = RECF_OBS, .sample = sample_flux,
-		      .vlen = flux_len},
-	[REC_FIELD] = {"field", "field", RC_STROBE, .h5 = REC_H5_FIELD, .flags = RECF_OBS, .sample = sample_field,
-		       .vlen = field_len},
+	[REC_TRAJ] = {"trajectory", "traj_rate", RC_RATE, FIXED(TRAJ), .h5 = REC_H5_INTRUDER, .flags = RECF_INTRUDER},
+	[REC_SNAP] = {"snapshot", "snapshots", RC_STROBE, .h5 = REC_H5_BED},
+	[REC_FLUX] = {"flux", "flux", RC_STROBE, .h5 = REC_H5_FLUX, .flags = RECF_OBS},
+	[REC_FIELD] = {"field", "field", RC_STROBE, .h5 = REC_H5_FIELD, .flags = RECF_OBS},
 	[REC_ENERGY] = {"energy", "energy_rate", RC_RATE, FIXED(ENERGY), .h5 = REC_H5_ENERGY, .flags = RECF_OBS,
-			.sample = sample_energy,
 			.def = "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y "
 			       "xi^2 / 2 over the contacts; com_height_box = mass-weighted mean y of the mobile disks; "
 			       "max_overlap = largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")"},
 	[REC_CONTACT] = {"contact", "contact_rate", RC_RATE, .cols = CONTACT, .ncols = REC_NCOLS(REC_COLS_CONTACT),
-			 .h5 = REC_H5_CONTACTS, .flags = RECF_OBS, .sample = sample_contacts, .vlen = contact_len},
-	[REC_RING] = {"ring", "ring", RC_RING, FIXED(RING), .h5 = REC_H5_RING, .flags = RECF_OBS, .sample = sample_ring},
+			 .h5 = REC_H5_CONTACTS, .flags = RECF_OBS},
+	[REC_RING] = {"ring", "ring", RC_RING, FIXED(RING), .h5 = REC_H5_RING, .flags = RECF_OBS},
 	[REC_KINETIC] = {"bed kinetic energy", "bed_kinetic_samples", RC_PHASE, FIXED(KINETIC),
-			 .h5 = REC_H5_OBS "/bed_kinetic", .flags = RECF_OBS, .sample = sample_kinetic,
+			 .h5 = REC_H5_OBS "/bed_kinetic", .flags = RECF_OBS,
 			 .def = "per drive period (time and step: its end): kinetic_energy = the mean of the mobile "
 				"disks' sum m v^2 / 2 + I w^2 / 2 (box frame) at phases k/N, k = 1..N (N = "
 				"samples_per_period); frequency = the drive's at the period's end"},
 	[REC_HEIGHT] = {"bed height", "bed_height_samples", RC_PHASE, FIXED(HEIGHT), .h5 = REC_H5_OBS "/bed_height",
-			.flags = RECF_OBS, .sample = sample_height,
+			.flags = RECF_OBS,
 			.def = "per drive period (time and step: its end): com_height_box = the mean of the mobile "
 			       "disks' centre-of-mass height sum m y / sum m (box frame: above the box floor's rest "
 			       "position) at phases k/N, k = 1..N (N = samples_per_period); frequency = the drive's at "
@@ -71,13 +54,12 @@ const char *rec_rows_check(const sb_record *rows, int n)
 		const enum sb_ptype want = r->clock == RC_RATE ? PT_REAL : r->clock == RC_PHASE ? PT_INT : PT_BOOL;
 		if (p->type != want)
 			return "a row's key is not of its clock's type (rate: real, per period: int, else yes/no)";
-		if (r->len > 0 ? r->ncols != r->len || !r->cols || strcmp(r->cols[0].name, "time") : !r->vlen)
-			return "a fixed-length row's columns differ from its length or do not start with time, or a "
-			       "variable row has no length function";
+		if (r->len > 0 && (r->ncols != r->len || !r->cols || strcmp(r->cols[0].name, "time")))
+			return "a fixed-length row's columns differ from its length or do not start with time";
 		if (r->clock == RC_PHASE && r->len <= 1)
 			return "a per-period row without a fixed length and a value column (h5out averages its periods)";
-		if (!r->sample || !r->h5)
-			return "a row without a sampling function or a run-file group";
+		if (!r->h5)
+			return "a row without a run-file group";
 		for (int j = 0; j < k; j++)
 			if (!strcmp(rows[j].h5, r->h5))
 				return "two rows share a run-file group";
@@ -116,20 +98,15 @@ static double key_value(const sb_scene *sc, const char *key)
 									 : *(const int *)base;
 }
 
-int rec_on(const sb_sim *s, int id)
+int rec_on(const sb_scene *sc, int has_intruder, int id)
 {
 	const sb_record *r = &TABLE[id];
-	if ((r->flags & RECF_INTRUDER) && s->intruder < 0)
+	if ((r->flags & RECF_INTRUDER) && !has_intruder)
 		return 0;
-	return key_value(&s->sc, r->key) > 0;
+	return key_value(sc, r->key) > 0;
 }
 
-double rec_rate(const sb_sim *s, int id) { return key_value(&s->sc, TABLE[id].key); }
-
-long rec_len(const sb_sim *s, int id, const double *rec)
-{
-	return TABLE[id].len > 0 ? TABLE[id].len : TABLE[id].vlen(s, rec);
-}
+double rec_rate(const sb_scene *sc, int id) { return key_value(sc, TABLE[id].key); }
 
 #define SUM_ATTR_(row, attr, unit, def) #attr,
 #define SUM_ROW_(row, attr, unit, def) row,

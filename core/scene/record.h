@@ -1,18 +1,17 @@
 /* record.h - the recorded quantities, in one table as the parameter table is for the
  * inputs: per quantity its switch or rate key, its clock, its journal record and
- * columns, its place in the run file and its sampling function; and the per-run
- * summaries that become result columns. The table drives the recording schedule and
- * the fusion decision (run.c), the counters and their checkpoint fields (sim.h,
- * checkpoint.c), the reading of the journal and the observables' writer (h5out.c);
+ * columns and its place in the run file; and the per-run summaries that become result
+ * columns. The table drives the recording schedule and the fusion decision (run.c),
+ * the counters and their checkpoint fields (sim.h, checkpoint.c), the reading of the
+ * journal and the observables' writer (h5out.c); each row's sampling function is
+ * bound to it by the run's room (core/run/sample.c), which this table does not know;
  * lib/results.c makes a result column of every summary. Layout: docs/output.md. */
 #ifndef SB_RECORD_H
 #define SB_RECORD_H
 
 #include <stdio.h>
 
-#include "err.h"
-
-struct sb_sim;
+#include "params.h"
 
 /* The rows: the order the run file's groups are written in; a step records the rate
  * and per-period rows in this order, then the stroboscopic ones (run.c). A row's
@@ -72,25 +71,6 @@ enum {
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
 #define REC_NCOLS(list) (0 list(REC_COL_COUNT_))
 
-/* The keys that belong to one row alone (its rate or its samples per period): the
- * parameter table's rows and sb_scene's fields are made from these (params.h,
- * params.c), in this order, where the recording keys stand; all of them are PF_OUT.
- * X(key, type, unit, default, min, max, help), type REAL (double) or INT (long). */
-#define REC_KEYS(X)                                                                                             \
-	X(traj_rate, REAL, "Hz", "100", 0, 1e6, "samples per second of the intruder trajectory (0 = none)")       \
-	X(energy_rate, REAL, "Hz", "0", 0, 1e6,                                                                   \
-	  "samples per second of the energy series (kinetic: translational and rotational, elastic, "            \
-	  "centre-of-mass height, largest overlap; /observables/energy; 0 = none)")                              \
-	X(contact_rate, REAL, "Hz", "0", 0, 1e6,                                                                  \
-	  "samples per second of the contact dump (every contact: the two disks, normal and tangential "         \
-	  "force, normal, place; /observables/contacts, for force chains; 0 = none)")                            \
-	X(bed_kinetic_samples, INT, "", "0", 0, 100000,                                                           \
-	  "samples per drive period of the bed's kinetic energy (box frame), averaged per period "               \
-	  "(/observables/bed_kinetic) and over the run (bed_kinetic_mean); 0 = none")                           \
-	X(bed_height_samples, INT, "", "0", 0, 100000,                                                            \
-	  "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "        \
-	  "(/observables/bed_height) and over the run (bed_height_mean); 0 = none")
-
 /* One column of a journal record (for a variable record: of each of its items). */
 typedef struct rec_col {
 	const char *name, *unit;
@@ -109,19 +89,14 @@ typedef struct sb_record {
 	/* a fixed-length observable without a writer of its own (h5out.c): its group's
 	 * definition attribute */
 	const char *def;
-	/* the sampling function: one sample of the corrected state at time t, journaled */
-	int (*sample)(struct sb_sim *s, double t, sb_err *e);
-	/* len = 0: the length of the record that starts at rec */
-	long (*vlen)(const struct sb_sim *s, const double *rec);
 } sb_record;
 
 /* The table, REC_N rows indexed by enum rec_id. */
 const sb_record *rec_table(void);
 /* The table's own invariants (asserted at sim_init in the test build): NULL, or the
  * first one a row breaks - every row's key in the parameter table, of its clock's
- * type; a fixed-length row's columns as many as its doubles, time first; a variable
- * row's length function; a per-period row of fixed length; a sampling function;
- * run-file groups distinct; every summary's row the trajectory (h5out's intruder
+ * type; a fixed-length row's columns as many as its doubles, time first; a
+ * per-period row of fixed length; run-file groups distinct; every summary's row the trajectory (h5out's intruder
  * summary) or a fixed-length observable with a value column. */
 const char *rec_table_check(void);
 /* The same for n rows laid out as the table (its test breaks a copy of it). */
@@ -131,12 +106,11 @@ int rec_by_tag(int tag);
 /* The table as TSV for tools (shake --records): name, key, clock (rate, strobe, ring,
  * phase), journal tag, run-file group, columns as name[unit] joined by commas. */
 void rec_print_table(FILE *f);
-/* Does the scene ask for it (its key on; an intruder where the row needs one)? */
-int rec_on(const struct sb_sim *s, int id);
+/* Does the scene ask for it (its key on; an intruder, has_intruder, where the row
+ * needs one)? */
+int rec_on(const sb_scene *sc, int has_intruder, int id);
 /* A rate row's rate (Hz), a phase row's samples per period: its key's value. */
-double rec_rate(const struct sb_sim *s, int id);
-/* The length of the record of row id that starts at rec. */
-long rec_len(const struct sb_sim *s, int id, const double *rec);
+double rec_rate(const sb_scene *sc, int id);
 
 /* The per-run summaries: attributes of the run file's root, one value per run, written
  * from a recorded quantity when the run ends; lib/results.c makes each a result

@@ -22,6 +22,7 @@
 #include "observe.h"
 #include "periodic.h"
 #include "place.h"
+#include "sample.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -379,9 +380,9 @@ static void observables(void)
 		return;
 	}
 	long nf = 0, nd = 0;
-	ok = !obs_sample(&o, &st, 0, 4, NULL, &nf, &nd, &e);
+	ok = !sample_obs_strobe(&o, &st, 0, 4, NULL, &nf, &nd, &e);
 	st.q[C_X][0][0] = 0.5; /* +1 cm through the seam */
-	ok = ok && !obs_sample(&o, &st, 0.25, 4, NULL, &nf, &nd, &e);
+	ok = ok && !sample_obs_strobe(&o, &st, 0.25, 4, NULL, &nf, &nd, &e);
 	/* the midpoint is x = 0 (wrapped), y = 3.1: column 0, row 3.1 / cell */
 	const int row = (int)floor(3.1 / o.cell);
 	const size_t c0 = (size_t)row * o.nx;

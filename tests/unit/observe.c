@@ -10,6 +10,7 @@
 #include "observe.h"
 #include "place.h"
 #include "record.h"
+#include "sample.h"
 #include "testlib.h"
 
 static char jpath[] = "/tmp/sb_obs_test_XXXXXX";
@@ -61,10 +62,10 @@ static void test_flux(void)
 	journal_open(&jr, jpath, st.nm, -1, &e);
 	long nf = 0, nd = 0;
 	set_pos(&st, x0, y0);
-	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0, 3, &jr, &nf, &nd, &e);
 	CHECK("observe.flux.first_sample_no_record", nf == 0, "nf %ld", nf);
 	set_pos(&st, x1, y1);
-	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
 	long off;
 	journal_sync(&jr, &off, &e);
 	journal_close(&jr);
@@ -113,9 +114,9 @@ static void test_flux_seam(void)
 	journal_open(&jr, jpath, st.nm, -1, &e);
 	long nf = 0, nd = 0;
 	set_pos(&st, x0, y0);
-	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0, 3, &jr, &nf, &nd, &e);
 	set_pos(&st, x1, y1);
-	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
 	long off;
 	journal_sync(&jr, &off, &e);
 	journal_close(&jr);
@@ -195,7 +196,7 @@ static void test_field(void)
 			st.q[C_X][0][i] = x[i] + 0.3 * k;
 			st.q[C_Y][0][i] = y[i] - 0.1 * k;
 		}
-		obs_sample(&o, &st, k * 0.25, 4, &jr, &nf, &nd, &e);
+		sample_obs_strobe(&o, &st, k * 0.25, 4, &jr, &nf, &nd, &e);
 	}
 	long off;
 	journal_sync(&jr, &off, &e);
