@@ -128,14 +128,24 @@ double drive_axis_freq(int kind, double x, double A, double g)
 	return kind == AXIS_GAMMA ? sqrt(x * g / A) / SB_TWO_PI : x / (SB_TWO_PI * A);
 }
 
-/* the frequency's unit is the parameter table's too (tests/unit/drive_axis.c checks) */
-static const struct {
-	const char *name, *unit;
-} AXES[AXIS_N] = {
-	[AXIS_FREQUENCY] = {"frequency", "Hz"},
-	[AXIS_GAMMA] = {"gamma", ""},
-	[AXIS_VELOCITY] = {"velocity", "cm/s"},
+/* the frequency's unit is the parameter table's too (tests/unit/drive.c checks) */
+static const sb_axis_row AXES[AXIS_N] = {
+	[AXIS_FREQUENCY] = {"frequency", "Hz", "frequency", "f", 1},
+	[AXIS_GAMMA] = {"gamma", "", "peak acceleration", "Γ", 2},
+	[AXIS_VELOCITY] = {"velocity", "cm/s", "peak velocity", "v", 1},
 };
+
+const sb_axis_row *drive_axis_row(int kind) { return kind >= 0 && kind < AXIS_N ? &AXES[kind] : NULL; }
+
+double drive_axis_freq_from(int kind, double x, double x0, double f0)
+{
+	const sb_axis_row *r = drive_axis_row(kind);
+	if (!r || kind == AXIS_FREQUENCY)
+		return x;
+	if (r->power == 2) /* Gamma = A (2 pi f)^2 / g */
+		return x > 0 && x0 > 0 ? f0 * sqrt(x / x0) : NAN;
+	return x0 > 0 ? f0 * x / x0 : NAN; /* v = A 2 pi f */
+}
 
 const char *drive_axis_name(int kind)
 {

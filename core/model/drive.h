@@ -33,18 +33,36 @@ double drive_gamma(double A, double f, double g);
 double drive_velocity(double A, double f);
 
 /* The axes a drive is measured on: its frequency f, Gamma (drive_gamma) or its peak
- * velocity v (drive_velocity). The one table of their names ("frequency", "gamma",
- * "velocity": the campaign files' words and the tools' --axis) and units ("Hz", "",
- * "cm/s"); the campaign's search axes (docs/campaigns.md, "Axes in Gamma and v") and
- * the figures' axes use it. */
+ * velocity v (drive_velocity). One row per axis holds all there is to say about it:
+ * its name (the campaign files' word and the tools' --axis), its unit (as the parameter
+ * table writes units), its words and symbol in a figure's text (docs/model.md's
+ * symbols), and how it scales with the frequency at a fixed amplitude (as f^power).
+ * The campaign's search axes (docs/campaigns.md, "Axes in Gamma and v"), the figures'
+ * axes and the onset search's readers use it; tests/integration/one_place_core.sh fails
+ * when another file of core/, lib/ or analysis/ spells an axis out again. */
 enum sb_axis { AXIS_FREQUENCY, AXIS_GAMMA, AXIS_VELOCITY, AXIS_N };
 
+typedef struct sb_axis_row {
+	const char *name;   /* "frequency", "gamma", "velocity" */
+	const char *unit;   /* "Hz", "", "cm/s" */
+	const char *words;  /* "frequency", "peak acceleration", "peak velocity" */
+	const char *symbol; /* "f", "Γ", "v" (UTF-8) */
+	int power;          /* the axis grows as f^power at a fixed amplitude: 1, 2, 1 */
+} sb_axis_row;
+
+/* The row of axis kind; NULL for another kind. */
+const sb_axis_row *drive_axis_row(int kind);
 /* The value on axis kind of a drive of amplitude A (cm) at frequency f (Hz) under
  * gravity g (cm/s^2); f itself for AXIS_FREQUENCY (or another kind). */
 double drive_axis(int kind, double A, double f, double g);
 /* The inverse: the frequency (Hz) at which a drive of amplitude A reaches x on axis
  * kind; NaN unless x > 0 and A > 0 (x itself on the frequency axis). */
 double drive_axis_freq(int kind, double x, double A, double g);
+/* The frequency (Hz) at which a drive reaches x on axis kind, when a drive of the same
+ * amplitude (and gravity) is at x0 on that axis at frequency f0: f0 (x / x0)^(1/power),
+ * from the row's power alone; NaN unless x0 > 0 (and x > 0 on a squared axis); x
+ * itself on the frequency axis (or another kind). */
+double drive_axis_freq_from(int kind, double x, double x0, double f0);
 /* Its name and unit ("?" and "" for another kind); the kind of a name, -1 for another. */
 const char *drive_axis_name(int kind);
 const char *drive_axis_unit(int kind);
