@@ -397,7 +397,7 @@ SB_INLINE void cpa_block(const int nval, const cpa_args *a, int i, const int cou
 	cp_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, count, 0, &y0, &y1);
 	cp_block(nval, a->c, a->h, ft, sb_loadn(a->inv_i + i, count), 0, a->t, i, count, 1, &t0, &t1);
 	rec_store(a->rec + 8 * i, x0, y0, x1, y1, t1, R, im, count);
-	/* the step's check of the state (sim.c), operation by operation */
+	/* the step's check of the state (step.c, check_state), operation by operation */
 	const sb_vd dx = x0 - sb_loadn(a->xref + i, count), dy = y0 - sb_loadn(a->yref + i, count);
 	const sb_vd d2 = dx * dx + dy * dy;
 	const unsigned live = (1u << count) - 1;

@@ -166,7 +166,7 @@ SB_INLINE void cpa512_block(const int nval, const cpa_args *a, int i, int count,
 	cp512_block(nval, a->c, a->h, fy, im, a->gy, a->y, i, full, m, 0, &y0, &y1);
 	cp512_block(nval, a->c, a->h, ft, vload(a->inv_i + i, full, m), 0, a->t, i, full, m, 1, &t0, &t1);
 	k512_rec_store(a->rec + 8 * i, x0, y0, x1, y1, t1, R, im, count);
-	/* the step's check of the state (sim.c), operation by operation */
+	/* the step's check of the state (step.c, check_state), operation by operation */
 	const v8 dx = x0 - vload(a->xref + i, full, m), dy = y0 - vload(a->yref + i, full, m);
 	const v8 d2 = dx * dx + dy * dy;
 	const v8 at = _mm512_abs_pd(t0);

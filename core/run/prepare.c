@@ -66,6 +66,7 @@ static int settle(sb_sim *s, sb_err *e)
 	const long nmin = llround(sc->settle_min / sc->dt), nmax = llround(sc->settle_max / sc->dt);
 	if (sim_start(s, gy, e))
 		return e->code;
+	s->stage = "settling";
 	double wlast = sb_now();
 	for (long k = 1;; k++) {
 		double t = k * sc->dt;
@@ -74,19 +75,18 @@ static int settle(sb_sim *s, sb_err *e)
 		 * the surface to rest in a time 1 / settle_drag instead of a long series of
 		 * bounces; it does not change what a static packing is. */
 		const int look = (k % every == 0 && k >= nmin) || k >= nmax;
-		if (step_once(s, gy, sc->settle_drag, t, k, "settling", !look, NULL, e))
+		if (step_once(s, k, gy, sc->settle_drag, !look, NULL, e))
 			return e->code;
 		if (k % every == 0 && k >= nmin) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
 			if (s->progress && sb_now() - wlast >= 1.0) { /* a 10^5-grain bed takes minutes */
 				wlast = sb_now();
-				fprintf(stderr, "\rshake: settling, t = %.2f s, kinetic energy %.3g erg per disk (settled below %g) ",
-					t, ke, sc->settle_ke);
-				fflush(stderr);
+				s->progress(s->progress_ctx,
+					    &(sb_progress){PROG_SETTLING, .t = t, .ke = ke, .ke_settled = sc->settle_ke});
 			}
 			if (ke < sc->settle_ke) {
 				if (s->progress)
-					fprintf(stderr, "\rshake: settled after %.2f s%60s\n", t, "");
+					s->progress(s->progress_ctx, &(sb_progress){PROG_SETTLED, .t = t});
 				s->settle_steps = k;
 				s->settle_time = t;
 				return 0;
@@ -94,10 +94,7 @@ static int settle(sb_sim *s, sb_err *e)
 		}
 		if (k >= nmax) {
 			double ke = s->st.nm ? sim_kinetic(s) / s->st.nm : 0;
-			s->status = SB_ESETTLE;
-			s->status_time = t;
-			s->status_step = k;
-			snprintf(s->status_msg, sizeof s->status_msg,
+			sim_fail(s, SB_ESETTLE, t, k,
 				 "settling: mean kinetic energy %.3g erg per disk still above settle_ke = %g after settle_max = %g s",
 				 ke, sc->settle_ke, sc->settle_max);
 			return sb_errf(e, SB_ESETTLE, "%s", s->status_msg);
@@ -126,6 +123,7 @@ int sim_prepare(sb_sim *s, sb_err *e)
 		/* settling runs in the lab frame with the box at rest */
 		if (settle(s, e))
 			return e->code;
+		s->stage = "step";
 	}
 	s->surface0 = surface_height(s);
 	s->intruder_y0 = s->intruder >= 0 ? s->st.q[C_Y][0][s->intruder] : NAN;

@@ -112,6 +112,8 @@ static int record(sb_sim *s, const sched *c, sb_err *e)
 	return 0;
 }
 
+/* At most once a second (and at the end), the loop's progress to whoever wants it
+ * (s->progress; bin/shake prints it). */
 static void progress(sb_sim *s, double t0, long step0, double *last)
 {
 	double w = sb_now();
@@ -120,9 +122,8 @@ static void progress(sb_sim *s, double t0, long step0, double *last)
 	*last = w;
 	double rate = (s->step - step0) / fmax(w - t0, 1e-9);
 	double eta = rate > 0 ? (s->nsteps - s->step) / rate : 0;
-	fprintf(stderr, "\rshake: t = %.2f / %.2f s  %.0f steps/s  ETA %02d:%02d:%02d ", s->step * s->sc.dt,
-		s->sc.duration, rate, (int)(eta / 3600), (int)fmod(eta / 60, 60), (int)fmod(eta, 60));
-	fflush(stderr);
+	s->progress(s->progress_ctx, &(sb_progress){PROG_SHAKING, .t = s->step * s->sc.dt, .t_end = s->sc.duration,
+						    .steps_per_s = rate, .eta = eta});
 }
 
 /* The stop rules (docs/model.md, "Stop rules"): once the run's question is answered
@@ -175,16 +176,14 @@ int sim_run(sb_sim *s, sb_err *e)
 	stop_rules(s); /* a resumed run whose rule fired ends where it would have */
 	s->ov_track = 1;
 	step_arm_overlap(s);
+	s->stage = "shaking";
 	double w0 = sb_now(), wlast = w0, seg = w0; /* seg: loop time not yet in loop_seconds */
 	long step0 = s->step;
 	while (s->step < s->nsteps) {
 		/* a stop waits until the state is corrected (not yet predicted) */
 		if (s->stop && *s->stop && !s->predicted) {
-			s->status = SB_EINTR;
-			s->status_time = s->step * dt;
-			s->status_step = s->step;
-			snprintf(s->status_msg, sizeof s->status_msg, "interrupted at t = %.6f s, step %ld",
-				 s->status_time, s->step);
+			sim_fail(s, SB_EINTR, s->step * dt, s->step, "interrupted at t = %.6f s, step %ld", s->step * dt,
+				 s->step);
 			break;
 		}
 		const long n1 = s->step + 1;
@@ -194,16 +193,15 @@ int sim_run(sb_sim *s, sb_err *e)
 		int look = n1 >= s->nsteps || n1 == s->next_ckpt_step || (s->stop && *s->stop);
 		for (int k = 0; k < REC_N && !look; k++)
 			look = due(s, &c, k, n1);
-		if (step_once(s, -sc->gravity - sim_box_a(s, t1), 0, t1, n1, "shaking", !look,
-			      ring ? s->obs.fabs_sum : NULL, e))
+		if (step_once(s, n1, -sc->gravity - sim_box_a(s, t1), 0, !look, ring ? s->obs.fabs_sum : NULL, e))
 			break;
 		s->step = n1;
 		if (ring && sample_take(s, REC_RING, t1, e))
 			break;
-		TIC(PH_RECORD);
+		TIC(s, PH_RECORD);
 		if (record(s, &c, e))
 			break;
-		TOC(PH_RECORD);
+		TOC(s, PH_RECORD);
 		stop_rules(s);
 		if (s->step == s->next_ckpt_step) {
 			double w = sb_now(); /* the checkpoint carries the CPU time so far */
@@ -222,14 +220,10 @@ int sim_run(sb_sim *s, sb_err *e)
 	s->loop_seconds += sb_now() - seg;
 	if (s->progress && s->nsteps > 0) {
 		progress(s, w0, step0, &wlast);
-		fputc('\n', stderr);
+		s->progress(s->progress_ctx, &(sb_progress){PROG_SHAKEN, .t = s->step * dt, .t_end = sc->duration});
 	}
-	if (e->code && !s->status) {
-		s->status = e->code;
-		snprintf(s->status_msg, sizeof s->status_msg, "%s", e->msg);
-		s->status_time = s->step * dt;
-		s->status_step = s->step;
-	}
+	if (e->code && !s->status)
+		sim_fail(s, e->code, s->step * dt, s->step, "%s", e->msg);
 	return s->status;
 }
 

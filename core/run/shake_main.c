@@ -1,6 +1,7 @@
 /* shake_main.c - bin/shake: run one scene. Only this file prints and exits. */
 #include <errno.h>
 #include <gsl/gsl_errno.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,6 +47,30 @@ static void print_kernels(FILE *f, int plain)
 	}
 	for (int i = 0; i < n; i++)
 		fprintf(f, "%s %s %s %s\n", p[i].name, p[i].runnable ? "yes" : "no", p[i].test ? "test" : "-", p[i].needs);
+}
+
+/* The run's progress on stderr, one line rewritten in place (the library reports it:
+ * sb_progress, core/run/sim.h; only this file prints). */
+static void show_progress(void *ctx, const sb_progress *p)
+{
+	(void)ctx;
+	switch (p->kind) {
+	case PROG_SETTLING:
+		fprintf(stderr, "\rshake: settling, t = %.2f s, kinetic energy %.3g erg per disk (settled below %g) ", p->t,
+			p->ke, p->ke_settled);
+		break;
+	case PROG_SETTLED:
+		fprintf(stderr, "\rshake: settled after %.2f s%60s\n", p->t, "");
+		break;
+	case PROG_SHAKING:
+		fprintf(stderr, "\rshake: t = %.2f / %.2f s  %.0f steps/s  ETA %02d:%02d:%02d ", p->t, p->t_end,
+			p->steps_per_s, (int)(p->eta / 3600), (int)fmod(p->eta / 60, 60), (int)fmod(p->eta, 60));
+		break;
+	case PROG_SHAKEN:
+		fputc('\n', stderr);
+		break;
+	}
+	fflush(stderr);
 }
 
 static void usage(FILE *f)
@@ -159,7 +184,7 @@ int main(int argc, char **argv)
 	const int progress = sc.progress == TRI_YES || (sc.progress == TRI_AUTO && isatty(2));
 	s->stop = &g_stop;
 	s->profile = profile;
-	s->progress = progress;
+	s->progress = progress ? show_progress : NULL;
 
 	int loaded = sc.restart == TRI_NO ? 0 : ckpt_load(s, &e);
 	if (loaded < 0 || e.code) {
@@ -177,7 +202,7 @@ int main(int argc, char **argv)
 		sim_init(s, &sc, &e);
 		s->stop = &g_stop;
 		s->profile = profile;
-		s->progress = progress;
+		s->progress = progress ? show_progress : NULL;
 	}
 	if (!loaded) {
 		if (s->progress)

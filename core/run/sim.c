@@ -5,8 +5,8 @@
 #include "sim.h"
 
 #include <assert.h>
-
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -23,6 +23,7 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 	assert(!rec_table_check());
 	memset(s, 0, sizeof *s);
 	s->sc = *sc;
+	s->stage = "step";
 	s->law = (sb_law){sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
 			  sc->clip_attractive};
 	integ_init(&s->in, sc->integrator, sc->dt);
@@ -53,6 +54,18 @@ void sim_free(sb_sim *s)
 	kernel_free(s->kern);
 	s->kern = NULL;
 	state_free(&s->st);
+}
+
+int sim_fail(sb_sim *s, int code, double t, long step, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(s->status_msg, sizeof s->status_msg, fmt, ap);
+	va_end(ap);
+	s->status = code;
+	s->status_time = t;
+	s->status_step = step;
+	return code;
 }
 
 double sim_kinetic(const sb_sim *s)

@@ -19,6 +19,22 @@
 
 enum sb_phase { PH_PREDICT, PH_CHECK, PH_NEIGH, PH_FORCE, PH_CORRECT, PH_RECORD, PH_N };
 
+/* What a run reports while it runs, for whoever shows it: the library prints nothing
+ * (docs/engine.md); bin/shake shows a line on stderr when the progress key says so. */
+enum sb_progress_kind {
+	PROG_SETTLING, /* settling: t, ke (mean kinetic energy per mobile disk, erg), ke_settled */
+	PROG_SETTLED,  /* settled at t */
+	PROG_SHAKING,  /* shaking: t of t_end, steps_per_s, eta (s) */
+	PROG_SHAKEN,   /* the loop ended (after its last PROG_SHAKING) */
+};
+typedef struct sb_progress {
+	enum sb_progress_kind kind;
+	double t, t_end;
+	double ke, ke_settled;
+	double steps_per_s, eta;
+} sb_progress;
+typedef void sb_progress_fn(void *ctx, const sb_progress *p);
+
 typedef struct sb_sim {
 	sb_scene sc;
 	sb_state st;
@@ -41,7 +57,7 @@ typedef struct sb_sim {
 	int predicted;           /* the next step's predictor already ran (fused) */
 	sb_screen screen;        /* ... and screened the predicted state (when screen.done) */
 	int ov_track;            /* shaking: the kernel's overlap threshold is the record so
-				  * far (obs.ov_max), not the stop (sim.c) */
+				  * far (obs.ov_max), not the stop (step.c, step_arm_overlap) */
 	long rec_n[REC_N];       /* records written so far, per recorded quantity (record.h) */
 	long rec_next[REC_N];    /* the step the next sample of a rate row is due */
 	long n_strobe, next_strobe_step; /* stroboscopic samples taken; the next one's step */
@@ -66,7 +82,10 @@ typedef struct sb_sim {
 	double loop_seconds;
 	double write_seconds; /* assembling the HDF5 file at the end (--profile) */
 	volatile sig_atomic_t *stop;
-	int progress;
+	sb_progress_fn *progress; /* NULL: nobody wants progress */
+	void *progress_ctx;
+	const char *stage;        /* what a step's failure says it was doing ("settling",
+				   * "shaking"; "step" outside the two) */
 } sb_sim;
 
 int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e);
@@ -94,5 +113,11 @@ double sim_box_a(const sb_sim *s, double t);
 
 /* Kinetic energy (translation + rotation) of the mobile disks in the box frame. */
 double sim_kinetic(const sb_sim *s);
+
+/* How the run ended, the one place it is set: status code (err.h), the simulated time
+ * and step where it ended, and the message (printf-style) that main shows and the run
+ * file records. Returns code. */
+int sim_fail(sb_sim *s, int code, double t, long step, const char *fmt, ...)
+	__attribute__((format(printf, 5, 6)));
 
 #endif

@@ -1,5 +1,6 @@
-/* step.c - one time step, as a recipe: predict -> check -> neighbours -> forces ->
- * correct (the recording is the run loop's, run.c). Two recipes: the reference step,
+/* step.c - one time step, as a recipe: predict -> check -> watch the rise ->
+ * neighbours -> forces -> correct (the recording is the run loop's, run.c;
+ * core/README.md, "The step recipe"). Two recipes: the reference step,
  * whose corrected state anybody may read, and the fused one, whose corrector also
  * predicts the next step and takes the forces straight from the
  * kernel (kernel.h). */
@@ -49,17 +50,14 @@ static scan check_state(const sb_sim *s)
 	return r;
 }
 
+/* A failed step ends the run: its status (sim_fail) and the error returned. */
 static int fail(sb_sim *s, sb_err *e, int code, double t, long step, const char *fmt, const char *what)
 {
-	s->status = code;
-	s->status_time = t;
-	s->status_step = step;
-	snprintf(s->status_msg, sizeof s->status_msg, fmt, what, t, step);
+	sim_fail(s, code, t, step, fmt, what, t, step);
 	return sb_errf(e, code, "%s", s->status_msg);
 }
 
-/* One step of length dt; gy is the uniform acceleration in y at the new time.
- * t and step name the new time in messages. */
+/* Settling's viscous drag, -gamma m v on each mobile disk (v = q[c][1] / dt). */
 static void add_drag(sb_state *st, double gamma, double inv_dt)
 {
 	const double k = gamma * inv_dt;
@@ -99,7 +97,7 @@ static void new_overlap_record(sb_sim *s, double f, int a, int b, double t)
 /* The state after the predictor, screened: rebuild the list, or stop the run on a
  * non-finite number or a disk outside the box. The fused corrector of the last step
  * may have screened it already (scr.done). */
-static int check(sb_sim *s, const char *stage, double t, long step, int *rebuild, sb_err *e)
+static int check(sb_sim *s, double t, long step, int *rebuild, sb_err *e)
 {
 	sb_state *st = &s->st;
 	scan c = {s->screen.rebuild, s->screen.bad, s->screen.out, -1};
@@ -114,10 +112,10 @@ static int check(sb_sim *s, const char *stage, double t, long step, int *rebuild
 	char what[256];
 	int i = c.where < 0 ? 0 : c.where;
 	if (c.bad_num) {
-		snprintf(what, sizeof what, "%s: non-finite position or angle of disk %d", stage, st->id[i]);
+		snprintf(what, sizeof what, "%s: non-finite position or angle of disk %d", s->stage, st->id[i]);
 		return fail(s, e, SB_ENAN, t, step, "%s at t = %.6f s, step %ld (time step too large?)", what);
 	}
-	snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", stage, st->id[i],
+	snprintf(what, sizeof what, "%s: disk %d left the box at (%.3f, %.3f) cm", s->stage, st->id[i],
 		 st->q[C_X][0][i], st->q[C_Y][0][i]);
 	return fail(s, e, SB_ELEFT, t, step, "%s at t = %.6f s, step %ld", what);
 }
@@ -149,8 +147,7 @@ static int neighbours(sb_sim *s, sb_err *e)
 /* Forces at the predicted state (keep: for the fused corrector; track: the ring's
  * per-disk |F| sums; drag: settling's viscous drag). An overlap past the kernel's
  * threshold beats the run's record (kept, the step goes on) or the stop (it ends). */
-static int forces(sb_sim *s, int keep, double *track, double drag, const char *stage, double t, long step,
-		  sb_err *e)
+static int forces(sb_sim *s, int keep, double *track, double drag, double t, long step, sb_err *e)
 {
 	sb_state *st = &s->st;
 	const double inv_dt = 1.0 / s->sc.dt;
@@ -171,52 +168,52 @@ static int forces(sb_sim *s, int keep, double *track, double drag, const char *s
 	}
 	char what[256];
 	snprintf(what, sizeof what, "%s: overlap of disks %d and %d is %.3f of the smaller radius (max_overlap %g)",
-		 stage, st->id[a], st->id[b], f, s->sc.max_overlap);
+		 s->stage, st->id[a], st->id[b], f, s->sc.max_overlap);
 	return fail(s, e, SB_EOVERLAP, t, step, "%s at t = %.6f s, step %ld", what);
 }
 
 /* What both recipes begin with: predict (unless the last step's corrector did),
- * check, watch the rise, rebuild the neighbour list when due. */
-static int step_begin(sb_sim *s, double t, long step, const char *stage, sb_err *e)
+ * check, watch the rise (watch_rise: the waiting time), rebuild the neighbour list
+ * when due. */
+static int step_begin(sb_sim *s, double t, long step, sb_err *e)
 {
 	int rebuild;
 	if (!s->predicted) {
-		TIC(PH_PREDICT);
+		TIC(s, PH_PREDICT);
 		integ_predict(&s->in, &s->st);
-		TOC(PH_PREDICT);
+		TOC(s, PH_PREDICT);
 	}
 	s->predicted = 0;
-	TIC(PH_CHECK);
-	int rc = check(s, stage, t, step, &rebuild, e);
-	TOC(PH_CHECK);
+	TIC(s, PH_CHECK);
+	int rc = check(s, t, step, &rebuild, e);
+	TOC(s, PH_CHECK);
 	if (rc)
 		return rc;
 	watch_rise(s, t, step);
 	if (rebuild) {
-		TIC(PH_NEIGH);
+		TIC(s, PH_NEIGH);
 		rc = neighbours(s, e);
-		TOC(PH_NEIGH);
+		TOC(s, PH_NEIGH);
 	}
 	return rc;
 }
 
-/* The reference step, as in a textbook MD code: predict, check, neighbours, forces,
- * correct (record: sim_run). gy is the uniform acceleration in y at the new time t
+/* The reference step, as in a textbook MD code: predict, check, watch the rise,
+ * neighbours, forces, correct (record: sim_run). gy is the uniform acceleration in y at the new time t
  * (step). Its corrected state is in st for whoever reads it next. */
-static int step_reference(sb_sim *s, double gy, double drag, double t, long step, const char *stage,
-			  double *track, sb_err *e)
+static int step_reference(sb_sim *s, double gy, double drag, double t, long step, double *track, sb_err *e)
 {
-	int rc = step_begin(s, t, step, stage, e);
+	int rc = step_begin(s, t, step, e);
 	if (rc)
 		return rc;
-	TIC(PH_FORCE);
-	rc = forces(s, 0, track, drag, stage, t, step, e);
-	TOC(PH_FORCE);
+	TIC(s, PH_FORCE);
+	rc = forces(s, 0, track, drag, t, step, e);
+	TOC(s, PH_FORCE);
 	if (rc)
 		return rc;
-	TIC(PH_CORRECT);
+	TIC(s, PH_CORRECT);
 	integ_correct(&s->in, &s->st, gy);
-	TOC(PH_CORRECT);
+	TOC(s, PH_CORRECT);
 	return 0;
 }
 
@@ -224,18 +221,18 @@ static int step_reference(sb_sim *s, double gy, double drag, double t, long step
  * the corrector also predicts the next step (s->predicted), and without settling's
  * drag it takes the forces straight from the kernel and screens the predicted state
  * (kernel_correct_predict). Bit-identical to step_reference followed by a predictor. */
-static int step_fused(sb_sim *s, double gy, double drag, double t, long step, const char *stage, sb_err *e)
+static int step_fused(sb_sim *s, double gy, double drag, double t, long step, sb_err *e)
 {
-	int rc = step_begin(s, t, step, stage, e);
+	int rc = step_begin(s, t, step, e);
 	if (rc)
 		return rc;
 	const int keep = drag == 0; /* the drag acts on st->f, which a kept force skips */
-	TIC(PH_FORCE);
-	rc = forces(s, keep, NULL, drag, stage, t, step, e);
-	TOC(PH_FORCE);
+	TIC(s, PH_FORCE);
+	rc = forces(s, keep, NULL, drag, t, step, e);
+	TOC(s, PH_FORCE);
 	if (rc)
 		return rc;
-	TIC(PH_CORRECT);
+	TIC(s, PH_CORRECT);
 	if (keep) {
 		const double half = 0.5 * s->sc.skin;
 		s->screen = (sb_screen){half * half, s->xlo, s->xhi, s->ylo, 0, 0, 0, 0};
@@ -244,21 +241,20 @@ static int step_fused(sb_sim *s, double gy, double drag, double t, long step, co
 		integ_correct_predict(&s->in, &s->st, gy);
 	}
 	s->predicted = 1;
-	TOC(PH_CORRECT);
+	TOC(s, PH_CORRECT);
 	return 0;
 }
 
-int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, int fuse,
-		     double *track, sb_err *e)
+int step_once(sb_sim *s, long step, double gy, double drag, int fuse, double *track, sb_err *e)
 {
-	return fuse && !track ? step_fused(s, gy, drag, t, step, stage, e)
-			      : step_reference(s, gy, drag, t, step, stage, track, e);
+	const double t = step * s->sc.dt; /* the new time, as the callers' schedules count it */
+	return fuse && !track ? step_fused(s, gy, drag, t, step, e) : step_reference(s, gy, drag, t, step, track, e);
 }
 
 int sim_step(sb_sim *s, double gy, sb_err *e)
 {
 	s->step++;
-	return step_once(s, gy, 0, s->step * s->sc.dt, s->step, "step", 0, NULL, e);
+	return step_once(s, s->step, gy, 0, 0, NULL, e);
 }
 
 /* Forces at the current state and the integrator's acceleration term from them. */

@@ -4,15 +4,15 @@
 
 #include "sim.h"
 
-/* One step of length dt to the new time t (step number step): gy is the uniform
- * acceleration in y at t (gravity and, in the box frame, minus the box's), drag the
- * settling's viscous drag (0 while shaking), stage names the phase in messages. fuse:
+/* One step of length dt to step number step (the new time t = step dt), as a recipe:
+ * predict, check, watch the rise, neighbours, forces, correct (core/README.md, "The
+ * step recipe"). gy is the uniform acceleration in y at t (gravity and, in the box
+ * frame, minus the box's), drag the settling's viscous drag (0 while shaking). fuse:
  * nobody reads the corrected state, so the next step's predictor runs inside this
  * step's corrector (s->predicted). track: the ring's per-disk |F| sums, or NULL. A
  * failure (non-finite number, a disk out of the box, an overlap past max_overlap) is
- * recorded in s->status and returned. */
-int step_once(sb_sim *s, double gy, double drag, double t, long step, const char *stage, int fuse,
-	      double *track, sb_err *e);
+ * the run's status (sim_fail; its message names s->stage) and is returned. */
+int step_once(sb_sim *s, long step, double gy, double drag, int fuse, double *track, sb_err *e);
 
 /* Arm the kernel's overlap flag for the run's overlap record (step.c). */
 void step_arm_overlap(sb_sim *s);

@@ -192,7 +192,7 @@ static void crossing(void)
 	double xmin = INFINITY, xmax = -INFINITY, xprev = x0;
 	/* fused steps (the run loop's), the last one a reference step so the state is read */
 	for (long k = 1; k <= n && ok; k++) {
-		ok = !step_once(s, 0, 0, k * dt, k, "test", k < n, NULL, &e);
+		ok = !step_once(s, k, 0, 0, k < n, NULL, &e);
 		if (k == n || !(k % 50)) {
 			kernel_sync(s->kern, &s->st);
 			const double x = s->st.q[C_X][0][0];
@@ -269,14 +269,14 @@ static double energy(sb_sim *s)
  * seam contact. */
 static int run_gas(sb_sim *s, long n, int fuse, int *wraps, long *seam_contacts, double *emax_dev, sb_err *e)
 {
-	const double W = s->sc.width, dt = s->sc.dt;
+	const double W = s->sc.width;
 	double *xp = malloc(sizeof(double) * (size_t)s->st.nm);
 	memcpy(xp, s->st.q[C_X][0], sizeof(double) * (size_t)s->st.nm);
 	const double e0 = emax_dev ? energy(s) : 0;
 	int ok = 1;
 	for (long k = 1; k <= n && ok; k++) {
 		const int f = fuse && k < n && k % 100;
-		ok = !step_once(s, 0, 0, k * dt, k, "test", f, NULL, e);
+		ok = !step_once(s, k, 0, 0, f, NULL, e);
 		if (f)
 			continue;
 		kernel_sync(s->kern, &s->st);
