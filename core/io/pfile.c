@@ -740,7 +740,7 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
 			if ((d->kind == KIND_WALL) != pass)
 				continue;
 			sb_err pe = {0};
-			err = prepare_push(sc, st, d->x, d->y, d->r, d->kind, &pe);
+			err = place_push(sc, st, d->x, d->y, d->r, d->kind, &pe);
 			if (err == SB_EUSAGE) /* the mass model: name the disk's line */
 				sb_errf(e, err, "%s:%ld: %s", path, d->line, pe.msg);
 			else if (err)

@@ -6,14 +6,14 @@
 
 #include "guard.h"
 
-double prepare_mass(const sb_scene *sc, double r)
+double place_mass(const sb_scene *sc, double r)
 {
 	return sc->mass_factor * sc->density * r * r;
 }
 
-int prepare_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e)
+int place_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e)
 {
-	double m = prepare_mass(sc, r);
+	double m = place_mass(sc, r);
 	double inv_m = 1.0 / m, inv_i = 1.0 / (0.5 * m * r * r);
 	/* every key is in range and still the product can underflow (r = 1e-160) or the
 	 * moment of inertia alone does: the dynamics would divide by zero */
@@ -105,7 +105,7 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 
 	int err = 0;
 	if (R1 > 0)
-		err = prepare_push(sc, st, ix, iy, R1, KIND_INTRUDER, e);
+		err = place_push(sc, st, ix, iy, R1, KIND_INTRUDER, e);
 	long placed = 0, sites = 0;
 	double top = R1 > 0 ? iy + R1 : 0;
 	for (long row = 0; placed < sc->n_grains && !err; row++) {
@@ -121,7 +121,7 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 			const double x = xoff + c * pitch + dx;
 			if (R1 > 0 && hypot(x - ix, y - iy) < R1 + r + gap)
 				continue;
-			err = prepare_push(sc, st, x, y, r, KIND_GRAIN, e);
+			err = place_push(sc, st, x, y, r, KIND_GRAIN, e);
 			placed++;
 			top = fmax(top, y + r);
 		}
@@ -146,20 +146,20 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 		if (k % 65536 == 65535 && guard_stopped())
 			return sb_errf(e, SB_EINTR, "interrupted while placing the walls");
 		const double x = periodic ? W * (k + 0.5) / inb : -rw + (W + 2 * rw) * k / (inb - 1);
-		err = prepare_push(sc, st, x, -rw, rw, KIND_WALL, e);
+		err = place_push(sc, st, x, -rw, rw, KIND_WALL, e);
 	}
 	for (int k = 1; k < ins && !err; k++) {
 		if (k % 65536 == 0 && guard_stopped())
 			return sb_errf(e, SB_EINTR, "interrupted while placing the walls");
 		const double y = -rw + (H + rw) * k / (ins - 1);
-		err = prepare_push(sc, st, -rw, y, rw, KIND_WALL, e);
+		err = place_push(sc, st, -rw, y, rw, KIND_WALL, e);
 		if (!err)
-			err = prepare_push(sc, st, W + rw, y, rw, KIND_WALL, e);
+			err = place_push(sc, st, W + rw, y, rw, KIND_WALL, e);
 	}
 	return err;
 }
 
-int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e)
+int place_scene(const sb_scene *sc, sb_state *st, sb_err *e)
 {
 	/* up to 10^7 grains and as many wall disks take seconds: a SIGINT or SIGTERM in
 	 * them must end the run as one while settling does */

@@ -7,12 +7,12 @@
 #include "state.h"
 
 /* Mass model (docs/model.md, "Units and the paper's values"): m = mass_factor * rho * R^2, I = m R^2 / 2. */
-double prepare_mass(const sb_scene *sc, double r);
+double place_mass(const sb_scene *sc, double r);
 
 /* Place grains, the intruder and the walls for a scene (no particles file). */
-int prepare_place(const sb_scene *sc, sb_state *st, sb_err *e);
+int place_scene(const sb_scene *sc, sb_state *st, sb_err *e);
 
 /* Push one disk of a kind with the scene's mass model (walls honour wall_mass). */
-int prepare_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e);
+int place_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e);
 
 #endif

@@ -64,7 +64,7 @@ static int settle(sb_sim *s, sb_err *e)
 	const double gy = -sc->gravity;
 	const long every = lround(fmax(1.0, 0.01 / sc->dt)); /* test the energy every 10 ms */
 	const long nmin = llround(sc->settle_min / sc->dt), nmax = llround(sc->settle_max / sc->dt);
-	if (sim_start(s, gy, e))
+	if (step_start(s, gy, e))
 		return e->code;
 	s->stage = "settling";
 	double wlast = sb_now();
@@ -104,10 +104,10 @@ static int settle(sb_sim *s, sb_err *e)
 	}
 }
 
-int sim_prepare(sb_sim *s, sb_err *e)
+int prepare_run(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
-	int err = sc->particles[0] ? pfile_read(sc, sc->particles, &s->st, e) : prepare_place(sc, &s->st, e);
+	int err = sc->particles[0] ? pfile_read(sc, sc->particles, &s->st, e) : place_scene(sc, &s->st, e);
 	if (err)
 		return err;
 	if (sim_derive(s, e))
@@ -157,7 +157,7 @@ int sim_prepare(sb_sim *s, sb_err *e)
 	for (int i = 0; i < s->st.nm; i++)
 		s->st.q[C_Y][1][i] -= vb;
 	s->nl.builds = 0; /* count the shaking phase only */
-	if (sim_start(s, -sc->gravity - sim_box_a(s, 0), e))
+	if (step_start(s, -sc->gravity - sim_box_a(s, 0), e))
 		return e->code;
 	return sim_obs_init(s, e);
 }

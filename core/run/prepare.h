@@ -6,6 +6,6 @@
 
 /* Place or read the disks, settle, write particle files if asked, enter the box
  * frame and start the integrator and the observables at t = 0. */
-int sim_prepare(sb_sim *s, sb_err *e);
+int prepare_run(sb_sim *s, sb_err *e);
 
 #endif

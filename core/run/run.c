@@ -87,7 +87,7 @@ static int due(const sb_sim *s, const sched *c, int k, long n)
 
 /* The samples due at this step, in the table's order: the rate and phase rows, then
  * one stroboscopic sample for every row on its clock. The ring is sampled before,
- * with the step (sim_run). */
+ * with the step (run_shaking). */
 static int record(sb_sim *s, const sched *c, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
@@ -155,7 +155,7 @@ static void stop_rules(sb_sim *s)
 		s->nsteps = o->stop_step;
 }
 
-int sim_run(sb_sim *s, sb_err *e)
+int run_shaking(sb_sim *s, sb_err *e)
 {
 	const sb_scene *sc = &s->sc;
 	const double dt = sc->dt;

@@ -6,6 +6,6 @@
 
 /* Shake until duration (or a stop); returns SB_OK or the code that stopped the run
  * (also in s->status). */
-int sim_run(sb_sim *s, sb_err *e);
+int run_shaking(sb_sim *s, sb_err *e);
 
 #endif

@@ -207,7 +207,7 @@ int main(int argc, char **argv)
 	if (!loaded) {
 		if (s->progress)
 			fprintf(stderr, "shake: preparing %s\n", sc.particles[0] ? sc.particles : "the scene");
-		int prc = sim_prepare(s, &e);
+		int prc = prepare_run(s, &e);
 		if (s->warning[0])
 			fprintf(stderr, "shake: warning: %s\n", s->warning);
 		/* legal (a free fall, a collision test) but more often a file whose walls were
@@ -226,7 +226,7 @@ int main(int argc, char **argv)
 		}
 	}
 	if (!s->status)
-		sim_run(s, &e);
+		run_shaking(s, &e);
 
 	int code = s->status;
 	if (code == SB_EINTR && sc.checkpoint_every > 0) {

@@ -199,7 +199,7 @@ static int step_begin(sb_sim *s, double t, long step, sb_err *e)
 }
 
 /* The reference step, as in a textbook MD code: predict, check, watch the rise,
- * neighbours, forces, correct (record: sim_run). gy is the uniform acceleration in y at the new time t
+ * neighbours, forces, correct (record: run_shaking). gy is the uniform acceleration in y at the new time t
  * (step). Its corrected state is in st for whoever reads it next. */
 static int step_reference(sb_sim *s, double gy, double drag, double t, long step, double *track, sb_err *e)
 {
@@ -251,14 +251,14 @@ int step_once(sb_sim *s, long step, double gy, double drag, int fuse, double *tr
 	return fuse && !track ? step_fused(s, gy, drag, t, step, e) : step_reference(s, gy, drag, t, step, track, e);
 }
 
-int sim_step(sb_sim *s, double gy, sb_err *e)
+int step_advance(sb_sim *s, double gy, sb_err *e)
 {
 	s->step++;
 	return step_once(s, s->step, gy, 0, 0, NULL, e);
 }
 
 /* Forces at the current state and the integrator's acceleration term from them. */
-int sim_start(sb_sim *s, double gy, sb_err *e)
+int step_start(sb_sim *s, double gy, sb_err *e)
 {
 	if (neighbours(s, e))
 		return e->code;

@@ -17,11 +17,11 @@ int step_once(sb_sim *s, long step, double gy, double drag, int fuse, double *tr
 /* Arm the kernel's overlap flag for the run's overlap record (step.c). */
 void step_arm_overlap(sb_sim *s);
 
-/* Low-level stepping for tests and tools: sim_start builds the neighbour list and
+/* Low-level stepping for tests and tools: step_start builds the neighbour list and
  * sets the integrator's acceleration from the current forces (call it after placing
- * disks and setting velocities q[c][1] = v dt); sim_step advances one reference step
+ * disks and setting velocities q[c][1] = v dt); step_advance advances one reference step
  * with the uniform extra acceleration gy in y, no drive, and counts s->step. */
-int sim_start(sb_sim *s, double gy, sb_err *e);
-int sim_step(sb_sim *s, double gy, sb_err *e);
+int step_start(sb_sim *s, double gy, sb_err *e);
+int step_advance(sb_sim *s, double gy, sb_err *e);
 
 #endif
