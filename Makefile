@@ -2,7 +2,7 @@
 CC      ?= cc
 CFLAGS  ?= -O3 -g
 # One binary for every CPU of its architecture: everything is built for the baseline
-# (x86-64: SSE2), except the vector kernel (core/kvec.c), which is built once per
+# (x86-64: SSE2), except the vector kernel (core/force/kvec.c), which is built once per
 # instruction set and chosen at start-up (docs/engine.md, "One vector kernel for every
 # CPU"). MARCH (e.g. MARCH=-march=native) builds the rest for one CPU instead: faster
 # nowhere measurable, and then not for other hosts. Results are bit-identical on every
@@ -59,7 +59,7 @@ endif
 PKGS     = hdf5-serial gsl inih sqlite3
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
-ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) -Icore
+ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) $(CORE_INC)
 LDFLAGS   += $(XFLAGS) $(SANLDFLAGS)
 
 ifeq ($(V),1)
@@ -68,8 +68,13 @@ else
   Q := @
 endif
 
-CORE_SRC  = $(filter-out core/shake_main.c core/kvec.c,$(wildcard core/*.c))
-CORE_OBJ  = $(CORE_SRC:%.c=$(BUILD)/%.o) $(KV_ISAS:%=$(BUILD)/core/kvec_%.o)
+# core/ in rooms, lowest first (core/README.md): every source includes core's headers by
+# name, so each room's folder is on the include path; tests/integration/floors.sh holds
+# the rooms to including only their own and lower rooms' headers.
+CORE_ROOMS = base text scene model force io run
+CORE_INC  = $(CORE_ROOMS:%=-Icore/%)
+CORE_SRC  = $(filter-out core/run/shake_main.c core/force/kvec.c,$(wildcard $(CORE_ROOMS:%=core/%/*.c)))
+CORE_OBJ  = $(CORE_SRC:%.c=$(BUILD)/%.o) $(KV_ISAS:%=$(BUILD)/core/force/kvec_%.o)
 LIB       = $(BUILD)/libshake.a
 TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
@@ -128,19 +133,19 @@ $(BUILD)/%.o: %.c $(BUILD)/flags | build/.deps-ok
 	$(Q)$(CC) $(ALLCFLAGS) -c $< -o $@
 
 # the vector kernel, once per instruction set (kvec.h)
-$(KV_ISAS:%=$(BUILD)/core/kvec_%.o): $(BUILD)/core/kvec_%.o: core/kvec.c $(BUILD)/flags | build/.deps-ok
+$(KV_ISAS:%=$(BUILD)/core/force/kvec_%.o): $(BUILD)/core/force/kvec_%.o: core/force/kvec.c $(BUILD)/flags | build/.deps-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $< ($*)")
 	$(Q)$(CC) $(ALLCFLAGS) $(KV_FLAGS_$*) -DSB_KV_NAME=$* -c $< -o $@
 
 # provenance.c gets the git hash and the compiler flags; version.h changes only when
 # they do, so an unchanged tree does not rebuild.
-$(BUILD)/core/provenance.o: $(BUILD)/version.h
+$(BUILD)/core/base/provenance.o: $(BUILD)/version.h
 $(BUILD)/version.h: FORCE | build/.deps-ok
 	@mkdir -p $(dir $@)
 	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS)" "$(strip $(MARCH))" > $@.new
 	$(Q)if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
-$(BUILD)/core/provenance.o: ALLCFLAGS += -I$(BUILD)
+$(BUILD)/core/base/provenance.o: ALLCFLAGS += -I$(BUILD)
 FORCE:
 
 # The sanitizer build compiles the engine's hot loops (the force kernel, the
@@ -150,14 +155,14 @@ FORCE:
 # at -O1, where the sanitizer build compiles them in half the time (w8: 23 s at -O2).
 KV_HOT := $(filter-out w8 sse2,$(KV_ISAS))
 ifeq ($(SAN),1)
-$(BUILD)/core/integrate.o $(BUILD)/core/step.o $(KV_HOT:%=$(BUILD)/core/kvec_%.o): ALLCFLAGS += -O2
+$(BUILD)/core/model/integrate.o $(BUILD)/core/run/step.o $(KV_HOT:%=$(BUILD)/core/force/kvec_%.o): ALLCFLAGS += -O2
 endif
 
 $(LIB): $(CORE_OBJ)
 	@$(if $(filter 0,$(V)),echo "  AR    $@")
 	$(Q)rm -f $@ && ar rcs $@ $^
 
-$(SHAKE): $(BUILD)/core/shake_main.o $(LIB)
+$(SHAKE): $(BUILD)/core/run/shake_main.o $(LIB)
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  LD    $@")
 	$(Q)$(CC) $(LDFLAGS) -o $@ $^ $(PKG_LIBS)

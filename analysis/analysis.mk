@@ -43,7 +43,7 @@ FIG_DIR    = analysis/figures
 FIG_RUNS   = build/figures
 FIG_CAMP   = campaigns/figures
 FIG_JOBS  ?= 2
-FIG_ENGINE = $(wildcard core/*.c core/*.h)
+FIG_ENGINE = $(wildcard core/*/*.c core/*/*.h)
 FIG_PNGS   = $(FIG_DIR)/onset.png $(FIG_DIR)/hysteresis.png $(FIG_DIR)/waiting_km.png $(FIG_DIR)/fig1.png
 
 .PHONY: figures

@@ -11,7 +11,7 @@
 #include "params.h"
 #include "runfile.h"
 
-/* What the engine writes (core/crossing.c, core/observe.c): the lines at the slice
+/* What the engine writes (core/model/crossing.c, core/model/observe.c): the lines at the slice
  * midpoints of the settled bed, surface (l + 1/2) / L, so increasing, above the floor
  * and below the surface the group records; each period's frequency that of the drive,
  * above 0 and at most the scene's largest; the periods' times from 0 on, in order. A

@@ -16,7 +16,7 @@
 /* One column: an attribute (OBJ@NAME) or a dataset's rows (PATH#rows). An attribute
  * or dataset that is there but not what the column needs (an array where one value
  * belongs, a string where a number does, a shape the file cannot hold) makes the file
- * unreadable, through the same checked reads as the analysis tools' (core/h5read.h). */
+ * unreadable, through the same checked reads as the analysis tools' (core/io/h5read.h). */
 static void read_column(hid_t f, const rcol *c, h5val *v, int *bad, sb_err *e)
 {
 	char obj[256];

@@ -23,7 +23,7 @@ typedef struct h5sum {
 } h5sum;
 
 /* Read every stored column; an error when the file cannot be opened, is not run
- * want_id (NULL: any run; core/h5id.h: format, run id, attribute digest), a value
+ * want_id (NULL: any run; core/io/h5id.h: format, run id, attribute digest), a value
  * cannot be read, a dataset's data fails its checksum (h5r_verify) or the run's status
  * is missing (not a complete run file). */
 int h5sum_read(const char *path, const char *want_id, h5sum *s, sb_err *e);

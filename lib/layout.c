@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "sim.h"
+#include "journal.h"
 
 #define LAY_DB "study.db"
 

@@ -22,7 +22,7 @@
 
 #include <stddef.h>
 
-/* LAY_JOURNAL and LAY_CKPT: the engine's own (core/sim.h), beside a run's output */
+/* LAY_JOURNAL and LAY_CKPT: the engine's own (core/io/journal.h), beside a run's output */
 enum lay_kind { LAY_OUTPUT, LAY_ARGS, LAY_LOCK, LAY_LOG, LAY_JOURNAL, LAY_CKPT, LAY_NKINDS };
 
 /* RUNS/study.db (runs NULL: "runs"); db when given. */

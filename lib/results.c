@@ -32,7 +32,7 @@ static const rcol TABLE[] = {
 	 "the intruder centre's height after settling, box frame", 0},
 	{"intruder_settled_depth", RT_REAL, "@intruder_settled_depth", "cm",
 	 "free surface minus the intruder centre's height after settling", 0},
-	/* the per-run summaries of the recorded quantities (core/record.h) */
+	/* the per-run summaries of the recorded quantities (core/scene/record.h) */
 	REC_SUMMARIES(SUMMARY_COLUMN)
 	{"intruder_rise_box", RT_REAL, "intruder_final_y_box - intruder_settled_y_box", "cm",
 	 "final minus settled height of the intruder centre, box frame", RF_DERIVED},
@@ -62,7 +62,7 @@ static const rcol TABLE[] = {
 	{"end_time", RT_TEXT, "/provenance@end_time", "", "when the engine wrote the file (UTC)", RF_NOVIEW},
 	/* not an attribute: the user block before HDF5's bytes (h5sum.c reads it) */
 	{"file_seal", RT_TEXT, RESULTS_SEAL, "",
-	 "the file's seal (core/h5id.h) when the run was recorded: a reader refuses a file that differs from it; "
+	 "the file's seal (core/io/h5id.h) when the run was recorded: a reader refuses a file that differs from it; "
 	 "NULL for an older, unsealed file", RF_NOVIEW},
 };
 

@@ -1,7 +1,7 @@
 /* runfile.h - where the readers find what they read in a run's HDF5 file: the groups
- * and datasets the engine writes (core/h5out.c, core/h5md.c; docs/inputs.md, "Run
+ * and datasets the engine writes (core/run/h5out.c, core/io/h5md.c; docs/inputs.md, "Run
  * files"), for lib/ and the analysis tools; each group is the engine's table of
- * recorded quantities' (core/record.h), the members below are its writer's. Root
+ * recorded quantities' (core/scene/record.h), the members below are its writer's. Root
  * attributes (@status, @waiting_time, ...) and /provenance are the result columns'
  * (results.c). */
 #ifndef LIB_RUNFILE_H

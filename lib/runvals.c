@@ -10,7 +10,7 @@
 #include "runfile.h"
 
 /* The scene keys that are numbers, each through the engine's own parser: its range and
- * its integer check are the one place those live (core/params.c). */
+ * its integer check are the one place those live (core/scene/params.c). */
 static int params_in_range(hid_t f, const char *path, sb_err *e)
 {
 	size_t n;

@@ -201,7 +201,7 @@ static int runs_view(sql_db *d, sb_err *e)
 	size_t l = 0;
 	l += (size_t)snprintf(sql + l, cap - l,
 			      "CREATE VIEW runs AS SELECT b.*,\n"
-			      /* the drive's peak acceleration in g (drive_gamma, core/drive.h, factor
+			      /* the drive's peak acceleration in g (drive_gamma, core/model/drive.h, factor
 			       * for factor, so the same bits) and peak velocity: the literature
 			       * reports onsets in both (at a ramp's start frequency) */
 			      "  b.amplitude * (6.283185307179586 * b.frequency) * (6.283185307179586 * b.frequency)"

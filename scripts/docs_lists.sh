@@ -7,14 +7,14 @@
 #
 # Generated (between "<!-- docs_lists NAME: begin -->" and "... end -->" markers, or
 # study's own "<!-- study columns: begin/end -->"):
-#   scene-keys      docs/scene.md        from `bin/shake --params` (core/params.c's table)
+#   scene-keys      docs/scene.md        from `bin/shake --params` (core/scene/params.c's table)
 #   result-columns  docs/database.md     from `bin/study columns` (lib/results.c's table)
 #   test-tiers      docs/testing.md      from `tests/run.sh --tiers` (the scripts' "# tier:" lines)
 #   study-options   docs/campaigns.md    from `bin/study options` (study/cli/opts.c's table)
 # Checked against the code:
 #   tools           docs/analysis.md's table and analysis/README.md's first paragraph
 #                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
-#   core-files      docs/engine.md's module table names every file of core/, and only those
+#   core-files      core/README.md's table of files names every file of core/, and only those
 #   campaigns       campaigns/README.md names every campaign file (campaigns/, reproduce/, examples/), and only those
 #   run-file        docs/output.md's layout table against a run file with every
 #                   recorded quantity of `bin/shake --records` on: the same groups; every root and /provenance attribute
@@ -146,16 +146,16 @@ awk 'NR > 1 && /^$/ && seen { exit } /^[^#]/ { seen = 1; print }' "$(doc analysi
 same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tools.code" "$TMP/tools.room"
 
 # --- the files of core/ ---
-(cd "$REPO/core" && ls) >"$TMP/core.code"
+(cd "$REPO/core" && find . -type f ! -name README.md | sed "s#^\./##" | sort) >"$TMP/core.code"
 awk '/<!-- docs_lists core-files:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
-	"$(doc docs/engine.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
+	"$(doc core/README.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
 	while read -r f; do
 		case "$f" in
 		*.\[ch\]) echo "${f%.\[ch\]}.c"; echo "${f%.\[ch\]}.h" ;;
 		*) echo "$f" ;;
 		esac
 	done >"$TMP/core.doc"
-same_set core-files "docs/engine.md's module table" "$TMP/core.code" "$TMP/core.doc"
+same_set core-files "core/README.md's table of files" "$TMP/core.code" "$TMP/core.doc"
 
 # --- the campaign files ---
 (cd "$REPO/campaigns" && ls *.campaign reproduce/*.campaign examples/*.campaign) >"$TMP/camp.code"

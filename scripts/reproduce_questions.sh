@@ -43,7 +43,7 @@ onset_rows() {
 }
 # key=value out of an onset group's label ("stiffness=3000000 gamma_n=100 dt=0.0002")
 grp_get() { tr ' ' '\n' <<<"$1" | awk -F= -v k="$2" '$1 == k { print $2 }'; }
-# Gamma of a frequency (A, g of the paper's scene): drive_gamma's formula (core/drive.h;
+# Gamma of a frequency (A, g of the paper's scene): drive_gamma's formula (core/model/drive.h;
 # docs/model.md, "Units and the paper's values"), restated because awk cannot call it
 gam() { awk -v f="$1" -v a="$2" -v g="$3" 'BEGIN { if (f + 0 == f) printf "%.3g", a * (6.283185307179586 * f) * (6.283185307179586 * f) / g; else print "-" }'; }
 # a gnuplot figure (PNG and PDF) from a script body: GPFIG OUTBASE <<'EOF' ... EOF

@@ -39,7 +39,7 @@ void acct_set(an_run *r, int use, double used_s, double planned_s, const char *f
 /* The database's parameters of run r are the file's (/parameters): a value edited in
  * the database (frequency 15 made 25) would move the run to another group of every
  * tool. The keys compared are the numbers that make the run what it is (its
- * preparation, dynamics and length: core/params.h), the ones a run's id is made of, as
+ * preparation, dynamics and length: core/scene/params.h), the ones a run's id is made of, as
  * numbers (the database may hold 15 as 15.0); not where and what it writes
  * (checkpoint_every: the driver sets it for every run), nor the choices the driver
  * resolves for a run (settle = auto is no for a run from the packing cache). A key the
@@ -99,7 +99,7 @@ int acct_classify(an_run *r)
 	/* the file must be the one the driver recorded (its seal, checked before HDF5 reads
 	 * a byte of it) and the run the database says it is: another run's file copied or
 	 * linked into place, or a file changed after the engine wrote it, make it unreadable
-	 * (core/h5id.h); so do parameters of the database that are not the file's, and
+	 * (core/io/h5id.h); so do parameters of the database that are not the file's, and
 	 * values the engine cannot have written (runvals.h); its data's checksums are
 	 * HDF5's to verify as the tool reads them */
 	hid_t f;

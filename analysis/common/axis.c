@@ -8,8 +8,6 @@
 #include "label.h"
 #include "params.h"
 
-static const char *const WORDS[AXIS_N] = {"frequency", "peak acceleration", "peak velocity"};
-
 double axis_gravity(const an_run *r)
 {
 	const sb_param *G = params_find("gravity");
@@ -23,16 +21,17 @@ double axis_run(int kind, const an_run *r)
 
 void axis_gp_freq(FILE *f, int kind, double A, double g)
 {
-	/* both are a constant times f^2 or f: the constant is the axis at f = 1 */
-	if (kind == AXIS_GAMMA)
-		fprintf(f, "sqrt(x/%.17g)", drive_gamma(A, 1, g));
-	else if (kind == AXIS_VELOCITY)
-		fprintf(f, "(x/%.17g)", drive_velocity(A, 1));
-	else
+	/* an axis is a constant times f^power (its row): the constant is the axis at f = 1 */
+	const sb_axis_row *r = drive_axis_row(kind);
+	if (!r || kind == AXIS_FREQUENCY)
 		fputc('x', f);
+	else if (r->power == 2)
+		fprintf(f, "sqrt(x/%.17g)", drive_axis(kind, A, 1, g));
+	else
+		fprintf(f, "(x/%.17g)", drive_axis(kind, A, 1, g));
 }
 
 void axis_label(char *buf, size_t n, int kind)
 {
-	label_axis(buf, n, drive_axis_name(kind), WORDS[kind >= 0 && kind < AXIS_N ? kind : 0]);
+	label_axis(buf, n, drive_axis_name(kind), drive_axis_row(kind >= 0 && kind < AXIS_N ? kind : 0)->words);
 }

@@ -1,5 +1,5 @@
 /* axis.h - the x of a figure against the drive: the frequency f, Gamma or the peak
- * velocity v (core/drive.h's axes, enum sb_axis, with their names and definitions);
+ * velocity v (core/model/drive.h's axes, enum sb_axis, with their names and definitions);
  * a run's value on it, the frequency at a value for gnuplot (to draw a curve fitted in
  * f), and its label (label.h). */
 #ifndef AN_AXIS_H

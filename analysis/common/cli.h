@@ -95,7 +95,7 @@ void gp_close(FILE *f);
 /* The x axis's label for a key of the parameter table, its unit the table's
  * (label_axis: "frequency f (Hz)"). */
 void gp_xlabel(FILE *f, const char *key);
-/* The axis on top of a plot against the frequency f: Gamma (drive_gamma, core/drive.h)
+/* The axis on top of a plot against the frequency f: Gamma (drive_gamma, core/model/drive.h)
  * of the amplitude A and gravity g, with ticks at round values of Gamma over
  * [f_lo, f_hi]. */
 void gp_gamma_axis(FILE *f, double A, double g, double f_lo, double f_hi);

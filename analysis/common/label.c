@@ -9,7 +9,7 @@
 #include "params.h"
 
 /* The words of a key: the format of its value and unit (two %s: the number or text,
- * then the unit of the parameter table, core/params.c, as a reader writes it) and, for
+ * then the unit of the parameter table, core/scene/params.c, as a reader writes it) and, for
  * radius_ratio, what 0 means. One row per key a campaign sweeps or a reader looks for;
  * the symbols are docs/model.md's. */
 static const struct {
@@ -33,17 +33,6 @@ static const struct {
 	{"ramp", "%s ramp", NULL},
 	{"r_min", "r_min = %s %s", NULL},
 	{"r_max", "r_max = %s %s", NULL},
-};
-
-/* The symbol of a key on a figure's axis; the rows of WORDS that name one, and the
- * drive's derived axes (core/drive.h), which are no keys of the parameter table: their
- * unit is drive_axis_unit's. */
-static const struct {
-	const char *key, *symbol;
-} AXES[] = {
-	{"frequency", "f"},
-	{"gamma", "Γ"},
-	{"velocity", "v"},
 };
 
 void label_unit(char *buf, size_t n, const char *key)
@@ -72,10 +61,10 @@ void label_unit(char *buf, size_t n, const char *key)
 void label_axis(char *buf, size_t n, const char *key, const char *words)
 {
 	char u[32];
-	const char *sym = key;
-	for (size_t i = 0; i < sizeof AXES / sizeof *AXES; i++)
-		if (!strcmp(AXES[i].key, key))
-			sym = AXES[i].symbol;
+	/* the drive's axes by their symbols (their rows, core/model/drive.h), any other key
+	 * by its name */
+	const sb_axis_row *ax = drive_axis_row(drive_axis_kind(key));
+	const char *sym = ax ? ax->symbol : key;
 	label_unit(u, sizeof u, key);
 	snprintf(buf, n, "%s%s%s%s%s%s", words ? words : "", words && *words ? " " : "", sym, *u ? " (" : "", u,
 		 *u ? ")" : "");

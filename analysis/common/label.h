@@ -13,7 +13,7 @@ void label_param(char *buf, size_t n, const char *key, const char *val);
 /* The same of a number x ("2.8 Hz" of frequency 2.8). */
 void label_num(char *buf, size_t n, const char *key, double x);
 
-/* The unit of a key of the parameter table (core/params.c) as a figure prints it
+/* The unit of a key of the parameter table (core/scene/params.c) as a figure prints it
  * ("cm/s²", "s⁻¹", "Hz"); "" for a dimensionless or unknown key. */
 void label_unit(char *buf, size_t n, const char *key);
 

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "drive.h"
+
 static double col(sqlite3_stmt *st, int i)
 {
 	return sqlite3_column_type(st, i) == SQLITE_NULL ? NAN : sqlite3_column_double(st, i);
@@ -48,14 +50,11 @@ int sdef_load(adb *d, const char *campaign, sdef *s, sb_err *e)
 	return 0;
 }
 
-/* The frequency at axis value x of a group one of whose runs is at (x0, f0). */
+/* The frequency at axis value x of a group one of whose runs is at (x0, f0): the
+ * axis's own scaling (core/model/drive.h). */
 static double to_hz(const char *axis, double x, double x0, double f0)
 {
-	if (!strcmp(axis, "gamma")) /* Gamma = A (2 pi f)^2 / g */
-		return x > 0 && x0 > 0 ? f0 * sqrt(x / x0) : NAN;
-	if (!strcmp(axis, "velocity")) /* v = A 2 pi f */
-		return x0 > 0 ? f0 * x / x0 : NAN;
-	return x;
+	return drive_axis_freq_from(drive_axis_kind(axis), x, x0, f0);
 }
 
 int sdef_group(adb *d, const char *campaign, const sdef *s, const char *const *ids, int n, sdef_est *g, sb_err *e)

@@ -11,7 +11,7 @@
 
 long dumpflux_due_step(long k, double frequency, double dt)
 {
-	/* as core/run.c's due_step(k, 1.0 / frequency, dt) */
+	/* as core/run/run.c's due_step(k, 1.0 / frequency, dt) */
 	const double interval = 1.0 / frequency;
 	return (long)ceil(k * interval / dt - 1e-6);
 }
@@ -109,7 +109,7 @@ int dumpflux_read(const char *path, const dumpflux_opts *o, flux_data *d, dumpfl
 				rc = sb_errf(e, SB_EIO, "%s: no radius column: the wall faces need the wall disks' radii", path);
 				goto out;
 			}
-			/* inner wall faces as core/sim.c takes them */
+			/* inner wall faces as core/run/sim.c takes them */
 			double x0 = INFINITY, x1 = -INFINITY;
 			for (long i = 0; i < fr.n; i++)
 				if (fr.type[i] == 3) {

@@ -9,7 +9,7 @@
 #include "h5read.h"
 #include "runfile.h"
 
-/* The box motion of the run, from its /parameters (the engine's core/sim.c setup). */
+/* The box motion of the run, from its /parameters (the engine's core/run/sim.c setup). */
 static void drive_of(hid_t f, sb_drive *d)
 {
 	char ramp[32] = "none";

@@ -2,7 +2,7 @@
  * waiting-time definition read off it (docs/model.md, "Waiting time").
  *
  * /particles/intruder/position is in the lab frame; the box floor is at
- * y_box(t) = A sin(phi(t)) (core/drive.c, ramps included), taken off every sample, so
+ * y_box(t) = A sin(phi(t)) (core/model/drive.c, ramps included), taken off every sample, so
  * that heights are above the box floor like the settled height y_0
  * (`intruder_settled_y`) and the settled surface h_s (`surface_height`).
  *

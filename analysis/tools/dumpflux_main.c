@@ -42,7 +42,7 @@ static const char *HELP =
 	"         positions at every stroboscopic sample (frame k at the first step at or\n"
 	"         after k/F; checked) of a run of the same bed as RUN.h5, an engine run with\n"
 	"         flux = yes whose settled surface height and lines are taken. The crossings\n"
-	"         are counted by the engine's code (core/crossing.c) after the box offset\n"
+	"         are counted by the engine's code (core/model/crossing.c) after the box offset\n"
 	"         A sin(2 pi F step DT) is taken off the mobile disks' y. A comment line\n"
 	"         reports the frames, the wall faces, the largest offset taken off, and how\n"
 	"         the wall disks moved: wall_drive_dev (against the drive: ~0 for LAMMPS's\n"

@@ -858,7 +858,8 @@ static int plot(an_tool *t, const onset_state *s)
 		if (!onset_mark(&s->R[j], &m, &lo, &hi) || !on_axis(t, s, j, &m, &lo, &hi))
 			continue;
 		char u[32];
-		const char *xs = s->axis == AXIS_FREQUENCY ? "onset f" : s->axis == AXIS_GAMMA ? "onset Γ" : "onset v";
+		char xs[32];
+		snprintf(xs, sizeof xs, "onset %s", drive_axis_row(s->axis) ? drive_axis_row(s->axis)->symbol : "?");
 		label_unit(u, sizeof u, drive_axis_name(s->axis));
 		if (isfinite(lo) && isfinite(hi))
 			snprintf(mark, sizeof mark, "%s = %.3g%s%s [%.3g, %.3g]", xs, m, *u ? " " : "", u, lo, hi);

@@ -1,6 +1,6 @@
 /* axes.h - the drive a campaign asks for on an axis other than the frequency: the
  * frequency or amplitude that gives a Gamma or a peak velocity, as a campaign writes
- * its values (the axes themselves, their names and units: core/drive.h; docs/campaigns.md,
+ * its values (the axes themselves, their names and units: core/model/drive.h; docs/campaigns.md,
  * "Axes in Gamma and v"); and where the model is known to fail in them
  * (docs/model.md, "Where the model fails"). */
 #ifndef ST_AXES_H

@@ -168,7 +168,7 @@ static const char *unblank(const char *t, size_t *n)
 	return t;
 }
 
-/* Numbers as every input reads them (core/num.h: decimal, no hex, no inf or nan). */
+/* Numbers as every input reads them (core/text/num.h: decimal, no hex, no inf or nan). */
 static int parse_num(const char *t, double *x)
 {
 	size_t n;
@@ -368,7 +368,7 @@ int campaign_points(const campaign *c, long *points, sb_err *e)
 		       ax->line, rep ? "replicates" : ax->key, count, sizes, now, fix);
 }
 
-/* ---- the file's sections and keys (core/inifile.c reads its lines) ---- */
+/* ---- the file's sections and keys (core/text/inifile.c reads its lines) ---- */
 
 #define CP_MAX_LINES 100000
 
@@ -384,7 +384,7 @@ struct rd {
 	int ckey_line[16], nckey;
 };
 
-/* A [section] line (core/inifile.c reads the lines): the four sections, each once. */
+/* A [section] line (core/text/inifile.c reads the lines): the four sections, each once. */
 static int cp_section(void *user, const char *header, const char *name, int len, int line, sb_err *e)
 {
 	struct rd *r = user;
@@ -998,7 +998,7 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 	return 1;
 }
 
-/* A key = value line, from core/inifile.c: cp_handler (inih's form) at that line. */
+/* A key = value line, from core/text/inifile.c: cp_handler (inih's form) at that line. */
 static int cp_key(void *user, const char *name, const char *value, int line, sb_err *e)
 {
 	struct rd *r = user;

@@ -162,7 +162,7 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		argv[argc++] = strdup(line);
 	}
 	fclose(f);
-	/* the run's id, recorded in its file (core/h5id.h): a file later copied or linked
+	/* the run's id, recorded in its file (core/io/h5id.h): a file later copied or linked
 	 * in place of another run's is known by it. Given here, not in the argument file,
 	 * so that a run whose arguments were written by an earlier version gets it too. */
 	char idarg[300];

@@ -9,7 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* the journal's header: magic + int32 nm (core/journal.c) */
+/* the journal's header: magic + int32 nm (core/io/journal.c) */
 enum { JT_HEAD = 12, JT_MAXTAG = 64 };
 static const char MAGIC[8] = {'S', 'B', 'J', 'R', 'N', 'L', '0', '1'};
 

@@ -1,5 +1,5 @@
 /* jtail.h - how far a running engine has got: the simulated time of the last record
- * in its journal (RUN.h5.journal, format in core/journal.c: "SBJRNL01", int32 nm,
+ * in its journal (RUN.h5.journal, format in core/io/journal.c: "SBJRNL01", int32 nm,
  * then records of int32 tag, int32 count and count doubles, the first of which is
  * the time of every kind of record). Read incrementally: a watcher that polls keeps
  * its place and reads only what was appended since. Read-only; never the engine's

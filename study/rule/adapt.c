@@ -109,7 +109,7 @@ void adapt_walk(const ad_range *r, ad_look look, void *ctx, ad_rep *p)
 
 int adapt_failure_class(const char *status)
 {
-	/* the statuses of core/err.c; one row per failure that answers the question */
+	/* the statuses of core/base/err.c; one row per failure that answers the question */
 	static const struct {
 		const char *status;
 		int cls;

@@ -12,6 +12,7 @@
 
 #include "common/acct.h"
 #include "h5id.h"
+#include "h5seal.h"
 #include "testlib.h"
 
 static an_run run(int group, const char *state, const char *status, int use)
@@ -93,7 +94,7 @@ int main(void)
 	char path[] = "/tmp/acct-run-XXXXXX";
 	int fd = mkstemp(path);
 	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-	H5Pset_userblock(fcpl, H5ID_SEAL_BYTES);
+	H5Pset_userblock(fcpl, H5SEAL_BYTES);
 	hid_t f = fd < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
 	H5Pclose(fcpl);
 	if (fd >= 0)
@@ -113,9 +114,9 @@ int main(void)
 	H5Tclose(ty);
 	H5Sclose(sp);
 	H5Fclose(f);
-	made = made && !h5id_file_seal(path, &e);
+	made = made && !h5seal_write(path, &e);
 	char seal[17] = "";
-	made = made && !h5id_file_check(path, seal, &e) && strlen(seal) == 16;
+	made = made && !h5seal_check(path, seal, &e) && strlen(seal) == 16;
 	x = run(0, "done", "ok", AN_USED);
 	snprintf(x.path, sizeof x.path, "%s", path);
 	snprintf(x.id, sizeof x.id, "%s", id);

@@ -1,5 +1,5 @@
 /* dumpflux.c - the path from another code's position dump to Phi(D) (analysis/measure/dump.c,
- * analysis/measure/dumpflux.c, core/crossing.c) and the two-code comparison
+ * analysis/measure/dumpflux.c, core/model/crossing.c) and the two-code comparison
  * (analysis/measure/pairdiff.c):
  *   - the dump reader: frames, columns by name, rows sorted by id, skipped ITEM
  *     sections; a truncated frame, a missing column, a repeated id are errors;

@@ -24,7 +24,7 @@
 #include <time.h>
 
 #include "collision_analytic.h"
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "units.h"
@@ -87,20 +87,20 @@ static cres run_once(const ccase *c, int integ, double dt, int timed)
 	sb_err e = {0};
 	const double ri = 1, rj = 1, rs = ri + rj;
 	const int wall = c->wall;
-	double mi = prepare_mass(&sc, ri), mj = prepare_mass(&sc, rj);
+	double mi = place_mass(&sc, ri), mj = place_mass(&sc, rj);
 	double w02, beta;
 	if (sim_init(s, &sc, &e))
 		goto out;
 	if (!wall) {
 		/* i at the origin, j touching on its right; zero total momentum */
-		prepare_push(&sc, &s->st, 0, 0, ri, KIND_GRAIN, &e);
-		prepare_push(&sc, &s->st, rs, 0, rj, KIND_GRAIN, &e);
+		place_push(&sc, &s->st, 0, 0, ri, KIND_GRAIN, &e);
+		place_push(&sc, &s->st, rs, 0, rj, KIND_GRAIN, &e);
 	} else {
 		/* i on top of the wall disk j at the origin; two far wall disks make the box */
-		prepare_push(&sc, &s->st, 0, rs, ri, KIND_GRAIN, &e);
-		prepare_push(&sc, &s->st, 0, 0, rj, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, -60, 0, rj, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, 60, 0, rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, 0, rs, ri, KIND_GRAIN, &e);
+		place_push(&sc, &s->st, 0, 0, rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, -60, 0, rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, 60, 0, rj, KIND_WALL, &e);
 	}
 	if (sim_derive(s, &e))
 		goto out;
@@ -123,14 +123,14 @@ static cres run_once(const ccase *c, int integ, double dt, int timed)
 		beta = 0.5 * sc.gamma_n * meff / mi;
 	}
 	collision_analytic(w02, beta, 0, V0, &res.tc0, &res.e0);
-	if (sim_start(s, 0, &e))
+	if (step_start(s, 0, &e))
 		goto out;
 	kin k0 = measure(st, rs, wall, dt);
 	long maxn = (long)(10 * res.tc0 / dt) + 10, k;
 	res.tc = NAN;
 	double t0 = timed ? now() : 0;
 	for (k = 1; k <= maxn; k++) {
-		if (sim_step(s, 0, &e))
+		if (step_advance(s, 0, &e))
 			goto out;
 		kin k1 = measure(st, rs, wall, dt);
 		if (k > 1 && k0.xi > 0 && k1.xi <= 0) {
@@ -145,7 +145,7 @@ static cres run_once(const ccase *c, int integ, double dt, int timed)
 	if (!isfinite(res.tc))
 		goto out;
 	for (int m = 0; m < 400; m++)
-		if (sim_step(s, 0, &e))
+		if (step_advance(s, 0, &e))
 			goto out;
 	{
 		/* velocities along the separation normal (free flight: constant) */

@@ -33,7 +33,7 @@
 #      from the deck), so that a difference is the code's, not the integrator's; A keeps
 #      the paper preset (gear5) it has always compared;
 #   3. the flux of a LAMMPS run is counted from its dump by the engine's own crossing
-#      code (bin/dumpflux dump: core/crossing.c, the lines of the engine's run of the
+#      code (bin/dumpflux dump: core/model/crossing.c, the lines of the engine's run of the
 #      same bed, the box offset A sin(2 pi f t) taken off); the rise by the engine's rule
 #      (validate_rise.in) against the engine's own `risen` / `waiting_time`;
 #   4. the statistics (bin/dumpflux compare, bin/dumpflux stats: analysis/measure/pairdiff.c,
@@ -414,7 +414,7 @@ GP
 		echo "disks; velocity Verlet \`nve/sphere disc\` at Δt = $DT s; walls moved by \`fix move wiggle\` in the lab"
 		echo "frame). LAMMPS dumps every atom at the engine's stroboscopic steps (sample k at the first step at"
 		echo "or after k/f; \`tests/bench/lammps/validate_strobe.in\`); \`bin/dumpflux\` reads the dump and counts the"
-		echo "crossings with the engine's own code (\`core/crossing.c\`, which \`core/observe.c\` calls during a run)"
+		echo "crossings with the engine's own code (\`core/model/crossing.c\`, which \`core/model/observe.c\` calls during a run)"
 		echo "on the lines of the engine's run of the same bed, after taking the box offset A sin(2πft) off the"
 		echo "heights (at most $(awk -v y="$ybox" 'BEGIN { printf "%.2g", y }') cm at a phase-0 step; the LAMMPS wall disks moved by exactly that, to"
 		echo "$(awk -v y="$wall_dev" 'BEGIN { printf "%.1g", y }') cm, so lab and box frame are told apart correctly). Φ(D) per bed and code is the time"

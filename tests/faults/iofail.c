@@ -123,7 +123,7 @@ int rename(const char *from, const char *to)
 	return real_rename(from, to);
 }
 
-/* the engine's rename into a free name (core/fsutil.c) */
+/* the engine's rename into a free name (core/base/fsutil.c) */
 int renameat2(int fd1, const char *from, int fd2, const char *to, unsigned flags)
 {
 	REAL(renameat2, renameat2_fn);

@@ -31,11 +31,11 @@ $(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
 
 # h5mut changes run files on purpose (the runfile target, hostile_runs.sh); it links HDF5
 H5MUT_BIN = build/fuzz/h5mut
-# and seals them again with the engine's digest (core/h5id.c, reading with core/h5read.c)
-$(H5MUT_BIN): tests/fuzz/h5mut.c core/h5id.c core/h5id.h core/h5read.c core/h5md.c core/fsutil.c core/err.c | build/.deps-ok
+# and seals them again with the engine's digest (core/io/h5id.c, reading with core/io/h5read.c)
+$(H5MUT_BIN): tests/fuzz/h5mut.c core/io/h5id.c core/io/h5id.h core/io/h5seal.c core/io/h5seal.h core/io/h5read.c core/io/h5md.c core/base/fsutil.c core/base/err.c | build/.deps-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
-	$(Q)$(CC) $(BASEFLAGS) -O1 -g -Icore $(PKG_CFLAGS) -o $@ $(filter %.c,$^) $(PKG_LIBS)
+	$(Q)$(CC) $(BASEFLAGS) -O1 -g $(CORE_INC) $(PKG_CFLAGS) -o $@ $(filter %.c,$^) $(PKG_LIBS)
 
 tests: $(FUZZ_BIN) $(H5MUT_BIN)
 

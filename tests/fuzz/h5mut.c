@@ -24,11 +24,11 @@
  *                               to 'x', behind HDF5's back
  *     --stale-digest            (anywhere) the attribute digest is left as it was;
  *                               without it every change through HDF5 is sealed again
- *                               (core/h5id.h), so that the readers' checks behind the
+ *                               (core/io/h5id.h), so that the readers' checks behind the
  *                               digest are what is tested
  *     --stale-seal              (anywhere) the file's seal (its user block) is left as
  *                               it was; without it the file is sealed again after the
- *                               last operation, bytes included (h5id_file_seal), as a
+ *                               last operation, bytes included (h5seal_write), as a
  *                               hostile hand would, so the checks behind it are tested
  *     --random SEED             one random change: a dataset's shape, type or values, an
  *                               attribute's type, shape or value, an object deleted or
@@ -61,6 +61,7 @@
 #include <unistd.h>
 
 #include "h5id.h"
+#include "h5seal.h"
 
 static void die(const char *fmt, const char *a)
 {
@@ -288,7 +289,7 @@ static const char *const ATTRS[] = {"risen", "waiting_time", "status", "status_t
 				    "frequency", "radius_ratio", "ramp", "duration", "exit_code", "steps", "particles",
 				    "format", "stopped_by"};
 #define NATTRS (sizeof ATTRS / sizeof *ATTRS)
-/* ... and where they look for them (the tools, core/h5read.c's callers; lib/h5sum.c) */
+/* ... and where they look for them (the tools, core/io/h5read.c's callers; lib/h5sum.c) */
 static const struct {
 	const char *obj, *name;
 } READ_ATTRS[] = {
@@ -858,9 +859,9 @@ int main(int argc, char **argv)
 	/* a file of a user block (the engine's) is sealed anew; an older one has none */
 	sb_err e = {0};
 	char seal[17];
-	if (!stale_seal && h5id_file_check(argv[2], seal, &e)) {
+	if (!stale_seal && h5seal_check(argv[2], seal, &e)) {
 		sb_err se = {0};
-		h5id_file_seal(argv[2], &se); /* a file cut short of its superblock stays as it is */
+		h5seal_write(argv[2], &se); /* a file cut short of its superblock stays as it is */
 	}
 	return 0;
 }

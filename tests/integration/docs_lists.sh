@@ -47,7 +47,7 @@ broken result-columns.current docs/database.md 's/^| `risen` | INTEGER |/| `rise
 broken study-options.current docs/campaigns.md '/^| `--throttle K` |/d'
 broken tools.docs_analysis docs/analysis.md '/^| `bin\/dumpflux` |/d'
 broken tools.analysis_readme analysis/README.md 's/`bin\/convect`,/`bin\/convect`, `bin\/sweep`,/'
-broken core-files docs/engine.md 's/^| `h5id\.\[ch\]` |/| `h5ident.[ch]` |/'
+broken core-files core/README.md 's/^| `io\/h5id\.\[ch\]` |/| `io\/h5ident.[ch]` |/'
 broken campaigns campaigns/README.md '/^| `reproduce\/q4_large\.campaign` |/d'
 # a group's row dropped: its members are named nowhere either
 broken run-file.groups docs/output.md '/^| `\/observables\/energy`/d' 'run-file.groups run-file.members'

@@ -2,7 +2,7 @@
 # errors_named.sh - errors are named for what they are:
 #   * a full disk while the engine writes its HDF5 file is an I/O fault, exit 2 with
 #     the system's word for it, never a crash at exit (HDF5 1.10 closes a file whose
-#     close failed a second time in its exit handler: core/h5md.c, h5w_init), and no
+#     close failed a second time in its exit handler: core/io/h5md.c, h5w_init), and no
 #     temporary file is left;
 #   * a full disk found only when HDF5 closes a dataset (its last chunks are written
 #     then; staged with the build/faults/iofail.so shim, IOFAIL_CLOSE) is the same I/O

@@ -2,8 +2,13 @@
 # floors.sh - the code's floors hold: every call between object files (read with nm
 # from the build the suite tests) points down the order core < lib < {study, analysis},
 # never between study/ and analysis/, and no two sub-folders of a room, and no two
-# files, call each other in a circle (lib/README.md). A check of the checker first:
-# a made-up upward call and a made-up circle must fail.
+# files, call each other in a circle (lib/README.md). Inside core/ the same for its
+# rooms (core/README.md): every file in one of the rooms the Makefile names
+# (CORE_ROOMS, lowest first), no file including a header of a room above its own, no
+# circle of rooms or files; and the upper rooms include only core's public headers
+# (core/README.md, "The public face"). A check of the checker first: a made-up upward
+# call, a made-up circle, a file in no room, an upward include and a private header
+# included from above must fail.
 cd "$(dirname "$0")/../.."
 source tests/integration/lib.sh
 
@@ -39,11 +44,11 @@ rooms() {
 }
 
 # loops LEVEL < EDGES: the members of the circles among sub-folders (LEVEL folders) or
-# files (LEVEL files) of study/ and analysis/, as tsort finds them, on one line
+# files (LEVEL files) of core/, study/ and analysis/, as tsort finds them, on one line
 loops() {
 	awk -v level="$1" '
 		function node(p,   n, a) { n = split(p, a, "/"); return level == "files" ? p : n > 2 ? a[1] "/" a[2] : a[1] "/" }
-		$1 ~ /^(study|analysis)\// { f = node($1); t = node($2); if (f != t) print f, t }' | sort -u |
+		$1 ~ /^(core|study|analysis)\// { f = node($1); t = node($2); if (f != t) print f, t }' | sort -u |
 		tsort 2>&1 >/dev/null | sed -n 's/^tsort: //p' | grep -v 'input contains a loop' | sort -u | tr '\n' ' '
 }
 
@@ -55,8 +60,46 @@ side=$(printf 'analysis/common/cli study/ledger/db db_open\n' | rooms)
 check floors.selftest.sideways "an analysis -> study call was not reported" test -n "$side"
 circ=$(printf 'study/a/x study/b/y y\nstudy/b/y study/a/x x\n' | loops folders)
 check floors.selftest.circle "a circle of two folders was not reported" test -n "$circ"
-down=$(printf 'study/a/x lib/layout layout_db\nlib/layout core/err sb_errf\n' | rooms)
+down=$(printf 'study/a/x lib/layout layout_db\nlib/layout core/base/err sb_errf\n' | rooms)
 check floors.selftest.down "a downward call was reported: $down" test -z "$down"
+
+# core's rooms, lowest first, as the Makefile builds them
+CORE_ROOMS=$(sed -n 's/^CORE_ROOMS *= *//p' Makefile)
+# roomless ROOMS < PATHS: the files of core/ that are in none of the rooms (README.md,
+# the tour, stands in core/ itself)
+roomless() {
+	awk -v rooms="$1" 'BEGIN { n = split(rooms, r, " "); for (i = 1; i <= n; i++) room[r[i]] = 1 }
+		$0 == "core/README.md" { next }
+		{ k = split($0, a, "/"); if (k != 3 || !(a[2] in room)) print }'
+}
+# includes DIR...: "FILE HEADER" for every quoted #include of the sources under DIR
+includes() {
+	grep -rHo --include='*.c' --include='*.h' '^#include "[^"]*"' "$@" 2>/dev/null | sed 's/:#include "/ /; s/"$//'
+}
+# core_up ROOMS HEADERS < INCLUDES: the includes by a core file of a header of a room
+# above its own (HEADERS: core's headers as core/ROOM/NAME.h; a name not among them,
+# as the build's version.h, is no core header)
+core_up() {
+	awk -v rooms="$1" -v heads="$2" '
+		BEGIN { n = split(rooms, r, " "); for (i = 1; i <= n; i++) rank[r[i]] = i
+			m = split(heads, h, " "); for (i = 1; i <= m; i++) { split(h[i], p, "/"); room[p[3]] = p[2] } }
+		$1 ~ /^core\// { split($1, a, "/"); t = room[$2]
+			if (t != "" && rank[t] > rank[a[2]]) print $1 " includes " $2 ": " a[2] "/ may not include " t "/" }'
+}
+# private PUBLIC HEADERS < INCLUDES: the includes from outside core/ of a core header
+# that is not among the public ones (PUBLIC: ROOM/NAME.h)
+private() {
+	awk -v pub="$1" -v heads="$2" '
+		BEGIN { n = split(pub, p, " "); for (i = 1; i <= n; i++) { split(p[i], q, "/"); ok[q[2]] = 1 }
+			m = split(heads, h, " "); for (i = 1; i <= m; i++) { split(h[i], q, "/"); room[q[3]] = q[2] } }
+		$1 !~ /^core\// && ($2 in room) && !($2 in ok) { print $1 " includes " room[$2] "/" $2 ", which is not public" }'
+}
+lost=$(printf 'core/base/err.c\ncore/err.c\ncore/attic/x.c\ncore/README.md\n' | roomless "base run")
+check floors.selftest.core_roomless "files in no room were not both reported: $lost" test "$(echo "$lost" | wc -l)" = 2
+up=$(printf 'core/base/err.c sim.h\ncore/run/sim.c err.h\n' | core_up "base run" "core/base/err.h core/run/sim.h")
+check floors.selftest.core_up "the include of run/ by base/ was not reported alone: $up" test "$(echo "$up" | grep -c 'base/ may not include run/')" = 1 -a "$(echo "$up" | wc -l)" = 1
+priv=$(printf 'lib/x.c sim.h\nlib/x.c err.h\nlib/x.c lib.h\n' | private "base/err.h" "core/base/err.h core/run/sim.h")
+check floors.selftest.core_private "the private header alone was not reported: $priv" test "$(echo "$priv" | grep -c 'run/sim.h')" = 1 -a "$(echo "$priv" | wc -l)" = 1
 
 if ! ls "$BUILD"/lib/*.o >/dev/null 2>&1; then
 	fail floors.build "no objects under $BUILD/lib (run make)"
@@ -79,4 +122,21 @@ $bad"; fi
 # no source reaches past it with a relative path either.
 bad=$(grep -rn '#include "\.\./' core lib study analysis 2>/dev/null)
 if [ -z "$bad" ]; then ok floors.includes.relative; else fail floors.includes.relative "$bad"; fi
+
+# core's rooms: every file in one; includes point down; the upper rooms see the public
+# face only (the list in core/README.md, one header a line as "- `ROOM/NAME.h`")
+check floors.core.rooms "the Makefile names no CORE_ROOMS" test -n "$CORE_ROOMS"
+bad=$(find core -type f | sort | roomless "$CORE_ROOMS")
+if [ -z "$bad" ]; then ok floors.core.every_file_in_a_room; else fail floors.core.every_file_in_a_room "files of core/ in none of the rooms ($CORE_ROOMS):
+$bad"; fi
+HEADERS=$(find core -name '*.h' | sort | tr '\n' ' ')
+bad=$(includes core | core_up "$CORE_ROOMS" "$HEADERS")
+if [ -z "$bad" ]; then ok floors.core.includes_down; else fail floors.core.includes_down "includes of a higher room:
+$bad"; fi
+PUBLIC=$(awk '/^## The public face/ { on = 1; next } on && /^## / { exit } on' core/README.md | sed -n 's/^- `\([a-z]*\/[a-z_0-9]*\.h\)`.*/\1/p' | tr '\n' ' ')
+check floors.core.public_listed "core/README.md lists no public header" test -n "$PUBLIC"
+for h in $PUBLIC; do [ -f "core/$h" ] || fail floors.core.public_exists "core/README.md lists $h, which is no file of core/"; done
+bad=$(includes lib study analysis | private "$PUBLIC" "$HEADERS")
+if [ -z "$bad" ]; then ok floors.core.public_face; else fail floors.core.public_face "the upper rooms include headers core/README.md does not list as public:
+$bad"; fi
 finish

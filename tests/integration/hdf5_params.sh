@@ -85,7 +85,7 @@ fi
 f=out1.h5
 [ "$(attr $f /status)" = ok ] && ok status.ok || fail status.ok "status = '$(attr $f /status)'"
 [ "$(attr $f /exit_code)" = 0 ] && ok status.exit_code || fail status.exit_code "exit_code = '$(attr $f /exit_code)'"
-[ "$(attr $f /format)" = "$(sed -n 's/^#define H5ID_FORMAT "\(.*\)"$/\1/p' "$REPO/core/h5id.h")" ] && ok format || fail format "format = '$(attr $f /format)'"
+[ "$(attr $f /format)" = "$(sed -n 's/^#define H5ID_FORMAT "\(.*\)"$/\1/p' "$REPO/core/io/h5id.h")" ] && ok format || fail format "format = '$(attr $f /format)'"
 for a in git_hash compiler host start_time end_time; do
 	v=$(attr $f /provenance/$a)
 	[ -n "$v" ] && ok "provenance.$a" || fail "provenance.$a" "/provenance/$a missing or empty"

@@ -69,7 +69,7 @@ first=$(awk -v y0="$y0" -v rr="$(h5param rise.h5 radius_ratio)" -v rmin="$(h5par
 
 # The engine tests the rise on every step, also on the steps after which nobody reads
 # the state: on those, in the AVX-512 build, the positions live in the force kernel's
-# records only (core/sim.c, intruder_y). Recording every step makes every step an
+# records only (core/run/step.c, watch_rise, reads them with kernel_y). Recording every step makes every step an
 # ordinary one; the physics is the same to the bit, so the waiting time must be too.
 shake_run rise_all.log "${RISE[@]}" traj_rate=20000 output=rise_all.h5 ||
 	fail rise.every_step.run "exit $?: $(head -c 200 rise_all.log)"
@@ -87,7 +87,7 @@ within "$sd" "$(awk -v s="$sh" -v y="$y0" 'BEGIN { printf "%.17g", s - y }')" 1e
 	fail settled.depth_is_surface_minus_intruder_y "intruder_settled_depth $sd, surface_height $sh, intruder_settled_y $y0"
 
 # Both from the settled state written by write_particles (x y r kind, %.17g): the
-# intruder's y, and the free surface by its definition (core/sim.c): over the grains,
+# intruder's y, and the free surface by its definition (core/run/prepare.c, surface_height): over the grains,
 # columns one mean grain diameter wide between the leftmost and rightmost grain centre,
 # the highest grain top (y + r) in each, and the median of the columns' tops (the upper
 # one of the two middle ones for an even count).

@@ -57,7 +57,7 @@ while IFS='|' read -r _ col _ where _; do
 		f=R/rise/$id.h5
 		case "$where" in
 		*'#rows') want=$(dims "$f" "${where%#rows}" | cut -d' ' -f1) ;;
-		'(userblock)') want=$(head -c 64 "$f" | sed -n 's/^fnv1a64w //p') ;; # the seal (core/h5id.h)
+		'(userblock)') want=$(head -c 64 "$f" | sed -n 's/^fnv1a64w //p') ;; # the seal (core/io/h5id.h)
 		@*) want=$(attr "$f" "/${where#@}") ;;
 		*) want=$(attr "$f" "${where%@*}/${where#*@}") ;;
 		esac

@@ -28,7 +28,7 @@
 #include <string.h>
 
 #include "collision_analytic.h"
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -70,18 +70,18 @@ static cres run(const ccase *c, int clip, double dt, double *beta_out)
 	sim_init(s, &sc, &e);
 	const double rs = c->ri + c->rj;
 	int wall = c->kj == KIND_WALL;
-	double mi = prepare_mass(&sc, c->ri), mj = prepare_mass(&sc, c->rj);
+	double mi = place_mass(&sc, c->ri), mj = place_mass(&sc, c->rj);
 	if (!wall) {
 		/* i at the origin moving +x, j touching on its right moving -x; zero momentum */
-		prepare_push(&sc, &s->st, 0, 0, c->ri, c->ki, &e);
-		prepare_push(&sc, &s->st, rs, 0, c->rj, c->kj, &e);
+		place_push(&sc, &s->st, 0, 0, c->ri, c->ki, &e);
+		place_push(&sc, &s->st, rs, 0, c->rj, c->kj, &e);
 	} else {
 		/* i falls onto the wall disk j at the origin; two far wall disks make the box
 		 * (hull in x of the walls, above their lowest centre) contain i */
-		prepare_push(&sc, &s->st, 0, rs, c->ri, c->ki, &e);
-		prepare_push(&sc, &s->st, 0, 0, c->rj, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, -60, 0, c->rj, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, 60, 0, c->rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, 0, rs, c->ri, c->ki, &e);
+		place_push(&sc, &s->st, 0, 0, c->rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, -60, 0, c->rj, KIND_WALL, &e);
+		place_push(&sc, &s->st, 60, 0, c->rj, KIND_WALL, &e);
 	}
 	if (sim_derive(s, &e)) {
 		printf("# setup failed: %s\n", e.msg);
@@ -103,7 +103,7 @@ static cres run(const ccase *c, int clip, double dt, double *beta_out)
 	}
 	*beta_out = beta;
 	analytic(w02, beta, clip, &res.tc0, &res.e0);
-	if (sim_start(s, 0, &e)) {
+	if (step_start(s, 0, &e)) {
 		printf("# start failed: %s\n", e.msg);
 		goto out;
 	}
@@ -117,7 +117,7 @@ static cres run(const ccase *c, int clip, double dt, double *beta_out)
 	long maxn = (long)(10 * res.tc0 / dt) + 10, k;
 	res.tc = NAN;
 	for (k = 1; k <= maxn; k++) {
-		if (sim_step(s, 0, &e)) {
+		if (step_advance(s, 0, &e)) {
 			printf("# step failed: %s\n", e.msg);
 			goto out;
 		}
@@ -132,7 +132,7 @@ static cres run(const ccase *c, int clip, double dt, double *beta_out)
 	if (!isfinite(res.tc))
 		goto out;
 	for (int m = 0; m < 400; m++)
-		if (sim_step(s, 0, &e)) {
+		if (step_advance(s, 0, &e)) {
 			printf("# step failed: %s\n", e.msg);
 			goto out;
 		}

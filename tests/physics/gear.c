@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -39,7 +39,7 @@ static void osc_engine(int integ, long nsteps, double c0, double *yend, double *
 	sc.gamma_s = 0;
 	sc.wall_mass = WALLMASS_INFINITE;
 	sc.integrator = integ;
-	double m = prepare_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w;
 	double xeq = m * g / Y, a = 0.5 * xeq;
 	sc.dt = T / nsteps;
@@ -49,16 +49,16 @@ static void osc_engine(int integ, long nsteps, double c0, double *yend, double *
 	sim_init(s, &sc, &e);
 	if (c0 > 0)
 		s->in.c[0] = c0; /* diagnostic: the position-only corrector value */
-	prepare_push(&sc, &s->st, 0, 2 - xeq - a, 1, KIND_GRAIN, &e);
-	prepare_push(&sc, &s->st, 0, 0, 1, KIND_WALL, &e);
-	prepare_push(&sc, &s->st, -30, 0, 1, KIND_WALL, &e);
-	prepare_push(&sc, &s->st, 30, 0, 1, KIND_WALL, &e);
-	if (sim_derive(s, &e) || sim_start(s, -g, &e))
+	place_push(&sc, &s->st, 0, 2 - xeq - a, 1, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 0, 0, 1, KIND_WALL, &e);
+	place_push(&sc, &s->st, -30, 0, 1, KIND_WALL, &e);
+	place_push(&sc, &s->st, 30, 0, 1, KIND_WALL, &e);
+	if (sim_derive(s, &e) || step_start(s, -g, &e))
 		goto out;
 	if (exact_start && integ != INTEG_VERLET)
 		s->st.q[C_Y][4][0] = -a * pow(w * sc.dt, 4) / 24;
 	for (long k = 0; k < nsteps; k++)
-		if (sim_step(s, -g, &e))
+		if (step_advance(s, -g, &e))
 			goto out;
 	*yend = s->st.q[C_Y][0][0];
 	*vend = s->st.q[C_Y][1][0] / sc.dt;
@@ -74,7 +74,7 @@ static double osc_error(int integ, long nsteps, double c0) /* c0 > 0: override *
 {
 	sb_scene sc;
 	params_defaults(&sc);
-	double m = prepare_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w;
 	double xeq = m * g / Y, a = 0.5 * xeq, y, v;
 	osc_engine(integ, nsteps, c0, &y, &v);
@@ -83,7 +83,7 @@ static double osc_error(int integ, long nsteps, double c0) /* c0 > 0: override *
 }
 
 /* The oscillator integrated by the test's own code, from the literature's coefficients
- * and not from core/integrate.c: Gear's predictor-corrector on the scaled derivatives
+ * and not from core/model/integrate.c: Gear's predictor-corrector on the scaled derivatives
  * q_k = dt^k/k! y^(k) (Gear, Numerical Initial Value Problems in ODEs, 1971; the
  * coefficients for forces that depend on the velocity, as Allen & Tildesley, Computer
  * Simulation of Liquids, 1987, app. E list them: 6 values 3/16, 251/360, 1, 11/18, 1/6,
@@ -97,7 +97,7 @@ static void osc_reference(int integ, long nsteps, double *yend, double *vend)
 {
 	sb_scene sc;
 	params_defaults(&sc);
-	double m = prepare_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w, h = T / nsteps;
 	double xeq = m * g / Y, a = 0.5 * xeq;
 #define ACC(y) (Y * (2 - (y)) / m - g)
@@ -169,20 +169,20 @@ static void gas(double dt, long nsteps, double *drift, double *maxdev, long *nco
 	for (int a = 0; a < nx; a++)
 		for (int b = 0; b < ny; b++) {
 			double r = 0.85 + 0.3 * gsl_rng_uniform(rng);
-			prepare_push(&sc, &s->st, (a + 0.5) * pitch, (b + 0.5) * pitch, r, KIND_GRAIN, &e);
+			place_push(&sc, &s->st, (a + 0.5) * pitch, (b + 0.5) * pitch, r, KIND_GRAIN, &e);
 		}
 	/* closed box: wall disks of radius 1 touching (spacing 2), centres on the
 	 * rectangle [-1, W+1] x [-1, H+1] */
 	int nwx = (int)ceil((W + 2) / 2), nwy = (int)ceil((H + 2) / 2);
 	for (int k = 0; k <= nwx; k++) {
 		double x = -1 + (W + 2) * k / nwx;
-		prepare_push(&sc, &s->st, x, -1, 1, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, x, H + 1, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, x, -1, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, x, H + 1, 1, KIND_WALL, &e);
 	}
 	for (int k = 1; k < nwy; k++) {
 		double y = -1 + (H + 2) * k / nwy;
-		prepare_push(&sc, &s->st, -1, y, 1, KIND_WALL, &e);
-		prepare_push(&sc, &s->st, W + 1, y, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, -1, y, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, W + 1, y, 1, KIND_WALL, &e);
 	}
 	*ok = 0;
 	if (sim_derive(s, &e))
@@ -192,13 +192,13 @@ static void gas(double dt, long nsteps, double *drift, double *maxdev, long *nco
 		s->st.q[C_X][1][i] = v * cos(phi) * sc.dt;
 		s->st.q[C_Y][1][i] = v * sin(phi) * sc.dt;
 	}
-	if (sim_start(s, 0, &e))
+	if (step_start(s, 0, &e))
 		goto out;
 	double E0 = energy(s), Emax = E0, Emin = E0;
 	long builds0 = s->nl.builds;
 	*ncoll = 0;
 	for (long k = 1; k <= nsteps; k++) {
-		if (sim_step(s, 0, &e))
+		if (step_advance(s, 0, &e))
 			goto out;
 		if (k % 100 == 0) {
 			double E = energy(s);
@@ -269,7 +269,7 @@ int main(void)
 	}
 	/* The engine's trajectory is the literature scheme's to round-off: |difference| /
 	 * amplitude <= 1e-9 at N = 64 and 256, where the integration errors themselves are
-	 * 7e-5 .. 2e-2 (N = 64) and 8e-8 .. 1.4e-3 (N = 256). Planted in core/integrate.c,
+	 * 7e-5 .. 2e-2 (N = 64) and 8e-8 .. 1.4e-3 (N = 256). Planted in core/model/integrate.c,
 	 * gear5's corrector 3/20 instead of 3/16 moved the end by 5.0e-5 (N = 64) and 5.1e-8
 	 * (N = 256) of the amplitude, gear4's 19/9 instead of 19/90 by 1.2e-2 and 4.5e-5 (the
 	 * order checks above let gear4's pass); round-off was <= 2.4e-15. */
@@ -277,7 +277,7 @@ int main(void)
 		for (long N = 64; N <= 256; N *= 4) {
 			sb_scene sc0;
 			params_defaults(&sc0);
-			double m0 = prepare_mass(&sc0, 1.0), a0 = 0.5 * m0 * sc0.gravity / sc0.stiffness;
+			double m0 = place_mass(&sc0, 1.0), a0 = 0.5 * m0 * sc0.gravity / sc0.stiffness;
 			double w0 = sqrt(sc0.stiffness / m0);
 			double ye, ve, yr, vr;
 			osc_engine(it, N, 0, &ye, &ve);

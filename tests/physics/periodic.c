@@ -21,7 +21,8 @@
 
 #include "observe.h"
 #include "periodic.h"
-#include "prepare.h"
+#include "place.h"
+#include "sample.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -50,14 +51,14 @@ static void del_sim(sb_sim *s)
 }
 
 /* A pair of grains at x0 and x1 (y = 5), with velocities and spins, and the forces of
- * sim_start into f[6] (fx, fy, torque of disk 0, then of disk 1). */
+ * step_start into f[6] (fx, fy, torque of disk 0, then of disk 1). */
 static int pair_forces(double W, double x0, double x1, double f[6])
 {
 	sb_scene sc = periodic_scene(W);
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
-	prepare_push(&sc, &s->st, x0, 5, 1, KIND_GRAIN, &e);
-	prepare_push(&sc, &s->st, x1, 5.25, 0.75, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, x0, 5, 1, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, x1, 5.25, 0.75, KIND_GRAIN, &e);
 	int ok = !e.code && !sim_derive(s, &e);
 	if (ok) {
 		sb_state *st = &s->st;
@@ -68,7 +69,7 @@ static int pair_forces(double W, double x0, double x1, double f[6])
 		st->q[C_X][1][1] = -12.5 * dt;
 		st->q[C_Y][1][1] = 2 * dt;
 		st->q[C_TH][1][1] = -3 * dt;
-		ok = !sim_start(s, 0, &e);
+		ok = !step_start(s, 0, &e);
 		for (int c = 0; c < 3 && ok; c++) {
 			f[c] = st->f[c][0];
 			f[3 + c] = st->f[c][1];
@@ -124,13 +125,13 @@ static void seam_list(void)
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	srand(7);
-	prepare_push(&sc, &s->st, 0.7, 6, 3.4, KIND_INTRUDER, &e); /* reaches across x = 0 */
+	place_push(&sc, &s->st, 0.7, 6, 3.4, KIND_INTRUDER, &e); /* reaches across x = 0 */
 	for (int k = 0; k < 120; k++) {
 		const double x = W * rand() / ((double)RAND_MAX + 1), y = 15.0 * rand() / ((double)RAND_MAX + 1);
-		prepare_push(&sc, &s->st, x, y, 0.85 + 0.3 * rand() / RAND_MAX, KIND_GRAIN, &e);
+		place_push(&sc, &s->st, x, y, 0.85 + 0.3 * rand() / RAND_MAX, KIND_GRAIN, &e);
 	}
 	for (int k = 0; k < 8; k++)
-		prepare_push(&sc, &s->st, W * (k + 0.5) / 8, -1, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, W * (k + 0.5) / 8, -1, 1, KIND_WALL, &e);
 	int ok = !e.code && !sim_derive(s, &e) && !nlist_build(&s->nl, &s->st, &e);
 	CHECK("periodic.seam_list.setup", ok, "%s", e.msg);
 	if (!ok) {
@@ -177,21 +178,21 @@ static void crossing(void)
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	const double x0 = W - 3;
-	prepare_push(&sc, &s->st, x0, 4, 1, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, x0, 4, 1, KIND_GRAIN, &e);
 	for (int k = 0; k < 10; k++)
-		prepare_push(&sc, &s->st, W * (k + 0.5) / 10, -1, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, W * (k + 0.5) / 10, -1, 1, KIND_WALL, &e);
 	int ok = !e.code && !sim_derive(s, &e);
 	const double dt = sc.dt;
 	const long n = lround(1.0 / dt);
 	if (ok) {
 		s->st.q[C_X][1][0] = v * dt;
-		ok = !sim_start(s, 0, &e);
+		ok = !step_start(s, 0, &e);
 	}
 	int wraps = 0;
 	double xmin = INFINITY, xmax = -INFINITY, xprev = x0;
 	/* fused steps (the run loop's), the last one a reference step so the state is read */
 	for (long k = 1; k <= n && ok; k++) {
-		ok = !step_once(s, 0, 0, k * dt, k, "test", k < n, NULL, &e);
+		ok = !step_once(s, k, 0, 0, k < n, NULL, &e);
 		if (k == n || !(k % 50)) {
 			kernel_sync(s->kern, &s->st);
 			const double x = s->st.q[C_X][0][0];
@@ -231,7 +232,7 @@ static sb_sim *gas(double W, double mu, double gn, double gs, int n)
 	const int cols = (int)(W / 2.4);
 	for (int k = 0; k < n; k++) { /* a loose lattice, so that nobody starts deep inside another */
 		const double x = 2.4 * (k % cols) + 1.2, y = 2.4 * (k / cols) + 1.2;
-		prepare_push(&sc, &s->st, x, y, 0.85 + 0.3 * rand() / RAND_MAX, KIND_GRAIN, &e);
+		place_push(&sc, &s->st, x, y, 0.85 + 0.3 * rand() / RAND_MAX, KIND_GRAIN, &e);
 	}
 	if (e.code || sim_derive(s, &e)) {
 		printf("# gas setup failed: %s\n", e.msg);
@@ -268,14 +269,14 @@ static double energy(sb_sim *s)
  * seam contact. */
 static int run_gas(sb_sim *s, long n, int fuse, int *wraps, long *seam_contacts, double *emax_dev, sb_err *e)
 {
-	const double W = s->sc.width, dt = s->sc.dt;
+	const double W = s->sc.width;
 	double *xp = malloc(sizeof(double) * (size_t)s->st.nm);
 	memcpy(xp, s->st.q[C_X][0], sizeof(double) * (size_t)s->st.nm);
 	const double e0 = emax_dev ? energy(s) : 0;
 	int ok = 1;
 	for (long k = 1; k <= n && ok; k++) {
 		const int f = fuse && k < n && k % 100;
-		ok = !step_once(s, 0, 0, k * dt, k, "test", f, NULL, e);
+		ok = !step_once(s, k, 0, 0, f, NULL, e);
 		if (f)
 			continue;
 		kernel_sync(s->kern, &s->st);
@@ -302,7 +303,7 @@ static void conservation(void)
 	sb_err e = {0};
 	/* momentum with friction and damping: every force acts on two disks oppositely */
 	sb_sim *s = gas(W, 0.5, 100, 1, 40);
-	int ok = s && !sim_start(s, 0, &e);
+	int ok = s && !step_start(s, 0, &e);
 	double p0[3], p1[3];
 	int wraps = 0;
 	long seam = 0;
@@ -328,7 +329,7 @@ static void conservation(void)
 	double dev = 0;
 	wraps = 0;
 	seam = 0;
-	ok = s && !sim_start(s, 0, &e) && run_gas(s, lround(0.5 / s->sc.dt), 0, &wraps, &seam, &dev, &e);
+	ok = s && !step_start(s, 0, &e) && run_gas(s, lround(0.5 / s->sc.dt), 0, &wraps, &seam, &dev, &e);
 	CHECK("periodic.energy.runs", ok, "%s", e.msg);
 	if (ok) {
 		printf("# energy: largest relative deviation %.3g over 0.5 s; %d crossings, %ld seam contacts\n", dev,
@@ -342,7 +343,7 @@ static void conservation(void)
 	sb_sim *a = gas(W, 0.5, 100, 1, 40), *b = gas(W, 0.5, 100, 1, 40);
 	int wa = 0, wb = 0;
 	long sa = 0, sb = 0;
-	ok = a && b && !sim_start(a, 0, &e) && !sim_start(b, 0, &e) &&
+	ok = a && b && !step_start(a, 0, &e) && !step_start(b, 0, &e) &&
 	     run_gas(a, 4000, 1, &wa, &sa, NULL, &e) && run_gas(b, 4000, 0, &wb, &sb, NULL, &e);
 	int same = ok;
 	for (int c = 0; c < SB_NCOORD && same; c++)
@@ -368,9 +369,9 @@ static void observables(void)
 	sc.ring_y = 5;
 	sb_state st = {0};
 	sb_err e = {0};
-	prepare_push(&sc, &st, W - 0.5, 3.1, 1, KIND_GRAIN, &e); /* will cross the seam */
-	prepare_push(&sc, &st, W - 5.5, 5, 1, KIND_GRAIN, &e);  /* 6 cm from the ring centre, through the seam */
-	prepare_push(&sc, &st, 10, 5, 1, KIND_GRAIN, &e);       /* 9.5 cm: outside */
+	place_push(&sc, &st, W - 0.5, 3.1, 1, KIND_GRAIN, &e); /* will cross the seam */
+	place_push(&sc, &st, W - 5.5, 5, 1, KIND_GRAIN, &e);  /* 6 cm from the ring centre, through the seam */
+	place_push(&sc, &st, 10, 5, 1, KIND_GRAIN, &e);       /* 9.5 cm: outside */
 	sb_obs o;
 	int ok = !e.code && !obs_init(&o, &sc, &st, -1, 10, 0, W, &e);
 	CHECK("periodic.observables.setup", ok, "%s", e.msg);
@@ -379,9 +380,9 @@ static void observables(void)
 		return;
 	}
 	long nf = 0, nd = 0;
-	ok = !obs_sample(&o, &st, 0, 4, NULL, &nf, &nd, &e);
+	ok = !sample_obs_strobe(&o, &st, 0, 4, NULL, &nf, &nd, &e);
 	st.q[C_X][0][0] = 0.5; /* +1 cm through the seam */
-	ok = ok && !obs_sample(&o, &st, 0.25, 4, NULL, &nf, &nd, &e);
+	ok = ok && !sample_obs_strobe(&o, &st, 0.25, 4, NULL, &nf, &nd, &e);
 	/* the midpoint is x = 0 (wrapped), y = 3.1: column 0, row 3.1 / cell */
 	const int row = (int)floor(3.1 / o.cell);
 	const size_t c0 = (size_t)row * o.nx;
@@ -404,7 +405,7 @@ static void refused(void)
 	sb_scene sc = periodic_scene(3); /* less than a grain's reach around */
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
-	prepare_push(&sc, &s->st, 1, 5, 1.6, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 1, 5, 1.6, KIND_GRAIN, &e);
 	int rc = sim_derive(s, &e);
 	printf("# %s\n", e.msg);
 	CHECK("periodic.refused.disk_meets_own_image", rc == SB_EUSAGE && strstr(e.msg, "sides = periodic") &&

@@ -22,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prepare.h"
+#include "place.h"
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
@@ -51,9 +51,9 @@ static void spin_drop(void)
 	sb_err e = {0};
 	const double w0 = 20; /* rad/s, counter-clockwise; surface speed 20 cm/s */
 	/* centre right above the wall disk at x = 0, 0.1 cm above touching */
-	prepare_push(&sc, &s->st, 0, 2.1, 1, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 0, 2.1, 1, KIND_GRAIN, &e);
 	for (int k = -10; k <= 10; k++)
-		prepare_push(&sc, &s->st, 2.0 * k, 0, 1, KIND_WALL, &e);
+		place_push(&sc, &s->st, 2.0 * k, 0, 1, KIND_WALL, &e);
 	if (sim_derive(s, &e)) {
 		CHECK("tangential.spin_drop.setup", 0, "%s", e.msg);
 		del_sim(s);
@@ -61,10 +61,10 @@ static void spin_drop(void)
 	}
 	s->st.q[C_TH][1][0] = w0 * sc.dt;
 	const double g = sc.gravity;
-	int ok = !sim_start(s, -g, &e);
+	int ok = !step_start(s, -g, &e);
 	long n = (long)(0.1 / sc.dt); /* 0.1 s: fall (14 ms), contact and after */
 	for (long k = 0; k < n && ok; k++)
-		ok = !sim_step(s, -g, &e);
+		ok = !step_advance(s, -g, &e);
 	CHECK("tangential.spin_drop.runs", ok, "%s", e.msg);
 	double vx = s->st.q[C_X][1][0] / sc.dt, w = s->st.q[C_TH][1][0] / sc.dt,
 	       x = s->st.q[C_X][0][0];
@@ -86,27 +86,27 @@ static void slide(void)
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	const double R = 1, RW = 1e6, g = sc.gravity, mu = sc.mu, gs = sc.gamma_s;
-	const double m = prepare_mass(&sc, R), xeq = m * g / sc.stiffness;
+	const double m = place_mass(&sc, R), xeq = m * g / sc.stiffness;
 	const double vx0 = 50;
-	prepare_push(&sc, &s->st, 0, R - xeq, R, KIND_GRAIN, &e);
-	prepare_push(&sc, &s->st, 0, -RW, RW, KIND_WALL, &e);
+	place_push(&sc, &s->st, 0, R - xeq, R, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 0, -RW, RW, KIND_WALL, &e);
 	/* far wall disks only widen the box (hull of the walls in x) */
-	prepare_push(&sc, &s->st, -200, -RW, 1, KIND_WALL, &e);
-	prepare_push(&sc, &s->st, 200, -RW, 1, KIND_WALL, &e);
+	place_push(&sc, &s->st, -200, -RW, 1, KIND_WALL, &e);
+	place_push(&sc, &s->st, 200, -RW, 1, KIND_WALL, &e);
 	if (sim_derive(s, &e)) {
 		CHECK("tangential.slide.setup", 0, "%s", e.msg);
 		del_sim(s);
 		return;
 	}
 	s->st.q[C_X][1][0] = vx0 * sc.dt;
-	int ok = !sim_start(s, -g, &e);
+	int ok = !step_start(s, -g, &e);
 	const double vc = mu * g / gs, t1 = (vx0 - vc) / (3 * mu * g);
 	double worst_lin = 0, worst_exp = 0, prev_abs = INFINITY;
 	int monotone = 1, signs = 1;
 	long n = (long)(0.12 / sc.dt);
 	double vx = 0, w = 0, vt = 0;
 	for (long k = 1; k <= n && ok; k++) {
-		ok = !sim_step(s, -g, &e);
+		ok = !step_advance(s, -g, &e);
 		double t = k * sc.dt;
 		vx = s->st.q[C_X][1][0] / sc.dt;
 		w = s->st.q[C_TH][1][0] / sc.dt;
@@ -156,8 +156,8 @@ static void oblique(void)
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	const double ri = 1, rj = 1.5;
-	prepare_push(&sc, &s->st, 0, 0, ri, KIND_GRAIN, &e);
-	prepare_push(&sc, &s->st, 3.0, 1.2, rj, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 0, 0, ri, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, 3.0, 1.2, rj, KIND_GRAIN, &e);
 	if (sim_derive(s, &e)) {
 		CHECK("tangential.oblique.setup", 0, "%s", e.msg);
 		del_sim(s);
@@ -186,13 +186,13 @@ static void oblique(void)
 	MOM(P0, L0);
 	pi0[0] = st->m[0] * st->q[C_X][1][0] / dt;
 	pi0[1] = st->m[0] * st->q[C_Y][1][0] / dt;
-	int ok = !sim_start(s, 0, &e), touched = 0;
+	int ok = !step_start(s, 0, &e), touched = 0;
 	double ximax = 0, maxdP = 0, maxdL = 0, dLpred = 0, dLabs = 0;
 	sb_law law = s->law;
 	const double meff = st->m[0] * st->m[1] / (st->m[0] + st->m[1]);
 	double pscale = fabs(P0[0]) + fabs(P0[1]) + st->m[0] * 61 + st->m[1] * 20;
 	for (long k = 0; k < 2000 && ok; k++) {
-		ok = !sim_step(s, 0, &e);
+		ok = !step_advance(s, 0, &e);
 		double d = hypot(st->q[C_X][0][0] - st->q[C_X][0][1], st->q[C_Y][0][0] - st->q[C_Y][0][1]);
 		double xi = ri + rj - d;
 		if (xi > 0)

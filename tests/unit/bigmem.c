@@ -1,4 +1,4 @@
-/* bigmem.c - the hot arrays' memory (core/bigmem.h): alignment, and the spacing of a
+/* bigmem.c - the hot arrays' memory (core/base/bigmem.h): alignment, and the spacing of a
  * slab's arrays modulo 4 KiB. */
 #include "bigmem.h"
 #include "testlib.h"

@@ -1,4 +1,4 @@
-/* drive.c - the box motion (core/drive.h): the phase of every drive, frequency ramps
+/* drive.c - the box motion (core/model/drive.h): the phase of every drive, frequency ramps
  * up, down and up-and-down included, is continuous with rate f(t), and the velocity
  * and acceleration are the derivatives of the displacement. */
 #include <math.h>
@@ -174,7 +174,20 @@ static void test_axes(void)
 		snprintf(id, sizeof id, "drive.axis.%s.round_trip", drive_axis_name(k));
 		const double x = drive_axis(k, 2, 3.2, 981);
 		CHECK_REL(id, drive_axis_freq(k, x, 2, 981), 3.2, 1e-14);
+		/* the row's scaling agrees with its value: from a run at 2.5 Hz to x */
+		const sb_axis_row *r = drive_axis_row(k);
+		snprintf(id, sizeof id, "drive.axis.%s.row", drive_axis_name(k));
+		CHECK(id, r && !strcmp(r->name, drive_axis_name(k)) && !strcmp(r->unit, drive_axis_unit(k)) && r->words &&
+				  *r->words && r->symbol && *r->symbol && (r->power == 1 || r->power == 2),
+		      "an incomplete row");
+		snprintf(id, sizeof id, "drive.axis.%s.scaling", drive_axis_name(k));
+		CHECK_REL(id, drive_axis_freq_from(k, x, drive_axis(k, 2, 2.5, 981), 2.5), 3.2, 1e-14);
 	}
+	CHECK("drive.axis.row_of_another_kind", !drive_axis_row(AXIS_N) && !drive_axis_row(-1), "a row");
+	CHECK("drive.axis.scaling_needs_positive",
+	      isnan(drive_axis_freq_from(AXIS_GAMMA, -1, 2, 3)) && isnan(drive_axis_freq_from(AXIS_VELOCITY, 1, 0, 3)) &&
+		      drive_axis_freq_from(AXIS_FREQUENCY, 7, 0, 3) == 7 && drive_axis_freq_from(-1, 7, 1, 3) == 7,
+	      "%g", drive_axis_freq_from(AXIS_GAMMA, -1, 2, 3));
 	CHECK("drive.axis.unknown_name", drive_axis_kind("Gamma") == -1 && drive_axis_kind("") == -1 &&
 						 drive_axis_kind(NULL) == -1,
 	      "%d", drive_axis_kind("Gamma"));

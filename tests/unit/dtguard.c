@@ -1,4 +1,4 @@
-/* dtguard.c - the step guard's limit against its definition (core/dtguard.h): t_c =
+/* dtguard.c - the step guard's limit against its definition (core/scene/dtguard.h): t_c =
  * pi / sqrt(Y / m_eff - (gamma_N / 2)^2) of the lightest pair, m_eff = m_min / 2 (two
  * equal disks), the limit k t_c per integrator capped by an absolute bound, computed
  * here from the formula for known Y, gamma_N and masses; and the check's three answers. */

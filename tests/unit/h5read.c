@@ -1,4 +1,4 @@
-/* h5read.c - reading run files (core/h5read.h): a dataset's shape is checked against
+/* h5read.c - reading run files (core/io/h5read.h): a dataset's shape is checked against
  * overflow and against the bytes the file holds before anything is allocated, an
  * attribute must be one value of the kind asked for, and a FIFO is refused at once. */
 #include <math.h>

@@ -1,4 +1,4 @@
-/* inifile.c - the one INI reader (core/inifile.c) that scene and campaign files share:
+/* inifile.c - the one INI reader (core/text/inifile.c) that scene and campaign files share:
  * each key and each section header reaches its callback with the line it is on,
  * comments and indentation are gone, the first error stops the reading and names the
  * file and the line, a malformed line is named by its number, and the line limit

@@ -1,4 +1,4 @@
-/* kernel.c - the force kernel module (core/kernel.h), on every path of this build the
+/* kernel.c - the force kernel module (core/force/kernel.h), on every path of this build the
  * CPU can run (the others are named on SKIP lines): the forces it gives are those of
  * the contact law applied pair by pair in list order with m_eff = 1 / (1/m_i + 1/m_j)
  * (forces_pair), in st->f and through the fused corrector's path; the ring's |F| sums
@@ -14,7 +14,7 @@
 
 #include "bigmem.h"
 #include "kernel.h"
-#include "prepare.h"
+#include "place.h"
 #include "testlib.h"
 
 /* a bed of n grains scattered over W x H (overlapping: every pair a contact candidate)
@@ -25,10 +25,10 @@ static void scene(sb_state *st, gsl_rng *rng, int n, double W, double H, double 
 	params_defaults(&sc);
 	sb_err e = {0};
 	for (int i = 0; i < n; i++)
-		prepare_push(&sc, st, W * gsl_rng_uniform(rng), 1 + H * gsl_rng_uniform(rng),
+		place_push(&sc, st, W * gsl_rng_uniform(rng), 1 + H * gsl_rng_uniform(rng),
 			     0.85 + 0.3 * gsl_rng_uniform(rng), i == 0 ? KIND_INTRUDER : KIND_GRAIN, &e);
 	for (double x = -1; x <= W + 1 + 1e-9; x += 2)
-		prepare_push(&sc, st, x, -0.2, 1, KIND_WALL, &e);
+		place_push(&sc, st, x, -0.2, 1, KIND_WALL, &e);
 	for (int i = 0; i < st->nm; i++) {
 		st->q[C_X][1][i] = dt * 50 * (2 * gsl_rng_uniform(rng) - 1);
 		st->q[C_Y][1][i] = dt * 50 * (2 * gsl_rng_uniform(rng) - 1);
@@ -231,7 +231,7 @@ static void test_refusals(const sb_kpath *p, int n)
 	sb_scene sc;
 	params_defaults(&sc);
 	sb_err e = {0};
-	prepare_push(&sc, &st, 0, 1, 1, KIND_GRAIN, &e);
+	place_push(&sc, &st, 0, 1, 1, KIND_GRAIN, &e);
 	sb_kernel *k = NULL;
 	int rc = kernel_init_path(&k, &st, "mmx", &e);
 	CHECK("kernel.refuses_unknown_path", rc == SB_EUSAGE && strstr(e.msg, SB_KERNEL_ENV) && strstr(e.msg, p[0].name),

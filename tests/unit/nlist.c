@@ -13,7 +13,7 @@
 
 #include "kernel.h"
 #include "nlist.h"
-#include "prepare.h"
+#include "place.h"
 #include "testlib.h"
 
 static int cmp_pair(const void *a, const void *b)
@@ -107,16 +107,16 @@ static void build_scene(sb_state *st, gsl_rng *rng, int n, double ratio, double 
 	sb_scene sc;
 	params_defaults(&sc);
 	sb_err e = {0};
-	prepare_push(&sc, st, 0.5 * W, ratio + 0.5, ratio, KIND_INTRUDER, &e);
+	place_push(&sc, st, 0.5 * W, ratio + 0.5, ratio, KIND_INTRUDER, &e);
 	for (int i = 0; i < n; i++) {
 		double r = 0.85 + 0.3 * gsl_rng_uniform(rng);
-		prepare_push(&sc, st, W * gsl_rng_uniform(rng), H * gsl_rng_uniform(rng), r, KIND_GRAIN, &e);
+		place_push(&sc, st, W * gsl_rng_uniform(rng), H * gsl_rng_uniform(rng), r, KIND_GRAIN, &e);
 	}
 	for (double x = -1; x <= W + 1 + 1e-9; x += 2)
-		prepare_push(&sc, st, x, -1, 1, KIND_WALL, &e);
+		place_push(&sc, st, x, -1, 1, KIND_WALL, &e);
 	for (double y = 1; y <= H + 1e-9; y += 2) {
-		prepare_push(&sc, st, -1, y, 1, KIND_WALL, &e);
-		prepare_push(&sc, st, W + 1, y, 1, KIND_WALL, &e);
+		place_push(&sc, st, -1, y, 1, KIND_WALL, &e);
+		place_push(&sc, st, W + 1, y, 1, KIND_WALL, &e);
 	}
 }
 
@@ -196,12 +196,12 @@ int main(void)
 		sb_state st = {0};
 		sb_nlist nl;
 		sb_err e = {0};
-		prepare_push(&sc, &st, 0, 0, 6, KIND_INTRUDER, &e);
-		prepare_push(&sc, &st, 11.9, 0, 6, KIND_INTRUDER, &e);
+		place_push(&sc, &st, 0, 0, 6, KIND_INTRUDER, &e);
+		place_push(&sc, &st, 11.9, 0, 6, KIND_INTRUDER, &e);
 		for (int i = 0; i < 20; i++)
-			prepare_push(&sc, &st, 5, 5, 1, KIND_GRAIN, &e);
-		prepare_push(&sc, &st, 5, 5, 1, KIND_WALL, &e);
-		prepare_push(&sc, &st, 5, 6, 1, KIND_WALL, &e);
+			place_push(&sc, &st, 5, 5, 1, KIND_GRAIN, &e);
+		place_push(&sc, &st, 5, 5, 1, KIND_WALL, &e);
+		place_push(&sc, &st, 5, 6, 1, KIND_WALL, &e);
 		int ok = !nlist_init(&nl, &st, 0.15, kernel_pair_shift(), &e) && !nlist_build(&nl, &st, &e);
 		CHECK("nlist.degenerate.same_spot", ok && compare(&st, &nl, 0.15, why, sizeof why), "%s %s", why, e.msg);
 		nlist_free(&nl);

@@ -1,4 +1,4 @@
-/* num.c - the one strict reading of numbers (core/num.h): decimal notation only, the
+/* num.c - the one strict reading of numbers (core/text/num.h): decimal notation only, the
  * whole text, finite, within a double's normal range; integers exact in 64 bits. */
 #include <math.h>
 #include <stdio.h>

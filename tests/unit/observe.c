@@ -8,8 +8,9 @@
 
 #include "crossing.h"
 #include "observe.h"
-#include "prepare.h"
+#include "place.h"
 #include "record.h"
+#include "sample.h"
 #include "testlib.h"
 
 static char jpath[] = "/tmp/sb_obs_test_XXXXXX";
@@ -52,7 +53,7 @@ static void test_flux(void)
 	double x0[4] = {20, 22, 5, 35}, y0[4] = {1.0, 8.0, 2.0, 6.0};
 	double x1[4] = {20, 22, 5, 36}, y1[4] = {4.2, 3.0, 2.4, 9.9};
 	for (int i = 0; i < 4; i++)
-		prepare_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
+		place_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
 	sb_obs o;
 	int rc = obs_init(&o, &sc, &st, -1, 10.0, 0, 40, &e);
 	CHECK("observe.flux.init", rc == 0 && o.nlines == 10 && fabs(o.hline[0] - 0.5) < 1e-15 &&
@@ -61,10 +62,10 @@ static void test_flux(void)
 	journal_open(&jr, jpath, st.nm, -1, &e);
 	long nf = 0, nd = 0;
 	set_pos(&st, x0, y0);
-	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0, 3, &jr, &nf, &nd, &e);
 	CHECK("observe.flux.first_sample_no_record", nf == 0, "nf %ld", nf);
 	set_pos(&st, x1, y1);
-	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
 	long off;
 	journal_sync(&jr, &off, &e);
 	journal_close(&jr);
@@ -105,7 +106,7 @@ static void test_flux_seam(void)
 	double x0[3] = {39.5, 0.5, 20}, y0[3] = {1.0, 1.0, 1.0};
 	double x1[3] = {0.5, 39.5, 20}, y1[3] = {4.2, 4.2, 4.2};
 	for (int i = 0; i < 3; i++)
-		prepare_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
+		place_push(&sc, &st, x0[i], y0[i], 1, KIND_GRAIN, &e);
 	sb_obs o;
 	int rc = obs_init(&o, &sc, &st, -1, 10.0, 0, 40, &e);
 	CHECK("observe.flux.seam.init", rc == 0 && o.period == 40, "rc %d period %g %s", rc, o.period, e.msg);
@@ -113,9 +114,9 @@ static void test_flux_seam(void)
 	journal_open(&jr, jpath, st.nm, -1, &e);
 	long nf = 0, nd = 0;
 	set_pos(&st, x0, y0);
-	obs_sample(&o, &st, 0, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0, 3, &jr, &nf, &nd, &e);
 	set_pos(&st, x1, y1);
-	obs_sample(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
+	sample_obs_strobe(&o, &st, 0.3, 3, &jr, &nf, &nd, &e);
 	long off;
 	journal_sync(&jr, &off, &e);
 	journal_close(&jr);
@@ -133,7 +134,7 @@ static void test_flux_seam(void)
 	state_free(&st);
 }
 
-/* The crossing rule at its edges (core/crossing.h): upwards yp < h <= y, downwards
+/* The crossing rule at its edges (core/model/crossing.h): upwards yp < h <= y, downwards
  * y < h <= yp. A disk that ends exactly on a line has crossed it; one that starts on it
  * and moves up has not crossed it again; one that sinks from it has crossed it down. */
 static void test_crossing_edges(void)
@@ -180,7 +181,7 @@ static void test_field(void)
 		x[i] = 2 + 30.0 * (s >> 8) / (1u << 24);
 		s = s * 1103515245u + 12345u;
 		y[i] = 1 + 15.0 * (s >> 8) / (1u << 24);
-		prepare_push(&sc, &st, x[i], y[i], 1, KIND_GRAIN, &e);
+		place_push(&sc, &st, x[i], y[i], 1, KIND_GRAIN, &e);
 	}
 	sb_obs o;
 	obs_init(&o, &sc, &st, -1, 20.0, 0, 40, &e);
@@ -195,7 +196,7 @@ static void test_field(void)
 			st.q[C_X][0][i] = x[i] + 0.3 * k;
 			st.q[C_Y][0][i] = y[i] - 0.1 * k;
 		}
-		obs_sample(&o, &st, k * 0.25, 4, &jr, &nf, &nd, &e);
+		sample_obs_strobe(&o, &st, k * 0.25, 4, &jr, &nf, &nd, &e);
 	}
 	long off;
 	journal_sync(&jr, &off, &e);
@@ -231,10 +232,10 @@ static void test_ring(void)
 	sb_err e = {0};
 	/* intruder at (30, 10); grains at distances 3 (out), 5 (in, below), 6 (in, above),
 	 * 7.9 (in, below), 9 (out) */
-	prepare_push(&sc, &st, 30, 10, 4, KIND_INTRUDER, &e);
+	place_push(&sc, &st, 30, 10, 4, KIND_INTRUDER, &e);
 	double gx[5] = {33, 30, 36, 30, 39}, gy[5] = {10, 5, 10, 2.1, 10};
 	for (int i = 0; i < 5; i++)
-		prepare_push(&sc, &st, gx[i], gy[i], 1, KIND_GRAIN, &e);
+		place_push(&sc, &st, gx[i], gy[i], 1, KIND_GRAIN, &e);
 	sb_obs o;
 	obs_init(&o, &sc, &st, 0, 20, 0, 60, &e);
 	double fa[6] = {100, 1, 10, 20, 30, 2};

@@ -1,0 +1,60 @@
+/* forces.h - the contact forces (docs/model.md, "Contact law": a linear spring-dashpot
+ * normal force and a viscous tangential force capped by Coulomb friction; no shear
+ * spring) over the Verlet list: the law in plain C (the reference of the vector
+ * kernel, kernel.h), the seam pairs, and the scans of the contacts. */
+#ifndef SB_FORCES_H
+#define SB_FORCES_H
+
+#include "nlist.h"
+#include "state.h"
+
+typedef struct sb_law {
+	double Y, gn, gs, mu;    /* stiffness, normal and shear damping, Coulomb */
+	double max_overlap;      /* fraction of the smaller radius that stops the run */
+	int clip;                /* clip_attractive */
+} sb_law;
+
+/* Where the seam loop finds disk i's x, y and scaled velocities (at [i * ps] from
+ * x, y, vx, vy) and adds its force and torque (at [i * fs] from fx, fy, t): the
+ * state's arrays (ps = fs = 1) or the vector kernel's records and accumulators. */
+typedef struct sb_seam_io {
+	const double *x, *y, *vx, *vy;
+	double *fx, *fy, *t;
+	int ps, fs;
+} sb_seam_io;
+
+/* The contact law over the seam pairs of periodic sides (nlist.h; none with walls):
+ * disk i's image at x_i + period against disk j, the vector kernel's arithmetic to the bit
+ * (scaled velocities, 1/dt in the damping), forces added after those of the flat
+ * list in the list's order. fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1 if some overlap
+ * exceeded max_overlap, else 0. */
+int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
+		double *fabs_sum);
+
+/* The force on disk i from disk j for given relative geometry; the unit of every
+ * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
+void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
+		 double dvx, double dvy, double wi, double wj, double meff,
+		 double *fx, double *fy, double *ti, double *tj);
+
+/* The scans below cover the seam pairs too (their normal and midpoint through the
+ * minimum image, the midpoint wrapped into the period).
+ *
+ * The elastic energy of the contacts, sum of Y xi^2 / 2, the largest overlap as a
+ * fraction of the smaller radius, and the number of contacts (a scan of the list, for
+ * the energy series). */
+void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
+			   double *max_overlap, long *contacts);
+
+/* Every current contact as (i, j, F_N, F_S, n_x, n_y, x, y): the list's indices, the
+ * normal force along n = (r_i - r_j)/d and the tangential one along t (the force on i
+ * is F_N n + F_S t), and the midpoint of the centres; velocities q1 * inv_dt. Writes at
+ * most cap contacts into out (8 doubles each) and returns how many there are. */
+long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, double inv_dt, double *out,
+		     long cap);
+
+/* Largest overlap / smaller radius over all current contacts, and which disks (a scan
+ * of the list: for the overlap record and the stop's message). */
+double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);
+
+#endif
