@@ -233,7 +233,17 @@ clean:
 docs: all
 	$(Q)bash scripts/docs_lists.sh write
 
-# make print-VAR: a variable's value, for scripts (docs_lists.sh reads AN_MAIN)
+# make print-VAR: a variable's value, for scripts. make print-tools: every program the
+# build makes (bin/shake, bin/study, the analysis tools of analysis/analysis.mk's
+# AN_MAIN); make print-campaign-tools: the analysis tools that read a campaign's runs
+# (AN_CAMPAIGN). The scripts and tests that go over the tools read these, and
+# scripts/docs_lists.sh checks the docs and the one list in C (tests/fuzz/fuzz.c)
+# against them, and fails on a line anywhere else that names the tools by hand.
+.PHONY: print-tools print-campaign-tools
+print-tools:
+	@echo shake study $(AN_MAIN)
+print-campaign-tools:
+	@echo $(AN_CAMPAIGN)
 print-%:
 	@echo '$($*)'
 
