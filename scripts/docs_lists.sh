@@ -173,15 +173,15 @@ copies=$(awk -v t="$(tr '\n' ' ' <"$TMP/tools.code")" -v r="$REPO/" -v o="${DOCS
 if [ -z "$copies" ]; then ok tools.no_copy; else fail tools.no_copy "a second list of the tools, kept by hand (read make print-tools): $copies"; fi
 
 # --- the files of lib/: lib/README.md's source tour names each, and only those ---
+# tour_files MARKER DOC: the files a table after "<!-- docs_lists MARKER:" names in its
+# first column, one a line ("name.[ch]" as name.c and name.h)
+tour_files() {
+	awk -v m="<!-- docs_lists $1:" 'index($0, m) == 1 { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
+		"$(doc "$2")" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
+		awk '{ if (sub(/\.\[ch\]$/, "")) { print $0 ".c"; print $0 ".h" } else print }'
+}
 (cd "$REPO/lib" && ls) >"$TMP/lib.code"
-awk '/<!-- docs_lists lib-files:/ { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
-	"$(doc lib/README.md)" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
-	while read -r f; do
-		case "$f" in
-		*.\[ch\]) echo "${f%.\[ch\]}.c"; echo "${f%.\[ch\]}.h" ;;
-		*) echo "$f" ;;
-		esac
-	done >"$TMP/lib.doc"
+tour_files lib-files lib/README.md >"$TMP/lib.doc"
 same_set lib-files "lib/README.md's source tour" "$TMP/lib.code" "$TMP/lib.doc"
 
 # --- the files of core/ ---
