@@ -104,6 +104,7 @@ help:
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
 	@echo "make cross-aarch64  the engine and every test program built for aarch64, run under qemu (deps-cross; -regression; docs/cross.md)"
 	@echo "make docs       rewrite the docs' generated lists (scene keys, result columns) from the code"
+	@echo "make print-tools  the programs the build makes (print-campaign-tools: the tools that read a campaign's runs)"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
 	@echo "       SAN=1 (sanitizer build in build/san), NPROC (compilers and tests at once, default: the CPUs),"
