@@ -150,11 +150,18 @@ same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tool
 
 # tests/fuzz/fuzz.c's RUNFILE_TOOLS, the one copy in C: the tools that read a campaign's
 # runs (`make print-campaign-tools`) and study
-ctools_code() { make -s --no-print-directory -C "$REPO" print-campaign-tools | tr ' ' '\n' | grep .; echo study; }
-code campaign-tools ctools_code
-awk '/RUNFILE_TOOLS\[\] = \{/ { on = 1 } on { print } on && /\};/ { exit }' "$(doc tests/fuzz/fuzz.c)" |
-	grep -o '"[a-z_]*"' | tr -d '"' >"$TMP/tools.fuzz"
-same_set tools.fuzz_c "tests/fuzz/fuzz.c's RUNFILE_TOOLS" "$TMP/campaign-tools.code" "$TMP/tools.fuzz"
+ctools_code() {
+	local t
+	t=$(make -s --no-print-directory -C "$REPO" print-campaign-tools 2>"$TMP/make.err") && [ -n "$t" ] || return 1
+	printf '%s\n' $t study
+}
+if code campaign-tools ctools_code; then
+	awk '/RUNFILE_TOOLS\[\] = \{/ { on = 1 } on { print } on && /\};/ { exit }' "$(doc tests/fuzz/fuzz.c)" |
+		grep -o '"[a-z_]*"' | tr -d '"' >"$TMP/tools.fuzz"
+	same_set tools.fuzz_c "tests/fuzz/fuzz.c's RUNFILE_TOOLS" "$TMP/campaign-tools.code" "$TMP/tools.fuzz"
+else
+	fail tools.fuzz_c "make print-campaign-tools named no tool: $(head -c 300 "$TMP/make.err")"
+fi
 # No other copy: a line of the sources, scripts or docs that names five or more tools
 # as words is a list kept by hand; it reads `make print-tools` or
 # `make print-campaign-tools` instead. Only the places above may: AN_MAIN itself,
