@@ -109,6 +109,7 @@ help:
 	@echo "                (FUZZ_SECONDS=600, FUZZ_SEED=1; findings with repro.sh in build/fuzz/findings)"
 	@echo "make cross-aarch64  the engine and every test program built for aarch64, run under qemu (deps-cross; -regression; docs/cross.md)"
 	@echo "make docs       rewrite the docs' generated lists (scene keys, result columns) from the code"
+	@echo "make print-tools  the programs the build makes (print-campaign-tools: the tools that read a campaign's runs)"
 	@echo "make clean      remove build products (never runs/)"
 	@echo "knobs: CC, CFLAGS, MARCH (e.g. -march=native: this CPU only), V=1 (show commands),"
 	@echo "       SAN=1 (sanitizer build in build/san), NPROC (compilers and tests at once, default: the CPUs),"
@@ -238,7 +239,17 @@ clean:
 docs: all
 	$(Q)bash scripts/docs_lists.sh write
 
-# make print-VAR: a variable's value, for scripts (docs_lists.sh reads AN_MAIN)
+# make print-VAR: a variable's value, for scripts. make print-tools: every program the
+# build makes (bin/shake, bin/study, the analysis tools of analysis/analysis.mk's
+# AN_MAIN); make print-campaign-tools: the analysis tools that read a campaign's runs
+# (AN_CAMPAIGN). The scripts and tests that go over the tools read these, and
+# scripts/docs_lists.sh checks the docs and the one list in C (tests/fuzz/fuzz.c)
+# against them, and fails on a line anywhere else that names the tools by hand.
+.PHONY: print-tools print-campaign-tools
+print-tools:
+	@echo shake study $(AN_MAIN)
+print-campaign-tools:
+	@echo $(AN_CAMPAIGN)
 print-%:
 	@echo '$($*)'
 

@@ -1,9 +1,13 @@
-# analysis.mk - the analysis tools bin/onset, bin/hysteresis, bin/waiting, bin/figures, bin/rolls,
-# bin/ring, bin/whale, bin/convect
-# and their tests (included by the top-level Makefile after lib/lib.mk). The modules
-# (common/: the frame every tool shares; measure/: what the tools compute) go into
+# analysis.mk - the analysis tools, bin/NAME for each NAME of AN_MAIN, and their tests
+# (included by the top-level Makefile after lib/lib.mk). The modules (common/: the
+# frame every tool shares; measure/: what the tools compute) go into
 # $(BUILD)/analysis/libanalysis.a; each tool is one tools/NAME_main.c.
+# AN_MAIN is the one list of the tools: scripts, tests and docs read it (`make
+# print-tools`, `make print-campaign-tools`) or are checked against it
+# (scripts/docs_lists.sh). AN_CAMPAIGN: the tools that read a campaign's runs (TOOL
+# CAMPAIGN --runs DIR); bin/dumpflux reads one run file or another code's dump.
 AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale convect
+AN_CAMPAIGN = $(filter-out dumpflux,$(AN_MAIN))
 AN_SRC    = $(wildcard analysis/common/*.c analysis/measure/*.c)
 AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o)
 AN_LIB    = $(BUILD)/analysis/libanalysis.a

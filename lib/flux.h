@@ -1,5 +1,5 @@
-/* flux.h - the convective flux of one run (/flux of its HDF5 file) reduced to what
- * the tools use: Phi through "the plane" (the mean of Phi over the height lines in a
+/* flux.h - the convective flux of one run (/observables/flux of its run file,
+ * runfile.h) reduced to what the tools use: Phi through "the plane" (the mean of Phi over the height lines in a
  * band of the bed, default its middle, 0.4-0.6 of the settled surface height) per
  * period, its mean over the periods after a transient, and the time-mean profile
  * Phi(D) over every line (Fig. 3). */

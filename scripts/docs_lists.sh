@@ -12,8 +12,11 @@
 #   test-tiers      docs/testing.md      from `tests/run.sh --tiers` (the scripts' "# tier:" lines)
 #   study-options   docs/campaigns.md    from `bin/study options` (study/cli/opts.c's table)
 # Checked against the code:
-#   tools           docs/analysis.md's table and analysis/README.md's first paragraph
-#                   name exactly the tools of AN_MAIN (`make print-AN_MAIN`)
+#   tools           docs/analysis.md's table, analysis/README.md's first paragraph and
+#                   tests/fuzz/fuzz.c's RUNFILE_TOOLS name exactly the tools of AN_MAIN
+#                   (`make print-AN_MAIN`, `make print-campaign-tools`); no other line
+#                   names five of them (a second list kept by hand)
+#   lib-files       lib/README.md's source tour names every file of lib/, and only those
 #   core-files      core/README.md's table of files names every file of core/, and only those
 #   campaigns       campaigns/README.md names every campaign file (campaigns/, reproduce/, examples/), and only those
 #   run-file        docs/output.md's layout table against a run file with every
@@ -144,6 +147,49 @@ same_set tools.docs_analysis "docs/analysis.md's table of tools" "$TMP/tools.cod
 awk 'NR > 1 && /^$/ && seen { exit } /^[^#]/ { seen = 1; print }' "$(doc analysis/README.md)" |
 	grep -o '`bin/[a-z_]*`' | tr -d '`' | sed 's#bin/##' >"$TMP/tools.room"
 same_set tools.analysis_readme "analysis/README.md's first paragraph" "$TMP/tools.code" "$TMP/tools.room"
+
+# tests/fuzz/fuzz.c's RUNFILE_TOOLS, the one copy in C: the tools that read a campaign's
+# runs (`make print-campaign-tools`) and study
+ctools_code() {
+	local t
+	t=$(make -s --no-print-directory -C "$REPO" print-campaign-tools 2>"$TMP/make.err") && [ -n "$t" ] || return 1
+	printf '%s\n' $t study
+}
+if code campaign-tools ctools_code; then
+	awk '/RUNFILE_TOOLS\[\] = \{/ { on = 1 } on { print } on && /\};/ { exit }' "$(doc tests/fuzz/fuzz.c)" |
+		grep -o '"[a-z_]*"' | tr -d '"' >"$TMP/tools.fuzz"
+	same_set tools.fuzz_c "tests/fuzz/fuzz.c's RUNFILE_TOOLS" "$TMP/campaign-tools.code" "$TMP/tools.fuzz"
+else
+	fail tools.fuzz_c "make print-campaign-tools named no tool: $(head -c 300 "$TMP/make.err")"
+fi
+# No other copy: a line of the sources, scripts or docs that names five or more tools
+# as words is a list kept by hand; it reads `make print-tools` or
+# `make print-campaign-tools` instead. Only the places above may: AN_MAIN itself,
+# analysis/README.md's first paragraph, fuzz.c's RUNFILE_TOOLS.
+files=()
+while read -r f; do
+	if [ -n "${DOCS_OVERRIDE:-}" ] && [ -f "$DOCS_OVERRIDE/$f" ]; then files+=("$DOCS_OVERRIDE/$f"); else files+=("$REPO/$f"); fi
+done < <(cd "$REPO" && ls Makefile README.md REPRODUCTION.md 2>/dev/null && find core lib study analysis scripts tests docs campaigns \
+	-type f \( -name '*.[ch]' -o -name '*.sh' -o -name '*.md' -o -name '*.mk' -o -name '*.campaign' -o -name '*.py' \) 2>/dev/null | sort)
+copies=$(awk -v t="$(tr '\n' ' ' <"$TMP/tools.code")" -v r="$REPO/" -v o="${DOCS_OVERRIDE:-/nonexistent}/" '
+	BEGIN { n = split(t, T, " ") }
+	{ c = 0; for (i = 1; i <= n; i++) if (match($0, "(^|[^A-Za-z0-9_./-])" T[i] "([^A-Za-z0-9_-]|$)")) c++
+	  if (c >= 5) { f = FILENAME; if (index(f, r) == 1) f = substr(f, length(r) + 1); else if (index(f, o) == 1) f = substr(f, length(o) + 1)
+	                print f ":" FNR } }' "${files[@]}" |
+	grep -vxE 'analysis/analysis\.mk:[0-9]+|analysis/README\.md:[0-9]+|tests/fuzz/fuzz\.c:[0-9]+' | tr '\n' ' ')
+if [ -z "$copies" ]; then ok tools.no_copy; else fail tools.no_copy "a second list of the tools, kept by hand (read make print-tools): $copies"; fi
+
+# --- the files of lib/: lib/README.md's source tour names each, and only those ---
+# tour_files MARKER DOC: the files a table after "<!-- docs_lists MARKER:" names in its
+# first column, one a line ("name.[ch]" as name.c and name.h)
+tour_files() {
+	awk -v m="<!-- docs_lists $1:" 'index($0, m) == 1 { on = 1; next } on && /^\|/ { print; next } on && /^$/ && n++ { exit }' \
+		"$(doc "$2")" | awk -F'|' 'NR > 2 { print $2 }' | grep -o '`[^`]*`' | tr -d '`' |
+		awk '{ if (sub(/\.\[ch\]$/, "")) { print $0 ".c"; print $0 ".h" } else print }'
+}
+(cd "$REPO/lib" && ls) >"$TMP/lib.code"
+tour_files lib-files lib/README.md >"$TMP/lib.doc"
+same_set lib-files "lib/README.md's source tour" "$TMP/lib.code" "$TMP/lib.doc"
 
 # --- the files of core/ ---
 (cd "$REPO/core" && find . -type f ! -name README.md | sed "s#^\./##" | sort) >"$TMP/core.code"

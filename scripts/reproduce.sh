@@ -43,7 +43,10 @@ fi
 DB=$RUNS/study.db
 ANA=$W/analysis
 STUDY=$root/bin/study
-for b in study shake onset hysteresis waiting figures rolls ring whale convect; do
+# every program of the build (the Makefile's one list of them)
+tools=$(make -s --no-print-directory -C "$root" print-tools) && [ -n "$tools" ] ||
+	{ echo "reproduce: make print-tools gave no list of the programs" >&2; exit 1; }
+for b in $tools; do
 	[ -x "bin/$b" ] || { echo "reproduce: bin/$b missing (make)" >&2; exit 1; }
 done
 mkdir -p "$W/campaigns" "$ANA" "$FIG" "$RUNS" || exit 1

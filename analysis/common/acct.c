@@ -243,15 +243,21 @@ void acct_csv_row(FILE *f, const an_acct *a)
 	csv_text(f, why);
 }
 
+void acct_row_begin(FILE *f, const an_run *r, char *const *labels)
+{
+	fprintf(f, "%d,", r->group);
+	csv_text(f, r->group >= 0 ? labels[r->group] : "");
+	fprintf(f, ",%s,%ld", r->id, r->replicate);
+}
+
 void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels)
 {
-	fprintf(f, "group_index,group,run,replicate,current,state,status,use,used_s,planned_s,why\n");
+	fprintf(f, ACCT_ROW_HEAD ",current,state,status,use,used_s,planned_s,why\n");
 	for (int i = 0; i < n; i++) {
 		if (r[i].group < 0)
 			continue; /* in no group of this tool (e.g. a frequency not drawn) */
-		fprintf(f, "%d,", r[i].group);
-		csv_text(f, labels[r[i].group]);
-		fprintf(f, ",%s,%ld,%d,%s,", r[i].id, r[i].replicate, r[i].current, r[i].state);
+		acct_row_begin(f, &r[i], labels);
+		fprintf(f, ",%d,%s,", r[i].current, r[i].state);
 		csv_text(f, r[i].status);
 		fprintf(f, ",%s,%.17g,%.17g,", acct_use_name(r[i].use), r[i].used_s, r[i].planned_s);
 		csv_text(f, r[i].why);

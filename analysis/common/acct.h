@@ -73,6 +73,13 @@ void acct_csv_row(FILE *f, const an_acct *a);
 /* TOOL_accounting.csv: one row per run considered (group, run, state, status, use,
  * seconds used of planned, why); runs of group < 0 are in none and left out. */
 void acct_runs_csv(FILE *f, const an_run *r, int n, char **labels);
+/* The columns every per-run table of the tools begins with (TOOL_runs.csv,
+ * TOOL_accounting.csv, hysteresis_periods.csv, ...): the run's group, by index and
+ * label, and its id and replicate; one place, so that the tables join on them. */
+#define ACCT_ROW_HEAD "group_index,group,run,replicate"
+/* Run r's first columns, "G,LABEL,ID,REPLICATE" (G -1 and an empty label for a run in
+ * no group); the caller goes on with ",NEXT". */
+void acct_row_begin(FILE *f, const an_run *r, char *const *labels);
 /* Stores runs_failed, runs_failed_used, failed_used_s, failed_planned_s, runs_unusable,
  * runs_unreadable, runs_pending, runs_running and failed_STATUS per status, each with
  * the group's values of the grouping keys (vals, as adb_store takes them). */

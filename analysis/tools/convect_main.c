@@ -269,7 +269,7 @@ static int runs_csv(an_tool *t, const convect_state *s)
 	FILE *f = tool_out_open(t, "convect_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,state,use");
+	fprintf(f, ACCT_ROW_HEAD ",seed,state,use");
 	for (int k = 0; k < t->nk; k++) {
 		fputc(',', f);
 		csv_text(f, t->keys[k]);
@@ -279,9 +279,8 @@ static int runs_csv(an_tool *t, const convect_state *s)
 	for (int i = 0; i < t->k; i++) {
 		const an_run *r = &t->runs[i];
 		const convect_run *c = &s->cr[i];
-		fprintf(f, "%d,", r->group);
-		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
-		fprintf(f, ",%s,%ld,%ld,%s,%s", r->id, r->replicate, r->seed, r->state, acct_use_name(r->use));
+		acct_row_begin(f, r, t->labels);
+		fprintf(f, ",%ld,%s,%s", r->seed, r->state, acct_use_name(r->use));
 		for (int k = 0; k < t->nk; k++) {
 			const char *v = an_str(r, t->keys[k]);
 			fputc(',', f);

@@ -164,9 +164,8 @@ static int run_periods(an_tool *t, hyst_state *s, int i, FILE *f)
 		for (size_t p = leg[q].a; p < leg[q].b; p++) {
 			if (hyst_add(g, leg[q].branch, D->f[p], s->sm[p], r->unit))
 				return sb_errf(&t->e, SB_ENOMEM, "out of memory");
-			fprintf(f, "%d,", r->group);
-			csv_text(f, t->labels[r->group]);
-			fprintf(f, ",%s,%ld,%s,%zu,%.17g,%.17g,%.17g,%s\n", r->id, r->replicate,
+			acct_row_begin(f, r, t->labels);
+			fprintf(f, ",%s,%zu,%.17g,%.17g,%.17g,%s\n",
 				leg[q].branch == HYST_DOWN ? "down" : "up", p, D->f[p], s->raw[p], s->sm[p],
 				acct_use_name(r->use));
 		}
@@ -180,7 +179,7 @@ static int periods(an_tool *t, hyst_state *s)
 	FILE *f = tool_out_open(t, "hysteresis_periods.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,branch,period,frequency,phi,phi_smooth,use\n");
+	fprintf(f, ACCT_ROW_HEAD ",branch,period,frequency,phi,phi_smooth,use\n");
 	for (int i = 0; i < t->k; i++)
 		if ((t->runs[i].use == AN_USED || t->runs[i].use == AN_PARTLY) && run_periods(t, s, i, f))
 			break;

@@ -293,16 +293,15 @@ static int runs_csv(an_tool *t, const onset_state *s)
 	FILE *f = tool_out_open(t, "onset_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,radius_ratio,depth,frequency,phi,use,used_s,axis_x\n");
+	fprintf(f, ACCT_ROW_HEAD ",seed,radius_ratio,depth,frequency,phi,use,used_s,axis_x\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < t->k; i++) {
 			const an_run *r = &t->runs[i];
 			if (r->group != j || !USED(r))
 				continue;
-			fprintf(f, "%d,", j);
-			csv_text(f, t->labels[j]);
+			acct_row_begin(f, r, t->labels);
 			const double fr = an_num(r, "frequency", NAN);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%.17g\n", r->id, r->replicate, r->seed,
+			fprintf(f, ",%ld,%.17g,%.17g,%.17g,%.17g,%s,%.17g,%.17g\n", r->seed,
 				an_num(r, "radius_ratio", NAN), an_num(r, "depth", NAN), fr, s->phi[i],
 				acct_use_name(r->use), r->used_s, axis_run(s->axis, r));
 		}

@@ -293,14 +293,13 @@ static int runs_csv(an_tool *t, const ring_state *s)
 	FILE *f = tool_out_open(t, "ring_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,state,use,risen,samples_before,before_from,before_to,"
+	fprintf(f, ACCT_ROW_HEAD ",seed,state,use,risen,samples_before,before_from,before_to,"
 		   "force,net_force,temperature,centre_y\n");
 	for (int i = 0; i < t->k; i++) {
 		const an_run *r = &t->runs[i];
 		const rrun *x = &s->rr[i];
-		fprintf(f, "%d,", r->group);
-		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
-		fprintf(f, ",%s,%ld,%ld,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r->id, r->replicate, r->seed,
+		acct_row_begin(f, r, t->labels);
+		fprintf(f, ",%ld,%s,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", r->seed,
 			r->state, acct_use_name(r->use), is_intruder(r) ? x->risen : 0, x->samples, x->from, x->to, x->v[0],
 			x->v[1], x->v[2], x->centre_y);
 	}

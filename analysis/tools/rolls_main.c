@@ -339,7 +339,7 @@ static int runs_csv(an_tool *t, const rolls_state *s)
 	FILE *f = tool_out_open(t, "rolls_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,frequency,radius_ratio,surface,phi_max,sign,max_line,roll_bottom,"
+	fprintf(f, ACCT_ROW_HEAD ",seed,frequency,radius_ratio,surface,phi_max,sign,max_line,roll_bottom,"
 		   "reach,to_floor,use,used_s\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < t->k; i++) {
@@ -347,9 +347,8 @@ static int runs_csv(an_tool *t, const rolls_state *s)
 			const rolls_reach *q = &s->pr[i].rr;
 			if (r->group != j || !USED(r))
 				continue;
-			fprintf(f, "%d,", j);
-			csv_text(f, t->labels[j]);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%.17g,%.17g,%.17g,%d,%zu,%.17g,%.17g,%d,%s,%.17g\n", r->id, r->replicate,
+			acct_row_begin(f, r, t->labels);
+			fprintf(f, ",%ld,%.17g,%.17g,%.17g,%.17g,%d,%zu,%.17g,%.17g,%d,%s,%.17g\n",
 				r->seed, an_num(r, "frequency", NAN), an_num(r, "radius_ratio", 0), s->pr[i].surface, q->phi_max,
 				q->sign, q->lmax, q->bottom, q->reach, q->to_floor, acct_use_name(r->use), r->used_s);
 		}

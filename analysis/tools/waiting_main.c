@@ -287,13 +287,12 @@ static int runs_csv(an_tool *t, const wait_state *s)
 	FILE *f = tool_out_open(t, "waiting_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,state,use\n");
+	fprintf(f, ACCT_ROW_HEAD ",seed,waiting_time,risen,state,use\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < s->g[j].n; i++) {
 			const an_run *r = &t->runs[s->g[j].run[i]];
-			fprintf(f, "%d,", j);
-			csv_text(f, t->labels[j]);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->g[j].t[i], s->g[j].ev[i],
+			acct_row_begin(f, r, t->labels);
+			fprintf(f, ",%ld,%.17g,%d,%s,%s\n", r->seed, s->g[j].t[i], s->g[j].ev[i],
 				r->state, acct_use_name(r->use));
 		}
 	return tool_out_close(t, f);
@@ -568,15 +567,14 @@ static int way_csv(an_tool *t, const wait_state *s)
 		k = tool_out_open(t, "waiting_way_km.csv");
 	if (!k)
 		return tool_out_close(t, f);
-	fprintf(f, "group_index,group,run,replicate,seed,waiting_time,risen,way_time,way_risen,trajectory,use\n");
+	fprintf(f, ACCT_ROW_HEAD ",seed,waiting_time,risen,way_time,way_risen,trajectory,use\n");
 	for (int j = 0; j < t->ng; j++)
 		for (int i = 0; i < t->k; i++) {
 			const an_run *r = &t->runs[i];
 			if (r->group != j || !USED(r))
 				continue;
-			fprintf(f, "%d,", j);
-			csv_text(f, t->labels[j]);
-			fprintf(f, ",%s,%ld,%ld,%.17g,%d,%.17g,%d,%s,%s\n", r->id, r->replicate, r->seed, s->wt[i], s->risen[i],
+			acct_row_begin(f, r, t->labels);
+			fprintf(f, ",%ld,%.17g,%d,%.17g,%d,%s,%s\n", r->seed, s->wt[i], s->risen[i],
 				s->way_t[i], isnan(s->way_t[i]) ? 0 : s->way_ev[i], isnan(s->way_t[i]) ? "no" : "yes",
 				acct_use_name(r->use));
 		}

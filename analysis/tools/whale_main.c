@@ -300,7 +300,7 @@ static int runs_csv(an_tool *t, const whale_state *s)
 	FILE *f = tool_out_open(t, "whale_runs.csv");
 	if (!f)
 		return t->e.code;
-	fprintf(f, "group_index,group,run,replicate,seed,state,use,radius_ratio,risen,waiting_time,status,window_from,"
+	fprintf(f, ACCT_ROW_HEAD ",seed,state,use,radius_ratio,risen,waiting_time,status,window_from,"
 		   "window_to,samples,dive_cm,top,dive_level,end_level,dives,dives_ended,period,depth,depth_max,"
 		   "rate_per_min,mean_y,rms,spec_period,spec_share,spec_edge,representative\n");
 	for (int i = 0; i < t->k; i++) {
@@ -308,9 +308,8 @@ static int runs_csv(an_tool *t, const whale_state *s)
 		const whale_obs *o = &s->ob[i];
 		const int used = USED(r) && o->status >= 0;
 		const whale_run *w = &o->run;
-		fprintf(f, "%d,", r->group);
-		csv_text(f, r->group >= 0 ? t->labels[r->group] : "");
-		fprintf(f, ",%s,%ld,%ld,%s,%s,%.17g,", r->id, r->replicate, r->seed, r->state, acct_use_name(r->use),
+		acct_row_begin(f, r, t->labels);
+		fprintf(f, ",%ld,%s,%s,%.17g,", r->seed, r->state, acct_use_name(r->use),
 			an_num(r, "radius_ratio", NAN));
 		if (!used) {
 			fprintf(f, ",,not_used,,,,,,,,,,,,,,,,,,,0\n");

@@ -29,8 +29,8 @@
 #include "job/worker.h"
 #include "ledger/changes.h"
 #include "ledger/db.h"
-#include "report/watch.h"
-#include "drv.h"
+#include "drvlocal.h"
+#include "progress.h"
 #include "packing.h"
 #include "stop.h"
 
@@ -189,7 +189,7 @@ int driver_cache_args(drv *d, const char *key, long first, sb_err *e)
 int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 {
 	char h5[PATHX];
-	cache_state(d, key, st, len);
+	ingest_cache_state(d, key, st, len);
 	layout_file(d->dir, 1, key, LAY_OUTPUT, h5, sizeof h5);
 	int gone = !strcmp(st, "ok") && !packing_present(d->dir, key);
 	if (gone || (!strcmp(st, "failed") && d->o->retry_failed)) {
@@ -212,7 +212,7 @@ int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 			db_commit(&d->db, e);
 		else
 			db_rollback(&d->db);
-		cache_state(d, key, st, len);
+		ingest_cache_state(d, key, st, len);
 	}
 	return e->code;
 }
@@ -244,7 +244,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	}
 	for (long i = 0; i < npend; i++) {
 		const grid_run *r = &d->g.runs[pend[i]];
-		d->cache_ok[pend[i]] = 0; /* decided again: a packing may have gone since */
+		d->runs.cache_ok[pend[i]] = 0; /* decided again: a packing may have gone since */
 		sb_scene s;
 		grid_scene(&d->g, r, &s);
 		if (s.particles[0] || s.settle == TRI_NO)
@@ -270,7 +270,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 			break;
 		/* a replicate of an [onset] search runs several frequencies, one at a time:
 		 * its packing is worth settling once from its first run on */
-		if (st[0] || (count[k] < (d->adaptive ? 1 : 2) && !named[k]))
+		if (st[0] || (count[k] < (d->loc->adaptive ? 1 : 2) && !named[k]))
 			continue;
 		if (!driver_cache_args(d, keys[k], first[k], e))
 			build[nb++] = keys[k];
@@ -281,13 +281,13 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 	}
 	for (long k = 0; k < nk && !e->code; k++) {
 		char st[16];
-		cache_state(d, keys[k], st, sizeof st);
+		ingest_cache_state(d, keys[k], st, sizeof st);
 		if (strcmp(st, "ok"))
 			continue;
 		(*basefiles)[(*nbase)++] = strdup(keys[k]);
 		for (long i = 0; i < npend; i++)
 			if (!strcmp(d->g.runs[pend[i]].cache_key, keys[k]))
-				d->cache_ok[pend[i]] = 1;
+				d->runs.cache_ok[pend[i]] = 1;
 	}
 	free(keys);
 	free(first);
@@ -313,7 +313,7 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 			char ak[64];
 			packing_of_args(d->dir, r->id, ak, sizeof ak);
 			if (!ak[0] || packing_present(d->dir, ak) ||
-			    (d->cache_ok[pend[i]] && !strcmp(ak, r->cache_key)))
+			    (d->runs.cache_ok[pend[i]] && !strcmp(ak, r->cache_key)))
 				continue; /* (study submit: a task builds it before the run) */
 			fprintf(stderr, "study: %s: run %s starts from packing cache/%s.txt, which is missing: its "
 				"argument file is written again\n", d->c.name, r->id, ak);
@@ -330,7 +330,7 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 		sb_scene s;
 		grid_scene(&d->g, r, &s);
 		driver_owned(&s, out);
-		int fc = d->cache_ok[pend[i]];
+		int fc = d->runs.cache_ok[pend[i]];
 		if (fc) {
 			/* bit-identical to settling here (engine contract); only the particles,
 			 * settle and settle_* attributes of the output differ */
@@ -368,29 +368,6 @@ static void counts(drv *d, long *done, long *failed, long *pending)
 	}
 }
 
-/* The per-run arrays for the grid as it is now (an [onset] campaign's grid grows
- * pass by pass). */
-static int alloc_runs(drv *d, sb_err *e)
-{
-	free(d->pend);
-	free(d->names);
-	free(d->cache_ok);
-	free(d->started);
-	free(d->logfrom);
-	free(d->transient);
-	free(d->outcome);
-	d->transient = calloc((size_t)d->g.n + 1, sizeof *d->transient);
-	d->outcome = calloc((size_t)d->g.n + 1, 1);
-	d->pend = calloc((size_t)d->g.n + 1, sizeof *d->pend);
-	d->names = calloc((size_t)d->g.n + 1, sizeof *d->names);
-	d->cache_ok = calloc((size_t)d->g.n + 1, 1);
-	d->started = calloc((size_t)d->g.n + 1, 1);
-	d->logfrom = calloc((size_t)d->g.n + 1, sizeof *d->logfrom);
-	if (!d->pend || !d->names || !d->cache_ok || !d->started || !d->logfrom || !d->transient || !d->outcome)
-		return sb_errf(e, SB_ENOMEM, "out of memory");
-	return 0;
-}
-
 /* After a pass over names[0..n): the runs to run again. A run left pending by a pass
  * that ran to its end without its outcome (no DONE line: parallel gave up on its
  * hosts, or its output never came back) is recorded as lost. A run is run again while
@@ -406,8 +383,8 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 	/* the last pass's runs: heard of, or lost */
 	for (long k = 0; k < nlast && !halted; k++) {
 		const grid_run *r = grid_find(&d->g, last[k]);
-		if (r && !d->outcome[r - d->g.runs])
-			d->outcome[r - d->g.runs] = '?';
+		if (r && !d->runs.outcome[r - d->g.runs])
+			d->runs.outcome[r - d->g.runs] = '?';
 	}
 	for (long k = 0; k < n && !e->code; k++) {
 		const grid_run *r = grid_find(&d->g, names[k]);
@@ -423,11 +400,11 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
 		if (exists(path))
 			continue; /* came back after its DONE line: the sweep ingests it */
-		if (d->outcome[i] == '?') {
+		if (d->runs.outcome[i] == '?') {
 			char now[32];
 			db_now(now, sizeof now);
-			d->outcome[i] = 'l';
-			d->transient[i]++;
+			d->runs.outcome[i] = 'l';
+			d->runs.transient[i]++;
 			if (db_begin(&d->db, e))
 				break;
 			if (db_attempt(&d->db, d->c.name, r->id, -1, "lost", "no outcome came back (host lost, output not returned)",
@@ -437,10 +414,10 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 			}
 			db_commit(&d->db, e);
 		}
-		if (d->transient[i] > d->o->retries || d->outcome[i] == 'm')
+		if (d->runs.transient[i] > d->o->retries || d->runs.outcome[i] == 'm')
 			continue; /* exhausted: stays pending for the next `study run`; or its input
 				   * went: launch() prepares it again */
-		if (*io_probe && d->outcome[i] != 'i')
+		if (*io_probe && d->runs.outcome[i] != 'i')
 			continue;
 		again[m++] = (char *)r->id;
 	}
@@ -453,17 +430,17 @@ static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 	char **basefiles = NULL;
 	long nbase = 0;
 	if (!caches(d, pend, npend, &basefiles, &nbase, e) && !stop_requested() &&
-	    !driver_prepare_jobs(d, pend, npend, d->names, e)) {
+	    !driver_prepare_jobs(d, pend, npend, d->runs.names, e)) {
 		if (nbase)
 			qsort(basefiles, (size_t)nbase, sizeof *basefiles, by_str);
 		char **again = calloc((size_t)npend + 1, sizeof *again);
-		char **list = d->names;
+		char **list = d->runs.names;
 		long n = npend;
 		while (again && !e->code) {
 			for (long k = 0; k < n; k++) {
 				const grid_run *r = grid_find(&d->g, list[k]);
 				if (r)
-					d->outcome[r - d->g.runs] = 0;
+					d->runs.outcome[r - d->g.runs] = 0;
 			}
 			run_parallel(d, "run", list, n, basefiles, nbase, e);
 			int halted = d->io_fault || stop_requested(), probe;
@@ -471,7 +448,7 @@ static int launch_once(drv *d, long *pend, long npend, sb_err *e)
 				break;
 			/* every run of this launch, not only the last pass's: a probe's success
 			 * puts the runs its fault halted back in the queue */
-			n = retries_due(d, d->names, npend, list, n, halted, again, &probe, e);
+			n = retries_due(d, d->runs.names, npend, list, n, halted, again, &probe, e);
 			if (n == 0 || e->code)
 				break;
 			fprintf(stderr, "study: %s: running again %ld run%s %s (--retries %d)\n", d->c.name, n, n > 1 ? "s" : "",
@@ -503,13 +480,13 @@ static int launch(drv *d, long npend, sb_err *e)
 	long *again = malloc(((size_t)npend + 1) * sizeof *again);
 	if (!again)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
-	long *list = d->pend, n = npend;
+	long *list = d->runs.pend, n = npend;
 	for (int round = 0; round < 3; round++) {
 		if (launch_once(d, list, n, e) || stop_requested() || d->io_fault)
 			break;
 		long m = 0;
 		for (long k = 0; k < n; k++)
-			if (d->outcome[list[k]] == 'm')
+			if (d->runs.outcome[list[k]] == 'm')
 				again[m++] = list[k];
 		if (m == 0 || round == 2)
 			break;
@@ -517,7 +494,7 @@ static int launch(drv *d, long npend, sb_err *e)
 			"deleted): prepared and run again\n", d->c.name, m, m > 1 ? "s" : "", m > 1 ? "their" : "its");
 		if (driver_dirs(d, driver_subdirs, DRIVER_NSUB, e))
 			break;
-		memcpy(list, again, (size_t)m * sizeof *again); /* list is d->pend: free to reuse */
+		memcpy(list, again, (size_t)m * sizeof *again); /* list is d->runs.pend: free to reuse */
 		n = m;
 	}
 	free(again);
@@ -530,9 +507,9 @@ static int launch(drv *d, long npend, sb_err *e)
 static int asks_for(void *ctx, const char *id, long replicate, double frequency)
 {
 	drv *d = ctx;
-	if (d->autorep)
-		return sharpen_member(&d->shp, d->g.points, replicate, id);
-	return d->adaptive ? search_member(&d->c, d->g.points, replicate, frequency, id) : grid_find(&d->g, id) != NULL;
+	if (d->loc->autorep)
+		return sharpen_member(&d->loc->shp, d->g.points, replicate, id);
+	return d->loc->adaptive ? search_member(&d->c, d->g.points, replicate, frequency, id) : grid_find(&d->g, id) != NULL;
 }
 
 static int check_changes(drv *d, sb_err *e)
@@ -549,13 +526,13 @@ static int onset_pass(drv *d, int first, sb_err *e)
 {
 	grid_free(&d->g);
 	if (grid_expand(&d->g, &d->c, e) ||
-	    (d->autorep ? sharpen_derive(&d->shp, &d->g, &d->db, e) : search_derive(&d->srch, &d->g, &d->db, e)))
+	    (d->loc->autorep ? sharpen_derive(&d->loc->shp, &d->g, &d->db, e) : search_derive(&d->loc->srch, &d->g, &d->db, e)))
 		return e->code;
 	if (first && check_changes(d, e))
 		return e->code;
-	if (driver_record(d, e) || (d->autorep ? sharpen_store(&d->shp, &d->db, e) : search_store(&d->srch, &d->db, e)))
+	if (driver_record(d, e) || (d->loc->autorep ? sharpen_store(&d->loc->shp, &d->db, e) : search_store(&d->loc->srch, &d->db, e)))
 		return e->code;
-	return alloc_runs(d, e);
+	return drv_runs_alloc(d, e);
 }
 
 /* An [onset] campaign, round by round: each round runs what the chains wait for (one
@@ -569,20 +546,20 @@ static int run_onset(drv *d, sb_err *e)
 		if (onset_pass(d, first, e))
 			return e->code;
 		long got = d->n_ingested, failed = d->n_failed_now, npend;
-		if (sweep(d, d->pend, &npend, e))
+		if (sweep(d, d->runs.pend, &npend, e))
 			return e->code;
 		if (d->n_ingested > got)
 			continue;
 		if (!npend || stop_requested() || d->io_fault)
 			return 0;
-		long searching = 0, groups = d->autorep ? d->shp.npoints : d->srch.ngroups;
+		long searching = 0, groups = d->loc->autorep ? d->loc->shp.npoints : d->loc->srch.ngroups;
 		for (long i = 0; i < groups; i++)
-			searching += d->autorep ? d->shp.pts[i].state == SH_RUNNING : d->srch.groups[i].state == AD_G_SEARCHING;
-		d->rounds++;
+			searching += d->loc->autorep ? d->loc->shp.pts[i].state == SH_RUNNING : d->loc->srch.groups[i].state == AD_G_SEARCHING;
+		d->loc->rounds++;
 		fprintf(stderr, "study: %s: %s round %ld: %ld run%s, %ld of %ld %s%s %s, %d job%s%s%s\n", d->c.name,
-			d->autorep ? "replicates" : "onset", d->rounds, npend, npend > 1 ? "s" : "", searching, groups,
-			d->autorep ? "point" : "group", groups > 1 ? "s" : "", d->autorep ? "running" : "searching",
-			d->jobs, d->jobs > 1 ? "s" : "", d->o->sshloginfile ? " per host of " : "",
+			d->loc->autorep ? "replicates" : "onset", d->loc->rounds, npend, npend > 1 ? "s" : "", searching, groups,
+			d->loc->autorep ? "point" : "group", groups > 1 ? "s" : "", d->loc->autorep ? "running" : "searching",
+			d->loc->jobs, d->loc->jobs > 1 ? "s" : "", d->o->sshloginfile ? " per host of " : "",
 			d->o->sshloginfile ? d->o->sshloginfile : "");
 		if (launch(d, npend, e) || stop_requested() || d->io_fault)
 			return e->code;
@@ -606,8 +583,8 @@ static void onset_number(double v, char *buf, size_t len)
 static void onset_summary(drv *d)
 {
 	const cp_onset *o = &d->c.onset;
-	for (long i = 0; i < d->srch.ngroups; i++) {
-		const srch_group *gr = &d->srch.groups[i];
+	for (long i = 0; i < d->loc->srch.ngroups; i++) {
+		const srch_group *gr = &d->loc->srch.groups[i];
 		char est[32], lo[32], hi[32];
 		onset_number(gr->iv.est, est, sizeof est);
 		onset_number(gr->iv.lo, lo, sizeof lo);
@@ -629,8 +606,8 @@ static void onset_summary(drv *d)
 static void autorep_summary(drv *d)
 {
 	const cp_auto *a = &d->c.autorep;
-	for (long i = 0; i < d->shp.npoints; i++) {
-		const shp_point *pt = &d->shp.pts[i];
+	for (long i = 0; i < d->loc->shp.npoints; i++) {
+		const shp_point *pt = &d->loc->shp.pts[i];
 		char est[32], lo[32], hi[32], w[32];
 		onset_number(pt->ev.est, est, sizeof est);
 		onset_number(pt->ev.lo, lo, sizeof lo);
@@ -663,17 +640,22 @@ static int name_free(const drv *d, sb_err *e)
 int driver_run(const driver_opts *o, sb_err *e)
 {
 	drv *d = calloc(1, sizeof *d);
-	if (!d)
+	struct drv_local *loc = calloc(1, sizeof *loc);
+	if (!d || !loc) {
+		free(d);
+		free(loc);
 		return sb_errf(e, SB_ENOMEM, "out of memory");
+	}
 	d->o = o;
+	d->loc = loc;
 	int lock = -1, dblock = -1;
 	if (campaign_load(&d->c, o->campaign_file, e) || grid_expand(&d->g, &d->c, e))
 		goto out;
-	d->adaptive = d->c.onset.line != 0;
-	d->autorep = d->c.autorep.on;
-	d->jobs = o->jobs > 0 ? o->jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
-	if (d->jobs < 1)
-		d->jobs = 1;
+	d->loc->adaptive = d->c.onset.line != 0;
+	d->loc->autorep = d->c.autorep.on;
+	d->loc->jobs = o->jobs > 0 ? o->jobs : (int)sysconf(_SC_NPROCESSORS_ONLN);
+	if (d->loc->jobs < 1)
+		d->loc->jobs = 1;
 	const char *rd = o->runs_dir ? o->runs_dir : "runs";
 	if (dirs_make(rd, e))
 		goto out;
@@ -693,31 +675,28 @@ int driver_run(const driver_opts *o, sb_err *e)
 		goto out;
 	if ((lock = driver_lock(d, e)) < 0 || (dblock = driver_db_lock(d, e)) < 0)
 		goto out;
-	if (d->adaptive)
-		search_init(&d->srch, &d->c, d->dir);
-	if (d->autorep)
-		sharpen_init(&d->shp, &d->c, d->dir);
+	if (d->loc->adaptive)
+		search_init(&d->loc->srch, &d->c, d->dir);
+	if (d->loc->autorep)
+		sharpen_init(&d->loc->shp, &d->c, d->dir);
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
-	int rounds = d->adaptive || d->autorep; /* the grid grows pass by pass */
+	int rounds = d->loc->adaptive || d->loc->autorep; /* the grid grows pass by pass */
 	if (db_open(&d->db, dbp, 1, e))
 		goto out;
 	if (d->db.note[0])
 		fprintf(stderr, "study: %s\n", d->db.note);
-	if (orphans(d, e) ||
+	if (ingest_orphans(d, e) ||
 	    (!rounds && (check_changes(d, e) || driver_record(d, e))))
 		goto out;
 
 	reserve_make(d); /* room for the last records on a full disk (reserve.c) */
 	stop_signals();
 	if (o->progress < 0 ? isatty(2) : o->progress) {
-		d->watch = malloc(sizeof *d->watch);
-		if (d->watch)
-			watch_init(d->watch, d->c.name, d->dir);
-		d->progress_tty = isatty(2);
+		d->prog = progress_open(d->c.name, d->dir, isatty(2));
 	}
 
-	if (d->adaptive) /* what the first points are, and where the model fails there */
+	if (d->loc->adaptive) /* what the first points are, and where the model fails there */
 		for (long i = 0; i < d->g.points; i++) {
 			char pv[2048];
 			search_preview(&d->c, i, pv, sizeof pv);
@@ -729,21 +708,21 @@ int driver_run(const driver_opts *o, sb_err *e)
 		if (run_onset(d, e) && e->code == SB_EUSAGE)
 			goto out; /* a changed campaign: nothing ran */
 	} else {
-		if (alloc_runs(d, e) || sweep(d, d->pend, &npend, e))
+		if (drv_runs_alloc(d, e) || sweep(d, d->runs.pend, &npend, e))
 			goto out;
-		fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->jobs,
-			d->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "",
+		fprintf(stderr, "study: %s: %ld runs, %ld to run, %d job%s%s%s\n", d->c.name, d->g.n, npend, d->loc->jobs,
+			d->loc->jobs > 1 ? "s" : "", o->sshloginfile ? " per host of " : "",
 			o->sshloginfile ? o->sshloginfile : "");
 		if (npend && !stop_requested() && !d->io_fault)
 			launch(d, npend, e);
 	}
 	sb_err se = {0};
-	owed_settle(d, &se); /* before the counts: no run this driver started is left 'running' */
+	ingest_owed_settle(d, &se); /* before the counts: no run this driver started is left 'running' */
 	sweep(d, NULL, &npend, &se); /* outputs that came back after their DONE line */
 	if (rounds && !e->code && !se.code) {
 		/* the state after the last round, for study status */
 		onset_pass(d, 0, &se);
-		if (d->autorep)
+		if (d->loc->autorep)
 			autorep_summary(d);
 		else
 			onset_summary(d);
@@ -760,8 +739,8 @@ int driver_run(const driver_opts *o, sb_err *e)
 			"permissions) and run the same command again",
 			d->c.name, d->io_msg, pending);
 	long exhausted = 0;
-	for (long i = 0; d->transient && i < d->g.n; i++)
-		exhausted += d->transient[i] > o->retries;
+	for (long i = 0; d->runs.transient && i < d->g.n; i++)
+		exhausted += d->runs.transient[i] > o->retries;
 	if (!e->code && !d->io_fault && !stop_requested() && exhausted)
 		sb_errf(e, DRV_INTERRUPTED,
 			"%s: %ld runs not complete, %ld of them killed or lost %d times in this run (--retries %d; study "
@@ -771,28 +750,20 @@ int driver_run(const driver_opts *o, sb_err *e)
 		sb_errf(e, DRV_INTERRUPTED, "%s: %ld runs not complete; run the same command again to resume",
 			d->c.name, pending);
 	long blocked = 0;
-	for (long i = 0; d->adaptive && i < d->srch.ngroups; i++)
-		blocked += d->srch.groups[i].state == AD_G_BLOCKED;
+	for (long i = 0; d->loc->adaptive && i < d->loc->srch.ngroups; i++)
+		blocked += d->loc->srch.groups[i].state == AD_G_BLOCKED;
 	if (!e->code && !stop_requested() && !pending && blocked)
 		sb_errf(e, DRV_FAILED, "%s: %ld of %ld search groups blocked, %ld runs failed (study status %s lists the "
-			"reasons)", d->c.name, blocked, d->srch.ngroups, failed, d->c.name);
+			"reasons)", d->c.name, blocked, d->loc->srch.ngroups, failed, d->c.name);
 	else if (!e->code && failed)
 		sb_errf(e, DRV_FAILED, "%s: %ld runs failed (study status %s lists the reasons)", d->c.name, failed,
 			d->c.name);
 out:
 	reserve_release(d);
-	free(d->pend);
-	free(d->names);
-	free(d->cache_ok);
-	free(d->started);
-	free(d->logfrom);
-	free(d->transient);
-	free(d->outcome);
-	if (d->watch)
-		watch_free(d->watch);
-	free(d->watch);
-	search_free(&d->srch);
-	sharpen_free(&d->shp);
+	drv_runs_free(d);
+	progress_close(d->prog);
+	search_free(&loc->srch);
+	sharpen_free(&loc->shp);
 	db_close(&d->db);
 	grid_free(&d->g);
 	campaign_free(&d->c);
@@ -800,6 +771,7 @@ out:
 		close(lock);
 	if (dblock >= 0)
 		close(dblock);
+	free(loc);
 	free(d);
 	return e->code;
 }

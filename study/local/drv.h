@@ -1,12 +1,13 @@
-/* drv.h - private to the campaign driver's modules (driver.c, ingest.c, parallel.c,
- * sweep.c): the state of one `study run` and what the modules ask of each other. */
+/* drv.h - a campaign's runs as a driver holds them, and what the driver's modules ask
+ * of each other: for local/ (`study run`) and slurm/ (`study submit --slurm`, and the
+ * collection of the arrays' results), which prepare and ingest runs as `study run`
+ * does. What only `study run` keeps is drvlocal.h's (local/ only); the progress line
+ * is progress.h's. */
 #ifndef ST_DRV_H
 #define ST_DRV_H
 
 #include <unistd.h>
 
-#include "adaptive/search.h"
-#include "adaptive/sharpen.h"
 #include "campaign/campaign.h"
 #include "campaign/grid.h"
 #include "ledger/db.h"
@@ -15,38 +16,51 @@
 #define PATHLEN 4096
 #define PATHX (PATHLEN + 256)
 
+/* Per grid run, for the grid as it is now (an [onset] campaign's grid grows pass by
+ * pass): allocated together and freed together, by drv_runs_alloc and drv_runs_free
+ * only (drv.c). */
+typedef struct drv_runs {
+	char *cache_ok;       /* start from the packing cache */
+	char *started;        /* 1 START seen, 2 DONE seen (this driver) */
+	long *logfrom;        /* size of its log when START was seen */
+	long *pend;           /* the indices of the runs to run */
+	char **names;         /* their ids, for GNU parallel */
+	long *transient;      /* attempts killed, failed on I/O or lost in this `study run`
+			       * (retried while at most o->retries) */
+	char *outcome;        /* its last launch: 0 nothing heard, 'k' killed, 'i' I/O,
+			       * 'l' lost, 'h' stopped by the driver, 'r' recorded, 'm' its
+			       * input (argument file, packing) deleted under it */
+} drv_runs;
+
+struct drv_local;    /* `study run` only (drvlocal.h) */
+struct drv_progress; /* the progress line (progress.h) */
+
 typedef struct drv {
+	/* the campaign as both drivers hold it: `study run` and the Slurm commands */
 	const driver_opts *o;
 	campaign c;
 	grid g;
 	st_db db;
 	char root[PATHLEN];   /* absolute runs root */
 	char dir[PATHLEN + 128];    /* root/name */
-	char *cache_ok;       /* per grid run: start from the packing cache */
-	char *started;        /* per grid run: 1 START seen, 2 DONE seen (this driver) */
-	long *logfrom;        /* per grid run: size of its log when START was seen */
-	long *pend;           /* per grid run: the indices of the runs to run */
-	char **names;         /* their ids, for GNU parallel */
-	int adaptive;         /* an [onset] campaign: the grid is its chains' runs, pass by pass */
-	search srch;
-	int autorep;          /* a grid with replicates = auto: its points' replicates, pass by pass */
-	sharpen shp;
-	long rounds;
+	drv_runs runs;
+	/* ingest.c's account of what it recorded */
 	long n_ingested, n_failed_now;
-	int jobs;
 	int io_fault;         /* a run failed on I/O: launch nothing more */
 	char io_msg[1200];
-	long *transient;      /* per grid run: attempts killed, failed on I/O or lost in this
-			       * `study run` (retried while at most o->retries) */
-	char *outcome;        /* per grid run, its last launch: 0 nothing heard, 'k' killed,
-			       * 'i' I/O, 'l' lost, 'h' stopped by the driver, 'r' recorded,
-			       * 'm' its input (argument file, packing) deleted under it */
-	int reserve;          /* the database's reserve is held (reserve.c) */
 	struct owed *owed;    /* attempts the database would not take, to be written again
 			       * before the driver ends (ingest.c) */
-	struct watch *watch;  /* the progress line's look; NULL: no progress line */
-	int progress_tty;     /* the progress line rewrites itself (stderr is a terminal) */
+	/* `study run`'s own: the passes, the jobs, the disk reserve (drvlocal.h); NULL
+	 * under the Slurm commands */
+	struct drv_local *loc;
+	/* reporting: the progress line of `study run`; NULL: none */
+	struct drv_progress *prog;
 } drv;
+
+/* drv.c: d->runs for d->g as it is now, zeroed (those of an earlier grid freed);
+ * and freed. */
+int drv_runs_alloc(drv *d, sb_err *e);
+void drv_runs_free(drv *d);
 
 static inline int exists(const char *p)
 {
@@ -79,29 +93,20 @@ int driver_record(drv *d, sb_err *e);
 int driver_cache_args(drv *d, const char *key, long first, sb_err *e);
 int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e);
 
-/* parallel.c: GNU parallel over the jobs, the workers' lines handed to ingest.c (the
- * driver's SIGINT/SIGTERM reach parallel through stop.h) */
-int run_parallel(drv *d, const char *kind, char **names, long n, char **basefiles, long nbase, sb_err *e);
-
-/* ingest.c: a run's or a packing's outcome into the database (and into d->outcome,
- * d->transient for the retries) */
+/* ingest.c: a run's or a packing's outcome into the database (and into
+ * d->runs.outcome, d->runs.transient for the retries); the workers' START and DONE
+ * lines; the runs started whose DONE never came (after a pass) */
 int ingest_run(drv *d, const char *id, sb_err *e);
 int ingest_cache(drv *d, const char *key, sb_err *e);
-void cache_state(drv *d, const char *key, char *st, size_t len);
-int on_start(drv *d, char *line, sb_err *e);
-int on_done(drv *d, int is_cache, char *line, sb_err *e);
-void unreported(drv *d, sb_err *e);
+void ingest_cache_state(drv *d, const char *key, char *st, size_t len);
+int ingest_on_start(drv *d, char *line, sb_err *e);
+int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e);
+void ingest_unreported(drv *d, sb_err *e);
 /* The attempts the database would not take when they came (a full disk), written now;
  * each one that still cannot be is said on stderr. Frees them. */
-int owed_settle(drv *d, sb_err *e);
+int ingest_owed_settle(drv *d, sb_err *e);
 /* the runs a killed driver left 'running': each an interrupted attempt, pending */
-int orphans(drv *d, sb_err *e);
-
-/* reserve.c: room on the campaign's disk held from the start (reserve_make), given
- * back for the last records after a full disk stopped the launching (reserve_release:
- * 1 when there was some to give) */
-void reserve_make(drv *d);
-int reserve_release(drv *d);
+int ingest_orphans(drv *d, sb_err *e);
 
 /* sweep.c: outputs finished while no driver listened, damaged ones, litter, failed
  * runs back in the queue (--retry-failed); the pending runs' indices in *pend */

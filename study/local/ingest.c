@@ -16,7 +16,7 @@
 #include "layout.h"
 #include "campaign/safe.h"
 #include "job/worker.h"
-#include "drv.h"
+#include "drvlocal.h"
 #include "packing.h"
 #include "stop.h"
 
@@ -88,13 +88,13 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	if (db_begin(&d->db, e))
 		return e->code;
 	if (ingest_file(d, id, path, now, &s, &re, e)) {
-		db_rollback(&d->db); /* a full disk: the final sweep tries again (owed_settle) */
+		db_rollback(&d->db); /* a full disk: the final sweep tries again (ingest_owed_settle) */
 		return e->code;
 	}
 	d->n_ingested++;
 	const grid_run *gr = grid_find(&d->g, id);
-	if (gr && d->outcome)
-		d->outcome[gr - d->g.runs] = 'r';
+	if (gr && d->runs.outcome)
+		d->runs.outcome[gr - d->g.runs] = 'r';
 	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
 		d->n_failed_now++;
 	return 0;
@@ -117,7 +117,7 @@ static int ingest_file(drv *d, const char *id, const char *path, const char *now
 		layout_cache_particles("", r ? r->cache_key : "", want, sizeof want);
 		if (r && !strcmp(s.particles, want)) {
 			char st[16];
-			cache_state(d, r->cache_key, st, sizeof st);
+			ingest_cache_state(d, r->cache_key, st, sizeof st);
 			char h5[PATHX];
 			layout_file(d->dir, 1, r->cache_key, LAY_OUTPUT, h5, sizeof h5);
 			if (!st[0] && exists(h5))
@@ -153,7 +153,7 @@ int ingest_cache(drv *d, const char *key, sb_err *e)
 		       re.code ? re.msg : h5sum_text(&s, "message"), end[0] ? end : now);
 }
 
-void cache_state(drv *d, const char *key, char *st, size_t len)
+void ingest_cache_state(drv *d, const char *key, char *st, size_t len)
 {
 	sqlite3_stmt *q;
 	sb_err e = {0};
@@ -174,7 +174,7 @@ struct owed {
 
 /* Records an attempt of grid run ix (its run's state becomes `state`). One the database
  * would not take (a full disk: "database or disk is full") is kept and written again
- * before the driver ends (owed_settle, with the room reserve.c held), so that no run it started is left 'running' to
+ * before the driver ends (ingest_owed_settle, with the room reserve.c held), so that no run it started is left 'running' to
  * be taken for one whose driver was killed; and it stops the launching as an I/O fault
  * would, since every later run would end the same way. */
 static int attempt(drv *d, long ix, long code, const char *status, const char *msg, const char *host,
@@ -204,7 +204,7 @@ static int attempt(drv *d, long ix, long code, const char *status, const char *m
 	return e->code;
 }
 
-int owed_settle(drv *d, sb_err *e)
+int ingest_owed_settle(drv *d, sb_err *e)
 {
 	/* every engine has stopped: the room held since the start is for these writes
 	 * and the final sweep's (space freed while engines ran went to them) */
@@ -257,7 +257,7 @@ static int input_gone(drv *d, const char *id, char *why, size_t n)
 }
 
 /* A DONE line from a worker: the output file decides; without one, the exit code. */
-int on_done(drv *d, int is_cache, char *line, sb_err *e)
+int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 {
 	char *f[6] = {0};
 	int n = 0;
@@ -290,7 +290,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	const grid_run *r = grid_find(&d->g, name);
 	if (!r)
 		return 0;
-	d->started[r - d->g.runs] = 2;
+	d->runs.started[r - d->g.runs] = 2;
 	layout_file(d->dir, 0, name, LAY_OUTPUT, path, sizeof path);
 	if (exists(path))
 		return ingest_run(d, name, e);
@@ -311,7 +311,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		layout_file(d->dir, 0, name, LAY_JOURNAL, p, sizeof p);
 		if (fs_replaceable(p, &kind))
 			unlink(p);
-		d->outcome[ix] = 'm';
+		d->runs.outcome[ix] = 'm';
 		db_now(now, sizeof now);
 		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
 	}
@@ -321,7 +321,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 		 * engine cannot open them, or the worker found no argument file): no fault
 		 * of the run's nor of the machine's; launch() prepares it again. The worker
 		 * may have said nothing (it found no file to run): the attempt says what went */
-		d->outcome[ix] = 'm';
+		d->runs.outcome[ix] = 'm';
 		db_now(now, sizeof now);
 		return attempt(d, ix, code, "missing_input", msg[0] ? msg : gone, host, now, "pending", e);
 	}
@@ -340,9 +340,9 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	const int crashed = worker_crashed(code);
 	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || io || lost;
 	int ours = code == SB_EINTR && (stop_requested() || d->io_fault);
-	d->outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
+	d->runs.outcome[ix] = !resumable ? 'r' : ours ? 'h' : io ? 'i' : lost ? 'l' : 'k';
 	if (resumable && !ours)
-		d->transient[ix]++;
+		d->runs.transient[ix]++;
 	const char *status = code == SB_EINTR ? "interrupted"
 			     : crashed         ? "crashed"
 			     : code >= 128     ? "killed"
@@ -362,7 +362,7 @@ int on_done(drv *d, int is_cache, char *line, sb_err *e)
 	return attempt(d, ix, code, status, msg, host, now, resumable ? "pending" : "failed", e);
 }
 
-int on_start(drv *d, char *line, sb_err *e)
+int ingest_on_start(drv *d, char *line, sb_err *e)
 {
 	char *f[3] = {0};
 	int n = 0;
@@ -371,12 +371,12 @@ int on_start(drv *d, char *line, sb_err *e)
 	const grid_run *r = n < 3 ? NULL : grid_find(&d->g, f[1]);
 	if (!r)
 		return 0;
-	d->started[r - d->g.runs] = 1;
+	d->runs.started[r - d->g.runs] = 1;
 	/* where this attempt's lines begin in the run's log (earlier attempts precede) */
 	char lp[PATHX];
 	struct stat sb;
 	layout_file(d->dir, 0, r->id, LAY_LOG, lp, sizeof lp);
-	d->logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
+	d->runs.logfrom[r - d->g.runs] = stat(lp, &sb) == 0 ? (long)sb.st_size : 0;
 	char now[32];
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
@@ -394,29 +394,29 @@ int on_start(drv *d, char *line, sb_err *e)
 /* Jobs that started but whose DONE line never came: GNU parallel stopped them (a
  * signal to the driver, or the driver's death) and dropped their output. Each is
  * recorded as an interrupted attempt with the engine's last words; it stays pending. */
-void unreported(drv *d, sb_err *e)
+void ingest_unreported(drv *d, sb_err *e)
 {
 	/* every one, also after one the database would not take (it is owed) */
 	for (long i = 0; i < d->g.n; i++) {
-		if (d->started[i] != 1)
+		if (d->runs.started[i] != 1)
 			continue;
-		d->started[i] = 2;
+		d->runs.started[i] = 2;
 		const char *id = d->g.runs[i].id;
 		char path[PATHX], msg[1024] = "", now[32];
 		layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
 		if (exists(path))
 			continue; /* finished after all: the sweep ingests it */
 		layout_file(d->dir, 0, id, LAY_LOG, path, sizeof path);
-		worker_last_message(path, d->logfrom[i], msg, sizeof msg);
+		worker_last_message(path, d->runs.logfrom[i], msg, sizeof msg);
 		/* the engine's words when SIGTERM/SIGINT stopped it (while settling there is
 		 * no checkpoint yet, and it says so) */
 		int intr = !strncmp(msg, "shake: interrupted", 18) || strstr(msg, "checkpoint") != NULL;
 		/* not stopped by the driver: its worker died without a word (killed, or
 		 * its host lost): run again */
 		int lost = !stop_requested() && !d->io_fault;
-		d->outcome[i] = lost ? 'l' : 'h';
+		d->runs.outcome[i] = lost ? 'l' : 'h';
 		if (lost) {
-			d->transient[i]++;
+			d->runs.transient[i]++;
 			intr = 0;
 		}
 		db_now(now, sizeof now);
@@ -464,7 +464,7 @@ static int lock_free(const char *path, time_t deadline)
  * the engine's last word when its log has one from this attempt. A run that finished
  * after all (its output is there) is left to the sweep, which ingests it; one whose
  * engine still holds it past the wait is left to its next worker, which waits for it. */
-int orphans(drv *d, sb_err *e)
+int ingest_orphans(drv *d, sb_err *e)
 {
 	sqlite3_stmt *q;
 	if (sql_exec(&d->db, e, &q,

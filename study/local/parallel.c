@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/ioctl.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -18,8 +17,8 @@
 #include "provenance.h"
 #include "campaign/safe.h"
 #include "job/worker.h"
-#include "report/watch.h"
-#include "drv.h"
+#include "drvlocal.h"
+#include "progress.h"
 #include "stop.h"
 
 /* Copy src to dst (temporary name, rename), executable. */
@@ -75,28 +74,6 @@ static int stage_remote(drv *d, char *dir, size_t len, sb_err *e)
 	return 0;
 }
 
-/* The progress line of `study run` (watch.h): rewritten in place on a terminal, a
- * line at a time otherwise. */
-static void progress_line(drv *d, int final)
-{
-	if (!d->watch)
-		return;
-	sb_err e = {0};
-	if (watch_poll(d->watch, &d->db, &e))
-		return;
-	char line[4096];
-	size_t width = sizeof line;
-	struct winsize ws;
-	if (d->progress_tty && ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 20 && ws.ws_col < sizeof line)
-		width = ws.ws_col; /* one screen line: "study: " and the look, cut */
-	memcpy(line, "study: ", 8);
-	watch_line(d->watch, line + 7, width - 7);
-	if (d->progress_tty)
-		fprintf(stderr, "\r%s\033[K%s", line, final ? "\n" : "");
-	else
-		fprintf(stderr, "%s\n", line);
-}
-
 static double mono(void)
 {
 	struct timespec ts;
@@ -141,7 +118,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	char **argv = calloc(MAXA, sizeof *argv);
 	int argc = 0;
 	char njobs[32];
-	snprintf(njobs, sizeof njobs, "%d", d->jobs);
+	snprintf(njobs, sizeof njobs, "%d", d->loc->jobs);
 	const char *fixed[] = {"parallel", "--will-cite", "--jobs", njobs, "--joblog", joblog, "--arg-file", jobfile};
 	for (size_t i = 0; i < sizeof fixed / sizeof *fixed; i++)
 		add_arg(argv, &argc, MAXA, "%s%s", fixed[i], "");
@@ -244,7 +221,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	close(pfd[1]);
 	/* the workers' lines as they come, and a look for the progress line every
 	 * interval in between */
-	double interval = d->progress_tty ? 1 : 2, next = mono() + interval;
+	double interval = progress_tty(d->prog) ? 1 : 2, next = mono() + interval;
 	size_t cap = 65536, have = 0;
 	char *buf = malloc(cap);
 	/* GNU parallel ignores SIGTERM until its first jobs start ("Dummy until jobs
@@ -254,7 +231,7 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	double resend = -1;
 	for (int open_ = buf != NULL; open_;) {
 		struct pollfd pf = {pfd[0], POLLIN, 0};
-		int ms = d->watch ? (int)((next - mono()) * 1000) : -1;
+		int ms = d->prog ? (int)((next - mono()) * 1000) : -1;
 		if (stop_requested()) {
 			if (resend < 0)
 				resend = mono() + 1;
@@ -265,9 +242,9 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 			int left = (int)((resend - mono()) * 1000) + 1;
 			ms = ms < 0 || left < ms ? left : ms;
 		}
-		int pr = poll(&pf, 1, d->watch && ms < 0 ? 0 : ms);
-		if (d->watch && mono() >= next) {
-			progress_line(d, 0);
+		int pr = poll(&pf, 1, d->prog && ms < 0 ? 0 : ms);
+		if (d->prog && mono() >= next) {
+			progress_show(d->prog, &d->db, 0);
 			next = mono() + interval;
 		}
 		if (pr < 0 && errno != EINTR)
@@ -296,11 +273,11 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 			from = (size_t)(nl - buf) + 1;
 			sb_err le = {0};
 			if (!strncmp(line, WORKER_START "\t", sizeof WORKER_START))
-				on_start(d, line, &le);
+				ingest_on_start(d, line, &le);
 			else if (!strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE))
-				on_done(d, is_cache, line, &le);
+				ingest_on_done(d, is_cache, line, &le);
 			else if (line[0])
-				fprintf(stderr, "%s%s\n", d->progress_tty ? "\r\033[K" : "", line);
+				fprintf(stderr, "%s%s\n", progress_tty(d->prog) ? "\r\033[K" : "", line);
 			if (le.code)
 				fprintf(stderr, "study: %s\n", le.msg); /* the final sweep repairs it */
 		}
@@ -310,13 +287,13 @@ int run_parallel(drv *d, const char *kind, char **names, long n, char **basefile
 	free(buf);
 	close(pfd[0]);
 	if (!is_cache)
-		progress_line(d, 1);
+		progress_show(d->prog, &d->db, 1);
 	int st = 0;
 	while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
 		;
 	stop_child(0);
 	if (!is_cache)
-		unreported(d, e);
+		ingest_unreported(d, e);
 	if (WIFEXITED(st) && WEXITSTATUS(st) == 127 && !stop_requested())
 		sb_errf(e, SB_EIO, "GNU parallel did not start (is it installed? make deps)");
 	else if (WIFEXITED(st) && WEXITSTATUS(st) == 255 && !stop_requested() && !d->io_fault)

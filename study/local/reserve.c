@@ -5,7 +5,7 @@
  * does"). SQLite needs room for that (its write-ahead log grows), and on a full disk
  * there is none: the driver holds a little from its start (a file of allocated blocks
  * in the campaign's directory) and gives it back once its engines have stopped, for
- * the records it owes (ingest.c, owed_settle): given back earlier, the running engines
+ * the records it owes (ingest.c, ingest_owed_settle): given back earlier, the running engines
  * would take it. */
 #define _GNU_SOURCE /* posix_fallocate's prototype is POSIX; O_NOFOLLOW, O_CLOEXEC */
 #include <errno.h>
@@ -14,7 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "drv.h"
+#include "drvlocal.h"
 
 /* a stopped run's attempt is a few pages of the log (4 KiB each) */
 #define RESERVE_PER_JOB (32L << 10)
@@ -30,7 +30,7 @@ void reserve_make(drv *d)
 {
 	char p[PATHX];
 	reserve_path(d, p, sizeof p);
-	long n = RESERVE_PER_JOB * (d->jobs + 1L);
+	long n = RESERVE_PER_JOB * (d->loc->jobs + 1L);
 	n = n < RESERVE_MAX ? n : RESERVE_MAX;
 	/* O_NOFOLLOW: never blocks allocated through a link planted there */
 	int fd = open(p, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
@@ -43,16 +43,16 @@ void reserve_make(drv *d)
 	close(fd);
 	if (bad)
 		unlink(p); /* too little room already: the launching will stop soon anyway */
-	d->reserve = !bad;
+	d->loc->reserve = !bad;
 }
 
 int reserve_release(drv *d)
 {
-	if (!d->reserve)
+	if (!d->loc || !d->loc->reserve)
 		return 0;
 	char p[PATHX];
 	reserve_path(d, p, sizeof p);
-	d->reserve = 0;
+	d->loc->reserve = 0;
 	struct stat sb;
 	/* only a regular file: what else stands there is not the driver's */
 	return lstat(p, &sb) == 0 && S_ISREG(sb.st_mode) && unlink(p) == 0;

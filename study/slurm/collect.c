@@ -41,29 +41,16 @@ int slurm_drv_open(drv *d, const driver_opts *o, const char *path, sb_err *e)
 	if (strlen(d->root) > 3000)
 		return sb_errf(e, SB_EUSAGE, "%s: path too long", d->root);
 	layout_campaign(d->root, d->c.name, d->dir, sizeof d->dir);
-	d->jobs = 1;
 	char dbp[PATHLEN];
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
 	if (db_open(&d->db, dbp, 1, e) || slurm_tables(&d->db, e))
 		return e->code;
-	size_t n = (size_t)d->g.n + 1;
-	d->pend = calloc(n, sizeof *d->pend);
-	d->names = calloc(n, sizeof *d->names);
-	d->cache_ok = calloc(n, 1);
-	d->started = calloc(n, 1);
-	d->logfrom = calloc(n, sizeof *d->logfrom);
-	if (!d->pend || !d->names || !d->cache_ok || !d->started || !d->logfrom)
-		return sb_errf(e, SB_ENOMEM, "out of memory");
-	return 0;
+	return drv_runs_alloc(d, e);
 }
 
 void slurm_drv_close(drv *d)
 {
-	free(d->pend);
-	free(d->names);
-	free(d->cache_ok);
-	free(d->started);
-	free(d->logfrom);
+	drv_runs_free(d);
 	db_close(&d->db);
 	grid_free(&d->g);
 	campaign_free(&d->c);
@@ -199,7 +186,7 @@ static int set_task(drv *d, const trow *r, const char *state, int link, const ch
 	return db_commit(&d->db, e);
 }
 
-/* A DONE line of a run that left no output, classified as study run's on_done does
+/* A DONE line of a run that left no output, classified as study run's ingest_on_done does
  * (ingest.c): interrupted (7), killed by a signal (128 + n) and I/O faults (2) are
  * resumable and leave the run pending; bad input (1) and a crash (worker_crashed)
  * fail it. */
@@ -273,7 +260,7 @@ static int one_task(drv *d, const trow *r, const tlog *t, const slurm_queue *q, 
 			char *copy = strdup(start->text);
 			if (!copy)
 				return sb_errf(e, SB_ENOMEM, "out of memory");
-			on_start(d, copy, e);
+			ingest_on_start(d, copy, e);
 			free(copy);
 		}
 		return e->code || strcmp(r->state, "submitted") ? e->code : set_task(d, r, "started", 0, host, e);
@@ -315,13 +302,13 @@ static int caches_of(drv *d, const tlog *t, sb_err *e)
 		if (t->l[i].kind != 2 || grid_find(&d->g, t->l[i].name))
 			continue;
 		char st[16];
-		cache_state(d, t->l[i].name, st, sizeof st);
+		ingest_cache_state(d, t->l[i].name, st, sizeof st);
 		if (st[0])
 			continue;
 		char *copy = strdup(t->l[i].text);
 		if (!copy)
 			return sb_errf(e, SB_ENOMEM, "out of memory");
-		on_done(d, 1, copy, e);
+		ingest_on_done(d, 1, copy, e);
 		free(copy);
 	}
 	return e->code;

@@ -153,7 +153,7 @@ static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
 		}
 		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
 		for (long i = a; i < b; i++)
-			d->cache_ok[k[i].run] = (char)use;
+			d->runs.cache_ok[k[i].run] = (char)use;
 	}
 	free(k);
 	return e->code;
@@ -237,7 +237,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	if (!busy)
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	if (slurm_queue_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
-	    sweep(d, d->pend, &npend, e)) {
+	    sweep(d, d->runs.pend, &npend, e)) {
 		slurm_queue_free(&q);
 		free(busy);
 		return e->code;
@@ -245,8 +245,8 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	slurm_queue_free(&q);
 	long n = 0, failed = 0;
 	for (long i = 0; i < npend; i++)
-		if (!busy[d->pend[i]])
-			d->pend[n++] = d->pend[i];
+		if (!busy[d->runs.pend[i]])
+			d->runs.pend[n++] = d->runs.pend[i];
 	for (long i = 0; i < d->g.n; i++) {
 		char st[16];
 		long att;
@@ -260,7 +260,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	if (n == 0 || e->code)
 		return e->code;
 
-	if (choose_packings(d, d->pend, n, e) || driver_prepare_jobs(d, d->pend, n, d->names, e))
+	if (choose_packings(d, d->runs.pend, n, e) || driver_prepare_jobs(d, d->runs.pend, n, d->runs.names, e))
 		return e->code;
 	slurm_plan_run *runs = calloc((size_t)n, sizeof *runs);
 	char(*keys)[40] = calloc((size_t)n, sizeof *keys);
@@ -271,7 +271,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	}
 	for (long i = 0; i < n && !e->code; i++) {
-		const grid_run *r = &d->g.runs[d->pend[i]];
+		const grid_run *r = &d->g.runs[d->runs.pend[i]];
 		char h5[PATHX], cargs[PATHX];
 		runs[i].id = r->id;
 		packing_of_args(d->dir, r->id, keys[i], sizeof keys[i]);
@@ -287,7 +287,7 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 				sb_errf(e, SB_EIO, "run %s: its argument file names packing %s, its key is %s", r->id, keys[i],
 					r->cache_key);
 			else
-				driver_cache_args(d, keys[i], d->pend[i], e);
+				driver_cache_args(d, keys[i], d->runs.pend[i], e);
 		}
 		runs[i].build_key = keys[i];
 	}

@@ -65,7 +65,8 @@ H5MUT=$(realpath "${FUZZ_H5MUT:-build/fuzz/h5mut}")
 SELF=$(realpath "$0")
 [ "$N" != 0 ] || [ "$SECS" != 0 ] || [ -n "$ONLY" ] || { echo "families: FUZZ_FAMILY_INPUTS or FUZZ_FAMILY_SECONDS is needed" >&2; exit 2; }
 NAME=fz
-AN=(onset hysteresis waiting figures rolls ring whale convect)
+read -ra AN <<<"$(make -s --no-print-directory -C "$(dirname "$SELF")/../.." print-campaign-tools)"
+[ "${#AN[@]}" -gt 0 ] || { echo "families: make print-campaign-tools gave no list of the tools" >&2; exit 2; }
 mapfile -t IDS < <(cd "$SEALED/$NAME" && ls -- *.h5 | sed 's/\.h5$//')
 [ "${#IDS[@]}" -ge 2 ] || { echo "families: $SEALED/$NAME holds fewer than two run files" >&2; exit 2; }
 mkdir -p "$WORK" "$OUT" || exit 2
@@ -173,7 +174,7 @@ fam_links() {
 
 fam_database() {
 	local db="$W/R/study.db"
-	pick status export run onset waiting figures rolls hysteresis
+	pick status export run "${AN[@]}" # every reader of the database
 	KEY=$PV
 	local ps np
 	ps=$(od -An -tu1 -j16 -N2 "$db" | awk '{ print $1 * 256 + $2 }')

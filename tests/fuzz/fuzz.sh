@@ -130,7 +130,10 @@ args=(--shake "$SHAKE" --study "$STUDY" --seed "$SEED" --timeout "$TIMEOUT" --ou
 # (what `study run` ingests, every file once, with nothing left to run).
 case ",${FUZZ_TARGETS:-runfile},${FAMILIES:+runfile}," in
 *,runfile,*)
-	for b in "$H5MUT" "$(dirname "$SHAKE")"/{onset,hysteresis,waiting,figures,rolls,ring,whale,convect}; do
+	an=$(make -s --no-print-directory print-campaign-tools) && [ -n "$an" ] ||
+		{ echo "fuzz: make print-campaign-tools gave no list of the tools" >&2; exit 2; }
+	for b in "$H5MUT" $an; do
+		[ "$b" = "$H5MUT" ] || b=$(dirname "$SHAKE")/$b
 		[ -x "$b" ] || { echo "fuzz: $b is not an executable (make fuzz builds it)" >&2; exit 2; }
 	done
 	mkdir -p "$C/runfile" && cp tests/fuzz/runs.campaign "$C/runfile/fz.campaign" || exit 2

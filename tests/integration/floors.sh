@@ -2,13 +2,16 @@
 # floors.sh - the code's floors hold: every call between object files (read with nm
 # from the build the suite tests) points down the order core < lib < {study, analysis},
 # never between study/ and analysis/, and no two sub-folders of a room, and no two
-# files, call each other in a circle (lib/README.md). Inside core/ the same for its
-# rooms (core/README.md): every file in one of the rooms the Makefile names
-# (CORE_ROOMS, lowest first), no file including a header of a room above its own, no
-# circle of rooms or files; and the upper rooms include only core's public headers
-# (core/README.md, "The public face"). A check of the checker first: a made-up upward
-# call, a made-up circle, a file in no room, an upward include and a private header
-# included from above must fail.
+# files, call each other in a circle (lib/README.md); in lib/ and study/ every object's
+# exported functions carry one module prefix (ingest_run, ingest_on_done, ...), and a
+# header that says it is private to a folder is included from that folder only. Inside
+# core/ the same for its rooms (core/README.md): every file in one of the rooms the
+# Makefile names (CORE_ROOMS, lowest first), no file including a header of a room above
+# its own, no circle of rooms or files; and the upper rooms include only core's public
+# headers (core/README.md, "The public face"). A check of the checker first: a made-up
+# upward call, a made-up circle, a made-up second prefix, a made-up include of a private
+# header, a file in no room, an upward include and a private core header included from
+# above must fail.
 cd "$(dirname "$0")/../.."
 source tests/integration/lib.sh
 
@@ -101,6 +104,36 @@ check floors.selftest.core_up "the include of run/ by base/ was not reported alo
 priv=$(printf 'lib/x.c sim.h\nlib/x.c err.h\nlib/x.c lib.h\n' | private "base/err.h" "core/base/err.h core/run/sim.h")
 check floors.selftest.core_private "the private header alone was not reported: $priv" test "$(echo "$priv" | grep -c 'run/sim.h')" = 1 -a "$(echo "$priv" | wc -l)" = 1
 
+# prefixes < "OBJECT SYMBOL" lines: the objects whose exported functions begin with
+# more than one prefix (the name up to its first '_'), with the prefixes
+prefixes() {
+	awk '{ p = $2; sub(/_.*/, "", p); if (!((p, $1) in seen)) { seen[p, $1] = 1; n[$1]++; l[$1] = l[$1] " " p } }
+		END { for (o in n) if (n[o] > 1) print o ":" l[o] }' | sort
+}
+# private_includes DIR: "FILE includes HEADER, private to FOLDER/" for every include of
+# a header under DIR whose first line says "private to FOLDER/" from outside FOLDER/
+# (FOLDER relative to DIR)
+private_includes() {
+	(cd "$1" && grep -rl --include='*.h' -m1 '^/\* [a-z_]*\.h - private to [a-z_/]*/' . 2>/dev/null | sed 's#^\./##' |
+		while read -r h; do
+			own=$(head -n 1 "$h" | sed -n 's#^/\* [a-z_]*\.h - private to \([a-z_/]*/\).*#\1#p')
+			room=${h%%/*}
+			grep -rln --include='*.[ch]' "^#include \"\(${h#*/}\|$(basename "$h")\)\"" . 2>/dev/null | sed 's#^\./##' |
+				while read -r f; do
+					case "$f" in "$room/$own"*) ;; *) echo "$f includes $h, private to $room/$own" ;; esac
+				done
+		done)
+}
+pre=$(printf 'study/local/ingest ingest_run\nstudy/local/ingest on_done\nstudy/local/sweep sweep\n' | prefixes)
+check floors.selftest.prefix "a second prefix in one object was not reported (got '$pre')" test "$pre" = "study/local/ingest: ingest on"
+mkdir -p "$TMP/priv/study/local" "$TMP/priv/study/slurm"
+printf '/* x.h - private to local/: made up */\n' >"$TMP/priv/study/local/x.h"
+printf '#include "x.h"\n' >"$TMP/priv/study/local/a.c"
+printf '#include "local/x.h"\n' >"$TMP/priv/study/slurm/b.c"
+priv=$(private_includes "$TMP/priv")
+check floors.selftest.private "an include of a private header from another folder was not reported (got '$priv')" \
+	test "$priv" = "study/slurm/b.c includes study/local/x.h, private to study/local/"
+
 if ! ls "$BUILD"/lib/*.o >/dev/null 2>&1; then
 	fail floors.build "no objects under $BUILD/lib (run make)"
 	finish
@@ -118,6 +151,13 @@ $bad"; fi
 bad=$(loops files <"$E")
 if [ -z "$bad" ]; then ok floors.files.acyclic; else fail floors.files.acyclic "files in a circle:
 $bad"; fi
+bad=$(cd "$BUILD" && find lib study -name '*.o' | sort | while read -r o; do
+	[ -f "$REPO/${o%.o}.c" ] && nm -g --defined-only "$o" | awk -v o="${o%.o}" '$2 == "T" && $3 != "main" { print o, $3 }'
+done | prefixes)
+if [ -z "$bad" ]; then ok floors.names.prefix; else fail floors.names.prefix "objects whose exported functions have more than one prefix:
+$bad"; fi
+bad=$(private_includes "$REPO")
+if [ -z "$bad" ]; then ok floors.includes.private; else fail floors.includes.private "$bad"; fi
 # Each room's include path names only itself, lib/ and core/ (the makefiles' -I), so
 # no source reaches past it with a relative path either.
 bad=$(grep -rn '#include "\.\./' core lib study analysis 2>/dev/null)

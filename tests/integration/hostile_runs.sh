@@ -130,7 +130,9 @@ ingested size.study_array S2 "exit_code: not one integer"
 
 # ---- a FIFO where a run file belongs: every reader opened it and waited for a writer ----
 fresh F && rm F/fz/"$ID".h5 && mkfifo F/fz/"$ID".h5
-for t in onset waiting figures rolls ring whale convect hysteresis; do
+AN_TOOLS=$(make -s --no-print-directory -C "$REPO" print-campaign-tools)
+check tools.listed "make print-campaign-tools named no tool" test -n "$AN_TOOLS"
+for t in $AN_TOOLS; do
 	# the ramp runs are hysteresis's: its FIFO is the ramp run's
 	[ $t = hysteresis ] && continue
 	counted fifo.$t $t F "$ID" unreadable "not a regular file"
@@ -313,7 +315,8 @@ counted fig1.cell_0.figures figures G4 "$ID" unreadable "no field cell size"
 
 # and the unchanged runs are used by every tool
 fresh U
-for t in onset waiting figures rolls ring whale convect; do
+for t in $AN_TOOLS; do
+	[ $t = hysteresis ] && continue # it reads the ramp runs alone
 	counted control.$t $t U "$ID" used ""
 done
 finish
