@@ -490,8 +490,9 @@ static int launch(drv *d, long npend, sb_err *e)
 				again[m++] = list[k];
 		if (m == 0 || round == 2)
 			break;
-		fprintf(stderr, "study: %s: %ld run%s lost %s input while the campaign ran (argument file or packing "
-			"deleted): prepared and run again\n", d->c.name, m, m > 1 ? "s" : "", m > 1 ? "their" : "its");
+		fprintf(stderr, "study: %s: %ld run%s lost %s input or output while the campaign ran (argument file, "
+			"packing or output file deleted): prepared and run again\n", d->c.name, m, m > 1 ? "s" : "",
+			m > 1 ? "their" : "its");
 		if (driver_dirs(d, driver_subdirs, DRIVER_NSUB, e))
 			break;
 		memcpy(list, again, (size_t)m * sizeof *again); /* list is d->runs.pend: free to reuse */

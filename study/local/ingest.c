@@ -76,7 +76,10 @@ static int recover_kept(drv *d, const char *id, sb_err *e)
 	}
 }
 
-static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep, sb_err *e);
+static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep,
+		       int *gone, sb_err *e);
+static int attempt(drv *d, long ix, long code, const char *status, const char *msg, const char *host,
+		   const char *end, const char *state, sb_err *e);
 
 int ingest_run(drv *d, const char *id, sb_err *e)
 {
@@ -87,12 +90,24 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	sb_err re = {0};
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (ingest_file(d, id, path, now, &s, &re, e)) {
+	int gone = 0;
+	if (ingest_file(d, id, path, now, &s, &re, &gone, e)) {
 		db_rollback(&d->db); /* a full disk: the final sweep tries again (ingest_owed_settle) */
 		return e->code;
 	}
-	d->n_ingested++;
 	const grid_run *gr = grid_find(&d->g, id);
+	if (gone) {
+		/* the file was there when the caller looked and gone when it was read (its
+		 * directory deleted meanwhile: a killed engine's late rename, a user's rm -rf):
+		 * not the run's fault; as for an input that went, it is prepared and run again */
+		db_rollback(&d->db);
+		if (!gr)
+			return 0;
+		if (d->runs.outcome)
+			d->runs.outcome[gr - d->g.runs] = 'm';
+		return attempt(d, gr - d->g.runs, SB_EIO, "missing_input", re.msg, "", now, "pending", e);
+	}
+	d->n_ingested++;
 	if (gr && d->runs.outcome)
 		d->runs.outcome[gr - d->g.runs] = 'r';
 	if (re.code || strcmp(h5sum_text(&s, "status"), "ok"))
@@ -101,13 +116,22 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 }
 
 /* A run's file into the database, within the caller's transaction (committed here). */
-static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep, sb_err *e)
+static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep,
+		       int *gone, sb_err *e)
 {
 	h5sum s;
 	sb_err re = {0};
 	if (recover_kept(d, id, e))
 		return e->code;
-	if (h5sum_read(path, id, &s, &re)) {
+	if (h5sum_read(path, id, &s, &re) && !exists(path)) {
+		/* (ingest_run: gone between the look and the read) */
+		*sp = s;
+		*rep = (sb_err){SB_EIO, ""};
+		snprintf(rep->msg, sizeof rep->msg, "its output file was gone when it was to be read (%.900s): its "
+			 "directory deleted meanwhile?", re.msg);
+		*gone = 1;
+		return 0;
+	} else if (re.code) {
 		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
 	} else {
 		/* the file says whether the run started from the packing cache: a database

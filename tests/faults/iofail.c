@@ -54,6 +54,24 @@ typedef int (*renameat2_fn)(int, const char *, int, const char *, unsigned);
 	if (!real_##name) \
 	*(void **)&real_##name = dlsym(RTLD_NEXT, #name)
 
+/* A file that goes between a look and a read (IOFAIL_VANISH): while IOFAIL_VANISH names
+ * a string, the first open for reading of a path that ends with it unlinks the path first,
+ * as a deletion racing the reader would (a run directory removed while the driver
+ * ingested a file it had just seen). Only in the process IOFAIL_VANISH_PID names (the
+ * driver, not its workers), when set. */
+static void vanish(const char *path, int flags)
+{
+	static int done;
+	const char *match = getenv("IOFAIL_VANISH");
+	const size_t lp = path ? strlen(path) : 0, lm = match ? strlen(match) : 0;
+	const char *pid = getenv("IOFAIL_VANISH_PID");
+	if (done || writes(flags) || !lm || lp < lm || strcmp(path + lp - lm, match) ||
+	    (pid && *pid && atol(pid) != (long)getpid()))
+		return;
+	done = 1;
+	unlink(path);
+}
+
 int open(const char *path, int flags, ...)
 {
 	REAL(open, open_fn);
@@ -66,6 +84,7 @@ int open(const char *path, int flags, ...)
 	}
 	if (writes(flags) && armed(path))
 		return -1;
+	vanish(path, flags);
 	return real_open(path, flags, mode);
 }
 
@@ -81,6 +100,7 @@ int open64(const char *path, int flags, ...)
 	}
 	if (writes(flags) && armed(path))
 		return -1;
+	vanish(path, flags);
 	return real_open64(path, flags, mode);
 }
 
