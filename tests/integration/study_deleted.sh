@@ -11,30 +11,12 @@
 # is prepared again), never as a "bad job" that fails the run.
 # tier: slow: campaigns whose outputs and caches are deleted and run again
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 
-cat >d.campaign <<'EOF'
-[campaign]
-name = d
-seed = 3
-replicates = 2
-[scene]
-n_grains = 40
-width = 16
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
-duration = 0.2
-traj_rate = 100
-snapshots = no
-[grid]
-frequency = 4, 5
-EOF
-"$STUDY" run d.campaign --runs "$TMP/REF" --jobs 2 --no-progress >ref.log 2>&1 ||
-	{ fail setup.reference "exit $?: $(tail -n 3 ref.log)"; finish; }
+# the reference: the tiny campaign (lib.sh), built once per build
+tiny_campaign d 3 >d.campaign
+fixture_runs d.campaign REF || { fail setup.reference "exit $?: $(tail -n 3 REF.log)"; finish; }
 ids=($(q REF/study.db "SELECT id FROM run WHERE campaign = 'd' ORDER BY id"))
 [ "${#ids[@]}" = 4 ] && [ "$(q REF/study.db "SELECT COUNT(*) FROM run WHERE from_cache = 1")" = 4 ] ||
 	{ fail setup.reference "expected 4 runs from the packing cache: $(q REF/study.db "SELECT id, from_cache FROM run")"; finish; }

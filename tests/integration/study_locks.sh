@@ -6,26 +6,11 @@
 # itself, the joblog) is refused naming the path, and nothing is written where it
 # points.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
-cat >l.campaign <<'EOF'
-[campaign]
-name = l
-seed = 3
-[scene]
-n_grains = 40
-width = 16
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
-duration = 0.2
-traj_rate = 100
-snapshots = no
-[grid]
-frequency = 4, 5
-EOF
+# the tiny campaign (lib.sh), one replicate
+tiny_campaign l 3 | sed '/^replicates = /d' >l.campaign
 
 # --- two drivers, one database, two runs directories ---
 "$STUDY" run l.campaign --runs A --db "$TMP/shared.db" --jobs 1 --no-progress >a.log 2>&1 &

@@ -9,8 +9,7 @@
 # be installed.
 # tier: slow: a one-node Slurm cluster started, a job array run, cancelled and resubmitted
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 SLURM_LOCAL="$REPO/scripts/slurm_local.sh"
 T0=$SECONDS
 
@@ -46,7 +45,6 @@ export SLURM_CONF="$CL/slurm.conf"
 echo "# cluster up after $((SECONDS - T0)) s"
 cd "$TMP" || exit 1
 
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 # wait_for SECONDS COMMAND...: poll until the command succeeds
 wait_for() {
 	local end=$((SECONDS + $1))
@@ -69,11 +67,7 @@ name = $NAME
 seed = 7
 replicates = 2
 [scene]
-n_grains = 50
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=50 depth=-)
 amplitude = 1
 duration = 6
 traj_rate = 20
