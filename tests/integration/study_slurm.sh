@@ -130,24 +130,42 @@ interrupted() {
 	q $DB "SELECT s.run FROM slurm_task s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run
 		AND a.n = s.attempt WHERE s.job_id = $1 AND a.status = 'interrupted' AND a.exit_code = 7"
 }
-wait_for 60 first_shaking "S/$NAME/slurm/tasks-1.txt" >/dev/null
-read -r IDX busy < <(first_shaking "S/$NAME/slurm/tasks-1.txt")
-if [ -z "$busy" ]; then
+# The moment is a state, not a time: the engine of a task's first run, found shaking, is
+# stopped (SIGSTOP) before the scancel, so that it cannot end (and its task start its
+# second run) while the signal is on its way; it goes on once the SIGTERM is pending.
+# hold_shaking: "INDEX ID PID" of a task whose first run is shaking, its engine stopped
+hold_shaking() {
+	local idx id pid
+	read -r idx id < <(first_shaking "S/$NAME/slurm/tasks-1.txt") || return 1
+	pid=$(engine_of "$id") || return 1
+	kill -STOP "$pid" 2>/dev/null || return 1
+	# stopped after it wrote its output (on its way out): let it go, try again
+	if ! is_shaking "$id"; then
+		kill -CONT "$pid"
+		return 1
+	fi
+	echo "$idx $id $pid"
+}
+wait_for 60 hold_shaking >held.txt
+read -r IDX busy held <held.txt
+if [ -z "$held" ]; then
 	fail scancel.setup "no task's first run reached a checkpoint within 60 s: $(squeue --array 2>&1 | tail -n 3)"
 	finish
 fi
-echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s: scancel ${J1}_$IDX"
-# as a user cancels: SIGTERM to every process of the task, SIGKILL after KillWait (30 s)
-scancel "${J1}_$IDX"
-# while the other task runs, study run refuses: it would run its runs a second time
+echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s, its engine $held stopped: scancel ${J1}_$IDX"
+# while a task runs, study run refuses: it would run its runs a second time (the held
+# engine keeps the array running)
 "$STUDY" run s.campaign --runs "$TMP/S" >busy.log 2>&1
 rc=$?
-if drained "$J1"; then
-	echo "# the array ended before study run was tried; its refusal is not checked"
-else
-	[ "$rc" -eq 4 ] && grep -q "queued or running in Slurm" busy.log && ok run.refuses_while_queued ||
-		fail run.refuses_while_queued "exit $rc: $(tail -n 3 busy.log)"
-fi
+[ "$rc" -eq 4 ] && grep -q "queued or running in Slurm" busy.log && ok run.refuses_while_queued ||
+	fail run.refuses_while_queued "exit $rc: $(tail -n 3 busy.log)"
+# as a user cancels: SIGTERM to every process of the task, SIGKILL after KillWait (30 s)
+scancel "${J1}_$IDX"
+# (Slurm sends SIGCONT before SIGTERM; should it not, the held engine goes on once the
+# SIGTERM waits for it)
+wait_for 30 eval 'term_pending $held || ! kill -0 $held 2>/dev/null' ||
+	fail scancel.signal_sent "no SIGTERM reached engine $held within 30 s"
+kill -CONT "$held" 2>/dev/null
 wait_for 60 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
 
 # --- study status reads what the tasks did ---
@@ -196,14 +214,22 @@ WPID=$!
 # a signal to the task's shell alone (scancel --batch; what sbatch --signal=B:TERM@T
 # sends before a time limit) reaches the engine through the script's trap and the
 # worker: the run that never started in the first array, stopped once it shakes
+# (the cancelled task's second run is unstarted: its first was held until the signal came)
 RID2=""
-if [ "$ost" = unstarted ]; then
-	if wait_for 60 is_shaking "$other"; then
-		RID2=$other
-		scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
-	else
-		fail scancel.batch_setup "run $other did not reach a checkpoint within 60 s"
-	fi
+if [ "$ost" != unstarted ]; then
+	fail scancel.batch_setup "the cancelled task's other run $other is '$ost', not unstarted: no run to stop"
+elif ! wait_for 60 eval 'is_shaking "$other" && held=$(engine_of "$other") && kill -STOP $held 2>/dev/null'; then
+	fail scancel.batch_setup "run $other did not reach a checkpoint within 60 s"
+elif ! is_shaking "$other"; then
+	kill -CONT "$held"
+	fail scancel.batch_setup "run $other ended as its engine was stopped"
+else
+	# its engine held (as above) until the signal, passed on by the script and the
+	# worker, is pending
+	RID2=$other
+	scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
+	wait_for 30 term_pending "$held" || fail scancel.batch_passed_on "engine $held of run $other got no SIGTERM within 30 s"
+	kill -CONT "$held"
 fi
 wait_for 60 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
 wait_for 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
@@ -214,17 +240,15 @@ grep -Eq "^  frequency=[34] seed=[12] +t [0-9.e+-]+/6 s" watch.out && grep -q "S
 	ok watch.slurm_runs_in_flight_and_end ||
 	fail watch.slurm_runs_in_flight_and_end "exit $wrc: $(grep -c '^[0-9][0-9]:' watch.out) looks; $(tail -n 4 watch.out | tr '\n' '|') $(head -c 200 watch.err)"
 "$STUDY" status "$NAME" --runs "$TMP/S" >status2.out 2>&1 || fail status2.exit "$(cat status2.out)"
+[ -n "$RID2" ] && [ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
+	ok scancel.batch_signal_reaches_engine ||
+	fail scancel.batch_signal_reaches_engine "run '$RID2': $(q $DB "SELECT * FROM attempt WHERE run = '$RID2'"; tail -n 2 "S/$NAME/logs/$RID2.log" 2>&1)"
 if [ -n "$RID2" ]; then
-	[ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
-		ok scancel.batch_signal_reaches_engine ||
-		fail scancel.batch_signal_reaches_engine "$(q $DB "SELECT * FROM attempt WHERE run = '$RID2'"; tail -n 2 "S/$NAME/logs/$RID2.log")"
 	"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub3.log 2>&1 && grep -q "1 to submit" sub3.log ||
 		fail resubmit.third "$(cat sub3.log)"
 	J3=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
 	wait_for 60 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
 	"$STUDY" status "$NAME" --runs "$TMP/S" >status3.out 2>&1 || fail status3.exit "$(cat status3.out)"
-else
-	skip scancel.batch_signal_reaches_engine "the first array's cancelled task had finished its second run: no run left to stop"
 fi
 echo "# resubmitted arrays: $((SECONDS - t)) s"
 [ "$(q $DB "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok resubmit.all_done ||
