@@ -146,10 +146,10 @@ hold_shaking() {
 	fi
 	echo "$idx $id $pid"
 }
-wait_for 60 hold_shaking >held.txt
+wait_for 300 hold_shaking >held.txt
 read -r IDX busy held <held.txt
 if [ -z "$held" ]; then
-	fail scancel.setup "no task's first run reached a checkpoint within 60 s: $(squeue --array 2>&1 | tail -n 3)"
+	fail scancel.setup "no task's first run reached a checkpoint within 300 s: $(squeue --array 2>&1 | tail -n 3)"
 	finish
 fi
 echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s, its engine $held stopped: scancel ${J1}_$IDX"
@@ -166,7 +166,7 @@ scancel "${J1}_$IDX"
 wait_for 30 eval 'term_pending $held || ! kill -0 $held 2>/dev/null' ||
 	fail scancel.signal_sent "no SIGTERM reached engine $held within 30 s"
 kill -CONT "$held" 2>/dev/null
-wait_for 60 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
+wait_for 300 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
 
 # --- study status reads what the tasks did ---
 "$STUDY" status "$NAME" --runs "$TMP/S" >status1.out 2>&1 || fail status.exit "$(cat status1.out)"
@@ -215,11 +215,14 @@ WPID=$!
 # sends before a time limit) reaches the engine through the script's trap and the
 # worker: the run that never started in the first array, stopped once it shakes
 # (the cancelled task's second run is unstarted: its first was held until the signal came)
+# shaking_held ID: the run is shaking and its engine (held, its pid) stopped; whenever it
+# starts (the array's tasks may run one after the other), not within a time
+shaking_held() { is_shaking "$1" && held=$(engine_of "$1") && kill -STOP "$held" 2>/dev/null; }
 RID2=""
 if [ "$ost" != unstarted ]; then
 	fail scancel.batch_setup "the cancelled task's other run $other is '$ost', not unstarted: no run to stop"
-elif ! wait_for 60 eval 'is_shaking "$other" && held=$(engine_of "$other") && kill -STOP $held 2>/dev/null'; then
-	fail scancel.batch_setup "run $other did not reach a checkpoint within 60 s"
+elif held="" && ! wait_for 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
+	fail scancel.batch_setup "run $other was not seen shaking before its array ended (or its engine not held): $(ls "S/$NAME" | grep -F "$other" | tr '\n' ' '); engines: $(pgrep -a -x shake | cut -c1-300)"
 elif ! is_shaking "$other"; then
 	kill -CONT "$held"
 	fail scancel.batch_setup "run $other ended as its engine was stopped"
@@ -231,7 +234,7 @@ else
 	wait_for 30 term_pending "$held" || fail scancel.batch_passed_on "engine $held of run $other got no SIGTERM within 30 s"
 	kill -CONT "$held"
 fi
-wait_for 60 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
+wait_for 300 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
 wait_for 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
 wait $WPID
 wrc=$?
@@ -247,7 +250,7 @@ if [ -n "$RID2" ]; then
 	"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub3.log 2>&1 && grep -q "1 to submit" sub3.log ||
 		fail resubmit.third "$(cat sub3.log)"
 	J3=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
-	wait_for 60 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
+	wait_for 300 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
 	"$STUDY" status "$NAME" --runs "$TMP/S" >status3.out 2>&1 || fail status3.exit "$(cat status3.out)"
 fi
 echo "# resubmitted arrays: $((SECONDS - t)) s"
