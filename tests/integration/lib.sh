@@ -144,22 +144,28 @@ term_at_checkpoint() {
 	wait $pid
 }
 
-# engine_of ID : the pid of the engine running run ID (a process named shake whose
-# arguments end with run_id=ID, as the worker starts it: never the worker or a helper)
+# engine_of ID : REPLY, the pid of the engine running run ID (a process named shake with
+# the argument run_id=ID, as the worker starts it: never the worker or a helper). Read
+# from /proc with builtins alone, no process started: a loaded machine makes every fork
+# dear, and a caller that must catch a run in a state of a few seconds polls it.
 engine_of() {
-	local p
-	for p in $(pgrep -x shake 2>/dev/null); do
-		{ tr '\0' '\n' <"/proc/$p/cmdline"; } 2>/dev/null | grep -qx "run_id=$1" && { echo "$p"; return 0; }
+	local d c a
+	for d in /proc/[0-9]*; do
+		{ read -r c <"$d/comm"; } 2>/dev/null && [ "$c" = shake ] || continue
+		{ mapfile -d '' -t a <"$d/cmdline"; } 2>/dev/null || continue
+		for c in "${a[@]}"; do
+			[ "$c" = "run_id=$1" ] && { REPLY=${d#/proc/}; return 0; }
+		done
 	done
 	return 1
 }
 # term_pending PID : a SIGTERM waits for the process (held by SIGSTOP): bit 15 of its
 # pending signals, the process's or its main thread's (/proc/PID/status)
 term_pending() {
-	local m
-	for m in $(awk '$1 == "ShdPnd:" || $1 == "SigPnd:" { print $2 }' "/proc/$1/status" 2>/dev/null); do
-		(((16#$m >> 14) & 1)) && return 0
-	done
+	local k m
+	while read -r k m; do
+		case $k in ShdPnd: | SigPnd:) (((16#$m >> 14) & 1)) && return 0 ;; esac
+	done <"/proc/$1/status" 2>/dev/null
 	return 1
 }
 

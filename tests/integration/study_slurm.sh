@@ -91,10 +91,11 @@ t=$SECONDS
 "$STUDY" run s.campaign --runs "$TMP/L" --jobs 2 >local.log 2>&1 || fail local.run "$(tail -c 400 local.log)"
 echo "# local study run: $((SECONDS - t)) s"
 
-# --- submit: 4 runs, 2 per task, at most 2 tasks at once, an extra sbatch option ---
+# --- submit: 4 runs, 2 per task, at most 2 tasks at once, extra sbatch options (--hold:
+# the array waits for scontrol release, so that no run starts before the test watches) ---
 t=$SECONDS
 "$STUDY" submit s.campaign --slurm --runs "$TMP/S" --throttle 2 --runs-per-task 2 \
-	--sbatch-args="--comment=shakebox-test --time=10" >sub1.log 2>&1
+	--sbatch-args="--comment=shakebox-test --time=10 --hold" >sub1.log 2>&1
 rc=$?
 DB=S/study.db
 J1=$(q $DB "SELECT job_id FROM slurm_job WHERE campaign = '$NAME'")
@@ -114,17 +115,6 @@ echo "$info" | grep -q "ArrayTaskThrottle=2" && echo "$info" | grep -q "Comment=
 # --- scancel a task whose run is shaking: the engine must write a checkpoint ---
 # is_shaking ID: the run has written a checkpoint but no output yet
 is_shaking() { [ -e "S/$NAME/$1.h5.ckpt" ] && [ ! -e "S/$NAME/$1.h5" ]; }
-# first_shaking TASKFILE: "INDEX ID" of a task whose first run is shaking (so that the
-# task has a run after it to leave unstarted)
-first_shaking() {
-	local i=0 line id
-	while read -r line; do
-		id=$(echo "$line" | tr ' ' '\n' | sed -n 's/^r://p' | head -n 1)
-		is_shaking "$id" && { echo "$i $id"; return 0; }
-		i=$((i + 1))
-	done <"$1"
-	return 1
-}
 # interrupted JOB: the runs the job's tasks left interrupted
 interrupted() {
 	q $DB "SELECT s.run FROM slurm_task s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run
@@ -133,23 +123,37 @@ interrupted() {
 # The moment is a state, not a time: the engine of a task's first run, found shaking, is
 # stopped (SIGSTOP) before the scancel, so that it cannot end (and its task start its
 # second run) while the signal is on its way; it goes on once the SIGTERM is pending.
-# hold_shaking: "INDEX ID PID" of a task whose first run is shaking, its engine stopped
+# The runs last a few seconds: the poll starts no process until it has found one
+# (is_shaking and engine_of are builtins), so that a loaded machine cannot step over it.
+# The first run of each task, from the task file (r:ID words in order)
+FIRST=()
+while read -r line; do
+	id=""
+	for w in $line; do case $w in r:*) id=${w#r:}; break ;; esac; done
+	FIRST+=("$id")
+done <"S/$NAME/slurm/tasks-1.txt"
+# hold_shaking: IDX, busy (the run) and held (its engine's pid) of a task whose first
+# run is shaking, its engine stopped
 hold_shaking() {
-	local idx id pid
-	read -r idx id < <(first_shaking "S/$NAME/slurm/tasks-1.txt") || return 1
-	pid=$(engine_of "$id") || return 1
-	kill -STOP "$pid" 2>/dev/null || return 1
-	# stopped after it wrote its output (on its way out): let it go, try again
-	if ! is_shaking "$id"; then
-		kill -CONT "$pid"
-		return 1
-	fi
-	echo "$idx $id $pid"
+	local i
+	for i in "${!FIRST[@]}"; do
+		is_shaking "${FIRST[i]}" && engine_of "${FIRST[i]}" || continue
+		kill -STOP "$REPLY" 2>/dev/null || continue
+		# stopped after it wrote its output (on its way out): let it go, look again
+		if ! is_shaking "${FIRST[i]}"; then
+			kill -CONT "$REPLY"
+			continue
+		fi
+		IDX=$i busy=${FIRST[i]} held=$REPLY
+		return 0
+	done
+	return 1
 }
-wait_for 300 hold_shaking >held.txt
-read -r IDX busy held <held.txt
+held=""
+scontrol release "$J1" || fail scancel.setup "scontrol release $J1: exit $?"
+wait_for 300 eval 'hold_shaking || drained "$J1"'
 if [ -z "$held" ]; then
-	fail scancel.setup "no task's first run reached a checkpoint within 300 s: $(squeue --array 2>&1 | tail -n 3)"
+	fail scancel.setup "no task's first run was seen shaking before the array ended: $(squeue --array 2>&1 | tail -n 3)"
 	finish
 fi
 echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s, its engine $held stopped: scancel ${J1}_$IDX"
@@ -196,9 +200,9 @@ else
 fi
 
 # --- submit again: only what is not done, in a new array (one run per task this
-# time); the stopped run resumes ---
+# time, held until the test watches); the stopped run resumes ---
 t=$SECONDS
-"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub2.log 2>&1
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" --sbatch-args=--hold >sub2.log 2>&1
 rc=$?
 J2=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
 left=$(q $DB "SELECT COUNT(*) FROM run WHERE state <> 'done'")
@@ -217,11 +221,12 @@ WPID=$!
 # (the cancelled task's second run is unstarted: its first was held until the signal came)
 # shaking_held ID: the run is shaking and its engine (held, its pid) stopped; whenever it
 # starts (the array's tasks may run one after the other), not within a time
-shaking_held() { is_shaking "$1" && held=$(engine_of "$1") && kill -STOP "$held" 2>/dev/null; }
-RID2=""
+shaking_held() { is_shaking "$1" && engine_of "$1" && held=$REPLY && kill -STOP "$held" 2>/dev/null; }
+RID2="" held=""
+scontrol release "$J2" || fail scancel.batch_setup "scontrol release $J2: exit $?"
 if [ "$ost" != unstarted ]; then
 	fail scancel.batch_setup "the cancelled task's other run $other is '$ost', not unstarted: no run to stop"
-elif held="" && ! wait_for 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
+elif ! wait_for 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
 	fail scancel.batch_setup "run $other was not seen shaking before its array ended (or its engine not held): $(ls "S/$NAME" | grep -F "$other" | tr '\n' ' '); engines: $(pgrep -a -x shake | cut -c1-300)"
 elif ! is_shaking "$other"; then
 	kill -CONT "$held"
