@@ -163,9 +163,9 @@ engine_of() {
 # pending signals, the process's or its main thread's (/proc/PID/status)
 term_pending() {
 	local k m
-	while read -r k m; do
+	{ while read -r k m; do
 		case $k in ShdPnd: | SigPnd:) (((16#$m >> 14) & 1)) && return 0 ;; esac
-	done <"/proc/$1/status" 2>/dev/null
+	done <"/proc/$1/status"; } 2>/dev/null
 	return 1
 }
 
