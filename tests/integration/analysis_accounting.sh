@@ -16,26 +16,21 @@
 analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 vals() { h5vals "$@"; } # lib.sh
 # close A B : |A - B| <= 1e-12 (1 + |B|)
 close() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= 1e-12 * (1 + m)) }'; }
 # param CAMPAIGN ID KEY : a run's parameter as the database has it
-param() { q "SELECT value FROM param WHERE campaign = '$1' AND run = '$2' AND key = '$3'"; }
+param() { q R/study.db "SELECT value FROM param WHERE campaign = '$1' AND run = '$2' AND key = '$3'"; }
 # col FILE GROUP NAME : the value of column NAME in the row of GROUP of a summary CSV
 col() {
 	awk -F, -v g="\"$2\"" -v n="$3" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == n) c = i; next }
 		$1 == g && c { v = $c; gsub(/"/, "", v); print v; exit }' "$1"
 }
 
-SCENE='n_grains = 60
-width = 20
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+SCENE="$(tiny_scene radius_ratio=-)
 amplitude = 1
 flux = yes
-max_overlap = 0.26'
+max_overlap = 0.26"
 # at 8 Hz the largest overlaps of this bed pass 0.26 of the smaller radius after
 # 0.1-1.5 s: those runs stop there with status overlap; at 4 Hz none does
 printf '[campaign]\nname = s\nseed = 2\nreplicates = 3\n[scene]\n%s\ntraj_rate = 100\nduration = 1.5\n[grid]\nradius_ratio = 0, 2\nfrequency = 4, 6, 8\n' "$SCENE" >s.campaign
@@ -47,7 +42,7 @@ rs=$?
 rh=$?
 echo "# campaigns: $((SECONDS - t0)) s"
 # exit 3: some runs failed (recorded)
-[ "$rs" -eq 3 ] && [ "$rh" -eq 3 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state IN ('done', 'failed')")" = 21 ] &&
+[ "$rs" -eq 3 ] && [ "$rh" -eq 3 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state IN ('done', 'failed')")" = 21 ] &&
 	ok acc.setup.campaigns || { fail acc.setup.campaigns "study exit $rs, $rh: $(tail -c 300 study_s.log study_h.log)"; finish; }
 
 # The failures this test needs (the engine is deterministic: they come back every time;
@@ -55,7 +50,7 @@ echo "# campaigns: $((SECONDS - t0)) s"
 # with an intruder that rose before the failure and that did not, a failed run with
 # periods after the transient, failed ramp runs.
 need_risen=0 need_cens=0 need_partly=0
-for id in $(q "SELECT id FROM run WHERE campaign = 's' AND state = 'failed'"); do
+for id in $(q R/study.db "SELECT id FROM run WHERE campaign = 's' AND state = 'failed'"); do
 	f=R/s/$id.h5
 	[ "$(attr "$f" /status)" = overlap ] || continue
 	if [ -n "$(attr "$f" /risen)" ]; then
@@ -66,25 +61,25 @@ for id in $(q "SELECT id FROM run WHERE campaign = 's' AND state = 'failed'"); d
 	[ "${P:-0}" -gt "$p0" ] && need_partly=$((need_partly + 1))
 done
 [ "$need_risen" -ge 1 ] && [ "$need_cens" -ge 2 ] && [ "$need_partly" -ge 2 ] &&
-	[ "$(q "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'failed'")" -ge 1 ] &&
-	[ "$(q "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'done'")" -ge 1 ] && ok acc.setup.failures ||
-	{ fail acc.setup.failures "failed runs risen $need_risen, censored $need_cens, with periods after the transient $need_partly; ramps: $(q "SELECT group_concat(state) FROM run WHERE campaign = 'h'")"; finish; }
+	[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'failed'")" -ge 1 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'done'")" -ge 1 ] && ok acc.setup.failures ||
+	{ fail acc.setup.failures "failed runs risen $need_risen, censored $need_cens, with periods after the transient $need_partly; ramps: $(q R/study.db "SELECT group_concat(state) FROM run WHERE campaign = 'h'")"; finish; }
 
 # ---- what happens to a campaign besides failures (made by hand) ----
 # run.current exists once bin/study records versions; a database without it is read too
-[ "$(q "SELECT COUNT(*) FROM pragma_table_info('run') WHERE name = 'current'")" = 1 ] ||
-	q "ALTER TABLE run ADD COLUMN current INTEGER NOT NULL DEFAULT 1"
+[ "$(q R/study.db "SELECT COUNT(*) FROM pragma_table_info('run') WHERE name = 'current'")" = 1 ] ||
+	q R/study.db "ALTER TABLE run ADD COLUMN current INTEGER NOT NULL DEFAULT 1"
 # pick CLAUSE : the id of the first run of campaign s (by id) that matches
-pick() { q "SELECT r.id FROM run r JOIN param a ON a.campaign = r.campaign AND a.run = r.id AND a.key = 'radius_ratio'
+pick() { q R/study.db "SELECT r.id FROM run r JOIN param a ON a.campaign = r.campaign AND a.run = r.id AND a.key = 'radius_ratio'
 	JOIN param b ON b.campaign = r.campaign AND b.run = r.id AND b.key = 'frequency' WHERE r.campaign = 's' AND $1 ORDER BY r.id LIMIT 1"; }
 OLD=$(pick "a.value = 2 AND b.value = 4 AND r.state = 'done'")   # of an earlier version
 PEND=$(pick "a.value = 0 AND b.value = 4 AND r.state = 'done'")  # queued again
 RUNG=$(pick "a.value = 2 AND b.value = 6 AND r.state = 'done'")  # running
 TRUNC=$(pick "a.value = 0 AND b.value = 6 AND r.state = 'done'") # its file truncated
 # failed without an output file: bad input (no file, no result row, the attempt says why)
-NOFILE=$(q "SELECT r.id FROM run r JOIN result s ON s.campaign = r.campaign AND s.run = r.id JOIN param a ON a.campaign = r.campaign
+NOFILE=$(q R/study.db "SELECT r.id FROM run r JOIN result s ON s.campaign = r.campaign AND s.run = r.id JOIN param a ON a.campaign = r.campaign
 	AND a.run = r.id AND a.key = 'radius_ratio' WHERE r.campaign = 's' AND r.state = 'failed' AND a.value = 2 ORDER BY s.status_time LIMIT 1")
-q "UPDATE run SET current = 0 WHERE campaign = 's' AND id = '$OLD';
+q R/study.db "UPDATE run SET current = 0 WHERE campaign = 's' AND id = '$OLD';
    UPDATE run SET state = 'pending' WHERE campaign = 's' AND id = '$PEND';
    UPDATE run SET state = 'running' WHERE campaign = 's' AND id = '$RUNG';
    DELETE FROM result WHERE campaign = 's' AND run = '$NOFILE';
@@ -102,7 +97,7 @@ sqlite3 nocur.db "DROP VIEW IF EXISTS runs; ALTER TABLE run DROP COLUMN current"
 # periods) can make of a run: used, failed_used, unusable, unreadable, pending, running
 expect_flux() {
 	local id=$1 st f P p0
-	st=$(q "SELECT state FROM run WHERE campaign = 's' AND id = '$id'")
+	st=$(q R/study.db "SELECT state FROM run WHERE campaign = 's' AND id = '$id'")
 	case $st in pending | running) echo "$st"; return ;; esac
 	f=R/s/$id.h5
 	if [ ! -e "$f" ]; then [ "$st" = failed ] && echo unusable || echo unreadable; return; fi
@@ -115,7 +110,7 @@ expect_flux() {
 # expect_wait ID : the same for the waiting time (a failed run is observed up to its failure)
 expect_wait() {
 	local id=$1 st f w
-	st=$(q "SELECT state FROM run WHERE campaign = 's' AND id = '$id'")
+	st=$(q R/study.db "SELECT state FROM run WHERE campaign = 's' AND id = '$id'")
 	case $st in pending | running) echo "$st"; return ;; esac
 	f=R/s/$id.h5
 	if [ ! -e "$f" ]; then [ "$st" = failed ] && echo unusable || echo unreadable; return; fi
@@ -129,7 +124,7 @@ expect_wait() {
 # LABELFMT an awk printf format of (radius_ratio, frequency)
 expected() {
 	local kind=$1 fmt=$2 all=${3:-0} id ra fr st cur use
-	q "SELECT r.id, a.value, b.value, r.state, r.current FROM run r JOIN param a ON a.campaign = r.campaign AND a.run = r.id
+	q R/study.db "SELECT r.id, a.value, b.value, r.state, r.current FROM run r JOIN param a ON a.campaign = r.campaign AND a.run = r.id
 		AND a.key = 'radius_ratio' JOIN param b ON b.campaign = r.campaign AND b.run = r.id AND b.key = 'frequency'
 		WHERE r.campaign = 's' ORDER BY r.id" | while IFS='|' read -r id ra fr st cur; do
 		[ "$cur" = 1 ] || [ "$all" = 1 ] || continue
@@ -181,16 +176,16 @@ grep -q '^# NOT FINISHED: 1 run pending and 1 running' onset.out && ok acc.onset
 # stored rows: the same counts, and per-status counts of the failures
 bad=0
 while read -r g1 g2 used failed fu un ur pe ru; do
-	got_db=$(q "SELECT group_concat(CAST(value AS INTEGER), ' ') FROM (SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset'
+	got_db=$(q R/study.db "SELECT group_concat(CAST(value AS INTEGER), ' ') FROM (SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset'
 		AND grp = '$g1 $g2' AND key IN ('runs', 'runs_failed', 'runs_failed_used', 'runs_unusable', 'runs_unreadable',
 		'runs_pending', 'runs_running') ORDER BY CASE key WHEN 'runs' THEN 1 WHEN 'runs_failed' THEN 2 WHEN 'runs_failed_used'
 		THEN 3 WHEN 'runs_unusable' THEN 4 WHEN 'runs_unreadable' THEN 5 WHEN 'runs_pending' THEN 6 ELSE 7 END)")
 	[ "$got_db" = "$used $failed $fu $un $ur $pe $ru" ] || { bad=1; echo "# $g1 $g2: stored '$got_db'"; }
-	nst=$(q "SELECT COALESCE(SUM(value), 0) FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = '$g1 $g2' AND key LIKE 'failed\_%' ESCAPE '\' AND key NOT IN ('failed_used_s', 'failed_planned_s')")
+	nst=$(q R/study.db "SELECT COALESCE(SUM(value), 0) FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = '$g1 $g2' AND key LIKE 'failed\_%' ESCAPE '\' AND key NOT IN ('failed_used_s', 'failed_planned_s')")
 	awk -v a="$nst" -v b="$failed" 'BEGIN { exit !(a == b) }' || { bad=1; echo "# $g1 $g2: failed_STATUS sum $nst, failed $failed"; }
 done <<<"$want"
-[ "$bad" = 0 ] && [ "$(q "SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = 'radius_ratio=2 depth=1' AND key = 'failed_usage'")" = 1.0 ] &&
-	ok acc.onset.stored_counts || fail acc.onset.stored_counts "$(q "SELECT grp, key, value FROM analysis WHERE tool = 'onset' AND key LIKE '%runs%' OR key LIKE 'failed%'")"
+[ "$bad" = 0 ] && [ "$(q R/study.db "SELECT value FROM analysis WHERE campaign = 's' AND tool = 'onset' AND grp = 'radius_ratio=2 depth=1' AND key = 'failed_usage'")" = 1.0 ] &&
+	ok acc.onset.stored_counts || fail acc.onset.stored_counts "$(q R/study.db "SELECT grp, key, value FROM analysis WHERE tool = 'onset' AND key LIKE '%runs%' OR key LIKE 'failed%'")"
 # every run considered is in the accounting CSV with the use the rules give it
 bad=0 n=0
 while IFS=, read -r _ _ id _ _ _ _ use _; do
@@ -255,7 +250,7 @@ same_counts acc.waiting.summary_counts_per_group "$want" "$(got $A/waiting_summa
 # every failed run with a file: risen = the file's, waiting_time = the file's (the time
 # of the rise before the failure, or the time observed until it: censored)
 bad=0 ev=0 ce=0
-for id in $(q "SELECT id FROM run WHERE campaign = 's' AND state = 'failed' AND current = 1"); do
+for id in $(q R/study.db "SELECT id FROM run WHERE campaign = 's' AND state = 'failed' AND current = 1"); do
 	f=R/s/$id.h5
 	[ -e "$f" ] && [ -n "$(attr "$f" /risen)" ] || continue
 	line=$(grep ",$id," $A/waiting_runs.csv)
@@ -295,7 +290,7 @@ rc=$?
 bad=0
 while read -r g1 g2 used failed fu un ur pe ru; do
 	fr=${g2#frequency=} ra=${g1#radius_ratio=}
-	v=$(q "SELECT group_concat(CAST(value AS INTEGER), ' ') FROM (SELECT value FROM analysis WHERE campaign = 's' AND tool = 'figures'
+	v=$(q R/study.db "SELECT group_concat(CAST(value AS INTEGER), ' ') FROM (SELECT value FROM analysis WHERE campaign = 's' AND tool = 'figures'
 		AND grp = 'fig3 f=$fr radius_ratio=$ra' AND key IN ('runs', 'runs_failed', 'runs_failed_used', 'runs_unusable',
 		'runs_unreadable', 'runs_pending', 'runs_running') ORDER BY CASE key WHEN 'runs' THEN 1 WHEN 'runs_failed' THEN 2
 		WHEN 'runs_failed_used' THEN 3 WHEN 'runs_unusable' THEN 4 WHEN 'runs_unreadable' THEN 5 WHEN 'runs_pending' THEN 6 ELSE 7 END)")
@@ -329,14 +324,14 @@ grep -q "warning: .*$TRUNC" figures.err && grep -q "^[0-9]*,\"[^\"]*\",$TRUNC,.*
 rc=$?
 H=R/h/analysis
 [ "$rc" -eq 0 ] && ok acc.hysteresis.exit || fail acc.hysteresis.exit "exit $rc: $(cat hyst.err)"
-nf=$(q "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'failed'")
+nf=$(q R/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'h' AND state = 'failed'")
 [ "$(col $H/hysteresis_summary.csv 'radius_ratio=2 depth=1' runs)" = 3 ] &&
 	[ "$(col $H/hysteresis_summary.csv 'radius_ratio=2 depth=1' runs_failed)" = "$nf" ] &&
 	[ "$(col $H/hysteresis_summary.csv 'radius_ratio=2 depth=1' runs_failed_used)" = "$nf" ] &&
 	[ "$(col $H/hysteresis_summary.csv 'radius_ratio=2 depth=1' failed_by_status)" = "overlap=$nf" ] &&
 	ok acc.hysteresis.counts || fail acc.hysteresis.counts "$(cat $H/hysteresis_summary.csv)"
 bad=0
-for id in $(q "SELECT id FROM run WHERE campaign = 'h' AND state = 'failed'"); do
+for id in $(q R/study.db "SELECT id FROM run WHERE campaign = 'h' AND state = 'failed'"); do
 	P=$(dims "R/h/$id.h5" /observables/flux/phi/time)
 	[ "$(awk -F, -v id="$id" '$3 == id && $10 == "failed_used"' $H/hysteresis_periods.csv | wc -l)" = "$P" ] ||
 		{ bad=1; echo "# $id: $P periods in the file, $(grep -c ",$id," $H/hysteresis_periods.csv) in the CSV"; }

@@ -12,18 +12,13 @@
 analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 vals() { h5vals "$@"; } # lib.sh
 # close A B : |A - B| <= 1e-12 (1 + |B|)
 close() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= 1e-12 * (1 + m)) }'; }
 
-SCENE='n_grains = 60
-width = 20
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+SCENE="$(tiny_scene radius_ratio=-)
 amplitude = 1
-flux = yes'
+flux = yes"
 printf '[campaign]\nname = c\nseed = 21\nreplicates = 2\n[scene]\n%s\nduration = 1\ntraj_rate = 100\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 4, 6\n' "$SCENE" >c.campaign
 printf '[campaign]\nname = d\nseed = 23\n[scene]\n%s\nradius_ratio = 2\nduration = 0.5\n[grid]\ndepth = 0, 1\nfrequency = 4, 6\n' "$(echo "$SCENE" | grep -v '^depth')" >d.campaign
 printf '[campaign]\nname = r\nseed = 22\nreplicates = 2\n[scene]\n%s\nradius_ratio = 0\nduration = 4.5\nramp = updown\nramp_from = 3\nramp_to = 7\nramp_hold = 0.5\n' "$SCENE" >r.campaign
@@ -33,7 +28,7 @@ t0=$SECONDS
 	"$DATA_STUDY" run d.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_d.log 2>&1
 rc=$?
 echo "# campaigns: $((SECONDS - t0)) s"
-[ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||
 	{ fail setup.campaigns "study exit $rc: $(tail -c 300 study_c.log study_r.log study_d.log)"; finish; }
 A=R/c/analysis
 
@@ -65,7 +60,7 @@ while IFS=, read -r grp _ _ _ _ f0 _ _ _ _ thr _; do
 	grp=${grp//\"/}
 	for kv in "sigmoid_f0 $f0" "threshold_f $thr"; do
 		set -- $kv
-		v=$(q "SELECT printf('%.17g', value) FROM analysis WHERE campaign = 'c' AND tool = 'onset' AND grp = '$grp' AND key = '$1'")
+		v=$(q R/study.db "SELECT printf('%.17g', value) FROM analysis WHERE campaign = 'c' AND tool = 'onset' AND grp = '$grp' AND key = '$1'")
 		[ -z "$v" ] && case "$2" in nan | -nan) continue ;; esac
 		close "$v" "$2" || { bad=1; echo "# $grp $1: stored '$v', csv '$2'"; }
 	done
@@ -75,7 +70,7 @@ done < <(tail -n +2 $A/onset_summary.csv)
 
 # ---- figures: Fig. 3 profile and Fig. 1 field of the panel f = 6 Hz, R = 2 ----
 "$BINDIR/figures" c --runs R >figures.out 2>figures.err || fail figures.run "$(cat figures.err)"
-ids=$(q "SELECT id FROM runs WHERE campaign = 'c' AND radius_ratio = 2 AND frequency = 6 ORDER BY id")
+ids=$(q R/study.db "SELECT id FROM runs WHERE campaign = 'c' AND radius_ratio = 2 AND frequency = 6 ORDER BY id")
 # time mean per line after the first 20 % of the periods, averaged over the panel's runs
 for id in $ids; do
 	set -- $(dims "R/c/$id.h5" /observables/flux/phi/value)
@@ -124,10 +119,10 @@ awk -F, 'NR > 1 && $1 == 3 { print $4 + 0.5 * $9, $5 + 0.5 * $10, $6, $7, $8 }' 
 bad=0
 for f in 4 6; do
 	r=0 m=0
-	for id in $(q "SELECT id FROM runs WHERE campaign = 'c' AND radius_ratio = 2 AND frequency = $f"); do
+	for id in $(q R/study.db "SELECT id FROM runs WHERE campaign = 'c' AND radius_ratio = 2 AND frequency = $f"); do
 		r=$((r + $(attr "R/c/$id.h5" /risen))) m=$((m + 1))
 	done
-	v=$(q "SELECT printf('%.17g', value) || ' ' || n FROM analysis WHERE campaign = 'c' AND tool = 'waiting' AND grp = 'radius_ratio=2 frequency=$f' AND key = 'fraction_risen'")
+	v=$(q R/study.db "SELECT printf('%.17g', value) || ' ' || n FROM analysis WHERE campaign = 'c' AND tool = 'waiting' AND grp = 'radius_ratio=2 frequency=$f' AND key = 'fraction_risen'")
 	[ "$v" = "$(awk -v r=$r -v m=$m 'BEGIN { printf "%.17g %d", r / m, m }')" ] || { bad=1; echo "# f=$f: stored '$v', files $r of $m"; }
 done
 [ "$bad" = 0 ] && ok waiting.fraction_matches_files || fail waiting.fraction_matches_files "see above"
@@ -145,10 +140,10 @@ awk -F, 'FNR == 1 { next } FILENAME ~ /waiting_runs/ { if ($7 == 1) { n[$1]++; t
 # ---- a campaign over depth: onset and waiting keep the depths apart ----
 "$BINDIR/onset" d --runs R --boot 10 >od.out 2>od.err && "$BINDIR/waiting" d --runs R >wd.out 2>wd.err
 rc=$?
-[ "$rc" -eq 0 ] && [ "$(q "SELECT group_concat(grp, '|') FROM (SELECT DISTINCT grp FROM analysis WHERE campaign = 'd' AND tool = 'onset' ORDER BY grp)")" = \
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT group_concat(grp, '|') FROM (SELECT DISTINCT grp FROM analysis WHERE campaign = 'd' AND tool = 'onset' ORDER BY grp)")" = \
 	'radius_ratio=2 depth=0|radius_ratio=2 depth=1' ] &&
-	[ "$(q "SELECT COUNT(DISTINCT grp) FROM analysis WHERE campaign = 'd' AND tool = 'waiting' AND grp LIKE '%depth=%'")" = 4 ] &&
-	ok tools.groups_by_depth || fail tools.groups_by_depth "exit $rc: $(cat od.err wd.err; q "SELECT DISTINCT tool, grp FROM analysis WHERE campaign = 'd'")"
+	[ "$(q R/study.db "SELECT COUNT(DISTINCT grp) FROM analysis WHERE campaign = 'd' AND tool = 'waiting' AND grp LIKE '%depth=%'")" = 4 ] &&
+	ok tools.groups_by_depth || fail tools.groups_by_depth "exit $rc: $(cat od.err wd.err; q R/study.db "SELECT DISTINCT tool, grp FROM analysis WHERE campaign = 'd'")"
 
 # ---- hysteresis: the hold (0.5 s at 3 Hz) is no leg; the running mean stays in its leg ----
 "$BINDIR/hysteresis" r --runs R --boot 20 >hyst.out 2>hyst.err
@@ -156,7 +151,7 @@ rc=$?
 [ "$rc" -eq 0 ] && ok hysteresis.ramp_with_hold || fail hysteresis.ramp_with_hold "exit $rc: $(cat hyst.err)"
 H=R/r/analysis/hysteresis_periods.csv
 bad=0
-for id in $(q "SELECT id FROM runs WHERE campaign = 'r'"); do
+for id in $(q R/study.db "SELECT id FROM runs WHERE campaign = 'r'"); do
 	P=$(dims "R/r/$id.h5" /observables/flux/phi/time)
 	nh=$(vals "R/r/$id.h5" /observables/flux/phi/time | awk '{ if ((prev + $1) / 2 < 0.5) n++; prev = $1 } END { print n + 0 }')
 	got=$(awk -F, -v id="$id" '$3 == id { if (min == "" || $6 < min) min = $6; n++ } END { print min, n }' $H)
@@ -165,7 +160,7 @@ done
 [ "$bad" = 0 ] && ok hysteresis.hold_left_out || fail hysteresis.hold_left_out "see above"
 # default K = 5: an interior period averages p-2..p+2; the first period of the down leg
 # averages only the down leg's first three (the up leg's last periods are not mixed in)
-id=$(q "SELECT id FROM runs WHERE campaign = 'r' ORDER BY id LIMIT 1")
+id=$(q R/study.db "SELECT id FROM runs WHERE campaign = 'r' ORDER BY id LIMIT 1")
 awk -F, -v id="$id" '$3 == id { br[$6] = $5; raw[$6] = $8; sm[$6] = $9; if ($5 == "down" && (d0 == "" || $6 < d0)) d0 = $6
 		if ($5 == "up" && (u0 == "" || $6 < u0)) u0 = $6 }
 	function near(a, b) { return (a - b) ^ 2 <= 1e-24 * (1 + b * b) }

@@ -10,14 +10,10 @@
 . "$(dirname "$0")/lib.sh"
 analysis_tools_setup
 cd "$TMP" || exit 1
-S='n_grains = 40
-width = 16
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+S="$(tiny_scene n_grains=40 width=16 radius_ratio=-)
 flux = yes
 radius_ratio = 0
-duration = 1'
+duration = 1"
 camp() { printf '[campaign]\nname = %s\nseed = %s\nreplicates = 2\n[scene]\n%s\namplitude = %s\n[grid]\nfrequency = %s\n' "$1" "$2" "$S" "$3" "$4" >"$1.campaign"; }
 camp a 3 0.5 '4, 6, 8'
 camp b 4 1 '3, 5, 7'

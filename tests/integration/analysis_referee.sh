@@ -16,7 +16,6 @@
 analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 fig_ok() { [ -s "$1.png" ] && [ "$(head -c 4 "$1.png" | od -An -c | tr -d ' ')" = '211PNG' ] && [ "$(head -c 5 "$1.pdf")" = '%PDF-' ]; }
 # tool ID NAME ARGS...: stdout ID.out, stderr ID.err; ok ID.exit_quiet when it exits 0 with nothing on stderr
 tool() {
@@ -29,12 +28,8 @@ tool() {
 # col FILE NAME: the column number of NAME in a CSV header
 col() { head -n 1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 
-SCENE='n_grains = 60
-width = 20
-depth = 1
-settle_ke = 1
-settle_min = 0.2
-amplitude = 1'
+SCENE="$(tiny_scene radius_ratio=-)
+amplitude = 1"
 # with and without intruder at three frequencies, three seeds: rolls, onset, figures
 printf '[campaign]\nname = t\nseed = 3\nreplicates = 3\n[scene]\n%s\nflux = yes\ntraj_rate = 100\nduration = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$SCENE" >t.campaign
 # waiting: runs stopped 0.05 s after the engine's rise, and runs without a trajectory
@@ -63,17 +58,17 @@ for f in 3 5 7; do
 	want=$(awk -F, -v r="$(col $R1 reach)" -v f=$f -v fc="$(col $R1 frequency)" -v rc="$(col $R1 radius_ratio)" '
 		NR > 1 && $fc == f { if ($rc > 0) { a += $r; na++ } else { b += $r; nb++ } }
 		END { printf "%.12g", a / na - b / nb }' $R1)
-	got=$(q "SELECT printf('%.12g', value) || ' ' || (lo <= value AND value <= hi) || ' ' || n FROM analysis
+	got=$(q R/study.db "SELECT printf('%.12g', value) || ' ' || (lo <= value AND value <= hi) || ' ' || n FROM analysis
 		WHERE campaign = 't' AND tool = 'rolls' AND key = 'reach_diff' AND frequency = $f AND radius_ratio = 2")
 	awk -v w="$want" -v g="${got%% *}" 'BEGIN { d = w - g; exit !(d < 1e-9 && d > -1e-9) }' && [ "${got#* }" = "1 6" ] ||
 		{ bad=1; echo "# $f Hz: want $want, stored '$got'"; }
 done
 [ "$bad" = 0 ] && ok rolls.diff_of_means_in_interval || fail rolls.diff_of_means_in_interval "see above"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'rolls' AND key = 'reach' AND n = 3")" = 6 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'rolls' AND grp LIKE '% vs no intruder' AND key IN
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'rolls' AND key = 'reach' AND n = 3")" = 6 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'rolls' AND grp LIKE '% vs no intruder' AND key IN
 		('reach_diff', 'roll_bottom_diff', 'lines_differ', 'runs_with', 'runs_without')")" = 15 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'rolls' AND key = 'runs_failed'")" = 6 ] &&
-	ok rolls.db_rows || fail rolls.db_rows "$(q "SELECT grp, key, value FROM analysis WHERE tool = 'rolls'" | head)"
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'rolls' AND key = 'runs_failed'")" = 6 ] &&
+	ok rolls.db_rows || fail rolls.db_rows "$(q R/study.db "SELECT grp, key, value FROM analysis WHERE tool = 'rolls'" | head)"
 grep -q '^with intruder - without' rolls.out && grep -q 'Welch intervals at 95 %' rolls.out && grep -q '^# runs: 18 ' rolls.out &&
 	ok rolls.table || fail rolls.table "$(cat rolls.out)"
 fig_ok $A/rolls && grep -q "title 'no intruder'" $A/rolls.gp && grep -q "title '𝓡 = 2'" $A/rolls.gp &&
@@ -105,8 +100,8 @@ awk -F, 'FNR == 1 { next } FILENAME ~ /summary/ { thr[$1] = $11; next } $3 == "m
 	$3 ~ /^no_/ && $8 != 6 { bad = 1 } $3 ~ /^band/ && $8 != 9 { bad = 1 } END { exit bad }' $A/onset_summary.csv $S &&
 	ok sens.main_and_runs || fail sens.main_and_runs "$(cat $S)"
 [ "$(grep -c 'spread over the 6 variants: threshold f' sens.out)" = 2 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key IN ('sens_spread_threshold_f', 'sens_spread_sigmoid_f0')")" = 4 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key GLOB 'sens_threshold_f_*'")" = 10 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key IN ('sens_spread_threshold_f', 'sens_spread_sigmoid_f0')")" = 4 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key GLOB 'sens_threshold_f_*'")" = 10 ] &&
 	ok sens.table_rows || fail sens.table_rows "$(grep spread sens.out)"
 "$BINDIR/onset" t --runs R --sensitivity=1 2>&1 | grep -q 'takes no value' && ok sens.flag || fail sens.flag "accepted a value"
 
@@ -117,8 +112,8 @@ V=$W/waiting_way_runs.csv
 	fig_ok $W/waiting_way && ok way.outputs || fail way.outputs "$(ls $W)"
 # without a trajectory: counted, not used
 [ "$(awk -F, '$2 == "\"radius_ratio=2 traj_rate=0\"" && $10 == "no"' $V | wc -l)" = 3 ] &&
-	[ "$(q "SELECT value || ' ' || n FROM analysis WHERE tool = 'waiting' AND traj_rate = 0 AND key = 'way_no_trajectory'")" = "3.0 3" ] &&
-	[ "$(q "SELECT value FROM analysis WHERE tool = 'waiting' AND traj_rate = 0 AND key = 'way_runs'")" = 0.0 ] &&
+	[ "$(q R/study.db "SELECT value || ' ' || n FROM analysis WHERE tool = 'waiting' AND traj_rate = 0 AND key = 'way_no_trajectory'")" = "3.0 3" ] &&
+	[ "$(q R/study.db "SELECT value FROM analysis WHERE tool = 'waiting' AND traj_rate = 0 AND key = 'way_runs'")" = 0.0 ] &&
 	ok way.no_trajectory_counted || fail way.no_trajectory_counted "$(cat $V)"
 # every trajectory's time recomputed from the file: box frame y - A sin(2 pi f t), half
 # the way from intruder_settled_y to surface_height, interpolated; else censored at the last sample
@@ -136,16 +131,16 @@ while IFS=, read -r gi g id rep seed wt rs wy wr tr use; do
 	[ "$wr" = 0 ] && [ "$(attr "$f" /stopped_by)" = risen ] && stopc=$((stopc + 1))
 done < <(tail -n +2 $V)
 [ "$bad" = 0 ] && ok way.times_from_trajectory || fail way.times_from_trajectory "see above"
-[ "$(q "SELECT CAST(value AS INTEGER) FROM analysis WHERE tool = 'waiting' AND traj_rate = 100 AND key = 'way_stop_censored'")" = "$stopc" ] &&
+[ "$(q R/study.db "SELECT CAST(value AS INTEGER) FROM analysis WHERE tool = 'waiting' AND traj_rate = 100 AND key = 'way_stop_censored'")" = "$stopc" ] &&
 	{ [ "$stopc" = 0 ] || grep -q "^# $stopc runs\? stopped by stop = risen .* censored at their end" way.out; } &&
 	ok way.stop_censored_counted || fail way.stop_censored_counted "stopped and censored: $stopc; $(grep stop way.out)"
 grep -q '^# both definitions: one diameter' way.out &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'w' AND tool = 'waiting' AND key = 'way_median'")" = 2 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'w' AND tool = 'waiting' AND key = 'way_median'")" = 2 ] &&
 	ok way.side_by_side || fail way.side_by_side "$(cat way.out)"
 # three groups with trajectories: the second definition's own log-rank test, printed and stored
 tool way_q waiting t --runs R --fraction 0.25 --no-plot --out "$TMP/wq"
 grep -q '^# second definition: log-rank test .* across the 3 groups (9 runs' way_q.out &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND grp = 'all groups' AND key GLOB 'way_logrank_*'")" = 3 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND grp = 'all groups' AND key GLOB 'way_logrank_*'")" = 3 ] &&
 	ok way.logrank || fail way.logrank "$(grep log-rank way_q.out)"
 [ "$(tail -n +2 wq/waiting_way_summary.csv | wc -l)" = 3 ] &&
 	awk -F, 'NR > 1 && $2 != 0.25 { bad = 1 } END { exit bad }' wq/waiting_way_summary.csv &&
@@ -158,7 +153,7 @@ F4=$A/fig4_traj.csv
 	ok fig4.every_replicate_one_representative || fail fig4.every_replicate_one_representative "$(cut -d, -f3,9 $F4 | sort -u)"
 # the representative: the median run by waiting time (risen runs first) among the 7 Hz runs with R = 2
 rep=$(awk -F, 'NR > 1 && $9 == 1 { print $3; exit }' $F4)
-want=$(q "SELECT id FROM runs WHERE campaign = 't' AND radius_ratio = 2 AND frequency = 7
+want=$(q R/study.db "SELECT id FROM runs WHERE campaign = 't' AND radius_ratio = 2 AND frequency = 7
 	ORDER BY risen DESC, waiting_time, replicate LIMIT 1 OFFSET 1")
 [ "$rep" = "$want" ] && grep -q "median run: replicate" $A/fig4.gp && fig_ok $A/fig4 && ok fig4.median_run ||
 	fail fig4.median_run "drawn $rep, median $want"

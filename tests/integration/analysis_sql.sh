@@ -15,7 +15,6 @@ analysis_tools_setup
 data_driver_setup
 README="$REPO/docs/database.md"
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader -separator '|' R/study.db "$1"; }
 # example TITLE: the query of docs/database.md's sql block that starts with "-- TITLE"
 example() {
 	awk -v t="-- $1" '/^  ```sql/ { on = 1; next } /^  ```/ { on = 0 } !on { next }
@@ -40,11 +39,11 @@ sqlite3 R/study.db "CREATE TABLE analysis(campaign TEXT NOT NULL, tool TEXT NOT 
 	INSERT INTO analysis VALUES ('old', 'onset', '1', 'radius_ratio=4', 'threshold_f', 3.1, 3, 3.2, 9, '2024-01-01T00:00:00Z');"
 # at 8 Hz the largest overlaps of this bed pass 0.26 of the smaller radius: those runs
 # stop with status overlap (analysis_accounting.sh)
-printf '[campaign]\nname = sweep\nseed = 2\nreplicates = 2\n[scene]\nn_grains = 60\nwidth = 20\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 1\nflux = yes\nmax_overlap = 0.26\ntraj_rate = 100\nduration = 1.5\n[grid]\nradius_ratio = 0, 2\ndepth = 1, 2\nfrequency = 4, 6, 8\n' >sweep.campaign
+printf '[campaign]\nname = sweep\nseed = 2\nreplicates = 2\n[scene]\n'"$(tiny_scene radius_ratio=- depth=-)"'\namplitude = 1\nflux = yes\nmax_overlap = 0.26\ntraj_rate = 100\nduration = 1.5\n[grid]\nradius_ratio = 0, 2\ndepth = 1, 2\nfrequency = 4, 6, 8\n' >sweep.campaign
 t0=$SECONDS
 "$DATA_STUDY" run sweep.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
-nf=$(q "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state = 'failed'")
-[ "$(q "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state IN ('done', 'failed')")" = 24 ] && [ "$nf" -ge 1 ] &&
+nf=$(q R/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state = 'failed'")
+[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'sweep' AND state IN ('done', 'failed')")" = 24 ] && [ "$nf" -ge 1 ] &&
 	ok sql.setup.campaign || { fail sql.setup.campaign "$nf failed: $(tail -c 300 study.log)"; finish; }
 echo "# campaign: $((SECONDS - t0)) s, $nf runs failed"
 "$BINDIR/onset" sweep --runs R --boot 30 --no-plot >onset.out 2>onset.err &&
@@ -53,24 +52,24 @@ echo "# campaign: $((SECONDS - t0)) s, $nf runs failed"
 A=R/sweep/analysis
 
 # ---- the grouping keys' columns ----
-cols=$(q "SELECT name FROM pragma_table_info('analysis')" | tr '\n' ' ')
+cols=$(q R/study.db "SELECT name FROM pragma_table_info('analysis')" | tr '\n' ' ')
 for c in radius_ratio depth width frequency amplitude n_grains; do
 	case " $cols " in *" $c "*) ;; *) bad="$bad $c" ;; esac
 done
-[ -z "${bad:-}" ] && [ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'old' AND value = 3.1 AND radius_ratio IS NULL")" = 1 ] &&
+[ -z "${bad:-}" ] && [ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'old' AND value = 3.1 AND radius_ratio IS NULL")" = 1 ] &&
 	ok sql.columns.migrated_old_table || fail sql.columns.migrated_old_table "columns: $cols; missing:${bad:-}"
-[ "$(q "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
+[ "$(q R/study.db "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
 	WHERE campaign = 'sweep' AND tool = 'onset'")" = 'real integer null' ] &&
-	[ "$(q "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
+	[ "$(q R/study.db "SELECT DISTINCT typeof(radius_ratio) || ' ' || typeof(depth) || ' ' || typeof(frequency) FROM analysis
 	WHERE campaign = 'sweep' AND tool = 'waiting' AND grp <> 'all groups'")" = 'real integer real' ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'sweep' AND tool = 'onset' AND key = 'runs'
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'sweep' AND tool = 'onset' AND key = 'runs'
 	AND grp = printf('radius_ratio=%g depth=%d', radius_ratio, depth)")" = 4 ] &&
-	ok sql.columns.typed_and_null || fail sql.columns.typed_and_null "$(q "SELECT tool, grp, typeof(radius_ratio), typeof(depth),
+	ok sql.columns.typed_and_null || fail sql.columns.typed_and_null "$(q R/study.db "SELECT tool, grp, typeof(radius_ratio), typeof(depth),
 	typeof(frequency) FROM analysis WHERE campaign = 'sweep' AND key = 'runs'")"
 
 # ---- onset per 𝓡 and depth ----
 sqlq=$(example 'onset per 𝓡 and depth')
-rows=$(q "$sqlq")
+rows=$(q R/study.db "$sqlq")
 n=0 bad=
 while IFS='|' read -r ra de f lo hi nn; do
 	g=$(awk -v r="$ra" -v d="$de" 'BEGIN { printf "radius_ratio=%g depth=%d", r, d }')
@@ -84,7 +83,7 @@ done <<<"$rows"
 
 # ---- median wait per 𝓡 ----
 sqlq=$(example 'median wait per 𝓡')
-rows=$(q "$sqlq")
+rows=$(q R/study.db "$sqlq")
 n=0 bad=
 while IFS='|' read -r ra de fr med lo hi nn; do
 	g=$(awk -v r="$ra" -v d="$de" -v f="$fr" 'BEGIN { printf "radius_ratio=%g depth=%d frequency=%g", r, d, f }')
@@ -103,17 +102,17 @@ want=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "runs_failed") c
 	{ g = $1; gsub(/"/, "", g); split(g, kv, /[= ]/); if ($c > 0) printf "%g|%d|runs_failed|%d\n", kv[2], kv[4], $c
 	  v = $s; gsub(/"/, "", v); n = split(v, p, ";"); for (i = 1; i <= n; i++) if (p[i] != "-") { split(p[i], q, "=")
 	  printf "%g|%d|failed_%s|%d\n", kv[2], kv[4], q[1], q[2] } }' $A/onset_summary.csv | sort)
-got=$(q "$sqlq" | awk -F'|' '{ printf "%g|%d|%s|%d\n", $1, $2, $3, $4 }' | sort)
+got=$(q R/study.db "$sqlq" | awk -F'|' '{ printf "%g|%d|%s|%d\n", $1, $2, $3, $4 }' | sort)
 [ -n "$sqlq" ] && [ -n "$want" ] && [ "$got" = "$want" ] && ok sql.example.failed_per_group ||
 	fail sql.example.failed_per_group "query '$sqlq': got '$got', summary '$want'"
 
 # ---- failed runs and why ----
 sqlq=$(example 'failed runs and why')
-got=$(q "$sqlq" | awk -F'|' '{ print $1, $3 }' | sort)
+got=$(q R/study.db "$sqlq" | awk -F'|' '{ print $1, $3 }' | sort)
 want=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "run") r = i; if ($i == "state") s = i; if ($i == "status") t = i }; next }
 	{ x = $s; gsub(/"/, "", x); if (x == "failed") { id = $r; st = $t; gsub(/"/, "", id); gsub(/"/, "", st); print id, st } }' \
 	$A/onset_accounting.csv | sort)
-whyok=$(q "$sqlq" | awk -F'|' '$5 == "" { bad = 1 } END { print bad ? 0 : 1 }')
+whyok=$(q R/study.db "$sqlq" | awk -F'|' '$5 == "" { bad = 1 } END { print bad ? 0 : 1 }')
 [ -n "$sqlq" ] && [ "$(echo "$got" | wc -l)" = "$nf" ] && [ "$got" = "$want" ] && [ "$whyok" = 1 ] &&
 	ok sql.example.failed_runs_and_why || fail sql.example.failed_runs_and_why "query '$sqlq': got '$got', accounting '$want'"
 echo "# total: $((SECONDS - t0)) s"

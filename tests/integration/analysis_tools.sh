@@ -11,17 +11,12 @@
 analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }
 
-SCENE='n_grains = 60
-width = 20
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+SCENE="$(tiny_scene radius_ratio=-)
 amplitude = 1
 traj_rate = 100
-flux = yes'
+flux = yes"
 printf '[campaign]\nname = t\nseed = 3\nreplicates = 2\n[scene]\n%s\nduration = 1\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$SCENE" >t.campaign
 printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nduration = 2.5\nramp = updown\nramp_from = 3\nramp_to = 7\n[grid]\nradius_ratio = 2\n' "$SCENE" >h.campaign
 t0=$SECONDS
@@ -29,7 +24,7 @@ t0=$SECONDS
 	"$DATA_STUDY" run h.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_h.log 2>&1
 rc=$?
 echo "# campaigns: $((SECONDS - t0)) s"
-[ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 14 ] && ok setup.campaigns ||
 	{ fail setup.campaigns "study exit $rc: $(tail -c 300 study_t.log study_h.log)"; finish; }
 
 # tool NAME CAMPAIGN [ARGS...]: runs it with stdout in NAME.out, stderr in NAME.err; returns its exit code
@@ -50,17 +45,17 @@ grep -q '^group .*sigmoid f0' onset.out && grep -q '^radius_ratio=0 depth=1 .* n
 [ "$(tail -n +2 $A/onset_runs.csv | wc -l)" = 12 ] && [ -s $A/onset_summary.csv ] && [ -s $A/onset_seeds.csv ] &&
 	ok onset.csv || fail onset.csv "$(ls $A)"
 png_ok $A/onset.png && ok onset.png || fail onset.png "no PNG"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'onset' AND key IN ('sigmoid_f0', 'threshold_f')
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'onset' AND key IN ('sigmoid_f0', 'threshold_f')
 	AND version = '3' AND n = 6 AND created LIKE '20%'")" = 4 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'seeds' AND value = 2")" = 2 ] &&
-	ok onset.db_rows || fail onset.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'onset'")"
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'seeds' AND value = 2")" = 2 ] &&
+	ok onset.db_rows || fail onset.db_rows "$(q R/study.db "SELECT * FROM analysis WHERE tool = 'onset'")"
 # the threshold estimate lies inside the sampled frequencies and its interval around it
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'threshold_f' AND value IS NOT NULL
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'onset' AND key = 'threshold_f' AND value IS NOT NULL
 	AND (value BETWEEN 3 AND 7) AND (lo IS NULL OR lo <= value + 1e-9) AND (hi IS NULL OR hi >= value - 1e-9)")" -ge 1 ] &&
-	ok onset.threshold_range || fail onset.threshold_range "$(q "SELECT grp, value, lo, hi FROM analysis WHERE key = 'threshold_f'")"
-q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows1
+	ok onset.threshold_range || fail onset.threshold_range "$(q R/study.db "SELECT grp, value, lo, hi FROM analysis WHERE key = 'threshold_f'")"
+q R/study.db "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows1
 tool onset t --runs R --boot 60 --seed 7 --no-plot
-q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows2
+q R/study.db "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'onset' ORDER BY grp, key" >onset.rows2
 # 7 keys of the estimates and 8 of the accounting per group
 cmp -s onset.rows1 onset.rows2 && [ "$(wc -l <onset.rows1)" = 30 ] && ok onset.rerun_reproducible_no_duplicates ||
 	fail onset.rerun_reproducible_no_duplicates "$(diff onset.rows1 onset.rows2 | head -n 4)"
@@ -81,7 +76,7 @@ rc=$?
 # the log-rank test across the three groups, printed with the runs it rests on and
 # stored once - or, when no intruder rose (these short runs), said to be impossible
 lr=$(grep '^# log-rank' waiting.out)
-nlr=$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND grp = 'all groups' AND key IN ('logrank_chi2', 'logrank_p', 'logrank_df') AND n = 6")
+nlr=$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND grp = 'all groups' AND key IN ('logrank_chi2', 'logrank_p', 'logrank_df') AND n = 6")
 case "$lr" in
 "# log-rank test of equal waiting-time distributions across the 3 groups (6 runs"*"df = 2, p = "*) [ "$nlr" = 3 ] ;;
 "# log-rank test across the 3 groups (6 runs): no test, no intruder rose") [ "$nlr" = 0 ] ;;
@@ -89,15 +84,15 @@ case "$lr" in
 esac && ok waiting.logrank || fail waiting.logrank "'$lr', $nlr stored rows"
 png_ok $A/waiting_km.png && png_ok $A/waiting_hist.png && ok waiting.png || fail waiting.png "missing PNG"
 # each run's pair (waiting_time, risen) is the one in its output file
-id=$(q "SELECT id FROM runs WHERE radius_ratio = 2 ORDER BY id LIMIT 1")
+id=$(q R/study.db "SELECT id FROM runs WHERE radius_ratio = 2 ORDER BY id LIMIT 1")
 line=$(grep ",$id," $A/waiting_runs.csv)
 [ -n "$line" ] && [ "$(echo "$line" | awk -F, '{print $7}')" = "$(attr R/t/$id.h5 /risen)" ] &&
 	awk -v a="$(echo "$line" | awk -F, '{print $6}')" -v b="$(attr R/t/$id.h5 /waiting_time)" 'BEGIN { exit !(a == b) }' &&
 	ok waiting.matches_output || fail waiting.matches_output "csv '$line' vs file risen=$(attr R/t/$id.h5 /risen)"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND key = 'fraction_risen'
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND key = 'fraction_risen'
 	AND value BETWEEN 0 AND 1 AND n = 2")" = 3 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND key = 'median'")" = 3 ] &&
-	ok waiting.db_rows || fail waiting.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'waiting'")"
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND key = 'median'")" = 3 ] &&
+	ok waiting.db_rows || fail waiting.db_rows "$(q R/study.db "SELECT * FROM analysis WHERE tool = 'waiting'")"
 
 # ---- figures ----
 tool figures t --runs R
@@ -108,10 +103,10 @@ png_ok $A/fig1.png && png_ok $A/fig3.png && png_ok $A/fig4.png && ok figures.png
 [ "$(tail -n +2 $A/fig3_profile.csv | wc -l)" = $((6 * 80)) ] && [ -s $A/fig1_field.csv ] && [ -s $A/fig4_traj.csv ] &&
 	ok figures.csv || fail figures.csv "$(wc -l $A/fig*.csv)"
 grep -q '^5  *2  *2 ' figures.out && ok figures.table || fail figures.table "$(cat figures.out)"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'figures' AND key = 'phi_max'")" = 6 ] &&
-	ok figures.db_rows || fail figures.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'figures'")"
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'figures' AND key = 'phi_max'")" = 6 ] &&
+	ok figures.db_rows || fail figures.db_rows "$(q R/study.db "SELECT * FROM analysis WHERE tool = 'figures'")"
 # the other tools' rows are untouched by this one
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'onset'")" = 30 ] && ok figures.keeps_other_tools ||
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'onset'")" = 30 ] && ok figures.keeps_other_tools ||
 	fail figures.keeps_other_tools "onset rows changed"
 
 # ---- hysteresis ----
@@ -126,14 +121,14 @@ grep -q '^radius_ratio=2 depth=1 ' hysteresis.out && ok hysteresis.table || fail
 	awk -F, 'NR > 1 && $5 == "up" { if (seen[$3] && $7 < last[$3]) bad = 1; seen[$3] = 1; last[$3] = $7 } END { exit bad }' $H/hysteresis_periods.csv &&
 	ok hysteresis.branches || fail hysteresis.branches "$(head -n 5 $H/hysteresis_periods.csv)"
 png_ok $H/hysteresis.png && [ -s $H/hysteresis_summary.csv ] && ok hysteresis.outputs || fail hysteresis.outputs "$(ls $H)"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'h' AND tool = 'hysteresis'")" = 16 ] &&
-	[ "$(q "SELECT value FROM analysis WHERE campaign = 'h' AND key = 'seeds'")" = 2.0 ] &&
-	ok hysteresis.db_rows || fail hysteresis.db_rows "$(q "SELECT * FROM analysis WHERE tool = 'hysteresis'")"
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'h' AND tool = 'hysteresis'")" = 16 ] &&
+	[ "$(q R/study.db "SELECT value FROM analysis WHERE campaign = 'h' AND key = 'seeds'")" = 2.0 ] &&
+	ok hysteresis.db_rows || fail hysteresis.db_rows "$(q R/study.db "SELECT * FROM analysis WHERE tool = 'hysteresis'")"
 # the fixed-frequency campaign has no ramps: a clear error, nothing stored
 tool hysteresis t --runs R
 rc=$?
 [ "$rc" -eq 1 ] && grep -q 'no finished ramp run' hysteresis.err &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'hysteresis'")" = 0 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'hysteresis'")" = 0 ] &&
 	ok hysteresis.no_ramps || fail hysteresis.no_ramps "exit $rc: $(cat hysteresis.err)"
 
 # ---- errors and help ----

@@ -16,17 +16,16 @@ data_driver_setup
 cd "$TMP" || exit 1
 CONVECT="$BINDIR/convect"
 [ -x "$CONVECT" ] || { fail setup "$CONVECT is not an executable (run make)"; finish; }
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }
 pdf_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1")" = '%PDF' ]; }
 rel() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { if (a == "nan" && b == "nan") exit 0; d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= t * m + 1e-12) }'; }
 
-printf '[campaign]\nname = cv\nseed = 3\nreplicates = 3\n[scene]\npreset = fast\nn_grains = 150\nwidth = 20\ndepth = 1\nradius_ratio = 0\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 1\nduration = 6\nfield_periods = 5\n[grid]\nsides = walls, periodic\nfrequency = 3, 6\nfield = yes, no\n' >cv.campaign
+printf '[campaign]\nname = cv\nseed = 3\nreplicates = 3\n[scene]\npreset = fast\n'"$(tiny_scene n_grains=150 radius_ratio=0)"'\namplitude = 1\nduration = 6\nfield_periods = 5\n[grid]\nsides = walls, periodic\nfrequency = 3, 6\nfield = yes, no\n' >cv.campaign
 t0=$SECONDS
 "$DATA_STUDY" run cv.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
 rc=$?
 echo "# campaign: $((SECONDS - t0)) s"
-[ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 24 ] && ok setup.campaign ||
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 24 ] && ok setup.campaign ||
 	{ fail setup.campaign "study exit $rc: $(tail -c 300 study.log)"; finish; }
 
 "$CONVECT" cv --runs R --boot 300 --seed 4 >cv.out 2>cv.err
@@ -47,8 +46,8 @@ grep -q "title 'sides = walls'" $A/convect.gp && grep -q "title 'sides = periodi
 	fail convect.figure_curves "$(grep -c title $A/convect.gp) titles"
 
 # ---- accounting: the runs without a field, as the database says ----
-nf=$(q "SELECT COUNT(*) FROM param WHERE campaign = 'cv' AND key = 'field' AND value = 'no'")
-st() { q "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = '$1'"; }
+nf=$(q R/study.db "SELECT COUNT(*) FROM param WHERE campaign = 'cv' AND key = 'field' AND value = 'no'")
+st() { q R/study.db "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = '$1'"; }
 [ "$nf" = 12 ] && [ "$(st runs_unusable)" = "$nf" ] && [ "$(st no_field)" = "$nf" ] && [ "$(st runs)" = 12 ] &&
 	[ "$(awk -F, 'NR > 1 && $7 == "unusable" && $10 == "no"' $A/convect_runs.csv | wc -l)" = "$nf" ] &&
 	[ "$(grep -c 'field = no: no displacement field recorded' $A/convect_accounting.csv)" = "$nf" ] &&
@@ -56,21 +55,21 @@ st() { q "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE campaign = 'cv' AND
 grep -q "^# $nf runs without a displacement field (field = no)" cv.out &&
 	[ "$(grep -c '^#   not used: .*field = no' cv.out)" = "$nf" ] && ok counts.listed || fail counts.listed "$(grep '^#' cv.out)"
 # every stored estimate says how many runs it rests on
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key IN ('strength', 'strength_u', 'strength_boot') AND n = 3 AND lo < value AND value < hi")" = 12 ] &&
-	ok store.strength_rows || fail store.strength_rows "$(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' AND key GLOB 'strength*'")"
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key IN ('strength', 'strength_u', 'strength_boot') AND n = 3 AND lo < value AND value < hi")" = 12 ] &&
+	ok store.strength_rows || fail store.strength_rows "$(q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' AND key GLOB 'strength*'")"
 # the stored strength is the mean of the runs' S in the CSV
 bad=""
 while IFS=, read -r g m; do
-	s=$(q "SELECT printf('%.17g', value) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = 'strength' AND grp = '$g'")
+	s=$(q R/study.db "SELECT printf('%.17g', value) FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = 'strength' AND grp = '$g'")
 	rel "$s" "$m" 1e-12 || bad="$bad $g: stored $s, runs $m;"
 done < <(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "strength") k = i; next }
 	$7 == "used" { gsub(/"/, "", $2); s[$2] += $k; n[$2]++ } END { for (g in s) printf "%s,%.17g\n", g, s[g] / n[g] }' $A/convect_runs.csv)
 [ -z "$bad" ] && ok store.mean_of_runs || fail store.mean_of_runs "$bad"
 # the persistence: stored per group on the runs with a pair of blocks; P = sqrt(max(0, C))
-[ "$(q "SELECT COUNT(*) FROM analysis a JOIN analysis b ON a.grp = b.grp AND a.campaign = b.campaign AND a.tool = b.tool
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis a JOIN analysis b ON a.grp = b.grp AND a.campaign = b.campaign AND a.tool = b.tool
 	WHERE a.campaign = 'cv' AND a.tool = 'convect' AND a.key = 'persistent' AND b.key = 'persistence_c' AND a.n = 3
 	AND abs(a.value - sqrt(max(0, b.value))) < 1e-12")" = 4 ] && ok store.persistence ||
-	fail store.persistence "$(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' AND key GLOB 'persist*'")"
+	fail store.persistence "$(q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' AND key GLOB 'persist*'")"
 
 # ---- each used run's S recomputed from its file ----
 nchk=0 bad=""
@@ -93,19 +92,19 @@ done < <(awk -F, 'NR > 1 && $7 == "used" { print $3 "," $11 "," $13 "," $16 }' $
 [ "$nchk" = 12 ] && [ -z "$bad" ] && ok recompute.runs_from_files || fail recompute.runs_from_files "$nchk runs checked:$bad"
 
 # the strongly shaken bed convects more, with walls and without
-sv() { q "SELECT value FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = 'strength' AND grp = '$1'"; }
+sv() { q R/study.db "SELECT value FROM analysis WHERE campaign = 'cv' AND tool = 'convect' AND key = 'strength' AND grp = '$1'"; }
 awk -v a="$(sv 'frequency=6 sides=walls')" -v b="$(sv 'frequency=3 sides=walls')" -v c="$(sv 'frequency=6 sides=periodic')" \
 	-v d="$(sv 'frequency=3 sides=periodic')" 'BEGIN { exit !(a > 2 * b && c > 2 * d) }' && ok physics.stronger_at_6hz ||
-	fail physics.stronger_at_6hz "$(q "SELECT grp, value FROM analysis WHERE tool = 'convect' AND key = 'strength'")"
+	fail physics.stronger_at_6hz "$(q R/study.db "SELECT grp, value FROM analysis WHERE tool = 'convect' AND key = 'strength'")"
 
 # ---- options ----
-q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key" >rows1
+q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key" >rows1
 "$CONVECT" cv --runs R --boot 300 --seed 4 --no-plot >/dev/null 2>&1
-q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key" >rows2
+q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key" >rows2
 cmp -s rows1 rows2 && ok convect.reproducible || fail convect.reproducible "$(diff rows1 rows2 | head -4)"
 "$CONVECT" cv --runs R --band=0:2 --no-store --no-plot --out whole >/dev/null 2>e.txt
 rc=$?
-cmp -s rows1 <(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key") &&
+cmp -s rows1 <(q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'convect' ORDER BY grp, key") &&
 	[ "$rc" -eq 0 ] && ok convect.no_store || fail convect.no_store "exit $rc: $(cat e.txt)"
 awk -F, 'NR > 1 && $7 == "used" && $15 <= rows { bad++ } NR > 1 && $7 == "used" { n++ } END { exit !(n == 12 && !bad) }' \
 	rows="$(awk -F, 'NR == 2 { print $15 }' $A/convect_runs.csv)" whole/convect_runs.csv && ok convect.band_option ||

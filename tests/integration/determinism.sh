@@ -8,7 +8,8 @@
 cd "$TMP" || exit 1
 
 # 150 grains, 1 s of gentle shaking: ~1000 neighbour-list builds, 5 snapshots
-SCENE=(n_grains=150 width=24 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 duration=1
+tiny_bed n_grains=150 width=24
+SCENE=("${BEDARGS[@]}" duration=1
 	"${GENTLE[@]}" traj_rate=200 snapshots=yes progress=no seed=7)
 
 run() { # ID DIR args...

@@ -4,8 +4,7 @@
 # and each list, broken on purpose in a copy of its doc (an entry dropped or one added
 # that the code does not have), makes exactly that list's check fail. Seconds.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 export SHAKE STUDY
 
 # what the code says is the same for every call below: computed by the first, kept

@@ -15,10 +15,8 @@
 #     never run again - where one killed from outside is retried (study_retry.sh).
 # The file-system cases need tmpfs mounts (root); without them they are skipped, said so.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 MOUNTS=()
 # unmounted before lib.sh's trap removes TMP (rm -rf must not meet a mount)
 trap 'for m in "${MOUNTS[@]}"; do umount "$m" 2>/dev/null; done; rm -rf "$TMP"' EXIT
@@ -54,10 +52,10 @@ if tmpfs full size=48k; then
 	# does not (at its first closes, before the journal is copied): said as the write
 	# that failed, never a crash on the records not copied, no file at the name
 	bad=""
+	tiny_bed n_grains=40 width=16 depth=-
 	for size in 28k 32k 36k 44k; do
 		tmpfs full "size=$size" || { bad="$bad $size:mount"; continue; }
-		ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$SHAKE" n_grains=40 width=16 radius_ratio=2 settle_ke=1 \
-			settle_min=0.2 duration=0.4 checkpoint_every=0.1 traj_rate=100 snapshots=no frequency=4 progress=no \
+		ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$SHAKE" "${BEDARGS[@]}" duration=0.4 checkpoint_every=0.1 traj_rate=100 snapshots=no frequency=4 progress=no \
 			output="$TMP/full/r.h5" >"small.$size.log" 2>&1
 		rc=$?
 		if [ "$rc" != 2 ] || [ -e full/r.h5 ] || ! grep -Eq '^shake: .*(No space left on device|cannot create HDF5 file)' "small.$size.log"; then
@@ -108,16 +106,12 @@ else
 fi
 
 # --- a read-only runs directory: exit 2 naming the lock file and why, not exit 4 ---
-cat >c.campaign <<'EOF'
+cat >c.campaign <<EOF
 [campaign]
 name = c
 seed = 1
 [scene]
-n_grains = 40
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=40 depth=-)
 duration = 0.1
 [grid]
 frequency = 4

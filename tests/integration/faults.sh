@@ -27,21 +27,16 @@ ROUNDS="${FAULT_ROUNDS:-1}"
 [ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
 [ -f "$SHIM" ] || { fail setup "$SHIM is missing (make tests builds it)"; finish; }
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 # the sanitizer build's runtime must come first; the shim is preloaded before it
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:verify_asan_link_order=0"
 
-cat >f.campaign <<'EOF'
+cat >f.campaign <<EOF
 [campaign]
 name = f
 seed = 3
 replicates = 3
 [scene]
-n_grains = 40
-width = 16
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=40 width=16 depth=-)
 duration = 0.4
 checkpoint_every = 0.1
 traj_rate = 100

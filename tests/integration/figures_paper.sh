@@ -16,13 +16,9 @@ analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
 
-SCENE='n_grains = 60
-width = 20
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+SCENE="$(tiny_scene radius_ratio=-)
 amplitude = 1
-traj_rate = 100'
+traj_rate = 100"
 printf '[campaign]\nname = t\nseed = 3\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 1\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$SCENE" >t.campaign
 printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 2.5\nramp = updown\nramp_from = 3\nramp_to = 7\n[grid]\nradius_ratio = 2\n' "$SCENE" >h.campaign
 # no flux and no field: figures has only Fig. 4 to draw

@@ -6,8 +6,7 @@
 # [campaign] section can raise; duplicates go in O(n log n); range arithmetic does not
 # overflow (UBSan). Every case runs under `timeout`, so one that would hang fails.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 # seconds a case may take: every one of them answers in well under a second (the
 # sanitizer build included) when the bounds are checked before the work
 LIMIT="${GRID_BOUNDS_TIMEOUT:-10}"

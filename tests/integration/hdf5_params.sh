@@ -47,7 +47,8 @@ compare_params() {
 }
 
 # --- run 1: placement and settling, many non-default values of every type ---
-RUN1=(n_grains=60 width=20.5 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 settle_max=12.5
+tiny_bed width=20.5
+RUN1=("${BEDARGS[@]}" settle_max=12.5
 	settle=yes settle_drag=21.3 r_min=0.9 r_max=1.1 seed=12345 density=1.1 mass_factor=6.3
 	wall_radius=0.95 wall_spacing=1.9 gamma_s=2.7 gamma_n=99.9 mu=0.45 gravity=980.665
 	stiffness=3.1e6 clip_attractive=yes wall_mass=infinite integrator=verlet dt=4e-05

@@ -23,16 +23,15 @@ H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"
 [ -x "$H5MUT" ] || { fail setup "$H5MUT is not an executable (run make tests)"; finish; }
 cd "$TMP" || exit 1
 LIMIT=30 # seconds before a tool counts as hung
-q() { sqlite3 -batch -noheader "$1/study.db" "$2"; }
 
 cp "$REPO/tests/fuzz/runs.campaign" fz.campaign
-"$STUDY" run fz.campaign --runs R --jobs 2 --no-progress >setup.log 2>&1 &&
-	[ "$(q R "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok setup.campaign ||
-	{ fail setup.campaign "$(tail -c 400 setup.log)"; finish; }
+fixture_runs fz.campaign R &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok setup.campaign ||
+	{ fail setup.campaign "$(tail -c 400 R.log)"; finish; }
 # the run with an intruder at the fixed frequency, and one without
-ID=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
+ID=$(q R/study.db "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none'")
-ID0=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
+ID0=$(q R/study.db "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none'")
 
 # seal FILE: the seal in FILE's user block ("" when none)
@@ -50,7 +49,7 @@ planted() {
 # (a database without the column, an earlier version's, is left as it is)
 fresh() {
 	planted "$@" || return 1
-	[ -z "${2:-}" ] || q "$1" "UPDATE result SET file_seal = '$(seal "$1/fz/$2.h5")' WHERE run = '$2'" 2>/dev/null
+	[ -z "${2:-}" ] || q "$1/study.db" "UPDATE result SET file_seal = '$(seal "$1/fz/$2.h5")' WHERE run = '$2'" 2>/dev/null
 	return 0
 }
 
@@ -96,11 +95,11 @@ refused() {
 # exits 3 with the run failed, NEEDLE in the attempt's message, no sanitizer report
 ingested() {
 	local id=$1 d=$2 needle=$3 rc st msg
-	q "$d" "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
+	q "$d/study.db" "UPDATE run SET state = 'pending' WHERE id = '$ID'; DELETE FROM result WHERE run = '$ID'"
 	timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs "$d" --jobs 1 --no-progress >"$d.study.log" 2>&1
 	rc=$?
-	st=$(q "$d" "SELECT state FROM run WHERE id = '$ID'")
-	msg=$(q "$d" "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")
+	st=$(q "$d/study.db" "SELECT state FROM run WHERE id = '$ID'")
+	msg=$(q "$d/study.db" "SELECT message FROM attempt WHERE run = '$ID' ORDER BY n DESC LIMIT 1")
 	[ "$rc" -eq 3 ] && [ "$st" = failed ] && grep -qF -- "$needle" <<<"$msg" && ! grep -q Sanitizer "$d.study.log" &&
 		ok "$id" || fail "$id" "exit $rc, state '$st', message '$msg': $(tail -c 300 "$d.study.log")"
 }
@@ -137,7 +136,7 @@ for t in $AN_TOOLS; do
 	[ $t = hysteresis ] && continue
 	counted fifo.$t $t F "$ID" unreadable "not a regular file"
 done
-IDR=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
+IDR=$(q R/study.db "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'updown'")
 rm F/fz/"$IDR".h5 && mkfifo F/fz/"$IDR".h5
 counted fifo.hysteresis hysteresis F "$IDR" unreadable "not a regular file"
@@ -173,22 +172,22 @@ counted nan.risen.ring ring N4 "$ID" unusable "risen = nan"
 # entered the median of replicates = auto as a time)
 fresh S3 "$ID" --attr / waiting_time inf
 ingested nan.waiting_time.study S3 "waiting_time = inf"
-fresh N5 && q N5 "UPDATE param SET value = 'nan' WHERE run = '$ID' AND key = 'frequency'"
+fresh N5 && q N5/study.db "UPDATE param SET value = 'nan' WHERE run = '$ID' AND key = 'frequency'"
 counted nan.param.onset onset N5 "$ID" unusable "frequency = 'nan'"
 # the other values docs/inputs.md names ('' and Inf), and a key every run has missing
-fresh N6 && q N6 "UPDATE param SET value = '' WHERE run = '$ID' AND key = 'amplitude'"
+fresh N6 && q N6/study.db "UPDATE param SET value = '' WHERE run = '$ID' AND key = 'amplitude'"
 counted empty.param.onset onset N6 "$ID" unusable "amplitude = ''"
-fresh N7 && q N7 "UPDATE param SET value = 'Inf' WHERE run = '$ID' AND key = 'duration'"
+fresh N7 && q N7/study.db "UPDATE param SET value = 'Inf' WHERE run = '$ID' AND key = 'duration'"
 counted inf.param.waiting waiting N7 "$ID" unusable "duration = 'Inf'"
-fresh N8 && q N8 "DELETE FROM param WHERE run = '$ID' AND key = 'width'"
+fresh N8 && q N8/study.db "DELETE FROM param WHERE run = '$ID' AND key = 'width'"
 counted missing.param.width.onset onset N8 "$ID" unusable "width"
 # a group whose key is missing or no number is refused (figures pooled the run with
 # an intruder among those without one: radius_ratio read as 0)
-fresh M && q M "DELETE FROM param WHERE run = '$ID' AND key = 'radius_ratio'"
+fresh M && q M/study.db "DELETE FROM param WHERE run = '$ID' AND key = 'radius_ratio'"
 for t in onset waiting figures; do
 	refused group.missing_key.$t $t M "run $ID" "radius_ratio: no row in the param table"
 done
-fresh M2 && q M2 "UPDATE param SET value = 'abc' WHERE run = '$ID' AND key = 'radius_ratio'"
+fresh M2 && q M2/study.db "UPDATE param SET value = 'abc' WHERE run = '$ID' AND key = 'radius_ratio'"
 refused group.not_a_number.onset onset M2 "run $ID" "radius_ratio = 'abc'"
 
 # ---- the seal: a changed byte is refused before HDF5 parses the file ----
@@ -211,7 +210,7 @@ counted seal.other_file.rolls rolls V4 "$ID" unreadable "but the database record
 # the done run's file resealed: the sweep puts the run back in the queue as damaged
 timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs V3 --jobs 1 --no-progress >V3.study.log 2>&1
 [ -e V3/fz/damaged/"$ID".attempt1.h5 ] && grep -qF "but the database recorded" V3.study.log &&
-	[ "$(q V3 "SELECT state FROM run WHERE id = '$ID'")" = done ] && ok seal.resealed.study ||
+	[ "$(q V3/study.db "SELECT state FROM run WHERE id = '$ID'")" = done ] && ok seal.resealed.study ||
 	fail seal.resealed.study "$(ls V3/fz/damaged 2>&1) $(tail -c 300 V3.study.log)"
 # a shakebox-run-2 file (read unchecked, older) where the database recorded a sealed one
 planted V5 "$ID0" --attr-str / format shakebox-run-2 && cp V5/fz/"$ID0".h5 V5/fz/"$ID".h5
@@ -292,13 +291,13 @@ fresh Y "$ID" --attr / surface_height nan
 counted range.surface_nan.waiting waiting Y "$ID" unusable "surface_height = nan"
 
 # ---- the database's parameters are the file's ----
-fresh P && q P "UPDATE param SET value = 25 WHERE run = '$ID' AND key = 'frequency'"
+fresh P && q P/study.db "UPDATE param SET value = 25 WHERE run = '$ID' AND key = 'frequency'"
 for t in onset waiting figures; do
 	counted params.frequency_edited.$t $t P "$ID" unreadable "frequency = 20 in the file, '25' in the database"
 done
 # ... and so is its status (make fuzz, family database: figures reported 'nonsense' as
 # a used run's status, exit 0)
-fresh S && q S "UPDATE result SET status = 'nonsense' WHERE run = '$ID'"
+fresh S && q S/study.db "UPDATE result SET status = 'nonsense' WHERE run = '$ID'"
 for t in onset figures; do
 	counted params.status_edited.$t $t S "$ID" unreadable "status = 'ok' in the file, 'nonsense' in the database"
 done

@@ -42,12 +42,89 @@ if [ ! -x "$SHAKE" ]; then
 	finish
 fi
 
-# A tiny, fast scene: 60 grains, a 2x intruder, preparation takes ~0.1 s.
-FAST=(n_grains=60 width=20 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2
-	duration=0.2 snapshots=yes traj_rate=200 progress=no)
+# q DB SQL : the rows of one query of the SQLite database DB, columns joined by '|'. The
+# scripts' one query helper (fixtures.sh fails on a script that defines its own).
+q() { sqlite3 -batch -noheader -separator '|' "$1" "$2"; }
+
+# study_setup : STUDY, bin/study beside $SHAKE unless the caller named one, or a failed setup
+study_setup() {
+	STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
+	[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+}
+
+# The tiny bed, spelt here and nowhere else (fixtures.sh fails on a script that spells its
+# settling by hand): 60 grains in a box 20 wide, a 2x intruder one row deep, settled until
+# the kinetic energy per disk is below 1 erg, at least 0.2 s; prepared in about 0.1 s.
+TINY_BED=(n_grains=60 width=20 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2)
+# A tiny, fast scene: the tiny bed shaken 0.2 s
+FAST=("${TINY_BED[@]}" duration=0.2 snapshots=yes traj_rate=200 progress=no)
 # Gentle shaking (Gamma = A (2 pi f)^2 / g = 0.64) that an exact number of periods
 # fits into (1/f = 0.25 s).
 GENTLE=(frequency=4 amplitude=1)
+
+# tiny_bed [KEY=VALUE...] : BEDARGS, the tiny bed as KEY=VALUE words (a command line's), each
+# KEY=VALUE given in place of the bed's own KEY (KEY=- leaves KEY out), other keys after
+# the bed's in the order given
+tiny_bed() {
+	local kv a k seen=" "
+	BEDARGS=()
+	for kv in "${TINY_BED[@]}"; do
+		k=${kv%%=*}
+		seen+="$k "
+		for a in "$@"; do [ "${a%%=*}" = "$k" ] && kv=$a; done
+		[ "${kv#*=}" = - ] || BEDARGS+=("$kv")
+	done
+	for a in "$@"; do
+		case $seen in *" ${a%%=*} "*) ;; *) [ "${a#*=}" = - ] || BEDARGS+=("$a") ;; esac
+	done
+}
+# tiny_scene [KEY=VALUE...] : the same as the lines of a scene file ("key = value")
+tiny_scene() {
+	local kv
+	tiny_bed "$@"
+	for kv in "${BEDARGS[@]}"; do printf '%s = %s\n' "${kv%%=*}" "${kv#*=}"; done
+}
+# tiny_campaign NAME [SEED [SCENE-LINE...]] : the text of the tiny campaign NAME (seed 5
+# unless given): four runs, two frequencies by two replicates that share a packing, of
+# 40 grains shaken 0.2 s; the scene lines given follow the bed's
+tiny_campaign() {
+	local name=$1 seed=${2:-5}
+	shift $(($# < 2 ? $# : 2))
+	printf '[campaign]\nname = %s\nseed = %s\nreplicates = 2\n[scene]\n' "$name" "$seed"
+	tiny_scene n_grains=40 width=16
+	printf '%s\n' 'duration = 0.2' 'traj_rate = 100' 'snapshots = no' "$@" '[grid]' 'frequency = 4, 5'
+}
+
+# fixture_runs CAMPAIGN DIR [DRIVER] : DIR, the runs directory of CAMPAIGN run to its end by
+# DRIVER (default $STUDY, --jobs 2), copied from a cache (FIXTURES, default build/fixtures)
+# where the first script that asked for it left it: one campaign run per build, since its
+# key is the campaign's text with the driver's and its engine's bits (a new build, a
+# planted bug of make mutate, builds it anew). Returns the driver's exit code, its output
+# in DIR.log; a campaign that did not end well is not kept.
+fixture_runs() {
+	local c=$1 dir=$2 drv=${3:-$STUDY} key root tmp rc
+	case $drv in /*) ;; *) drv=$PWD/$drv ;; esac
+	FIXTURES=${FIXTURES:-$REPO/build/fixtures}
+	key=$(cat "$c" "$drv" "$(dirname "$drv")/shake" | sha256sum | cut -c1-16)
+	root="$FIXTURES/${c##*/}.$key"
+	if [ ! -f "$root/done" ]; then
+		mkdir -p "$FIXTURES" && tmp=$(mktemp -d "$FIXTURES/.build.XXXXXX") || return 2
+		cp "$c" "$tmp/${c##*/}" &&
+			(cd "$tmp" && "$drv" run "${c##*/}" --runs "$tmp/R" --jobs 2 --no-progress >"$tmp/log" 2>&1)
+		rc=$?
+		if [ "$rc" -ne 0 ]; then
+			cp "$tmp/log" "$dir.log"
+			rm -rf "$tmp"
+			return "$rc"
+		fi
+		sqlite3 "$tmp/R/study.db" "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null && : >"$tmp/done"
+		# another script may have built it meanwhile: theirs stays, ours goes
+		mv -T "$tmp" "$root" 2>/dev/null || rm -rf "$tmp"
+		# the same campaign of earlier builds goes
+		find "$FIXTURES" -maxdepth 1 -name "${c##*/}.*" ! -name "${c##*/}.$key" -mmin +60 -exec rm -rf {} + 2>/dev/null
+	fi
+	cp "$root/log" "$dir.log" && cp -r "$root/R" "$dir"
+}
 
 # term_at_checkpoint LOG OUT args... : runs $SHAKE args with output=OUT in the
 # background and sends SIGTERM once OUT.ckpt exists (a state, not a fraction of an
@@ -65,6 +142,31 @@ term_at_checkpoint() {
 	done
 	kill -TERM $pid 2>/dev/null
 	wait $pid
+}
+
+# engine_of ID : REPLY, the pid of the engine running run ID (a process named shake with
+# the argument run_id=ID, as the worker starts it: never the worker or a helper). Read
+# from /proc with builtins alone, no process started: a loaded machine makes every fork
+# dear, and a caller that must catch a run in a state of a few seconds polls it.
+engine_of() {
+	local d c a
+	for d in /proc/[0-9]*; do
+		{ read -r c <"$d/comm"; } 2>/dev/null && [ "$c" = shake ] || continue
+		{ mapfile -d '' -t a <"$d/cmdline"; } 2>/dev/null || continue
+		for c in "${a[@]}"; do
+			[ "$c" = "run_id=$1" ] && { REPLY=${d#/proc/}; return 0; }
+		done
+	done
+	return 1
+}
+# term_pending PID : a SIGTERM waits for the process (held by SIGSTOP): bit 15 of its
+# pending signals, the process's or its main thread's (/proc/PID/status)
+term_pending() {
+	local k m
+	{ while read -r k m; do
+		case $k in ShdPnd: | SigPnd:) (((16#$m >> 14) & 1)) && return 0 ;; esac
+	done <"/proc/$1/status"; } 2>/dev/null
+	return 1
 }
 
 # shake_run LOG args... : runs $SHAKE with stdout+stderr into LOG; returns its exit code

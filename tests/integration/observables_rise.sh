@@ -17,7 +17,8 @@ within() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = 
 # crosses the threshold after ~3.6 s of 4 (about 1 s of CPU in the sanitizer build).
 # Weaker shaking (Gamma <= 1) or narrower boxes did not rise within 5 s; stronger shaking
 # (Gamma 1.5 in a 60-grain bed) crossed it in the bed's first flight, which is not a rise.
-RISE=(n_grains=100 width=24 radius_ratio=3 depth=1 settle_ke=1 settle_min=0.2
+tiny_bed n_grains=100 width=24 radius_ratio=3
+RISE=("${BEDARGS[@]}"
 	frequency=4 amplitude=2 duration=4 traj_rate=200 progress=no)
 
 shake_run rise.log "${RISE[@]}" write_particles=rise.txt output=rise.h5 ||

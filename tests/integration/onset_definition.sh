@@ -22,11 +22,7 @@ name = od
 seed = 11
 [scene]
 preset = fast
-n_grains = 60
-width = 16
-radius_ratio = 0
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene width=16 radius_ratio=0 depth=-)
 amplitude = 1
 duration = 3
 traj_rate = 0

@@ -13,7 +13,8 @@
 cd "$TMP" || exit 1
 
 W=24
-SCENE=(n_grains=150 width=$W radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 duration=3
+tiny_bed n_grains=150 width=$W
+SCENE=("${BEDARGS[@]}" duration=3
 	"${GENTLE[@]}" sides=periodic flux=yes field=yes field_periods=4 snapshots=yes traj_rate=100 progress=no)
 
 shake_run p.log "${SCENE[@]}" output=p.h5 write_lammps=p.data write_particles=p.txt

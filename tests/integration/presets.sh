@@ -7,10 +7,8 @@
 # (scenes/paper.scene says preset = paper; preset=fast on top of it is verlet at 2e-4,
 # as scripts/reproduce.sh and campaigns/reproduce/ use it).
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 
 # ran ID WANT-INTEGRATOR WANT-DT SHAKE-ARGS... : a settle-only run; its file records
 # the integrator and dt wanted
@@ -41,31 +39,23 @@ ran paper_scene_then_cli.preset_replaces_preset verlet 2e-4 "$REPO/scenes/paper.
 ran paper_scene_then_cli.explicit_dt_stays verlet 1e-4 "$REPO/scenes/paper.scene" dt=1e-4 preset=fast
 
 # a campaign: a fixed dt under a preset axis, a dt axis beside a preset
-cat >p.campaign <<'EOF'
+cat >p.campaign <<EOF
 [campaign]
 name = p
 seed = 1
 [scene]
 dt = 1e-4
-n_grains = 40
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=40 depth=-)
 duration = 0.1
 [grid]
 preset = paper, fast
 EOF
-cat >a.campaign <<'EOF'
+cat >a.campaign <<EOF
 [campaign]
 name = a
 seed = 1
 [scene]
-n_grains = 40
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=40 depth=-)
 duration = 0.1
 [grid]
 dt = 1e-4, 5e-5

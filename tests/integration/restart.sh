@@ -13,7 +13,8 @@
 cd "$TMP" || exit 1
 
 # 150 grains, 2.5 s of shaking, a checkpoint every 0.125 s (20 in a run)
-SCENE=(n_grains=150 width=24 radius_ratio=2 depth=1 settle_ke=1 settle_min=0.2 duration=2.5
+tiny_bed n_grains=150 width=24
+SCENE=("${BEDARGS[@]}" duration=2.5
 	"${GENTLE[@]}" traj_rate=200 snapshots=yes progress=no checkpoint_every=0.125)
 
 # reference ID args... : uninterrupted run into ID.h5

@@ -12,7 +12,6 @@ analysis_tools_setup
 cd "$TMP" || exit 1
 RING="$BINDIR/ring"
 [ -x "$RING" ] || { fail setup "$RING is not an executable (run make)"; finish; }
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }
 pdf_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1")" = '%PDF' ]; }
 # rel A B TOL : |A - B| <= TOL |B|
@@ -25,13 +24,9 @@ rel() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d;
 # it) and without, the ring its first shell (4-6.5 cm from the centre of an intruder of
 # radius 4 cm), 12 seeds each: the packings differ a lot (sum |F| 85-170 kdyn without,
 # 108-216 kdyn with, over 16 seeds: a ratio of 1.21), so fewer seeds may point either way.
-BED='n_grains = 100
-width = 24
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+BED="$(tiny_scene n_grains=100 width=24 radius_ratio=-)
 ring = yes
-ring_centre = settled'
+ring_centre = settled"
 printf '[campaign]\nname = shake\nseed = 11\nreplicates = 2\n[scene]\n%s\namplitude = 2\nduration = 4\nring_rate = 100\nring_y = 4.3\nring_from = 0.5\n[grid]\nradius_ratio = 0, 3\nfrequency = 4, 4.5\n' "$BED" >shake.campaign
 printf '[campaign]\nname = rest\nseed = 1\nreplicates = 12\n[scene]\n%s\nfrequency = 0\namplitude = 0\nduration = 0.1\nring_rate = 50\nring_inner = 4\nring_outer = 6.5\nring_y = 5.5\n[grid]\nradius_ratio = 0, 4\n' "$BED" >rest.campaign
 t0=$SECONDS
@@ -39,13 +34,13 @@ t0=$SECONDS
 	"$STUDY" run rest.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_r.log 2>&1
 rc=$?
 echo "# campaigns: $((SECONDS - t0)) s"
-[ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 32 ] && ok setup.campaigns ||
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 32 ] && ok setup.campaigns ||
 	{ fail setup.campaigns "study exit $rc: $(tail -c 300 study_s.log study_r.log)"; finish; }
 
 # ---- the series in a run file: a run whose intruder rose ----
-run=$(q "SELECT run FROM result WHERE campaign = 'shake' AND risen = 1 ORDER BY run LIMIT 1")
+run=$(q R/study.db "SELECT run FROM result WHERE campaign = 'shake' AND risen = 1 ORDER BY run LIMIT 1")
 F=R/shake/$run.h5
-[ -n "$run" ] && [ -s "$F" ] && ok series.a_risen_run || { fail series.a_risen_run "no run of 'shake' rose: $(q "SELECT run, risen, waiting_time FROM result WHERE campaign = 'shake'")"; finish; }
+[ -n "$run" ] && [ -s "$F" ] && ok series.a_risen_run || { fail series.a_risen_run "no run of 'shake' rose: $(q R/study.db "SELECT run, risen, waiting_time FROM result WHERE campaign = 'shake'")"; finish; }
 G=/observables/ring
 n=$(attr "$F" /ring/samples)
 dur=$(h5param "$F" duration)
@@ -95,35 +90,35 @@ png_ok $A/ring.png && pdf_ok $A/ring.pdf && ok ring.figure || fail ring.figure "
 grep -q 'paper: +15 %' $A/ring.gp && grep -q '⟨Σ|F|⟩ ratio' $A/ring.gp && ok ring.figure_text || fail ring.figure_text "$(grep -c . $A/ring.gp) lines"
 # stored: a ratio of each quantity per group with an intruder (n = its 2 runs), a mean per
 # group, the accounting; the censored runs are those the database says did not rise
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'shake' AND tool = 'ring' AND key IN ('ratio_force',
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'shake' AND tool = 'ring' AND key IN ('ratio_force',
 	'ratio_net_force', 'ratio_temperature') AND radius_ratio = 3 AND n = 2 AND value > 0 AND lo <= value AND hi >= value")" = 6 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'ring' AND key = 'force' AND campaign = 'shake' AND value > 0")" = 4 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'ring' AND key = 'runs_failed' AND campaign = 'shake'")" = 4 ] &&
-	ok ring.db_rows || fail ring.db_rows "$(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'ring'")"
-[ "$(q "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'runs_censored'")" = \
-	"$(q "SELECT COUNT(*) FROM result WHERE campaign = 'shake' AND risen = 0")" ] && ok ring.censored_counted ||
-	fail ring.censored_counted "$(q "SELECT grp, value FROM analysis WHERE tool = 'ring' AND key = 'runs_censored'")"
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'ring' AND key = 'force' AND campaign = 'shake' AND value > 0")" = 4 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'ring' AND key = 'runs_failed' AND campaign = 'shake'")" = 4 ] &&
+	ok ring.db_rows || fail ring.db_rows "$(q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'ring'")"
+[ "$(q R/study.db "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'runs_censored'")" = \
+	"$(q R/study.db "SELECT COUNT(*) FROM result WHERE campaign = 'shake' AND risen = 0")" ] && ok ring.censored_counted ||
+	fail ring.censored_counted "$(q R/study.db "SELECT grp, value FROM analysis WHERE tool = 'ring' AND key = 'runs_censored'")"
 # the ratio is the ratio of the groups' means, which are the runs' before-the-rise averages
 m3=$(awk -F, 'NR > 1 && $2 == "\"radius_ratio=3 frequency=4\"" { s += $12; n++ } END { printf "%.17g", s / n }' $A/ring_runs.csv)
 m0=$(awk -F, 'NR > 1 && $2 == "\"radius_ratio=0 frequency=4\"" { s += $12; n++ } END { printf "%.17g", s / n }' $A/ring_runs.csv)
-r=$(q "SELECT value FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'ratio_force' AND frequency = 4")
+r=$(q R/study.db "SELECT value FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'ratio_force' AND frequency = 4")
 rel "$r" "$(awk -v a="$m3" -v b="$m0" 'BEGIN { printf "%.17g", a / b }')" 1e-12 && ok ring.ratio_of_means ||
 	fail ring.ratio_of_means "stored $r, runs $m3 / $m0"
 # reproducible: the same seed gives the same rows
-q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'ring' ORDER BY grp, key" >rows1
+q R/study.db "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'ring' ORDER BY grp, key" >rows1
 "$RING" shake --runs R --boot 200 --seed 3 --no-plot >/dev/null 2>&1
-q "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'ring' ORDER BY grp, key" >rows2
+q R/study.db "SELECT grp, key, value, lo, hi FROM analysis WHERE tool = 'ring' ORDER BY grp, key" >rows2
 cmp -s rows1 rows2 && ok ring.reproducible || fail ring.reproducible "$(diff rows1 rows2 | head -4)"
 
 # ---- the clear case: at rest, a heavy intruder's first shell carries more ----
 "$RING" rest --runs R --boot 200 >rest.out 2>rest.err
 rc=$?
-rf=$(q "SELECT value FROM analysis WHERE tool = 'ring' AND campaign = 'rest' AND key = 'ratio_force' AND radius_ratio = 4")
+rf=$(q R/study.db "SELECT value FROM analysis WHERE tool = 'ring' AND campaign = 'rest' AND key = 'ratio_force' AND radius_ratio = 4")
 [ "$rc" -eq 0 ] && awk -v r="$rf" 'BEGIN { exit !(r > 1) }' && ok rest.heavier_intruder_raises_force ||
 	fail rest.heavier_intruder_raises_force "exit $rc, ratio of sum|F| $rf: $(cat rest.out rest.err | head -c 400)"
 # at rest nothing moves: the temperature with and without is tiny against the shaken one
-tr=$(q "SELECT MAX(value) FROM analysis WHERE tool = 'ring' AND campaign = 'rest' AND key = 'temperature'")
-ts=$(q "SELECT MIN(value) FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'temperature'")
+tr=$(q R/study.db "SELECT MAX(value) FROM analysis WHERE tool = 'ring' AND campaign = 'rest' AND key = 'temperature'")
+ts=$(q R/study.db "SELECT MIN(value) FROM analysis WHERE tool = 'ring' AND campaign = 'shake' AND key = 'temperature'")
 awk -v a="$tr" -v b="$ts" 'BEGIN { exit !(a >= 0 && a < 0.01 * b) }' && ok rest.no_temperature ||
 	fail rest.no_temperature "at rest $tr, shaken $ts cm^2/s^2"
 

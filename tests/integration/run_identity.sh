@@ -15,21 +15,22 @@ H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"
 [ -x "$H5MUT" ] || { fail setup "$H5MUT is not an executable (run make tests)"; finish; }
 cd "$TMP" || exit 1
 LIMIT=60
-q() { sqlite3 -batch -noheader "$1/study.db" "$2"; }
 
 cp "$REPO/tests/fuzz/runs.campaign" fz.campaign
 # another campaign, one run of another length
 sed -e 's/^name = fz/name = other/' -e 's/^duration = 0.6/duration = 0.3/' -e 's/^radius_ratio = 0, 1.5/radius_ratio = 1.5/' \
 	-e 's/^ramp = none, updown/ramp = none/' fz.campaign >other.campaign
-"$STUDY" run fz.campaign --runs R --jobs 2 --no-progress >setup.log 2>&1 &&
-	"$STUDY" run other.campaign --runs R --jobs 1 --no-progress >>setup.log 2>&1 &&
-	[ "$(q R "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 5 ] && ok setup.campaigns ||
+fixture_runs fz.campaign R
+rc=$?
+cat R.log >setup.log 2>/dev/null
+[ "$rc" = 0 ] && "$STUDY" run other.campaign --runs R --jobs 1 --no-progress >>setup.log 2>&1 &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 5 ] && ok setup.campaigns ||
 	{ fail setup.campaigns "$(tail -c 400 setup.log)"; finish; }
-ID=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
+ID=$(q R/study.db "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value > 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none' WHERE r.campaign = 'fz'")
-ID0=$(q R "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
+ID0=$(q R/study.db "SELECT r.id FROM run r JOIN param a ON a.run = r.id AND a.key = 'radius_ratio' AND a.value = 0
 	JOIN param b ON b.run = r.id AND b.key = 'ramp' AND b.value = 'none' WHERE r.campaign = 'fz'")
-IDO=$(q R "SELECT id FROM run WHERE campaign = 'other'")
+IDO=$(q R/study.db "SELECT id FROM run WHERE campaign = 'other'")
 h5dump -a /parameters/run_id "R/fz/$ID.h5" | grep -qF "\"$ID\"" && ok identity.written ||
 	fail identity.written "$(h5dump -a /parameters/run_id "R/fz/$ID.h5" 2>&1 | head -c 300)"
 
@@ -57,14 +58,14 @@ swept() {
 	local id=$1 d=$2 needle=$3 rc msg
 	timeout -k 5 "$LIMIT" "$STUDY" run fz.campaign --runs "$d" --jobs 1 --no-progress >"$d.study.log" 2>&1
 	rc=$?
-	msg=$(q "$d" "SELECT message FROM attempt WHERE run = '$ID' AND status = 'damaged' ORDER BY n DESC LIMIT 1")
+	msg=$(q "$d/study.db" "SELECT message FROM attempt WHERE run = '$ID' AND status = 'damaged' ORDER BY n DESC LIMIT 1")
 	if [ "$rc" -ne 0 ] || grep -q Sanitizer "$d.study.log"; then
 		fail "$id" "exit $rc: $(tail -c 300 "$d.study.log")"
 	elif ! grep -qF -- "$needle" <<<"$msg" || ! grep -qF -- "$needle" "$d.study.log"; then
 		fail "$id" "message '$msg', want '$needle': $(tail -c 300 "$d.study.log")"
 	elif ! ls "$d/fz/damaged/$ID".attempt*.h5 >/dev/null 2>&1; then
 		fail "$id" "nothing in $d/fz/damaged/"
-	elif [ "$(q "$d" "SELECT state FROM run WHERE id = '$ID'")" != done ] ||
+	elif [ "$(q "$d/study.db" "SELECT state FROM run WHERE id = '$ID'")" != done ] ||
 		! h5dump -a /parameters/run_id "$d/fz/$ID.h5" | grep -qF "\"$ID\""; then
 		fail "$id" "run $ID not done again with its own file"
 	else
@@ -75,7 +76,7 @@ swept() {
 fresh() { rm -rf "$1" && cp -a R "$1"; }
 # recorded DIR: DIR's database holds the seal of run $ID's file as it now is
 recorded() {
-	q "$1" "UPDATE result SET file_seal = '$(head -c 64 "$1/fz/$ID.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$ID'"
+	q "$1/study.db" "UPDATE result SET file_seal = '$(head -c 64 "$1/fz/$ID.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$ID'"
 }
 SEALED="but the database recorded"
 

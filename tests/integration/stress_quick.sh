@@ -12,7 +12,8 @@
 cd "$TMP" || exit 1
 
 # the bed: FAST (60 grains, 2x intruder) settled with the default criterion (0.01 erg)
-shake_run prep.log n_grains=60 width=20 radius_ratio=2 depth=1 settle_min=0.2 duration=0 \
+tiny_bed settle_ke=-
+shake_run prep.log "${BEDARGS[@]}" duration=0 \
 	progress=no write_particles=bed.txt output=prep.h5
 rc=$?
 if [ "$rc" -ne 0 ] || [ ! -s bed.txt ]; then
@@ -81,6 +82,6 @@ valid_or_blowup stress.violent_f30 "${BED[@]}" frequency=30 amplitude=2 duration
 valid_or_blowup stress.violent_f30_verlet "${BED[@]}" frequency=30 amplitude=2 duration=0.3 integrator=verlet max_overlap=0.9
 valid_or_blowup stress.zero_damping "${BED[@]}" "${GENTLE[@]}" gamma_n=0 gamma_s=0 duration=0.5
 valid_or_blowup stress.zero_friction "${BED[@]}" "${GENTLE[@]}" mu=0 duration=0.5
-valid_or_blowup stress.large_intruder n_grains=150 width=40 radius_ratio=8 depth=1 settle_ke=1 \
-	settle_min=0.2 "${GENTLE[@]}" duration=0.3 progress=no
+tiny_bed n_grains=150 width=40 radius_ratio=8
+valid_or_blowup stress.large_intruder "${BEDARGS[@]}" "${GENTLE[@]}" duration=0.3 progress=no
 finish

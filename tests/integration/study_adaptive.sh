@@ -12,8 +12,7 @@
 # changed range are refused with file, line and key.
 # tier: slow: adaptive searches, one killed and resumed
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
 # 60 grains, an intruder of 1.5 mean radii, 2 s of the fast preset, ended at the rise:
@@ -25,11 +24,7 @@ campaign() { # NAME [CAMPAIGN-LINES...]: the [campaign] and [scene] sections
 	cat <<C
 [scene]
 preset = fast
-n_grains = 60
-width = 16
-radius_ratio = 1.5
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene width=16 radius_ratio=1.5 depth=-)
 amplitude = 1
 duration = 2
 stop = risen

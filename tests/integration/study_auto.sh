@@ -8,8 +8,7 @@
 # file, line and key.
 # tier: slow: auto replicates until a verdict, one killed
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
 # 60 grains, an intruder of 2 mean radii at A = 1.5 cm, 8 and 9 Hz: every packing's
@@ -21,11 +20,7 @@ campaign() { # NAME [CAMPAIGN-LINES...]
 	cat <<C
 [scene]
 preset = fast
-n_grains = 60
-width = 16
-radius_ratio = ${RR:-2}
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene width=16 radius_ratio=${RR:-2} depth=-)
 amplitude = 1.5
 duration = 4
 stop = risen

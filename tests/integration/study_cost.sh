@@ -8,8 +8,7 @@
 # tier: alone: compares a measured CPU time with an estimate
 # tier: slow: a campaign run for real, its CPU measured, and the engine calibrated
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 [ -x /usr/bin/time ] || { fail setup "/usr/bin/time is needed to measure the run's CPU"; finish; }
 cd "$TMP" || exit 1
 

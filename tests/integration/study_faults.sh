@@ -4,8 +4,7 @@
 # has its own message recorded, and an argument file with more parameters than the
 # worker passes on is refused, never run with some of them dropped.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
 # `study exec` runs the engine that sits next to it: a copy of bin/study beside a
@@ -21,8 +20,9 @@ W
 chmod +x bin/shake
 
 scene() { # NAME [SCENE-LINES...]
-	printf '[campaign]\nname = %s\nseed = 1\n[scene]\nn_grains = 40\nwidth = 20\nradius_ratio = 2\n' "$1"
-	printf 'settle_ke = 1\nsettle_min = 0.2\nduration = 0.1\n'
+	printf '[campaign]\nname = %s\nseed = 1\n[scene]\n' "$1"
+	tiny_scene n_grains=40 depth=-
+	printf 'duration = 0.1\n'
 	shift
 	printf '%s\n' "$@"
 }

@@ -4,8 +4,7 @@
 # extension keeps the ids, malformed files fail with FILE:LINE, shell injection
 # attempts are rejected or harmless, and every subcommand has --help.
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
 # camp FILE [grid lines...] : a small campaign with the given [grid] lines
@@ -162,7 +161,7 @@ inj value_cr "${H[@]}" '[scene]' "$(printf 'integrator = gear5\r$(touch /tmp/pwn
 weird="$TMP/r \$(touch $MARK); '\`touch $MARK\`'"
 cf="$TMP/c \$(touch pwned); \`touch pwned\`
 'q'.campaign"
-printf '[campaign]\nname = w\nseed = 1\n[scene]\nn_grains = 40\nwidth = 20\nradius_ratio = 2\nsettle_ke = 1\nsettle_min = 0.2\nduration = 0.1\n' >"$cf"
+printf '[campaign]\nname = w\nseed = 1\n[scene]\n'"$(tiny_scene n_grains=40 depth=-)"'\nduration = 0.1\n' >"$cf"
 "$STUDY" run "$cf" --runs "$weird" --no-progress >weird.out 2>&1
 rc=$?
 if [ "$rc" -eq 0 ] && [ ! -e "$MARK" ] && [ ! -e pwned ] && ls "$weird/w/"*.h5 >/dev/null 2>&1; then ok injection.quoted_paths; else
@@ -170,7 +169,7 @@ if [ "$rc" -eq 0 ] && [ ! -e "$MARK" ] && [ ! -e pwned ] && ls "$weird/w/"*.h5 >
 # output paths come from the driver only: a base scene that names its own output,
 # checkpoint and particle files outside the campaign's directory writes none of them
 mkdir -p esc/a/b
-printf 'output = ../../escaped.h5\nwrite_particles = ../../escaped.txt\nwrite_lammps = ../../escaped.data\ncheckpoint = ../../escaped.ckpt\ncheckpoint_every = 0.05\nn_grains = 40\nwidth = 20\nradius_ratio = 2\nsettle_ke = 1\nsettle_min = 0.2\nduration = 0.1\n' >esc/esc.scene
+printf 'output = ../../escaped.h5\nwrite_particles = ../../escaped.txt\nwrite_lammps = ../../escaped.data\ncheckpoint = ../../escaped.ckpt\ncheckpoint_every = 0.05\n'"$(tiny_scene n_grains=40 depth=-)"'\nduration = 0.1\n' >esc/esc.scene
 printf '[campaign]\nname = esc\nseed = 1\nscene = esc.scene\n' >esc/esc.campaign
 "$STUDY" run esc/esc.campaign --runs "$TMP/esc/a/b" --no-progress >esc.out 2>&1
 rc=$?
@@ -192,7 +191,7 @@ rm -f "$MARK"
 # --- axes in Gamma and v (docs/campaigns.md): gamma = 1.5, 2.5 at A = 1 cm runs at
 # f = sqrt(Gamma g / A) / 2 pi = 6.10521, 7.88179 Hz, and the runs table keeps Gamma, v
 # and f; velocity with a set frequency sets the amplitude, A = v / (2 pi f) ---
-printf '[campaign]\nname = gm\nseed = 1\n[scene]\nn_grains = 40\nwidth = 20\nradius_ratio = 2\nsettle_ke = 1\nsettle_min = 0.2\nduration = 0.1\npreset = fast\namplitude = 1\n[grid]\ngamma = 1.5, 2.5\n' >gm.campaign
+printf '[campaign]\nname = gm\nseed = 1\n[scene]\n'"$(tiny_scene n_grains=40 depth=-)"'\nduration = 0.1\npreset = fast\namplitude = 1\n[grid]\ngamma = 1.5, 2.5\n' >gm.campaign
 "$STUDY" run gm.campaign --runs "$TMP/GM" --no-progress >gm.out 2>&1
 rc=$?
 got=$(sqlite3 GM/study.db "SELECT printf('%.12g|%.12g|%.9g|%g', gamma, frequency, v_box, amplitude) FROM runs

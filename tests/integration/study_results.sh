@@ -7,10 +7,8 @@
 # wrote the file, and the status ETA comes from what ran.
 # tier: slow: campaigns whose every result column is checked against the run files
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 
 # --- docs/database.md's table is the generated one ---
 "$STUDY" columns >cols.md
@@ -27,12 +25,7 @@ name = rise
 seed = 21
 replicates = 2
 [scene]
-n_grains = 60
-width = 20
-radius_ratio = 2
-depth = 1
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene)
 duration = 0.6
 traj_rate = $2
 snapshots = no

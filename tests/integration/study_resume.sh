@@ -6,21 +6,16 @@
 # attempts a killed driver could not record are recorded by the next run.
 # tier: slow: campaigns killed at several moments and resumed
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
-cat >k.campaign <<'C'
+cat >k.campaign <<C
 [campaign]
 name = k
 seed = 5
 replicates = 2
 [scene]
-n_grains = 60
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene depth=-)
 amplitude = 1
 duration = 1.5
 traj_rate = 200

@@ -13,10 +13,10 @@ SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
 [ -f "$SHIM" ] || { fail setup "$SHIM is missing (make tests builds it)"; finish; }
 cd "$TMP" || exit 1
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:verify_asan_link_order=0"
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 campaign() { # NAME FREQUENCIES [SCENE-LINES...]
-	printf '[campaign]\nname = %s\nseed = 4\n[scene]\nn_grains = 40\nwidth = 16\nradius_ratio = 2\n' "$1"
-	printf 'settle_ke = 1\nsettle_min = 0.2\namplitude = 1\nduration = 3\ncheckpoint_every = 0.2\ntraj_rate = 100\n'
+	printf '[campaign]\nname = %s\nseed = 4\n[scene]\n' "$1"
+	tiny_scene n_grains=40 width=16 depth=-
+	printf 'amplitude = 1\nduration = 3\ncheckpoint_every = 0.2\ntraj_rate = 100\n'
 	printf '%s\n' "${@:3}"
 	printf '[grid]\nfrequency = %s\n' "$2"
 }

@@ -5,25 +5,19 @@
 # reason and is retried only with --retry-failed; status, list and export.
 # tier: slow: campaigns run, extended, interrupted
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 
-SCENE='[scene]
-n_grains = 50
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+SCENE="[scene]
+$(tiny_scene n_grains=50 depth=-)
 amplitude = 1
 duration = 0.25
-traj_rate = 200'
+traj_rate = 200"
 mk() { # FILE NAME GRID-LINES...
 	local f=$1 n=$2
 	shift 2
 	{ printf '[campaign]\nname = %s\nseed = 11\nreplicates = 2\n%s\n[grid]\n' "$n" "$SCENE"; printf '%s\n' "$@"; } >"$f"
 }
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 
 mk t.campaign t 'frequency = 3, 4'
 t0=$(date +%s%N)

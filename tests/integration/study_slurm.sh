@@ -9,8 +9,7 @@
 # be installed.
 # tier: slow: a one-node Slurm cluster started, a job array run, cancelled and resubmitted
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 SLURM_LOCAL="$REPO/scripts/slurm_local.sh"
 T0=$SECONDS
 
@@ -46,7 +45,6 @@ export SLURM_CONF="$CL/slurm.conf"
 echo "# cluster up after $((SECONDS - T0)) s"
 cd "$TMP" || exit 1
 
-q() { sqlite3 -batch -noheader "$1" "$2"; }
 # wait_for SECONDS COMMAND...: poll until the command succeeds
 wait_for() {
 	local end=$((SECONDS + $1))
@@ -69,11 +67,7 @@ name = $NAME
 seed = 7
 replicates = 2
 [scene]
-n_grains = 50
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=50 depth=-)
 amplitude = 1
 duration = 6
 traj_rate = 20
@@ -97,10 +91,11 @@ t=$SECONDS
 "$STUDY" run s.campaign --runs "$TMP/L" --jobs 2 >local.log 2>&1 || fail local.run "$(tail -c 400 local.log)"
 echo "# local study run: $((SECONDS - t)) s"
 
-# --- submit: 4 runs, 2 per task, at most 2 tasks at once, an extra sbatch option ---
+# --- submit: 4 runs, 2 per task, at most 2 tasks at once, extra sbatch options (--hold:
+# the array waits for scontrol release, so that no run starts before the test watches) ---
 t=$SECONDS
 "$STUDY" submit s.campaign --slurm --runs "$TMP/S" --throttle 2 --runs-per-task 2 \
-	--sbatch-args="--comment=shakebox-test --time=10" >sub1.log 2>&1
+	--sbatch-args="--comment=shakebox-test --time=10 --hold" >sub1.log 2>&1
 rc=$?
 DB=S/study.db
 J1=$(q $DB "SELECT job_id FROM slurm_job WHERE campaign = '$NAME'")
@@ -120,41 +115,62 @@ echo "$info" | grep -q "ArrayTaskThrottle=2" && echo "$info" | grep -q "Comment=
 # --- scancel a task whose run is shaking: the engine must write a checkpoint ---
 # is_shaking ID: the run has written a checkpoint but no output yet
 is_shaking() { [ -e "S/$NAME/$1.h5.ckpt" ] && [ ! -e "S/$NAME/$1.h5" ]; }
-# first_shaking TASKFILE: "INDEX ID" of a task whose first run is shaking (so that the
-# task has a run after it to leave unstarted)
-first_shaking() {
-	local i=0 line id
-	while read -r line; do
-		id=$(echo "$line" | tr ' ' '\n' | sed -n 's/^r://p' | head -n 1)
-		is_shaking "$id" && { echo "$i $id"; return 0; }
-		i=$((i + 1))
-	done <"$1"
-	return 1
-}
 # interrupted JOB: the runs the job's tasks left interrupted
 interrupted() {
 	q $DB "SELECT s.run FROM slurm_task s JOIN attempt a ON a.campaign = s.campaign AND a.run = s.run
 		AND a.n = s.attempt WHERE s.job_id = $1 AND a.status = 'interrupted' AND a.exit_code = 7"
 }
-wait_for 60 first_shaking "S/$NAME/slurm/tasks-1.txt" >/dev/null
-read -r IDX busy < <(first_shaking "S/$NAME/slurm/tasks-1.txt")
-if [ -z "$busy" ]; then
-	fail scancel.setup "no task's first run reached a checkpoint within 60 s: $(squeue --array 2>&1 | tail -n 3)"
+# The moment is a state, not a time: the engine of a task's first run, found shaking, is
+# stopped (SIGSTOP) before the scancel, so that it cannot end (and its task start its
+# second run) while the signal is on its way; it goes on once the SIGTERM is pending.
+# The runs last a few seconds: the poll starts no process until it has found one
+# (is_shaking and engine_of are builtins), so that a loaded machine cannot step over it.
+# The first run of each task, from the task file (r:ID words in order)
+FIRST=()
+while read -r line; do
+	id=""
+	for w in $line; do case $w in r:*) id=${w#r:}; break ;; esac; done
+	FIRST+=("$id")
+done <"S/$NAME/slurm/tasks-1.txt"
+# hold_shaking: IDX, busy (the run) and held (its engine's pid) of a task whose first
+# run is shaking, its engine stopped
+hold_shaking() {
+	local i
+	for i in "${!FIRST[@]}"; do
+		is_shaking "${FIRST[i]}" && engine_of "${FIRST[i]}" || continue
+		kill -STOP "$REPLY" 2>/dev/null || continue
+		# stopped after it wrote its output (on its way out): let it go, look again
+		if ! is_shaking "${FIRST[i]}"; then
+			kill -CONT "$REPLY"
+			continue
+		fi
+		IDX=$i busy=${FIRST[i]} held=$REPLY
+		return 0
+	done
+	return 1
+}
+held=""
+scontrol release "$J1" || fail scancel.setup "scontrol release $J1: exit $?"
+wait_for 300 eval 'hold_shaking || drained "$J1"'
+if [ -z "$held" ]; then
+	fail scancel.setup "no task's first run was seen shaking before the array ended: $(squeue --array 2>&1 | tail -n 3)"
 	finish
 fi
-echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s: scancel ${J1}_$IDX"
-# as a user cancels: SIGTERM to every process of the task, SIGKILL after KillWait (30 s)
-scancel "${J1}_$IDX"
-# while the other task runs, study run refuses: it would run its runs a second time
+echo "# run $busy of task ${J1}_$IDX shaking after $((SECONDS - t)) s, its engine $held stopped: scancel ${J1}_$IDX"
+# while a task runs, study run refuses: it would run its runs a second time (the held
+# engine keeps the array running)
 "$STUDY" run s.campaign --runs "$TMP/S" >busy.log 2>&1
 rc=$?
-if drained "$J1"; then
-	echo "# the array ended before study run was tried; its refusal is not checked"
-else
-	[ "$rc" -eq 4 ] && grep -q "queued or running in Slurm" busy.log && ok run.refuses_while_queued ||
-		fail run.refuses_while_queued "exit $rc: $(tail -n 3 busy.log)"
-fi
-wait_for 60 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
+[ "$rc" -eq 4 ] && grep -q "queued or running in Slurm" busy.log && ok run.refuses_while_queued ||
+	fail run.refuses_while_queued "exit $rc: $(tail -n 3 busy.log)"
+# as a user cancels: SIGTERM to every process of the task, SIGKILL after KillWait (30 s)
+scancel "${J1}_$IDX"
+# (Slurm sends SIGCONT before SIGTERM; should it not, the held engine goes on once the
+# SIGTERM waits for it)
+wait_for 30 eval 'term_pending $held || ! kill -0 $held 2>/dev/null' ||
+	fail scancel.signal_sent "no SIGTERM reached engine $held within 30 s"
+kill -CONT "$held" 2>/dev/null
+wait_for 300 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
 
 # --- study status reads what the tasks did ---
 "$STUDY" status "$NAME" --runs "$TMP/S" >status1.out 2>&1 || fail status.exit "$(cat status1.out)"
@@ -184,9 +200,9 @@ else
 fi
 
 # --- submit again: only what is not done, in a new array (one run per task this
-# time); the stopped run resumes ---
+# time, held until the test watches); the stopped run resumes ---
 t=$SECONDS
-"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub2.log 2>&1
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" --sbatch-args=--hold >sub2.log 2>&1
 rc=$?
 J2=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
 left=$(q $DB "SELECT COUNT(*) FROM run WHERE state <> 'done'")
@@ -202,16 +218,28 @@ WPID=$!
 # a signal to the task's shell alone (scancel --batch; what sbatch --signal=B:TERM@T
 # sends before a time limit) reaches the engine through the script's trap and the
 # worker: the run that never started in the first array, stopped once it shakes
-RID2=""
-if [ "$ost" = unstarted ]; then
-	if wait_for 60 is_shaking "$other"; then
-		RID2=$other
-		scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
-	else
-		fail scancel.batch_setup "run $other did not reach a checkpoint within 60 s"
-	fi
+# (the cancelled task's second run is unstarted: its first was held until the signal came)
+# shaking_held ID: the run is shaking and its engine (held, its pid) stopped; whenever it
+# starts (the array's tasks may run one after the other), not within a time
+shaking_held() { is_shaking "$1" && engine_of "$1" && held=$REPLY && kill -STOP "$held" 2>/dev/null; }
+RID2="" held=""
+scontrol release "$J2" || fail scancel.batch_setup "scontrol release $J2: exit $?"
+if [ "$ost" != unstarted ]; then
+	fail scancel.batch_setup "the cancelled task's other run $other is '$ost', not unstarted: no run to stop"
+elif ! wait_for 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
+	fail scancel.batch_setup "run $other was not seen shaking before its array ended (or its engine not held): $(ls "S/$NAME" | grep -F "$other" | tr '\n' ' '); engines: $(pgrep -a -x shake | cut -c1-300)"
+elif ! is_shaking "$other"; then
+	kill -CONT "$held"
+	fail scancel.batch_setup "run $other ended as its engine was stopped"
+else
+	# its engine held (as above) until the signal, passed on by the script and the
+	# worker, is pending
+	RID2=$other
+	scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
+	wait_for 30 term_pending "$held" || fail scancel.batch_passed_on "engine $held of run $other got no SIGTERM within 30 s"
+	kill -CONT "$held"
 fi
-wait_for 60 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
+wait_for 300 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
 wait_for 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
 wait $WPID
 wrc=$?
@@ -220,17 +248,15 @@ grep -Eq "^  frequency=[34] seed=[12] +t [0-9.e+-]+/6 s" watch.out && grep -q "S
 	ok watch.slurm_runs_in_flight_and_end ||
 	fail watch.slurm_runs_in_flight_and_end "exit $wrc: $(grep -c '^[0-9][0-9]:' watch.out) looks; $(tail -n 4 watch.out | tr '\n' '|') $(head -c 200 watch.err)"
 "$STUDY" status "$NAME" --runs "$TMP/S" >status2.out 2>&1 || fail status2.exit "$(cat status2.out)"
+[ -n "$RID2" ] && [ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
+	ok scancel.batch_signal_reaches_engine ||
+	fail scancel.batch_signal_reaches_engine "run '$RID2': $(q $DB "SELECT * FROM attempt WHERE run = '$RID2'"; tail -n 2 "S/$NAME/logs/$RID2.log" 2>&1)"
 if [ -n "$RID2" ]; then
-	[ "$(interrupted "$J2")" = "$RID2" ] && grep -q "interrupted at t = .*checkpoint .* written" "S/$NAME/logs/$RID2.log" &&
-		ok scancel.batch_signal_reaches_engine ||
-		fail scancel.batch_signal_reaches_engine "$(q $DB "SELECT * FROM attempt WHERE run = '$RID2'"; tail -n 2 "S/$NAME/logs/$RID2.log")"
 	"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub3.log 2>&1 && grep -q "1 to submit" sub3.log ||
 		fail resubmit.third "$(cat sub3.log)"
 	J3=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
-	wait_for 60 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
+	wait_for 300 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
 	"$STUDY" status "$NAME" --runs "$TMP/S" >status3.out 2>&1 || fail status3.exit "$(cat status3.out)"
-else
-	skip scancel.batch_signal_reaches_engine "the first array's cancelled task had finished its second run: no run left to stop"
 fi
 echo "# resubmitted arrays: $((SECONDS - t)) s"
 [ "$(q $DB "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 4 ] && ok resubmit.all_done ||

@@ -18,8 +18,7 @@
 # down host is still found by --filter-hosts itself.
 # tier: slow: an OpenSSH server, two campaigns over ssh (GNU parallel checks every host first) and a local reference
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 # the driver finds what travels beside itself (study, shake), and its local worker the
 # engine beside itself: the binaries under test
@@ -88,11 +87,7 @@ name = $NAME
 seed = 3
 replicates = 2
 [scene]
-n_grains = 40
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene n_grains=40 depth=-)
 amplitude = 1
 duration = 0.2
 traj_rate = 200

@@ -6,8 +6,7 @@
 # and at once on Ctrl-C. `study run --progress` prints the same look as one line.
 # tier: slow: campaigns watched while they run, at the pace of their runs
 . "$(dirname "$0")/lib.sh"
-STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
-[ -x "$STUDY" ] || { fail setup "STUDY=$STUDY is not an executable (run make)"; finish; }
+study_setup
 cd "$TMP" || exit 1
 campaign() { # NAME DURATION
 	cat <<C
@@ -16,11 +15,7 @@ name = $1
 seed = 2
 replicates = 2
 [scene]
-n_grains = 60
-width = 20
-radius_ratio = 2
-settle_ke = 1
-settle_min = 0.2
+$(tiny_scene depth=-)
 amplitude = 1
 duration = $2
 traj_rate = 100
@@ -31,7 +26,8 @@ C
 # runs of about 2.5 s whatever the build (the sanitizer build is several times slower):
 # long enough that the watch looks at each several times, measured on one short run
 t0=$(date +%s%N)
-"$SHAKE" n_grains=60 width=20 radius_ratio=2 settle_ke=1 settle_min=0.2 amplitude=1 frequency=3 duration=2 \
+tiny_bed depth=-
+"$SHAKE" "${BEDARGS[@]}" amplitude=1 frequency=3 duration=2 \
 	traj_rate=100 output="$TMP/cal.h5" progress=no >cal.log 2>&1
 T=$(awk -v ms=$((($(date +%s%N) - t0) / 1000000)) 'BEGIN { d = 2 * 2500 / (ms > 1 ? ms : 1); d = d < 3 ? 3 : d > 40 ? 40 : d; printf "%d", d }')
 campaign w "$T" >w.campaign

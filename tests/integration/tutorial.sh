@@ -23,7 +23,7 @@ tiny() {
 	sed -e 's/^duration = 120 .*/duration = 6/' -e 's/^stop_skip = 24 .*/stop_skip = 3/' \
 		-e 's/^tolerance = 0.01$/tolerance = 0.3/' -e 's/^to = 1.0 .*/to = 2.5/' \
 		-e 's/^replicates = 6 .*/replicates = 3\nlevel = 0.75/' -e 's/^threshold = 2 .*/threshold = 0.5/' \
-		-e 's/^\[scene\]$/[scene]\nn_grains = 100\nwidth = 20\nsettle_ke = 1\nsettle_min = 0.2\nflux_lines = 20/' \
+		-e 's/^\[scene\]$/[scene]\n'"$(tiny_scene n_grains=100 radius_ratio=- depth=- | awk '{ printf "%s%s", (NR > 1 ? "\\n" : ""), $0 }')"'\nflux_lines = 20/' \
 		"$REPO/campaigns/examples/amplitude.campaign"
 }
 tiny >campaigns/examples/amplitude.campaign

@@ -13,13 +13,12 @@ analysis_tools_setup
 H5MUT="${H5MUT:-$REPO/build/fuzz/h5mut}"
 [ -x "$H5MUT" ] || { fail setup "$H5MUT is not an executable (run make tests)"; finish; }
 cd "$TMP" || exit 1
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 
 printf '[campaign]\nname = w\nseed = 5\nreplicates = 6\n[scene]\nn_grains = 40\nwidth = 16\ndepth = 0\nsettle_ke = 1
 settle_min = 0.1\npreset = fast\namplitude = 0.05\nradius_ratio = 1.5\nduration = 0.3\n[grid]
 frequency = 20, 21, 22, 23\n' >w.campaign
 "$STUDY" run w.campaign --runs R --jobs 2 --no-progress >setup.log 2>&1 &&
-	[ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 24 ] && ok wdiff.setup.campaign ||
+	[ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 24 ] && ok wdiff.setup.campaign ||
 	{ fail wdiff.setup.campaign "$(tail -c 400 setup.log)"; finish; }
 
 # each run's rise by frequency and replicate (1..6)
@@ -30,7 +29,7 @@ frequency = 20, 21, 22, 23\n' >w.campaign
 times() {
 	"$H5MUT" "R/w/$1.h5" "R/w/$1.new" --attr / risen "$2" --attr / waiting_time "$3" --attr /parameters duration 20 &&
 		mv "R/w/$1.new" "R/w/$1.h5" &&
-		q "UPDATE result SET file_seal = '$(head -c 64 "R/w/$1.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$1';
+		q R/study.db "UPDATE result SET file_seal = '$(head -c 64 "R/w/$1.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$1';
 			UPDATE param SET value = 20 WHERE run = '$1' AND key = 'duration'"
 }
 bad=0
@@ -41,7 +40,7 @@ while IFS='|' read -r id rep f; do
 	23) if [ "$rep" -le 2 ]; then r=1 w=$rep; else r=0 w=5; fi ;;
 	esac
 	times "$id" "$r" "$w" || bad=1
-done < <(q "SELECT r.id, r.replicate, p.value FROM run r JOIN param p ON p.run = r.id AND p.key = 'frequency'")
+done < <(q R/study.db "SELECT r.id, r.replicate, p.value FROM run r JOIN param p ON p.run = r.id AND p.key = 'frequency'")
 [ "$bad" = 0 ] && ok wdiff.setup.times || { fail wdiff.setup.times "h5mut failed"; finish; }
 
 "$BINDIR/waiting" w --runs R --no-plot --boot 400 --seed 3 --diff frequency >w.out 2>w.err
@@ -66,11 +65,11 @@ awk -F, '{ exit !($6 == "nan" && $9 == "b" && $10 == "nan" && $14 == 0 && $15 > 
 	grep -qE ' 23 +20 +>2\.000 \[[-0-9.]+, \+inf\] +b ' w.out &&
 	ok wdiff.censored.bound || fail wdiff.censored.bound "$(row 23); $(grep -A5 '^# differences' w.out)"
 # stored: one diff_median per pair, the censored one without a value, grp naming both
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND key = 'diff_median'")" = 3 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE key = 'diff_median' AND frequency = 23 AND value IS NULL
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE tool = 'waiting' AND key = 'diff_median'")" = 3 ] &&
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE key = 'diff_median' AND frequency = 23 AND value IS NULL
 		AND hi IS NULL AND grp LIKE '%23% - %20%'")" = 1 ] &&
-	[ "$(q "SELECT COUNT(*) FROM analysis WHERE key = 'diff_median' AND frequency = 22 AND value = 9 AND lo > 0")" = 1 ] &&
-	ok wdiff.stored || fail wdiff.stored "$(q "SELECT grp, value, lo, hi, n FROM analysis WHERE key = 'diff_median'")"
+	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE key = 'diff_median' AND frequency = 22 AND value = 9 AND lo > 0")" = 1 ] &&
+	ok wdiff.stored || fail wdiff.stored "$(q R/study.db "SELECT grp, value, lo, hi, n FROM analysis WHERE key = 'diff_median'")"
 # the same seed, the same intervals
 cp $A/waiting_diff.csv first.csv
 "$BINDIR/waiting" w --runs R --no-plot --no-store --boot 400 --seed 3 --diff frequency >w2.out 2>&1 &&
@@ -88,7 +87,7 @@ cp $A/waiting_diff.csv first.csv
 while IFS='|' read -r id rep; do
 	[ "$rep" -le 2 ] && r=1 w=$rep || r=0 w=5
 	times "$id" "$r" "$w"
-done < <(q "SELECT r.id, r.replicate FROM run r JOIN param p ON p.run = r.id AND p.key = 'frequency' AND p.value = 20")
+done < <(q R/study.db "SELECT r.id, r.replicate FROM run r JOIN param p ON p.run = r.id AND p.key = 'frequency' AND p.value = 20")
 "$BINDIR/waiting" w --runs R --no-plot --no-store --boot 200 --diff frequency >c.out 2>c.err
 awk -F, '{ exit !($5 == "nan" && $9 == "a" && $10 == "nan" && $11 == "-inf") }' <<<"$(row 21)" &&
 	grep -qE ' 21 +20 +<-2\.000 \[-inf, ' c.out && ok wdiff.censored.reference ||

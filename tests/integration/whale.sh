@@ -15,7 +15,6 @@ data_driver_setup
 cd "$TMP" || exit 1
 WHALE="$BINDIR/whale"
 [ -x "$WHALE" ] || { fail setup "$WHALE is not an executable (run make)"; finish; }
-q() { sqlite3 -batch -noheader R/study.db "$1"; }
 png_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '211PNG' ]; }
 pdf_ok() { [ -s "$1" ] && [ "$(head -c 4 "$1")" = '%PDF' ]; }
 # rel A B TOL : |A - B| <= TOL |B| (both "nan" counts as equal)
@@ -24,12 +23,12 @@ rel() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { if (a == "nan" && b == "nan")
 # The bed of ring.sh and observables_rise.sh: a 2.5-3x intruder rises within seconds
 # to half a minute at 4 Hz, A = 2 cm, and moves up and down at the top of this shallow
 # bed; the trajectory at 50 Hz.
-printf '[campaign]\nname = wh\nseed = 5\nreplicates = 3\n[scene]\npreset = fast\nn_grains = 100\nwidth = 24\ndepth = 1\nsettle_ke = 1\nsettle_min = 0.2\namplitude = 2\nfrequency = 4\nduration = 40\ntraj_rate = 50\n[grid]\nradius_ratio = 0, 2.5, 3\n' >wh.campaign
+printf '[campaign]\nname = wh\nseed = 5\nreplicates = 3\n[scene]\npreset = fast\n'"$(tiny_scene n_grains=100 width=24 radius_ratio=-)"'\namplitude = 2\nfrequency = 4\nduration = 40\ntraj_rate = 50\n[grid]\nradius_ratio = 0, 2.5, 3\n' >wh.campaign
 t0=$SECONDS
 "$DATA_STUDY" run wh.campaign --runs "$TMP/R" --jobs 2 --no-progress >study.log 2>&1
 rc=$?
 echo "# campaign: $((SECONDS - t0)) s"
-[ "$rc" -eq 0 ] && [ "$(q "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 9 ] && ok setup.campaign ||
+[ "$rc" -eq 0 ] && [ "$(q R/study.db "SELECT COUNT(*) FROM run WHERE state = 'done'")" = 9 ] && ok setup.campaign ||
 	{ fail setup.campaign "study exit $rc: $(tail -c 300 study.log)"; finish; }
 
 "$WHALE" wh --runs R --skip 2 --boot 300 --seed 4 >whale.out 2>whale.err
@@ -53,9 +52,9 @@ ntr=$(tail -n +2 $A/whale_traces.csv | cut -d, -f1 | sort -u | wc -l)
 [ "$nrep" = "$ntr" ] && [ "$nrep" -ge 1 ] && ok whale.traces || fail whale.traces "$nrep representatives, $ntr traces"
 
 # ---- the counts against the database ----
-nr=$(q "SELECT COUNT(*) FROM result s JOIN param p ON p.campaign = s.campaign AND p.run = s.run AND p.key = 'radius_ratio'
+nr=$(q R/study.db "SELECT COUNT(*) FROM result s JOIN param p ON p.campaign = s.campaign AND p.run = s.run AND p.key = 'radius_ratio'
 	WHERE s.campaign = 'wh' AND s.risen = 0 AND CAST(p.value AS REAL) > 0")
-st() { q "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND key = '$1'"; }
+st() { q R/study.db "SELECT CAST(SUM(value) AS INT) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND key = '$1'"; }
 [ "$(st not_risen)" = "$nr" ] && [ "$(st runs)" = 6 ] &&
 	[ "$(($(st not_risen) + $(st no_trajectory) + $(st too_short) + $(st analysed)))" = 6 ] &&
 	[ "$(awk -F, 'NR > 1 && $11 == "not_risen"' $A/whale_runs.csv | wc -l)" = "$nr" ] && ok counts.not_risen ||
@@ -65,10 +64,10 @@ if [ "$nr" -gt 0 ]; then
 fi
 # every stored mean says how many runs it rests on: the period's n is the runs with >= 2 dives
 np=$(awk -F, 'NR > 1 && $11 == "analysed" && $21 != "nan"' $A/whale_runs.csv | wc -l)
-[ "$(q "SELECT SUM(n) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND key = 'period'")" = "$np" ] &&
-	[ "$(st with_period)" = "$np" ] && ok counts.period_n || fail counts.period_n "$np runs with a period; stored $(q "SELECT grp, n FROM analysis WHERE tool = 'whale' AND key = 'period'")"
-[ "$(q "SELECT COUNT(*) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND grp = 'trend over radius_ratio' AND key GLOB 'trend_*'")" = 6 ] &&
-	ok store.trend_rows || fail store.trend_rows "$(q "SELECT grp, key, value, n FROM analysis WHERE tool = 'whale' AND key GLOB 'trend*'")"
+[ "$(q R/study.db "SELECT SUM(n) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND key = 'period'")" = "$np" ] &&
+	[ "$(st with_period)" = "$np" ] && ok counts.period_n || fail counts.period_n "$np runs with a period; stored $(q R/study.db "SELECT grp, n FROM analysis WHERE tool = 'whale' AND key = 'period'")"
+[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'wh' AND tool = 'whale' AND grp = 'trend over radius_ratio' AND key GLOB 'trend_*'")" = 6 ] &&
+	ok store.trend_rows || fail store.trend_rows "$(q R/study.db "SELECT grp, key, value, n FROM analysis WHERE tool = 'whale' AND key GLOB 'trend*'")"
 grep -q '^# trend of the rate against 𝓡' whale.out && ok print.trend || fail print.trend "$(grep '^#' whale.out)"
 
 # ---- each analysed run recomputed from its file ----
@@ -101,13 +100,13 @@ done < <(awk -F, 'NR > 1 && $11 == "analysed" { print $3 "," $10 "," $12 "," $14
 [ "$nchk" -ge 1 ] && [ -z "$bad" ] && ok recompute.runs_from_files || fail recompute.runs_from_files "$nchk runs checked:$bad"
 
 # ---- options ----
-q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key" >rows1
+q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key" >rows1
 "$WHALE" wh --runs R --skip 2 --boot 300 --seed 4 --no-plot >/dev/null 2>&1
-q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key" >rows2
+q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key" >rows2
 cmp -s rows1 rows2 && ok whale.reproducible || fail whale.reproducible "$(diff rows1 rows2 | head -4)"
 "$WHALE" wh --runs R --skip 1000 --no-store --out long >long.out 2>long.err
 rc=$?
-cmp -s rows1 <(q "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key") &&
+cmp -s rows1 <(q R/study.db "SELECT grp, key, value, lo, hi, n FROM analysis WHERE tool = 'whale' ORDER BY grp, key") &&
 	[ "$rc" -eq 0 ] && ok whale.no_store || fail whale.no_store "exit $rc: $(cat long.err)"
 risen=$((6 - nr))
 [ "$(awk -F, 'NR > 1 && $11 == "too_short"' long/whale_runs.csv | wc -l)" = "$risen" ] &&
