@@ -226,7 +226,7 @@ planted V6 "$ID0" --attr-str / format shakebox-run-2 && tail -c +513 V6/fz/"$ID0
 # the readers walk a file first in a child process. The shim makes H5Lvisit crash so on
 # the run's file (the crash, not the one file's layout, is what is tested).
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
-planted W1 && q W1 "UPDATE result SET file_seal = NULL"
+planted W1 && q W1/study.db "UPDATE result SET file_seal = NULL"
 for t in waiting whale; do
 	LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 		counted h5walk_crash.$t $t W1 "$ID" unreadable "the HDF5 library failed while walking the file's links and objects"
