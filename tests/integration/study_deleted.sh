@@ -126,10 +126,29 @@ nd=$(q M/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'm' AND state = 'do
 nf=$(q M/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'm' AND state = 'failed'")
 [ "$deleted" = 1 ] && [ "$rc" = 0 ] && [ "$nd" = 4 ] && [ "$nf" = 0 ] && ok midrun.none_failed ||
 	fail midrun.none_failed "deleted $deleted, exit $rc, done $nd, failed $nf: $(tail -n 3 m.log)"
-grep -q "lost .* input while the campaign ran" m.log &&
+grep -q "lost .* input or output while the campaign ran" m.log &&
 	[ "$(q M/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'missing_input'")" -ge 1 ] &&
 	ok midrun.recorded_missing_input ||
 	fail midrun.recorded_missing_input "$(grep -c 'lost .* input' m.log) 'lost input' lines; attempts: $(q M/study.db "SELECT run, status FROM attempt" | tr '\n' ' ')"
+# ... each saying what went (the worker may have said nothing: no file to run)
+[ "$(q M/study.db "SELECT COUNT(*) FROM attempt WHERE status = 'missing_input' AND COALESCE(message, '') = ''")" = 0 ] &&
+	ok midrun.missing_input_says_what ||
+	fail midrun.missing_input_says_what "$(q M/study.db "SELECT run, n, message FROM attempt WHERE status = 'missing_input'" | tr '\n' ' ')"
+
+# --- an output file seen and gone before the driver reads it (its directory deleted
+# meanwhile): the run is prepared and run again, not failed. The fault shim unlinks the
+# file at the driver's first read of it (IOFAIL_VANISH), the race made certain ---
+SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+tiny_campaign v 3 >v.campaign
+vid=$("$STUDY" expand v.campaign | awk -F'\t' 'NR == 2 { print $1 }')
+LD_PRELOAD="$SHIM" IOFAIL_VANISH="$vid.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+	bash -c 'export IOFAIL_VANISH_PID=$$; exec "$0" run v.campaign --runs V --jobs 2 --no-progress' "$STUDY" >v.log 2>&1
+rc=$?
+[ "$rc" = 0 ] && [ "$(q V/study.db "SELECT COUNT(*) FROM run WHERE campaign = 'v' AND state = 'done'")" = 4 ] &&
+	[ "$(q V/study.db "SELECT status FROM attempt WHERE run = '$vid' ORDER BY n LIMIT 1")" = missing_input ] &&
+	q V/study.db "SELECT message FROM attempt WHERE run = '$vid' AND n = 1" | grep -q "its output file was gone when it was to be read" &&
+	ok vanished.output_run_again ||
+	fail vanished.output_run_again "exit $rc: $(q V/study.db "SELECT run, n, status, message FROM attempt" | tr '\n' ' ') $(tail -n 2 v.log)"
 # a job whose campaign directory was deleted before its worker started: said so, exit 2
 # (the driver finds its input gone and prepares it again), never "bad job" (exit 1, the
 # run failed)
