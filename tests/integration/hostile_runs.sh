@@ -251,6 +251,12 @@ for how in elink extern vds; do
 done
 fresh X "$ID" --elink $PHI "$TMP/pipe"
 ingested outside.elink.study X "is an external link"
+# a virtual dataset whose source is itself (in this file, "."): HDF5 1.10.8 recursed
+# until the stack was gone (make fuzz, links input 352 of seed 11: bin/figures)
+fresh X "$ID" --vds $PHI . || fail outside.vds_itself "h5mut --vds $PHI ."
+for t in onset figures; do
+	counted outside.vds_itself.$t $t X "$ID" unreadable "itself virtual"
+done
 # bin/dumpflux run checked neither a file's format nor its digest
 for how in "digest|--stale-digest --attr / steps 5|do not match their digest" \
 	"format|--attr-str / format shakebox-run-9|format 'shakebox-run-9'"; do
