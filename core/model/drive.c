@@ -3,6 +3,7 @@
 #include "drive.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "units.h"
@@ -130,9 +131,9 @@ double drive_axis_freq(int kind, double x, double A, double g)
 
 /* the frequency's unit is the parameter table's too (tests/unit/drive.c checks) */
 static const sb_axis_row AXES[AXIS_N] = {
-	[AXIS_FREQUENCY] = {"frequency", "Hz", "frequency", "f", 1},
-	[AXIS_GAMMA] = {"gamma", "", "peak acceleration", "Γ", 2},
-	[AXIS_VELOCITY] = {"velocity", "cm/s", "peak velocity", "v", 1},
+	[AXIS_FREQUENCY] = {"frequency", "Hz", "frequency", "f", "f", 1},
+	[AXIS_GAMMA] = {"gamma", "", "peak acceleration", "Γ", "Gamma", 2},
+	[AXIS_VELOCITY] = {"velocity", "cm/s", "peak velocity", "v", "v", 1},
 };
 
 const sb_axis_row *drive_axis_row(int kind) { return kind >= 0 && kind < AXIS_N ? &AXES[kind] : NULL; }
@@ -163,4 +164,22 @@ int drive_axis_kind(const char *name)
 		if (name && !strcmp(AXES[k].name, name))
 			return k;
 	return -1;
+}
+
+const char *drive_axis_text(int kind, const char *number, char *buf, size_t len)
+{
+	const sb_axis_row *r = drive_axis_row(kind);
+	if (!r)
+		snprintf(buf, len, "%s", number);
+	else if (*r->unit)
+		snprintf(buf, len, "%s %s", number, r->unit);
+	else
+		snprintf(buf, len, "%s %s", r->ascii, number);
+	return buf;
+}
+
+const char *drive_axis_heading(int kind)
+{
+	const sb_axis_row *r = drive_axis_row(kind);
+	return !r ? "" : *r->unit ? r->unit : r->ascii;
 }

@@ -3,6 +3,8 @@
 #ifndef SB_DRIVE_H
 #define SB_DRIVE_H
 
+#include <stddef.h>
+
 enum sb_ramp { RAMP_NONE, RAMP_LINEAR, RAMP_UPDOWN };
 
 typedef struct sb_drive {
@@ -39,7 +41,7 @@ double drive_velocity(double A, double f);
  * symbols), and how it scales with the frequency at a fixed amplitude (as f^power).
  * The campaign's search axes (docs/campaigns.md, "Axes in Gamma and v"), the figures'
  * axes and the onset search's readers use it; tests/integration/one_place_core.sh fails
- * when another file of core/, lib/ or analysis/ spells an axis out again. */
+ * when another file of core/, lib/, study/ or analysis/ spells an axis out again. */
 enum sb_axis { AXIS_FREQUENCY, AXIS_GAMMA, AXIS_VELOCITY, AXIS_N };
 
 typedef struct sb_axis_row {
@@ -47,6 +49,7 @@ typedef struct sb_axis_row {
 	const char *unit;   /* "Hz", "", "cm/s" */
 	const char *words;  /* "frequency", "peak acceleration", "peak velocity" */
 	const char *symbol; /* "f", "Γ", "v" (UTF-8) */
+	const char *ascii;  /* "f", "Gamma", "v": the symbol in a terminal's text */
 	int power;          /* the axis grows as f^power at a fixed amplitude: 1, 2, 1 */
 } sb_axis_row;
 
@@ -67,5 +70,12 @@ double drive_axis_freq_from(int kind, double x, double x0, double f0);
 const char *drive_axis_name(int kind);
 const char *drive_axis_unit(int kind);
 int drive_axis_kind(const char *name);
+/* A number (or range, "2 to 3") on axis kind as a line of text says it: followed by
+ * the axis's unit ("2.5 Hz", "70.7 cm/s"), or, on an axis without a unit, after its
+ * ASCII symbol ("Gamma 1.7"). Returns buf. */
+const char *drive_axis_text(int kind, const char *number, char *buf, size_t len);
+/* What heads a column of numbers on axis kind: its unit, or its ASCII symbol on an
+ * axis without one ("Hz", "Gamma"). */
+const char *drive_axis_heading(int kind);
 
 #endif

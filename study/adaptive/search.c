@@ -378,11 +378,20 @@ int search_store(const search *s, st_db *db, sb_err *e)
 
 /* ---- before the start ---- */
 
-/* "4 Hz (Gamma 1.93, v 75.4 cm/s)" */
+/* "4 Hz (Gamma 1.93, v 75.4 cm/s)": the frequency, then the drive on each other axis */
 static void drive_text(const sb_scene *s, double f, char *buf, size_t len)
 {
-	snprintf(buf, len, "%.6g Hz (Gamma %.3g, v %.3g cm/s)", f, drive_gamma(s->amplitude, f, s->gravity),
-		 drive_velocity(s->amplitude, f));
+	char num[32], t[64];
+	snprintf(num, sizeof num, "%.6g", f);
+	size_t l = (size_t)snprintf(buf, len, "%s (", drive_axis_text(AXIS_FREQUENCY, num, t, sizeof t));
+	for (int k = AXIS_FREQUENCY + 1; k < AXIS_N && l < len; k++) {
+		const sb_axis_row *r = drive_axis_row(k);
+		snprintf(num, sizeof num, "%.3g", drive_axis(k, s->amplitude, f, s->gravity));
+		l += (size_t)snprintf(buf + l, len - l, "%s%s %s%s%s", k > AXIS_FREQUENCY + 1 ? ", " : "", r->ascii, num,
+				      *r->unit ? " " : "", r->unit);
+	}
+	if (l < len)
+		snprintf(buf + l, len - l, ")");
 }
 
 int search_preview(const campaign *c, long group, char *buf, size_t len)
@@ -403,9 +412,12 @@ int search_preview(const campaign *c, long group, char *buf, size_t len)
 				    s.amplitude, at[0], at[1], at[2]);
 	double limit, gamma = drive_gamma(s.amplitude, f[0], s.gravity);
 	const char *what = axes_model_fails(gamma, &limit);
-	if (what && l < len)
-		snprintf(buf + l, len - l, "warning: group %s: the first point, %.6g Hz, is at Gamma %.3g, at or above %g "
+	if (what && l < len) {
+		char g[32], tg[64];
+		snprintf(g, sizeof g, "%.3g", gamma);
+		snprintf(buf + l, len - l, "warning: group %s: the first point, %.6g Hz, is at %s, at or above %g "
 			 "where %s (docs/model.md, \"Where the model fails\"); such a run counts as on\n", label, f[0],
-			 gamma, limit, what);
+			 drive_axis_text(AXIS_GAMMA, g, tg, sizeof tg), limit, what);
+	}
 	return what != NULL;
 }

@@ -26,23 +26,18 @@ double axes_frequency(int kind, double x, double amplitude, double gravity)
 
 double axes_amplitude(int kind, double x, double frequency, double gravity)
 {
-	if (!(x > 0) || !(frequency > 0))
+	const sb_axis_row *r = drive_axis_row(kind);
+	if (!(x > 0) || !(frequency > 0) || !r || kind == AXIS_FREQUENCY)
 		return NAN;
+	/* every axis is A (2 pi f)^power, over g when squared (drive.h) */
 	double w = SB_TWO_PI * frequency;
-	switch (kind) {
-	case AXIS_GAMMA:
-		return printed(x * gravity / (w * w));
-	case AXIS_VELOCITY:
-		return printed(x / w);
-	default:
-		return NAN;
-	}
+	return printed(r->power == 2 ? x * gravity / (w * w) : x / w);
 }
 
-void axes_drive(double gamma, double velocity, double gravity, double *amplitude, double *frequency)
+void axes_drive(const double x[AXIS_N], double gravity, double *amplitude, double *frequency)
 {
-	*frequency = printed(gamma * gravity / velocity / SB_TWO_PI);
-	*amplitude = axes_amplitude(AXIS_VELOCITY, velocity, *frequency, gravity);
+	*frequency = printed(x[AXIS_GAMMA] * gravity / x[AXIS_VELOCITY] / SB_TWO_PI);
+	*amplitude = axes_amplitude(AXIS_VELOCITY, x[AXIS_VELOCITY], *frequency, gravity);
 }
 
 /* Where the model is known to fail, one row per limit; docs/model.md, "Where the model

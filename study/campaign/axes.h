@@ -15,9 +15,10 @@
 double axes_frequency(int kind, double x, double amplitude, double gravity);
 double axes_amplitude(int kind, double x, double frequency, double gravity);
 
-/* The drive with both Gamma and v given: omega = Gamma g / v, A = v / omega (the
- * frequency printed with 12 digits first, then the amplitude from it). */
-void axes_drive(double gamma, double velocity, double gravity, double *amplitude, double *frequency);
+/* The drive with both Gamma and v given, x[AXIS_GAMMA] and x[AXIS_VELOCITY]:
+ * omega = Gamma g / v, A = v / omega (the frequency printed with 12 digits first, then
+ * the amplitude from it). */
+void axes_drive(const double x[AXIS_N], double gravity, double *amplitude, double *frequency);
 
 /* Where the model is known to fail at a drive: NULL, or what happens there (a clause),
  * with the Gamma from which it does in *limit. The limits are data, in one table of

@@ -128,9 +128,10 @@ static int value_add(cp_axis *a, sb_scene *scratch, const char *v, const char *w
 		/* Gamma or v: a positive number, printed as a range's values are */
 		double x;
 		char buf[40];
+		const char *unit = drive_axis_unit(drive_axis_kind(a->key));
 		if (!parse_num(v, &x) || !(x > 0 && x <= CP_DERIVED_MAX))
-			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in (0, %d]%s, got '%s'", where, a->key,
-				       CP_DERIVED_MAX, strcmp(a->key, "velocity") ? "" : " (cm/s)", v);
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in (0, %d]%s%s%s, got '%s'", where, a->key,
+				       CP_DERIVED_MAX, *unit ? " (" : "", unit, *unit ? ")" : "", v);
 		snprintf(buf, sizeof buf, "%.12g", x);
 		return axis_add(a, buf, e);
 	}
@@ -882,26 +883,33 @@ static int zip_finish(campaign *c, sb_err *e)
 	return 0;
 }
 
-/* gamma and velocity: what they set. Of amplitude, frequency, gamma and velocity two
- * make the drive; a campaign gives at most two of them (the amplitude's default counts
- * only when the campaign sets neither it nor the frequency). */
+/* The drive's other axes (Gamma, v): what they set. Of amplitude, frequency and those
+ * axes two make the drive; a campaign gives at most two of them (the amplitude's default
+ * counts only when the campaign sets neither it nor the frequency). */
 static int derived_finish(campaign *c, sb_err *e)
 {
 	const char *p = c->path;
-	int lg = seen_key(c, "gamma"), lv = seen_key(c, "velocity");
+	int line[AXIS_N] = {0}, first = -1, second = -1;
+	for (int k = AXIS_FREQUENCY + 1; k < AXIS_N; k++)
+		if ((line[k] = seen_key(c, drive_axis_name(k)))) {
+			if (first < 0)
+				first = k;
+			else if (second < 0)
+				second = k;
+		}
 	int la = seen_key(c, "amplitude"), lf = seen_key(c, "frequency");
-	if (!lg && !lv)
+	if (first < 0)
 		return 0;
-	int l = lg ? lg : lv;
-	const char *k = lg ? "gamma" : "velocity";
+	int l = line[first];
+	const char *k = drive_axis_name(first);
 	if (c->onset.line)
 		return sb_errf(e, SB_EUSAGE, "%s:%d: %s: an [onset] campaign searches the frequency; to search in %s, set "
 			       "axis = %s under [onset] (line %d)", p, l, k, k, k, c->onset.line);
-	if (lg && lv) {
+	if (second >= 0) {
 		if (la || lf)
-			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: gamma (line %d) and velocity (line %d) set both the "
+			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: %s (line %d) and %s (line %d) set both the "
 				       "amplitude and the frequency; remove it", p, la ? la : lf, la ? "amplitude" : "frequency",
-				       lg, lv);
+				       k, l, drive_axis_name(second), line[second]);
 		c->derive = CP_DERIVE_BOTH;
 	} else if (la && lf) {
 		return sb_errf(e, SB_EUSAGE, "%s:%d: %s: amplitude (line %d) and frequency (line %d) are both set, so %s has "
@@ -937,13 +945,20 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 		int prev;
 		if (!params_find(name) && !campaign_key_derived(name)) {
 			const char *near = params_nearest(name);
-			static const char *const derived[] = {"gamma", "velocity"};
-			char dym[96];
+			/* the drive's other axes, the campaign's own keys: "gamma and velocity" */
+			const char *derived[AXIS_N];
+			char dym[96], names[64] = "";
+			int nd = 0;
+			for (int k = AXIS_FREQUENCY + 1; k < AXIS_N; k++) {
+				derived[nd++] = drive_axis_name(k);
+				size_t l = strlen(names);
+				snprintf(names + l, sizeof names - l, "%s%s", k == AXIS_FREQUENCY + 1 ? "" : k == AXIS_N - 1 ? " and " : ", ",
+					 drive_axis_name(k));
+			}
 			if (near)
 				snprintf(dym, sizeof dym, "; did you mean %s?", near);
-			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s'%s (shake --help lists the keys; gamma and velocity "
-				"are the campaign's)", where, name,
-				near ? dym : did_you_mean(name, derived, 2, dym, sizeof dym));
+			sb_errf(&tmp, SB_EUSAGE, "%s: unknown key '%s'%s (shake --help lists the keys; %s are the campaign's)",
+				where, name, near ? dym : did_you_mean(name, derived, nd, dym, sizeof dym), names);
 		}
 		else if (campaign_key_reserved(name))
 			sb_errf(&tmp, SB_EUSAGE, "%s: %s: set by the study driver, not by a campaign", where, name);

@@ -81,20 +81,30 @@ static double derived_at(const campaign *c, const long *digit, const char *key, 
 	return NAN;
 }
 
-/* gamma or velocity set the point's frequency, amplitude or both (campaign.c,
- * derived_finish), within the engine's ranges of those keys */
+/* the drive's other axes (Gamma, v: core/model/drive.h) set the point's frequency,
+ * amplitude or both (campaign.c, derived_finish), within the engine's ranges of those keys */
 static int scene_derive(const campaign *c, const long *digit, sb_scene *s, sb_err *e)
 {
-	int lg = 0, lv = 0;
-	double gm = derived_at(c, digit, "gamma", &lg), v = derived_at(c, digit, "velocity", &lv);
-	int kind = lg ? AXIS_GAMMA : AXIS_VELOCITY, line = lg ? lg : lv;
-	double x = lg ? gm : v, f = s->frequency, A = s->amplitude;
+	/* x[k] and its line on each axis the campaign gives; kind the first, other the second */
+	double x[AXIS_N] = {0};
+	int at_line[AXIS_N] = {0}, kind = -1, other = -1;
+	for (int k = AXIS_FREQUENCY + 1; k < AXIS_N; k++) {
+		x[k] = derived_at(c, digit, drive_axis_name(k), &at_line[k]);
+		if (at_line[k] && kind < 0)
+			kind = k;
+		else if (at_line[k] && other < 0)
+			other = k;
+	}
+	if (kind < 0)
+		return 0;
+	int line = at_line[kind];
+	double f = s->frequency, A = s->amplitude;
 	if (c->derive == CP_DERIVE_FREQUENCY)
-		f = axes_frequency(kind, x, A, s->gravity);
+		f = axes_frequency(kind, x[kind], A, s->gravity);
 	else if (c->derive == CP_DERIVE_AMPLITUDE)
-		A = axes_amplitude(kind, x, f, s->gravity);
+		A = axes_amplitude(kind, x[kind], f, s->gravity);
 	else
-		axes_drive(gm, v, s->gravity, &A, &f);
+		axes_drive(x, s->gravity, &A, &f);
 	const char *key[2] = {"frequency", "amplitude"};
 	double val[2] = {f, A};
 	for (int k = 0; k < 2; k++) {
@@ -108,10 +118,14 @@ static int scene_derive(const campaign *c, const long *digit, sb_scene *s, sb_er
 				snprintf(at, sizeof at, "at amplitude %g cm", s->amplitude);
 			else if (c->derive == CP_DERIVE_AMPLITUDE)
 				snprintf(at, sizeof at, "at frequency %g Hz", s->frequency);
-			else
-				snprintf(at, sizeof at, "and velocity = %.12g cm/s", v);
+			else {
+				char num[32], t[64];
+				snprintf(num, sizeof num, "%.12g", other >= 0 ? x[other] : NAN);
+				snprintf(at, sizeof at, "and %s = %s", drive_axis_name(other),
+					 drive_axis_text(other, num, t, sizeof t));
+			}
 			return sb_errf(e, SB_EUSAGE, "%s: %s: %s = %.12g %s needs %s = %s, outside (%g, %g]", where,
-				       drive_axis_name(kind), drive_axis_name(kind), x, at, key[k], buf, p->min, p->max);
+				       drive_axis_name(kind), drive_axis_name(kind), x[kind], at, key[k], buf, p->min, p->max);
 		}
 		if (params_set(s, key[k], buf, where, e))
 			return e->code;

@@ -593,10 +593,13 @@ static void onset_summary(drv *d)
 		long found = 0;
 		for (long k = 0; k < gr->nrep; k++)
 			found += gr->reps[k].state == AD_FOUND;
-		const char *unit = drive_axis_unit(o->axis);
-		fprintf(stderr, "study: %s: %s: onset %s%s%s%s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld "
-			"runs: %s%s%s%s\n", d->c.name, gr->label, o->axis == AXIS_GAMMA ? "Gamma " : "", est,
-			isnan(gr->iv.est) ? " (no replicate answered)" : *unit ? " " : "", isnan(gr->iv.est) ? "" : unit,
+		char onset[64];
+		if (isnan(gr->iv.est))
+			snprintf(onset, sizeof onset, "%s (no replicate answered)", est);
+		else
+			drive_axis_text(o->axis, est, onset, sizeof onset);
+		fprintf(stderr, "study: %s: %s: onset %s, %g%% interval [%s, %s], %ld replicate%s (%ld found), %ld "
+			"runs: %s%s%s%s\n", d->c.name, gr->label, onset,
 			100 * o->level, lo, hi, gr->nrep, gr->nrep > 1 ? "s" : "", found, gr->runs,
 			adapt_gstate_name(gr->state), gr->state == AD_G_BLOCKED ? " (" : "",
 			gr->state == AD_G_BLOCKED ? gr->reason : "", gr->state == AD_G_BLOCKED ? ")" : "");

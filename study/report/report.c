@@ -151,14 +151,15 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 		fprintf(out, "the intruder's rise (risen)");
 	/* the range is in the search's axis: Hz, Gamma (no unit) or cm/s; NULL in an older database */
 	int kind = drive_axis_kind(col(q, 15));
-	const char *unit = drive_axis_unit(kind < 0 ? AXIS_FREQUENCY : kind);
-	char sp[4];
-	snprintf(sp, sizeof sp, "%s", *unit ? " " : "");
-	fprintf(out, ", %s%s to %s%s%s, tolerance %s%s%s;\n", kind == AXIS_GAMMA ? "Gamma " : "",
-		num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32), sp, unit, num_or(q, 3, "?", b[2], 32), sp, unit);
+	if (kind < 0)
+		kind = AXIS_FREQUENCY;
+	char range[80], t1[112], t2[80];
+	snprintf(range, sizeof range, "%s to %s", num_or(q, 1, "?", b[0], 32), num_or(q, 2, "?", b[1], 32));
+	fprintf(out, ", %s, tolerance %s;\n", drive_axis_text(kind, range, t1, sizeof t1),
+		drive_axis_text(kind, num_or(q, 3, "?", b[2], 32), t2, sizeof t2));
 	if (!strcmp(col(q, 8), "auto"))
-		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s%s%s wide\n",
-			col(q, 10), col(q, 9), 100 * level, num_or(q, 11, "?", b[0], 32), sp, unit);
+		fprintf(out, "    replicates auto: %s at a time, at most %s, until the %g%% interval is at most %s wide\n",
+			col(q, 10), col(q, 9), 100 * level, drive_axis_text(kind, num_or(q, 11, "?", b[0], 32), t1, sizeof t1));
 	else if (atol(col(q, 8)) < adapt_min_replicates(level))
 		fprintf(out, "    replicates %s; an interval at %g%% needs %ld\n", col(q, 8), 100 * level,
 			adapt_min_replicates(level));
@@ -171,8 +172,8 @@ static int onset_status(st_db *d, const char *name, FILE *out, sb_err *e)
 		    "t", name))
 		return e->code;
 	char on[32], in[32];
-	snprintf(on, sizeof on, "onset (%s)", kind == AXIS_GAMMA ? "Gamma" : unit);
-	snprintf(in, sizeof in, "interval (%s)", kind == AXIS_GAMMA ? "Gamma" : unit);
+	snprintf(on, sizeof on, "onset (%s)", drive_axis_heading(kind));
+	snprintf(in, sizeof in, "interval (%s)", drive_axis_heading(kind));
 	fprintf(out, "    %-28s %10s %9s %6s %6s %6s %7s %5s %12s %22s %9s  %s\n", "group", "replicates", "searching",
 		"found", "below", "above", "blocked", "runs", on, in, "width", "state");
 	while (sqlite3_step(q) == SQLITE_ROW) {

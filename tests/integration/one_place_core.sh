@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # one_place_core.sh - facts core/ claims to hold in one place, held there: a second
 # copy fails here (a source-only check, no build). The drive's axes are rows of one
-# table (core/model/drive.c): no other file of core/, lib/ or analysis/ spells an axis's
+# table (core/model/drive.c): no other file of core/, lib/, study/ or analysis/ spells an axis's
 # name, words or symbol, or tells the axes apart by hand. The scene's keys are made by
 # one mechanism, a hand row of params.c's table each with its field in sb_scene of the
 # same name, and SB_NKEYS (params.h, the size of the per-key arrays) is their number.
@@ -69,7 +69,7 @@ check one_place_core.selftest.prints "the three made-up prints were not found al
 bad=$(prints core)
 if [ -z "$bad" ]; then ok one_place_core.only_main_prints; else fail one_place_core.only_main_prints "core/ prints outside shake_main.c:
 $bad"; fi
-bad=$(axes core lib analysis)
+bad=$(axes core lib study analysis)
 if [ -z "$bad" ]; then ok one_place_core.axes; else fail one_place_core.axes "the drive's axes spelled out outside core/model/drive.c:
 $bad"; fi
 bad=$(keys core/scene/params.h core/scene/params.c | keys_bad)

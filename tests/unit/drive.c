@@ -202,6 +202,18 @@ static void test_axes(void)
 						   isnan(drive_axis_freq(AXIS_VELOCITY, 1, 0, 981)) &&
 						   drive_axis_freq(AXIS_FREQUENCY, -1, 0, 981) == -1,
 	      "%g", drive_axis_freq(AXIS_GAMMA, -1, 2, 981));
+	/* a number as a line of text says it: unit after, or the symbol before on the unitless axis */
+	char t[64];
+	CHECK("drive.axis.text.frequency", !strcmp(drive_axis_text(AXIS_FREQUENCY, "2.5", t, sizeof t), "2.5 Hz"), "%s", t);
+	CHECK("drive.axis.text.gamma", !strcmp(drive_axis_text(AXIS_GAMMA, "1 to 2", t, sizeof t), "Gamma 1 to 2"), "%s", t);
+	CHECK("drive.axis.text.velocity", !strcmp(drive_axis_text(AXIS_VELOCITY, "70.7", t, sizeof t), "70.7 cm/s"), "%s", t);
+	CHECK("drive.axis.text.another_kind", !strcmp(drive_axis_text(AXIS_N, "3", t, sizeof t), "3"), "%s", t);
+	CHECK("drive.axis.text.truncates", !strcmp(drive_axis_text(AXIS_VELOCITY, "70.7", t, 6), "70.7 "), "%s", t);
+	CHECK("drive.axis.heading", !strcmp(drive_axis_heading(AXIS_FREQUENCY), "Hz") &&
+					    !strcmp(drive_axis_heading(AXIS_GAMMA), "Gamma") &&
+					    !strcmp(drive_axis_heading(AXIS_VELOCITY), "cm/s") && !strcmp(drive_axis_heading(-1), ""),
+	      "%s %s %s", drive_axis_heading(AXIS_FREQUENCY), drive_axis_heading(AXIS_GAMMA),
+	      drive_axis_heading(AXIS_VELOCITY));
 }
 
 int main(void)

@@ -480,6 +480,14 @@ static void test_derived(void)
 		{"study.grid.gamma.onset", "[scene]\nradius_ratio = 2\n[grid]\ngamma = 1\n[onset]\nobservable = rise\n"
 		 "from = 2\nto = 3\ntolerance = 0.1\n", ".campaign:7: gamma: an [onset] campaign searches the frequency; to "
 		 "search in gamma, set axis = gamma under [onset]"},
+		{"study.grid.velocity.not_positive", "[grid]\nvelocity = -1\n",
+		 ".campaign:5: velocity: expected a number in (0, 1000] (cm/s), got '-1'"},
+		{"study.grid.gamma_velocity.overdetermined", "[scene]\namplitude = 1\ngamma = 2\nvelocity = 60\n",
+		 ".campaign:5: amplitude: gamma (line 6) and velocity (line 7) set both the amplitude and the frequency"},
+		{"study.grid.gamma_velocity.frequency_range", "[scene]\ngamma = 2\nvelocity = 0.001\n",
+		 ".campaign:5: gamma: gamma = 2 and velocity = 0.001 cm/s needs frequency = "},
+		{"study.grid.derived.unknown_key", "[grid]\nzzqq = 1\n",
+		 ".campaign:5: unknown key 'zzqq' (shake --help lists the keys; gamma and velocity are the campaign's)"},
 	};
 	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
 		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
