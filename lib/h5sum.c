@@ -98,6 +98,8 @@ int h5sum_read_sealed(const char *path, const char *want_id, const char *want_se
 		if (!strcmp(t[i].where, RESULTS_SEAL)) {
 			snprintf(s->v[i].s, sizeof s->v[i].s, "%s", seal);
 			s->v[i].has = seal[0] != 0;
+		} else if (!strcmp(t[i].where, RESULTS_ROWSEAL)) {
+			s->v[i].has = 0; /* the database's, written after the row (rowseal.h) */
 		} else if (!(t[i].flags & RF_DERIVED)) {
 			read_column(f, &t[i], &s->v[i], &bad, &why);
 		}

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "record.h"
+#include "rowseal.h"
 #include "runfile.h"
 
 /* A summary attribute of the run file's root is a column of its name. */
@@ -64,6 +65,10 @@ static const rcol TABLE[] = {
 	{"file_seal", RT_TEXT, RESULTS_SEAL, "",
 	 "the file's seal (core/io/h5id.h) when the run was recorded: a reader refuses a file that differs from it; "
 	 "NULL for an older, unsealed file", RF_NOVIEW},
+	/* not the file's: the seal of the run's rows, written after them (rowseal.h) */
+	{ROWSEAL_COLUMN, RT_TEXT, RESULTS_ROWSEAL, "",
+	 "the seal of the run's rows (run, param, result) when it was recorded: a reader refuses rows that differ "
+	 "from it (docs/database.md, \"A damaged database\")", RF_NOVIEW},
 };
 
 const rcol *results_table(size_t *n)

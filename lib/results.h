@@ -30,6 +30,8 @@ typedef struct rcol {
 
 /* The where of the file_seal column: the seal in the file's user block. */
 #define RESULTS_SEAL "(user block)"
+/* The where of the row_seal column: not the file's, the database's own (rowseal.h). */
+#define RESULTS_ROWSEAL "(its rows)"
 
 const rcol *results_table(size_t *n);
 /* Index of a column by name, -1 if none. */

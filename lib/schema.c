@@ -147,8 +147,7 @@ static const char *sql_type(rt_type t)
 /* The `result` table, one column per stored column of the results table. A database
  * whose result table has other columns (written by another version) gets the table
  * anew: every result is in the run files, and the sweep reads them again. */
-/* Whether the result table's columns are this version's. */
-static int result_current(sql_db *d)
+int schema_result_current(sql_db *d)
 {
 	size_t n;
 	const rcol *t = results_table(&n);
@@ -165,7 +164,7 @@ static int result_table(sql_db *d, sb_err *e)
 {
 	size_t n, l;
 	const rcol *t = results_table(&n);
-	if (result_current(d))
+	if (schema_result_current(d))
 		return 0;
 	char sql[8192] = "DROP TABLE IF EXISTS result; CREATE TABLE result(campaign TEXT NOT NULL, run TEXT NOT NULL";
 	l = strlen(sql);
@@ -297,7 +296,7 @@ int schema_runs(sql_db *d, sb_err *e)
 	/* a database an earlier driver wrote has that version's result columns: a view of
 	 * this version's would name columns it lacks and fail on every query; it keeps its
 	 * view until the driver (result_table) brings the table up to date */
-	if (!result_current(d))
+	if (!schema_result_current(d))
 		return 0;
 	return runs_view(d, e);
 }

@@ -41,6 +41,10 @@ int schema_bad_value(sql_db *d, const char *campaign, int numbers, char *run, si
 		     sb_err *e);
 /* The same, as a reader's error naming the value and what to do. */
 int schema_values(sql_db *d, const char *campaign, int numbers, sb_err *e);
+/* Whether the result table's columns are this version's (results.h): a table of an
+ * earlier or later version is read as it is, and its rows' seals (rowseal.h) are not
+ * this version's to check. */
+int schema_result_current(sql_db *d);
 /* slurm_job, slurm_task */
 int schema_slurm(sql_db *d, sb_err *e);
 /* analysis_def (a tool's invocation: options, versions), analysis_all (its numbers:

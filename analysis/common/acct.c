@@ -114,6 +114,11 @@ int acct_classify(an_run *r)
 		return 1;
 	}
 	h5r_close(f);
+	if (r->rows[0]) {
+		/* a value the database holds for it is not the one recorded */
+		acct_set(r, AN_UNUSABLE, NAN, NAN, "%s", r->rows);
+		return 1;
+	}
 	static int noted;
 	if (note != H5ID_OK && !noted++)
 		fprintf(stderr, "note: %s: format %s, written before run files %s: such files are read %s "

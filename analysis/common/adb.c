@@ -5,6 +5,7 @@
 #include "num.h"
 #include "params.h"
 #include "provenance.h"
+#include "rowseal.h"
 #include "schema.h"
 
 #include <errno.h>
@@ -146,6 +147,8 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 	/* A failed run has a result row when the engine wrote its file (a physics failure);
 	 * without one (bad input, I/O) its last attempt says why. */
 	const int res = has(d, "result", NULL), att = has(d, "attempt", NULL);
+	/* the row seals, where the result table is this version's (rowseal.h) */
+	const int sealed = res && schema_result_current(&d->db);
 	const char *cur = has(d, "run", "current") ? "r.current" : "1";
 	char last[2][200], sql[2048];
 	static const char *const acol[2] = {"status", "message"};
@@ -158,11 +161,13 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 			snprintf(last[c], sizeof last[c], "NULL");
 	}
 	snprintf(sql, sizeof sql,
-		 "SELECT r.id, r.replicate, r.seed, r.state, %s, COALESCE(%s, %s), COALESCE(%s, %s), %s, %s FROM run r %s"
+		 "SELECT r.id, r.replicate, r.seed, r.state, %s, COALESCE(%s, %s), COALESCE(%s, %s), %s, %s, %s, %s FROM run r %s"
 		 " WHERE r.campaign = ? ORDER BY r.id",
 		 cur, res ? "s.status" : "NULL", last[0], res && has(d, "result", "message") ? "s.message" : "NULL", last[1],
 		 res && has(d, "result", "status_time") ? "s.status_time" : "NULL",
 		 res && has(d, "result", "file_seal") ? "s.file_seal" : "NULL",
+		 /* the row seal, where the result table has one (rowseal.h) */
+		 sealed ? "s.run IS NOT NULL" : "0", sealed ? "s." ROWSEAL_COLUMN : "NULL",
 		 res ? "LEFT JOIN result s ON s.campaign = r.campaign AND s.run = r.id" : "");
 	if (sqlite3_prepare_v2(d->db.h, sql, -1, &st, NULL) != SQLITE_OK)
 		return dberr(d, e);
@@ -225,6 +230,15 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		if (e->code)
 			break;
 		check_params(x);
+		if (!e->code && sqlite3_column_int(st, 9)) {
+			/* its rows must be those recorded: a value edited or damaged in the
+			 * database reads as a value like any other */
+			char now[17], was[17];
+			snprintf(was, sizeof was, "%s", sqlite3_column_text(st, 10) ? (const char *)sqlite3_column_text(st, 10) : "");
+			if (!rowseal_of(&d->db, campaign, x->id, now, e) && strcmp(now, was))
+				snprintf(x->rows, sizeof x->rows, "its rows in the database are not those recorded (row seal %s, "
+					 "recorded %s): edited or damaged; study run writes them again", now, was[0] ? was : "none");
+		}
 	}
 	if (!e->code && rc != SQLITE_DONE && rc != SQLITE_ROW)
 		sql_failed(&d->db, rc, e);

@@ -38,6 +38,9 @@ typedef struct an_run {
 	char bad[200];      /* why its parameters are unusable (a number key whose value is
 			     * not a finite number, a key every run has that is missing);
 			     * "" when they are fine: set by adb_runs */
+	char rows[200];     /* why its rows in the database are not those recorded (their
+			     * seal, lib/rowseal.h); "" when they are: set by adb_runs,
+			     * acct_classify counts it unusable once its file is sound */
 } an_run;
 
 #define AN_ADB_MAXKEYS 32

@@ -12,6 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "fnv.h"
+
 /* An attribute of a run file holds names, messages or a few numbers; one of more
  * elements than this is no run file's. */
 #define H5ID_MAX_ELEMS (1 << 20)
@@ -25,11 +27,7 @@ typedef struct dg {
 /* FNV-1a/64 (as params_hash): every change of a single byte changes the result. */
 static void mix(dg *d, const void *p, size_t n)
 {
-	const unsigned char *b = p;
-	for (size_t k = 0; k < n; k++) {
-		d->h ^= b[k];
-		d->h *= 1099511628211ULL;
-	}
+	d->h = sb_fnv(d->h, p, n);
 }
 
 /* A number in 8 little-endian bytes, whatever this machine's order. */
@@ -147,7 +145,7 @@ static herr_t one_object(hid_t f, const char *name, const H5O_info_t *info, void
 
 int h5id_digest(hid_t f, char out[17], sb_err *e)
 {
-	dg d = {1469598103934665603ULL, 0, ""};
+	dg d = {SB_FNV_BASIS, 0, ""};
 	out[0] = 0;
 	if (H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, one_object, &d, H5O_INFO_BASIC) < 0 && !d.bad)
 		return sb_errf(e, SB_EIO, "cannot visit the file's objects");

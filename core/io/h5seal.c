@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "fnv.h"
+
 /* HDF5's format signature, at the start of its superblock. */
 static const unsigned char H5SIG[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
 
@@ -23,7 +25,7 @@ static int hash_rest(int fd, off_t off, uint64_t *h, unsigned long long *bytes)
 	unsigned char *buf = malloc(CHUNK);
 	if (!buf)
 		return -1;
-	uint64_t x = 1469598103934665603ULL;
+	uint64_t x = SB_FNV_BASIS;
 	unsigned long long n = 0;
 	size_t have = 0; /* bytes of a partial word carried into the next read */
 	for (;;) {
@@ -47,7 +49,7 @@ static int hash_rest(int fd, off_t off, uint64_t *h, unsigned long long *bytes)
 				w = w << 8 | buf[k + (size_t)b];
 #endif
 			x ^= w;
-			x *= 1099511628211ULL;
+			x *= SB_FNV_PRIME;
 		}
 		have = len - whole;
 		memmove(buf, buf + whole, have);
@@ -59,10 +61,10 @@ static int hash_rest(int fd, off_t off, uint64_t *h, unsigned long long *bytes)
 		for (size_t b = have; b-- > 0;)
 			w = w << 8 | buf[b];
 		x ^= w;
-		x *= 1099511628211ULL;
+		x *= SB_FNV_PRIME;
 	}
 	x ^= n;
-	x *= 1099511628211ULL;
+	x *= SB_FNV_PRIME;
 	free(buf);
 	*h = x;
 	*bytes = n;

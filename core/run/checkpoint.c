@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <sys/stat.h>
 
+#include "fnv.h"
 #include "fsutil.h"
 #include "checkpoint.h"
 
@@ -30,11 +31,7 @@ typedef struct hw {
 
 static void hw_put(hw *w, const void *p, size_t n)
 {
-	const unsigned char *b = p;
-	for (size_t i = 0; i < n; i++) {
-		w->h ^= b[i];
-		w->h *= 1099511628211ULL;
-	}
+	w->h = sb_fnv(w->h, p, n);
 	if (fwrite(p, 1, n, w->f) != n)
 		w->bad = 1;
 }
@@ -46,11 +43,7 @@ static void hw_get(hw *w, void *p, size_t n)
 		memset(p, 0, n);
 		return;
 	}
-	const unsigned char *b = p;
-	for (size_t i = 0; i < n; i++) {
-		w->h ^= b[i];
-		w->h *= 1099511628211ULL;
-	}
+	w->h = sb_fnv(w->h, p, n);
 }
 
 /* The same field list serves writing and reading, so they cannot drift apart. */
@@ -111,7 +104,7 @@ int ckpt_write(sb_sim *s, sb_err *e)
 	sb_file out;
 	if (fs_open_tmp(&out, s->ckpt_path, e))
 		return e->code;
-	hw w = {out.f, 1469598103934665603ULL, 0};
+	hw w = {out.f, SB_FNV_BASIS, 0};
 	uint64_t ph = ckpt_hash(&s->sc);
 	int32_t hdr[4] = {s->st.n, s->st.nm, s->in.nval, REC_N};
 	hw_put(&w, MAGIC, 8);
@@ -141,7 +134,7 @@ int ckpt_load(sb_sim *s, sb_err *e)
 	FILE *f = fopen(path, "rb");
 	if (!f)
 		return sb_errf(e, SB_EIO, "%s: cannot open checkpoint: %s", path, strerror(errno));
-	hw r = {f, 1469598103934665603ULL, 0};
+	hw r = {f, SB_FNV_BASIS, 0};
 	char m[8];
 	uint64_t ph;
 	int32_t hdr[4];

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "fnv.h"
 #include "num.h"
 #include "inifile.h"
 #include "words.h"
@@ -510,7 +511,7 @@ void params_format(const sb_scene *s, const sb_param *p, char *buf, size_t len)
 
 unsigned long long params_hash(const sb_scene *s, unsigned mask)
 {
-	unsigned long long h = 1469598103934665603ULL;
+	uint64_t h = SB_FNV_BASIS;
 	char buf[SB_STR_MAX + 64];
 	for (size_t i = 0; i < NTABLE; i++) {
 		if (!(TABLE[i].flags & mask))
@@ -518,10 +519,7 @@ unsigned long long params_hash(const sb_scene *s, unsigned mask)
 		char v[SB_STR_MAX + 8];
 		params_format(s, &TABLE[i], v, sizeof v);
 		int l = snprintf(buf, sizeof buf, "%s=%s\n", TABLE[i].name, v);
-		for (int k = 0; k < l; k++) {
-			h ^= (unsigned char)buf[k];
-			h *= 1099511628211ULL;
-		}
+		h = sb_fnv(h, buf, (size_t)l);
 	}
 	return h;
 }
@@ -533,7 +531,7 @@ unsigned long long params_hash_nondefault(const sb_scene *s, unsigned mask)
 	 * leaves every existing run identity unchanged. */
 	sb_scene def;
 	params_defaults(&def);
-	unsigned long long h = 1469598103934665603ULL;
+	uint64_t h = SB_FNV_BASIS;
 	char buf[2 * SB_STR_MAX + 64];
 	for (size_t i = 0; i < NTABLE; i++) {
 		if (!(TABLE[i].flags & mask))
@@ -544,10 +542,7 @@ unsigned long long params_hash_nondefault(const sb_scene *s, unsigned mask)
 		if (!strcmp(v, d))
 			continue;
 		int l = snprintf(buf, sizeof buf, "%s=%s\n", TABLE[i].name, v);
-		for (int k = 0; k < l; k++) {
-			h ^= (unsigned char)buf[k];
-			h *= 1099511628211ULL;
-		}
+		h = sb_fnv(h, buf, (size_t)l);
 	}
 	return h;
 }

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "schema.h"
+#include "rowseal.h"
 
 /* A study database that lacks some of the driver's run tables (schema_lost) is
  * repaired, opened to write, as the files allow (docs/database.md, "A damaged database"): a table gone is created anew
@@ -252,7 +253,8 @@ int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb
 	if (rc != SQLITE_DONE)
 		sql_failed(d, rc, e);
 	sqlite3_finalize(st);
-	return e->code;
+	/* and the seal of the rows as they now are, which every reader checks (rowseal.h) */
+	return e->code ? e->code : rowseal_put(d, camp, id, e);
 }
 
 int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e)

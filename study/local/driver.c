@@ -19,6 +19,7 @@
 #include "h5sum.h"
 #include "layout.h"
 #include "lock.h"
+#include "rowseal.h"
 #include "schema.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
@@ -140,6 +141,26 @@ int driver_record(drv *d, sb_err *e)
 			 strstr(why, "in table result") ? "DELETE FROM result WHERE campaign = ? AND run = ?"
 							 : "DELETE FROM param WHERE campaign = ? AND run = ?",
 			 "tt", d->c.name, run);
+	}
+	/* rows not as recorded (rowseal.h: edited with sqlite3, a byte changed in a page)
+	 * of a run of the campaign file are dropped and written again the same way, the
+	 * parameters and the result both; those of a run of an earlier version (no longer
+	 * in the file) cannot be, and are left as they are, said */
+	char after[128] = "";
+	for (int k = 0; k < 10000 && !e->code; k++) {
+		char run[128], why[600];
+		if (rowseal_bad(&d->db, d->c.name, k ? after : NULL, 0, run, sizeof run, why, sizeof why, e) != 1)
+			break;
+		snprintf(after, sizeof after, "%s", run);
+		if (!grid_find(&d->g, run)) {
+			fprintf(stderr, "study: %s: %s: a run of an earlier version of the campaign, whose rows cannot be "
+				"written again: left as they are (the analysis tools refuse the campaign until its rows are "
+				"repaired or it is forgotten)\n", d->c.name, why);
+			continue;
+		}
+		fprintf(stderr, "study: %s: %s: written again from the campaign and run files\n", d->c.name, why);
+		if (!sql_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, run))
+			sql_exec(&d->db, e, NULL, "DELETE FROM param WHERE campaign = ? AND run = ?", "tt", d->c.name, run);
 	}
 	if (!e->code)
 		db_campaign_put(&d->db, &d->c, now, e);

@@ -11,6 +11,7 @@
 
 #include "csv.h"
 #include "layout.h"
+#include "rowseal.h"
 #include "schema.h"
 #include "campaign/axes.h"
 #include "ledger/db.h"
@@ -435,7 +436,9 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 	if (open_ro(&d, db_path, e))
 		return e->code;
 	sqlite3_stmt *q;
-	if (!campaign_known(&d, name, e) && !schema_values(&d, name, 1, e) &&
+	/* nothing printed from rows that are not as recorded: a value edited with sqlite3
+	 * or a byte changed in a page reads as a value like any other (rowseal.h) */
+	if (!campaign_known(&d, name, e) && !schema_values(&d, name, 1, e) && !rowseal_check(&d, name, e) &&
 	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
 		int nc = sqlite3_column_count(q);
 		for (int i = 0; i < nc; i++) {

@@ -5,7 +5,8 @@
 # moved aside study run rebuilds it to the same export; a dropped table makes the readers
 # name the table, and study run rebuilds it from the campaign and run files to the same
 # export; a value no run can have (risen = 2, ramp = 3) is refused by the readers and
-# rewritten from the run file by study run.
+# rewritten from the run file by study run; so is a value any run could have that is not
+# the one recorded (the row seal), and a byte changed inside a record.
 . "$(dirname "$0")/lib.sh"
 study_setup
 WAITING="$(dirname "$SHAKE")/waiting"
@@ -113,6 +114,57 @@ says values.ramp_export_refused 2 ex.err "ramp = '3'"
 "$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
 rc=$?
 [ "$rc" = 0 ] && rebuilt values_ramp || fail values.ramp_rewritten "exit $rc: $(tail -n 2 run.log)"
+
+# --- a value any run could have, not the one recorded: the row seal (lib/rowseal.h) ---
+# its definition written a second time (rowseal.py) gives the seals the driver wrote,
+# and another after a value changed
+/usr/bin/python3 "$REPO/tests/integration/rowseal.py" check R/study.db >seals.txt
+n=$(awk '$2 == $3' seals.txt | wc -l)
+[ "$n" = 4 ] && [ "$(wc -l <seals.txt)" = 4 ] && ok rowseal.second_definition_agrees ||
+	fail rowseal.second_definition_agrees "$n of 4 seals agree: $(head -n 4 seals.txt | tr '\n' ' ')"
+fresh
+sqlite3 D/study.db "UPDATE result SET steps = steps + 1 WHERE run = (SELECT MIN(run) FROM result)"
+/usr/bin/python3 "$REPO/tests/integration/rowseal.py" check D/study.db >seals2.txt
+[ "$(awk '$2 != $3' seals2.txt | wc -l)" = 1 ] && ok rowseal.second_definition_sees_edit ||
+	fail rowseal.second_definition_sees_edit "$(cat seals2.txt | tr '\n' ' ')"
+# sealed ID SQL: SQL makes export refuse naming the rows, study run write them again to
+# the undamaged export (make fuzz, family database: a frequency of 25 Hz, a waiting
+# time of 'abc' were exported, exit 0)
+sealed() {
+	fresh
+	sqlite3 D/study.db "$2"
+	"$STUDY" export t --runs D >ex.out 2>ex.err
+	says "rows.$1.export_refused" 2 ex.err "are not those recorded (row seal [0-9a-f]*, recorded [0-9a-f]*): edited or damaged.*study run"
+	[ -s ex.out ] && fail "rows.$1.export_nothing_printed" "$(head -c 200 ex.out)" || ok "rows.$1.export_nothing_printed"
+	"$STUDY" run t.campaign --runs D --no-progress >run.log 2>&1
+	says "rows.$1.run_writes_again" 0 run.log "not those recorded.*written again from the campaign and run files"
+	rebuilt "rows_$1"
+}
+sealed param "UPDATE param SET value = 25 WHERE key = 'frequency' AND run = (SELECT MIN(run) FROM param)"
+sealed result "UPDATE result SET waiting_time = 'abc' WHERE run = (SELECT MIN(run) FROM result)"
+sealed seed "UPDATE run SET seed = seed + 1 WHERE id = (SELECT MIN(id) FROM run)"
+# a run's id changed: its rows no longer meet; done without a result is named
+fresh
+sqlite3 D/study.db "UPDATE run SET id = 'x' || id WHERE id = (SELECT MIN(id) FROM run)"
+"$STUDY" export t --runs D >ex.out 2>ex.err
+says rows.id_edited.export_refused 2 ex.err "recorded done without its row in table result"
+# a byte changed inside a record of table result (SQLite keeps no checksum of a page's
+# content): one digit of a run's end_time, in the table's page (dbstat) of the file itself
+fresh
+sqlite3 D/study.db "PRAGMA wal_checkpoint(TRUNCATE)" >/dev/null
+end=$(sqlite3 D/study.db "SELECT end_time FROM result ORDER BY run LIMIT 1")
+pg=$(sqlite3 D/study.db "SELECT pageno FROM dbstat WHERE name = 'result' AND pagetype = 'leaf' ORDER BY pageno LIMIT 1")
+ps=$(sqlite3 D/study.db "PRAGMA page_size")
+/usr/bin/python3 -c 'import sys
+path, s, off, size = sys.argv[1], sys.argv[2].encode(), int(sys.argv[3]), int(sys.argv[4])
+b = bytearray(open(path, "rb").read()); k = b.find(s, off, off + size)
+assert k >= 0, "not in the page"
+i = k + len(s) - 2; b[i] = ord("0") + (b[i] - ord("0") + 1) % 10
+open(path, "r+b").write(b)' D/study.db "$end" $(((pg - 1) * ps)) "$ps" || fail rows.byte_changed.setup "end_time $end not in page $pg"
+[ "$(sqlite3 D/study.db "PRAGMA quick_check")" = ok ] && ok rows.byte_changed.quick_check_sees_nothing ||
+	fail rows.byte_changed.quick_check_sees_nothing "$(sqlite3 D/study.db "PRAGMA quick_check" | head -n 2)"
+"$STUDY" export t --runs D >ex.out 2>ex.err
+says rows.byte_changed.export_refused 2 ex.err "are not those recorded"
 
 # --- a lock held elsewhere: the wait is said, with its holder, and ends with the lock ---
 fresh

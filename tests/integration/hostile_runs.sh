@@ -49,7 +49,8 @@ planted() {
 # (a database without the column, an earlier version's, is left as it is)
 fresh() {
 	planted "$@" || return 1
-	[ -z "${2:-}" ] || q "$1/study.db" "UPDATE result SET file_seal = '$(seal "$1/fz/$2.h5")' WHERE run = '$2'" 2>/dev/null
+	[ -z "${2:-}" ] || { q "$1/study.db" "UPDATE result SET file_seal = '$(seal "$1/fz/$2.h5")' WHERE run = '$2'" &&
+		reseal_rows "$1/study.db"; } 2>/dev/null
 	return 0
 }
 
@@ -226,7 +227,7 @@ planted V6 "$ID0" --attr-str / format shakebox-run-2 && tail -c +513 V6/fz/"$ID0
 # the readers walk a file first in a child process. The shim makes H5Lvisit crash so on
 # the run's file (the crash, not the one file's layout, is what is tested).
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
-planted W1 && q W1/study.db "UPDATE result SET file_seal = NULL"
+planted W1 && q W1/study.db "UPDATE result SET file_seal = NULL" && reseal_rows W1/study.db
 for t in waiting whale; do
 	LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 		counted h5walk_crash.$t $t W1 "$ID" unreadable "the HDF5 library failed while walking the file's links and objects"
@@ -307,6 +308,18 @@ fresh S && q S/study.db "UPDATE result SET status = 'nonsense' WHERE run = '$ID'
 for t in onset figures; do
 	counted params.status_edited.$t $t S "$ID" unreadable "status = 'ok' in the file, 'nonsense' in the database"
 done
+# ... and every other value of its rows is the one recorded (their row seal, lib/rowseal.h:
+# make fuzz, family database, bytes changed in a page of table result: hysteresis used
+# the changed values, exit 0); with the seal written again the edit is not seen
+# (hysteresis reads the ramp runs: one of them edited too)
+RAMP=$(q R/study.db "SELECT run FROM param WHERE key = 'ramp' AND value = 'updown' ORDER BY run LIMIT 1")
+fresh RS && q RS/study.db "UPDATE result SET steps = steps + 1 WHERE run IN ('$ID', '$RAMP')"
+counted rows.result_edited.waiting waiting RS "$ID" unusable "its rows in the database are not those recorded"
+counted rows.result_edited.hysteresis hysteresis RS "$RAMP" unusable "its rows in the database are not those recorded"
+reseal_rows RS/study.db
+tool_on rows.resealed_used waiting RS
+row=$(grep -F ",$ID," RS/out/waiting_accounting.csv 2>/dev/null)
+grep -qF ",used," <<<"$row" && ok rows.resealed_used || fail rows.resealed_used "run $ID: '$row' (want used)"
 
 # ---- Fig. 1: a run whose field cannot be used is counted so ----
 fresh G1 "$ID" --set /observables/field/count/value 0 inf

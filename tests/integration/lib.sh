@@ -45,6 +45,10 @@ fi
 # q DB SQL : the rows of one query of the SQLite database DB, columns joined by '|'. The
 # scripts' one query helper (fixtures.sh fails on a script that defines its own).
 q() { sqlite3 -batch -noheader -separator '|' "$1" "$2"; }
+# reseal_rows DB: every result row's row seal (lib/rowseal.h) written again for the rows
+# as they now are, by tests/integration/rowseal.py: for a test that edits rows on
+# purpose, as the driver would have written them (a changed run file's new file seal)
+reseal_rows() { /usr/bin/python3 "$REPO/tests/integration/rowseal.py" write "$1"; }
 
 # study_setup : STUDY, bin/study beside $SHAKE unless the caller named one, or a failed setup
 study_setup() {

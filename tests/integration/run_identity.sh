@@ -76,7 +76,8 @@ swept() {
 fresh() { rm -rf "$1" && cp -a R "$1"; }
 # recorded DIR: DIR's database holds the seal of run $ID's file as it now is
 recorded() {
-	q "$1/study.db" "UPDATE result SET file_seal = '$(head -c 64 "$1/fz/$ID.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$ID'"
+	q "$1/study.db" "UPDATE result SET file_seal = '$(head -c 64 "$1/fz/$ID.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$ID'" &&
+		reseal_rows "$1/study.db"
 }
 SEALED="but the database recorded"
 

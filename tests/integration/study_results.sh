@@ -51,6 +51,8 @@ while IFS='|' read -r _ col _ where _; do
 		case "$where" in
 		*'#rows') want=$(dims "$f" "${where%#rows}" | cut -d' ' -f1) ;;
 		'(userblock)') want=$(head -c 64 "$f" | sed -n 's/^fnv1a64w //p') ;; # the seal (core/io/h5id.h)
+		# not the file's: the seal of the run's rows, by its second definition (lib/rowseal.h)
+		'(itsrows)') want=$(/usr/bin/python3 "$REPO/tests/integration/rowseal.py" check $DB | awk -v r="$id" '$1 == r { print $3 }') ;;
 		@*) want=$(attr "$f" "/${where#@}") ;;
 		*) want=$(attr "$f" "${where%@*}/${where#*@}") ;;
 		esac

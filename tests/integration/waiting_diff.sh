@@ -30,7 +30,7 @@ times() {
 	"$H5MUT" "R/w/$1.h5" "R/w/$1.new" --attr / risen "$2" --attr / waiting_time "$3" --attr /parameters duration 20 &&
 		mv "R/w/$1.new" "R/w/$1.h5" &&
 		q R/study.db "UPDATE result SET file_seal = '$(head -c 64 "R/w/$1.h5" | sed -n 's/^fnv1a64w //p')' WHERE run = '$1';
-			UPDATE param SET value = 20 WHERE run = '$1' AND key = 'duration'"
+			UPDATE param SET value = 20 WHERE run = '$1' AND key = 'duration'" && reseal_rows R/study.db
 }
 bad=0
 while IFS='|' read -r id rep f; do
