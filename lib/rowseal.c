@@ -161,6 +161,10 @@ int rowseal_check(sql_db *d, const char *campaign, sb_err *e)
 	int r = rowseal_bad(d, campaign, NULL, 1, run, sizeof run, why, sizeof why, e);
 	if (r <= 0 || e->code)
 		return e->code;
+	/* an edit, or a page damaged where SQLite's reads do not fail: a quick check tells */
+	char bad[512];
+	if (sql_check(d, bad, sizeof bad))
+		return sb_errf(e, SB_EIO, "%s: the database is corrupt (quick_check: %s): %s", d->path, bad, SQL_REBUILD);
 	return sb_errf(e, SB_EIO, "%s: campaign '%s': %s: edited or damaged since the run was recorded: study run on its "
 		       "campaign file writes its rows again from the campaign and run files (docs/database.md, \"A "
 		       "damaged database\")", d->path, campaign, why);

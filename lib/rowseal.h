@@ -38,7 +38,8 @@ int rowseal_put(sql_db *d, const char *campaign, const char *run, sb_err *e);
 int rowseal_bad(sql_db *d, const char *campaign, const char *after, int done_needs_result, char *run, size_t rlen,
 		char *why, size_t wlen, sb_err *e);
 
-/* The same, as a reader's error naming the run and what to do. */
+/* The same, as a reader's error naming the run and what to do; a database that PRAGMA
+ * quick_check finds corrupt is named so instead. */
 int rowseal_check(sql_db *d, const char *campaign, sb_err *e);
 
 #endif

@@ -250,6 +250,14 @@ int adb_runs(adb *d, const char *campaign, const char *runs_dir, an_run **out, i
 		schema_runs_lost(&d->db, campaign, e);
 	if (!e->code)
 		schema_values(&d->db, campaign, 0, e);
+	/* rows not as recorded are an edit, or a page damaged where SQLite's reads do not
+	 * fail (a cell's bytes changed): a quick check tells which */
+	int changed = 0;
+	for (int i = 0; i < k && !e->code; i++)
+		changed |= r[i].rows[0] != 0;
+	char why[512];
+	if (changed && !e->code && sql_check(&d->db, why, sizeof why))
+		sb_errf(e, SB_EIO, "%s: the database is corrupt (quick_check: %s): %s", d->db.path, why, SQL_REBUILD);
 	if (e->code) {
 		adb_runs_free(r, k);
 		return e->code;

@@ -55,7 +55,15 @@ int tool_open(an_tool *t, const an_opts *o)
 	t->o = o;
 	if (adb_open(&t->d, o->db, !o->no_store, &t->e))
 		return t->e.code;
-	return pool_read(o, &t->d, &t->runs, &t->nr, t->axes, &t->na, &t->e);
+	if (pool_read(o, &t->d, &t->runs, &t->nr, t->axes, &t->na, &t->e))
+		return t->e.code;
+	/* said for every run, also one this tool then leaves aside as not its kind: an
+	 * edited parameter may be what made it so */
+	for (int i = 0; i < t->nr; i++)
+		if (t->runs[i].rows[0])
+			fprintf(stderr, "%s: warning: run %s: %s (counted unusable where %s uses it)\n", o->tool,
+				t->runs[i].id, t->runs[i].rows, o->tool);
+	return 0;
 }
 
 int tool_old(an_tool *t, const an_run *r)

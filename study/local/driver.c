@@ -151,6 +151,13 @@ int driver_record(drv *d, sb_err *e)
 		char run[128], why[600];
 		if (rowseal_bad(&d->db, d->c.name, k ? after : NULL, 0, run, sizeof run, why, sizeof why, e) != 1)
 			break;
+		/* an edit, or a page damaged where SQLite's reads do not fail: a quick check
+		 * tells, and a corrupt database is not written into */
+		char bad[512];
+		if (!k && sql_check(&d->db, bad, sizeof bad)) {
+			sb_errf(e, SB_EIO, "%s: the database is corrupt (quick_check: %s): %s", d->db.path, bad, SQL_REBUILD);
+			break;
+		}
 		snprintf(after, sizeof after, "%s", run);
 		if (!grid_find(&d->g, run)) {
 			fprintf(stderr, "study: %s: %s: a run of an earlier version of the campaign, whose rows cannot be "
