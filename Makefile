@@ -56,9 +56,23 @@ else
   DBGFLAGS := -DNDEBUG
 endif
 
-PKGS     = hdf5-serial gsl inih sqlite3
-PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lm
+# The libraries, by pkg-config (HDF5's is hdf5-serial on Debian, hdf5 elsewhere), or each
+# from a directory with include/ and lib/ (HDF5_DIR, GSL_DIR, INIH_DIR, SQLITE_DIR: the
+# environment modules of a cluster). scripts/libcheck.sh says what is missing; nothing
+# here installs anything (make deps does, on Debian: docs/install.md).
+HDF5_DIR   ?=
+GSL_DIR    ?=
+INIH_DIR   ?=
+SQLITE_DIR ?=
+HDF5_PC   := $(if $(HDF5_DIR),,$(shell pkg-config --exists hdf5-serial 2>/dev/null && echo hdf5-serial || echo hdf5))
+PKGS       = $(HDF5_PC) $(if $(GSL_DIR),,gsl) $(if $(INIH_DIR),,inih) $(if $(SQLITE_DIR),,sqlite3)
+comma     := ,
+lib_from   = $(if $(1),-L$(1)/lib -Wl$(comma)-rpath$(comma)$(1)/lib $(2))
+DIR_CFLAGS = $(foreach d,$(HDF5_DIR) $(GSL_DIR) $(INIH_DIR) $(SQLITE_DIR),-I$(d)/include)
+DIR_LIBS   = $(call lib_from,$(HDF5_DIR),-lhdf5) $(call lib_from,$(GSL_DIR),-lgsl -lgslcblas) \
+             $(call lib_from,$(INIH_DIR),-linih) $(call lib_from,$(SQLITE_DIR),-lsqlite3)
+PKG_CFLAGS = $(if $(strip $(PKGS)),$(shell pkg-config --cflags $(PKGS) 2>/dev/null)) $(DIR_CFLAGS)
+PKG_LIBS   = $(if $(strip $(PKGS)),$(shell pkg-config --libs $(PKGS) 2>/dev/null)) $(DIR_LIBS) -lm
 ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) $(CORE_INC)
 LDFLAGS   += $(XFLAGS) $(SANLDFLAGS)
 
@@ -80,12 +94,13 @@ TEST_SRC  = $(wildcard tests/unit/*.c tests/physics/*.c)
 TEST_BIN  = $(TEST_SRC:%.c=$(BUILD)/%)
 SHAKE     = $(BIN)/shake
 
-.PHONY: all deps check quick bench bench-accuracy stress demo help clean tests faults fuzz mutate reproduce docs
+.PHONY: all deps deps-test check quick bench bench-accuracy stress demo help clean tests faults fuzz mutate reproduce docs
 all: $(SHAKE)
 
 help:
 	@echo "make            build bin/shake"
-	@echo "make deps       install the Debian packages shakebox needs (apt-get)"
+	@echo "make deps       install the Debian packages make and make demo need (apt-get; make itself never installs)"
+	@echo "make deps-test  install what only the suite and the benchmarks add (LAMMPS, Slurm, sshd, Python packages)"
 	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build), NPROC tests"
 	@echo "                at a time; T=REGEX only the tests whose name matches (make check T=study_run)"
 	@echo "make quick      the tier for daily work, under 2 minutes: make check without the scripts marked"
@@ -115,26 +130,39 @@ help:
 	@echo "       SAN=1 (sanitizer build in build/san), NPROC (compilers and tests at once, default: the CPUs),"
 	@echo "       T=REGEX (check, quick); SHAKEBOX_KERNEL=NAME forces a kernel path at run time"
 
-# Installs what is missing; a no-op when everything is there.
+# Install what is missing on Debian (apt-get; a no-op when everything is there): deps
+# what make and make demo need, deps-test what only the suite and the benchmarks add.
+# Only the targets that run the suite, the demo or the benchmarks call them; a build
+# never does (it checks, $(BUILD)/.libs-ok).
 deps:
-	$(Q)bash scripts/deps.sh
+	$(Q)bash scripts/deps.sh build
+deps-test:
+	$(Q)bash scripts/deps.sh test
 
 build/.deps-ok: scripts/deps.sh
-	$(Q)bash scripts/deps.sh
+	$(Q)bash scripts/deps.sh all
 	$(Q)mkdir -p build && touch $@
+build/.deps-build-ok: scripts/deps.sh
+	$(Q)bash scripts/deps.sh build
+	$(Q)mkdir -p build && touch $@
+
+# Are the libraries there? Looks, never installs; stops naming what is missing.
+$(BUILD)/.libs-ok: scripts/libcheck.sh $(BUILD)/flags
+	$(Q)HDF5_DIR='$(HDF5_DIR)' GSL_DIR='$(GSL_DIR)' INIH_DIR='$(INIH_DIR)' SQLITE_DIR='$(SQLITE_DIR)' bash scripts/libcheck.sh
+	@touch $@
 
 # Objects depend on the flags they were built with: a changed CFLAGS rebuilds.
 $(BUILD)/flags: FORCE
 	@mkdir -p $(dir $@)
 	@echo '$(CC) $(ALLCFLAGS)' > $@.new; if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
 
-$(BUILD)/%.o: %.c $(BUILD)/flags | build/.deps-ok
+$(BUILD)/%.o: %.c $(BUILD)/flags | $(BUILD)/.libs-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(ALLCFLAGS) -c $< -o $@
 
 # the vector kernel, once per instruction set (kvec.h)
-$(KV_ISAS:%=$(BUILD)/core/force/kvec_%.o): $(BUILD)/core/force/kvec_%.o: core/force/kvec.c $(BUILD)/flags | build/.deps-ok
+$(KV_ISAS:%=$(BUILD)/core/force/kvec_%.o): $(BUILD)/core/force/kvec_%.o: core/force/kvec.c $(BUILD)/flags | $(BUILD)/.libs-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $< ($*)")
 	$(Q)$(CC) $(ALLCFLAGS) $(KV_FLAGS_$*) -DSB_KV_NAME=$* -c $< -o $@
@@ -142,7 +170,7 @@ $(KV_ISAS:%=$(BUILD)/core/force/kvec_%.o): $(BUILD)/core/force/kvec_%.o: core/fo
 # provenance.c gets the git hash and the compiler flags; version.h changes only when
 # they do, so an unchanged tree does not rebuild.
 $(BUILD)/core/base/provenance.o: $(BUILD)/version.h
-$(BUILD)/version.h: FORCE | build/.deps-ok
+$(BUILD)/version.h: FORCE | $(BUILD)/.libs-ok
 	@mkdir -p $(dir $@)
 	$(Q)bash scripts/version.sh "$(CC)" "$(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS)" "$(strip $(MARCH))" > $@.new
 	$(Q)if cmp -s $@.new $@; then rm $@.new; else mv $@.new $@; fi
@@ -176,7 +204,7 @@ $(BUILD)/tests/%: tests/%.c $(LIB) tests/testlib.h $(BUILD)/flags
 # The fault shim (tests/faults/iofail.c) is preloaded into the tools, so it is built
 # plain, without the sanitizers, whichever build the tests use.
 FAULT_SHIM = build/faults/iofail.so
-$(FAULT_SHIM): tests/faults/iofail.c | build/.deps-ok
+$(FAULT_SHIM): tests/faults/iofail.c
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) -std=c11 -Wall -Wextra -Werror -O1 -shared -fPIC -o $@ $< -ldl
@@ -220,7 +248,7 @@ bench: build/.deps-ok all
 	$(Q)$(MAKE) --no-print-directory MARCH=-march=native BUILD=build/native BIN=build/native/bin build/native/bin/shake
 	$(Q)NATIVE=build/native/bin/shake bash tests/bench/bench.sh
 
-demo: build/.deps-ok all
+demo: build/.deps-build-ok all
 	$(Q)bash scripts/demo.sh
 
 # The paper claim by claim: campaigns/reproduce/, then REPRODUCTION.md and

@@ -1,10 +1,26 @@
 #!/usr/bin/env bash
-# deps.sh - install the Debian packages shakebox needs, only those that are missing.
-# Called by `make deps`, and by `make check`/`make demo` on a fresh machine.
+# deps.sh [build|test|all] - install the Debian packages shakebox needs, only those that
+# are missing (apt-get, as root or through sudo). The only script that runs a package
+# manager: a plain `make` never calls it (scripts/libcheck.sh only looks).
+#   build  what `make` and `make demo` need: the compiler, the libraries, and the
+#          programs the driver and the tools run (GNU parallel, gnuplot, sqlite3,
+#          h5dump, time)                                                  (`make deps`)
+#   test   what only the suite and the benchmarks add: LAMMPS, sshd and rsync (the
+#          multi-host test), Slurm and munge, Debian's Python h5py and MDAnalysis
+#                                                                    (`make deps-test`)
+#   all    both (default; `make check` on a fresh machine)
 set -euo pipefail
-PKGS=(build-essential pkg-config libgsl-dev libhdf5-dev hdf5-tools libsqlite3-dev sqlite3
-      libinih-dev parallel gnuplot-nox lammps openssh-server openssh-client rsync time
-      slurmctld slurmd slurm-client munge python3-h5py python3-mdanalysis)
+BUILD=(build-essential pkg-config libgsl-dev libhdf5-dev hdf5-tools libsqlite3-dev sqlite3
+       libinih-dev parallel gnuplot-nox time)
+TEST=(lammps openssh-server openssh-client rsync slurmctld slurmd slurm-client munge
+      python3-h5py python3-mdanalysis)
+case "${1:-all}" in
+build) PKGS=("${BUILD[@]}") ;;
+test) PKGS=("${TEST[@]}") ;;
+all) PKGS=("${BUILD[@]}" "${TEST[@]}") ;;
+-h | --help) sed -n '2,/^set -eu/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+*) echo "deps.sh: unknown group '$1' (build, test or all)" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${PKGS[@]}"; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -24,7 +24,7 @@ FUZZ_TARGETS ?=
 .PHONY: fuzz
 
 # The fuzzer is a tool, not what is tested: one plain build for every flavour.
-$(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
+$(FUZZ_BIN): tests/fuzz/fuzz.c | $(BUILD)/.libs-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(BASEFLAGS) -O2 -g -o $@ $< -lm
@@ -32,7 +32,7 @@ $(FUZZ_BIN): tests/fuzz/fuzz.c | build/.deps-ok
 # h5mut changes run files on purpose (the runfile target, hostile_runs.sh); it links HDF5
 H5MUT_BIN = build/fuzz/h5mut
 # and seals them again with the engine's digest (core/io/h5id.c, reading with core/io/h5read.c)
-$(H5MUT_BIN): tests/fuzz/h5mut.c core/io/h5id.c core/io/h5id.h core/io/h5seal.c core/io/h5seal.h core/io/h5read.c core/io/h5md.c core/base/fsutil.c core/base/err.c | build/.deps-ok
+$(H5MUT_BIN): tests/fuzz/h5mut.c core/io/h5id.c core/io/h5id.h core/io/h5seal.c core/io/h5seal.h core/io/h5read.c core/io/h5md.c core/base/fsutil.c core/base/err.c | $(BUILD)/.libs-ok
 	@mkdir -p $(dir $@)
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) $(BASEFLAGS) -O1 -g $(CORE_INC) $(PKG_CFLAGS) -o $@ $(filter %.c,$^) $(PKG_LIBS)

@@ -22,7 +22,7 @@ have_slurm() {
 }
 PATH="$PATH:/usr/sbin"
 if ! have_slurm; then
-	bash "$REPO/scripts/deps.sh" >"$TMP/deps.log" 2>&1
+	bash "$REPO/scripts/deps.sh" test >"$TMP/deps.log" 2>&1
 	if ! have_slurm; then
 		skip slurm "the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
 		finish
