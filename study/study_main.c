@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
+#include "provenance.h"
 #include "results.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
@@ -317,6 +318,10 @@ int main(int argc, char **argv)
 	if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
 		opts_usage(argc < 2 ? stderr : stdout);
 		return argc < 2 ? 1 : 0;
+	}
+	if (argc == 2 && !strcmp(argv[1], "--version")) {
+		printf("study (%s)\n", prov_version());
+		return 0;
 	}
 	study_args o;
 	sb_err e = {0};

@@ -1,6 +1,7 @@
 /* tool.c - the frame every analysis tool's main shares (tool.h). */
 #include "tool.h"
 
+#include "provenance.h"
 #include "axis.h"
 #include "label.h"
 #include "num.h"
@@ -29,6 +30,10 @@ int tool_main(int argc, char **argv, const tool_spec *spec, void *s)
 	 * overflows a fit): every GSL call's status is checked where it is made instead */
 	gsl_set_error_handler_off();
 	an_opts o = {.tool = spec->name, .version = spec->version};
+	if (argc == 2 && !strcmp(argv[1], "--version")) { /* as every program of the build */
+		printf("%s %s (%s)\n", spec->name, spec->version, prov_version());
+		return 0;
+	}
 	xopt x[TOOL_MAXX];
 	memcpy(x, spec->x, sizeof x);
 	const int pr = spec->nx ? xopt_args(&o, argc, argv, spec->help, spec->allowed, x, spec->nx, stdout, stderr)

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "flux.h"
+#include "provenance.h"
 #include "fsutil.h"
 #include "h5id.h"
 #include "h5read.h"
@@ -537,6 +538,10 @@ int main(int argc, char **argv)
 	gsl_set_error_handler_off(); /* statuses are checked: GSL's default handler aborts */
 	if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
 		fputs(HELP, stdout);
+		return 0;
+	}
+	if (argc == 2 && !strcmp(argv[1], "--version")) {
+		printf("dumpflux (%s)\n", prov_version());
 		return 0;
 	}
 	if (argc < 2)
