@@ -47,11 +47,9 @@ EOF
 # an uninterrupted campaign to compare with
 "$STUDY" run f.campaign --runs "$TMP/REF" --jobs 2 --no-cache >ref.log 2>&1 || fail setup.reference "exit $?: $(tail -n 2 ref.log)"
 "$STUDY" export f --runs "$TMP/REF" >ref.csv
-# export without the columns that say when, where and how often (not what)
-strip() {
-	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|from_cache|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
-		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
-}
+# export without the columns that say when, where and how (tests/strip_how.sh)
+. "$REPO/tests/strip_how.sh"
+strip() { strip_how "$1"; }
 
 # --- an I/O fault: launching stops, nothing is marked failed, resume completes ---
 for round in $(seq 1 "$ROUNDS"); do

@@ -47,11 +47,9 @@ snapshots = no
 [grid]
 frequency = 4, 5, 6, 7
 EOF
-# export without the columns that say when, where and how often (not what)
-strip() {
-	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|from_cache|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
-		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
-}
+# export without the columns that say when, where and how (tests/strip_how.sh)
+. "$REPO/tests/strip_how.sh"
+strip() { strip_how "$1"; }
 t0=$(date +%s%N)
 "$STUDY" run s.campaign --runs "$OUT/REF" --jobs 2 >ref.log 2>&1 || { echo "FAIL setup: the reference campaign: $(tail -n 2 ref.log)"; exit 2; }
 "$STUDY" export s --runs "$OUT/REF" >ref.csv
