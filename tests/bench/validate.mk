@@ -21,7 +21,8 @@
 # the exact statistics.
 # Knobs: VALIDATE_QUICK=1 (every part at 2 beds of a few seconds into
 # build/validate-quick/: the pipeline only, about a minute on 2 idle cores),
-# VALIDATE_PARTS ("A B C D"), JOBS (2); the script's header lists the sizes
+# VALIDATE_PARTS ("A B C D"), JOBS (2), VALIDATE_FRESH=1 (start over; by default an
+# interrupted validation resumes: a finished run is not run again); the script's header lists the sizes
 # (VALIDATE_BEDS, VALIDATE_ONSET_BEDS, VALIDATE_C_BEDS, VALIDATE_D_BEDS, ...), which
 # make passes on from the environment or its command line.
 VALIDATE_QUICK ?= 0

@@ -62,7 +62,10 @@
 #   JOBS (parallel runs, default 2), VALIDATE_WORK (run directory, default
 #   build/validate[-quick]), VALIDATE_OUT (where the .md and the figures go: docs for the
 #   full run, the run directory for the quick one), VALIDATE_REPORT=1 (the statistics
-#   and the fragment only, from the runs already in the run directory).
+#   and the fragment only, from the runs already in the run directory), VALIDATE_FRESH=1
+#   (start the parts over; without it a run that finished before is not run again: an
+#   interrupted validation resumes, more beds add only theirs, with the binaries and
+#   settings of the first start, other settings refused).
 # The defaults are sized for 50 minutes on 2 idle cores even if no intruder rose (about
 # 43 minutes when they rise as in the engine; measured rates and the sum in
 # docs/benchmarks.md, "Sizing make validate-lammps"); the fragment states the power that leaves. The runs
@@ -106,6 +109,7 @@ RISE=$REPO/tests/bench/lammps/validate_rise.in
 D_CAMPAIGN=campaigns/reproduce/claim4_waiting.campaign
 LMP=${LMP:-lmp}
 REPORT=${VALIDATE_REPORT:-0}
+FRESH=${VALIDATE_FRESH:-0}
 T0=$(date +%s)
 
 die() { echo "validate_lammps: $*" >&2; exit 1; }
@@ -177,11 +181,24 @@ tags() { # PART: the runs of a part, one name each
 
 mkdir -p "$WORK/bin" "$OUT"
 WORK=$(cd "$WORK" && pwd)
-# the binaries copied first: others may rebuild bin/ while the runs go on; a report
-# from recorded runs reads their files with the binaries they were made with
-if [ "$REPORT" != 1 ]; then
+# Resuming: a run that finished (its .ok file) is not run again, so an interrupted
+# validation (a session's end) goes on where it stopped, and more beds (a larger
+# VALIDATE_C_BEDS) add only their own runs. What the runs share must then be what they
+# were made with: the binaries are those of the first start (kept in WORK/bin), and
+# every setting but the numbers of beds is held to the recorded one (WORK/settings).
+# VALIDATE_FRESH=1 starts every part of PARTS over.
+settings="DT=$DT AMP=$AMP A_FREQ=$A_FREQ A_DUR=$A_DUR B_FREQS=$B_FREQS B_DUR=$B_DUR C_FREQ=$C_FREQ C_DUR=$C_DUR C_R=$C_R D_FREQ=$D_FREQ D_DUR=$D_DUR D_DEPTH=$D_DEPTH QUICK=$QUICK"
+done_runs=$(find "$WORK" -mindepth 2 -maxdepth 2 -name '*.ok' 2>/dev/null | wc -l)
+if [ "$REPORT" != 1 ] && [ "$FRESH" != 1 ] && [ "$done_runs" -gt 0 ]; then
+	[ "$(cat "$WORK/settings" 2>/dev/null)" = "$settings" ] ||
+		die "$WORK holds $done_runs finished runs made with other settings ($(cat "$WORK/settings" 2>/dev/null || echo none recorded)); VALIDATE_FRESH=1 starts over"
+	echo "validate_lammps: resuming in $WORK: $done_runs runs already finished, with the binaries of the first start" >&2
+elif [ "$REPORT" != 1 ]; then
+	# the binaries copied first: others may rebuild bin/ while the runs go on; a report
+	# from recorded runs reads their files with the binaries they were made with
 	cp "$SHAKE" "$WORK/bin/shake" || die "cannot copy $SHAKE"
 	cp "$DUMPFLUX" "$WORK/bin/dumpflux" || die "cannot copy $DUMPFLUX"
+	echo "$settings" >"$WORK/settings"
 fi
 [ -x "$WORK/bin/dumpflux" ] || die "no $WORK/bin/dumpflux"
 SHAKE=$WORK/bin/shake DUMPFLUX=$WORK/bin/dumpflux
@@ -223,6 +240,8 @@ job() {
 	local steps
 	steps=$(awk -v d="$dur" -v dt="$DT" 'BEGIN { printf "%d", d / dt + 0.5 }')
 	local data=$dir/bed_$tag.data out=$dir/${kind}_$tag
+	[ -e "$out.ok" ] && return 0 # finished before: resumed
+	rm -f "$out".* # what an interrupted attempt left
 	case $kind in
 	prep)
 		{ time nice -n 5 "$SHAKE" radius_ratio=$rr "${where[@]}" seed="$seed" frequency="$freq" amplitude=$AMP duration=0 \
@@ -252,6 +271,7 @@ job() {
 	esac
 	[ "$kind" = prep ] ||
 		echo "validate_lammps: $part $kind $tag: exit $rc, $(awk '{ printf "%.0f s (CPU %.0f s)", $1, $2 + $3 }' "$out.sec")" >&2
+	[ "$rc" != 0 ] || touch "$out.ok"
 	return $rc
 }
 export -f job
@@ -261,7 +281,7 @@ if [ "$REPORT" != 1 ]; then
 	: >"$WORK/prep.jobs"
 	: >"$WORK/run.jobs.est"
 	for p in $PARTS; do
-		rm -rf "${WORK:?}/$p"
+		[ "$FRESH" != 1 ] || rm -rf "${WORK:?}/$p"
 		mkdir -p "$WORK/$p"
 		for t in $(tags "$p"); do
 			echo "$p prep $t" >>"$WORK/prep.jobs"
