@@ -485,16 +485,20 @@ runs_phi() {
 		[ -f "$VAL" ] && both=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 '^shakebox: .*LAMMPS: ')
 		if [ -n "$both" ]; then
 			echo "Each code alone, depth 1 against one row lower: $both"
-			# "the codes agree" says only that they are not told apart bed by bed; when
-			# the depth effect is significant in one code alone, the reader is told whose it is
-			sb=${both%%LAMMPS:*} lm=${both#*LAMMPS:}
-			case "$sb|$lm" in
-			*"(significant)"*"|"*"(not significant)"*)
-				echo "So the depth effect 5a rests on is shakebox's: LAMMPS does not confirm it, and the two codes"
-				echo "are not told apart bed by bed either; more beds would decide whether it is the model's or one code's." ;;
-			*"(not significant)"*"|"*"(significant)"*)
-				echo "So the depth effect is LAMMPS's alone: shakebox does not show it on these beds." ;;
-			esac
+			# the one sentence across the codes, generated from the numbers
+			# (bin/dumpflux stats verdict; tests/analysis/twocode.c holds each wording):
+			# the fragment's own, or from an older fragment's p-values
+			across=$(sed -n '/^## C\./,/^## D\./s/^Across the codes: //p' "$VAL" | head -n 1)
+			if [ -z "$across" ]; then
+				pfs=$(sed -n 's/^shakebox: .*Fisher p = \([0-9.e+-]*\) (.*LAMMPS: .*/\1/p' <<<"$both")
+				pfl=$(sed -n 's/.*LAMMPS: .*Fisher p = \([0-9.e+-]*\) (.*/\1/p' <<<"$both")
+				pm=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 -A2 '^\*\*Result:\*\*' | tr '\n' ' ' |
+					grep -o 'McNemar p = [0-9.e+-]*\|, p = [0-9.e+-]* at depth 1' | grep -o '[0-9][0-9.e+-]*' | head -n 2 |
+					sort -g | head -n 1)
+				[ -n "$pfs" ] && [ -n "$pfl" ] && [ -n "$pm" ] &&
+					across=$("$root/bin/dumpflux" stats verdict "$pfs" "$pfl" "$pm" "the depth effect" 2>/dev/null)
+			fi
+			[ -z "$across" ] || echo "Across the codes: $across"
 		fi
 		echo
 		if at_onset claim5_depth; then

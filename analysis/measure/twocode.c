@@ -4,6 +4,7 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 double tc_sign_p(long k, long n)
@@ -181,4 +182,52 @@ double tc_mcnemar_detect(long n, double p0, int dir, double alpha, double power)
 		}
 	mc_free(&t);
 	return found;
+}
+
+enum tc_verdict tc_verdict_of(double pa, double pb, double pab, double alpha)
+{
+	if (isnan(pa) || isnan(pb) || isnan(pab) || isnan(alpha))
+		return TC_NONE;
+	if (pab < alpha)
+		return TC_DIFFER;
+	const int sa = pa < alpha, sb = pb < alpha;
+	return sa && sb ? TC_BOTH : !sa && !sb ? TC_NEITHER : TC_ONE;
+}
+
+/* a p-value as the sentences print it */
+static const char *pval(double p, char *buf, size_t len)
+{
+	snprintf(buf, len, p < 0.001 ? "%.1e" : "%.3g", p);
+	return buf;
+}
+
+enum tc_verdict tc_verdict_text(double pa, double pb, double pab, double alpha, const char *a, const char *b,
+				const char *effect, const char *test_own, const char *test_ab, char *buf, size_t len)
+{
+	char s[3][32];
+	const enum tc_verdict v = tc_verdict_of(pa, pb, pab, alpha);
+	pval(pa, s[0], sizeof s[0]);
+	pval(pb, s[1], sizeof s[1]);
+	pval(pab, s[2], sizeof s[2]);
+	switch (v) {
+	case TC_DIFFER:
+		snprintf(buf, len, "The codes differ: %s p = %s between %s and %s on the same beds (%s p = %s in %s, %s in %s).",
+			 test_ab, s[2], a, b, test_own, s[0], a, s[1], b);
+		break;
+	case TC_BOTH:
+		snprintf(buf, len, "The codes agree (%s p = %s), and each shows %s (%s p = %s in %s, %s in %s).", test_ab,
+			 s[2], effect, test_own, s[0], a, s[1], b);
+		break;
+	case TC_NEITHER:
+		snprintf(buf, len, "The codes agree (%s p = %s), and neither can decide: neither shows %s on these beds "
+			 "(%s p = %s in %s, %s in %s).", test_ab, s[2], effect, test_own, s[0], a, s[1], b);
+		break;
+	case TC_ONE:
+		snprintf(buf, len, "The codes are not told apart bed by bed (%s p = %s), but only %s shows %s (%s p = %s in "
+			 "%s, %s in %s): these beds cannot decide whether it is the model's or one code's.", test_ab, s[2],
+			 pa < alpha ? a : b, effect, test_own, s[0], a, s[1], b);
+		break;
+	default: snprintf(buf, len, "No verdict: a p-value is missing."); break;
+	}
+	return v;
 }

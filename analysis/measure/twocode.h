@@ -42,4 +42,23 @@ double tc_mcnemar_power(long n, double pa, double pb, double alpha);
  * such pb exists. */
 double tc_mcnemar_detect(long n, double p0, int dir, double alpha, double power);
 
+/* The one sentence a reader can trust about an effect across the two codes: from each
+ * code's own test of the effect (pa, pb: p-values, e.g. Fisher's test of depth 1
+ * against depth 0) and the paired test of the codes against each other (pab: the
+ * smallest p of the comparisons, e.g. McNemar's per depth), at level alpha:
+ *   TC_DIFFER   pab < alpha: the codes differ;
+ *   TC_BOTH     they agree (pab >= alpha) and each shows the effect (pa, pb < alpha);
+ *   TC_NEITHER  they agree and neither shows it: these beds cannot decide;
+ *   TC_ONE      they are not told apart, but one code alone shows the effect: not
+ *               "the codes agree" unqualified, since which is right is not decided.
+ * NaN in a p-value: TC_NONE (no sentence). */
+enum tc_verdict { TC_NONE, TC_DIFFER, TC_BOTH, TC_NEITHER, TC_ONE };
+enum tc_verdict tc_verdict_of(double pa, double pb, double pab, double alpha);
+/* The verdict as that sentence, naming the codes a and b (e.g. "shakebox", "LAMMPS"),
+ * the effect (e.g. "the depth effect") and the p-values (3 significant digits); the
+ * paired test's name in test_ab (e.g. "McNemar"), the codes' own in test_own
+ * ("Fisher"). Returns the verdict. */
+enum tc_verdict tc_verdict_text(double pa, double pb, double pab, double alpha, const char *a, const char *b,
+				const char *effect, const char *test_own, const char *test_ab, char *buf, size_t len);
+
 #endif

@@ -32,7 +32,7 @@ static const char *HELP =
 	"                [--skip FRAC] [--periods]\n"
 	"       dumpflux compare [--level L] A1.tsv ... -- B1.tsv ...\n"
 	"       dumpflux stats binom K N | fisher K1 N1 K2 N2 | sign K N | paired FILE |\n"
-	"                power N P0 [--level L]\n\n"
+	"                power N P0 | verdict PA PB PAB [--level L]\n\n"
 	"The flux Phi(D) (docs/model.md, \"Flux Phi(D)\") of one run as a profile: per height\n"
 	"line its time mean over the periods after the first FRAC of them (default 0.2, as\n"
 	"the analysis tools), in particles per period. Prints TSV: line, height (cm above the\n"
@@ -76,7 +76,14 @@ static const char *HELP =
 	"         power N P0   'up down': the smallest differences up and down from the\n"
 	"                      fraction P0 that McNemar's exact test at 1 - L detects with\n"
 	"                      80 % power over N beds, the codes' outcomes independent given\n"
-	"                      the bed (nan: none within [0, 1]); N at most " TC_STR(TC_MCNEMAR_MAX) ".\n";
+	"                      the bed (nan: none within [0, 1]); N at most " TC_STR(TC_MCNEMAR_MAX) ".\n"
+	"         verdict PA PB PAB [EFFECT [OWN PAIRED]]  the one sentence on an effect across\n"
+	"                      the codes (tc_verdict_text): from its p in shakebox (PA) and in\n"
+	"                      LAMMPS (PB), each code's own test (OWN, default Fisher), and the\n"
+	"                      codes' paired test (PAB, PAIRED, default McNemar; the smallest p\n"
+	"                      of its comparisons), at 1 - L: the codes differ; they agree and\n"
+	"                      each shows EFFECT; they agree and neither can decide; or they are\n"
+	"                      not told apart but one alone shows it.\n";
 
 static int usage(const char *msg)
 {
@@ -495,9 +502,24 @@ static int cmd_stats(int argc, char **argv)
 			 : !strcmp(what, "fisher")                     ? 4
 			 : !strcmp(what, "paired")                     ? -1
 			 : !strcmp(what, "power")                      ? -2
+			 : !strcmp(what, "verdict")                    ? -3
 								       : 0;
 	if (!want)
-		return usage("stats: which statistic: binom, fisher, sign, paired or power?");
+		return usage("stats: which statistic: binom, fisher, sign, paired, power or verdict?");
+	if (want == -3) {
+		double p[3];
+		if (na != 4 && na != 5 && na != 7)
+			return usage("stats verdict: PA PB PAB [EFFECT [OWN PAIRED]] (the effect's p in shakebox and in LAMMPS, "
+				     "the codes' paired p)");
+		for (int i = 0; i < 3; i++)
+			if (!num(arg[i + 1], &p[i]) || !(p[i] >= 0 && p[i] <= 1))
+				return usage("stats verdict: PA PB PAB are p-values in [0, 1]");
+		char t[800];
+		tc_verdict_text(p[0], p[1], p[2], 1 - level, "shakebox", "LAMMPS", na >= 5 ? arg[4] : "the effect",
+				na == 7 ? arg[5] : "Fisher", na == 7 ? arg[6] : "McNemar", t, sizeof t);
+		printf("%s\n", t);
+		return 0;
+	}
 	if (want == -1)
 		return na == 2 ? stats_paired(arg[1], level) : usage("stats paired: one file of rows 'a b'");
 	if (want == -2) {

@@ -5,6 +5,7 @@
 #include <gsl/gsl_cdf.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "testlib.h"
 #include "measure/twocode.h"
@@ -94,5 +95,38 @@ int main(void)
 	/* symmetric: up from p0 as down from 1 - p0 */
 	CHECK_REL("power.symmetric", tc_mcnemar_detect(n, 0.3, 1, 0.05, 0.8), tc_mcnemar_detect(n, 0.7, -1, 0.05, 0.8),
 		  1e-12);
+	/* the one sentence across the codes: each wording on known inputs, and the level's
+	 * edge both ways (p = alpha is not significant) */
+	char t[512];
+	CHECK("verdict.differ", tc_verdict_of(0.003, 0.72, 0.01, 0.05) == TC_DIFFER, "%d", tc_verdict_of(0.003, 0.72, 0.01, 0.05));
+	CHECK("verdict.both", tc_verdict_of(0.01, 0.02, 0.5, 0.05) == TC_BOTH, "%d", tc_verdict_of(0.01, 0.02, 0.5, 0.05));
+	CHECK("verdict.neither", tc_verdict_of(0.3, 0.72, 0.5, 0.05) == TC_NEITHER, "%d", tc_verdict_of(0.3, 0.72, 0.5, 0.05));
+	/* the validation of 2026-11-26: shakebox 2/16 vs 11/16 (Fisher 0.00319), LAMMPS 7/16 vs
+	 * 9/16 (0.724), McNemar 0.125 and 0.754: not "the codes agree" unqualified */
+	CHECK("verdict.one.shakebox", tc_verdict_of(0.00319, 0.724, 0.125, 0.05) == TC_ONE, "%d",
+	      tc_verdict_of(0.00319, 0.724, 0.125, 0.05));
+	CHECK("verdict.one.lammps", tc_verdict_of(0.724, 0.00319, 0.125, 0.05) == TC_ONE, "%d",
+	      tc_verdict_of(0.724, 0.00319, 0.125, 0.05));
+	CHECK("verdict.edge.pab_at_alpha_agrees", tc_verdict_of(0.3, 0.3, 0.05, 0.05) == TC_NEITHER, "%d",
+	      tc_verdict_of(0.3, 0.3, 0.05, 0.05));
+	CHECK("verdict.edge.pab_below_alpha_differs", tc_verdict_of(0.3, 0.3, 0.0499, 0.05) == TC_DIFFER, "%d",
+	      tc_verdict_of(0.3, 0.3, 0.0499, 0.05));
+	CHECK("verdict.edge.pa_at_alpha_not_shown", tc_verdict_of(0.05, 0.01, 0.5, 0.05) == TC_ONE, "%d",
+	      tc_verdict_of(0.05, 0.01, 0.5, 0.05));
+	CHECK("verdict.nan_none", tc_verdict_of(NAN, 0.1, 0.1, 0.05) == TC_NONE, "%d", tc_verdict_of(NAN, 0.1, 0.1, 0.05));
+	tc_verdict_text(0.00319, 0.724, 0.125, 0.05, "shakebox", "LAMMPS", "the depth effect", "Fisher", "McNemar", t, sizeof t);
+	CHECK("verdict.text.one", !strcmp(t, "The codes are not told apart bed by bed (McNemar p = 0.125), but only shakebox "
+					    "shows the depth effect (Fisher p = 0.00319 in shakebox, 0.724 in LAMMPS): these beds "
+					    "cannot decide whether it is the model's or one code's."),
+	      "%s", t);
+	CHECK("verdict.text.one_never_plain_agree", !strstr(t, "The codes agree"), "%s", t);
+	tc_verdict_text(0.0002, 0.01, 0.6, 0.05, "shakebox", "LAMMPS", "the depth effect", "Fisher", "McNemar", t, sizeof t);
+	CHECK("verdict.text.both", !strcmp(t, "The codes agree (McNemar p = 0.6), and each shows the depth effect (Fisher "
+					     "p = 2.0e-04 in shakebox, 0.01 in LAMMPS)."),
+	      "%s", t);
+	tc_verdict_text(0.3, 0.72, 0.5, 0.05, "shakebox", "LAMMPS", "the depth effect", "Fisher", "McNemar", t, sizeof t);
+	CHECK("verdict.text.neither", strstr(t, "The codes agree (McNemar p = 0.5), and neither can decide") == t, "%s", t);
+	tc_verdict_text(0.003, 0.72, 0.01, 0.05, "shakebox", "LAMMPS", "the depth effect", "Fisher", "McNemar", t, sizeof t);
+	CHECK("verdict.text.differ", strstr(t, "The codes differ: McNemar p = 0.01 between shakebox and LAMMPS") == t, "%s", t);
 	return tl_done();
 }

@@ -718,7 +718,16 @@ report_C() {
 			printf "%s, %d/%d against %d/%d, Fisher p = %s%s", s, a, n, b, n, (p < 0.001 ? sprintf("%.1e", p) : sprintf("%.3g", p)), p < 0.05 ? " (significant)" : " (not significant)" }'
 	}
 	dirs=$(claimread "$k00" "$k01" "$fs") dirl=$(claimread "$k10" "$k11" "$fl")
-	[ "$verdict" = agree ] && word="the codes **agree**" || word="the codes **differ**"
+	# the one sentence across the codes (tc_verdict_text): each code's Fisher p of the
+	# depths, the smaller McNemar p of the two depths
+	local across
+	across=$("$DUMPFLUX" stats verdict "$fs" "$fl" "$(awk -v a="$m0" -v b="$m1" 'BEGIN { print a < b ? a : b }')" "the depth effect")
+	case $across in
+	"The codes differ"*) word="the codes **differ**" ;;
+	"The codes agree"*"each shows"*) word="the codes **agree**, and each shows the depth effect" ;;
+	"The codes agree"*) word="the codes **agree**, and neither can decide" ;;
+	*) word="**undecided**: the codes are not told apart, but one alone shows the depth effect" ;;
+	esac
 	printf '%s\t%s\t%s\n' "claim 5: 𝓡 = $C_R at depth 0 and 1, $C_FREQ Hz: risen within $C_DUR s (depth 0 is one row lower)" \
 		"$n beds per depth; risen at depth 0 / 1: shakebox $k00/$k01, LAMMPS $k10/$k11 of $n; codes paired, McNemar p = $(fmtp "$m0") / $(fmtp "$m1"); 80 % power only for differences of $pw0 / $pw1" "$word" >"$d/summary"
 	{
@@ -744,6 +753,8 @@ report_C() {
 		echo "beds (risen in one code only) and the number of beds where they agree. *agree* = McNemar p ≥ 0.05 at"
 		echo "both depths. Power: outcomes taken independent between the codes given the bed (a shared bed that makes"
 		echo "them agree more only adds power), exactly over the discordant counts (\`bin/dumpflux stats power\`)."
+		echo
+		echo "Across the codes: $across"
 		echo
 		echo "**Result:** $word — McNemar p = $(fmtp "$m0") at depth 0 ($b0 beds risen in shakebox only, $c0 in LAMMPS only;"
 		echo "agree on $((n - b0 - c0)) of $n), p = $(fmtp "$m1") at depth 1 ($b1, $c1; agree on $((n - b1 - c1)) of $n); pooled over both depths"
