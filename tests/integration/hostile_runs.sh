@@ -232,6 +232,14 @@ for t in waiting whale; do
 	LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 		counted h5walk_crash.$t $t W1 "$ID" unreadable "the HDF5 library failed while walking the file's links and objects"
 done
+# ... and one that loops forever there is refused at the walk's time limit
+# (SHAKEBOX_H5_WALK_SECONDS), not waited for (make fuzz, run-file input 1047 of seed 31)
+t0=$(date +%s)
+LD_PRELOAD="$SHIM" IOFAIL_H5WALK_HANG="$ID.h5" SHAKEBOX_H5_WALK_SECONDS=1 ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+	counted h5walk_hang.waiting waiting W1 "$ID" unreadable "did not finish walking the file's links and objects within 1 s"
+check h5walk_hang.within_limit "the tool took $(($(date +%s) - t0)) s" test $(($(date +%s) - t0)) -lt 20
+SHAKEBOX_H5_WALK_SECONDS=abc counted h5walk_limit.bad_value waiting W1 "$ID" unreadable \
+	"SHAKEBOX_H5_WALK_SECONDS = 'abc': expected a number of seconds in [0.1, 3600]"
 
 # ---- nothing outside the file: links, external storage and virtual datasets ----
 mkfifo pipe && cp R/fz/"$ID0".h5 other.h5
