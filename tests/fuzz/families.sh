@@ -167,7 +167,8 @@ fam_links() {
 	if [ "$RV" = 0 ]; then KEY=run; else pick "${AN[@]}"; KEY=$PV; fi
 	mkfifo "$W/fifo"
 	"$H5MUT" "$SEALED/$NAME/$id.h5" "$W/R/$NAME/$id.h5" --random-link "$hs" "$W/fifo" "$W/R/$NAME/$other.h5" 2>"$W/h5mut.log"
-	sqlite3 "$W/R/study.db" "UPDATE result SET file_seal = '$(seal "$W/R/$NAME/$id.h5")' WHERE run = '$id'"
+	sqlite3 "$W/R/study.db" "UPDATE result SET file_seal = '$(seal "$W/R/$NAME/$id.h5")' WHERE run = '$id'" &&
+		/usr/bin/python3 tests/integration/rowseal.py write "$W/R/study.db"
 	NOTE="h5mut $id --random-link $hs FIFO $other, the new seal recorded: $(tr '\n' ';' <"$W/h5mut.log")"
 	SEEN=$id
 }
