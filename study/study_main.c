@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "fsutil.h"
+#include "h5read.h"
 #include "provenance.h"
 #include "results.h"
 #include "adaptive/search.h"
@@ -325,6 +326,10 @@ int main(int argc, char **argv)
 	}
 	study_args o;
 	sb_err e = {0};
+	if (h5r_walk_env(&e)) { /* it would refuse every unsealed run file */
+		fprintf(stderr, "study: %s\n", e.msg);
+		return 1;
+	}
 	int rc = opts_parse(&o, argc, argv, &e);
 	if (rc < 0) {
 		opts_help(stdout, o.cmd);

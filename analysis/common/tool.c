@@ -1,6 +1,7 @@
 /* tool.c - the frame every analysis tool's main shares (tool.h). */
 #include "tool.h"
 
+#include "h5read.h"
 #include "provenance.h"
 #include "axis.h"
 #include "label.h"
@@ -33,6 +34,11 @@ int tool_main(int argc, char **argv, const tool_spec *spec, void *s)
 	if (argc == 2 && !strcmp(argv[1], "--version")) { /* as every program of the build */
 		printf("%s %s (%s)\n", spec->name, spec->version, prov_version());
 		return 0;
+	}
+	sb_err ee = {0};
+	if (h5r_walk_env(&ee)) { /* it would refuse every run file */
+		fprintf(stderr, "%s: %s\n", spec->name, ee.msg);
+		return 1;
 	}
 	xopt x[TOOL_MAXX];
 	memcpy(x, spec->x, sizeof x);

@@ -568,6 +568,9 @@ int main(int argc, char **argv)
 	}
 	if (argc < 2)
 		return usage("which command: run, dump, compare or stats?");
+	sb_err we = {0};
+	if (h5r_walk_env(&we)) /* it would refuse every run file */
+		return usage(we.msg);
 	if (!strcmp(argv[1], "run"))
 		return cmd_run(argc - 2, argv + 2);
 	if (!strcmp(argv[1], "dump"))

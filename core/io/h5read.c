@@ -73,11 +73,18 @@ static double walk_limit(void)
 	return *v && !*end && s >= 0.1 && s <= 3600 ? s : -1;
 }
 
+int h5r_walk_env(sb_err *e)
+{
+	if (walk_limit() < 0)
+		return sb_errf(e, SB_EUSAGE, WALK_ENV " = '%s': expected a number of seconds in [0.1, 3600]", getenv(WALK_ENV));
+	return 0;
+}
+
 static int walk_isolated(const char *path, sb_err *e)
 {
 	const double limit = walk_limit();
-	if (limit < 0)
-		return sb_errf(e, SB_EUSAGE, WALK_ENV " = '%s': expected a number of seconds in [0.1, 3600]", getenv(WALK_ENV));
+	if (h5r_walk_env(e))
+		return e->code;
 	int fd[2];
 	if (pipe(fd))
 		return sb_errf(e, SB_EIO, "%s: cannot check the file's structure: pipe: %s", path, strerror(errno));

@@ -16,6 +16,11 @@
  * the open), its seal does not match its bytes (h5seal_check, before HDF5 reads
  * any of them), it is no HDF5 file, or it reaches outside itself (h5r_contained). */
 int h5r_open(const char *path, hid_t *f, sb_err *e);
+/* SB_EUSAGE, naming it and its range, when SHAKEBOX_H5_WALK_SECONDS (the time limit of
+ * the walk of a file no recorded seal vouches for, docs/inputs.md) is set to anything but
+ * a number of seconds in [0.1, 3600]: a program that reads run files checks it at its
+ * start, since such a value refuses every such file. */
+int h5r_walk_env(sb_err *e);
 /* ... and seal gets the file's seal ("" for an older, unsealed file), which must be
  * want_seal when that is neither NULL nor "" (the seal the study driver recorded when
  * the run was done: a file copied, replaced or edited and sealed again differs), checked

@@ -238,8 +238,16 @@ t0=$(date +%s)
 LD_PRELOAD="$SHIM" IOFAIL_H5WALK_HANG="$ID.h5" SHAKEBOX_H5_WALK_SECONDS=1 ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 	counted h5walk_hang.waiting waiting W1 "$ID" unreadable "did not finish walking the file's links and objects within 1 s"
 check h5walk_hang.within_limit "the tool took $(($(date +%s) - t0)) s" test $(($(date +%s) - t0)) -lt 20
-SHAKEBOX_H5_WALK_SECONDS=abc counted h5walk_limit.bad_value waiting W1 "$ID" unreadable \
-	"SHAKEBOX_H5_WALK_SECONDS = 'abc': expected a number of seconds in [0.1, 3600]"
+# a limit that is no number is refused at the start, by every program that reads run files
+bad=""
+for t in waiting study dumpflux; do
+	case $t in study) args=(status fz --runs W1) ;; dumpflux) args=(run "W1/fz/$ID.h5") ;; *) args=(fz --runs W1 --no-plot --no-store) ;; esac
+	SHAKEBOX_H5_WALK_SECONDS=abc "$BINDIR/$t" "${args[@]}" >lim.out 2>lim.err
+	rc=$?
+	[ "$rc" = 1 ] && grep -qF "SHAKEBOX_H5_WALK_SECONDS = 'abc': expected a number of seconds in [0.1, 3600]" lim.err ||
+		bad="$bad $t: exit $rc, $(head -c 200 lim.err);"
+done
+[ -z "$bad" ] && ok h5walk_limit.bad_value_refused || fail h5walk_limit.bad_value_refused "$bad"
 
 # ---- nothing outside the file: links, external storage and virtual datasets ----
 mkfifo pipe && cp R/fz/"$ID0".h5 other.h5
