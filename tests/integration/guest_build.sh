@@ -36,7 +36,8 @@ for b in $(make -s -C src print-tools); do
 	[ -x "src/bin/$b" ] && n=$((n + 1)) || fail "guest.make_builds.$b" "src/bin/$b was not built"
 done
 check guest.make_builds_every_tool "only $n programs built" test "$n" -ge 8
-check guest.shake_runs "$(src/bin/shake --version 2>&1 | head -n 2)" src/bin/shake --version
+quiet() { "$@" >/dev/null 2>&1; }
+check guest.shake_runs "$(src/bin/shake --version 2>&1 | head -n 2)" quiet src/bin/shake --version
 
 # the libraries hidden: stops naming each, with its packages; nothing built or installed
 PATH="$TMP/stubs:$PATH" PKG_CONFIG_LIBDIR=/nonexistent make -C src BUILD=build/hidden BIN=build/hidden/bin \
@@ -65,7 +66,7 @@ rc=$?
 check guest.hdf5_dir_builds "exit $rc: $(tail -n 3 prefix.log)" test "$rc" = 0
 check guest.hdf5_dir_used "the compiler was not pointed at the prefix: $(grep -m1 -- '-I' src/build/prefix/flags)" \
 	grep -qF -- "-I$TMP/h5prefix/include" src/build/prefix/flags
-check guest.hdf5_dir_runs "$(src/build/prefix/bin/shake --version 2>&1 | head -n 2)" src/build/prefix/bin/shake --version
+check guest.hdf5_dir_runs "$(src/build/prefix/bin/shake --version 2>&1 | head -n 2)" quiet src/build/prefix/bin/shake --version
 PATH="$TMP/stubs:$PATH" make -C src HDF5_DIR="$TMP/nowhere" BUILD=build/nowhere BIN=build/nowhere/bin \
 	build/nowhere/bin/shake >nowhere.log 2>&1
 rc=$?
