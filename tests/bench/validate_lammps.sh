@@ -59,7 +59,8 @@
 #   D: VALIDATE_D_BEDS (12), VALIDATE_D_DURATION (30 s); frequency and depth from
 #      campaigns/reproduce/claim4_waiting.campaign and its scene (VALIDATE_D_FREQ,
 #      VALIDATE_D_DEPTH override)
-#   JOBS (parallel runs, default 2), VALIDATE_WORK (run directory, default
+#   VALIDATE_CHEAP_FIRST=1 (the runs cheapest first, not longest first: for a validation
+#   spread over sessions), JOBS (parallel runs, default 2), VALIDATE_WORK (run directory, default
 #   build/validate[-quick]), VALIDATE_OUT (where the .md and the figures go: docs for the
 #   full run, the run directory for the quick one), VALIDATE_REPORT=1 (the statistics
 #   and the fragment only, from the runs already in the run directory), VALIDATE_FRESH=1
@@ -246,12 +247,13 @@ job() {
 	prep)
 		{ time nice -n 5 "$SHAKE" radius_ratio=$rr "${where[@]}" seed="$seed" frequency="$freq" amplitude=$AMP duration=0 \
 			progress=no write_lammps="$data" output="$dir/prep_$tag.h5" >"$out.log" 2>&1; } 2>"$out.sec" || rc=$? ;;
-	shake)
+	shake | paper | fast)
 		local how=()
-		case $part in
-		A) how=(radius_ratio=0 flux=yes) ;; # the paper preset
-		B) how=(radius_ratio=0 flux=yes integrator=verlet dt="$DT") ;;
-		C | D) how=(radius_ratio="$rr" integrator=verlet dt="$DT" stop=risen stop_after=0) ;;
+		case $part/$kind in
+		C/paper | C/fast) how=(radius_ratio="$rr" preset="$kind" stop=risen stop_after=0) ;; # the presets on the same beds
+		A/*) how=(radius_ratio=0 flux=yes) ;; # the paper preset
+		B/*) how=(radius_ratio=0 flux=yes integrator=verlet dt="$DT") ;;
+		C/* | D/*) how=(radius_ratio="$rr" integrator=verlet dt="$DT" stop=risen stop_after=0) ;;
 		esac
 		{ time nice -n 5 "$SHAKE" particles="$data" settle=no "${how[@]}" frequency="$freq" amplitude=$AMP \
 			duration="$dur" snapshots=no traj_rate=0 progress=no output="$out.h5" >"$out.log" 2>&1; } 2>"$out.sec" || rc=$? ;;
@@ -289,9 +291,14 @@ if [ "$REPORT" != 1 ]; then
 			# longest first (LAMMPS costs about 6 times the engine's CPU per simulated second)
 			echo "$((6 * d)) $p lmp $t" >>"$WORK/run.jobs.est"
 			echo "$d $p shake $t" >>"$WORK/run.jobs.est"
+			# C also with the engine's own presets on the same beds: paper (gear5, the
+			# paper's step) and fast (verlet at 4 times it), for the presets at the onset
+			[ "$p" != C ] || printf '%s\n' "$d $p paper $t" "$((d / 4)) $p fast $t" >>"$WORK/run.jobs.est"
 		done
 	done
-	sort -k1,1nr -s "$WORK/run.jobs.est" | cut -d' ' -f2- >"$WORK/run.jobs"
+	# VALIDATE_CHEAP_FIRST=1: the cheapest first instead, so that a validation spread over
+	# sessions (resumed) has every engine run before the first LAMMPS run
+	sort -k1,1n"$([ "${VALIDATE_CHEAP_FIRST:-0}" = 1 ] || echo r)" -s "$WORK/run.jobs.est" | cut -d' ' -f2- >"$WORK/run.jobs"
 	# shellcheck disable=SC2016 # the jobs' words, expanded by the inner bash
 	xargs -P "$JOBS" -L 1 bash -c 'job "$0" "$1" "$2"' <"$WORK/prep.jobs" ||
 		die "a preparation failed (logs in $WORK/*/prep_*.log)"
