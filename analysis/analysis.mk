@@ -6,8 +6,8 @@
 # print-tools`, `make print-campaign-tools`) or are checked against it
 # (scripts/docs_lists.sh). AN_CAMPAIGN: the tools that read a campaign's runs (TOOL
 # CAMPAIGN --runs DIR); bin/dumpflux reads one run file or another code's dump.
-AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale convect
-AN_CAMPAIGN = $(filter-out dumpflux,$(AN_MAIN))
+AN_MAIN   = onset hysteresis waiting figures dumpflux rolls ring whale convect movie
+AN_CAMPAIGN = $(filter-out dumpflux movie,$(AN_MAIN))
 AN_SRC    = $(wildcard analysis/common/*.c analysis/measure/*.c)
 AN_OBJ    = $(AN_SRC:%.c=$(BUILD)/%.o)
 AN_LIB    = $(BUILD)/analysis/libanalysis.a

@@ -4,14 +4,14 @@
 # manager: a plain `make` never calls it (scripts/libcheck.sh only looks).
 #   build  what `make` and `make demo` need: the compiler, the libraries, and the
 #          programs the driver and the tools run (GNU parallel, gnuplot, sqlite3,
-#          h5dump, time)                                                  (`make deps`)
+#          h5dump, time, ffmpeg for bin/movie)                            (`make deps`)
 #   test   what only the suite and the benchmarks add: LAMMPS, sshd and rsync (the
 #          multi-host test), Slurm and munge, Debian's Python h5py and MDAnalysis
 #                                                                    (`make deps-test`)
 #   all    both (default; `make check` on a fresh machine)
 set -euo pipefail
 BUILD=(build-essential pkg-config libgsl-dev libhdf5-dev hdf5-tools libsqlite3-dev sqlite3
-       libinih-dev parallel gnuplot-nox time)
+       libinih-dev parallel gnuplot-nox time ffmpeg)
 TEST=(lammps openssh-server openssh-client rsync slurmctld slurmd slurm-client munge
       python3-h5py python3-mdanalysis)
 case "${1:-all}" in

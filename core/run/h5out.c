@@ -441,23 +441,39 @@ static void box_size(const sb_sim *s, double *w, double *hgt)
  * time. */
 typedef struct snapw {
 	h5elem pos, vel, ang, off, offv;
-	double *p, *v;
+	h5elem wpos; /* the walls at each snapshot (snapshots_per_period > 1 only) */
+	hid_t walls;
+	double *p, *v, *wp;
 	hsize_t k;
 } snapw;
 
-static int snap_open(h5w *h, snapw *w, const sb_sim *s, hid_t bed, hid_t box, hsize_t K)
+/* The walls stand where they stand at rest only at phase 0; with snapshots within a
+ * period (snapshots_per_period > 1) their place at each snapshot is written too, on the
+ * snapshots' clock, so that a reader (the XDMF sidecar, ParaView) draws the box where
+ * it was. */
+static int snap_walls_moving(const sb_sim *s) { return s->sc.snapshots_per_period > 1 && s->st.n > s->st.nm; }
+
+static int snap_open(h5w *h, snapw *w, const sb_sim *s, hid_t parts, hid_t bed, hid_t box, hsize_t K)
 {
-	const hsize_t nm = (hsize_t)s->st.nm, tail[2] = {nm, 2}, two = 2;
+	const hsize_t nm = (hsize_t)s->st.nm, tail[2] = {nm, 2}, two = 2, nw = (hsize_t)(s->st.n - s->st.nm);
+	const hsize_t wtail[2] = {nw, 2};
 	const hid_t ft = s->sc.snapshot_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
 	w->p = malloc(sizeof(double) * 2 * (nm ? nm : 1));
 	w->v = malloc(sizeof(double) * 2 * (nm ? nm : 1));
-	if (!w->p || !w->v)
+	w->wp = malloc(sizeof(double) * 2 * (nw ? nw : 1));
+	if (!w->p || !w->v || !w->wp)
 		return -1;
 	h5w_elem_create_as(h, &w->pos, bed, "position", K, 2, tail, "cm", NULL, ft);
 	h5w_elem_create_as(h, &w->vel, bed, "velocity", K, 2, tail, "cm s-1", &w->pos, ft);
 	h5w_elem_create_as(h, &w->ang, bed, "angle", K, 1, &nm, "rad", &w->pos, ft);
 	h5w_elem_create(h, &w->off, box, "offset", K, 1, &two, "cm", &w->pos);
 	h5w_elem_create(h, &w->offv, box, "offset_velocity", K, 1, &two, "cm s-1", &w->pos);
+	if (snap_walls_moving(s)) {
+		w->walls = H5Gopen2(parts, "walls", H5P_DEFAULT);
+		if (w->walls < 0)
+			return -1;
+		h5w_elem_create_as(h, &w->wpos, w->walls, "snapshot_position", K, 2, wtail, "cm", &w->pos, ft);
+	}
 	return h->bad ? -1 : 0;
 }
 
@@ -480,11 +496,23 @@ static void snap_row(h5w *h, snapw *w, const sb_sim *s, const double *rec)
 	h5w_elem_row(h, &w->ang, w->k, step, t, th);
 	h5w_elem_row(h, &w->off, w->k, step, t, off);
 	h5w_elem_row(h, &w->offv, w->k, step, t, offv);
+	if (w->wpos.g > 0) { /* the walls: at rest, moved with the box (write_walls) */
+		const int nw = s->st.n - s->st.nm;
+		for (int i = 0; i < nw; i++) {
+			w->wp[2 * i] = s->st.q[C_X][0][s->st.nm + i];
+			w->wp[2 * i + 1] = s->st.q[C_Y][0][s->st.nm + i] + off[1];
+		}
+		h5w_elem_row(h, &w->wpos, w->k, step, t, w->wp);
+	}
 	w->k++;
 }
 
 static void snap_close(h5w *h, snapw *w)
 {
+	if (w->wpos.g > 0)
+		h5w_elem_close(h, &w->wpos);
+	if (w->walls > 0)
+		h5w_close_obj(h, w->walls);
 	if (w->pos.g > 0) {
 		h5w_elem_close(h, &w->offv);
 		h5w_elem_close(h, &w->off);
@@ -494,6 +522,7 @@ static void snap_close(h5w *h, snapw *w)
 	}
 	free(w->p);
 	free(w->v);
+	free(w->wp);
 }
 
 /* /particles/bed_xyz: position and velocity of /particles/bed as [K][n][3] virtual
@@ -607,8 +636,11 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
 	free(p);
 	h5w_close_obj(h, plain_box(h, s, g, 0));
 	h5w_attr_str(h, g, "description",
-		     "position: the wall disks with the box at rest (lab frame at phase 0, where every snapshot is "
-		     "taken); at time t add /particles/bed/box/offset minus its value at rest");
+		     s->sc.snapshots_per_period > 1
+			     ? "position: the wall disks with the box at rest (lab frame at phase 0); "
+			       "snapshot_position: where they stand at each snapshot (the box's offset added)"
+			     : "position: the wall disks with the box at rest (lab frame at phase 0, where every "
+			       "snapshot is taken); at time t add /particles/bed/box/offset minus its value at rest");
 	h5w_close_obj(h, g);
 }
 
@@ -706,8 +738,8 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 	dbuf rec[REC_N] = {{0}};
 	double *buf = malloc(sizeof(double) * (size_t)cap);
 	snapw sw = {0};
-	sw.pos.g = -1;
-	if (!buf || (K > 0 && snap_open(h, &sw, s, bed, box, K))) {
+	sw.pos.g = sw.wpos.g = sw.walls = -1;
+	if (!buf || (K > 0 && snap_open(h, &sw, s, parts, bed, box, K))) {
 		free(buf);
 		snap_close(h, &sw);
 		/* a failed HDF5 call (a full disk) is said by the caller, with HDF5's word */
@@ -821,21 +853,48 @@ static void write_final(h5w *h, const sb_sim *s, double t)
 }
 
 /* XDMF sidecar: ParaView reads the snapshots as a temporal collection; each time is a
- * spatial collection of the bed (its positions at that snapshot) and the walls (their
- * place at rest, where the box is at every snapshot), with radius and species. */
-static void xdmf_points(FILE *f, const char *name, int n, const char *geometry, const char *base, const char *grp)
+ * spatial collection of the bed and the walls, where they were at that snapshot. The
+ * bed carries, per disk, radius, species (its kind: 0 grain, 1 intruder), id, angle and
+ * velocity (a 3-vector from /particles/bed_xyz, so that ParaView can colour by speed or
+ * orient a glyph); the walls radius, species (2) and id. Every array is a hyperslab of
+ * a dataset of the run file: the sidecar holds no number of its own but the times. */
+
+/* A hyperslab of row k of a [K x n (x c)] dataset of the run file, as an XDMF item of
+ * n (x c) values. */
+static void xdmf_slab(FILE *f, const char *indent, long k, long K, int n, int c, const char *type, int prec,
+		      const char *base, const char *path)
+{
+	if (c > 1) {
+		fprintf(f,
+			"%s<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\">\n"
+			"%s  <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d %d</DataItem>\n"
+			"%s  <DataItem Dimensions=\"%ld %d %d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n"
+			"%s</DataItem>\n",
+			indent, n, c, indent, k, n, c, indent, K, n, c, type, prec, base, path, indent);
+	} else {
+		fprintf(f,
+			"%s<DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\">\n"
+			"%s  <DataItem Dimensions=\"3 2\" Format=\"XML\">%ld 0 1 1 1 %d</DataItem>\n"
+			"%s  <DataItem Dimensions=\"%ld %d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n"
+			"%s</DataItem>\n",
+			indent, n, indent, k, n, indent, K, n, type, prec, base, path, indent);
+	}
+}
+
+/* A per-disk array that does not change: radius, species, id of a particle group. */
+static void xdmf_const(FILE *f, const char *name, int n, const char *type, int prec, const char *base, const char *grp)
+{
+	fprintf(f,
+		"      <Attribute Name=\"%s\" Center=\"Node\">\n"
+		"        <DataItem Dimensions=\"%d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:/particles/%s/%s</DataItem>\n"
+		"      </Attribute>\n",
+		name, n, type, prec, base, grp, name);
+}
+
+static void xdmf_grid(FILE *f, const char *name, int n)
 {
 	fprintf(f, "    <Grid Name=\"%s\" GridType=\"Uniform\">\n", name);
 	fprintf(f, "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n", n);
-	fputs(geometry, f);
-	fprintf(f,
-		"      <Attribute Name=\"radius\" Center=\"Node\">\n"
-		"        <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/%s/radius</DataItem>\n"
-		"      </Attribute>\n"
-		"      <Attribute Name=\"species\" Center=\"Node\">\n"
-		"        <DataItem Dimensions=\"%d\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">%s:/particles/%s/species</DataItem>\n"
-		"      </Attribute>\n    </Grid>\n",
-		n, base, grp, n, base, grp);
 }
 
 static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
@@ -863,25 +922,38 @@ static int write_xdmf(const sb_sim *s, const char *h5path, sb_err *e)
 	}
 	if (fid >= 0)
 		H5Fclose(fid);
-	char geo[1024], wgeo[512];
-	snprintf(wgeo, sizeof wgeo,
-		 "      <Geometry GeometryType=\"XY\">\n"
-		 "        <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/walls/position</DataItem>\n"
-		 "      </Geometry>\n",
-		 nw, base);
+	const char *in = "          ";
 	for (long k = 0; k < K && times; k++) {
 		fprintf(f, "  <Grid Name=\"t%ld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n    <Time Value=\"%.9g\"/>\n",
 			k, times[k]);
-		snprintf(geo, sizeof geo,
-			 "      <Geometry GeometryType=\"XY\">\n"
-			 "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d 2\">\n"
-			 "          <DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %d 2</DataItem>\n"
-			 "          <DataItem Dimensions=\"%ld %d 2\" NumberType=\"Float\" Precision=\"%d\" Format=\"HDF\">%s:/particles/bed/position/value</DataItem>\n"
-			 "        </DataItem>\n      </Geometry>\n",
-			 nm, k, nm, K, nm, prec, base);
-		xdmf_points(f, "bed", nm, geo, base, "bed");
-		if (nw > 0)
-			xdmf_points(f, "walls", nw, wgeo, base, "walls");
+		xdmf_grid(f, "bed", nm);
+		fputs("      <Geometry GeometryType=\"XY\">\n", f);
+		xdmf_slab(f, "        ", k, K, nm, 2, "Float", prec, base, "/particles/bed/position/value");
+		fputs("      </Geometry>\n", f);
+		xdmf_const(f, "radius", nm, "Float", 8, base, "bed");
+		xdmf_const(f, "species", nm, "Int", 4, base, "bed");
+		xdmf_const(f, "id", nm, "Int", 4, base, "bed");
+		fputs("      <Attribute Name=\"angle\" Center=\"Node\">\n", f);
+		xdmf_slab(f, in, k, K, nm, 1, "Float", prec, base, "/particles/bed/angle/value");
+		fputs("      </Attribute>\n      <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f);
+		xdmf_slab(f, in, k, K, nm, 3, "Float", prec, base, "/particles/bed_xyz/velocity/value");
+		fputs("      </Attribute>\n    </Grid>\n", f);
+		if (nw > 0) {
+			xdmf_grid(f, "walls", nw);
+			fputs("      <Geometry GeometryType=\"XY\">\n", f);
+			if (s->sc.snapshots_per_period > 1)
+				xdmf_slab(f, "        ", k, K, nw, 2, "Float", prec, base,
+					  "/particles/walls/snapshot_position/value");
+			else /* at phase 0, where the walls stand at rest */
+				fprintf(f,
+					"        <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/particles/walls/position</DataItem>\n",
+					nw, base);
+			fputs("      </Geometry>\n", f);
+			xdmf_const(f, "radius", nw, "Float", 8, base, "walls");
+			xdmf_const(f, "species", nw, "Int", 4, base, "walls");
+			xdmf_const(f, "id", nw, "Int", 4, base, "walls");
+			fputs("    </Grid>\n", f);
+		}
 		fprintf(f, "  </Grid>\n");
 	}
 	free(times);

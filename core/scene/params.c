@@ -172,7 +172,10 @@ static const sb_param TABLE[] = {
 	 "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "
 	 "(/observables/bed_height) and over the run (bed_height_mean); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
-	 "record all disks once per period at phase 0"},
+	 "record all disks once per period at phase 0 (snapshots_per_period: more often)"},
+	{"snapshots_per_period", INT(snapshots_per_period), "", "1", 1, 1000, NULL, PF_OUT,
+	 "snapshots per drive period, at phases k/N (1: at phase 0 only, the stroboscopic view; more "
+	 "to see the motion within a period, e.g. for bin/movie)"},
 	{"snapshot_precision", ENUM(snapshot_precision), "", "single", 0, 0, "double|single", PF_OUT,
 	 "floating-point precision of the snapshots in the HDF5 file (single: half the size of double, 7 "
 	 "digits, what ParaView, OVITO and MDAnalysis hold; the engine and every other record are double)"},

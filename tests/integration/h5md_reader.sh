@@ -31,8 +31,11 @@ with h5py.File(path, "r") as f:
     V = bed["velocity/value"][...]
     T = bed["position/time"][...]
     S = bed["position/step"][...]
-    want = {"bed": {"radius": bed["radius"][...], "species": bed["species"][...]},
-            "walls": {"radius": f["particles/walls/radius"][...], "species": f["particles/walls/species"][...]}}
+    want = {"bed": {"radius": bed["radius"][...], "species": bed["species"][...], "id": bed["id"][...]},
+            "walls": {"radius": f["particles/walls/radius"][...], "species": f["particles/walls/species"][...],
+                      "id": f["particles/walls/id"][...]}}
+    # per snapshot: the angle, and the velocity as the 3-vector of the bed_xyz view
+    per_frame = {"angle": bed["angle/value"][...], "velocity": f["particles/bed_xyz/velocity/value"][...]}
     W = f["particles/walls/position"][...]
     check("h5py.first_group_is_xyz_view", list(f["particles"])[0] == "bed_xyz", list(f["particles"]))
 
@@ -82,10 +85,19 @@ with h5py.File(path, "r") as f:
             fname, got = resolve(f, grids[name].find("Geometry/DataItem"))
             if fname != "s.h5" or not np.array_equal(got, pos):
                 bad.append("geometry of %s at time %d" % (name, k))
+            names = []
             for att in grids[name].findall("Attribute"):
+                a = att.get("Name")
+                names.append(a)
                 fname, got = resolve(f, att.find("DataItem"))
-                if not np.array_equal(got, want[name][att.get("Name")]):
-                    bad.append("%s of %s at time %d" % (att.get("Name"), name, k))
+                ref = per_frame[a][k] if name == "bed" and a in per_frame else want[name].get(a)
+                if ref is None or not np.array_equal(got, ref):
+                    bad.append("%s of %s at time %d" % (a, name, k))
+            need = sorted(want[name]) + (sorted(per_frame) if name == "bed" else [])
+            if sorted(names) != sorted(need):
+                bad.append("attributes of %s: %s, not %s" % (name, sorted(names), sorted(need)))
+            if name == "bed" and grids[name].find("Attribute[@Name='velocity']").get("AttributeType") != "Vector":
+                bad.append("velocity is no vector")
 check("xdmf.resolves_to_the_snapshots", not bad, "; ".join(bad[:3]))
 
 # snapshot_precision: single (the default, s.h5) holds the double run's values (f.h5) rounded

@@ -1,0 +1,171 @@
+/* raster.c - frames for bin/movie (raster.h). */
+#include "raster.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int rs_init(rs_frame *f, int w, int h, double x0, double y0, double scale)
+{
+	f->w = w + (w & 1);
+	f->h = h + (h & 1);
+	f->x0 = x0;
+	f->y0 = y0;
+	f->scale = scale;
+	f->rgb = f->w > 0 && f->h > 0 ? malloc((size_t)f->w * (size_t)f->h * 3) : NULL;
+	return f->rgb ? 0 : -1;
+}
+
+void rs_free(rs_frame *f)
+{
+	free(f->rgb);
+	f->rgb = NULL;
+}
+
+void rs_clear(rs_frame *f, rs_rgb c)
+{
+	for (size_t i = 0; i < (size_t)f->w * (size_t)f->h; i++) {
+		f->rgb[3 * i] = c.r;
+		f->rgb[3 * i + 1] = c.g;
+		f->rgb[3 * i + 2] = c.b;
+	}
+}
+
+static void blend(rs_frame *f, int px, int py, rs_rgb c, double a)
+{
+	unsigned char *p = f->rgb + 3 * ((size_t)py * (size_t)f->w + (size_t)px);
+	p[0] = (unsigned char)lround(p[0] + a * (c.r - p[0]));
+	p[1] = (unsigned char)lround(p[1] + a * (c.g - p[1]));
+	p[2] = (unsigned char)lround(p[2] + a * (c.b - p[2]));
+}
+
+#define SUB 4 /* subsamples per pixel side */
+
+void rs_disk(rs_frame *f, double x, double y, double r, rs_rgb c)
+{
+	const double cx = (x - f->x0) * f->scale, cy = f->h - (y - f->y0) * f->scale, R = r * f->scale;
+	if (!(R > 0) || cx + R < 0 || cy + R < 0 || cx - R > f->w || cy - R > f->h)
+		return;
+	const int ilo = (int)fmax(0, floor(cx - R)), ihi = (int)fmin(f->w - 1, ceil(cx + R));
+	const int jlo = (int)fmax(0, floor(cy - R)), jhi = (int)fmin(f->h - 1, ceil(cy + R));
+	const double R2 = R * R;
+	for (int j = jlo; j <= jhi; j++)
+		for (int i = ilo; i <= ihi; i++) {
+			int in = 0;
+			for (int b = 0; b < SUB; b++)
+				for (int a = 0; a < SUB; a++) {
+					const double dx = i + (a + 0.5) / SUB - cx, dy = j + (b + 0.5) / SUB - cy;
+					in += dx * dx + dy * dy <= R2;
+				}
+			if (in)
+				blend(f, i, j, c, (double)in / (SUB * SUB));
+		}
+}
+
+void rs_rect(rs_frame *f, int px, int py, int w, int h, rs_rgb c)
+{
+	for (int j = py < 0 ? 0 : py; j < py + h && j < f->h; j++)
+		for (int i = px < 0 ? 0 : px; i < px + w && i < f->w; i++)
+			blend(f, i, j, c, 1.0);
+}
+
+/* 5 x 7 glyphs, a row a byte, the leftmost pixel the bit 0x10 */
+static const struct glyph {
+	char c;
+	unsigned char row[7];
+} FONT[] = {
+	{' ', {0, 0, 0, 0, 0, 0, 0}},
+	{'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}},
+	{'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+	{'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}},
+	{'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+	{'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}},
+	{'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+	{'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}},
+	{'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+	{'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}},
+	{'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+	{'.', {0, 0, 0, 0, 0, 0x0C, 0x0C}},
+	{',', {0, 0, 0, 0, 0x0C, 0x04, 0x08}},
+	{'=', {0, 0, 0x1F, 0, 0x1F, 0, 0}},
+	{'-', {0, 0, 0, 0x1F, 0, 0, 0}},
+	{'+', {0, 0x04, 0x04, 0x1F, 0x04, 0x04, 0}},
+	{'/', {0x01, 0x01, 0x02, 0x04, 0x08, 0x10, 0x10}},
+	{':', {0, 0x0C, 0x0C, 0, 0x0C, 0x0C, 0}},
+	{'(', {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02}},
+	{')', {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08}},
+	{'A', {0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}},
+	{'H', {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}},
+	{'R', {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11}},
+	{'a', {0, 0, 0x0E, 0x01, 0x0F, 0x11, 0x0F}},
+	{'b', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1E}},
+	{'c', {0, 0, 0x0E, 0x10, 0x10, 0x11, 0x0E}},
+	{'d', {0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F}},
+	{'e', {0, 0, 0x0E, 0x11, 0x1F, 0x10, 0x0E}},
+	{'f', {0x06, 0x09, 0x08, 0x1C, 0x08, 0x08, 0x08}},
+	{'g', {0, 0, 0x0F, 0x11, 0x0F, 0x01, 0x0E}},
+	{'h', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11}},
+	{'i', {0x04, 0, 0x0C, 0x04, 0x04, 0x04, 0x0E}},
+	{'j', {0x02, 0, 0x06, 0x02, 0x02, 0x12, 0x0C}},
+	{'k', {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12}},
+	{'l', {0x0C, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+	{'m', {0, 0, 0x1A, 0x15, 0x15, 0x11, 0x11}},
+	{'n', {0, 0, 0x16, 0x19, 0x11, 0x11, 0x11}},
+	{'o', {0, 0, 0x0E, 0x11, 0x11, 0x11, 0x0E}},
+	{'p', {0, 0, 0x1E, 0x11, 0x1E, 0x10, 0x10}},
+	{'q', {0, 0, 0x0D, 0x13, 0x0F, 0x01, 0x01}},
+	{'r', {0, 0, 0x16, 0x19, 0x10, 0x10, 0x10}},
+	{'s', {0, 0, 0x0E, 0x10, 0x0E, 0x01, 0x1E}},
+	{'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}},
+	{'u', {0, 0, 0x11, 0x11, 0x11, 0x13, 0x0D}},
+	{'v', {0, 0, 0x11, 0x11, 0x11, 0x0A, 0x04}},
+	{'w', {0, 0, 0x11, 0x11, 0x15, 0x15, 0x0A}},
+	{'x', {0, 0, 0x11, 0x0A, 0x04, 0x0A, 0x11}},
+	{'y', {0, 0, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
+	{'z', {0, 0, 0x1F, 0x02, 0x04, 0x08, 0x1F}},
+};
+
+static const struct glyph *glyph_of(char c)
+{
+	for (size_t k = 0; k < sizeof FONT / sizeof *FONT; k++)
+		if (FONT[k].c == c)
+			return &FONT[k];
+	return NULL;
+}
+
+int rs_font_has(const char *s)
+{
+	for (; *s; s++)
+		if (!glyph_of(*s))
+			return 0;
+	return 1;
+}
+
+int rs_text_width(const char *s, int size) { return (int)strlen(s) * 6 * size; }
+
+void rs_text(rs_frame *f, int px, int py, int size, const char *s, rs_rgb c)
+{
+	static const struct glyph box = {'?', {0x1F, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1F}};
+	for (int k = 0; s[k]; k++) {
+		const struct glyph *g = glyph_of(s[k]);
+		if (!g)
+			g = &box;
+		for (int r = 0; r < 7; r++)
+			for (int b = 0; b < 5; b++)
+				if (g->row[r] & (0x10 >> b))
+					rs_rect(f, px + (6 * k + b) * size, py + r * size, size, size, c);
+	}
+}
+
+rs_rgb rs_scale(double u)
+{
+	static const rs_rgb A[5] = {{0x44, 0x01, 0x54}, {0x3b, 0x52, 0x8b}, {0x21, 0x91, 0x8c}, {0x5e, 0xc9, 0x62},
+				    {0xfd, 0xe7, 0x25}};
+	u = !(u > 0) ? 0 : u > 1 ? 1 : u; /* NaN: the bottom of the scale */
+	const double s = u * 4;
+	const int k = s >= 4 ? 3 : (int)s;
+	const double t = s - k;
+	return (rs_rgb){(unsigned char)lround(A[k].r + t * (A[k + 1].r - A[k].r)),
+			(unsigned char)lround(A[k].g + t * (A[k + 1].g - A[k].g)),
+			(unsigned char)lround(A[k].b + t * (A[k + 1].b - A[k].b))};
+}
