@@ -6,8 +6,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "drive.h"
 #include "params.h"
 #include "results.h"
+
+/* The runs view's columns of the drive's derived axes (docs/database.md), by axis. */
+static const char *const VIEW_AXES[AXIS_N] = {[AXIS_GAMMA] = "gamma", [AXIS_VELOCITY] = "v_box"};
+
+int schema_view_axis(const char *column)
+{
+	for (int k = 0; k < AXIS_N; k++)
+		if (VIEW_AXES[k] && !strcmp(VIEW_AXES[k], column))
+			return k;
+	return -1;
+}
 
 /* The driver's tables and views (bin/study run). */
 static const char STUDY[] =
@@ -204,9 +216,10 @@ static int runs_view(sql_db *d, sb_err *e)
 			       * for factor, so the same bits) and peak velocity: the literature
 			       * reports onsets in both (at a ramp's start frequency) */
 			      "  b.amplitude * (6.283185307179586 * b.frequency) * (6.283185307179586 * b.frequency)"
-			      " / b.gravity AS gamma,\n"
-			      "  6.283185307179586 * b.frequency * b.amplitude AS v_box\nFROM (SELECT r.campaign, r.id, r.state,"
-			      " r.attempts, r.replicate, r.current");
+			      " / b.gravity AS %s,\n"
+			      "  6.283185307179586 * b.frequency * b.amplitude AS %s\nFROM (SELECT r.campaign, r.id, r.state,"
+			      " r.attempts, r.replicate, r.current",
+			      VIEW_AXES[AXIS_GAMMA], VIEW_AXES[AXIS_VELOCITY]);
 	for (size_t i = 0; i < n; i++) {
 		if (t[i].flags & PF_OUT)
 			continue; /* paths and recording switches: in the param table */

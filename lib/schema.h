@@ -54,4 +54,8 @@ int schema_slurm(sql_db *d, sb_err *e);
  * whose options are NULL. */
 int schema_analysis(sql_db *d, sb_err *e);
 
+/* The drive axis (core/model/drive.h, enum sb_axis) a derived column of the runs view
+ * (gamma, v_box) is on, or -1 for any other column. */
+int schema_view_axis(const char *column);
+
 #endif

@@ -290,6 +290,8 @@ static int cmd_report(const study_args *o)
 			slurm_report(dbp, o->npos ? name : NULL, stdout, &e);
 	} else if (o->bit == OPTS_LIST) {
 		report_list(dbp, stdout, &e);
+	} else if (o->bit == OPTS_VIEW) {
+		report_view(dbp, o->runs, name, o->pos[1], stdout, &e);
 	} else {
 		/* --out FILE: written whole or not at all, only over nothing or a regular
 		 * file (a link is not followed, a FIFO does not hang the export) */
@@ -300,7 +302,7 @@ static int cmd_report(const study_args *o)
 		else if (o->outfile)
 			fs_open_tmp(&sf, o->outfile, &e);
 		if (!e.code)
-			report_export(dbp, name, o->outfile ? sf.f : stdout, &e);
+			report_export(dbp, o->runs, name, o->units, o->outfile ? sf.f : stdout, &e);
 		if (o->outfile && sf.f && e.code)
 			fs_abort(&sf);
 		else if (o->outfile && sf.f)

@@ -5,8 +5,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "flux.h"
+#include "fsutil.h"
 #include "h5read.h"
 #include "num.h"
 #include "runfile.h"
@@ -1019,8 +1021,256 @@ static int run(an_tool *t, void *vs)
 static const tool_spec SPEC = {.name = "figures", .version = VERSION, .help = HELP,
 			       .allowed = " freq ratio skip level where ", .init = init, .run = run};
 
+/* ---- figures --run: one run file, no campaign ---- */
+
+static const char RUN_HELP[] =
+	"usage: figures --run RUN.h5 [--out DIR] [--skip FRAC]\n\n"
+	"One run's figures, from its file alone (no campaign, no database), each drawn when\n"
+	"the run recorded what it needs and else named as not drawn:\n"
+	"  RUN_field.png   the displacement field (field = yes): per cell the mean displacement\n"
+	"                  per period over the blocks after the first FRAC (count-weighted), as\n"
+	"                  arrows (the 95th percentile = 0.9 cell; cells sampled < 1/5 of the\n"
+	"                  median left out), the settled surface dashed;\n"
+	"  RUN_phi.png     Phi(D) (flux = yes): the time-mean flux per height line over the\n"
+	"                  periods after the first FRAC, with the standard error of that mean\n"
+	"                  over the periods as a band, the settled surface dashed;\n"
+	"  RUN_height.png  the intruder's height above the box floor against time (traj_rate >\n"
+	"                  0), with its settled height, the surface and the engine's waiting\n"
+	"                  time when it rose.\n"
+	"RUN is the file's name without .h5; DIR defaults to the current directory. With each\n"
+	"figure its PDF, gnuplot script and data (CSV). Exit codes: 0 at least one drawn, 1\n"
+	"usage or nothing to draw, 2 the file unreadable or a figure not written.\n";
+
+/* the figure's name: DIR/RUN_what, RUN the file's name without .h5 */
+static void run_fig_name(const char *file, const char *what, char *out, size_t len)
+{
+	const char *b = strrchr(file, '/');
+	b = b ? b + 1 : file;
+	size_t l = strlen(b);
+	if (l > 3 && !strcmp(b + l - 3, ".h5"))
+		l -= 3;
+	snprintf(out, len, "%.*s_%s", (int)l, b, what);
+}
+
+/* a figure from its script's body (gp_open's frame), drawn by gnuplot into o->out */
+static int run_fig_draw(const an_opts *o, const char *name, const char *body, sb_err *e)
+{
+	sb_file sc;
+	char png[1400];
+	FILE *f = gp_open(o, name, 800, 640, &sc, png, sizeof png, e);
+	if (!f)
+		return e->code;
+	fputs(body, f);
+	gp_close(f);
+	if (cli_close_out(&sc, e))
+		return e->code;
+	char script[1400];
+	snprintf(script, sizeof script, "%s/%s.gp", o->out, name);
+	if (gp_run(script, png, e))
+		return e->code;
+	printf("# figure: %s\n", png);
+	return 0;
+}
+
+static int run_figures(int argc, char **argv)
+{
+	const char *file = NULL, *out = ".";
+	double skip = 0.2;
+	for (int k = 1; k < argc; k++) {
+		const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			fputs(RUN_HELP, stdout);
+			return 0;
+		} else if (!strcmp(a, "--run") && v) {
+			file = v, k++;
+		} else if (!strcmp(a, "--out") && v) {
+			out = v, k++;
+		} else if (!strcmp(a, "--skip") && v) {
+			char *end;
+			skip = strtod(v, &end);
+			if (end == v || *end || !(skip >= 0 && skip < 1)) {
+				fprintf(stderr, "figures: --skip: expected a fraction in [0, 1), got '%s'\n", v);
+				return 1;
+			}
+			k++;
+		} else {
+			fprintf(stderr, "figures: --run: unknown or extra argument '%s' (figures --run RUN.h5 [--out DIR] "
+					"[--skip FRAC]; figures --run --help)\n", a);
+			return 1;
+		}
+	}
+	if (!file) {
+		fprintf(stderr, "figures: --run: which run file?\n");
+		return 1;
+	}
+	sb_err e = {0};
+	if (h5r_walk_env(&e) || fs_check_input(file, "run file", SB_EIO, &e)) {
+		fprintf(stderr, "figures: %s\n", e.msg);
+		return e.code == SB_EUSAGE ? 1 : 2;
+	}
+	an_opts o = {.tool = "figures", .version = VERSION};
+	snprintf(o.out, sizeof o.out, "%s", out);
+	struct stat st;
+	if (stat(out, &st) || !S_ISDIR(st.st_mode)) {
+		fprintf(stderr, "figures: --out %s: no such directory\n", out);
+		return 1;
+	}
+	int drawn = 0, rc = 0;
+	char name[600], body[4096], csvname[700];
+	sb_file csv;
+	/* the field */
+	convect_field cf = {0};
+	const int cf_rc = convect_read(file, &cf, &e);
+	if (cf_rc == 0 && cf.B == 0) {
+		printf("# not drawn: the field (no block of field_periods periods was completed)\n");
+	} else if (cf_rc == 0) {
+		const size_t cells = cf.ny * cf.nx, b0 = (size_t)floor(skip * (double)cf.B);
+		double *ux = calloc(cells, sizeof *ux), *uy = calloc(cells, sizeof *uy), *w = calloc(cells, sizeof *w);
+		double *len = malloc(cells * sizeof *len);
+		size_t nl = 0;
+		for (size_t b = b0; ux && uy && w && b < cf.B; b++)
+			for (size_t c = 0; c < cells; c++) {
+				const double n = cf.n[b * cells + c];
+				if (n > 0 && isfinite(cf.ux[b * cells + c]) && isfinite(cf.uy[b * cells + c])) {
+					ux[c] += n * cf.ux[b * cells + c], uy[c] += n * cf.uy[b * cells + c], w[c] += n;
+				}
+			}
+		const double wmed = ux && w ? median_positive(w, cells) : 0;
+		for (size_t c = 0; len && w && c < cells; c++)
+			if (w[c] > 0 && w[c] >= wmed / 5)
+				len[nl++] = hypot(ux[c] / w[c], uy[c] / w[c]);
+		const double p95 = len ? percentile(len, nl, 0.95) : 0, scale = p95 > 0 ? 0.9 * cf.cell / p95 : 1;
+		run_fig_name(file, "field", name, sizeof name);
+		snprintf(csvname, sizeof csvname, "%s.csv", name);
+		if (ux && uy && w && len && nl && !cli_open_out(&o, csvname, &csv, &e)) {
+			fprintf(csv.f, "x,y,ux,uy,samples\n");
+			for (size_t r = 0; r < cf.ny; r++)
+				for (size_t c = 0; c < cf.nx; c++) {
+					const size_t i = r * cf.nx + c;
+					if (w[i] > 0 && w[i] >= wmed / 5)
+						fprintf(csv.f, "%.6g,%.6g,%.6g,%.6g,%.6g\n", cf.x0 + (c + 0.5) * cf.cell,
+							(r + 0.5) * cf.cell, ux[i] / w[i], uy[i] / w[i], w[i]);
+				}
+			if (!cli_close_out(&csv, &e)) {
+				snprintf(body, sizeof body,
+					 "set title '%s: displacement field, %zu blocks of %ld periods after the first %.0f %% (arrow 0.9 cell = %.3g cm/period)'\n"
+					 "set xlabel 'x (cm)'\nset ylabel 'height above the floor (cm)'\nset size ratio -1\n"
+					 "set xrange [%g:%g]\nset yrange [0:%g]\n"
+					 "plot '%s' skip 1 using 1:2:($3*%.9g):($4*%.9g) with vectors head size 0.3,20 lc rgb '#1f4e9a' title 'mean displacement per period', "
+					 "%g with lines dt 2 lc rgb '#888888' title sprintf('settled surface %%.1f cm', %g)\n",
+					 file, cf.B - b0, cf.K, 100 * skip, p95, cf.x0, cf.x0 + cf.nx * cf.cell, cf.ny * cf.cell, csvname,
+					 scale, scale, cf.surface, cf.surface);
+				if (!run_fig_draw(&o, name, body, &e))
+					drawn++;
+			}
+		}
+		if (!nl)
+			printf("# not drawn: the field (no cell sampled after the first %.0f %% of the blocks)\n", 100 * skip);
+		free(ux), free(uy), free(w), free(len);
+	} else {
+		printf("# not drawn: the field (%s)\n", e.code ? e.msg : "field = no: no field recorded");
+	}
+	convect_free(&cf);
+	if (e.code && strstr(e.msg, "not written"))
+		rc = 2;
+	e.code = 0;
+	/* Phi(D) */
+	flux_data fd = {0};
+	if (flux_read(file, &fd, &e) == 0 && fd.P > 0) {
+		flux_opts fo = FLUX_OPTS_DEFAULT;
+		fo.skip = skip;
+		const size_t p0 = flux_first(&fd, &fo), m = fd.P > p0 ? fd.P - p0 : 0;
+		run_fig_name(file, "phi", name, sizeof name);
+		snprintf(csvname, sizeof csvname, "%s.csv", name);
+		if (m >= 1 && !cli_open_out(&o, csvname, &csv, &e)) {
+			fprintf(csv.f, "height,phi,phi_lo,phi_hi\n");
+			for (size_t l = 0; l < fd.L; l++) {
+				double s1 = 0, s2 = 0;
+				for (size_t p = p0; p < fd.P; p++)
+					s1 += fd.phi[p * fd.L + l], s2 += fd.phi[p * fd.L + l] * fd.phi[p * fd.L + l];
+				const double mean = s1 / (double)m,
+					     se = m > 1 ? sqrt(fmax(0, (s2 - s1 * mean) / (double)(m - 1)) / (double)m) : 0;
+				fprintf(csv.f, "%.6g,%.6g,%.6g,%.6g\n", fd.h[l], mean, mean - se, mean + se);
+			}
+			if (!cli_close_out(&csv, &e)) {
+				snprintf(body, sizeof body,
+					 "set title '%s: Phi(D) over %zu periods after the first %.0f %%, band: standard error over the periods'\n"
+					 "set xlabel 'height D above the floor (cm)'\nset ylabel 'Phi (particles per period)'\n"
+					 "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb '#888888'\n"
+					 "set label sprintf('settled surface %%.1f cm', %g) at %g, graph 0.95 right offset -0.5,0\n"
+					 "plot '%s' skip 1 using 1:3:4 with filledcurves fc rgb '#c6d4ef' title 'standard error', "
+					 "'' skip 1 using 1:2 with lines lw 2 lc rgb '#1f4e9a' title 'Phi(D)'\n",
+					 file, m, 100 * skip, fd.surface, fd.surface, fd.surface, fd.surface, csvname);
+				if (!run_fig_draw(&o, name, body, &e))
+					drawn++;
+			}
+		} else if (!m) {
+			printf("# not drawn: Phi(D) (no period after the first %.0f %%)\n", 100 * skip);
+		}
+	} else {
+		printf("# not drawn: Phi(D) (%s)\n", e.code ? e.msg : "flux = no: no flux recorded");
+	}
+	flux_free(&fd);
+	if (e.code && strstr(e.msg, "not written"))
+		rc = 2;
+	e.code = 0;
+	/* the intruder's height */
+	traj tr = {0};
+	const int tr_rc = traj_read(file, &tr, &e);
+	if (tr_rc == 0 && tr.n > 0) {
+		double risen = 0, wait = NAN;
+		hid_t f;
+		if (!h5r_open(file, &f, &e)) {
+			if (traj_rise(f, file, &risen, &wait, &e))
+				risen = 0, e.code = 0;
+			h5r_close(f);
+		}
+		run_fig_name(file, "height", name, sizeof name);
+		snprintf(csvname, sizeof csvname, "%s.csv", name);
+		if (!cli_open_out(&o, csvname, &csv, &e)) {
+			fprintf(csv.f, "time,height_box\n");
+			for (size_t i = 0; i < tr.n; i++)
+				fprintf(csv.f, "%.9g,%.6g\n", tr.t[i], tr.ybox[i]);
+			if (!cli_close_out(&csv, &e)) {
+				char rise[200] = "";
+				if (risen > 0)
+					snprintf(rise, sizeof rise,
+						 "set arrow from %g, graph 0 to %g, graph 1 nohead lc rgb '#cc2222'\n"
+						 "set label 'risen at %.2f s (the engine''s rule)' at %g, graph 0.05 left offset 0.5,0 tc rgb '#cc2222'\n",
+						 wait, wait, wait, wait);
+				snprintf(body, sizeof body,
+					 "set title '%s: the intruder''s height above the box floor (%s)'\n"
+					 "set xlabel 'time (s)'\nset ylabel 'height above the box floor (cm)'\n%s"
+					 "plot '%s' skip 1 using 1:2 with lines lw 1.5 lc rgb '#1f4e9a' title 'intruder', "
+					 "%g with lines dt 2 lc rgb '#444444' title 'settled height', "
+					 "%g with lines dt 3 lc rgb '#888888' title 'settled surface'\n",
+					 file, risen > 0 ? "risen" : "not risen within the run", rise, csvname,
+					 isfinite(tr.y0) ? tr.y0 : NAN, isfinite(tr.surface) ? tr.surface : NAN);
+				if (!run_fig_draw(&o, name, body, &e))
+					drawn++;
+			}
+		}
+	} else {
+		printf("# not drawn: the intruder's height (%s)\n",
+		       tr_rc == 1 ? "no trajectory: no intruder or traj_rate = 0" : e.msg);
+		if (tr_rc > 1 && tr_rc != SB_ENAN)
+			rc = 2;
+	}
+	traj_free(&tr);
+	if (e.code)
+		fprintf(stderr, "figures: %s\n", e.msg), rc = 2;
+	if (!drawn && !rc) {
+		fprintf(stderr, "figures: %s: nothing to draw (no field, flux or intruder trajectory recorded)\n", file);
+		return 1;
+	}
+	return rc;
+}
+
 int main(int argc, char **argv)
 {
+	for (int k = 1; k < argc; k++) /* one run file, not a campaign */
+		if (!strcmp(argv[k], "--run"))
+			return run_figures(argc, argv);
 	panels P = {0};
 	return tool_main(argc, argv, &SPEC, &P);
 }

@@ -61,8 +61,17 @@ static const command CMDS[] = {
 	{"export", OPTS_EXPORT, "NAME|CAMPAIGN-FILE", 1, 1, "CSV of every run: parameters and results",
 	 "Writes the `runs` view of the campaign as CSV (RFC 4180): one row per run with\n"
 	 "every parameter, its state and its results; reals with 17 significant digits\n"
-	 "(the columns: docs/database.md).\n",
+	 "(the columns: docs/database.md), then `file`: the run's file, an absolute path\n"
+	 "(empty while the run has none). --units: a second row with each column's unit.\n",
 	 NULL},
+	{"view", OPTS_VIEW, "NAME|CAMPAIGN-FILE DIR", 2, 2, "links to the run files named by their parameters",
+	 "Makes DIR a tree of symbolic links to the campaign's run files, named by the\n"
+	 "parameters that vary between its current runs, seed last: DIR/frequency=2.8/\n"
+	 "radius_ratio=4/seed=3.h5 (as signac's view does). Runs without a file yet are left\n"
+	 "out and counted. DIR is made, or remade when this command made it before for the\n"
+	 "same campaign; anything else standing there is refused and not touched. The tree is\n"
+	 "made beside DIR and put in its place whole; the links are absolute paths.\n",
+	 "Exit codes: 0 made, 1 usage or DIR not this command's, 2 I/O.\n"},
 	{"expand", OPTS_EXPAND, "CAMPAIGN", 1, 1, "check a campaign and print its grid (id, seed, values)",
 	 "Checks the campaign file against the engine's parameter table and prints one line\n"
 	 "per run: id, cache key, replicate, engine seed and the swept values (TSV); for an\n"
@@ -129,8 +138,8 @@ typedef struct option {
 #define REAL(nm, sh, meta, f, cm, lo, hi, dflt, dtext, help) \
 	{nm, sh, OT_REAL, meta, cm, FIELD(f, double), lo, hi, dflt, dtext, help}
 
-#define ALL (OPTS_RUN | OPTS_STATUS | OPTS_LIST | OPTS_EXPORT | OPTS_EXPAND | OPTS_COLUMNS | OPTS_OPTIONS | OPTS_SUBMIT | OPTS_EXEC)
-#define DB_USERS (OPTS_RUN | OPTS_STATUS | OPTS_LIST | OPTS_EXPORT | OPTS_SUBMIT)
+#define ALL (OPTS_RUN | OPTS_STATUS | OPTS_LIST | OPTS_EXPORT | OPTS_EXPAND | OPTS_COLUMNS | OPTS_OPTIONS | OPTS_SUBMIT | OPTS_EXEC | OPTS_VIEW)
+#define DB_USERS (OPTS_RUN | OPTS_STATUS | OPTS_LIST | OPTS_EXPORT | OPTS_SUBMIT | OPTS_VIEW)
 
 static const option OPTS[] = {
 	STR("runs", 0, "DIR", runs, DB_USERS | OPTS_EXPAND, "runs",
@@ -175,6 +184,7 @@ static const option OPTS[] = {
 	    "--mem=1G\"; --array and --output are study's own; a word that is no option and no option's value is "
 	    "refused (sbatch would run it as its script)"),
 	STR("output", 'o', "FILE", outfile, OPTS_EXPORT, "standard output", "the CSV into FILE"),
+	FLAG("units", 0, units, 1, OPTS_EXPORT, "a second row with each column's unit (\"\" where it has none)"),
 	FLAG("help", 'h', help, 1, ALL, "this help"),
 };
 enum { NOPTS = sizeof OPTS / sizeof *OPTS };

@@ -19,6 +19,7 @@ enum {
 	OPTS_SUBMIT = 1 << 6,
 	OPTS_EXEC = 1 << 7,
 	OPTS_OPTIONS = 1 << 8,
+	OPTS_VIEW = 1 << 9,
 };
 
 /* What one command line says: the command, its operands and every option's value
@@ -35,6 +36,7 @@ typedef struct study_args {
 	long per_task;     /* submit: runs per array task */
 	double interval;   /* status --watch: seconds between looks */
 	int retry_failed, no_cache, keep_old, forget_old, slurm, watch, dry_run;
+	int units;         /* export: a units row */
 	int progress;      /* -1: when stderr is a terminal */
 	int help;          /* --help given (opts_parse returns -1 at once) */
 } study_args;

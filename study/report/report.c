@@ -1,16 +1,24 @@
-/* report.c - status, list and export: readers of the database, never writers. */
+/* report.c - status, list, export and view: readers of the database, never writers (view writes a tree of links where the user says). */
+#define _XOPEN_SOURCE 700 /* nftw */
 #include "report.h"
 
 #include <errno.h>
+#include <ftw.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "csv.h"
+#include "fsutil.h"
+#include "drive.h"
 #include "layout.h"
+#include "params.h"
+#include "results.h"
 #include "rowseal.h"
 #include "schema.h"
 #include "campaign/axes.h"
@@ -430,7 +438,35 @@ int report_list(const char *db_path, FILE *out, sb_err *e)
 	return e->code;
 }
 
-int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
+/* The unit of a column of the runs view: an engine parameter's, a result column's, a
+ * derived drive axis's (gamma, v_box), or "" (identity, state, counts, text). */
+static const char *column_unit(const char *name)
+{
+	const sb_param *p = params_find(name);
+	if (p)
+		return p->unit;
+	size_t n;
+	const int r = results_find(name);
+	if (r >= 0)
+		return results_table(&n)[r].unit;
+	const int k = schema_view_axis(name);
+	return k >= 0 ? drive_axis_unit(k) : "";
+}
+
+/* A run's file, absolute, when it is there (""); runs_dir NULL: "runs". */
+static void run_file(const char *runs_dir, const char *name, const char *id, char *out, size_t len)
+{
+	char dir[4200], rdir[PATH_MAX], f[PATH_MAX + 64];
+	out[0] = 0;
+	layout_campaign(runs_dir ? runs_dir : "runs", name, dir, sizeof dir);
+	if (!realpath(dir, rdir))
+		return;
+	if (layout_file(rdir, 0, id, LAY_OUTPUT, f, sizeof f) >= (int)sizeof f || access(f, F_OK))
+		return;
+	snprintf(out, len, "%s", f);
+}
+
+int report_export(const char *db_path, const char *runs_dir, const char *name, int units, FILE *out, sb_err *e)
 {
 	st_db d;
 	if (open_ro(&d, db_path, e))
@@ -440,17 +476,24 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 	 * or a byte changed in a page reads as a value like any other (rowseal.h) */
 	if (!campaign_known(&d, name, e) && !schema_values(&d, name, 1, e) && !rowseal_check(&d, name, e) &&
 	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
-		int nc = sqlite3_column_count(q);
+		int nc = sqlite3_column_count(q), idc = -1;
 		for (int i = 0; i < nc; i++) {
-			if (i)
-				fputc(',', out);
 			csv_field(out, sqlite3_column_name(q, i));
+			fputc(',', out);
+			if (!strcmp(sqlite3_column_name(q, i), "id"))
+				idc = i;
 		}
-		fputc('\n', out);
+		/* then the run's file: where a reader (h5py, bin/movie) finds it */
+		fputs("file\n", out);
+		if (units) { /* the units row: each column's unit as the tables write it */
+			for (int i = 0; i < nc; i++) {
+				csv_field(out, column_unit(sqlite3_column_name(q, i)));
+				fputc(',', out);
+			}
+			fputs("\n", out);
+		}
 		while (sqlite3_step(q) == SQLITE_ROW) {
 			for (int i = 0; i < nc; i++) {
-				if (i)
-					fputc(',', out);
 				if (sqlite3_column_type(q, i) == SQLITE_FLOAT) {
 					char num[40];
 					dtext_shortest(sqlite3_column_double(q, i), num, sizeof num);
@@ -458,7 +501,11 @@ int report_export(const char *db_path, const char *name, FILE *out, sb_err *e)
 				} else {
 					csv_field(out, col(q, i));
 				}
+				fputc(',', out);
 			}
+			char f[PATH_MAX + 64];
+			run_file(runs_dir, name, idc >= 0 ? col(q, idc) : "", f, sizeof f);
+			csv_field(out, f);
 			fputc('\n', out);
 		}
 		sql_done(&d, q, e);
@@ -552,6 +599,194 @@ out:
 	for (long i = 0; i < nw; i++)
 		watch_free(&w[i]);
 	free(w);
+	db_close(&d);
+	return e->code;
+}
+
+/* ---- study view ---- */
+
+/* What marks a tree study view made (and may remake): a file at its top naming the
+ * campaign. */
+#define VIEW_MARK ".shakebox-view"
+
+/* A value as one path component: its text, with every byte outside [A-Za-z0-9._+-] and
+ * a leading '.' written %XX, so that a '/' or ".." in a value makes no other path. */
+static void view_word(const char *s, char *out, size_t len)
+{
+	size_t o = 0;
+	for (size_t i = 0; s[i] && o + 4 < len; i++) {
+		const unsigned char c = (unsigned char)s[i];
+		const int plain = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+				  ((c == '.') && i > 0) || c == '_' || c == '+' || c == '-';
+		o += (size_t)snprintf(out + o, len - o, plain ? "%c" : "%%%02X", c);
+	}
+	out[o] = 0;
+}
+
+/* the text of a param value as the view names it */
+static void view_value(sqlite3_stmt *q, int i, char *out, size_t len)
+{
+	char t[256];
+	if (sqlite3_column_type(q, i) == SQLITE_FLOAT)
+		dtext_shortest(sqlite3_column_double(q, i), t, sizeof t);
+	else
+		snprintf(t, sizeof t, "%s", col(q, i));
+	view_word(t, out, len);
+}
+
+/* Removes a tree study view made: its links, its mark and its directories; anything
+ * else in it is left (and the directories holding it). */
+static int view_rm_one(const char *p, const struct stat *st, int flag, struct FTW *ftw)
+{
+	(void)st;
+	(void)ftw;
+	if (flag == FTW_DP)
+		rmdir(p);
+	else if (flag == FTW_SL || flag == FTW_SLN || (flag == FTW_F && !strcmp(p + strlen(p) - strlen(VIEW_MARK), VIEW_MARK)))
+		unlink(p);
+	return 0;
+}
+
+static int cmp_idx(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+int report_view(const char *db_path, const char *runs_dir, const char *name, const char *dir, FILE *out, sb_err *e)
+{
+	st_db d;
+	if (open_ro(&d, db_path, e))
+		return e->code;
+	sqlite3_stmt *q = NULL;
+	size_t np;
+	const sb_param *P = params_table(&np);
+	int keys[128], nk = 0, seed = 0;
+	char tmp[PATH_MAX], old[PATH_MAX], path[PATH_MAX + 1024];
+	long linked = 0, missing = 0, clash = 0;
+	/* dir: nothing there, or a tree this command made for this campaign */
+	struct stat st;
+	if (!lstat(dir, &st)) {
+		char mark[PATH_MAX + 32], got[160] = "";
+		snprintf(mark, sizeof mark, "%s/" VIEW_MARK, dir);
+		FILE *m = S_ISDIR(st.st_mode) ? fopen(mark, "r") : NULL;
+		if (m) {
+			if (!fgets(got, sizeof got, m))
+				got[0] = 0;
+			fclose(m);
+			got[strcspn(got, "\n")] = 0;
+		}
+		if (!m || strcmp(got, name)) {
+			db_close(&d);
+			return sb_errf(e, SB_EUSAGE, "%s: %s stands there that study view did not make for campaign '%s': not touched",
+				       dir, S_ISDIR(st.st_mode) ? "a directory" : fs_kind(st.st_mode), name);
+		}
+	}
+	if (campaign_known(&d, name, e) || schema_values(&d, name, 1, e) || rowseal_check(&d, name, e))
+		goto out;
+	/* the keys whose values differ between the current runs: engine parameters the runs
+	 * view shows (not the output-only ones), in the engine table's order, seed last */
+	if (sql_exec(&d, e, &q,
+		     "SELECT key FROM param WHERE campaign = ?1 AND run IN (SELECT id FROM run WHERE campaign = ?1 AND "
+		     "current) GROUP BY key HAVING COUNT(DISTINCT value) > 1",
+		     "t", name))
+		goto out;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		const sb_param *p = params_find(col(q, 0));
+		if (!p || (p->flags & PF_OUT))
+			continue;
+		if (!strcmp(p->name, "seed"))
+			seed = 1;
+		else if (nk < (int)(sizeof keys / sizeof *keys))
+			keys[nk++] = (int)(p - P);
+	}
+	if (sql_done(&d, q, e))
+		goto out;
+	qsort(keys, (size_t)nk, sizeof *keys, cmp_idx);
+	if (seed)
+		keys[nk++] = (int)(params_find("seed") - P);
+	/* the tree is made beside dir and put in its place whole */
+	snprintf(tmp, sizeof tmp, "%s.tmp.%ld", dir, (long)getpid());
+	snprintf(old, sizeof old, "%s.old.%ld", dir, (long)getpid());
+	if (mkdir(tmp, 0777)) {
+		sb_errf(e, SB_EIO, "%s: cannot make the view: %s", tmp, strerror(errno));
+		goto out;
+	}
+	snprintf(path, sizeof path, "%s/" VIEW_MARK, tmp);
+	FILE *m = fopen(path, "w");
+	if (!m || fprintf(m, "%s\n", name) < 0 || fclose(m)) {
+		sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
+		goto undo;
+	}
+	sqlite3_stmt *r;
+	if (sql_exec(&d, e, &r, "SELECT id FROM run WHERE campaign = ? AND current ORDER BY id", "t", name))
+		goto undo;
+	while (!e->code && sqlite3_step(r) == SQLITE_ROW) {
+		const char *id = col(r, 0);
+		char file[PATH_MAX + 64];
+		run_file(runs_dir, name, id, file, sizeof file);
+		if (!file[0]) {
+			missing++;
+			continue;
+		}
+		size_t o = (size_t)snprintf(path, sizeof path, "%s", tmp);
+		if (!nk) /* nothing varies: the run's id names it */
+			o += (size_t)snprintf(path + o, sizeof path - o, "/%s", id);
+		for (int k = 0; k < nk && !e->code; k++) {
+			sqlite3_stmt *v;
+			char w[300] = "";
+			if (sql_exec(&d, e, &v, "SELECT value FROM param WHERE campaign = ? AND run = ? AND key = ?", "ttt",
+				     name, id, P[keys[k]].name))
+				break;
+			if (sqlite3_step(v) == SQLITE_ROW)
+				view_value(v, 0, w, sizeof w);
+			sql_done(&d, v, e);
+			/* each key but the last a directory */
+			if (o < sizeof path)
+				o += (size_t)snprintf(path + o, sizeof path - o, "/%s=%s", P[keys[k]].name, w);
+			if (k + 1 < nk && o < sizeof path && mkdir(path, 0777) && errno != EEXIST)
+				sb_errf(e, SB_EIO, "%s: cannot make: %s", path, strerror(errno));
+		}
+		if (e->code)
+			break;
+		if (o + 40 >= sizeof path) {
+			sb_errf(e, SB_EIO, "%s...: a path too long for the view", tmp);
+			break;
+		}
+		size_t base = o;
+		snprintf(path + o, sizeof path - o, ".h5");
+		if (!access(path, F_OK)) { /* two runs alike in every varying key: the id tells them apart */
+			snprintf(path + base, sizeof path - base, ".%s.h5", id);
+			clash++;
+		}
+		if (symlink(file, path))
+			sb_errf(e, SB_EIO, "%s: cannot make the link: %s", path, strerror(errno));
+		else
+			linked++;
+	}
+	sql_done(&d, r, e);
+	if (e->code)
+		goto undo;
+	/* in place: the old tree (this command's) aside, the new one in, the old removed */
+	if (!lstat(dir, &st) && rename(dir, old)) {
+		sb_errf(e, SB_EIO, "%s: cannot replace: %s", dir, strerror(errno));
+		goto undo;
+	}
+	if (rename(tmp, dir)) {
+		sb_errf(e, SB_EIO, "%s: cannot put the view in place: %s", dir, strerror(errno));
+		rename(old, dir);
+		goto undo;
+	}
+	nftw(old, view_rm_one, 16, FTW_DEPTH | FTW_PHYS);
+	fprintf(out, "view: %s: %ld links to the run files of '%s' by ", dir, linked, name);
+	for (int k = 0; k < nk; k++)
+		fprintf(out, "%s%s", k ? ", " : "", P[keys[k]].name);
+	fprintf(out, "%s", nk ? "" : "run id (no key varies)");
+	if (missing)
+		fprintf(out, "; %ld runs without a file yet (not done) left out", missing);
+	if (clash)
+		fprintf(out, "; %ld alike in every varying key, told apart by their id", clash);
+	fputc('\n', out);
+	goto out;
+undo:
+	nftw(tmp, view_rm_one, 16, FTW_DEPTH | FTW_PHYS);
+out:
 	db_close(&d);
 	return e->code;
 }

@@ -21,7 +21,14 @@ int report_watch(const char *db_path, const char *runs_dir, const char *name, do
 		 report_refresh refresh, FILE *out, sb_err *e);
 /* One line per campaign. */
 int report_list(const char *db_path, FILE *out, sb_err *e);
-/* CSV of the `runs` view (parameters + results), one row per run. */
-int report_export(const char *db_path, const char *name, FILE *out, sb_err *e);
+/* CSV of the `runs` view (parameters + results), one row per run, then each run's file
+ * (absolute; "" while it has none) under runs_dir (NULL: "runs"); units: a second row
+ * with each column's unit. */
+int report_export(const char *db_path, const char *runs_dir, const char *name, int units, FILE *out, sb_err *e);
+/* study view: under dir, a tree of symbolic links to the campaign's run files named by
+ * the parameters that vary between its current runs (KEY=VALUE/.../seed=S.h5), as
+ * signac's view makes; dir is made, or one this command made before is remade. A
+ * line on out says what was linked and what was left out (runs without a file). */
+int report_view(const char *db_path, const char *runs_dir, const char *name, const char *dir, FILE *out, sb_err *e);
 
 #endif

@@ -17,7 +17,7 @@ cd "$TMP" || exit 1
 tiny_campaign t >t.campaign
 fixture_runs t.campaign R || { fail setup "exit $?: $(tail -n 3 R.log)"; finish; }
 # timing columns aside (started is when a driver saw the run start)
-strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "started") s = i } { $s = ""; print }' OFS=, "$1"; }
+strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "started") s = i; if ($i == "file") p = i } } { $s = ""; $p = ""; print }' OFS=, "$1"; }
 "$STUDY" export t --runs R >good.csv || fail setup "export of the undamaged database"
 
 fresh() { rm -rf D; cp -r R D; }

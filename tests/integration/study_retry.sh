@@ -20,8 +20,8 @@ campaign() { # NAME FREQUENCIES [SCENE-LINES...]
 	printf '%s\n' "${@:3}"
 	printf '[grid]\nfrequency = %s\n' "$2"
 }
-strip() { # export without when, where and how often
-	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
+strip() { # export without when, where (the file's path too) and how often
+	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty|file)$/) drop[i] = 1 }
 		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
 }
 # kill_engine DIR [NOT-PID]: SIGKILL to a running engine of the campaign in DIR that has
