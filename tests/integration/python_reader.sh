@@ -22,7 +22,8 @@ if ! "$PY" -c 'import numpy, h5py, MDAnalysis' 2>/dev/null; then
 	fail setup "$PY cannot import numpy, h5py and MDAnalysis (Debian python3-h5py, python3-mdanalysis): run make deps-test"
 	finish
 fi
-export PYTHONPATH="$REPO/python"
+# nothing written in the clone (no __pycache__ beside the package)
+export PYTHONPATH="$REPO/python" PYTHONDONTWRITEBYTECODE=1
 
 shake_run s.log "${FAST[@]}" "${GENTLE[@]}" duration=1 flux=yes field=yes field_periods=1 energy_rate=20 \
 	contact_rate=20 ring=yes bed_kinetic_samples=4 bed_height_samples=4 output=s.h5 ||
