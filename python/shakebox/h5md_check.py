@@ -225,11 +225,14 @@ class Checker:
             self.report(path + "/step", "has rank %d: [variable] or scalar" % step.ndim, sec, "element")
         return step, time
 
-    def tree(self, path, g):
+    def tree(self, path, g, skip=()):
         """The elements of a group that holds elements and groups of them (observables,
-        a particles group's members); returns {name: (dataset or group, time-dependent?)}."""
+        a particles group's members but those in skip), each time-dependent one checked;
+        returns {name: (dataset or group, time-dependent?)} of its own members."""
         out = {}
         for name in g:
+            if name in skip:
+                continue
             obj = g[name]
             p = path + "/" + name
             if isinstance(obj, h5py.Dataset):
@@ -251,19 +254,8 @@ class Checker:
             if not isinstance(pg, h5py.Group):
                 self.report(path, "is a dataset: /particles holds groups of particles", "Particles group", "particles")
                 continue
-            box = pg.get("box")
-            members = {}
-            for k in pg:
-                if k == "box":
-                    continue
-                obj, p = pg[k], path + "/" + k
-                if isinstance(obj, h5py.Dataset):
-                    members[k] = (obj, False)
-                elif self.is_element_group(obj):
-                    members[k] = (obj, self.element(p, obj) is not None)
-                else:
-                    self.tree(p, obj)
-            D = self.box(path, box, members.get("position"))
+            members = self.tree(path, pg, skip=("box",))
+            D = self.box(path, pg.get("box"), members.get("position"))
             self.particle_elements(path, members, D)
 
     def box(self, path, box, position):
