@@ -101,7 +101,7 @@ help:
 	@echo "make            build bin/shake"
 	@echo "make deps       install the Debian packages make and make demo need (apt-get; make itself never installs)"
 	@echo "make deps-test  install what only the suite and the benchmarks add (LAMMPS, Slurm, sshd, Python packages)"
-	@echo "make install    the programs, man pages and bash completion into PREFIX (/usr/local; PREFIX=\$$HOME/.local without root)"
+	@echo "make install    the programs, man pages, bash completion and python/shakebox into PREFIX (/usr/local; PREFIX=\$$HOME/.local without root)"
 	@echo "make check      the whole test suite (unit, physics, integration; ASan/UBSan build), NPROC tests"
 	@echo "                at a time; T=REGEX only the tests whose name matches (make check T=study_run)"
 	@echo "make quick      the tier for daily work, under 2 minutes: make check without the scripts marked"
@@ -258,12 +258,12 @@ REPRODUCE_QUICK ?= 0
 reproduce: build/.deps-ok all
 	$(Q)JOBS=$(JOBS) REPRODUCE_QUICK=$(REPRODUCE_QUICK) bash scripts/reproduce.sh
 
-# The release programs, their man pages and bash completion into $(DESTDIR)$(PREFIX)
+# The release programs, their man pages, bash completion and the Python package into $(DESTDIR)$(PREFIX)
 # (PREFIX=$$HOME/.local without root); nothing else is written (scripts/install.sh).
 PREFIX  ?= /usr/local
 DESTDIR ?=
 install: all
-	$(Q)bash scripts/install.sh $(BIN) "$(DESTDIR)$(PREFIX)"
+	$(Q)bash scripts/install.sh $(BIN) "$(DESTDIR)$(PREFIX)" "$(PREFIX)"
 
 clean:
 	rm -rf build bin

@@ -18,6 +18,7 @@
 #                   names five of them (a second list kept by hand)
 #   lib-files       lib/README.md's source tour names every file of lib/, and only those
 #   core-files      core/README.md's table of files names every file of core/, and only those
+#   python-files    python/README.md's table names every file of python/shakebox/, and only those
 #   campaigns       campaigns/README.md names every campaign file (campaigns/, reproduce/, examples/), and only those
 #   run-file        docs/output.md's layout table against a run file with every
 #                   recorded quantity of `bin/shake --records` on: the same groups; every root and /provenance attribute
@@ -190,6 +191,11 @@ tour_files() {
 (cd "$REPO/lib" && ls) >"$TMP/lib.code"
 tour_files lib-files lib/README.md >"$TMP/lib.doc"
 same_set lib-files "lib/README.md's source tour" "$TMP/lib.code" "$TMP/lib.doc"
+
+# --- the files of the Python package ---
+(cd "$REPO/python" && find shakebox -type f -name '*.py' | sort) >"$TMP/python.code"
+tour_files python-files python/README.md >"$TMP/python.doc"
+same_set python-files "python/README.md's table of files" "$TMP/python.code" "$TMP/python.doc"
 
 # --- the files of core/ ---
 (cd "$REPO/core" && find . -type f ! -name README.md | sed "s#^\./##" | sort) >"$TMP/core.code"

@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
-# install.sh BINDIR DEST - `make install`: the programs of BINDIR (the release build,
-# `make print-tools`), a man page for each generated from its --help and --version, and
-# bash completion for bin/study (commands, each command's options, from `study --help`
-# and `study options`) and bin/shake (its scene keys as key=, from `shake --params`),
-# into DEST (DESTDIR + PREFIX): DEST/bin, DEST/share/man/man1,
-# DEST/share/bash-completion/completions. Nothing else is written; the installed programs
-# find each other in DEST/bin (bin/study runs the bin/shake beside it). docs/install.md.
+# install.sh BINDIR DEST [PREFIX] - `make install`: the programs of BINDIR (the release
+# build, `make print-tools`), a man page for each generated from its --help and
+# --version, and bash completion for bin/study (commands, each command's options, from
+# `study --help` and `study options`) and bin/shake (its scene keys as key=, from `shake
+# --params`), into DEST (DESTDIR + PREFIX): DEST/bin, DEST/share/man/man1,
+# DEST/share/bash-completion/completions; and the Python package python/shakebox into
+# DEST/lib/pythonX.Y/dist-packages (X.Y: Debian's /usr/bin/python3's, whose path holds
+# /usr/local/lib/pythonX.Y/dist-packages), printing the PYTHONPATH line that python
+# needs when PREFIX (default: DEST) puts it elsewhere. Nothing else is written; the
+# installed programs find each other in DEST/bin (bin/study runs the bin/shake beside
+# it). docs/install.md.
 set -eu
 case "${1:-}" in -h | --help) sed -n '2,/^set -eu/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
-[ $# -eq 2 ] || { echo "install.sh: usage: install.sh BINDIR DEST" >&2; exit 2; }
-BIN=$1 DEST=$2
+[ $# -eq 2 ] || [ $# -eq 3 ] || { echo "install.sh: usage: install.sh BINDIR DEST [PREFIX]" >&2; exit 2; }
+BIN=$1 DEST=$2 PREFIX=${3:-$2}
 TOOLS=$(make -s --no-print-directory print-tools)
 for t in $TOOLS; do
 	[ -x "$BIN/$t" ] || { echo "install.sh: $BIN/$t is not built (make all)" >&2; exit 1; }
@@ -73,3 +77,16 @@ keys=$("$BIN/shake" --params | awk -F'\t' 'NR > 1 { printf "%s= ", $1 }')
 	echo "complete -F _shakebox_shake shake"
 } >"$DEST/share/bash-completion/completions/shake"
 echo "installed $(echo "$TOOLS" | wc -w) programs, their man pages and bash completion into $DEST"
+
+# the Python package, where Debian's python3 looks under PREFIX
+PY=/usr/bin/python3
+pyver=$("$PY" -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null) || pyver=3
+site=lib/python$pyver/dist-packages
+mkdir -p "$DEST/$site/shakebox"
+for f in "$(dirname "$0")"/../python/shakebox/*.py; do
+	install -m 0644 "$f" "$DEST/$site/shakebox/${f##*/}"
+done
+echo "installed the Python package shakebox into $DEST/$site"
+if ! "$PY" -c 'import sys; sys.exit(sys.argv[1] not in sys.path)' "$PREFIX/$site" 2>/dev/null; then
+	echo "python: $PREFIX/$site is not on $PY's path: PYTHONPATH=$PREFIX/$site"
+fi

@@ -50,6 +50,7 @@ broken tools.fuzz_c tests/fuzz/fuzz.c 's/"convect", //'
 # a second list of the tools, by hand, in a doc that had none
 broken tools.no_copy docs/campaigns.md "1a The tools: $(make -s --no-print-directory -C "$REPO" print-campaign-tools)."
 broken lib-files lib/README.md '/^| `km\.\[ch\]` |/d'
+broken python-files python/README.md '/^| `shakebox\/mda\.py` |/d'
 broken core-files core/README.md 's/^| `io\/h5id\.\[ch\]` |/| `io\/h5ident.[ch]` |/'
 broken campaigns campaigns/README.md '/^| `reproduce\/q4_large\.campaign` |/d'
 # a group's row dropped: its members are named nowhere either

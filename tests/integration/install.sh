@@ -3,7 +3,9 @@
 # installed into a temporary prefix answer --version, have a man page each and bash
 # completion, and run a tiny campaign from another directory with the installed
 # programs only (bin/study runs the bin/shake installed beside it, and nothing of the
-# clone is on the PATH); nothing is written outside the prefix.
+# clone is on the PATH); Debian's python3, given the PYTHONPATH line install.sh prints
+# for the prefix, imports the installed Python package from there (nothing of the clone
+# on its path) and reads the campaign's runs; nothing is written outside the prefix.
 . "$(dirname "$0")/lib.sh"
 BIN="$REPO/bin"
 cd "$TMP" || exit 1
@@ -11,7 +13,7 @@ cd "$TMP" || exit 1
 
 P="$TMP/prefix"
 (cd "$REPO" && bash scripts/install.sh "$BIN" "$P") >inst.log 2>&1
-check install.exit "$(tail -n 3 inst.log)" grep -q "^installed 11 programs" inst.log
+check install.exit "$(tail -n 3 inst.log)" grep -q "^installed $(make -s --no-print-directory -C "$REPO" print-tools | wc -w) programs" inst.log
 tools=$(make -s --no-print-directory -C "$REPO" print-tools)
 bad=""
 for t in $tools; do
@@ -52,6 +54,20 @@ check install.campaign_runs "exit $rc: $(tail -n 3 run.log)" eval '[ "$rc" = 0 ]
 check install.installed_engine_used "no run went through $P/bin/shake" test -e "$TMP/installed_shake_ran"
 env -i HOME="$TMP" PATH="$P/bin:/usr/bin:/bin" waiting inst --runs R --no-plot --no-store >w.out 2>w.err
 check install.tool_reads "exit $?: $(head -c 300 w.err)" grep -q "^# runs: 4 of the campaign's current grid" w.out
+# the Python package, with the PYTHONPATH line install.sh printed for this prefix
+pp=$(sed -n 's/^python: .* PYTHONPATH=//p' "$TMP/inst.log")
+check install.python_path_printed "no PYTHONPATH line for $P: $(tail -n 2 "$TMP/inst.log")" \
+	eval '[ -n "$pp" ] && [ "${pp#"$P"/lib/python}" != "$pp" ] && [ -f "$pp/shakebox/__init__.py" ]'
+env -i HOME="$TMP" PATH=/usr/bin:/bin PYTHONPATH="$pp" /usr/bin/python3 -W ignore - R/study.db "$P" >py.out 2>&1 <<'PY'
+import sys, shakebox
+assert shakebox.__file__.startswith(sys.argv[2] + "/"), "imported from " + shakebox.__file__
+rows = shakebox.runs(sys.argv[1], "inst")
+for r in rows:
+    with shakebox.Run(r["run_file"]) as run:
+        assert run.parameters["run_id"] == r["id"] and run.outcome["status"] == r["status"], r["id"]
+print("read %d runs" % len(rows))
+PY
+check install.python_reads "$(tail -n 3 py.out)" grep -qx "read 4 runs" py.out
 # nothing written outside the prefix and the working directory (the clone untouched)
 out=$(find "$REPO" -newer "$TMP/before" -type f -not -path "$REPO/build/*" -not -path "$REPO/.git/*" 2>/dev/null | head -n 5)
 check install.clone_untouched "written in the clone: $out" test -z "$out"
