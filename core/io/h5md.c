@@ -214,17 +214,22 @@ static hid_t dcpl_for(const h5w *h, int rank, const hsize_t *dims, size_t elem)
 	return p;
 }
 
-/* Units are variable-length UTF-8 strings, as h5py writes them: readers in Python
- * (MDAnalysis) compare them with str and would see bytes in a fixed-length one. */
+void h5w_attr_vstr(h5w *h, hid_t obj, const char *name, const char *v)
+{
+	hid_t t = H5Tcopy(H5T_C_S1);
+	H5Tset_size(t, H5T_VARIABLE);
+	H5Tset_cset(t, H5T_CSET_ASCII);
+	attr_write(h, obj, name, t, t, H5Screate(H5S_SCALAR), &v);
+	H5Tclose(t);
+}
+
+/* Units are variable-length ASCII strings, as H5MD's units module has them (h5py reads
+ * them as str, as readers in Python - MDAnalysis - compare them). */
 void h5w_attr_unit(h5w *h, hid_t obj, const char *unit)
 {
 	if (!unit || obj < 0)
 		return;
-	hid_t t = H5Tcopy(H5T_C_S1);
-	H5Tset_size(t, H5T_VARIABLE);
-	H5Tset_cset(t, H5T_CSET_UTF8);
-	attr_write(h, obj, "unit", t, t, H5Screate(H5S_SCALAR), &unit);
-	H5Tclose(t);
+	h5w_attr_vstr(h, obj, "unit", unit);
 }
 
 static void unit_attr(h5w *h, hid_t d, const char *unit) { h5w_attr_unit(h, d, unit); }

@@ -36,6 +36,8 @@ int h5w_close(h5w *h);
 void h5w_attr_double(h5w *h, hid_t obj, const char *name, double v);
 void h5w_attr_long(h5w *h, hid_t obj, const char *name, long v);
 void h5w_attr_str(h5w *h, hid_t obj, const char *name, const char *v);
+/* ... as a variable-length ASCII string (what H5MD's units module asks of its strings) */
+void h5w_attr_vstr(h5w *h, hid_t obj, const char *name, const char *v);
 /* The H5MD unit attribute of a dataset (e.g. "cm s-1"). */
 void h5w_attr_unit(h5w *h, hid_t obj, const char *unit);
 /* An attribute holding n strings (fixed length), e.g. H5MD's box boundary. */

@@ -975,6 +975,14 @@ static void write_h5md(h5w *h)
 	h5w_attr_str(h, c, "name", "shakebox");
 	h5w_attr_str(h, c, "version", prov_version());
 	h5w_close_obj(h, c);
+	/* the units module (version 1.0): every element's unit attribute is a string of its
+	 * grammar, in the symbols of its "SI" system (which has cgs's dyn and erg too) */
+	hid_t m = h5w_group(h, g, "modules", 0), u = h5w_group(h, m, "units", 0);
+	static const int units_version[2] = {1, 0};
+	h5w_attr_ints(h, u, "version", units_version, 2);
+	h5w_attr_vstr(h, u, "system", "SI");
+	h5w_close_obj(h, u);
+	h5w_close_obj(h, m);
 	h5w_close_obj(h, g);
 }
 

@@ -62,7 +62,7 @@ enum {
 	X("id_a", "1") X("id_b", "1") X("normal_force", "dyn") X("tangential_force", "dyn") X("normal_x", "1")   \
 	X("normal_y", "1") X("x", "cm") X("y_box", "cm")
 #define REC_COLS_RING(X)                                                                                       \
-	X("time", "s") X("mean_force", "dyn") X("net_force", "dyn") X("temperature", "cm2 s-2") X("grains", "1") \
+	X("time", "s") X("mean_force", "dyn") X("net_force", "dyn") X("temperature", "cm+2 s-2") X("grains", "1") \
 	X("centre_x", "cm") X("centre_y", "cm")
 #define REC_COLS_KINETIC(X) X("time", "s") X("kinetic_energy", "erg")
 #define REC_COLS_HEIGHT(X) X("time", "s") X("com_height_box", "cm")
