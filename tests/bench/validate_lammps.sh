@@ -314,6 +314,11 @@ if [ "$REPORT" != 1 ]; then
 	echo "$((T1 - T0)) $((T2 - T1))" >"$WORK/times"
 else
 	for p in $PARTS; do
+		# a validation still under way (resumed over sessions) is reported from the runs
+		# finished so far, said as such
+		if [ ! -s "$WORK/$p/stamp" ] && ls "$WORK/$p"/*.ok >/dev/null 2>&1; then
+			echo "$(date -u '+%Y-%m-%d %H:%M UTC') (in progress: the runs finished so far)|$COMMIT|$PARTS|$JOBS|$QUICK|$CPU_MODEL" >"$WORK/$p/stamp"
+		fi
 		[ -s "$WORK/$p/stamp" ] || die "VALIDATE_REPORT=1: no runs of part $p in $WORK/$p (run without it first)"
 	done
 	T2=$(date +%s)
@@ -690,8 +695,119 @@ rise_table() { # PART DURATION TAGS...
 	done
 }
 
+# C: the engine's presets on the same beds (paper: gear5 at the paper's step; fast:
+# verlet at 4 times it) beside the verlet run at LAMMPS's step: per bed "depth tag
+# risen_paper risen_fast risen_verlet", or nothing when a preset's runs are missing
+preset_table() {
+	local d=$WORK/C dep t f k r
+	for dep in 0 1; do
+		for t in $(seeds C "$dep" | sed "s/^/d${dep}_/"); do
+			local line="$dep $t"
+			for k in paper fast shake; do
+				f=$d/${k}_$t.h5
+				[ -e "$d/${k}_$t.ok" ] || return 1
+				[ "$(h5attr "$f" status)" = ok ] || die "C: ${k}_$t.h5: status '$(h5attr "$f" status)'"
+				r=$(h5attr "$f" risen)
+				line="$line $r"
+			done
+			echo "$line"
+		done
+	done
+}
+
+# The presets at the onset (issue of the fast preset near the onset): per depth, the
+# fraction risen with paper and with fast, paired bed by bed (McNemar), the smallest
+# difference the test detects with 80 % power; the depth effect (claim 5) with each;
+# paper against verlet at LAMMPS's step (the integrator and step alone). Appends a
+# subsection to section.md and writes presets.summary (one line, for REPRODUCTION.md).
+presets_C() {
+	local d=$WORK/C n=$C_BEDS
+	if ! preset_table >"$d/presets.tsv"; then
+		rm -f "$d/presets.tsv" "$d/presets.summary"
+		{ echo; echo "### The engine's presets on these beds"; echo
+		  echo "Not run: the \`paper\` and \`fast\` runs of some beds are missing (they run with part C)."; } >>"$d/section.md"
+		return 0
+	fi
+	# counts k[preset][depth]; discordant pairs (a, b) per depth: a risen only in the
+	# first, b only in the second
+	cnt() { awk -v dep="$1" -v c="$2" '$1 == dep { k += $c } END { print k + 0 }' "$d/presets.tsv"; }
+	disc2() { awk -v dep="$1" -v x="$2" -v y="$3" '(dep == "all" || $1 == dep) { if ($x && !$y) a++; if ($y && !$x) b++ } END { print a + 0, b + 0 }' "$d/presets.tsv"; }
+	local kp0 kp1 kf0 kf1 kv0 kv1
+	kp0=$(cnt 0 3) kp1=$(cnt 1 3) kf0=$(cnt 0 4) kf1=$(cnt 1 4) kv0=$(cnt 0 5) kv1=$(cnt 1 5)
+	local a0 b0 a1 b1 aa ba av0 bv0 av1 bv1 m0 m1 ma mv0 mv1 pw0 pw1 pwa fp ff fv
+	read -r a0 b0 < <(disc2 0 3 4)
+	read -r a1 b1 < <(disc2 1 3 4)
+	read -r aa ba < <(disc2 all 3 4)
+	read -r av0 bv0 < <(disc2 0 3 5)
+	read -r av1 bv1 < <(disc2 1 3 5)
+	mc() { "$DUMPFLUX" stats sign "$(($1 < $2 ? $1 : $2))" "$(($1 + $2))"; }
+	m0=$(mc "$a0" "$b0") m1=$(mc "$a1" "$b1") ma=$(mc "$aa" "$ba") mv0=$(mc "$av0" "$bv0") mv1=$(mc "$av1" "$bv1")
+	pw0=$(pwr "$n" "$(awk -v k="$kp0" -v n="$n" 'BEGIN { print k / n }')")
+	pw1=$(pwr "$n" "$(awk -v k="$kp1" -v n="$n" 'BEGIN { print k / n }')")
+	pwa=$(pwr "$((2 * n))" "$(awk -v k="$((kp0 + kp1))" -v n="$((2 * n))" 'BEGIN { print k / n }')")
+	fp=$("$DUMPFLUX" stats fisher "$kp0" "$n" "$kp1" "$n") ff=$("$DUMPFLUX" stats fisher "$kf0" "$n" "$kf1" "$n")
+	fv=$("$DUMPFLUX" stats fisher "$kv0" "$n" "$kv1" "$n")
+	# the verdict: differ (a test at 5 %); indistinguishable only where the pooled test
+	# could have seen a difference (its detectable difference exists), else undecided
+	local word raw
+	raw=$("$DUMPFLUX" stats power "$((2 * n))" "$(awk -v k="$((kp0 + kp1))" -v n="$((2 * n))" 'BEGIN { print k / n }')")
+	word=$(awk -v a="$m0" -v b="$m1" -v c="$ma" -v r="$raw" 'BEGIN { split(r, w, " ")
+		if (a < 0.05 || b < 0.05 || c < 0.05) print "differ"
+		else if (w[1] == "nan" && w[2] == "nan") print "undecided (too few beds to detect any difference)"
+		else print "indistinguishable (within the detectable difference)" }')
+	printf '%s
+' "fast against paper on the same $n beds per depth at $C_FREQ Hz (risen within $C_DUR s, 𝓡 = $C_R): depth 0 $kf0/$n against $kp0/$n, depth 1 $kf1/$n against $kp1/$n; McNemar p = $(fmtp "$m0") / $(fmtp "$m1"), pooled $(fmtp "$ma"); 80 % power only for differences of $pw0 / $pw1 (pooled $pwa): **$word**" >"$d/presets.summary"
+	{
+		echo
+		echo "### The engine's presets on these beds: is the fast preset good enough at the onset?"
+		echo
+		echo "The same $n beds per depth shaken by shakebox three ways, each until the rise or for $C_DUR s: \`preset = paper\`"
+		echo "(gear5, Δt = 5·10⁻⁵ s: the paper's integrator), \`preset = fast\` (verlet, Δt = 2·10⁻⁴ s: what the claims' campaigns"
+		echo "run) and verlet at LAMMPS's step (Δt = $DT s, the runs above). 2.7 Hz is just above this model's onset, where"
+		echo "a small change of the dynamics moves the answer most. Paired bed by bed: McNemar's exact test on the beds"
+		echo "risen with one only; the power as above (from paper's fraction)."
+		echo
+		echo "**Result:** fast and paper are **$word** here — McNemar p = $(fmtp "$m0") at depth 0 ($a0 beds risen with paper only,"
+		echo "$b0 with fast only), $(fmtp "$m1") at depth 1 ($a1, $b1), pooled $(fmtp "$ma"). With $n beds per depth the test detects with 80 % power"
+		echo "a difference of fast's fraction from paper's of at least $pw0 at depth 0, $pw1 at depth 1 (pooled over the $((2 * n)) beds: $pwa)."
+		echo "The depth effect (claim 5, Fisher's test of depth 1 against depth 0): paper p = $(fmtp "$fp"), fast p = $(fmtp "$ff"),"
+		echo "verlet at LAMMPS's step p = $(fmtp "$fv"). Paper against verlet at LAMMPS's step (the integrator alone): McNemar"
+		echo "p = $(fmtp "$mv0") at depth 0 ($av0, $bv0), $(fmtp "$mv1") at depth 1 ($av1, $bv1)."
+		quicknote "$n beds per depth of $C_DUR s"
+		echo
+		echo "| depth | paper risen | fast risen | verlet Δt = $DT s risen | paper only / fast only | McNemar p (paper, fast) |"
+		echo "|---:|---:|---:|---:|---:|---:|"
+		echo "| 0 | $(cpint "$kp0" "$n") | $(cpint "$kf0" "$n") | $(cpint "$kv0" "$n") | $a0 / $b0 | $(fmtp "$m0") |"
+		echo "| 1 | $(cpint "$kp1" "$n") | $(cpint "$kf1" "$n") | $(cpint "$kv1" "$n") | $a1 / $b1 | $(fmtp "$m1") |"
+		echo "| Fisher p, 1 vs 0 | $(fmtp "$fp") | $(fmtp "$ff") | $(fmtp "$fv") | | |"
+		echo
+		echo "Run time of these runs: paper $(sumsec "$d" paper) s of wall time ($(sumcpu "$d" paper) s CPU), fast $(sumsec "$d" fast) s ($(sumcpu "$d" fast) s CPU)."
+	} >>"$d/section.md"
+	echo "validate_lammps: C presets: fast $word from paper (McNemar p $m0 at depth 0, $m1 at depth 1)" >&2
+}
+
 report_C() {
 	local d=$WORK/C dep n=$C_BEDS
+	# LAMMPS's runs come last in a validation spread over sessions (VALIDATE_CHEAP_FIRST):
+	# until every one is there, the part says how far it got and reports the engine's
+	# presets alone
+	local nl
+	nl=$(find "$d" -maxdepth 1 -name 'lmp_d*.ok' | wc -l)
+	if [ "$nl" -lt $((2 * n)) ]; then
+		printf '%s\t%s\t%s\n' "claim 5: 𝓡 = $C_R at depth 0 and 1, $C_FREQ Hz: risen within $C_DUR s (depth 0 is one row lower)" \
+			"$n beds per depth; LAMMPS: $nl of $((2 * n)) runs so far" "**in progress**: the codes not yet compared" >"$d/summary"
+		{
+			echo "## C. Claim 5: one row lower, close to the onset"
+			echo
+			part_header C
+			echo
+			echo "**In progress:** $nl of LAMMPS's $((2 * n)) runs are finished (a validation spread over sessions: \`VALIDATE_CHEAP_FIRST=1\`"
+			echo "runs the engine's runs first and resumes where it stopped); the codes are compared when all are."
+		} >"$d/section.md"
+		echo "validate_lammps: C: in progress ($nl of $((2 * n)) LAMMPS runs)" >&2
+		presets_C
+		return 0
+	fi
 	: >"$d/rise.tsv"
 	for dep in 0 1; do
 		# shellcheck disable=SC2046
@@ -786,6 +902,7 @@ report_C() {
 			printf "| %s | %s | %s | %s |\n", $1, seed, $3 ? sprintf("%.2f", $4) : "— (" D ")", $5 ? sprintf("%.2f", $6) : "— (" D ")" }' "$d/rise.tsv"
 	} >"$d/section.md"
 	echo "validate_lammps: C: $verdict (McNemar p $m0 at depth 0, $m1 at depth 1; Fisher p shakebox $fs, LAMMPS $fl)" >&2
+	presets_C
 }
 
 report_D() {
