@@ -14,9 +14,55 @@ typedef struct gdata {
 	long *units;
 	size_t nu;
 	int by_point;  /* one seed: units are the points themselves */
+	int per_unit;  /* the units share no frequency grid: the threshold onset is the
+			* median of their own crossings (onsetfit.h) */
+	const double *uthr; /* [nu] each unit's own crossing */
 	double thr;
 	double *xs, *ys;
 } gdata;
+
+static int cmp_d(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* The median of the finite v[idx[i]] (idx NULL: v[0..n)), NaN when none; tmp holds n. */
+static double median_of(const double *v, const size_t *idx, size_t n, double *tmp)
+{
+	size_t m = 0;
+	for (size_t i = 0; i < n; i++) {
+		const double x = v[idx ? idx[i] : i];
+		if (isfinite(x))
+			tmp[m++] = x;
+	}
+	if (!m)
+		return NAN;
+	qsort(tmp, m, sizeof *tmp, cmp_d);
+	return m % 2 ? tmp[m / 2] : 0.5 * (tmp[m / 2 - 1] + tmp[m / 2]);
+}
+
+/* Do the units sample the same frequencies (each the same set, as a grid does)? A
+ * bisection gives each replicate its own. */
+static int common_grid(const double *x, const long *unit, size_t n, const long *units, size_t nu)
+{
+	for (size_t u = 1; u < nu; u++) {
+		/* every x of unit u is an x of unit 0 and the other way round */
+		for (int dir = 0; dir < 2; dir++) {
+			const long a = dir ? units[0] : units[u], b = dir ? units[u] : units[0];
+			for (size_t i = 0; i < n; i++) {
+				if (unit[i] != a)
+					continue;
+				int seen = 0;
+				for (size_t j = 0; j < n && !seen; j++)
+					seen = unit[j] == b && x[j] == x[i];
+				if (!seen)
+					return 0;
+			}
+		}
+	}
+	return 1;
+}
 
 static size_t gather(gdata *g, const size_t *idx, size_t n)
 {
@@ -42,7 +88,8 @@ static void stat2(void *ctx, const size_t *idx, size_t n, double *out)
 	size_t k = gather(g, idx, n);
 	sig_fit s;
 	out[0] = sig_fit_data(g->xs, g->ys, k, &s) ? s.x0 : NAN;
-	out[1] = sig_threshold(g->xs, g->ys, k, g->thr);
+	/* per unit: the median of the drawn units' own crossings (xs holds n doubles at least) */
+	out[1] = g->per_unit ? median_of(g->uthr, idx, n, g->xs) : sig_threshold(g->xs, g->ys, k, g->thr);
 }
 
 int onset_estimate(const double *x, const double *y, const long *unit, size_t n, double threshold, size_t B,
@@ -51,7 +98,7 @@ int onset_estimate(const double *x, const double *y, const long *unit, size_t n,
 	memset(r, 0, sizeof *r);
 	r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
 	size_t cap = n ? n : 1;
-	gdata g = {x, y, unit, n, malloc(sizeof(long) * cap), 0, 0, threshold, NULL, NULL};
+	gdata g = {x, y, unit, n, malloc(sizeof(long) * cap), 0, 0, 0, NULL, threshold, NULL, NULL};
 	size_t *idx = malloc(sizeof *idx * cap);
 	double *bo = malloc(sizeof *bo * 2 * (B ? B : 1));
 	r->seed_fit = malloc(sizeof(double) * cap);
@@ -99,6 +146,15 @@ int onset_estimate(const double *x, const double *y, const long *unit, size_t n,
 		}
 	}
 	r->units = g.nu;
+	/* units without a common grid (a search's replicates): the pooled means' first
+	 * crossing would be the lowest frequency any one run reached the threshold at; the
+	 * median of each unit's own crossing is set by no lone run */
+	if (g.nu >= 2 && !common_grid(x, unit, n, g.units, g.nu)) {
+		r->per_unit = 1;
+		g.per_unit = 1;
+		g.uthr = r->seed_thr;
+		r->thr = median_of(r->seed_thr, NULL, g.nu, g.xs);
+	}
 	if (ns > 1)
 		r->seed_sd = sqrt(fmax(0, (sum2 - sum * sum / (double)ns) / (double)(ns - 1)));
 	size_t nunits = g.nu;

@@ -17,6 +17,10 @@ typedef struct onset_res {
 	double fit_lo, fit_hi;     /* bootstrap interval of fit.x0 */
 	double thr_lo, thr_hi;     /* ... of thr */
 	double seed_sd;            /* sd of the per-seed threshold crossings (NaN if < 2) */
+	int per_unit;              /* the units share no frequency grid (a search's
+				    * replicates, each its own bisection): thr and its bootstrap
+				    * are the median of the units' own crossings, not the pooled
+				    * means' crossing, which one run could set */
 	size_t units, boot_ok;     /* bootstrap units; replicates whose fit succeeded */
 	double *seed_fit, *seed_thr; /* [units] per-unit estimates (malloc'd) */
 	long *unit_id;             /* [units] */
@@ -27,6 +31,8 @@ typedef struct onset_res {
 } onset_res;
 
 /* x[i], y[i] from unit[i] (seed / replicate id). threshold NaN: midpoint of the means.
+ * Units that sample the same frequencies (a grid): thr is the pooled means' crossing;
+ * units that do not (per_unit): the median of their own crossings.
  * B < 2: no bootstrap (intervals NaN). Returns 0, or -1 when out of memory. */
 int onset_estimate(const double *x, const double *y, const long *unit, size_t n, double threshold, size_t B,
 		   unsigned long seed, double level, onset_res *r);

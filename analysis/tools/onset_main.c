@@ -441,20 +441,27 @@ static int beside(an_tool *t, onset_state *s)
 		const onset_res *r = &s->R[j];
 		/* the search's answer is a bracket: no interval narrower than one */
 		resolve_widen(&g.lo, &g.hi, g.bracket_lo, g.bracket_hi);
-		char c1[64], c2[64];
-		const char *agree;
+		char c1[64], c2[64], why[160];
+		const char *agree = why;
 		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", g.est, g.lo, g.hi);
 		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
+		/* The two estimates rest on the same runs of the same replicates: the search's
+		 * median bracket and the median of the replicates' own crossings (each inside its
+		 * replicate's bracket) can differ by at most one bracket. Intervals that merely
+		 * overlap would pass estimates a whole interval apart. */
+		const double gap = fabs(r->thr - g.est), width = g.bracket_hi - g.bracket_lo;
 		if (!g.found)
 			agree = "n/a: none of its runs is the search's";
 		else if (g.pooled)
 			agree = "n/a: the group pools several search groups (--by)";
-		else if (!resolve_overlap(g.lo, g.hi, r->thr_lo, r->thr_hi))
-			agree = isfinite(g.lo) && isfinite(g.hi) && isfinite(r->thr_lo) && isfinite(r->thr_hi)
-					? "no: the intervals do not overlap"
-					: "n/a: an interval is missing";
+		else if (!isfinite(gap) || !(width > 0))
+			agree = "n/a: an estimate is missing";
+		else if (s->differs)
+			snprintf(why, sizeof why, "n/a: another definition (their difference %.3f Hz)", r->thr - g.est);
+		else if (gap <= width * (1 + 1e-9))
+			snprintf(why, sizeof why, "yes: %.3f Hz apart, within one bracket (%.3f Hz)", gap, width);
 		else
-			agree = "yes: the intervals overlap";
+			snprintf(why, sizeof why, "no: %.3f Hz apart, more than one bracket (%.3f Hz)", gap, width);
 		printf("%-30s %24s %-9s %24s %s\n", t->labels[j], g.found && !g.pooled ? c1 : "-", g.state, c2, agree);
 		if (g.found && !g.pooled)
 			tool_store(t, j, t->labels[j], "search_f", g.est, g.lo, g.hi, g.replicates);

@@ -79,6 +79,46 @@ int main(void)
 	CHECK("onset.fit.too_few", !sig_fit_data(x, y, 4, &f), "fitted 4 points");
 	double fx[6] = {1, 2, 3, 4, 5, 6}, fy[6] = {1, 1, 1, 1, 1, 1};
 	CHECK("onset.threshold.flat", isnan(sig_threshold(fx, fy, 6, NAN)), "a flat curve crossed its threshold");
+
+	/* Search data: three replicates, each its own bisection between 2.5 and 2.8 Hz with
+	 * the threshold 2 (off below it, on above). Replicate A visited 2.6375 once and was
+	 * on there (Phi 2.08); B and C cross near 2.67 and 2.69. The pooled means' first
+	 * crossing lands on A's lone run; the median of the replicates' own crossings
+	 * does not. Known answer: each replicate's crossing by linear interpolation
+	 * between its last off and first on run, the median the middle one's. */
+	{
+		const double sx[] = {2.5, 2.8, 2.65, 2.575, 2.6125, 2.6375, /* A */
+				     2.5, 2.8, 2.65, 2.725, 2.6875, 2.66875, /* B */
+				     2.5, 2.8, 2.65, 2.725, 2.6875, 2.70625}; /* C */
+		const double sy[] = {0.1, 9, 3, 0.2, 0.4, 2.08, /* A: on at 2.6375 */
+				     0.1, 9, 1.0, 7, 2.5, 1.9,    /* B: off 2.66875, on 2.6875 */
+				     0.1, 9, 0.5, 6, 1.5, 2.2};   /* C: off 2.6875, on 2.70625 */
+		const long su[] = {1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3};
+		onset_res o;
+		CHECK("onset.search.estimated", !onset_estimate(sx, sy, su, 18, 2.0, 400, 7, 0.95, &o), "failed");
+		/* B: off 1.9 at 2.66875, on 2.5 at 2.6875: 2.66875 + 0.01875 * 0.1 / 0.6 */
+		const double b = 2.66875 + 0.01875 * (2.0 - 1.9) / (2.5 - 1.9);
+		CHECK("onset.search.per_unit", o.per_unit == 1, "per_unit %d", o.per_unit);
+		CHECK_REL("onset.search.median_of_replicates", o.thr, b, 1e-12);
+		/* the pooled means' first crossing: at or below A's lone run, the old answer */
+		const double pooled = sig_threshold(sx, sy, 18, 2.0);
+		CHECK("onset.search.pooled_would_land_low", pooled <= 2.6375 + 1e-9 && o.thr > pooled + 0.02,
+		      "pooled %g, per replicate %g", pooled, o.thr);
+		CHECK("onset.search.interval_holds_it", o.thr_lo <= o.thr && o.thr <= o.thr_hi && o.thr_lo >= 2.6 &&
+							       o.thr_hi <= 2.71,
+		      "[%g, %g]", o.thr_lo, o.thr_hi);
+		onset_res_free(&o);
+		/* the same data on a common grid (every replicate at every frequency): the
+		 * pooled crossing, as before */
+		double gx[18], gy[18];
+		long gu[18];
+		for (int k = 0; k < 18; k++)
+			gx[k] = 2.5 + 0.05 * (k % 6), gy[k] = gx[k] < 2.66 ? 0.5 : 5, gu[k] = 1 + k / 6;
+		CHECK("onset.grid.estimated", !onset_estimate(gx, gy, gu, 18, 2.0, 0, 7, 0.95, &o), "failed");
+		CHECK("onset.grid.pooled", o.per_unit == 0 && o.thr == sig_threshold(gx, gy, 18, 2.0), "per_unit %d thr %g",
+		      o.per_unit, o.thr);
+		onset_res_free(&o);
+	}
 	gsl_rng_free(r);
 	return tl_done();
 }
