@@ -82,6 +82,34 @@ int tool_old(an_tool *t, const an_run *r)
 	return acct_version_skip(r, t->o->all_versions, &t->nold);
 }
 
+int tool_where_known(an_tool *t)
+{
+	const an_opts *o = t->o;
+	for (int w = 0; w < o->nwhere; w++) {
+		int known = 0;
+		for (int i = 0; i < t->nr && !known; i++)
+			known = an_str(&t->runs[i], o->where_key[w]) != NULL;
+		if (t->nr && !known)
+			return sb_errf(&t->e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o->where_key[w],
+				       o->campaign);
+	}
+	return 0;
+}
+
+int tool_where_ok(const an_opts *o, const an_run *r)
+{
+	for (int w = 0; w < o->nwhere; w++) {
+		const char *v = an_str(r, o->where_key[w]);
+		if (!v)
+			return 0;
+		double a, b;
+		const int numeric = !num_real(v, &a) && !num_real(o->where_val[w], &b);
+		if (numeric ? !(fabs(a - b) <= 1e-9 * fmax(1, fabs(b))) : strcmp(v, o->where_val[w]) != 0)
+			return 0;
+	}
+	return 1;
+}
+
 int tool_keep(an_tool *t, int i)
 {
 	an_run s = t->runs[t->k];

@@ -54,7 +54,7 @@ typedef struct an_tool {
 } an_tool;
 
 /* One tool: what tool_main needs to run it. Everything but run may be NULL or 0. */
-enum { TOOL_MAXX = 4 };
+enum { TOOL_MAXX = 5 };
 typedef struct tool_spec {
 	const char *name, *version; /* the tool's name (bin/NAME, messages) and its version (rows it stores) */
 	const char *help;           /* --help's text (tool_main adds the exit codes) */
@@ -90,6 +90,11 @@ int tool_open(an_tool *t, const an_opts *o);
 /* A run of an earlier version of the campaign file that the options leave out
  * (counted in t->nold). */
 int tool_old(an_tool *t, const an_run *r);
+/* --where KEY=VALUE (repeatable): every KEY a parameter of the campaign's runs (else
+ * SB_EUSAGE naming it); a run is selected when its KEY equals VALUE for every one (as
+ * numbers when both are numbers, to 1e-9 relative). */
+int tool_where_known(an_tool *t);
+int tool_where_ok(const an_opts *o, const an_run *r);
 
 /* Moves runs[i] to runs[k], the end of the considered runs (i >= k), and returns k,
  * its new index. */

@@ -149,36 +149,6 @@ static void sys_words(const panels *P, int sys, double f, char *buf, size_t n)
 	}
 }
 
-/* every --where names a parameter of the campaign */
-static int where_known(an_tool *t)
-{
-	const an_opts *o = t->o;
-	for (int w = 0; w < o->nwhere; w++) {
-		int known = 0;
-		for (int i = 0; i < t->nr && !known; i++)
-			known = an_str(&t->runs[i], o->where_key[w]) != NULL;
-		if (t->nr && !known)
-			return sb_errf(&t->e, SB_EUSAGE, "--where: '%s' is not a parameter of campaign '%s'", o->where_key[w],
-				       o->campaign);
-	}
-	return 0;
-}
-
-/* the run's KEY equals VALUE for every --where (as numbers when both are numbers) */
-static int where_ok(const an_opts *o, const an_run *r)
-{
-	for (int w = 0; w < o->nwhere; w++) {
-		const char *v = an_str(r, o->where_key[w]);
-		if (!v)
-			return 0;
-		double a, b;
-		const int numeric = !num_real(v, &a) && !num_real(o->where_val[w], &b);
-		if (numeric ? !near(a, b) : strcmp(v, o->where_val[w]) != 0)
-			return 0;
-	}
-	return 1;
-}
-
 /* Adds x to v[0..*n) unless it is there already, ok is false or v is full. */
 static void add_value(double *v, int *n, double x, int ok)
 {
@@ -196,7 +166,7 @@ static int consider(an_tool *t, panels *P)
 	const an_opts *o = t->o;
 	for (int i = 0; i < t->nr; i++) {
 		const char *ramp = an_str(&t->runs[i], "ramp");
-		if ((ramp && strcmp(ramp, "none")) || !where_ok(o, &t->runs[i]) || tool_old(t, &t->runs[i]))
+		if ((ramp && strcmp(ramp, "none")) || !tool_where_ok(o, &t->runs[i]) || tool_old(t, &t->runs[i]))
 			continue;
 		const an_run *r = &t->runs[tool_keep(t, i)];
 		/* the panels are its groups */
@@ -1008,7 +978,7 @@ static int init(an_tool *t, void *vs, const xopt *x)
 static int run(an_tool *t, void *vs)
 {
 	panels *P = vs;
-	if (where_known(t) || consider(t, P) || pooled_axis(t) || layout(t, P) || cli_outdir(t->o, &t->e) ||
+	if (tool_where_known(t) || consider(t, P) || pooled_axis(t) || layout(t, P) || cli_outdir(t->o, &t->e) ||
 	    tool_accounting_csv(t) || tool_store_begin(t) || fig1(t, P) || fig3(t, P) || fig4(t, P) ||
 	    tool_store_end(t))
 		return t->e.code;

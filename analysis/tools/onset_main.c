@@ -75,7 +75,8 @@ static const char HELP[] =
 	"                   variant sens_threshold_f_V and sens_sigmoid_f0_V (lo, hi), V one of\n"
 	"                   band_0.2_0.4, band_0.4_0.6, band_0.6_0.8, no_lowest_f, no_highest_f\n"
 	"  --diff KEY       the difference of the onsets (both estimates) of groups alike in every\n"
-	"                   grouping key but KEY, each against the group of the smallest KEY:\n"
+	"                   grouping key but KEY, every pair (the larger KEY minus the smaller;\n"
+	"                   --ref VALUE: each group against the one at KEY = VALUE):\n"
 	"                   its percentile interval from the two groups' bootstraps (each over\n"
 	"                   its seeds, resampled apart) and whether 0 is inside; onset_diff.csv,\n"
 	"                   stored keys diff_threshold_f and diff_sigmoid_f0 (lo, hi)\n"
@@ -86,6 +87,7 @@ static const char HELP[] =
 	"                   Gamma = const (p = -1/2) and v = const (p = -1), each said excluded\n"
 	"                   or not; onset_fit.csv, stored keys fit_p_E and fit_c_E (E threshold_f,\n"
 	"                   sigmoid_f0)\n"
+	"  --where KEY=VALUE  only the runs whose KEY is VALUE (repeatable; as bin/figures)\n"
 	"  --axis A         the figure's x: frequency (default), gamma (Gamma = A(2 pi f)^2/g) or\n"
 	"                   velocity (v = 2 pi f A), each run at its own amplitude\n"
 	"  CAMPAIGN...      a campaign's name, its campaign file (FILE.campaign: its [campaign]\n"
@@ -123,6 +125,7 @@ typedef struct onset_state {
 	onset_res *R;    /* [ng] */
 	int sens;        /* --sensitivity given */
 	const char *diff, *fit; /* --diff KEY, --fit KEY (NULL: not given) */
+	double ref;             /* --ref VALUE of --diff's key (NaN: every pair) */
 	int axis;        /* --axis (axis.h) */
 	double level;    /* the intervals' level: --level, else the search's, else 0.95 */
 } onset_state;
@@ -266,14 +269,21 @@ static int definition(an_tool *t, onset_state *s)
 /* Every fixed-frequency run with flux = yes is considered, whatever its state. */
 static int consider(an_tool *t, onset_state *s)
 {
+	if (tool_where_known(t))
+		return t->e.code;
 	for (int i = 0; i < t->nr; i++) {
 		const char *ramp = an_str(&t->runs[i], "ramp"), *fl = an_str(&t->runs[i], "flux");
-		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) || tool_old(t, &t->runs[i]))
+		if ((ramp && strcmp(ramp, "none")) || (fl && strcmp(fl, "yes")) || !tool_where_ok(t->o, &t->runs[i]) ||
+		    tool_old(t, &t->runs[i]))
 			continue;
 		const double v = classify(&t->runs[i], &s->fo);
 		s->phi[tool_keep(t, i)] = v;
 	}
-	return t->k ? 0 : tool_none(t, "fixed-frequency run with flux = yes", "");
+	char narrowed[600] = "";
+	for (int w = 0; w < t->o->nwhere; w++)
+		snprintf(narrowed + strlen(narrowed), sizeof narrowed - strlen(narrowed), "%s%s = %s",
+			 w ? ", " : " with ", t->o->where_key[w], t->o->where_val[w]);
+	return t->k ? 0 : tool_none(t, "fixed-frequency run with flux = yes", narrowed);
 }
 
 static int groups(an_tool *t, onset_state *s)
@@ -493,52 +503,64 @@ static int diff_out(an_tool *t, onset_state *s)
 	if (!curve)
 		return t->e.code;
 	fprintf(f, "group_a,group_b,%s_a,%s_b,estimate,difference,lo,hi,replicates,zero\n", s->diff, s->diff);
-	printf("\n# differences along %s: the onset at each %s minus at the smallest (other keys equal); %g %% "
-	       "percentile interval from the two groups' bootstraps over their seeds, resampled apart\n", s->diff,
-	       s->diff, 100 * s->level);
+	if (isnan(s->ref))
+		printf("\n# differences along %s: every pair of groups alike in the other keys, the onset at the larger %s "
+		       "minus at the smaller; %g %% percentile interval from the two groups' bootstraps over their seeds, "
+		       "resampled apart\n", s->diff, s->diff, 100 * s->level);
+	else
+		printf("\n# differences along %s: the onset at each %s minus at %s = %g (--ref; other keys equal); %g %% "
+		       "percentile interval from the two groups' bootstraps over their seeds, resampled apart\n", s->diff,
+		       s->diff, s->diff, s->ref, 100 * s->level);
 	printf("%-30s %10s %10s %-12s %30s %8s\n", "groups alike but in", s->diff, "against", "estimate",
 	       "difference (Hz) [CI]", "0");
 	int pairs = 0;
-	for (int c = 0; c < nc && !t->e.code; c++) {
-		int a = -1;
-		for (int j = 0; j < t->ng; j++) /* the reference: the smallest KEY with usable runs */
-			if (curve[j] == c && acct_used(&t->A[j]) &&
-			    (a < 0 || tool_num(t, j, s->diff) < tool_num(t, a, s->diff)))
-				a = j;
-		for (int b = 0; a >= 0 && b < t->ng; b++) {
-			if (curve[b] != c || b == a || !acct_used(&t->A[b]))
+	int refs = 0;
+	for (int c = 0; c < nc && !t->e.code; c++)
+		for (int a = 0; a < t->ng && !t->e.code; a++) {
+			/* a: the reference of the pair (--ref: the group at that value; else the
+			 * smaller KEY of every pair) */
+			if (curve[a] != c || !acct_used(&t->A[a]))
 				continue;
-			char lab[512], grp[1100];
-			tool_label_but(t, a, s->diff, lab, sizeof lab);
-			snprintf(grp, sizeof grp, "%s - %s", t->labels[b], t->labels[a]);
-			pairs++;
-			for (int e = 0; e < NEST; e++) {
-				double la, ha, lb, hb;
-				const double *ra, *rb;
-				const double va = est(&s->R[a], e, &la, &ha, &ra), vb = est(&s->R[b], e, &lb, &hb, &rb);
-				bootdiff_res d;
-				if (bootdiff_run(va, vb, ra, rb, ra && rb && s->R[a].B == s->R[b].B ? s->R[a].B : 0, s->level,
-						 &d)) {
-					sb_errf(&t->e, SB_ENOMEM, "out of memory");
-					break;
+			if (!isnan(s->ref) && !(fabs(tool_num(t, a, s->diff) - s->ref) <= 1e-9 * fmax(1, fabs(s->ref))))
+				continue;
+			refs++;
+			for (int b = 0; b < t->ng; b++) {
+				if (curve[b] != c || b == a || !acct_used(&t->A[b]) ||
+				    (isnan(s->ref) && !(tool_num(t, b, s->diff) > tool_num(t, a, s->diff))))
+					continue;
+				char lab[512], grp[1100];
+				tool_label_but(t, a, s->diff, lab, sizeof lab);
+				snprintf(grp, sizeof grp, "%s - %s", t->labels[b], t->labels[a]);
+				pairs++;
+				for (int e = 0; e < NEST; e++) {
+					double la, ha, lb, hb;
+					const double *ra, *rb;
+					const double va = est(&s->R[a], e, &la, &ha, &ra), vb = est(&s->R[b], e, &lb, &hb, &rb);
+					bootdiff_res d;
+					if (bootdiff_run(va, vb, ra, rb, ra && rb && s->R[a].B == s->R[b].B ? s->R[a].B : 0, s->level,
+							 &d)) {
+						sb_errf(&t->e, SB_ENOMEM, "out of memory");
+						break;
+					}
+					char ci[64];
+					snprintf(ci, sizeof ci, "%.3f [%.3f, %.3f]", d.d, d.lo, d.hi);
+					const char *z = d.zero == 1 ? "inside" : d.zero == 0 ? "excluded" : "-";
+					printf("%-30s %10g %10g %-12s %30s %8s\n", e ? "" : lab, tool_num(t, b, s->diff),
+					       tool_num(t, a, s->diff), EST[e], ci, z);
+					csv_text(f, t->labels[a]);
+					fputc(',', f);
+					csv_text(f, t->labels[b]);
+					fprintf(f, ",%.17g,%.17g,%s,%.17g,%.17g,%.17g,%zu,%d\n", tool_num(t, a, s->diff),
+						tool_num(t, b, s->diff), EST[e], d.d, d.lo, d.hi, d.ok, d.zero);
+					char key[64];
+					snprintf(key, sizeof key, "diff_%s", EST[e]);
+					tool_store(t, b, grp, key, d.d, d.lo, d.hi, (long)d.ok);
 				}
-				char ci[64];
-				snprintf(ci, sizeof ci, "%.3f [%.3f, %.3f]", d.d, d.lo, d.hi);
-				const char *z = d.zero == 1 ? "inside" : d.zero == 0 ? "excluded" : "-";
-				printf("%-30s %10g %10g %-12s %30s %8s\n", e ? "" : lab, tool_num(t, b, s->diff),
-				       tool_num(t, a, s->diff), EST[e], ci, z);
-				csv_text(f, t->labels[a]);
-				fputc(',', f);
-				csv_text(f, t->labels[b]);
-				fprintf(f, ",%.17g,%.17g,%s,%.17g,%.17g,%.17g,%zu,%d\n", tool_num(t, a, s->diff),
-					tool_num(t, b, s->diff), EST[e], d.d, d.lo, d.hi, d.ok, d.zero);
-				char key[64];
-				snprintf(key, sizeof key, "diff_%s", EST[e]);
-				tool_store(t, b, grp, key, d.d, d.lo, d.hi, (long)d.ok);
 			}
 		}
-	}
-	if (!pairs)
+	if (!isnan(s->ref) && !refs)
+		printf("# no group with usable runs at %s = %g (--ref)\n", s->diff, s->ref);
+	else if (!pairs)
 		printf("# no two groups with usable runs differ only in %s\n", s->diff);
 	free(curve);
 	return tool_out_close(t, f);
@@ -888,6 +910,17 @@ static int init(an_tool *t, void *vs, const xopt *x)
 	s->sens = x[0].set;
 	s->diff = x[1].set ? x[1].val : NULL;
 	s->fit = x[2].set ? x[2].val : NULL;
+	s->ref = NAN;
+	if (x[4].set) {
+		char *end;
+		s->ref = strtod(x[4].val, &end);
+		if (end == x[4].val || *end || !isfinite(s->ref))
+			return sb_errf(&t->e, SB_EUSAGE, "--ref: expected a number (a value of the --diff key), got '%s'",
+				       x[4].val);
+		if (!s->diff)
+			return sb_errf(&t->e, SB_EUSAGE, "--ref: only with --diff KEY (the value of KEY the others are "
+							 "taken against)");
+	}
 	if ((s->axis = x[3].set ? drive_axis_kind(x[3].val) : AXIS_FREQUENCY) < 0)
 		return sb_errf(&t->e, SB_EUSAGE, "--axis: expected one of frequency|gamma|velocity, got '%s'", x[3].val);
 	return 0;
@@ -910,8 +943,8 @@ static int run(an_tool *t, void *vs)
 }
 
 static const tool_spec SPEC = {.name = "onset", .version = VERSION, .help = HELP,
-			       .allowed = " by band skip threshold boot seed level ", .x = {{"sensitivity", 0, NULL, 0}, {"diff", 1, NULL, 0}, {"fit", 1, NULL, 0}, {"axis", 1, NULL, 0}},
-			       .nx = 4, .init = init, .run = run, .fini = state_free};
+			       .allowed = " by band skip threshold boot seed level where ", .x = {{"sensitivity", 0, NULL, 0}, {"diff", 1, NULL, 0}, {"fit", 1, NULL, 0}, {"axis", 1, NULL, 0}, {"ref", 1, NULL, 0}},
+			       .nx = 5, .init = init, .run = run, .fini = state_free};
 
 int main(int argc, char **argv)
 {

@@ -2,7 +2,8 @@
 # analysis_pool.sh - analysis across campaigns: three tiny campaigns at one amplitude
 # each (two in one runs directory, one in its own), pooled by bin/onset into groups by
 # amplitude (a key no campaign sweeps but that differs between them), each group naming
-# its campaign; a difference interval between two amplitudes (--diff), a power-law fit
+# its campaign; difference intervals between every pair of amplitudes (--diff; --ref one
+# against the others; --where a selection), a power-law fit
 # against the amplitude with the Gamma and v exponents judged (--fit), a figure against
 # Gamma (--axis gamma); waiting pools too; and the usage errors (a campaign not in its
 # database, a --diff key that is no grouping key, a bad --axis).
@@ -37,10 +38,29 @@ A=R/a+b+c/analysis
 # the seeds of different campaigns are different bootstrap units: 2 per group
 [ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'a+b+c' AND key = 'seeds' AND value = 2")" = 3 ] &&
 	ok pool.stored_in_first_database || fail pool.stored_in_first_database "$(sqlite3 R/study.db "SELECT grp, key, value FROM analysis WHERE key = 'seeds'")"
-# --diff: two differences (1 and 2 against 0.5) per estimate, each with an interval and a verdict on 0
-[ "$(grep -Ec '(inside|excluded)$' o.out)" -ge 2 ] && [ "$(tail -n +2 $A/onset_diff.csv | wc -l)" = 4 ] &&
-	[ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'a+b+c' AND key = 'diff_threshold_f'")" = 2 ] &&
-	ok pool.diff || fail pool.diff "$(cat o.out; cat $A/onset_diff.csv)"
+# --diff: every pair (1 - 0.5, 2 - 0.5, 2 - 1) per estimate, each with an interval and a verdict on 0
+[ "$(grep -Ec '(inside|excluded)$' o.out)" -ge 3 ] && [ "$(tail -n +2 $A/onset_diff.csv | wc -l)" = 6 ] &&
+	[ "$(awk -F, 'NR > 1 && $5 == "threshold_f" { print $3 "-" $4 }' $A/onset_diff.csv | sort | tr '\n' ' ')" = "0.5-1 0.5-2 1-2 " ] &&
+	[ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'a+b+c' AND key = 'diff_threshold_f'")" = 3 ] &&
+	ok pool.diff_every_pair || fail pool.diff_every_pair "$(cat o.out; cat $A/onset_diff.csv)"
+# --ref 1: each against amplitude 1 (0.5 - 1 and 2 - 1); --where: only the runs at amplitude 0.5 and 1
+"$BINDIR/onset" a b R2/c --runs R --boot 50 --no-store --no-plot --diff amplitude --ref 1 >r.out 2>r.err &&
+	[ "$(awk -F, 'NR > 1 && $5 == "threshold_f" { print $3 "-" $4 }' $A/onset_diff.csv | sort | tr '\n' ' ')" = "1-0.5 1-2 " ] &&
+	grep -q "minus at amplitude = 1 (--ref" r.out && ok pool.diff_ref || fail pool.diff_ref "$(cat r.out r.err; cat $A/onset_diff.csv)"
+"$BINDIR/onset" a b R2/c --runs R --boot 50 --no-store --no-plot --diff amplitude --ref 3 >r3.out 2>r3.err &&
+	grep -q "# no group with usable runs at amplitude = 3 (--ref)" r3.out && ok pool.diff_ref_absent ||
+	fail pool.diff_ref_absent "$(cat r3.out r3.err)"
+"$BINDIR/onset" a b --runs R --boot 50 --no-store --no-plot --where amplitude=1 >wh.out 2>wh.err &&
+	[ "$(tail -n +2 R/a+b/analysis/onset_runs.csv | wc -l)" = 6 ] && ! grep -q '^radius_ratio=0 depth=1 amplitude=0.5 ' wh.out &&
+	ok pool.where || fail pool.where "$(cat wh.out wh.err)"
+"$BINDIR/onset" a --runs R --no-store --where nosuchkey=1 >wm.out 2>wm.err
+[ $? -eq 1 ] && grep -q "where: 'nosuchkey' is not a parameter of campaign 'a'" wm.err && ok pool.where_unknown ||
+	fail pool.where_unknown "$(cat wm.err)"
+"$BINDIR/onset" a --runs R --no-store --where mu=1 >wn.out 2>wn.err
+[ $? -eq 1 ] && grep -q "no finished fixed-frequency run with flux = yes in R/study.db with mu = 1" wn.err && ok pool.where_none ||
+	fail pool.where_none "$(cat wn.err)"
+"$BINDIR/onset" a --runs R --no-store --ref 1 >rf.out 2>rf.err
+[ $? -eq 1 ] && grep -q -- "--ref: only with --diff KEY" rf.err && ok pool.ref_without_diff || fail pool.ref_without_diff "$(cat rf.err)"
 # --fit: p of the threshold crossing over 3 points, with the two reference exponents judged
 grep -Eq '^radius_ratio=0 depth=1 +threshold_f +3 .*Γ const \(p = -1/2\) (excluded|inside), v const \(p = -1\) (excluded|inside)' o.out &&
 	[ "$(sqlite3 R/study.db "SELECT COUNT(*) FROM analysis WHERE key = 'fit_p_threshold_f' AND n = 3 AND value < 0")" = 1 ] &&
