@@ -80,6 +80,9 @@ static double throughput(st_db *d, const char *name)
 		    "SELECT COUNT(*), (MAX(f) - MIN(s)) * 86400 FROM (SELECT julianday(a.finished) AS f,"
 		    " julianday(r.started) AS s FROM attempt a JOIN run r ON r.campaign = a.campaign AND r.id = a.run"
 		    " WHERE a.campaign = ? AND a.finished IS NOT NULL AND r.started IS NOT NULL"
+		    /* only attempts that finished their run: an interrupted, killed or lost
+		     * one ended early and would make the pace look faster than it is */
+		    " AND COALESCE(a.status, '') NOT IN ('interrupted', 'killed', 'lost', 'io', 'crashed')"
 		    " ORDER BY a.finished DESC LIMIT 20)",
 		    "t", name))
 		return 0;

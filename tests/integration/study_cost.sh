@@ -115,6 +115,13 @@ sqlite3 R/study.db "DELETE FROM onset_search; DELETE FROM onset_group; DELETE FR
 "$STUDY" status f --runs R >st2.out 2>&1
 grep -q '^  ETA: about 60 s at the pace of the last runs' st2.out && ! grep -q 'at most' st2.out &&
 	ok eta.grid_unchanged || fail eta.grid_unchanged "$(cat st2.out)"
+# an attempt of b that was interrupted after 6 s is no run finished: the pace stays one
+# run a minute (counted, it would promise 30 s)
+sqlite3 R/study.db "UPDATE run SET started = '2026-01-01T00:00:00Z' WHERE campaign = 'f' AND id = 'b';
+INSERT INTO attempt(campaign, run, n, status, finished) VALUES ('f', 'b', 1, 'interrupted', '2026-01-01T00:00:06Z')"
+"$STUDY" status f --runs R >st2i.out 2>&1
+grep -q '^  ETA: about 60 s at the pace of the last runs' st2i.out && ok eta.interrupted_not_finished ||
+	fail eta.interrupted_not_finished "$(grep ETA st2i.out)"
 # replicates = auto: a point with 2 of at most 5 replicates: 1 pending + 3 = 4 runs
 sqlite3 R/study.db "INSERT INTO auto_point(campaign, point, grp, replicates, max_replicates, state)
 	VALUES ('f', 0, 'all', 2, 5, 'running')"
