@@ -9,6 +9,7 @@
 
 #include "fsutil.h"
 #include "h5read.h"
+#include "layout.h"
 #include "provenance.h"
 #include "results.h"
 #include "adaptive/search.h"
@@ -201,8 +202,33 @@ static int cmd_dry_run(const study_args *o)
 	grid g = {0};
 	if (!c)
 		return 2;
-	if (!campaign_load(c, o->pos[0], &e) && !grid_expand(&g, c, &e))
-		print_cost(c, &g, o->runs, !o->no_cache, 1, &e);
+	if (!campaign_load(c, o->pos[0], &e) && !grid_expand(&g, c, &e)) {
+		/* a grid extended or half run: the cost of what remains (a run whose file is
+		 * there is complete: lib/layout.h), as Snakemake's -n lists only the jobs to do;
+		 * a search's runs depend on the results, and its bound stays the whole one */
+		long have = 0;
+		if (!c->onset.line && !c->autorep.on) {
+			char dir[PATH_MAX], f[PATH_MAX + 64];
+			layout_campaign(o->runs ? o->runs : "runs", c->name, dir, sizeof dir);
+			long k = 0;
+			for (long i = 0; i < g.n; i++) {
+				layout_file(dir, 0, g.runs[i].id, LAY_OUTPUT, f, sizeof f);
+				if (access(f, F_OK))
+					g.runs[k++] = g.runs[i];
+				else
+					have++;
+			}
+			if (have)
+				fprintf(stderr, "study: %s: %ld of %ld runs are done already (their files are in %s): the cost "
+						"below is of the %ld that remain\n",
+					c->name, have, g.n, dir, k);
+			g.n = k;
+		}
+		if (g.n || !have)
+			print_cost(c, &g, o->runs, !o->no_cache, 1, &e);
+		else
+			fprintf(stderr, "study: %s: nothing remains to run\n", c->name);
+	}
 	grid_free(&g);
 	campaign_free(c);
 	free(c);

@@ -97,6 +97,14 @@ cpu=$(awk '{ print $1 + $2 }' cpu.txt)
 echo "# estimated CPU ${est:-?} s, measured $cpu s"
 awk -v e="${est:-0}" -v m="$cpu" 'BEGIN { exit !(e > 0 && m / e >= 0.5 && m / e <= 2) }' &&
 	ok run.within_factor_2 || fail run.within_factor_2 "estimated ${est:-none} s, measured $cpu s CPU"
+# --dry-run of what is done: nothing remains; of the campaign extended: only the new runs
+"$STUDY" run --dry-run c.campaign --runs R 2>dd.err
+grep -q "^study: c: 2 of 2 runs are done already" dd.err && grep -q "^study: c: nothing remains to run" dd.err &&
+	! grep -q 'total:' dd.err && ok dry.nothing_remains || fail dry.nothing_remains "$(cat dd.err)"
+sed 's/^frequency = 3$/frequency = 3, 3.5/' c.campaign >cx.campaign
+"$STUDY" run --dry-run cx.campaign --runs R 2>dx.err
+grep -q "^study: c: 2 of 4 runs are done already (their files are in R/c): the cost below is of the 2 that remain" dx.err &&
+	grep -q '^  total: 2 runs, 24 s of simulated shaking' dx.err && ok dry.what_remains || fail dry.what_remains "$(cat dx.err)"
 # study status's ETA over a made-up search (beside c, in the database its run made): one run done in 60 s, one pending; the chain
 # over [0, 1] to 0.25 takes at most 4 runs; replicate 1 has 2 (its pending one included),
 # and the group may get 2 more replicates: 1 + (4 - 2) + 2 x 4 = 11 runs, 11 min at most
