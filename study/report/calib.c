@@ -123,11 +123,20 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 	sb_err re = {0};
 	FILE *f = fs_open_input(path, "calibration", 1 << 20, SB_EIO, &re);
 	if (f) {
-		char date[64] = "";
-		const int got = fscanf(f, "%lg %lg %63s", &k->step, &k->settle, date);
+		char date[64] = "", load[512] = "";
+		double la = NAN;
+		long ncpu = 0;
+		const int got = fscanf(f, "%lg %lg %63s %lg %ld", &k->step, &k->settle, date, &la, &ncpu);
 		fclose(f);
-		if (got == 3 && k->step > 0 && k->settle >= 0) {
-			snprintf(k->source, sizeof k->source, "%s, cached from %s (%.4200s)", integ, date, path);
+		if (got >= 3 && k->step > 0 && k->settle >= 0) {
+			/* how busy the machine was then: a rate measured beside other work may be
+			 * slow (a file of an older build has no load: not said) */
+			if (got == 5 && isfinite(la) && ncpu > 0)
+				snprintf(load, sizeof load, " at load %.2f on %ld cores%s", la, ncpu,
+					 la > 0.5 * (double)ncpu ? ", a busy machine: the rate may be slow (remove the file to "
+								   "measure again)"
+								 : "");
+			snprintf(k->source, sizeof k->source, "%s, cached from %s%s (%.4200s)", integ, date, load, path);
 			return 0;
 		}
 	}
@@ -181,16 +190,26 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 
 	char date[32];
 	prov_now(date);
+	double la[1] = {NAN};
+	if (getloadavg(la, 1) != 1)
+		la[0] = NAN;
+	const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
 	/* through a temporary (fsutil.h): a reader never sees half of it, and nothing but a
 	 * regular file at its name is replaced */
 	sb_file sf;
 	if (fs_open_tmp(&sf, path, e))
 		return e->code;
-	fprintf(sf.f, "%.6g %.6g %s\n# CPU s per grain-step, CPU s per grain of a settling, when; measured with %s on:\n%s",
-		k->step, k->settle, date, preset, version);
+	fprintf(sf.f,
+		"%.6g %.6g %s %.2f %ld\n# CPU s per grain-step, CPU s per grain of a settling, when, the load average "
+		"(1 min) then and the cores; measured with %s on:\n%s",
+		k->step, k->settle, date, la[0], ncpu, preset, version);
 	if (fs_commit(&sf, e))
 		return e->code;
 	const double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-	snprintf(k->source, sizeof k->source, "%s, measured now in %.1f s (%.4200s)", integ, secs, path);
+	snprintf(k->source, sizeof k->source, "%s, measured now in %.1f s at load %.2f on %ld cores%s (%.4200s)", integ,
+		 secs, la[0], ncpu,
+		 la[0] > 0.5 * (double)ncpu ? ", a busy machine: the rate may be slow (remove the file to measure again)"
+					    : "",
+		 path);
 	return 0;
 }

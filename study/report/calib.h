@@ -12,7 +12,7 @@
 typedef struct calib {
 	double step;      /* CPU s per grain per shaking step */
 	double settle;    /* CPU s per grain of one settling (and the engine's start) */
-	char source[4400]; /* "measured now in 4.2 s (RUNS/.calibration/TAG.txt)", "cached from DATE (...)" */
+	char source[5000]; /* "measured now in 4.2 s (RUNS/.calibration/TAG.txt)", "cached from DATE (...)" */
 } calib;
 
 /* The rates of integrator (enum sb_integrator) for the engine at path shake: read from

@@ -37,6 +37,17 @@ rc=$?
 	ok dry.nothing_run || fail dry.nothing_run "$(find R)"
 "$STUDY" run --dry-run c.campaign --runs R 2>dry2.err
 grep -q 'verlet, cached from 20' dry2.err && ok dry.cached || fail dry.cached "$(cat dry2.err)"
+# how busy the machine was when it was measured: said, and a busy one named as such
+grep -Eq 'verlet, measured now in [0-9.]+ s at load [0-9.]+ on [0-9]+ cores' dry.err &&
+	grep -Eq 'verlet, cached from 20[^ ]* at load [0-9.]+ on [0-9]+ cores' dry2.err && ok dry.load_said ||
+	fail dry.load_said "$(grep rate: dry.err dry2.err)"
+cal=$(ls R/.calibration/*.verlet.txt)
+cp "$cal" cal.keep
+awk -v n="$(nproc)" 'NR == 1 { $4 = n * 3 } { print }' cal.keep >"$cal"
+"$STUDY" run --dry-run c.campaign --runs R 2>dry3.err
+grep -q 'a busy machine: the rate may be slow (remove the file to measure again)' dry3.err && ok dry.busy_said ||
+	fail dry.busy_said "$(grep rate: dry3.err)"
+cp cal.keep "$cal"
 
 # study expand: its table unchanged on stdout, the same summary on stderr
 "$STUDY" expand c.campaign --runs R >exp.out 2>exp.err
