@@ -333,7 +333,7 @@ static size_t group_points(const an_tool *t, onset_state *s, int j, double *rati
 static void cell(char *b, size_t n, double v, double lo, double hi)
 {
 	if (isnan(v))
-		snprintf(b, n, "-");
+		snprintf(b, n, isnan(lo) || isnan(hi) ? "-" : "- [%.3f, %.3f]", lo, hi);
 	else if (isnan(lo) || isnan(hi))
 		snprintf(b, n, "%.3f [-, -]", v);
 	else
