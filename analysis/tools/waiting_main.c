@@ -756,7 +756,7 @@ static int plot_km(an_tool *t, const wait_state *s)
 			tool_legend(t, first, 1, same, sizeof same);
 		const double off = KM_HAIR * copies;
 		if (copies)
-			snprintf(title, sizeof title, "%s (the same curve as %s, drawn %g higher to be seen)",
+			snprintf(title, sizeof title, "%s (same as %s, drawn %g higher)",
 				 *leg ? leg : "all runs", *same ? same : "another group", off);
 		else
 			snprintf(title, sizeof title, "%s", *leg ? leg : "all runs");

@@ -89,7 +89,7 @@ awk -F, -v g="$(csv_col $W/waiting_runs.csv group)" -v r="$(csv_col $W/waiting_r
 	END { exit bad }' $W/waiting_runs.csv $W/waiting_hist.csv && ok waiting.hist_counts_inside_bars ||
 	fail waiting.hist_counts_inside_bars "$(head -n 4 $W/waiting_hist.csv)"
 # both curves are one (every run censored at 1 s): the second said so and drawn a hair higher
-grep -q "using 3:(\$1==1?\$7+0.012:1/0) with steps .* title '𝓡 = 3 (the same curve as 𝓡 = 2, drawn 0.012 higher to be seen)'" $W/waiting_km.gp &&
+grep -q "using 3:(\$1==1?\$7+0.012:1/0) with steps .* title '𝓡 = 3 (same as 𝓡 = 2, drawn 0.012 higher)'" $W/waiting_km.gp &&
 	grep -q "using 3:(\$1==0?\$7+0:1/0) with steps" $W/waiting_km.gp && ok waiting.km_identical_said ||
 	fail waiting.km_identical_said "$(grep steps $W/waiting_km.gp)"
 
