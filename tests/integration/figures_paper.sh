@@ -89,7 +89,7 @@ awk -F, 'NR == FNR { if (FNR > 1) { n[$1]++; S[$1, n[$1]] = $7; T[$1, n[$1]] = $
 		if ($2 != T[$1, i] || $3 > S[$1, i] + 1e-12 || $4 < S[$1, i] - 1e-12 || $3 > $4) bad = 1 } }
 	END { for (g in n) if (m[g] != 2 * n[g] - 1) bad = 1; exit bad }' $W/waiting_km.csv $W/waiting_km_band.csv &&
 	ok fig.waiting.band_outline || fail fig.waiting.band_outline "$(head -n 6 $W/waiting_km_band.csv)"
-grep -q "title '𝓡 = 2'" $G && grep -q "title '𝓡 = 3'" $G && ok fig.waiting.words || fail fig.waiting.words "$(grep title $G)"
+grep -q "title '𝓡 = 2'" $G && grep -q "title '𝓡 = 3[' ]" $G && ok fig.waiting.words || fail fig.waiting.words "$(grep title $G)"
 no_keys fig.waiting.no_raw_keys $G
 
 # ---- hysteresis ----
