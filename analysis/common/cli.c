@@ -560,6 +560,13 @@ FILE *gp_open(const an_opts *o, const char *name, int w, int h, sb_file *script,
 		   "set output '%s.'.gp_fmt.gp_tmp\n"
 		   "unset object\nunset arrow\nunset label\nset grid lc rgb '#dddddd' lw 0.5 dt 1\nset key below height 1\n",
 		w, h, w / 100.0, h / 100.0, name);
+	/* The line types' colours: every one legible on white (a contrast of at least 3:1,
+	 * docs/analysis.md "Common to every tool"); gnuplot's own fifth is a light yellow. */
+	static const char *const pal[] = {"#0072b2", "#d55e00", "#009e73", "#882255",
+					  "#6a3d9a", "#8c6d1f", "#000000", "#cc3311"};
+	for (size_t i = 0; i < sizeof pal / sizeof *pal; i++)
+		fprintf(f, "set linetype %zu lc rgb '%s'\n", i + 1, pal[i]);
+	fprintf(f, "set linetype cycle %zu\n", sizeof pal / sizeof *pal);
 	return f;
 }
 

@@ -4,6 +4,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -249,4 +250,28 @@ int sig_fit_data(const double *x, const double *y, size_t n, sig_fit *s)
 	s->chisq = best;
 	s->ok = isfinite(s->b) && isfinite(s->a) && isfinite(s->w) && s->x0 >= xlo && s->x0 <= xhi;
 	return s->ok;
+}
+
+void sig_why(const double *x, const double *y, size_t n, const sig_fit *s, const char *xs, char *buf, size_t len)
+{
+	if (s->ok) {
+		snprintf(buf, len, "%s", "");
+		return;
+	}
+	double *ux = malloc(sizeof *ux * (n ? n : 1)), *uy = malloc(sizeof *uy * (n ? n : 1));
+	double *cnt = malloc(sizeof *cnt * (n ? n : 1)), within = 0;
+	const size_t m = ux && uy && cnt ? means_counts(x, y, n, ux, uy, cnt, &within) : 0;
+	size_t nf = 0;
+	for (size_t i = 0; i < m; i++)
+		nf += (size_t)cnt[i];
+	free(ux);
+	free(uy);
+	free(cnt);
+	/* sig_fit_data's conditions, in its order */
+	if (m < 3)
+		snprintf(buf, len, "not fitted: %zu distinct %s, a sigmoid needs at least 3", m, xs);
+	else if (nf < 5)
+		snprintf(buf, len, "not fitted: %zu points, a sigmoid needs at least 5", nf);
+	else
+		snprintf(buf, len, "not fitted: no convergence to a midpoint inside the %s sampled", xs);
 }

@@ -16,6 +16,11 @@ typedef struct sig_fit {
 double sig_eval(const sig_fit *s, double x);
 /* Fit n points; returns s->ok. */
 int sig_fit_data(const double *x, const double *y, size_t n, sig_fit *s);
+/* Why a fit of these n points has no midpoint (s from sig_fit_data), in words naming
+ * x as `xs` ("frequencies"): "not fitted: 2 distinct frequencies, a sigmoid needs at least 3",
+ * "not fitted: 4 points, a sigmoid needs at least 5", "not fitted: no convergence to
+ * a midpoint inside the frequencies sampled"; "" when s->ok. */
+void sig_why(const double *x, const double *y, size_t n, const sig_fit *s, const char *xs, char *buf, size_t len);
 /* Means per distinct x (sorted ascending) into ux[], uy[] (n entries each at most);
  * returns their number. */
 size_t sig_means(const double *x, const double *y, size_t n, double *ux, double *uy);

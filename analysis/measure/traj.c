@@ -28,12 +28,13 @@ static void drive_of(hid_t f, sb_drive *d)
 int traj_read(const char *path, traj *tr, sb_err *e)
 {
 	memset(tr, 0, sizeof *tr);
-	tr->y0 = tr->surface = NAN;
+	tr->y0 = tr->surface = tr->radius = tr->x0 = NAN;
 	hid_t f;
 	if (h5r_open(path, &f, e))
 		return e->code;
 	h5r_attr_num(f, "/", "intruder_settled_y", &tr->y0);
 	h5r_attr_num(f, "/", "surface_height", &tr->surface);
+	h5r_attr_num(f, "/", "intruder_radius", &tr->radius);
 	h5r_attr_str(f, "/", "stopped_by", tr->stopped_by, sizeof tr->stopped_by);
 	if (!h5r_exists(f, RUNFILE_INTRUDER)) {
 		h5r_close(f);
@@ -80,6 +81,8 @@ int traj_read(const char *path, traj *tr, sb_err *e)
 		tr->y[i] = pos[2 * i + 1];
 		tr->ybox[i] = tr->y[i] - drive_y(&d, tr->t[i]);
 	}
+	if (tr->n)
+		tr->x0 = pos[0];
 	free(pos);
 	return tr->n ? 0 : 1;
 }

@@ -28,6 +28,8 @@ typedef struct traj {
 	double *ybox;    /* [n] above the box floor, cm */
 	double y0;       /* intruder_settled_y (box frame), NaN when missing */
 	double surface;  /* surface_height, NaN when missing */
+	double radius;   /* intruder_radius (cm), NaN when missing */
+	double x0;       /* x of the first sample (the drive moves the box in y only), NaN without samples */
 	char stopped_by[16]; /* the stop rule that ended the run ("none", "risen", ...; "" unknown) */
 } traj;
 

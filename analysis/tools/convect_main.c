@@ -102,6 +102,7 @@ typedef struct convect_state {
 	cgroup *g;       /* [ng] */
 	int ncurve;
 	int kf;          /* index of frequency among the grouping keys, -1 */
+	int clipped;     /* Student-t lower bounds of S or S_u below 0, clipped at 0 */
 } convect_state;
 
 static void state_free(const an_tool *t, void *vs)
@@ -235,6 +236,12 @@ static int groups(an_tool *t, convect_state *s)
 		g->f = s->kf >= 0 ? strtod(t->gval[j * t->nk + s->kf], NULL) : nf ? fs / (double)nf : NAN;
 		rolls_mean_ci(v, m, o->level, &g->t);
 		rolls_mean_ci(vu, m, o->level, &g->tu);
+		/* S and S_u are >= 0: a Student-t lower bound below 0 is clipped at 0, and the
+		 * output says how many were (docs/analysis.md, "convect") */
+		s->clipped += g->t.lo < 0;
+		s->clipped += g->tu.lo < 0;
+		g->t.lo = g->t.lo < 0 ? 0 : g->t.lo;
+		g->tu.lo = g->tu.lo < 0 ? 0 : g->tu.lo;
 		{ /* C: the runs with a pair of blocks */
 			size_t mc = 0;
 			for (size_t q = 0; q < m; q++)
@@ -403,6 +410,9 @@ static int summary(an_tool *t, const convect_state *s)
 	tool_store_begin(t);
 	for (int j = 0; j < t->ng && !t->e.code; j++)
 		group_out(t, s, j, sum);
+	if (s->clipped)
+		printf("# %d Student-t lower bound%s of S or S_u below 0 clipped at 0 (S >= 0); the table, CSV, stored rows "
+		       "and figure show 0\n", s->clipped, s->clipped == 1 ? "" : "s");
 	points(t, s, pts);
 	tool_out_close(t, sum);
 	return tool_out_close(t, pts);
@@ -483,9 +493,10 @@ static int plot(an_tool *t, const convect_state *s)
 		}
 	const double pad = fhi > flo ? 0.06 * (fhi - flo) : 0.25;
 	fprintf(f, "set multiplot layout 1,2 title \"Roll strength from the displacement field (independent of where "
-		   "the rolls sit)\\n%s%sband %g–%g of the surface height; bars: %g %% Student-t interval over runs\"\n"
+		   "the rolls sit)\\n%s%sband %g–%g of the surface height; bars: %g %% Student-t interval over runs%s\"\n"
 		   "set key below\n",
-		set, *set ? "; " : "", s->cfg.band_lo, s->cfg.band_hi, 100 * t->o->level);
+		set, *set ? "; " : "", s->cfg.band_lo, s->cfg.band_hi, 100 * t->o->level,
+		s->clipped ? ", lower bounds below 0 clipped at 0" : "");
 	if (isfinite(flo))
 		fprintf(f, "set xrange [%.17g:%.17g]\n", flo - pad, fhi + pad);
 	if (isfinite(flo) && fhi > flo && tool_gamma(t, &A, &g))

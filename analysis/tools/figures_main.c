@@ -129,6 +129,7 @@ typedef struct panels {
 	int nsys;
 	double level;      /* Fig. 3's band (--level) */
 	int runs[64][2];   /* Fig. 3: the runs of each row's curves */
+	double hs[64][2];  /* Fig. 3: their mean settled surface height h_s */
 } panels;
 
 static double sys_ratio(const panels *P, int sys)
@@ -453,6 +454,9 @@ typedef struct arrows {
 	size_t n, cap;
 	double xlo, xhi, yhi; /* the extent of the panels' grids */
 	double head;         /* the cell of the last panel drawn: the arrow heads' size */
+	double cell[2 * MAXROWS]; /* per panel (2 row + system): its cell size, 0 when not drawn */
+	int runs[2 * MAXROWS];    /* the runs it averages */
+	int settled[2 * MAXROWS]; /* its runs with an intruder's settled place (fig1_intruder.csv) */
 } arrows;
 
 static void arrows_note(arrows *a, const field *fl, double len)
@@ -499,9 +503,24 @@ static void field_arrows(const field *fl, arrows *a, FILE *f, const panels *P, i
 		}
 }
 
+/* Run r's intruder where it settled (x at the first sample of its trajectory, the
+ * settled height y0, its radius) into fi as panel p's; 1 when it has one. */
+static int settled_place(const an_run *r, int p, FILE *fi)
+{
+	traj tr;
+	sb_err e = {0};
+	const int rc = traj_read(r->path, &tr, &e);
+	const int ok = !rc && isfinite(tr.x0) && isfinite(tr.y0) && isfinite(tr.radius);
+	if (ok)
+		fprintf(fi, "%d,%s,%.17g,%.17g,%.17g\n", p, r->id, tr.x0, tr.y0, tr.radius);
+	traj_free(&tr);
+	return ok;
+}
+
 /* Every panel's field, in two passes (f NULL: the lengths, to find the common scale;
- * then the rows into f); the panels drawn, or -1 with the error in e. */
-static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f, sb_err *e)
+ * then the rows into f and the intruder's settled places into fi); the panels drawn,
+ * or -1 with the error in e. */
+static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f, FILE *fi, sb_err *e)
 {
 	int drawn = 0;
 	for (int r = 0; r < P->nf; r++)
@@ -518,6 +537,14 @@ static int fig1_pass(const an_tool *t, const panels *P, arrows *a, FILE *f, sb_e
 			if (fl.runs && fl.sx && fl.sy && fl.sc) {
 				field_arrows(&fl, a, f, P, r, sys);
 				drawn++;
+				a->cell[2 * r + sys] = fl.cell;
+				a->runs[2 * r + sys] = fl.runs;
+				for (int i = 0; f && sys && i < t->k; i++) {
+					const an_run *run = &t->runs[i];
+					if (USED(run) && near(an_num(run, "frequency", NAN), P->freqs[r]) &&
+					    near(an_num(run, "radius_ratio", 0), sys_ratio(P, sys)))
+						a->settled[2 * r + sys] += settled_place(run, 2 * r + sys, fi);
+				}
 			}
 			if (fl.cell > 0)
 				a->head = fl.cell;
@@ -548,7 +575,8 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 	box_of(t, &W, &rw);
 	if (!(W > 0))
 		W = a->xhi - a->xlo;
-	const double x0 = -2 * rw, x1 = W + 2 * rw, y0 = -2 * rw, y1 = a->yhi;
+	/* above the grid, a strip of 1.2 cells for the reference arrow */
+	const double x0 = -2 * rw, x1 = W + 2 * rw, y0 = -2 * rw, y1 = a->yhi + 1.2 * a->head;
 	/* a row per frequency with both systems; one system alone fills rows of up to 3 */
 	const int cols = P->nsys > 1 ? P->nsys : (P->nf < 3 ? P->nf : 3), rows = (P->nf * P->nsys + cols - 1) / cols;
 	const int pw = cols > 1 ? 450 : 600, aw = pw - 80;
@@ -558,7 +586,8 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 		return t->e.code;
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set multiplot layout %d,%d title \"Fig. 1: mean displacement per period%s%s\\n"
-		   "arrows to scale, the 95th percentile (%.3g cm) = 0.9 cell; longer ones clipped\"\n"
+		   "arrows to scale, the 95th percentile (%.3g cm) = 0.9 cell (the black reference arrow); longer ones "
+		   "clipped\\ncircles: the intruder where it settled, each run\"\n"
 		   "set size ratio -1\nunset key\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
 		   "set xlabel 'x (cm)'\nset ylabel 'height above the floor (cm)'\nunset grid\nset tics out\n"
 		   		   "set object 1 rect from %g, %g to 0, graph 1 fc rgb '#b0b0b0' fs solid 1 noborder behind\n"
@@ -567,12 +596,31 @@ static int fig1_plot(an_tool *t, const panels *P, const arrows *a, int drawn)
 		rows, cols, *set ? ", " : "", set, a->umax, x0, x1, y0, y1, x0, y0, W, y0, x1, x0, y0, x1);
 	for (int r = 0; r < P->nf; r++)
 		for (int sys = 0; sys < P->nsys; sys++) {
-			char title[128];
-			sys_words(P, sys, P->freqs[r], title, sizeof title);
+			char words[128], title[256], ref[64];
+			const int p = 2 * r + sys;
+			const double cell = a->cell[p];
+			sys_words(P, sys, P->freqs[r], words, sizeof words);
+			snprintf(title, sizeof title, "%s; %d run%s averaged, cell %.3g cm", words, a->runs[p],
+				 a->runs[p] == 1 ? "" : "s", cell);
 			fprintf(f, "set title ");
 			gp_str(f, title);
-			fprintf(f, "\nplot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'\n",
-				2 * r + sys, 0.25 * a->head);
+			/* the reference arrow: the common length umax drawn at this panel's 0.9 cell,
+			 * at the top right of the box, its length in words at its left */
+			fprintf(f, "\nunset arrow\nunset label\n");
+			if (cell > 0 && a->umax > 0) {
+				const double xe = W - 0.5 * cell, ye = a->yhi + 0.6 * a->head;
+				snprintf(ref, sizeof ref, "%.3g cm per period", a->umax);
+				fprintf(f, "set arrow 1 from %.17g, %.17g to %.17g, %.17g head filled size %.3g,20 lw 1.5 "
+					   "lc rgb 'black' front\nset label 1 ", xe - 0.9 * cell, ye, xe, ye, 0.25 * cell);
+				gp_str(f, ref);
+				fprintf(f, " at %.17g, %.17g right offset -0.5, 0 front\n", xe - 0.9 * cell, ye);
+			}
+			fprintf(f, "plot 'fig1_field.csv' skip 1 using 4:5:($1==%d?$9:1/0):10 with vectors head filled size %.3g,20 lc rgb '#1f4e9c'",
+				p, 0.25 * a->head);
+			if (a->settled[p])
+				fprintf(f, ", \\\n  'fig1_intruder.csv' skip 1 using 3:($1==%d?$4:1/0):5 with circles lw 1.5 "
+					   "lc rgb '#cc3311' fs empty", p);
+			fputc('\n', f);
 		}
 	return plot_end(t, f, "fig1", script, png, drawn, "panel");
 }
@@ -584,14 +632,19 @@ static int fig1(an_tool *t, const panels *P)
 	if (!f)
 		return t->e.code;
 	fprintf(f, "panel,frequency,radius_ratio,x,y,ux,uy,count,dx,dy\n");
+	FILE *fi = tool_out_open(t, "fig1_intruder.csv");
+	if (!fi)
+		return tool_out_close(t, f);
+	fprintf(fi, "panel,run,x,y,radius\n");
 	arrows a = {.xlo = INFINITY, .xhi = -INFINITY, .head = 1};
-	int drawn = fig1_pass(t, P, &a, NULL, &t->e);
+	int drawn = fig1_pass(t, P, &a, NULL, NULL, &t->e);
 	a.umax = percentile(a.lens, a.n, 0.95);
 	if (drawn >= 0)
-		drawn = fig1_pass(t, P, &a, f, &t->e);
+		drawn = fig1_pass(t, P, &a, f, fi, &t->e);
 	free(a.lens);
 	/* no half-made table beside an accounting it contradicts: one not written whole
 	 * is not put in place (tool_out_close) */
+	tool_out_close(t, fi);
 	if (tool_out_close(t, f) || drawn < 0)
 		return t->e.code;
 	if (!drawn)
@@ -611,6 +664,7 @@ typedef struct profile {
 	double *sh;   /* [L] sums of w * D over the runs, w their periods */
 	double *w;    /* [runs] their periods after the transient */
 	double wsum;
+	double hs;    /* sum of the runs' settled surface heights h_s */
 	int runs, cap;
 } profile;
 
@@ -645,6 +699,7 @@ static void profile_add(profile *pr, an_run *r, const flux_opts *fo)
 			pr->sh[l] += w * fd.h[l];
 		pr->w[pr->runs++] = w;
 		pr->wsum += w;
+		pr->hs += fd.surface;
 	}
 	flux_free(&fd);
 }
@@ -687,7 +742,7 @@ static void profile_out(const profile *pr, const panels *P, int r, int sys, cons
 
 /* Panel (r, sys): its curve and table row when a run is drawn; its stored rows when
  * it has runs of any kind. Returns the runs drawn (0: none). */
-static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int *headed)
+static int fig3_panel(an_tool *t, panels *P, int r, int sys, FILE *f, int *headed)
 {
 	const int j = r * P->nsys + sys;
 	const an_acct *a = &t->A[j];
@@ -699,6 +754,7 @@ static int fig3_panel(an_tool *t, const panels *P, int r, int sys, FILE *f, int 
 			profile_add(&pr, &t->runs[i], &P->fo);
 	if (pr.runs)
 		profile_out(&pr, P, r, sys, a, f, &pm, &half, headed);
+	P->hs[r][sys] = pr.runs ? pr.hs / pr.runs : NAN;
 	long any = 0;
 	for (int u = 0; u < AN_NUSE; u++)
 		any += a->n[u];
@@ -750,6 +806,12 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 		fprintf(f, "set title ");
 		gp_str(f, title);
 		fputc('\n', f);
+		/* the settled surface h_s of each curve's runs: a dotted line in its colour */
+		fprintf(f, "unset arrow\n");
+		for (int sys = 0; sys < P->nsys; sys++)
+			if (P->runs[r][sys] > 0 && isfinite(P->hs[r][sys]))
+				fprintf(f, "set arrow %d from %.17g, graph 0 to %.17g, graph 1 nohead lt %d dt 3 lw 1.5\n", sys + 1,
+					P->hs[r][sys], P->hs[r][sys], sys + 1);
 		fprintf(f, "plot ");
 		for (int sys = 0; sys < P->nsys; sys++) {
 			/* the band behind its curve; a curve of one run has none */
@@ -760,6 +822,13 @@ static int fig3_plot(an_tool *t, const panels *P, int drawn)
 				r, sys, sys ? 5 : 7, sys + 1);
 			gp_str(f, w[sys]);
 			fprintf(f, ", \\\n  ");
+			if (P->runs[r][sys] > 0 && isfinite(P->hs[r][sys])) {
+				char hl[256];
+				snprintf(hl, sizeof hl, "settled surface h_s = %.3g cm (%s)", P->hs[r][sys], w[sys]);
+				fprintf(f, "keyentry with lines lt %d dt 3 lw 1.5 title ", sys + 1);
+				gp_str(f, hl);
+				fprintf(f, ", \\\n  ");
+			}
 		}
 		fprintf(f, "0 with lines lc 'gray' notitle\n");
 	}
@@ -804,6 +873,7 @@ typedef struct f4panel {
 	int risen[MAXREP];
 	int rep;            /* index into run[] of the representative */
 	double y0, surface; /* the representative's settled height and surface (box frame) */
+	double radius;      /* its intruder's radius: risen at y0 + 2 radius (docs/model.md, "Waiting time") */
 } f4panel;
 
 /* order of runs for the representative: risen ones by waiting time, then the censored
@@ -881,6 +951,7 @@ static int fig4_traj(const an_tool *t, f4panel *P, int p, FILE *f)
 		if (k == P->rep) {
 			P->y0 = tr.y0;
 			P->surface = tr.surface;
+			P->radius = tr.radius;
 			ok = 1;
 		}
 		traj_free(&tr);
@@ -928,7 +999,13 @@ static int fig4_plot(an_tool *t, double f4, const f4panel *F, int drawn)
 			p);
 		gp_str(f, lr);
 		fprintf(f, ", \\\n  %.17g with lines dt 2 lc 'gray' title 'settled height', %.17g with lines dt 3 lc 'black' "
-			   "title 'free surface (t = 0)'\n", P->y0, P->surface);
+			   "title 'free surface (t = 0)'", P->y0, P->surface);
+		/* the engine's rule: risen once the centre is one diameter above the settled
+		 * height (docs/model.md, "Waiting time"; the representative's) */
+		if (isfinite(P->y0) && isfinite(P->radius))
+			fprintf(f, ", \\\n  %.17g with lines dt 4 lw 1.5 lc rgb '#cc3311' title 'risen level y₀ + 2R = %.3g cm "
+				   "(the engine''s rule)'", P->y0 + 2 * P->radius, P->y0 + 2 * P->radius);
+		fputc('\n', f);
 	}
 	return plot_end(t, f, "fig4", script, png, drawn, "panel");
 }
@@ -984,7 +1061,7 @@ static int run(an_tool *t, void *vs)
 		return t->e.code;
 	tool_report(t, stdout, "what they recorded before the failure: Fig. 3 with their periods after the transient"
 			       " of the run as planned (the runs' periods are pooled), Fig. 1 with their samples");
-	printf("# csv: %s/fig{1_field,3_profile,4_traj}.csv %s/figures_accounting.csv\n", t->o->out, t->o->out);
+	printf("# csv: %s/fig{1_field,1_intruder,3_profile,4_traj}.csv %s/figures_accounting.csv\n", t->o->out, t->o->out);
 	return 0;
 }
 

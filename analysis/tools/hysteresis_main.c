@@ -257,12 +257,25 @@ static int plot(an_tool *t, const hyst_state *s)
 			}
 	if (tool_gamma(t, &A, &g) && flo < fhi)
 		gp_gamma_axis(f, A, g, flo, fhi);
+	int nmark = 0;
 	for (int j = 0; j < t->ng; j++)
 		for (int b = 0; b < 2; b++) {
 			const sig_fit *F = &s->R[j].fit[b];
-			if (F->ok)
-				fprintf(f, "s%d_%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, b, F->b, F->a,
-					F->x0, F->w);
+			if (!F->ok)
+				continue;
+			fprintf(f, "s%d_%d(x) = %.17g + %.17g / (1 + exp(-(x - %.17g) / %.17g))\n", j, b, F->b, F->a, F->x0,
+				F->w);
+			/* f_up and f_down: a vertical line in the leg's colour, labelled, the labels
+			 * staggered so that close ones stay apart */
+			char leg[512], lab[600];
+			tool_legend(t, j, 1, leg, sizeof leg);
+			snprintf(lab, sizeof lab, "%s%s%s = %.3g Hz", leg, *leg ? ": " : "", b ? "f_down" : "f_up", F->x0);
+			fprintf(f, "set arrow %d from %.17g, graph 0 to %.17g, graph 1 nohead lt %d dt 3 lw 1.5\nset label %d ",
+				nmark + 1, F->x0, F->x0, 2 * j + b + 1, nmark + 1);
+			gp_str(f, lab);
+			fprintf(f, " at %.17g, graph %.3f left offset 0.5, 0 tc lt %d front\n", F->x0, 0.96 - 0.06 * nmark,
+				2 * j + b + 1);
+			nmark++;
 		}
 	fprintf(f, "plot ");
 	int np = 0;
@@ -272,12 +285,16 @@ static int plot(an_tool *t, const hyst_state *s)
 				continue;
 			fprintf(f, "%s'hysteresis_periods.csv' skip 1 using 7:($1==%d&&strcol(5)eq'%s'?$9:1/0) with points pt %d ps 0.6 lt %d title ",
 				np++ ? ", \\\n  " : "", j, b ? "down" : "up", b ? 6 : 7, 2 * j + b + 1);
-			char leg[512], title[600];
+			char leg[512], title[700];
 			tool_legend(t, j, 1, leg, sizeof leg);
 			snprintf(title, sizeof title, "%s%s%s", leg, *leg ? ", " : "", b ? "down" : "up");
 			gp_str(f, title);
-			if (s->R[j].fit[b].ok)
-				fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lt %d notitle", j, b, b ? 2 : 1, 2 * j + b + 1);
+			if (s->R[j].fit[b].ok) {
+				fprintf(f, ", s%d_%d(x) with lines lw 2 dt %d lt %d title ", j, b, b ? 2 : 1, 2 * j + b + 1);
+				snprintf(title, sizeof title, "%s%s%s: fitted sigmoid, %s = %.3g Hz (dotted line)", leg,
+					 *leg ? ", " : "", b ? "down" : "up", b ? "f_down" : "f_up", s->R[j].fit[b].x0);
+				gp_str(f, title);
+			}
 		}
 	fprintf(f, "\n");
 	if (tool_plot(t, f, script, png))

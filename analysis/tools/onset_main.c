@@ -338,8 +338,22 @@ static size_t group_points(const an_tool *t, onset_state *s, int j, double *rati
 	return np;
 }
 
-/* Group j's estimates: its per-seed rows, its table row, its summary row, its stored rows. */
-static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double ratio, FILE *f, FILE *s)
+/* An estimate with its interval for a table: "5.428 [5.000, 5.500]"; "-" for none and
+ * "[-, -]" for no interval, each said why by a line below the table (never a nan) */
+static void cell(char *b, size_t n, double v, double lo, double hi)
+{
+	if (isnan(v))
+		snprintf(b, n, isnan(lo) || isnan(hi) ? "-" : "- [%.3f, %.3f]", lo, hi);
+	else if (isnan(lo) || isnan(hi))
+		snprintf(b, n, "%.3f [-, -]", v);
+	else
+		snprintf(b, n, "%.3f [%.3f, %.3f]", v, lo, hi);
+}
+
+/* Group j's estimates: its per-seed rows, its table row, its summary row, its stored
+ * rows; why a cell is "-" in the line below the row (why: the sigmoid's, sig_why). */
+static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double ratio, FILE *f, FILE *s,
+		      const char *why)
 {
 	const char *L = t->labels[j];
 	const an_acct *a = &t->A[j];
@@ -350,11 +364,30 @@ static void group_out(an_tool *t, const onset_res *r, int j, size_t np, double r
 	}
 	const sig_fit *F = &r->fit;
 	const double f0 = F->ok ? F->x0 : NAN, w = F->ok ? F->w : NAN, step = F->ok ? F->a : NAN;
-	char c1[64], c2[64];
-	snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", f0, r->fit_lo, r->fit_hi);
-	snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
-	printf("%-30s %4s %4zu %5zu %22s %7.3f %22s %7.3f %6ld %7ld\n", L, ratio > 0 ? "yes" : "no", np, r->units, c1,
-	       w, c2, r->seed_sd, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	char c1[64], c2[64], cw[32], cs[32];
+	cell(c1, sizeof c1, f0, r->fit_lo, r->fit_hi);
+	cell(c2, sizeof c2, r->thr, r->thr_lo, r->thr_hi);
+	snprintf(cw, sizeof cw, isnan(w) ? "-" : "%.3f", w);
+	snprintf(cs, sizeof cs, isnan(r->seed_sd) ? "-" : "%.3f", r->seed_sd);
+	printf("%-30s %4s %4zu %5zu %22s %7s %22s %7s %6ld %7ld\n", L, ratio > 0 ? "yes" : "no", np, r->units, c1, cw,
+	       c2, cs, a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+	/* every "-" above said why */
+	if (!np)
+		printf("#   %s: -: no run used\n", L);
+	else {
+		if (!F->ok)
+			printf("#   %s: sigmoid f0 and width -: %s\n", L, why);
+		if (isnan(r->thr))
+			printf("#   %s: threshold f -: the mean Φ per frequency never crosses the level\n", L);
+		if ((F->ok && (isnan(r->fit_lo) || isnan(r->fit_hi))) ||
+		    (!isnan(r->thr) && (isnan(r->thr_lo) || isnan(r->thr_hi))))
+			printf("#   %s: [-, -]: no interval: %s\n", L,
+			       r->units < 2 ? "one seed, and too few points to resample" :
+			       t->o->boot < 2 ? "no bootstrap (--boot below 2)" :
+					       "too few bootstrap replicates gave an estimate");
+		if (isnan(r->seed_sd))
+			printf("#   %s: seed_sd -: fewer than 2 seeds with a threshold crossing of their own\n", L);
+	}
 	csv_text(s, L);
 	fprintf(s, ",%d,%zu,%zu,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", ratio > 0, np, r->units,
 		F->ok, f0, r->fit_lo, r->fit_hi, w, step, r->thr, r->thr_lo, r->thr_hi, r->seed_sd, r->boot_ok);
@@ -416,11 +449,14 @@ static int estimate(an_tool *t, onset_state *s)
 		double ratio;
 		const size_t np = group_points(t, s, j, &ratio);
 		onset_res *r = &s->R[j];
+		char why[128] = "";
 		if (!np) /* every run of the group failed, is unreadable or not finished */
 			r->thr = r->fit_lo = r->fit_hi = r->thr_lo = r->thr_hi = r->seed_sd = NAN;
 		else if (estimate_one(t, s, np, r))
 			break;
-		group_out(t, r, j, np, ratio, f, sum);
+		else
+			sig_why(s->xs, s->ys, np, &r->fit, "frequencies", why, sizeof why);
+		group_out(t, r, j, np, ratio, f, sum, why);
 		runs_store(t, s, j, np);
 	}
 	tool_out_close(t, f);
@@ -453,8 +489,8 @@ static int beside(an_tool *t, onset_state *s)
 		resolve_widen(&g.lo, &g.hi, g.bracket_lo, g.bracket_hi);
 		char c1[64], c2[64], why[160];
 		const char *agree = why;
-		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", g.est, g.lo, g.hi);
-		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", r->thr, r->thr_lo, r->thr_hi);
+		cell(c1, sizeof c1, g.est, g.lo, g.hi);
+		cell(c2, sizeof c2, r->thr, r->thr_lo, r->thr_hi);
 		/* The two estimates rest on the same runs of the same replicates: the search's
 		 * median bracket and the median of the replicates' own crossings (each inside its
 		 * replicate's bracket) can differ by at most one bracket. Intervals that merely
@@ -543,7 +579,7 @@ static int diff_out(an_tool *t, onset_state *s)
 						break;
 					}
 					char ci[64];
-					snprintf(ci, sizeof ci, "%.3f [%.3f, %.3f]", d.d, d.lo, d.hi);
+					cell(ci, sizeof ci, d.d, d.lo, d.hi);
 					const char *z = d.zero == 1 ? "inside" : d.zero == 0 ? "excluded" : "-";
 					printf("%-30s %10g %10g %-12s %30s %8s\n", e ? "" : lab, tool_num(t, b, s->diff),
 					       tool_num(t, a, s->diff), EST[e], ci, z);
@@ -739,8 +775,8 @@ static int sens_group(an_tool *t, onset_state *s, const double *pb, int j, FILE 
 			fhi = fmax(fhi, s->xs[p]);
 		}
 		char c1[64], c2[64], what[64];
-		snprintf(c1, sizeof c1, "%.3f [%.3f, %.3f]", r.thr, r.thr_lo, r.thr_hi);
-		snprintf(c2, sizeof c2, "%.3f [%.3f, %.3f]", f0[v], r.fit_lo, r.fit_hi);
+		cell(c1, sizeof c1, r.thr, r.thr_lo, r.thr_hi);
+		cell(c2, sizeof c2, f0[v], r.fit_lo, r.fit_hi);
 		if (v)
 			snprintf(what, sizeof what, "%s", VNAME[v]);
 		else
@@ -841,16 +877,22 @@ static int plot(an_tool *t, const onset_state *s)
 		gp_str(f, xl);
 		fputc('\n', f);
 	}
-	fprintf(f, "set ylabel 'Φ (particles per period)'\n"
-		   "set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05\nset samples 500\n");
-	double flo = INFINITY, fhi = -INFINITY, A, g;
+	double flo = INFINITY, fhi = -INFINITY, xlo = INFINITY, xhi = -INFINITY, A, g;
 	for (int i = 0; i < t->k; i++)
 		if (USED(&t->runs[i])) {
 			flo = fmin(flo, an_num(&t->runs[i], "frequency", NAN));
 			fhi = fmax(fhi, an_num(&t->runs[i], "frequency", NAN));
+			xlo = fmin(xlo, axis_run(s->axis, &t->runs[i]));
+			xhi = fmax(xhi, axis_run(s->axis, &t->runs[i]));
 		}
+	/* the x range padded by 6 % of the runs' span on either side: no point on the border */
+	const double pad = xhi > xlo ? 0.06 * (xhi - xlo) : 0.1 * fmax(1, fabs(xlo));
+	fprintf(f, "set ylabel 'Φ (particles per period)'\nset offsets 0, 0, graph 0.05, graph 0.05\nset samples 500\n");
+	if (isfinite(xlo) && isfinite(xhi))
+		fprintf(f, "set xrange [%.17g:%.17g]\n", xlo - pad, xhi + pad);
 	if (s->axis == AXIS_FREQUENCY && tool_gamma(t, &A, &g) && flo < fhi)
 		gp_gamma_axis(f, A, g, flo, fhi);
+	int nlab = 0;
 	for (int j = 0; j < t->ng; j++) {
 		double m, lo, hi;
 		if (s->R[j].fit.ok)
@@ -863,6 +905,17 @@ static int plot(an_tool *t, const onset_state *s)
 				   "fs transparent solid 0.15 noborder\n", j + 1, lo, hi, j + 1);
 		fprintf(f, "set arrow %d from %.17g, graph 0 to %.17g, graph 1 nohead lt %d dt 2 lw 1.5\n", j + 1, m, m,
 			j + 1);
+		/* each line labelled in its group's colour, the labels staggered down the plot so
+		 * that equal or close onsets stay apart */
+		char leg[512], lab[600];
+		tool_legend(t, j, 1, leg, sizeof leg);
+		char u[32];
+		label_unit(u, sizeof u, drive_axis_name(s->axis));
+		snprintf(lab, sizeof lab, "%s%sonset %s = %.3g%s%s", leg, *leg ? ": " : "",
+			 drive_axis_row(s->axis) ? drive_axis_row(s->axis)->symbol : "?", m, *u ? " " : "", u);
+		fprintf(f, "set label %d ", j + 1);
+		gp_str(f, lab);
+		fprintf(f, " at %.17g, graph %.3f left offset 0.5, 0 tc lt %d front\n", m, 0.96 - 0.06 * nlab++, j + 1);
 	}
 	fprintf(f, "plot ");
 	int np = 0;

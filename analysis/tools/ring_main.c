@@ -483,7 +483,11 @@ static int plot(an_tool *t, const ring_state *s)
 		}
 	}
 	fprintf(f, "\n");
-	return tool_plot(t, f, script, png);
+	if (tool_plot(t, f, script, png))
+		return t->e.code;
+	/* the figure line only for a figure written (not after "no ratio to draw") */
+	printf("# figure: %s/ring.{png,pdf}\n", t->o->out);
+	return 0;
 }
 
 static int run(an_tool *t, void *vs)
@@ -493,11 +497,8 @@ static int run(an_tool *t, void *vs)
 	    tool_accounting_csv(t) || ratios_csv(t, s) || summary(t, s) || tool_store_end(t))
 		return t->e.code;
 	report(t, s);
-	if (!t->o->no_plot) {
-		if (plot(t, s))
-			return t->e.code;
-		printf("# figure: %s/ring.{png,pdf}\n", t->o->out);
-	}
+	if (!t->o->no_plot && plot(t, s))
+		return t->e.code;
 	printf("# csv: %s/ring_{runs,summary,ratios,accounting}.csv\n", t->o->out);
 	return 0;
 }

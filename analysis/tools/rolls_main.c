@@ -102,6 +102,7 @@ typedef struct rolls_state {
 	prun *pr;        /* [k] */
 	rolls_mean *reach, *bottom; /* [ng] */
 	double *phimax;  /* [ng] mean phi_max */
+	double *bed;     /* [ng] mean settled surface h_s of the used runs: the bed's height */
 	long *floor;     /* [ng] runs whose rolls reach the lowest line */
 	cmp c[MAXCMP];
 	int nc;
@@ -126,6 +127,7 @@ static void state_free(const an_tool *t, void *vs)
 	free(s->bottom);
 	free(s->phimax);
 	free(s->floor);
+	free(s->bed);
 }
 
 /* Run r's profile and reach, and what of it the statistic uses (acct.h). */
@@ -213,13 +215,14 @@ static int partner(const an_tool *t, int j)
 	return -1;
 }
 
-/* The reach, bottom and phi_max of group j's used runs into v[0..n) (which = 0, 1, 2). */
+/* The reach, bottom, phi_max and surface of group j's used runs into v[0..n) (which = 0 .. 3). */
 static size_t group_values(const an_tool *t, const rolls_state *s, int j, int which, double *v)
 {
 	size_t n = 0;
 	for (int i = 0; i < t->k; i++)
 		if (t->runs[i].group == j && USED(&t->runs[i]))
-			v[n++] = which == 0 ? s->pr[i].rr.reach : which == 1 ? s->pr[i].rr.bottom : s->pr[i].rr.phi_max;
+			v[n++] = which == 0 ? s->pr[i].rr.reach : which == 1 ? s->pr[i].rr.bottom :
+				 which == 2 ? s->pr[i].rr.phi_max : s->pr[i].surface;
 	return n;
 }
 
@@ -234,8 +237,9 @@ static int groups(an_tool *t, rolls_state *s)
 	s->bottom = calloc(ng, sizeof *s->bottom);
 	s->phimax = calloc(ng, sizeof *s->phimax);
 	s->floor = calloc(ng, sizeof *s->floor);
+	s->bed = calloc(ng, sizeof *s->bed);
 	double *v = malloc(sizeof *v * (size_t)(t->k ? t->k : 1));
-	if (!s->reach || !s->bottom || !s->phimax || !s->floor || !v) {
+	if (!s->reach || !s->bottom || !s->phimax || !s->floor || !s->bed || !v) {
 		free(v);
 		return sb_errf(&t->e, SB_ENOMEM, "out of memory");
 	}
@@ -248,6 +252,9 @@ static int groups(an_tool *t, rolls_state *s)
 		rolls_mean m;
 		rolls_mean_ci(v, n, t->o->level, &m);
 		s->phimax[j] = m.mean;
+		n = group_values(t, s, j, 3, v);
+		rolls_mean_ci(v, n, t->o->level, &m);
+		s->bed[j] = m.mean;
 		for (int i = 0; i < t->k; i++)
 			s->floor[j] += t->runs[i].group == j && USED(&t->runs[i]) && s->pr[i].rr.to_floor;
 	}
@@ -360,6 +367,17 @@ static void ci(char *b, size_t n, double v, double lo, double hi)
 	snprintf(b, n, "%.3f [%.3f, %.3f]", v, lo, hi);
 }
 
+/* An interval of a reach (or a difference of reaches) wider than the bed, hi - lo >
+ * the settled surface h_s, tells nothing about the rolls: the words said after it
+ * (docs/analysis.md, "rolls"); "" otherwise */
+static void too_wide(char *b, size_t n, const char *what, double lo, double hi, double bed)
+{
+	if (hi - lo > bed)
+		snprintf(b, n, "  %s: interval wider than the bed (%.3g cm > h_s = %.3g cm): undecided", what, hi - lo, bed);
+	else
+		snprintf(b, n, "%s", "");
+}
+
 /* Per group: rolls_summary.csv, the table and the stored rows (storing begun here). */
 static int summary(an_tool *t, const rolls_state *s)
 {
@@ -375,11 +393,13 @@ static int summary(an_tool *t, const rolls_state *s)
 		const rolls_mean *R = &s->reach[j], *B = &s->bottom[j];
 		const an_acct *a = &t->A[j];
 		const double ratio = group_ratio(t, j);
-		char c1[64], c2[64];
+		char c1[64], c2[64], w1[160], w2[160];
 		ci(c1, sizeof c1, R->mean, R->lo, R->hi);
 		ci(c2, sizeof c2, B->mean, B->lo, B->hi);
-		printf("%-32s %4s %4zu %24s %24s %8.3f %5ld %6ld %10ld\n", t->labels[j], ratio > 0 ? "yes" : "no", R->n, c1,
-		       c2, s->phimax[j], s->floor[j], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING]);
+		too_wide(w1, sizeof w1, "reach", R->lo, R->hi, s->bed[j]);
+		too_wide(w2, sizeof w2, "roll bottom", B->lo, B->hi, s->bed[j]);
+		printf("%-32s %4s %4zu %24s %24s %8.3f %5ld %6ld %10ld%s%s\n", t->labels[j], ratio > 0 ? "yes" : "no", R->n,
+		       c1, c2, s->phimax[j], s->floor[j], a->failed, a->n[AN_PENDING] + a->n[AN_RUNNING], w1, w2);
 		csv_text(sum, t->labels[j]);
 		fprintf(sum, ",%d,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld", ratio > 0, R->n, R->mean, R->lo,
 			R->hi, R->sd, B->mean, B->lo, B->hi, s->phimax[j], s->floor[j]);
@@ -414,11 +434,15 @@ static int diffs(an_tool *t, const rolls_state *s)
 	for (int k = 0; k < s->nc; k++) {
 		const cmp *c = &s->c[k];
 		const char *L = t->labels[c->w];
-		char g[600], c1[64], c2[64];
+		char g[600], c1[64], c2[64], w1[160], w2[160];
 		snprintf(g, sizeof g, "%s vs no intruder", L);
 		ci(c1, sizeof c1, c->reach.d, c->reach.lo, c->reach.hi);
 		ci(c2, sizeof c2, c->bottom.d, c->bottom.lo, c->bottom.hi);
-		printf("%-32s %4zu/%-4zu %26s %26s %3d of %zu\n", L, c->rw.n, c->rn.n, c1, c2, c->lines_differ, c->L);
+		const double bed = fmax(s->bed[c->w], s->bed[c->n]);
+		too_wide(w1, sizeof w1, "reach diff", c->reach.lo, c->reach.hi, bed);
+		too_wide(w2, sizeof w2, "bottom diff", c->bottom.lo, c->bottom.hi, bed);
+		printf("%-32s %4zu/%-4zu %26s %26s %3d of %zu%s%s\n", L, c->rw.n, c->rn.n, c1, c2, c->lines_differ, c->L, w1,
+		       w2);
 		fprintf(f, "%d,", k);
 		csv_text(f, L);
 		fputc(',', f);

@@ -713,9 +713,23 @@ static void report(const an_tool *t, const wait_state *s)
 		       s->f_cens);
 }
 
+/* Group j's Kaplan-Meier curve drawn on top of group i's: the same times and the
+ * same S at each (e.g. every run of both censored at the end of the runs) */
+static int km_same(const km_curve *a, const km_curve *b)
+{
+	if (a->m != b->m)
+		return 0;
+	for (size_t i = 0; i < a->m; i++)
+		if (fabs(a->t[i] - b->t[i]) > 1e-9 * fmax(1, fabs(a->t[i])) || fabs(a->s[i] - b->s[i]) > 1e-9)
+			return 0;
+	return 1;
+}
+
 /* waiting_km.png and .pdf: the survival curves with their confidence bands, censored
- * runs marked */
-static int plot_km(an_tool *t)
+ * runs marked; a curve identical to an earlier group's is drawn KM_HAIR higher per
+ * earlier copy and says so in the key (docs/analysis.md, "waiting") */
+#define KM_HAIR 0.012
+static int plot_km(an_tool *t, const wait_state *s)
 {
 	char script[1400], png[1400], set[512];
 	FILE *f = tool_gp_open(t, "waiting_km", 900, 560, script, png, sizeof script);
@@ -724,26 +738,43 @@ static int plot_km(an_tool *t)
 	tool_setting(t, set, sizeof set);
 	fprintf(f, "set title \"Intruder waiting time: Kaplan–Meier survival\\n%s%sband: %g %% CI (Greenwood), ×: censored\"\n"
 		   "set xlabel 'time since shaking began t (s)'\nset ylabel 'S(t) = P(not yet risen)'\n"
-		   "set yrange [0:1.05]\nset xrange [0:*]\nset style fill transparent solid 0.18 noborder\nplot ",
+		   "set yrange [0:1.1]\nset xrange [0:*]\nset style fill transparent solid 0.18 noborder\nplot ",
 		set, *set ? "; " : "", 100 * t->o->level);
 	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
 		if (!acct_used(&t->A[j])) /* nothing to draw: gnuplot would warn */
 			continue;
-		char leg[512];
+		char leg[512], same[512] = "", title[1200];
 		tool_legend(t, j, 1, leg, sizeof leg);
+		int copies = 0, first = -1;
+		for (int i = 0; i < j; i++)
+			if (acct_used(&t->A[i]) && s->km[i].m && km_same(&s->km[i], &s->km[j])) {
+				copies++;
+				first = first < 0 ? i : first;
+			}
+		if (first >= 0)
+			tool_legend(t, first, 1, same, sizeof same);
+		const double off = KM_HAIR * copies;
+		if (copies)
+			snprintf(title, sizeof title, "%s (same as %s, drawn %g higher)",
+				 *leg ? leg : "all runs", *same ? same : "another group", off);
+		else
+			snprintf(title, sizeof title, "%s", *leg ? leg : "all runs");
 		fprintf(f, "%s'waiting_km_band.csv' skip 1 using 2:($1==%d?$3:1/0):4 with filledcurves lt %d notitle, \\\n",
 			np++ ? ", \\\n  " : "", j, j + 1);
-		fprintf(f, "  'waiting_km.csv' skip 1 using 3:($1==%d?$7:1/0) with steps lw 2 lt %d title ", j, j + 1);
-		gp_str(f, *leg ? leg : "all runs");
-		fprintf(f, ", \\\n  'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7:1/0) with points pt 2 ps 1.2 lt %d notitle",
-			j, j + 1);
+		fprintf(f, "  'waiting_km.csv' skip 1 using 3:($1==%d?$7+%g:1/0) with steps lw 2 lt %d dt %d title ", j, off,
+			j + 1, j % 5 + 1);
+		gp_str(f, title);
+		fprintf(f, ", \\\n  'waiting_km.csv' skip 1 using 3:($1==%d&&$6>0?$7+%g:1/0) with points pt 2 ps 1.2 lt %d "
+			   "notitle", j, off, j + 1);
 	}
 	fprintf(f, "\n");
 	return tool_plot(t, f, script, png);
 }
 
-/* waiting_hist.png and .pdf: the histograms side by side in each bin */
+/* waiting_hist.png and .pdf: each group's histogram as semi-transparent bars over
+ * whole bins, outlined in its colour: a bar covers the bin its waiting times fall in
+ * (docs/analysis.md, "waiting") */
 static int plot_hist(an_tool *t, const wait_state *s)
 {
 	char script[1400], png[1400], set[512];
@@ -761,16 +792,16 @@ static int plot_hist(an_tool *t, const wait_state *s)
 				cmax = hist_count(s, j, b, t->o->bins);
 	fprintf(f, "set title \"Intruder waiting time: histogram of the risen runs%s%s\"\n"
 		   "set xlabel 'waiting time (s)'\nset ylabel 'runs'\nset yrange [0:%ld]\nset ytics %ld\n"
-		   "set xrange [0:%.17g]\nset style fill transparent solid 0.35 border\nset boxwidth %.17g absolute\nplot ",
-		*set ? "\\n" : "", set, cmax + 1, cmax > 10 ? (cmax + 9) / 10 : 1, bw * (double)t->o->bins, bw / t->ng);
+		   "set xrange [0:%.17g]\nset style fill transparent solid 0.2 border\nset boxwidth %.17g absolute\nplot ",
+		*set ? "\\n" : "", set, cmax + 1, cmax > 10 ? (cmax + 9) / 10 : 1, bw * (double)t->o->bins, bw);
 	int np = 0;
 	for (int j = 0; j < t->ng; j++) {
 		if (!acct_used(&t->A[j]))
 			continue;
 		char leg[512];
 		tool_legend(t, j, 1, leg, sizeof leg);
-		fprintf(f, "%s'waiting_hist.csv' skip 1 using ($3+%.17g):($1==%d?$5:1/0) with boxes lt %d title ",
-			np++ ? ", \\\n  " : "", bw / t->ng * (j + 0.5), j, j + 1);
+		fprintf(f, "%s'waiting_hist.csv' skip 1 using (($3+$4)/2):($1==%d?$5:1/0) with boxes lw 2 lt %d title ",
+			np++ ? ", \\\n  " : "", j, j + 1);
 		gp_str(f, *leg ? leg : "all runs");
 	}
 	fprintf(f, "\n");
@@ -918,7 +949,7 @@ static int run(an_tool *t, void *vs)
 		return t->e.code;
 	report(t, s);
 	if (!t->o->no_plot) {
-		if (plot_km(t) || plot_hist(t, s) || plot_way(t, s))
+		if (plot_km(t, s) || plot_hist(t, s) || plot_way(t, s))
 			return t->e.code;
 		printf("# figures: %s/waiting_{km,hist,way}.{png,pdf}\n", t->o->out);
 	}

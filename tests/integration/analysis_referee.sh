@@ -17,16 +17,6 @@ analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
 fig_ok() { [ -s "$1.png" ] && [ "$(head -c 4 "$1.png" | od -An -c | tr -d ' ')" = '211PNG' ] && [ "$(head -c 5 "$1.pdf")" = '%PDF-' ]; }
-# tool ID NAME ARGS...: stdout ID.out, stderr ID.err; ok ID.exit_quiet when it exits 0 with nothing on stderr
-tool() {
-	local id=$1 n=$2
-	shift 2
-	"$BINDIR/$n" "$@" >"$id.out" 2>"$id.err"
-	local rc=$?
-	[ "$rc" -eq 0 ] && [ ! -s "$id.err" ] && ok "$id.exit_quiet" || fail "$id.exit_quiet" "exit $rc: $(head -c 400 "$id.err")"
-}
-# col FILE NAME: the column number of NAME in a CSV header
-col() { head -n 1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 
 SCENE="$(tiny_scene radius_ratio=-)
 amplitude = 1"
@@ -43,19 +33,19 @@ echo "# campaigns: $((SECONDS - t0)) s"
 A=R/t/analysis W=R/w/analysis
 
 # ---- rolls ----
-tool rolls rolls t --runs=R
+tool_quiet rolls rolls t --runs=R
 R1=$A/rolls_runs.csv
 [ "$(tail -n +2 $R1 | wc -l)" = 18 ] && [ "$(tail -n +2 $A/rolls_diff.csv | wc -l)" = 3 ] &&
 	[ "$(tail -n +2 $A/rolls_profile.csv | wc -l)" = 240 ] && [ "$(tail -n +2 $A/rolls_summary.csv | wc -l)" = 6 ] &&
 	[ -s $A/rolls_accounting.csv ] && ok rolls.csv || fail rolls.csv "$(ls $A; cat rolls.out)"
 # reach = surface - roll bottom, the bottom within the bed, on every run
-awk -F, -v s="$(col $R1 surface)" -v b="$(col $R1 roll_bottom)" -v r="$(col $R1 reach)" 'NR > 1 {
+awk -F, -v s="$(csv_col $R1 surface)" -v b="$(csv_col $R1 roll_bottom)" -v r="$(csv_col $R1 reach)" 'NR > 1 {
 	d = $s - $b - $r; if (d < -1e-9 || d > 1e-9 || $b < 0 || $b > $s) bad = 1 } END { exit bad }' $R1 &&
 	ok rolls.reach_is_surface_minus_bottom || fail rolls.reach_is_surface_minus_bottom "$(head -n 3 $R1)"
 # the stored difference is mean(with) - mean(without) of the per-run reaches, inside its interval
 bad=0
 for f in 3 5 7; do
-	want=$(awk -F, -v r="$(col $R1 reach)" -v f=$f -v fc="$(col $R1 frequency)" -v rc="$(col $R1 radius_ratio)" '
+	want=$(awk -F, -v r="$(csv_col $R1 reach)" -v f=$f -v fc="$(csv_col $R1 frequency)" -v rc="$(csv_col $R1 radius_ratio)" '
 		NR > 1 && $fc == f { if ($rc > 0) { a += $r; na++ } else { b += $r; nb++ } }
 		END { printf "%.12g", a / na - b / nb }' $R1)
 	got=$(q R/study.db "SELECT printf('%.12g', value) || ' ' || (lo <= value AND value <= hi) || ' ' || n FROM analysis
@@ -76,8 +66,8 @@ fig_ok $A/rolls && grep -q "title 'no intruder'" $A/rolls.gp && grep -q "title '
 	ok rolls.figure || fail rolls.figure "$(ls $A)"
 # a lower fraction of the maximum can only move a run's roll bottom down (or leave it)
 cp $R1 rolls_half.csv
-tool rolls_quarter rolls t --runs R --fraction=0.25 --no-store --no-plot --out "$TMP/q"
-paste -d, rolls_half.csv q/rolls_runs.csv | awk -F, -v b="$(col $R1 roll_bottom)" -v n="$(head -n 1 $R1 | tr ',' '\n' | wc -l)" '
+tool_quiet rolls_quarter rolls t --runs R --fraction=0.25 --no-store --no-plot --out "$TMP/q"
+paste -d, rolls_half.csv q/rolls_runs.csv | awk -F, -v b="$(csv_col $R1 roll_bottom)" -v n="$(head -n 1 $R1 | tr ',' '\n' | wc -l)" '
 	NR > 1 && $(n + b) > $b + 1e-9 { bad = 1 } END { exit bad }' && ok rolls.fraction_monotone ||
 	fail rolls.fraction_monotone "a bottom rose with --fraction 0.25"
 # each part on its own: the help names the option, a misspelling is named, and a
@@ -91,7 +81,7 @@ rc=$?
 	fail rolls.options.range "--fraction 2: exit $rc, $(head -c 200 "$TMP/rf.out")"
 
 # ---- onset --sensitivity ----
-tool sens onset t --runs R --boot 40 --sensitivity
+tool_quiet sens onset t --runs R --boot 40 --sensitivity
 S=$A/onset_sensitivity.csv
 [ "$(tail -n +2 $S | wc -l)" = 12 ] && [ "$(cut -d, -f3 $S | sort -u | tr '\n' ' ')" = "band_0.2_0.4 band_0.4_0.6 band_0.6_0.8 main no_highest_f no_lowest_f variant " ] &&
 	ok sens.csv_variants || fail sens.csv_variants "$(cut -d, -f2,3 $S)"
@@ -106,7 +96,7 @@ awk -F, 'FNR == 1 { next } FILENAME ~ /summary/ { thr[$1] = $11; next } $3 == "m
 "$BINDIR/onset" t --runs R --sensitivity=1 2>&1 | grep -q 'takes no value' && ok sens.flag || fail sens.flag "accepted a value"
 
 # ---- waiting: the second definition ----
-tool way waiting w --runs R
+tool_quiet way waiting w --runs R
 V=$W/waiting_way_runs.csv
 [ "$(tail -n +2 $V | wc -l)" = 6 ] && [ -s $W/waiting_way_km.csv ] && [ "$(tail -n +2 $W/waiting_way_summary.csv | wc -l)" = 2 ] &&
 	fig_ok $W/waiting_way && ok way.outputs || fail way.outputs "$(ls $W)"
@@ -138,7 +128,7 @@ grep -q '^# both definitions: one diameter' way.out &&
 	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 'w' AND tool = 'waiting' AND key = 'way_median'")" = 2 ] &&
 	ok way.side_by_side || fail way.side_by_side "$(cat way.out)"
 # three groups with trajectories: the second definition's own log-rank test, printed and stored
-tool way_q waiting t --runs R --fraction 0.25 --no-plot --out "$TMP/wq"
+tool_quiet way_q waiting t --runs R --fraction 0.25 --no-plot --out "$TMP/wq"
 grep -q '^# second definition: log-rank test .* across the 3 groups (9 runs' way_q.out &&
 	[ "$(q R/study.db "SELECT COUNT(*) FROM analysis WHERE campaign = 't' AND tool = 'waiting' AND grp = 'all groups' AND key GLOB 'way_logrank_*'")" = 3 ] &&
 	ok way.logrank || fail way.logrank "$(grep log-rank way_q.out)"
@@ -147,7 +137,7 @@ grep -q '^# second definition: log-rank test .* across the 3 groups (9 runs' way
 	ok way.fraction_option || fail way.fraction_option "$(cat wq/waiting_way_summary.csv)"
 
 # ---- figures: Fig. 4 with every replicate ----
-tool fig4 figures t --runs R
+tool_quiet fig4 figures t --runs R
 F4=$A/fig4_traj.csv
 [ "$(awk -F, 'NR > 1 { print $3 }' $F4 | sort -u | wc -l)" = 3 ] && [ "$(awk -F, 'NR > 1 && $9 == 1 { print $3 }' $F4 | sort -u | wc -l)" = 1 ] &&
 	ok fig4.every_replicate_one_representative || fail fig4.every_replicate_one_representative "$(cut -d, -f3,9 $F4 | sort -u)"

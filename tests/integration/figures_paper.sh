@@ -16,13 +16,7 @@ analysis_tools_setup
 data_driver_setup
 cd "$TMP" || exit 1
 
-SCENE="$(tiny_scene radius_ratio=-)
-amplitude = 1
-traj_rate = 100"
-printf '[campaign]\nname = t\nseed = 3\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 1\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$SCENE" >t.campaign
-printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 2.5\nramp = updown\nramp_from = 3\nramp_to = 7\n[grid]\nradius_ratio = 2\n' "$SCENE" >h.campaign
-# no flux and no field: figures has only Fig. 4 to draw
-printf '[campaign]\nname = w\nseed = 5\nreplicates = 3\n[scene]\n%s\nduration = 1\nfrequency = 6\n[grid]\nradius_ratio = 2, 3\n' "$SCENE" >w.campaign
+paper_figure_campaigns
 t0=$SECONDS
 for c in t h w; do
 	"$DATA_STUDY" run $c.campaign --runs "$TMP/R" --jobs 2 --no-progress >study_$c.log 2>&1 ||
@@ -30,15 +24,6 @@ for c in t h w; do
 done
 echo "# campaigns: $((SECONDS - t0)) s"
 
-# tool ID NAME ARGS...: runs it (stdout ID.out, stderr ID.err); ok ID.exit_quiet when it exits 0
-# and prints nothing on stderr
-tool() {
-	local id=$1 n=$2
-	shift 2
-	"$BINDIR/$n" "$@" >"$id.out" 2>"$id.err"
-	local rc=$?
-	[ "$rc" -eq 0 ] && [ ! -s "$id.err" ] && ok "$id.exit_quiet" || fail "$id.exit_quiet" "exit $rc: $(head -c 400 "$id.err")"
-}
 # figs ID DIR NAME...: every NAME.png is a PNG and NAME.pdf a PDF, neither empty
 figs() {
 	local id=$1 d=$2 n bad=
@@ -56,7 +41,7 @@ no_keys() {
 A=R/t/analysis
 
 # ---- onset ----
-tool fig.onset onset t --runs=R --boot=40 --seed=3
+tool_quiet fig.onset onset t --runs=R --boot=40 --seed=3
 figs fig.onset.png_pdf $A onset
 G=$A/onset.gp
 # per group with an onset (the threshold crossing: docs/analysis.md, "One onset per
@@ -91,7 +76,7 @@ sleep 1
 cmp -s onset1.pdf $A/onset.pdf && ok fig.onset.pdf_reproducible || fail fig.onset.pdf_reproducible "the PDF changed"
 
 # ---- waiting ----
-tool fig.waiting waiting w --runs=R --level=0.9
+tool_quiet fig.waiting waiting w --runs=R --level=0.9
 W=R/w/analysis
 figs fig.waiting.png_pdf $W waiting_km waiting_hist
 G=$W/waiting_km.gp
@@ -104,11 +89,11 @@ awk -F, 'NR == FNR { if (FNR > 1) { n[$1]++; S[$1, n[$1]] = $7; T[$1, n[$1]] = $
 		if ($2 != T[$1, i] || $3 > S[$1, i] + 1e-12 || $4 < S[$1, i] - 1e-12 || $3 > $4) bad = 1 } }
 	END { for (g in n) if (m[g] != 2 * n[g] - 1) bad = 1; exit bad }' $W/waiting_km.csv $W/waiting_km_band.csv &&
 	ok fig.waiting.band_outline || fail fig.waiting.band_outline "$(head -n 6 $W/waiting_km_band.csv)"
-grep -q "title '𝓡 = 2'" $G && grep -q "title '𝓡 = 3'" $G && ok fig.waiting.words || fail fig.waiting.words "$(grep title $G)"
+grep -q "title '𝓡 = 2'" $G && grep -q "title '𝓡 = 3[' ]" $G && ok fig.waiting.words || fail fig.waiting.words "$(grep title $G)"
 no_keys fig.waiting.no_raw_keys $G
 
 # ---- hysteresis ----
-tool fig.hysteresis hysteresis h --runs=R --boot=20 --smooth=3
+tool_quiet fig.hysteresis hysteresis h --runs=R --boot=20 --smooth=3
 figs fig.hysteresis.png_pdf R/h/analysis hysteresis
 G=R/h/analysis/hysteresis.gp
 grep -q "^set link x2 via" $G && grep -q "title 'up'" $G && grep -q "title 'down'" $G && grep -q 'no intruder\|𝓡 = 2' $G &&
@@ -121,7 +106,7 @@ no_keys fig.hysteresis.no_raw_keys $G
 rc=$?
 [ "$rc" -ne 0 ] && grep -q -- "--freq 4: no fixed-frequency run at this frequency (the runs' frequencies: 3, 5, 7)" fig.nofreq.err &&
 	ok fig.figures.freq_without_runs_refused || fail fig.figures.freq_without_runs_refused "exit $rc: $(head -c 300 fig.nofreq.err)"
-tool fig.figures figures t --runs=R --freq=5,7
+tool_quiet fig.figures figures t --runs=R --freq=5,7
 figs fig.figures.png_pdf $A fig1 fig3 fig4
 G=$A/fig1.gp
 # the box: x from -2 R_w to W + 2 R_w (W = 20, R_w = 1), walls as grey rectangles at the
@@ -129,7 +114,7 @@ G=$A/fig1.gp
 grep -q '^set xrange \[-2:22\]' $G && grep -q "^set object 1 rect from -2, -2 to 0, graph 1 fc rgb '#b0b0b0'" $G &&
 	grep -q "^set object 2 rect from 20, -2 to 22, graph 1" $G && grep -q "^set object 3 rect from -2, -2 to 22, 0" $G &&
 	ok fig.fig1.box_and_walls || fail fig.fig1.box_and_walls "$(grep -E 'range|object' $G)"
-grep -q "^set title 'no intruder, 5 Hz'" $G && grep -q "^set title '𝓡 = 2, 7 Hz'" $G && ok fig.fig1.words ||
+grep -q "^set title 'no intruder, 5 Hz; 2 runs averaged, cell " $G && grep -q "^set title '𝓡 = 2, 7 Hz; 2 runs averaged, cell " $G && ok fig.fig1.words ||
 	fail fig.fig1.words "$(grep title $G)"
 grep -q "title 'no intruder'" $A/fig3.gp && grep -q "title '𝓡 = 2'" $A/fig3.gp && grep -q "^set title '𝓡 = 2'" $A/fig4.gp &&
 	ok fig.fig34.words || fail fig.fig34.words "$(grep title $A/fig3.gp $A/fig4.gp)"
@@ -166,7 +151,7 @@ paste -d, <(awk -F, 'NR > 1 { printf "%.17g\n", $10 - $9 }' $A/fig3_profile.csv)
 	awk -F, '$1 > 0 { r = $2 / $1 * 12.706204736174707; if (r < 1 - 1e-6 || r > 1 + 1e-6) bad = 1; n++ } END { exit !(n > 0 && !bad) }' &&
 	grep -q '^# fig3: band: 50 % CI' fig.l50.out && ok fig.fig3.band_level || fail fig.fig3.band_level "$(head -n 3 fig.l50.out)"
 # a campaign without flux or field: Fig. 4 only, and no table header without rows
-tool fig.figures_noflux figures w --runs=R
+tool_quiet fig.figures_noflux figures w --runs=R
 figs fig.figures_noflux.fig4 $W fig4
 grep -q '^# fig3: no run with flux = yes; skipped' fig.figures_noflux.out && ! grep -q '^frequency ' fig.figures_noflux.out &&
 	ok fig.figures_noflux.no_empty_table || fail fig.figures_noflux.no_empty_table "$(head -n 4 fig.figures_noflux.out)"

@@ -330,5 +330,32 @@ data_driver_setup() {
 	DATA_STUDY=$TMP/data/study
 }
 
+# paper_figure_campaigns : t.campaign, h.campaign and w.campaign in the current directory,
+# the tiny campaigns of the figures' checks (figures_paper.sh, figure_checks.sh): t with
+# and without intruder at 3, 5, 7 Hz with flux and field; h an up-down ramp 3 -> 7 Hz; w
+# 𝓡 = 2 and 3 at 6 Hz without flux or field (Fig. 4 only; every run is censored at 1 s,
+# so its two Kaplan-Meier curves are one)
+paper_figure_campaigns() {
+	local scene
+	scene="$(tiny_scene radius_ratio=-)
+amplitude = 1
+traj_rate = 100"
+	printf '[campaign]\nname = t\nseed = 3\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 1\nfield = yes\nfield_periods = 2\n[grid]\nradius_ratio = 0, 2\nfrequency = 3, 5, 7\n' "$scene" >t.campaign
+	printf '[campaign]\nname = h\nseed = 4\nreplicates = 2\n[scene]\n%s\nflux = yes\nduration = 2.5\nramp = updown\nramp_from = 3\nramp_to = 7\n[grid]\nradius_ratio = 2\n' "$scene" >h.campaign
+	printf '[campaign]\nname = w\nseed = 5\nreplicates = 3\n[scene]\n%s\nduration = 1\nfrequency = 6\n[grid]\nradius_ratio = 2, 3\n' "$scene" >w.campaign
+}
+
+# tool_quiet ID NAME ARGS... : runs the analysis tool NAME of $BINDIR (stdout ID.out, stderr
+# ID.err); ok ID.exit_quiet when it exits 0 with nothing on stderr (no gnuplot warning)
+tool_quiet() {
+	local id=$1 n=$2
+	shift 2
+	"$BINDIR/$n" "$@" >"$id.out" 2>"$id.err"
+	local rc=$?
+	[ "$rc" -eq 0 ] && [ ! -s "$id.err" ] && ok "$id.exit_quiet" || fail "$id.exit_quiet" "exit $rc: $(head -c 400 "$id.err")"
+}
+# csv_col FILE NAME : the column number of NAME in a CSV file's header
+csv_col() { head -n 1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
+
 # contains FILE STRING : fixed-string grep
 contains() { grep -qF -- "$2" "$1"; }
