@@ -1119,6 +1119,15 @@ static int run_fig_draw(const an_opts *o, const char *name, const char *body, sb
 	return 0;
 }
 
+/* After a figure: one that could not be written (a node at its place, a full disk) makes
+ * the exit 2; any other error was the reason it was not drawn, said already. */
+static void run_fig_settle(sb_err *e, int *rc)
+{
+	if (e->code && strstr(e->msg, "not written"))
+		*rc = 2;
+	e->code = 0;
+}
+
 static int run_figures(int argc, char **argv)
 {
 	const char *file = NULL, *out = ".";
@@ -1218,9 +1227,7 @@ static int run_figures(int argc, char **argv)
 		printf("# not drawn: the field (%s)\n", e.code ? e.msg : "field = no: no field recorded");
 	}
 	convect_free(&cf);
-	if (e.code && strstr(e.msg, "not written"))
-		rc = 2;
-	e.code = 0;
+	run_fig_settle(&e, &rc);
 	/* Phi(D) */
 	flux_data fd = {0};
 	if (flux_read(file, &fd, &e) == 0 && fd.P > 0) {
@@ -1258,9 +1265,7 @@ static int run_figures(int argc, char **argv)
 		printf("# not drawn: Phi(D) (%s)\n", e.code ? e.msg : "flux = no: no flux recorded");
 	}
 	flux_free(&fd);
-	if (e.code && strstr(e.msg, "not written"))
-		rc = 2;
-	e.code = 0;
+	run_fig_settle(&e, &rc);
 	/* the intruder's height */
 	traj tr = {0};
 	const int tr_rc = traj_read(file, &tr, &e);
