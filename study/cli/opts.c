@@ -164,9 +164,11 @@ static const option OPTS[] = {
 	FLAG("forget-old", 0, forget_old, 1, OPTS_RUN | OPTS_SUBMIT,
 	     "the file changed and recorded runs are no longer in its grid: delete their rows and move their files "
 	     "to NAME/forgotten/ (without --keep-old or --forget-old a changed file is refused, saying what changed)"),
-	FLAG("dry-run", 0, dry_run, 1, OPTS_RUN,
-	     "run nothing, record nothing: print the campaign's runs, simulated seconds and CPU time at this "
-	     "machine's measured rate (upper bounds for a search or replicates = auto) and stop"),
+	FLAG("dry-run", 0, dry_run, 1, OPTS_RUN | OPTS_SUBMIT,
+	     "run: run nothing, record nothing: print the campaign's runs, simulated seconds and CPU time at this "
+	     "machine's measured rate (upper bounds for a search or replicates = auto; of a grid only what remains) "
+	     "and stop; submit: prepare as a submit does, then print the array script, the task lines and the "
+	     "sbatch command, and submit nothing"),
 	FLAG("no-cache", 0, no_cache, 1, OPTS_RUN | OPTS_SUBMIT, "every run settles its own packing"),
 	FLAG("progress", 0, progress, 1, OPTS_RUN,
 	     "a progress line: runs in flight with their swept values and t/T, counts, ETA (default: when stderr "

@@ -12,8 +12,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <math.h>
+
 #include "layout.h"
 #include "campaign/safe.h"
+#include "report/cost.h"
 #include "ledger/changes.h"
 #include "local/packing.h"
 #include "collect.h"
@@ -224,6 +227,54 @@ static int record_job(drv *d, const slurm_opts *so, long job, const char *spec, 
 	return db_commit(&d->db, e);
 }
 
+/* The CPU seconds of grid run i alone at rates (its settling counted when it settles
+ * its own bed or builds its packing: the task that does it pays for it). */
+static double run_cpu(const drv *d, long i, const calib *rates)
+{
+	grid one = d->g;
+	one.runs = &d->g.runs[i];
+	one.n = 1;
+	cost_sum t;
+	cost_count(&d->c, &one, 0, NULL, &t);
+	return cost_cpu(&t, rates);
+}
+
+/* The array's --time (minutes) from the cost model: each task's runs summed at this
+ * machine's measured rates, the longest task times SLURM_TIME_MARGIN. 0 (and the
+ * reason in why) when a rate cannot be had. */
+static long task_minutes(drv *d, char **lines, long ntasks, double *worst, char *why, size_t len)
+{
+	char shake[PATHX + 8];
+	snprintf(shake, sizeof shake, "%s", d->o->self);
+	char *sl = strrchr(shake, '/');
+	snprintf(sl ? sl + 1 : shake, sizeof shake - (size_t)(sl ? sl + 1 - shake : 0), "shake");
+	calib rates[COST_NINTEG] = {0};
+	cost_sum all;
+	cost_count(&d->c, &d->g, 0, NULL, &all);
+	for (int i = 0; i < COST_NINTEG; i++) {
+		sb_err ce = {0};
+		if ((all.grain_steps[i] > 0 || all.settle_grains[i] > 0) && calib_get(d->o->runs_dir, shake, i, &rates[i], &ce)) {
+			snprintf(why, len, "%s", ce.msg);
+			return 0;
+		}
+	}
+	*worst = 0;
+	for (long t = 0; t < ntasks; t++) {
+		double cpu = 0;
+		char *copy = strdup(lines[t]);
+		for (char *s = copy, *w; copy && (w = strsep(&s, " "));)
+			for (long i = 0; !strncmp(w, "r:", 2) && i < d->g.n; i++)
+				if (!strcmp(d->g.runs[i].id, w + 2)) {
+					cpu += run_cpu(d, i, rates);
+					break;
+				}
+		free(copy);
+		*worst = fmax(*worst, cpu);
+	}
+	const long m = (long)ceil(*worst * SLURM_TIME_MARGIN / 60.0);
+	return m > SLURM_TIME_MIN ? m : SLURM_TIME_MIN;
+}
+
 /* Everything after the campaign is open and locked. */
 static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err *e)
 {
@@ -294,11 +345,15 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	char spec[64], script[PATHX], tasks[PATHX];
 	if (!e->code && (ntasks = slurm_plan_task_lines(runs, n, so->runs_per_task, &lines)) < 0)
 		sb_errf(e, SB_ENOMEM, "out of memory");
-	if (!e->code && !write_tasks(d, lines, ntasks, tasks, sizeof tasks, e) &&
-	    !write_script(d, d->o->self, script, sizeof script, e)) {
+	if (!e->code && so->dry_run) { /* what would be written, and the command: nothing submitted */
+		snprintf(tasks, sizeof tasks, "%s/" SLURM_SUB "/tasks-N.txt", d->dir);
+		snprintf(script, sizeof script, "%s/" SLURM_SUB "/array.sh", d->dir);
+	}
+	if (!e->code && (so->dry_run || (!write_tasks(d, lines, ntasks, tasks, sizeof tasks, e) &&
+					 !write_script(d, d->o->self, script, sizeof script, e)))) {
 		slurm_plan_array_spec(ntasks, so->throttle, spec, sizeof spec);
 		char *args[MAX_SBATCH_ARGS + 8];
-		char a_array[96], a_name[128], a_out[PATHX + 64];
+		char a_array[96], a_name[128], a_out[PATHX + 64], a_time[64], why[1100] = "";
 		snprintf(a_array, sizeof a_array, "--array=%s", spec);
 		snprintf(a_name, sizeof a_name, "--job-name=%s", d->c.name);
 		snprintf(a_out, sizeof a_out, "--output=%s/" SLURM_SUB "/logs/%%A_%%a.out", d->dir);
@@ -306,6 +361,23 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		args[na++] = a_array;
 		args[na++] = a_name;
 		args[na++] = a_out;
+		/* the time limit from the cost model, unless the user gives one */
+		int user_time = 0;
+		for (int i = 0; i < nuargs; i++)
+			user_time |= !strncmp(uargs[i], "--time", 6) || !strncmp(uargs[i], "-t", 2);
+		double worst = 0;
+		const long minutes = user_time ? 0 : task_minutes(d, lines, ntasks, &worst, why, sizeof why);
+		if (minutes > 0) {
+			snprintf(a_time, sizeof a_time, "--time=%ld", minutes);
+			args[na++] = a_time;
+			fprintf(stderr, "study: %s: --time=%ld min: the longest task's runs take %.0f CPU s at this machine's "
+					"measured rate, times %g (at least %d min; a node slower than this machine needs "
+					"more: --sbatch-args '--time=...' sets it)\n",
+				d->c.name, minutes, worst, SLURM_TIME_MARGIN, SLURM_TIME_MIN);
+		} else if (!user_time) {
+			fprintf(stderr, "study: %s: no --time from the cost model (%s): the cluster's default limit applies\n",
+				d->c.name, why);
+		}
 		/* the user's after study submit's own: later options win, so a user's
 		 * --job-name stands, and --array/--output were refused */
 		for (int i = 0; i < nuargs; i++)
@@ -313,7 +385,27 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 		args[na++] = script;
 		args[na++] = tasks;
 		long job = -1;
-		if (slurm_queue_submit(args, na, &job, e)) {
+		if (so->dry_run) {
+			char qs[PATHX], qd[PATHX];
+			if (safe_shell_quote(d->o->self, qs, sizeof qs) || safe_shell_quote(d->dir, qd, sizeof qd))
+				sb_errf(e, SB_EUSAGE, "path too long");
+			else {
+				printf("# study submit --dry-run: nothing submitted; %s would hold:\n", script);
+				printf(SCRIPT, d->c.name, qs, qd);
+				printf("# %s (N: the first number not taken) would hold %ld line%s, one per array task:\n", tasks,
+				       ntasks, ntasks > 1 ? "s" : "");
+				for (long t = 0; t < ntasks; t++)
+					printf("%s\n", lines[t]);
+				printf("# the command:\nsbatch");
+				for (int i = 0; i < na; i++) { /* quoted where a shell would read it otherwise */
+					char q[PATHX + 64];
+					const int plain = args[i][strspn(args[i], "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+										 "0123456789_=%/.,:+@-")] == 0;
+					printf(" %s", plain || safe_shell_quote(args[i], q, sizeof q) ? args[i] : q);
+				}
+				printf("\n");
+			}
+		} else if (slurm_queue_submit(args, na, &job, e)) {
 			if (ntasks > 1000)
 				fprintf(stderr, "study: %s: %ld array tasks; a cluster's MaxArraySize (often 1001) may "
 					"refuse them: --runs-per-task N puts N runs in a task\n", d->c.name, ntasks);

@@ -16,7 +16,16 @@ typedef struct slurm_opts {
 	long throttle;            /* at most this many tasks at once (--array=...%K); 0: no limit */
 	long runs_per_task;       /* runs one after the other in a task (>= 1) */
 	const char *sbatch_args;  /* more sbatch options, split at whitespace; NULL: none */
+	int dry_run;              /* print the script, the task lines and the sbatch command;
+				   * submit nothing (the runs are recorded and their argument
+				   * files written, as a submit would) */
 } slurm_opts;
+
+/* The array's time limit: the longest task's runs at this machine's measured CPU rate
+ * (report/cost.h) times this margin, rounded up to whole minutes, at least SLURM_TIME_MIN
+ * minutes; a user's --sbatch-args --time=... wins (docs/cluster.md). */
+#define SLURM_TIME_MARGIN 3.0
+#define SLURM_TIME_MIN 5
 
 /* Submits the runs of the campaign that are neither done (nor failed, unless
  * o->retry_failed) nor queued or running in an earlier array: writes their argument

@@ -104,7 +104,9 @@ cmd_argv() {
 # output_hash DIR: stdout and the files under R/fz/analysis
 output_hash() {
 	{
-		cat "$1/stdout"
+		# (an export names each run's file by its absolute path: the directory the
+		# command ran in is not part of what it said)
+		sed "s|$(cd "$1" && pwd)/|@DIR@/|g" "$1/stdout"
 		(cd "$1" && find R/$NAME/analysis -type f 2>/dev/null | LC_ALL=C sort | xargs -r md5sum)
 	} | md5sum | cut -c1-32
 }

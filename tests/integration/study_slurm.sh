@@ -91,6 +91,18 @@ t=$SECONDS
 "$STUDY" run s.campaign --runs "$TMP/L" --jobs 2 >local.log 2>&1 || fail local.run "$(tail -c 400 local.log)"
 echo "# local study run: $((SECONDS - t)) s"
 
+# --- submit --dry-run: the script, the task lines and the sbatch command with the time
+# limit from the cost model (no --time given); nothing submitted, no task file, no script ---
+"$STUDY" submit s.campaign --slurm --runs "$TMP/S" --throttle 2 --runs-per-task 2 --dry-run >dry.out 2>dry.err
+rc=$?
+mins=$(sed -n 's/^study: .*: --time=\([0-9]*\) min: the longest task.s runs take \([0-9]*\) CPU s at this machine.s measured rate, times 3 .*/\1 \2/p' dry.err)
+[ "$rc" -eq 0 ] && grep -q '^# study submit --dry-run: nothing submitted' dry.out && grep -q '^#!/bin/bash' dry.out &&
+	[ "$(grep -c '^[cr]:' dry.out)" = 2 ] && [ "$(grep -o ' r:' dry.out | wc -l)" -ge 2 ] &&
+	grep -Eq "^sbatch --array=0-1%2 --job-name=$NAME '?--output=.*'? --time=${mins% *} .*/slurm/array.sh'? .*/slurm/tasks-N.txt'?$" dry.out &&
+	awk -v m="$mins" 'BEGIN { split(m, v, " "); exit !(v[1] >= 5 && v[1] >= v[2] * 3 / 60) }' &&
+	[ -z "$(q S/study.db "SELECT job_id FROM slurm_job")" ] && ! ls S/$NAME/slurm/tasks-*.txt S/$NAME/slurm/array.sh >/dev/null 2>&1 &&
+	ok submit.dry_run || fail submit.dry_run "exit $rc, time '$mins': $(cat dry.err; tail -n 4 dry.out)"
+
 # --- submit: 4 runs, 2 per task, at most 2 tasks at once, extra sbatch options (--hold:
 # the array waits for scontrol release, so that no run starts before the test watches) ---
 t=$SECONDS
@@ -277,12 +289,12 @@ njobs=$(q $DB "SELECT COUNT(*) FROM slurm_job")
 
 # --- the same results as the uninterrupted local run ---
 # columns that say when, where and how often, not what: attempts (the stopped run has
-# two), host, started, finished, wall_seconds
+# two), host, started, finished, wall_seconds, file (the runs directory's path)
 # (Debian's python3: the first on PATH may be a pyenv shim, most of a second a call)
 strip() {
 	/usr/bin/python3 -c '
 import csv, sys
-drop = {"attempts", "host", "started", "finished", "wall_seconds"}
+drop = {"attempts", "host", "started", "finished", "wall_seconds", "file"}
 r = csv.reader(open(sys.argv[1], newline=""))
 head = next(r)
 keep = [i for i, h in enumerate(head) if h not in drop]

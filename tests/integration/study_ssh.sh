@@ -117,7 +117,7 @@ cmp -s "$HOME/.shakebox/$NAME/shake" bin/shake && cmp -s "$HOME/.shakebox/$NAME/
 	ok ssh.engine_sent || fail ssh.engine_sent "the remote engine or driver is not the one beside the driver"
 # the same through the database: the exports equal but for when, where and how often
 strip() {
-	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty)$/) drop[i] = 1 }
+	awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i ~ /^(attempts|started|finished|wall_seconds|host|git_hash|git_dirty|file)$/) drop[i] = 1 }
 		{ s = ""; for (i = 1; i <= NF; i++) if (!drop[i]) s = s $i ","; print s }' "$1"
 }
 "$STUDY" export "$NAME" --runs "$TMP/S" >ssh.csv && "$STUDY" export "$NAME" --runs "$TMP/L" >local.csv &&
