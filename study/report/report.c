@@ -456,15 +456,22 @@ static const char *column_unit(const char *name)
 	return k >= 0 ? drive_axis_unit(k) : "";
 }
 
-/* A run's file, absolute, when it is there (""); runs_dir NULL: "runs". */
-static void run_file(const char *runs_dir, const char *name, const char *id, char *out, size_t len)
+/* The campaign's directory, absolute (rdir ""; when it is not there); runs_dir NULL:
+ * "runs". Resolved once per command, not per run. */
+static void campaign_dir(const char *runs_dir, const char *name, char rdir[PATH_MAX])
 {
-	char dir[4200], rdir[PATH_MAX], f[PATH_MAX + 64];
-	out[0] = 0;
+	char dir[4200];
 	layout_campaign(runs_dir ? runs_dir : "runs", name, dir, sizeof dir);
 	if (!realpath(dir, rdir))
-		return;
-	if (layout_file(rdir, 0, id, LAY_OUTPUT, f, sizeof f) >= (int)sizeof f || access(f, F_OK))
+		rdir[0] = 0;
+}
+
+/* A run's file in the campaign's directory rdir, when it is there (else "") */
+static void run_file(const char *rdir, const char *id, char *out, size_t len)
+{
+	char f[PATH_MAX + 64];
+	out[0] = 0;
+	if (!rdir[0] || layout_file(rdir, 0, id, LAY_OUTPUT, f, sizeof f) >= (int)sizeof f || access(f, F_OK))
 		return;
 	snprintf(out, len, "%s", f);
 }
@@ -480,6 +487,8 @@ int report_export(const char *db_path, const char *runs_dir, const char *name, i
 	if (!campaign_known(&d, name, e) && !schema_values(&d, name, 1, e) && !rowseal_check(&d, name, e) &&
 	    !sql_exec(&d, e, &q, "SELECT * FROM runs WHERE campaign = ? ORDER BY id", "t", name)) {
 		int nc = sqlite3_column_count(q), idc = -1;
+		char rdir[PATH_MAX];
+		campaign_dir(runs_dir, name, rdir);
 		for (int i = 0; i < nc; i++) {
 			csv_field(out, sqlite3_column_name(q, i));
 			fputc(',', out);
@@ -507,7 +516,7 @@ int report_export(const char *db_path, const char *runs_dir, const char *name, i
 				fputc(',', out);
 			}
 			char f[PATH_MAX + 64];
-			run_file(runs_dir, name, idc >= 0 ? col(q, idc) : "", f, sizeof f);
+			run_file(rdir, idc >= 0 ? col(q, idc) : "", f, sizeof f);
 			csv_field(out, f);
 			fputc('\n', out);
 		}
@@ -717,13 +726,15 @@ int report_view(const char *db_path, const char *runs_dir, const char *name, con
 		sb_errf(e, SB_EIO, "%s: cannot write: %s", path, strerror(errno));
 		goto undo;
 	}
+	char rdir[PATH_MAX];
+	campaign_dir(runs_dir, name, rdir);
 	sqlite3_stmt *r;
 	if (sql_exec(&d, e, &r, "SELECT id FROM run WHERE campaign = ? AND current ORDER BY id", "t", name))
 		goto undo;
 	while (!e->code && sqlite3_step(r) == SQLITE_ROW) {
 		const char *id = col(r, 0);
 		char file[PATH_MAX + 64];
-		run_file(runs_dir, name, id, file, sizeof file);
+		run_file(rdir, id, file, sizeof file);
 		if (!file[0]) {
 			missing++;
 			continue;

@@ -239,6 +239,8 @@ static double run_cpu(const drv *d, long i, const calib *rates)
 	return cost_cpu(&t, rates);
 }
 
+static int by_id(const void *key, const void *run) { return strcmp(key, ((const grid_run *)run)->id); }
+
 /* The array's --time (minutes) from the cost model: each task's runs summed at this
  * machine's measured rates, the longest task times SLURM_TIME_MARGIN. 0 (and the
  * reason in why) when a rate cannot be had. */
@@ -262,12 +264,13 @@ static long task_minutes(drv *d, char **lines, long ntasks, double *worst, char 
 	for (long t = 0; t < ntasks; t++) {
 		double cpu = 0;
 		char *copy = strdup(lines[t]);
-		for (char *s = copy, *w; copy && (w = strsep(&s, " "));)
-			for (long i = 0; !strncmp(w, "r:", 2) && i < d->g.n; i++)
-				if (!strcmp(d->g.runs[i].id, w + 2)) {
-					cpu += run_cpu(d, i, rates);
-					break;
-				}
+		for (char *s = copy, *w; copy && (w = strsep(&s, " "));) {
+			/* the grid's runs are sorted by id (grid.h) */
+			const grid_run *r = strncmp(w, "r:", 2) ? NULL
+							       : bsearch(w + 2, d->g.runs, (size_t)d->g.n, sizeof *d->g.runs, by_id);
+			if (r)
+				cpu += run_cpu(d, r - d->g.runs, rates);
+		}
 		free(copy);
 		*worst = fmax(*worst, cpu);
 	}
