@@ -282,14 +282,14 @@ static int cmd_submit(const study_args *o)
 	}
 	if ((rc = own_path(self, sizeof self)))
 		return rc;
-	slurm_opts so = {.sbatch_args = o->sbatch_args, .throttle = o->throttle, .runs_per_task = o->per_task,
+	slurm_opts so = {.sbatch_args = o->sbatch_args, .throttle = o->throttle, .runs_per_task = o->per_task, .after = o->after,
 			 .dry_run = o->dry_run};
 	driver_opts d = {.campaign_file = o->pos[0], .runs_dir = o->runs, .db_path = o->db, .self = self,
 			 .retry_failed = o->retry_failed, .keep_old = o->keep_old, .forget_old = o->forget_old,
 			 .use_cache = !o->no_cache};
 	if (slurm_submit(&d, &so, &e)) {
 		fprintf(stderr, "study: %s\n", e.msg);
-		return e.code == DRV_BUSY ? DRV_BUSY : e.code == SB_EUSAGE ? DRV_USAGE : DRV_IO;
+		return e.code == DRV_BUSY || e.code == DRV_INTERRUPTED ? e.code : e.code == SB_EUSAGE ? DRV_USAGE : DRV_IO;
 	}
 	return 0;
 }

@@ -102,10 +102,12 @@ static const command CMDS[] = {
 	 "further run. The manual: docs/cluster.md.\n",
 	 "Logs: RUNS/NAME/slurm/logs/JOB_INDEX.out (each task's), RUNS/NAME/logs/RUN.log (the\n"
 	 "engine's). The runs directory and the study and shake binaries must be on a file\n"
-	 "system the nodes see at the same path. [onset] searches and replicates = auto choose\n"
-	 "their runs from the results: run them with study run.\n"
+	 "system the nodes see at the same path. An [onset] search or replicates = auto goes\n"
+	 "round by round: each round is an array, and a planning job that runs when it has\n"
+	 "ended submits the next (docs/cluster.md, \"Searches on Slurm\").\n"
 	 "Exit codes: 0 submitted (or nothing to submit), 1 bad campaign or usage, 2 sbatch,\n"
-	 "squeue or I/O failed, 4 another driver holds the campaign.\n"},
+	 "squeue or I/O failed, 4 another driver holds the campaign, 7 a planning job whose\n"
+	 "round finished no run (the search stops there).\n"},
 	{"exec", OPTS_EXEC, "DIR run|cache NAME", 3, 3, NULL,
 	 "Internal: what GNU parallel (or a Slurm task) runs for one job (docs/cluster.md).\n", NULL},
 };
@@ -185,6 +187,10 @@ static const option OPTS[] = {
 	    "more sbatch options, split at whitespace, no quoting, e.g. \"--partition=short --time=02:00:00 "
 	    "--mem=1G\"; --array and --output are study's own; a word that is no option and no option's value is "
 	    "refused (sbatch would run it as its script)"),
+	INT("after", 0, "JOB", after, OPTS_SUBMIT, 1, 1e15, 0, "none",
+	    "set by the planning job of an [onset] search or replicates = auto (plan.sh): the Slurm job of the "
+	    "round it follows; when that round finished no run (cancelled) the search stops, and the next study "
+	    "submit goes on"),
 	STR("output", 'o', "FILE", outfile, OPTS_EXPORT, "standard output", "the CSV into FILE"),
 	FLAG("units", 0, units, 1, OPTS_EXPORT, "a second row with each column's unit (\"\" where it has none)"),
 	FLAG("help", 'h', help, 1, ALL, "this help"),

@@ -34,6 +34,7 @@ typedef struct study_args {
 	long retries;      /* study run: attempts after the first of a transient failure */
 	long throttle;     /* submit: 0: no limit */
 	long per_task;     /* submit: runs per array task */
+	long after;        /* submit: the round's array a search's planning job follows (0: none) */
 	double interval;   /* status --watch: seconds between looks */
 	int retry_failed, no_cache, keep_old, forget_old, slurm, watch, dry_run;
 	int units;         /* export: a units row */

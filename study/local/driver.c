@@ -585,15 +585,64 @@ static int check_changes(drv *d, sb_err *e)
  * first pass, recorded runs that it cannot ask for are a changed campaign. */
 static int onset_pass(drv *d, int first, sb_err *e)
 {
-	grid_free(&d->g);
-	if (grid_expand(&d->g, &d->c, e) ||
-	    (d->loc->autorep ? sharpen_derive(&d->loc->shp, &d->g, &d->db, e) : search_derive(&d->loc->srch, &d->g, &d->db, e)))
+	if (driver_search_derive(d, e))
 		return e->code;
 	if (first && check_changes(d, e))
 		return e->code;
 	if (driver_record(d, e) || (d->loc->autorep ? sharpen_store(&d->loc->shp, &d->db, e) : search_store(&d->loc->srch, &d->db, e)))
 		return e->code;
 	return drv_runs_alloc(d, e);
+}
+
+/* ---- the rounds of a search, for study submit too (drv.h) ---- */
+
+int driver_search_open(drv *d, sb_err *e)
+{
+	if (!d->c.onset.line && !d->c.autorep.on)
+		return 0;
+	if (!(d->loc = calloc(1, sizeof *d->loc)))
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	d->loc->adaptive = d->c.onset.line != 0;
+	d->loc->autorep = d->c.autorep.on;
+	d->loc->jobs = 1;
+	if (d->loc->adaptive)
+		search_init(&d->loc->srch, &d->c, d->dir);
+	if (d->loc->autorep)
+		sharpen_init(&d->loc->shp, &d->c, d->dir);
+	return 0;
+}
+
+void driver_search_close(drv *d)
+{
+	if (!d->loc)
+		return;
+	search_free(&d->loc->srch);
+	sharpen_free(&d->loc->shp);
+	free(d->loc);
+	d->loc = NULL;
+}
+
+int driver_search_derive(drv *d, sb_err *e)
+{
+	grid_free(&d->g);
+	if (grid_expand(&d->g, &d->c, e))
+		return e->code;
+	return d->loc->autorep ? sharpen_derive(&d->loc->shp, &d->g, &d->db, e) : search_derive(&d->loc->srch, &d->g, &d->db, e);
+}
+
+int driver_search_pass(drv *d, int first, sb_err *e)
+{
+	return onset_pass(d, first, e);
+}
+
+long driver_search_open_groups(const drv *d, long *groups)
+{
+	long searching = 0;
+	*groups = d->loc->autorep ? d->loc->shp.npoints : d->loc->srch.ngroups;
+	for (long i = 0; i < *groups; i++)
+		searching += d->loc->autorep ? d->loc->shp.pts[i].state == SH_RUNNING
+					     : d->loc->srch.groups[i].state == AD_G_SEARCHING;
+	return searching;
 }
 
 /* An [onset] campaign, round by round: each round runs what the chains wait for (one
@@ -613,9 +662,7 @@ static int run_onset(drv *d, sb_err *e)
 			continue;
 		if (!npend || stop_requested() || d->io_fault)
 			return 0;
-		long searching = 0, groups = d->loc->autorep ? d->loc->shp.npoints : d->loc->srch.ngroups;
-		for (long i = 0; i < groups; i++)
-			searching += d->loc->autorep ? d->loc->shp.pts[i].state == SH_RUNNING : d->loc->srch.groups[i].state == AD_G_SEARCHING;
+		long groups, searching = driver_search_open_groups(d, &groups);
 		d->loc->rounds++;
 		fprintf(stderr, "study: %s: %s round %ld: %ld run%s, %ld of %ld %s%s %s, %d job%s%s%s\n", d->c.name,
 			d->loc->autorep ? "replicates" : "onset", d->loc->rounds, npend, npend > 1 ? "s" : "", searching, groups,
@@ -681,6 +728,14 @@ static void autorep_summary(drv *d)
 			"(%ld used): %s\n", d->c.name, pt->label, sharp_result_name(a->result), est, 100 * a->level, lo, hi,
 			w, a->target, pt->nrep, pt->nrep > 1 ? "s" : "", pt->ev.used, sharp_state_name(pt->state));
 	}
+}
+
+void driver_search_summary(drv *d)
+{
+	if (d->loc->autorep)
+		autorep_summary(d);
+	else
+		onset_summary(d);
 }
 
 /* A database given with --db in the runs directory: the campaign's directory must not
@@ -786,10 +841,7 @@ int driver_run(const driver_opts *o, sb_err *e)
 	if (rounds && !e->code && !se.code) {
 		/* the state after the last round, for study status */
 		onset_pass(d, 0, &se);
-		if (d->loc->autorep)
-			autorep_summary(d);
-		else
-			onset_summary(d);
+		driver_search_summary(d);
 	}
 	long done, failed, pending;
 	counts(d, &done, &failed, &pending);

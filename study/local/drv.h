@@ -50,8 +50,9 @@ typedef struct drv {
 	char io_msg[1200];
 	struct owed *owed;    /* attempts the database would not take, to be written again
 			       * before the driver ends (ingest.c) */
-	/* `study run`'s own: the passes, the jobs, the disk reserve (drvlocal.h); NULL
-	 * under the Slurm commands */
+	/* `study run`'s own: the passes, the jobs, the disk reserve (drvlocal.h); under
+	 * the Slurm commands only the passes of a campaign with rounds
+	 * (driver_search_open), else NULL */
 	struct drv_local *loc;
 	/* reporting: the progress line of `study run`; NULL: none */
 	struct drv_progress *prog;
@@ -92,6 +93,22 @@ int driver_cache_check(drv *d, const char *key, char *st, size_t len, sb_err *e)
 int driver_record(drv *d, sb_err *e);
 int driver_cache_args(drv *d, const char *key, long first, sb_err *e);
 int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e);
+
+/* driver.c, the rounds of an [onset] search or of replicates = auto, for `study run`
+ * and `study submit` alike (docs/driver.md): driver_search_open gives d->loc the
+ * search's state when the campaign has rounds (else does nothing: d->loc stays NULL),
+ * driver_search_close frees it. driver_search_derive: the grid as the chains stand,
+ * walked again from the database and the run files, nothing written. driver_search_pass:
+ * that, and (first: a campaign file that changed is refused as by study run) the runs
+ * recorded, the search's state stored, d->runs for the new grid.
+ * driver_search_open_groups: the groups (points) still searching, *groups of them in
+ * all; driver_search_summary: one line per group on stderr. */
+int driver_search_open(drv *d, sb_err *e);
+void driver_search_close(drv *d);
+int driver_search_derive(drv *d, sb_err *e);
+int driver_search_pass(drv *d, int first, sb_err *e);
+long driver_search_open_groups(const drv *d, long *groups);
+void driver_search_summary(drv *d);
 
 /* ingest.c: a run's or a packing's outcome into the database (and into
  * d->runs.outcome, d->runs.transient for the retries); the workers' START and DONE

@@ -45,11 +45,15 @@ int slurm_drv_open(drv *d, const driver_opts *o, const char *path, sb_err *e)
 	driver_db_path(o->runs_dir, o->db_path, dbp, sizeof dbp);
 	if (db_open(&d->db, dbp, 1, e) || slurm_tables(&d->db, e))
 		return e->code;
+	/* a search's runs are its chains' so far: the grid they make now */
+	if (driver_search_open(d, e) || (d->loc && driver_search_derive(d, e)))
+		return e->code;
 	return drv_runs_alloc(d, e);
 }
 
 void slurm_drv_close(drv *d)
 {
+	driver_search_close(d);
 	drv_runs_free(d);
 	db_close(&d->db);
 	grid_free(&d->g);

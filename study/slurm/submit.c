@@ -18,6 +18,7 @@
 #include "campaign/safe.h"
 #include "report/cost.h"
 #include "ledger/changes.h"
+#include "sql.h"
 #include "local/packing.h"
 #include "collect.h"
 #include "plan.h"
@@ -66,6 +67,28 @@ static const char SCRIPT[] =
 	"\t[ \"$st\" -eq 0 ] || rc=$st\n"
 	"done\n"
 	"exit \"$rc\"\n";
+
+/* The planning job's script, for a campaign whose runs come round by round (an
+ * [onset] search, replicates = auto): Slurm starts it when a round's array has ended
+ * (--dependency=afterany), and it does what `study submit` on the login node would. */
+static const char PLAN[] =
+	"#!/bin/bash\n"
+	"# plan.sh - written by `study submit --slurm` for the shakebox campaign %s, whose\n"
+	"# runs are chosen round by round from the results (an [onset] search or replicates\n"
+	"# = auto). Slurm starts it when a round's array has ended (sbatch\n"
+	"# --dependency=afterany:JOB plan.sh JOB): it reads what the round did and submits the\n"
+	"# next round's array with the next planning job, as `study submit` on the login node\n"
+	"# would. It stops when the search is over, or when the round finished no run (its\n"
+	"# array cancelled): `study submit` then goes on. Log: slurm/logs/plan_ID.out\n"
+	"# (docs/cluster.md, \"Searches on Slurm\").\n"
+	"set -u\n"
+	"if [ $# -ne 1 ]; then\n"
+	"\techo \"plan.sh: for sbatch --dependency=afterany:JOB plan.sh JOB (study submit does it)\" >&2\n"
+	"\texit 1\n"
+	"fi\n"
+	"# this job's own SLURM_* variables are not the next jobs' (the configuration stays)\n"
+	"for v in $(compgen -v SLURM_); do [ \"$v\" = SLURM_CONF ] || unset \"$v\"; done\n"
+	"exec %s --after \"$1\"\n";
 
 /* Written to a temporary name and renamed, so that no reader sees half of it. */
 static int write_file(const char *path, const char *text, int mode, sb_err *e)
@@ -154,7 +177,9 @@ static int choose_packings(drv *d, const long *pend, long npend, sb_err *e)
 			packing_of_args(d->dir, d->g.runs[k[i].run].id, ak, sizeof ak);
 			named = !strcmp(ak, k[a].key);
 		}
-		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= 2 || named));
+		/* a search's replicate runs its frequencies one round at a time: its packing
+		 * is worth building from its first run on, as study run does */
+		int use = !strcmp(st, "ok") || (!st[0] && (b - a >= (d->loc ? 1 : 2) || named));
 		for (long i = a; i < b; i++)
 			d->runs.cache_ok[k[i].run] = (char)use;
 	}
@@ -278,25 +303,158 @@ static long task_minutes(drv *d, char **lines, long ntasks, double *worst, char 
 	return m > SLURM_TIME_MIN ? m : SLURM_TIME_MIN;
 }
 
+/* s as one shell word: as it is where a shell reads it so, else quoted */
+static const char *shell_word(const char *s, char *q, size_t len)
+{
+	const int plain = s[0] && s[strspn(s, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_=%/.,:+@-")] == 0;
+	return plain || safe_shell_quote(s, q, len) ? s : q;
+}
+
+/* The planning job's command line: this submit's, every path absolute, so that it
+ * means the same on a node in any directory. */
+static int plan_command(drv *d, const slurm_opts *so, char *out, size_t len, sb_err *e)
+{
+	char cfile[PATHX], db[PATHX], q[PATHX + 64];
+	if (!realpath(d->o->campaign_file, cfile) || !realpath(d->db.path, db))
+		return sb_errf(e, SB_EIO, "%s: %s", d->o->campaign_file, strerror(errno));
+	const char *word[16];
+	char thr[32], per[32], sargs[PATHX];
+	int n = 0;
+	word[n++] = d->o->self;
+	word[n++] = "submit";
+	word[n++] = cfile;
+	word[n++] = "--slurm";
+	word[n++] = "--runs";
+	word[n++] = d->root;
+	word[n++] = "--db";
+	word[n++] = db;
+	snprintf(per, sizeof per, "--runs-per-task=%ld", so->runs_per_task);
+	word[n++] = per;
+	if (so->throttle > 0) {
+		snprintf(thr, sizeof thr, "--throttle=%ld", so->throttle);
+		word[n++] = thr;
+	}
+	if (!d->o->use_cache)
+		word[n++] = "--no-cache";
+	if (so->sbatch_args && so->sbatch_args[0]) {
+		snprintf(sargs, sizeof sargs, "--sbatch-args=%s", so->sbatch_args);
+		word[n++] = sargs;
+	}
+	size_t o = 0;
+	out[0] = 0;
+	for (int i = 0; i < n; i++) {
+		const char *w = shell_word(word[i], q, sizeof q);
+		if (o + strlen(w) + 2 > len)
+			return sb_errf(e, SB_EUSAGE, "the planning job's command line is too long");
+		o += (size_t)snprintf(out + o, len - o, "%s%s", i ? " " : "", w);
+	}
+	return 0;
+}
+
+/* The planning job of the round just submitted as array `job`: plan.sh written, sbatch
+ * run with the dependency (the user's options, then a short time limit of its own);
+ * dry: printed, nothing written or submitted. */
+static int submit_planner(drv *d, const slurm_opts *so, char **uargs, int nuargs, long job, int dry, sb_err *e)
+{
+	char cmd[4 * PATHX], path[PATHX], *text = NULL;
+	if (plan_command(d, so, cmd, sizeof cmd, e))
+		return e->code;
+	const size_t tl = sizeof PLAN + strlen(d->c.name) + strlen(cmd);
+	snprintf(path, sizeof path, "%s/" SLURM_SUB "/plan.sh", d->dir);
+	if (!(text = malloc(tl)))
+		return sb_errf(e, SB_ENOMEM, "out of memory");
+	snprintf(text, tl, PLAN, d->c.name, cmd);
+	char a_dep[64], a_name[128], a_out[PATHX + 64], a_time[32], a_job[32], *args[MAX_SBATCH_ARGS + 8];
+	if (job > 0)
+		snprintf(a_dep, sizeof a_dep, "--dependency=afterany:%ld", job);
+	else /* a dry run: the array has no id yet */
+		snprintf(a_dep, sizeof a_dep, "--dependency=afterany:JOB");
+	snprintf(a_name, sizeof a_name, "--job-name=%s.plan", d->c.name);
+	snprintf(a_out, sizeof a_out, "--output=%s/" SLURM_SUB "/logs/plan_%%j.out", d->dir);
+	snprintf(a_time, sizeof a_time, "--time=%d", SLURM_PLAN_MINUTES);
+	snprintf(a_job, sizeof a_job, "%ld", job);
+	int na = 0;
+	args[na++] = a_dep;
+	args[na++] = a_name;
+	args[na++] = a_out;
+	for (int i = 0; i < nuargs; i++) /* partition, account, ...: as the user's arrays */
+		args[na++] = uargs[i];
+	args[na++] = a_time; /* after the user's: a --time meant for the runs is not the planner's */
+	args[na++] = path;
+	args[na++] = job > 0 ? a_job : "JOB";
+	if (dry) {
+		printf("# after the array, its planning job; %s would hold:\n%s# the command:\nsbatch", path, text);
+		for (int i = 0; i < na; i++) {
+			char q[PATHX + 64];
+			printf(" %s", shell_word(args[i], q, sizeof q));
+		}
+		printf("\n");
+		free(text);
+		return 0;
+	}
+	long pj = -1;
+	if (!write_file(path, text, 0755, e) && !slurm_queue_submit(args, na, &pj, e))
+		fprintf(stderr, "study: %s: planning job %ld submits the next round when job %ld has ended (log: %s/" SLURM_SUB
+			"/logs/plan_%ld.out; scancel %ld %ld stops the search, study submit resumes it)\n",
+			d->c.name, pj, job, d->dir, pj, job, pj);
+	free(text);
+	return e->code;
+}
+
+/* The planning job's check: did the round of array `job` finish any run? Cancelled
+ * before or while its runs ran, it did not, and the search stops there. */
+static long round_finished(drv *d, long job, sb_err *e)
+{
+	sqlite3_stmt *q;
+	long n = 0;
+	if (sql_exec(&d->db, e, &q,
+		     "SELECT COUNT(*) FROM slurm_task s JOIN run r ON r.campaign = s.campaign AND r.id = s.run"
+		     " WHERE s.campaign = ? AND s.job_id = ? AND r.state IN ('done', 'failed')",
+		     "tl", d->c.name, job))
+		return 0;
+	if (sqlite3_step(q) == SQLITE_ROW)
+		n = (long)sqlite3_column_int64(q, 0);
+	sql_done(&d->db, q, e);
+	return n;
+}
+
 /* Everything after the campaign is open and locked. */
 static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err *e)
 {
 	changes_ctx x = {&d->db, &d->c, &d->g, d->dir, d->o->keep_old, d->o->forget_old, member, d};
-	if (changes_check(&x, e) || driver_record(d, e))
+	/* a search (d->loc): its grid is its chains' runs so far (driver_search_pass) */
+	if (d->loc ? driver_search_pass(d, 1, e) : (changes_check(&x, e) || driver_record(d, e)))
 		return e->code;
-	/* what the earlier arrays did, and which of their tasks still hold runs */
-	slurm_queue q = {0};
-	char *busy = calloc((size_t)d->g.n + 1, 1);
+	/* what the earlier arrays did, and which of their tasks still hold runs; a search
+	 * whose last round brought results walks its chains again: its next round */
+	char *busy = NULL;
 	long nbusy = 0, npend = 0;
-	if (!busy)
-		return sb_errf(e, SB_ENOMEM, "out of memory");
-	if (slurm_queue_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
-	    sweep(d, d->runs.pend, &npend, e)) {
-		slurm_queue_free(&q);
+	for (;;) {
+		slurm_queue q = {0};
+		const long got = d->n_ingested;
 		free(busy);
-		return e->code;
+		if (!(busy = calloc((size_t)d->g.n + 1, 1)))
+			return sb_errf(e, SB_ENOMEM, "out of memory");
+		if (slurm_queue_list(&q, e) || slurm_collect(d, &q, e) || slurm_busy(d, &q, busy, &nbusy, e) ||
+		    sweep(d, d->runs.pend, &npend, e)) {
+			slurm_queue_free(&q);
+			free(busy);
+			return e->code;
+		}
+		slurm_queue_free(&q);
+		if (!d->loc || d->n_ingested == got)
+			break;
+		if (driver_search_pass(d, 0, e)) {
+			free(busy);
+			return e->code;
+		}
 	}
-	slurm_queue_free(&q);
+	if (d->loc && so->after > 0 && !round_finished(d, so->after, e) && !e->code) {
+		free(busy);
+		return sb_errf(e, DRV_INTERRUPTED, "%s: the round of Slurm job %ld finished no run (cancelled, or out of "
+			       "time before a run ended): the search stops here; study submit %s goes on with it",
+			       d->c.name, so->after, d->o->campaign_file);
+	}
 	long n = 0, failed = 0;
 	for (long i = 0; i < npend; i++)
 		if (!busy[d->runs.pend[i]])
@@ -311,8 +469,28 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 	fprintf(stderr, "study: %s: %ld runs, %ld done, %ld failed%s, %ld queued or running in Slurm, %ld to submit\n",
 		d->c.name, d->g.n, d->g.n - npend - failed, failed, failed && !d->o->retry_failed ? " (--retry-failed submits them)" : "",
 		nbusy, n);
+	if (d->loc && nbusy && !e->code) {
+		/* the round in flight: its planning job (or the next submit) goes on */
+		fprintf(stderr, "study: %s: a round is queued or running in Slurm (%ld run%s): the next round is chosen "
+			"from its results when it has ended\n", d->c.name, nbusy, nbusy > 1 ? "s" : "");
+		return 0;
+	}
+	if (d->loc && n == 0 && !e->code) {
+		long groups, open = driver_search_open_groups(d, &groups);
+		driver_search_summary(d);
+		fprintf(stderr, "study: %s: the search has no run to submit: %ld of %ld %s still searching%s\n",
+			d->c.name, open, groups, d->c.autorep.on ? "points" : "groups",
+			open ? " (their runs failed: study status lists them; --retry-failed submits them again)" : "");
+		return 0;
+	}
 	if (n == 0 || e->code)
 		return e->code;
+	if (d->loc) {
+		long groups, open = driver_search_open_groups(d, &groups);
+		fprintf(stderr, "study: %s: %s round: %ld run%s, %ld of %ld %s%s %s\n", d->c.name,
+			d->c.autorep.on ? "replicates" : "onset", n, n > 1 ? "s" : "", open, groups,
+			d->c.autorep.on ? "point" : "group", groups > 1 ? "s" : "", d->c.autorep.on ? "running" : "searching");
+	}
 
 	if (choose_packings(d, d->runs.pend, n, e) || driver_prepare_jobs(d, d->runs.pend, n, d->runs.names, e))
 		return e->code;
@@ -400,13 +578,13 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 				for (long t = 0; t < ntasks; t++)
 					printf("%s\n", lines[t]);
 				printf("# the command:\nsbatch");
-				for (int i = 0; i < na; i++) { /* quoted where a shell would read it otherwise */
+				for (int i = 0; i < na; i++) {
 					char q[PATHX + 64];
-					const int plain = args[i][strspn(args[i], "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-										 "0123456789_=%/.,:+@-")] == 0;
-					printf(" %s", plain || safe_shell_quote(args[i], q, sizeof q) ? args[i] : q);
+					printf(" %s", shell_word(args[i], q, sizeof q));
 				}
 				printf("\n");
+				if (d->loc)
+					submit_planner(d, so, uargs, nuargs, -1, 1, e);
 			}
 		} else if (slurm_queue_submit(args, na, &job, e)) {
 			if (ntasks > 1000)
@@ -417,6 +595,8 @@ static int submit(drv *d, const slurm_opts *so, char **uargs, int nuargs, sb_err
 				d->c.name, n, n > 1 ? "s" : "", ntasks, ntasks > 1 ? "s" : "", job, spec);
 			fprintf(stderr, "study: %s: logs in %s/" SLURM_SUB "/logs/%ld_INDEX.out and %s/logs/RUN.log; "
 				"study status %s shows what finished\n", d->c.name, d->dir, job, d->dir, d->c.name);
+			if (d->loc)
+				submit_planner(d, so, uargs, nuargs, job, 0, e);
 		} else {
 			fprintf(stderr, "study: %s: Slurm job %ld was submitted but could not be recorded; its runs "
 				"are ingested from their files all the same (scancel %ld to stop it)\n",
@@ -444,12 +624,6 @@ int slurm_submit(const driver_opts *o, const slurm_opts *so, sb_err *e)
 	}
 	if (slurm_drv_open(d, o, o->campaign_file, e))
 		goto out;
-	if (d->c.onset.line || d->c.autorep.on) {
-		/* their next runs depend on the results of the last ones */
-		sb_errf(e, SB_EUSAGE, "%s: %s chooses its runs round by round from the results; run it with study run",
-			d->c.name, d->c.onset.line ? "an [onset] search" : "replicates = auto");
-		goto out;
-	}
 	const char *sub[] = {"jobs", "logs", "cache", "failed", SLURM_SUB, SLURM_SUB "/logs"};
 	if (driver_dirs(d, sub, sizeof sub / sizeof *sub, e))
 		goto out;

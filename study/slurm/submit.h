@@ -19,6 +19,8 @@ typedef struct slurm_opts {
 	int dry_run;              /* print the script, the task lines and the sbatch command;
 				   * submit nothing (the runs are recorded and their argument
 				   * files written, as a submit would) */
+	long after;               /* the planning job of a search: the array of the round it
+				   * follows (0: a submit of the user's) */
 } slurm_opts;
 
 /* The array's time limit: the longest task's runs at this machine's measured CPU rate
@@ -26,6 +28,9 @@ typedef struct slurm_opts {
  * minutes; a user's --sbatch-args --time=... wins (docs/cluster.md). */
 #define SLURM_TIME_MARGIN 3.0
 #define SLURM_TIME_MIN 5
+/* The planning job of a search's round (docs/cluster.md, "Searches on Slurm"): its time
+ * limit in minutes; it reads the round's results and submits the next round. */
+#define SLURM_PLAN_MINUTES 10
 
 /* Submits the runs of the campaign that are neither done (nor failed, unless
  * o->retry_failed) nor queued or running in an earlier array: writes their argument

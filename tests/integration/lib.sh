@@ -359,3 +359,49 @@ csv_col() { head -n 1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 
 # contains FILE STRING : fixed-string grep
 contains() { grep -qF -- "$2" "$1"; }
+
+# poll_until SECONDS COMMAND...: poll until the command succeeds (1 when it never did)
+poll_until() {
+	local end=$((SECONDS + $1))
+	shift
+	until "$@"; do
+		[ "$SECONDS" -lt "$end" ] || return 1
+		sleep 0.2
+	done
+}
+
+# slurm_cluster_up: a one-node Slurm cluster for this script (scripts/slurm_local.sh:
+# munged, slurmctld, slurmd under $TMP/cluster, own key, socket and ports), stopped and
+# $TMP removed at its exit, SLURM_CONF exported, /usr/sbin on PATH; check slurm.cluster.
+# Skips (and finishes) only where Slurm cannot be installed or run here.
+slurm_cluster_up() {
+	SLURM_LOCAL="$REPO/scripts/slurm_local.sh"
+	local c t0=$SECONDS
+	have_slurm() {
+		for c in munged slurmctld slurmd sbatch squeue scancel scontrol; do
+			command -v "$c" >/dev/null || [ -x "/usr/sbin/$c" ] || return 1
+		done
+	}
+	PATH="$PATH:/usr/sbin"
+	if ! have_slurm; then # the packages of make deps-test
+		bash "$REPO/scripts/deps.sh" test >"$TMP/deps.log" 2>&1
+		if ! have_slurm; then
+			skip slurm "the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
+			finish
+		fi
+	fi
+	if [ "$(id -u)" -ne 0 ]; then
+		skip slurm "slurmd must run as root to start jobs, and this is uid $(id -u)"
+		finish
+	fi
+	CL="$TMP/cluster"
+	trap 'bash "$SLURM_LOCAL" stop "$CL" >/dev/null 2>&1; rm -rf "$TMP"' EXIT
+	if ! bash "$SLURM_LOCAL" start "$CL" >"$TMP/start.out" 2>"$TMP/start.err"; then
+		fail slurm.cluster "scripts/slurm_local.sh start: $(tail -n 8 "$TMP/start.err")"
+		finish
+	fi
+	export SLURM_CONF="$CL/slurm.conf"
+	[ "$(sinfo --noheader --format=%T)" = idle ] && grep -qx "export SLURM_CONF=$SLURM_CONF" "$TMP/start.out" &&
+		ok slurm.cluster || fail slurm.cluster "node state '$(sinfo --noheader --format=%T)'"
+	echo "# cluster up after $((SECONDS - t0)) s"
+}

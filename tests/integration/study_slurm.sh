@@ -10,50 +10,10 @@
 # tier: slow: a one-node Slurm cluster started, a job array run, cancelled and resubmitted
 . "$(dirname "$0")/lib.sh"
 study_setup
-SLURM_LOCAL="$REPO/scripts/slurm_local.sh"
 T0=$SECONDS
-
-# --- the packages: installed by make deps; a machine that cannot install them skips ---
-have_slurm() {
-	local c
-	for c in munged slurmctld slurmd sbatch squeue scancel scontrol; do
-		command -v "$c" >/dev/null || [ -x "/usr/sbin/$c" ] || return 1
-	done
-}
-PATH="$PATH:/usr/sbin"
-if ! have_slurm; then
-	bash "$REPO/scripts/deps.sh" test >"$TMP/deps.log" 2>&1
-	if ! have_slurm; then
-		skip slurm "the Slurm packages (slurmctld slurmd slurm-client munge) are not installed and could not be: $(tail -n 1 "$TMP/deps.log")"
-		finish
-	fi
-fi
-if [ "$(id -u)" -ne 0 ]; then
-	skip slurm "slurmd must run as root to start jobs, and this is uid $(id -u)"
-	finish
-fi
-
-CL="$TMP/cluster"
-trap 'bash "$SLURM_LOCAL" stop "$CL" >/dev/null 2>&1; rm -rf "$TMP"' EXIT
-if ! bash "$SLURM_LOCAL" start "$CL" >"$TMP/start.out" 2>"$TMP/start.err"; then
-	fail slurm.cluster "scripts/slurm_local.sh start: $(tail -n 8 "$TMP/start.err")"
-	finish
-fi
-export SLURM_CONF="$CL/slurm.conf"
-[ "$(sinfo --noheader --format=%T)" = idle ] && grep -qx "export SLURM_CONF=$SLURM_CONF" "$TMP/start.out" &&
-	ok slurm.cluster || fail slurm.cluster "node state '$(sinfo --noheader --format=%T)'"
-echo "# cluster up after $((SECONDS - T0)) s"
+slurm_cluster_up
 cd "$TMP" || exit 1
 
-# wait_for SECONDS COMMAND...: poll until the command succeeds
-wait_for() {
-	local end=$((SECONDS + $1))
-	shift
-	until "$@"; do
-		[ "$SECONDS" -lt "$end" ] || return 1
-		sleep 0.2
-	done
-}
 # the tasks of job $1 still known to the scheduler
 tasks_of() { squeue --noheader --array --jobs="$1" --format=%i 2>/dev/null; }
 drained() { [ -z "$(tasks_of "$1")" ]; }
@@ -163,7 +123,7 @@ hold_shaking() {
 }
 held=""
 scontrol release "$J1" || fail scancel.setup "scontrol release $J1: exit $?"
-wait_for 300 eval 'hold_shaking || drained "$J1"'
+poll_until 300 eval 'hold_shaking || drained "$J1"'
 if [ -z "$held" ]; then
 	fail scancel.setup "no task's first run was seen shaking before the array ended: $(squeue --array 2>&1 | tail -n 3)"
 	finish
@@ -179,10 +139,10 @@ rc=$?
 scancel "${J1}_$IDX"
 # (Slurm sends SIGCONT before SIGTERM; should it not, the held engine goes on once the
 # SIGTERM waits for it)
-wait_for 30 eval 'term_pending $held || ! kill -0 $held 2>/dev/null' ||
+poll_until 30 eval 'term_pending $held || ! kill -0 $held 2>/dev/null' ||
 	fail scancel.signal_sent "no SIGTERM reached engine $held within 30 s"
 kill -CONT "$held" 2>/dev/null
-wait_for 300 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
+poll_until 300 drained "$J1" || fail slurm.array_end "job $J1 still has tasks: $(tasks_of "$J1")"
 
 # --- study status reads what the tasks did ---
 "$STUDY" status "$NAME" --runs "$TMP/S" >status1.out 2>&1 || fail status.exit "$(cat status1.out)"
@@ -238,7 +198,7 @@ RID2="" held=""
 scontrol release "$J2" || fail scancel.batch_setup "scontrol release $J2: exit $?"
 if [ "$ost" != unstarted ]; then
 	fail scancel.batch_setup "the cancelled task's other run $other is '$ost', not unstarted: no run to stop"
-elif ! wait_for 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
+elif ! poll_until 600 eval 'shaking_held "$other" || { drained "$J2" && held=""; }' || [ -z "$held" ]; then
 	fail scancel.batch_setup "run $other was not seen shaking before its array ended (or its engine not held): $(ls "S/$NAME" | grep -F "$other" | tr '\n' ' '); engines: $(pgrep -a -x shake | cut -c1-300)"
 elif ! is_shaking "$other"; then
 	kill -CONT "$held"
@@ -248,11 +208,11 @@ else
 	# worker, is pending
 	RID2=$other
 	scancel --batch --signal=TERM "${J2}_$(q $DB "SELECT array_index FROM slurm_task WHERE job_id = $J2 AND run = '$other'")"
-	wait_for 30 term_pending "$held" || fail scancel.batch_passed_on "engine $held of run $other got no SIGTERM within 30 s"
+	poll_until 30 term_pending "$held" || fail scancel.batch_passed_on "engine $held of run $other got no SIGTERM within 30 s"
 	kill -CONT "$held"
 fi
-wait_for 300 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
-wait_for 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
+poll_until 300 drained "$J2" || fail slurm.array2_end "job $J2 still has tasks: $(tasks_of "$J2")"
+poll_until 20 eval '! kill -0 $WPID 2>/dev/null' || { kill $WPID 2>/dev/null; echo "# the watch did not end"; }
 wait $WPID
 wrc=$?
 grep -Eq "^  frequency=[34] seed=[12] +t [0-9.e+-]+/6 s" watch.out && grep -q "Slurm tasks queued or running hold" watch.out &&
@@ -267,7 +227,7 @@ if [ -n "$RID2" ]; then
 	"$STUDY" submit s.campaign --slurm --runs "$TMP/S" >sub3.log 2>&1 && grep -q "1 to submit" sub3.log ||
 		fail resubmit.third "$(cat sub3.log)"
 	J3=$(q $DB "SELECT MAX(job_id) FROM slurm_job")
-	wait_for 300 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
+	poll_until 300 drained "$J3" || fail slurm.array3_end "job $J3 still has tasks: $(tasks_of "$J3")"
 	"$STUDY" status "$NAME" --runs "$TMP/S" >status3.out 2>&1 || fail status3.exit "$(cat status3.out)"
 fi
 echo "# resubmitted arrays: $((SECONDS - t)) s"
