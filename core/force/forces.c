@@ -16,9 +16,16 @@
 #include <string.h>
 
 #include "periodic.h"
+#include "dtguard.h"
 
+double forces_gz(double Y, double e)
+{
+	return 2 * dtguard_zeta(e) * sqrt(Y);
+}
+
+/* gn: gamma_N, or with resti gz (law.h); the damping gn m_eff or gz sqrt(m_eff) */
 static inline __attribute__((always_inline)) void contact(
-	const double Y, const double gn, const double gs, const double mu, const int clip,
+	const double Y, const double gn, const int resti, const double gs, const double mu, const int clip,
 	const double dx, const double dy, const double d, const double inv, const double ri,
 	const double rj, const double dvx, const double dvy, const double wi, const double wj,
 	const double meff, double *fx, double *fy, double *fs_out, double *xi_out)
@@ -26,7 +33,8 @@ static inline __attribute__((always_inline)) void contact(
 	const double nx = dx * inv, ny = dy * inv;
 	const double xi = ri + rj - d;
 	const double xidot = -(dvx * nx + dvy * ny);
-	double fn = Y * xi + gn * meff * xidot;
+	const double c = resti ? gn * sqrt(meff) : gn * meff;
+	double fn = Y * xi + c * xidot;
 	if (clip)
 		fn = fn > 0 ? fn : 0;
 	const double vt = -dvx * ny + dvy * nx - (ri * wi + rj * wj);
@@ -48,7 +56,7 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		return;
 	}
 	double fs, xi, d = sqrt(d2);
-	contact(law->Y, law->gn, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
+	contact(law->Y, law->resti ? law->gz : law->gn, law->resti, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
 		wi, wj, meff, fx, fy, &fs, &xi);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
@@ -57,7 +65,7 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
 		double *fsum)
 {
-	const double Y = law->Y, gn = law->gn * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
+	const double Y = law->Y, gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
 		     mo = law->max_overlap, W = nl->period;
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
 	const int ps = io->ps, fs = io->fs;
@@ -70,7 +78,7 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 			continue;
 		const double d = sqrt(d2), ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
-		contact(Y, gn, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
+		contact(Y, gn, law->resti, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
 			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi);
 		bad |= xi > mo * (ri < rj ? ri : rj);
 		if (fsum) {

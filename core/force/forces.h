@@ -12,7 +12,15 @@ typedef struct sb_law {
 	double Y, gn, gs, mu;    /* stiffness, normal and shear damping, Coulomb */
 	double max_overlap;      /* fraction of the smaller radius that stops the run */
 	int clip;                /* clip_attractive */
+	/* restitution given (docs/model.md, "Restitution"): the normal damping of a pair
+	 * is gz sqrt(m_eff), gz = 2 zeta sqrt(Y), the same restitution for every pair;
+	 * else gn m_eff */
+	int resti;
+	double gz;
 } sb_law;
+
+/* The law's gz for restitution e at stiffness Y: 2 zeta sqrt(Y) (dtguard.h's zeta). */
+double forces_gz(double Y, double e);
 
 /* Where the seam loop finds disk i's x, y and scaled velocities (at [i * ps] from
  * x, y, vx, vy) and adds its force and torque (at [i * fs] from fx, fy, t): the

@@ -169,13 +169,15 @@ SB_INLINE sb_vd rec_pair(sb_vd a, sb_vd b, const int h, sb_vd wa, sb_vd wb)
 }
 
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
-		     const int clip, double *restrict fsum, const int packed, const int keep, const int pf)
+		     const int clip, const int resti, double *restrict fsum, const int packed, const int keep,
+		     const int pf)
 {
 	const double *rec = kd->rec;
 	const int *pi = nl->pi, *pj = nl->pj;
 	sb_kbuf *restrict kb = kd->kb;
 	const int np = nl->nflat;
-	const sb_vd Y = sb_splat(law->Y), gn = sb_splat(law->gn * inv_dt), gs = sb_splat(law->gs * inv_dt),
+	/* resti: the normal damping gz sqrt(m_eff) (forces.h), else gamma_N m_eff */
+	const sb_vd Y = sb_splat(law->Y), gn = sb_splat((resti ? law->gz : law->gn) * inv_dt), gs = sb_splat(law->gs * inv_dt),
 		    mu = sb_splat(law->mu), mo = sb_splat(law->max_overlap), one = sb_splat(1.0),
 		    zero = sb_splat(0.0);
 	/* the weights of rec_pair's general form */
@@ -235,7 +237,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			/* -xidot; a + k (-s) is a - k s to the bit */
 			const sb_vd mxidot = dvx * nx + dvy * ny;
 			const sb_vd meff = one / ims; /* 1 / (1/m_i + 1/m_j) */
-			sb_vd fn = Y * xi - gn * meff * mxidot;
+			const sb_vd damp = resti ? gn * sb_sqrt(meff) : gn * meff; /* constant per instantiation */
+			sb_vd fn = Y * xi - damp * mxidot;
 			if (clip) /* fn > 0 ? fn : 0 */
 				fn = sb_max(fn, zero);
 			const sb_vd vt = (dvy * nx - dvx * ny) - rw;
@@ -283,24 +286,35 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	return bad != 0;
 }
 
-/* one instantiation per clip_attractive, prefetching and keep */
-#define INSTANCE(name, clip, pf)                                                                          \
+/* one instantiation per clip_attractive, normal damping (gamma_N or restitution) and
+ * prefetching: the law is chosen at set-up, not in the loop (docs/kernel.md) */
+typedef int (*kernel_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist *, double, int, int);
+#define INSTANCE(name, clip, resti, pf)                                                                   \
 	static int name(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,      \
 			int packed, int keep)                                                              \
 	{                                                                                                  \
-		return kernel(d, l, s, n, inv_dt, clip, NULL, packed, keep, pf);                           \
+		return kernel(d, l, s, n, inv_dt, clip, resti, NULL, packed, keep, pf);                    \
 	}
-INSTANCE(kernel_plain, 0, 0)
-INSTANCE(kernel_clip, 1, 0)
-INSTANCE(kernel_plain_pf, 0, 1)
-INSTANCE(kernel_clip_pf, 1, 1)
+INSTANCE(kernel_plain, 0, 0, 0)
+INSTANCE(kernel_clip, 1, 0, 0)
+INSTANCE(kernel_plain_pf, 0, 0, 1)
+INSTANCE(kernel_clip_pf, 1, 0, 1)
+INSTANCE(kernel_plain_e, 0, 1, 0)
+INSTANCE(kernel_clip_e, 1, 1, 0)
+INSTANCE(kernel_plain_e_pf, 0, 1, 1)
+INSTANCE(kernel_clip_e_pf, 1, 1, 1)
 #undef INSTANCE
+/* [resti][prefetch][clip] */
+static const kernel_fn KERNELS[2][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
+					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}}};
 
 /* the ring's kernel, compiled apart so that it costs nothing when off */
 static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
-	return l->clip ? kernel(d, l, s, n, inv_dt, 1, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, fsum, 0, 0, 0);
+	if (l->resti)
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, fsum, 0, 0, 0);
+	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, fsum, 0, 0, 0);
 }
 
 static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
@@ -308,11 +322,7 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
-	if (d->prefetch)
-		return law->clip ? kernel_clip_pf(d, law, st, nl, inv_dt, packed, keep)
-				 : kernel_plain_pf(d, law, st, nl, inv_dt, packed, keep);
-	return law->clip ? kernel_clip(d, law, st, nl, inv_dt, packed, keep)
-			 : kernel_plain(d, law, st, nl, inv_dt, packed, keep);
+	return KERNELS[law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
 }
 
 /* ---- the fused corrector ---- */

@@ -30,6 +30,8 @@
 #include "h5seal.h"
 #include "h5md.h"
 #include "h5out.h"
+
+#include "pclass.h"
 #include "kernel.h"
 #include "provenance.h"
 #include "record.h"
@@ -1032,6 +1034,31 @@ static void write_results(h5w *h, const sb_sim *s, double t)
 	}
 }
 
+/* /contact_law: what the contact law gives each class of pair (pclass.h), so that a
+ * reader sees the restitution and contact time without the formulas */
+static void write_contact_law(h5w *h, const sb_sim *s)
+{
+	hid_t g = h5w_group(h, h->file, "contact_law", 0);
+	h5w_attr_str(h, g, "damping", s->law.resti ? "restitution" : "gamma_n");
+	h5w_attr_str(h, g, "definition",
+		     "per class of pair: m_eff (g), gamma_n (1/s: the normal damping force is gamma_n m_eff xidot), "
+		     "restitution and contact_time (s) of an unclipped head-on contact, a wall disk immobile "
+		     "(docs/model.md, \"Restitution\")");
+	sb_pclass c[SB_NPCLASS];
+	pclass_of_state(&s->law, &s->sc, &s->st, c);
+	for (int k = 0; k < SB_NPCLASS; k++) {
+		if (!c[k].present)
+			continue;
+		hid_t p = h5w_group(h, g, c[k].name, 0);
+		h5w_attr_double(h, p, "m_eff", c[k].m_eff);
+		h5w_attr_double(h, p, "gamma_n", c[k].gamma_n);
+		h5w_attr_double(h, p, "restitution", c[k].e);
+		h5w_attr_double(h, p, "contact_time", c[k].tc);
+		h5w_close_obj(h, p);
+	}
+	h5w_close_obj(h, g);
+}
+
 static void write_provenance(h5w *h, const sb_sim *s)
 {
 	hid_t g = h5w_group(h, h->file, "provenance", 0);
@@ -1074,6 +1101,7 @@ int h5out_write(const sb_sim *s, const char *path, sb_err *e)
 	write_params(&h, g, &s->sc);
 	h5w_close_obj(&h, g);
 	write_results(&h, s, t);
+	write_contact_law(&h, s);
 	write_provenance(&h, s);
 
 	/* /particles lists bed_xyz first: readers that take the first particle group and

@@ -15,6 +15,7 @@
 #include "provenance.h"
 #include "prepare.h"
 #include "run.h"
+#include "pclass.h"
 #include "sim.h"
 #include "validate.h"
 
@@ -76,7 +77,7 @@ static void show_progress(void *ctx, const sb_progress *p)
 static void usage(FILE *f)
 {
 	fprintf(f,
-		"usage: shake [SCENE] [key=value ...] [--profile]\n"
+		"usage: shake [SCENE] [key=value ...] [--profile | --contacts]\n"
 		"       shake --help | --params | --records | --version | --kernel-paths\n\n"
 		"Simulates a vertically vibrated 2D box of soft disks (Poeschel & Herrmann 1995)\n"
 		"and writes one HDF5 file (output=...) with an XDMF sidecar for ParaView.\n"
@@ -87,6 +88,9 @@ static void usage(FILE *f)
 		"  --records   the table of recorded quantities as TSV: name, key, clock, journal\n"
 		"              tag, run-file group, columns (for tools)\n"
 		"  --profile   time per phase of the step on stderr at the end\n"
+		"  --contacts  what the contact law gives a mean grain pair, a grain and the\n"
+		"              intruder, a grain on a wall disk and the lightest pair (m_eff,\n"
+		"              gamma_N, restitution, contact time) for the scene given, and exit\n"
 		"  --version   git hash of the build, the CPU and the force kernel's paths\n"
 		"  --kernel-paths  the force kernel's paths, one a line: name, runs here (yes/no),\n"
 		"              for tests only (test/-), what the CPU needs (for scripts)\n\n"
@@ -98,13 +102,29 @@ static void usage(FILE *f)
 	params_print_help(f);
 }
 
+/* --contacts: the pair classes from the scene's keys (pclass.h); a particle file's
+ * own disks are in its run file's /contact_law */
+static void print_contacts(const sb_scene *sc)
+{
+	const sb_law law = sim_law(sc);
+	sb_pclass c[SB_NPCLASS];
+	pclass_of_scene(&law, sc, c);
+	printf("# the contact law (%s) for the scene's mean grain radius %g cm%s; docs/model.md, \"Restitution\"\n",
+	       law.resti ? "restitution given: the damping per pair" : "gamma_n given: the restitution per pair",
+	       0.5 * (sc->r_min + sc->r_max), sc->particles[0] ? " (not the particle file's disks)" : "");
+	printf("%-15s %10s %10s %11s %12s\n", "pair", "m_eff_g", "gamma_n_1/s", "restitution", "contact_time_s");
+	for (int k = 0; k < SB_NPCLASS; k++)
+		if (c[k].present)
+			printf("%-15s %10.5g %10.5g %11.5g %12.5g\n", c[k].name, c[k].m_eff, c[k].gamma_n, c[k].e, c[k].tc);
+}
+
 int main(int argc, char **argv)
 {
 	gsl_set_error_handler_off(); /* statuses are checked: GSL's default handler aborts */
 	sb_scene sc;
 	params_defaults(&sc);
 	sb_err e = {0};
-	int profile = 0;
+	int profile = 0, contacts = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -132,6 +152,10 @@ int main(int argc, char **argv)
 			profile = 1;
 			continue;
 		}
+		if (!strcmp(a, "--contacts")) {
+			contacts = 1;
+			continue;
+		}
 		if (a[0] == '-' && a[1] == '-') {
 			fprintf(stderr, "shake: unknown option '%s' (see shake --help)\n", a);
 			return SB_EUSAGE;
@@ -147,6 +171,10 @@ int main(int argc, char **argv)
 	if (params_validate(&sc, &e)) {
 		fprintf(stderr, "shake: %s\n", e.msg);
 		return SB_EUSAGE;
+	}
+	if (contacts) {
+		print_contacts(&sc);
+		return 0;
 	}
 
 	/* A run must not find out at its end that it cannot write its output. */

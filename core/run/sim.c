@@ -17,6 +17,15 @@ double sim_box_y(const sb_sim *s, double t) { return drive_y(&s->drive, t); }
 double sim_box_v(const sb_sim *s, double t) { return drive_v(&s->drive, t); }
 double sim_box_a(const sb_sim *s, double t) { return drive_a(&s->drive, t); }
 
+sb_law sim_law(const sb_scene *sc)
+{
+	sb_law l = {sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap, sc->clip_attractive,
+		    sc->restitution > 0, 0};
+	if (l.resti)
+		l.gz = forces_gz(sc->stiffness, sc->restitution);
+	return l;
+}
+
 int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 {
 	/* what run.c's schedule and h5out.c's writers take for granted (record.h) */
@@ -24,8 +33,7 @@ int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e)
 	memset(s, 0, sizeof *s);
 	s->sc = *sc;
 	s->stage = "step";
-	s->law = (sb_law){sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
-			  sc->clip_attractive};
+	s->law = sim_law(sc);
 	integ_init(&s->in, sc->integrator, sc->dt);
 	s->drive = (sb_drive){sc->ramp, sc->amplitude, sc->frequency, sc->ramp_from, sc->ramp_to,
 			      sc->duration - sc->ramp_hold, sc->ramp_hold};

@@ -88,6 +88,8 @@ typedef struct sb_sim {
 				   * "shaking"; "step" outside the two) */
 } sb_sim;
 
+/* The contact law a scene asks for (forces.h). */
+sb_law sim_law(const sb_scene *sc);
 int sim_init(sb_sim *s, const sb_scene *sc, sb_err *e);
 void sim_free(sb_sim *s);
 

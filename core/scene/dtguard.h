@@ -10,8 +10,19 @@
 /* The stability guard (measured by `make stress`): the largest dt each
  * integrator survives is k t_c (for stiff contacts) but never more than an absolute
  * bound, with t_c = pi / sqrt(Y/m_eff - (gamma_N/2)^2) of the lightest pair (m_eff =
- * m_min / 2). Returns the limit; *tc gets t_c. */
+ * m_min / 2, gamma_n its damping rate: dtguard_gamma). Returns the limit; *tc gets t_c. */
 double dtguard_limit(int kind, double Y, double gamma_n, double m_min, double *tc);
+
+/* The linear spring-dashpot contact (docs/model.md, "Restitution"): the damping ratio
+ * zeta = -ln e / sqrt(pi^2 + ln^2 e) that gives it the normal restitution e (0 < e <= 1);
+ * a pair's normal damping rate gamma_N under the scene (2 zeta sqrt(Y / m_eff) when
+ * restitution is set, else gamma_n); and the restitution and contact time of a pair of
+ * effective mass meff at gamma_N (the unclipped contact ends at xi = 0 after pi / w,
+ * w = sqrt(Y / m_eff - gamma_N^2 / 4), e = exp(-gamma_N t_c / 2); e = 0 and t_c = inf
+ * when overdamped). */
+double dtguard_zeta(double e);
+double dtguard_gamma(const sb_scene *sc, double meff);
+void dtguard_pair(double Y, double gamma_n, double meff, double *e, double *tc);
 
 /* Apply the scene's dt_guard for the lightest mobile mass m_min: an error (SB_EUSAGE)
  * beyond the limit when dt_guard = refuse; a warning text in warn (empty if none)

@@ -102,6 +102,10 @@ static const sb_param TABLE[] = {
 	  "normal spring constant Y"},
 	{"gamma_n", REAL(gamma_n), "1/s", "100", 0, 1e8, NULL, PF_PREP | PF_DYN,
 	 "normal damping gamma_N"},
+	{"restitution", REAL(restitution), "", "0", 0, 1, NULL, PF_PREP | PF_DYN,
+	 "normal coefficient of restitution e of every pair (grain, intruder, wall): the normal damping set per pair, "
+	 "gamma_N = 2 zeta sqrt(Y / m_eff), zeta = -ln e / sqrt(pi^2 + ln^2 e), as LAMMPS's damping "
+	 "coeff_restitution; 0 = off: gamma_n for every pair (docs/model.md, \"Restitution\")"},
 	{"gamma_s", REAL(gamma_s), "1/s", "1", 0, 1e8, NULL, PF_PREP | PF_DYN,
 	 "shear damping gamma_S"},
 	{"mu", REAL(mu), "", "0.5", 0, 100, NULL, PF_PREP | PF_DYN,

@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 78  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 79  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
@@ -40,7 +40,7 @@ struct sb_scene {
 	double amplitude, frequency, gravity;
 	int ramp;            /* enum sb_ramp (drive.h) */
 	double ramp_from, ramp_to, ramp_hold;
-	double stiffness, gamma_n, gamma_s, mu;
+	double stiffness, gamma_n, gamma_s, mu, restitution;
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;

@@ -28,6 +28,10 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->stop == STOP_RISEN && s->radius_ratio == 0 && !s->particles[0])
 		return sb_errf(e, SB_EUSAGE, "%s: stop = risen needs an intruder (radius_ratio is 0, %s)", W("stop"),
 			       W("radius_ratio"));
+	/* restitution sets every pair's normal damping: a gamma_n beside it would be ignored */
+	if (s->restitution > 0 && strcmp(W("gamma_n"), "default"))
+		return sb_errf(e, SB_EUSAGE, "%s: restitution = %g sets the normal damping of every pair; gamma_n (%s) "
+			       "cannot be set beside it: leave one out", W("restitution"), s->restitution, W("gamma_n"));
 	if (s->r_min > s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
 			       s->r_max, W("r_max"));

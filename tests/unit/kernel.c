@@ -78,9 +78,9 @@ static double max_rel(const double *a, const double *b, int n)
 /* what the first path gave, for the others to equal: per clip, the forces, the ring
  * sums, the fused step's state and the list */
 typedef struct firsts {
-	int have[2];
-	double *f[2][3], *fs[2], *q[2][3][6];
-	int *pi[2], *pj[2], np[2];
+	int have[4];
+	double *f[4][3], *fs[4], *q[4][3][6];
+	int *pi[4], *pj[4], np[4];
 } firsts;
 
 static int bits_equal(const void *a, const void *b, size_t bytes)
@@ -98,12 +98,16 @@ static void *dup_bytes(const void *p, size_t bytes)
 static void test_forces(const char *path, firsts *fi)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-	for (int clip = 0; clip <= 1; clip++) {
+	/* mode: clip_attractive (bit 0) and the damping per pair from restitution (bit 1) */
+	for (int mode = 0; mode < 4; mode++) {
+		const int clip = mode & 1, resti = mode >> 1;
+		const char *const rs = resti ? ".restitution" : "";
 		gsl_rng_set(rng, 7 + (unsigned long)clip);
 		sb_state st = {0};
 		const double dt = 5e-5, inv_dt = 1 / dt;
 		scene(&st, rng, 203, 30, 12, dt); /* 203: a partial last block of eight */
-		sb_law law = {3e6, 100, 1, 0.5, 100, clip}; /* scattered: some overlaps are deep */
+		/* scattered: some overlaps are deep */
+		sb_law law = {3e6, 100, 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0};
 		sb_nlist nl;
 		sb_kernel *k = NULL;
 		sb_err e = {0};
@@ -113,7 +117,7 @@ static void test_forces(const char *path, firsts *fi)
 			ok = !nlist_build(&nl, &st, &e);
 		}
 		char id[128];
-		snprintf(id, sizeof id, "kernel.%s.clip%d.setup", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.setup", path, clip, rs);
 		CHECK(id, ok, "%s", e.msg);
 		if (!ok)
 			return;
@@ -127,7 +131,7 @@ static void test_forces(const char *path, firsts *fi)
 		int ncontact = 0;
 		for (int i = 0; i < st.n; i++)
 			ncontact += fs_ref[i] > 0;
-		snprintf(id, sizeof id, "kernel.%s.clip%d.scene_has_contacts", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.scene_has_contacts", path, clip, rs);
 		CHECK(id, ncontact > 100, "only %d disks touch", ncontact);
 		/* into st->f */
 		int bad = kernel_forces(k, &law, &st, &nl, inv_dt, 0, NULL, &e);
@@ -136,20 +140,20 @@ static void test_forces(const char *path, firsts *fi)
 			double r = max_rel(st.f[c], ref[c], st.n);
 			w = r > w ? r : w;
 		}
-		snprintf(id, sizeof id, "kernel.%s.clip%d.forces_equal_pair_sums", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.forces_equal_pair_sums", path, clip, rs);
 		/* a wrong m_eff, sign or torque would differ by far more than rounding */
 		CHECK(id, bad == 0 && w < 1e-12, "largest relative difference %.3g (kernel returned %d)", w, bad);
 		/* the ring's sums */
 		for (int c = 0; c < 3; c++)
 			memcpy(got[c], st.f[c], sizeof(double) * (size_t)st.n);
 		kernel_forces(k, &law, &st, &nl, inv_dt, 0, fs_got, &e);
-		snprintf(id, sizeof id, "kernel.%s.clip%d.ring_sums_equal_pair_sums", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.ring_sums_equal_pair_sums", path, clip, rs);
 		CHECK(id, max_rel(fs_got, fs_ref, st.n) < 1e-12, "largest relative difference %.3g",
 		      max_rel(fs_got, fs_ref, st.n));
 		/* an overlap beyond the threshold is reported */
 		sb_law tight = law;
 		tight.max_overlap = 1e-6;
-		snprintf(id, sizeof id, "kernel.%s.clip%d.overlap_flag", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.overlap_flag", path, clip, rs);
 		CHECK(id, kernel_forces(k, &tight, &st, &nl, inv_dt, 0, NULL, &e) == 1, "no overlap beyond 1e-6 R reported");
 		/* the fused path: forces kept, corrected and predicted in one pass, then
 		 * synced, equal the reference step (forces into st->f, correct, predict) */
@@ -175,36 +179,36 @@ static void test_forces(const char *path, firsts *fi)
 		for (int c = 0; c < 3; c++)
 			for (int o = 0; o < 6; o++)
 				same &= !memcmp(st.q[c][o], st2.q[c][o], sizeof(double) * (size_t)st.nm);
-		snprintf(id, sizeof id, "kernel.%s.clip%d.fused_equals_reference_step", path, clip);
+		snprintf(id, sizeof id, "kernel.%s.clip%d%s.fused_equals_reference_step", path, clip, rs);
 		CHECK(id, same, "the fused corrector's state differs from forces + correct + predict");
 		/* every path gives the first path's bits */
 		const size_t nb = sizeof(double) * (size_t)st.n, mb = sizeof(double) * (size_t)st.nm;
-		if (!fi->have[clip]) {
-			fi->have[clip] = 1;
+		if (!fi->have[mode]) {
+			fi->have[mode] = 1;
 			for (int c = 0; c < 3; c++) {
-				fi->f[clip][c] = dup_bytes(got[c], nb);
+				fi->f[mode][c] = dup_bytes(got[c], nb);
 				for (int o = 0; o < 6; o++)
-					fi->q[clip][c][o] = dup_bytes(st2.q[c][o], mb);
+					fi->q[mode][c][o] = dup_bytes(st2.q[c][o], mb);
 			}
-			fi->fs[clip] = dup_bytes(fs_got, nb);
-			fi->np[clip] = nl.nflat;
-			fi->pi[clip] = dup_bytes(nl.pi, sizeof(int) * (size_t)nl.nflat);
-			fi->pj[clip] = dup_bytes(nl.pj, sizeof(int) * (size_t)nl.nflat);
+			fi->fs[mode] = dup_bytes(fs_got, nb);
+			fi->np[mode] = nl.nflat;
+			fi->pi[mode] = dup_bytes(nl.pi, sizeof(int) * (size_t)nl.nflat);
+			fi->pj[mode] = dup_bytes(nl.pj, sizeof(int) * (size_t)nl.nflat);
 		} else {
-			int eq = nl.nflat == fi->np[clip] && bits_equal(nl.pi, fi->pi[clip], sizeof(int) * (size_t)nl.nflat) &&
-				 bits_equal(nl.pj, fi->pj[clip], sizeof(int) * (size_t)nl.nflat);
-			snprintf(id, sizeof id, "kernel.%s.clip%d.list_equals_first_path", path, clip);
-			CHECK(id, eq, "the candidate scan gave another list (%d pairs against %d)", nl.nflat, fi->np[clip]);
-			eq = bits_equal(fs_got, fi->fs[clip], nb);
+			int eq = nl.nflat == fi->np[mode] && bits_equal(nl.pi, fi->pi[mode], sizeof(int) * (size_t)nl.nflat) &&
+				 bits_equal(nl.pj, fi->pj[mode], sizeof(int) * (size_t)nl.nflat);
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.list_equals_first_path", path, clip, rs);
+			CHECK(id, eq, "the candidate scan gave another list (%d pairs against %d)", nl.nflat, fi->np[mode]);
+			eq = bits_equal(fs_got, fi->fs[mode], nb);
 			for (int c = 0; c < 3; c++)
-				eq &= bits_equal(got[c], fi->f[clip][c], nb);
-			snprintf(id, sizeof id, "kernel.%s.clip%d.forces_equal_first_path_bits", path, clip);
+				eq &= bits_equal(got[c], fi->f[mode][c], nb);
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.forces_equal_first_path_bits", path, clip, rs);
 			CHECK(id, eq, "forces or ring sums differ from the first path's in some bit");
 			eq = 1;
 			for (int c = 0; c < 3; c++)
 				for (int o = 0; o < 6; o++)
-					eq &= bits_equal(st2.q[c][o], fi->q[clip][c][o], mb);
-			snprintf(id, sizeof id, "kernel.%s.clip%d.fused_step_equals_first_path_bits", path, clip);
+					eq &= bits_equal(st2.q[c][o], fi->q[mode][c][o], mb);
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.fused_step_equals_first_path_bits", path, clip, rs);
 			CHECK(id, eq, "the fused step's state differs from the first path's in some bit");
 		}
 		nlist_free(&nl2);
@@ -287,7 +291,7 @@ static void test_invariants(void)
 	gsl_rng_set(rng, 11);
 	sb_state st = {0};
 	scene(&st, rng, 41, 12, 8, 5e-5);
-	sb_law law = {3e6, 100, 1, 0.5, 100, 0};
+	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0};
 	sb_nlist nl;
 	sb_kernel *k = NULL;
 	sb_err e = {0};
@@ -367,7 +371,7 @@ int main(void)
 	}
 	test_refusals(p, n);
 	test_invariants();
-	for (int c = 0; c < 2; c++) {
+	for (int c = 0; c < 4; c++) {
 		for (int d = 0; d < 3; d++) {
 			free(fi.f[c][d]);
 			for (int o = 0; o < 6; o++)
