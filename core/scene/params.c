@@ -64,7 +64,10 @@ static const sb_param TABLE[] = {
 	 "x wraps with period width (disks interact across x = 0 / width by the minimum image; the bottom "
 	 "row tiles [0, width))"},
 	{"density", REAL(density), "g/cm^3", "1", 0, 1e6, NULL, PF_PREP | PF_MINX,
-	 "material density rho"},
+	 "material density rho of the grains and the walls"},
+	{"intruder_density", REAL(intruder_density), "g/cm^3", "0", 0, 1e6, NULL, PF_PREP,
+	 "material density of the intruder (0 = density: the grains' material); its mass and moment of "
+	 "inertia follow the mass model with it (docs/model.md, \"Units and the paper's values\")"},
 	{"mass_factor", REAL(mass_factor), "cm", "6.283185307179586", 0, 1e6, NULL, PF_PREP | PF_MINX,
 	  "m = mass_factor * rho * R^2 (the paper prints 2 pi)"},
 	{"seed", INT(seed), "", "1", 0, 9007199254740992.0, NULL, PF_PREP,

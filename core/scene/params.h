@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 78  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 79  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
@@ -30,7 +30,7 @@ struct sb_scene {
 	double width;
 	double wall_radius, wall_spacing, wall_height;
 	int sides;           /* enum sb_sides */
-	double density, mass_factor;
+	double density, intruder_density, mass_factor;
 	long seed;
 	char particles[SB_STR_MAX];
 	int settle;          /* enum sb_tristate */
