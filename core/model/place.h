@@ -19,5 +19,7 @@ int place_scene(const sb_scene *sc, sb_state *st, sb_err *e);
 
 /* Push one disk of a kind with the scene's mass model (walls honour wall_mass). */
 int place_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e);
+/* The same with a mass of its own (a particle file's, particle_mass = file). */
+int place_push_mass(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, double m, sb_err *e);
 
 #endif

@@ -87,6 +87,9 @@ int params_validate(const sb_scene *s, sb_err *e)
 		if (dtguard_check(s, m_min, warn, sizeof warn, e))
 			return e->code;
 	}
+	if (s->particle_mass == PMASS_FILE && !s->particles[0])
+		return sb_errf(e, SB_EUSAGE, "%s: particle_mass = file, but there is no particle file (particles) to take "
+			       "masses from", W("particle_mass"));
 	if (s->settle_min > s->settle_max)
 		return sb_errf(e, SB_EUSAGE, "%s: settle_min (%g) must not exceed settle_max (%g, %s)", W("settle_min"),
 			       s->settle_min, s->settle_max, W("settle_max"));
