@@ -2,7 +2,10 @@
 # materials.sh - an intruder of another material (docs/model.md, "Units and the paper's
 # values"): intruder_density sets the intruder's mass and moment of inertia and nothing
 # else, its default gives the bits of a run without it, and a bad value is refused with
-# its file, line, key and range.
+# its file, line, key and range. A particle file's masses (docs/inputs.md, "Particle
+# masses"): its mass or density column agrees with the scene's mass model or is refused
+# with its line (particle_mass = scene), or is used (particle_mass = file); never
+# ignored. A second intruder in a particle file is refused.
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
@@ -16,60 +19,7 @@ shake_run d1.log "${PREP[@]}" output="$TMP/d1.h5" && shake_run d3.log "${PREP[@]
 rc=$?
 if [ "$rc" -ne 0 ]; then
 	fail runs "exit $rc: $(head -c 300 d1.log d3.log dx.log)"
-	
-# --- particle files: a bed prepared with an intruder twice as dense, in both formats ---
-shake_run w.log "${FAST[@]}" duration=0 intruder_density=2 write_particles="$TMP/P.txt" write_lammps="$TMP/P.data" output=none
-rc=$?
-if [ "$rc" -ne 0 ] || [ ! -s P.txt ] || [ ! -s P.data ]; then
-	fail pfile.write "exit $rc: $(head -c 300 w.log)"
 	finish
-fi
-RUN=(settle=no "${GENTLE[@]}" duration=0.2 traj_rate=200 snapshots=yes progress=no)
-il=$(grep -n ' intruder ' P.txt | cut -d: -f1)
-al=$(awk '/^Atoms/ { a = 1 } a && $2 == 2 { print NR; exit }' P.data)
-# read under the default material, both files are refused at the intruder's line, naming
-# the key that would make it agree and the one that takes the file's masses
-for f in P.txt:$il P.data:$al; do
-	shake_run r.log particles="$TMP/${f%%:*}" "${RUN[@]}" output="$TMP/r.h5"
-	rc=$?
-	[ "$rc" -eq 1 ] && contains r.log "$f: intruder" && contains r.log "intruder_density" && contains r.log "particle_mass = file" &&
-		[ ! -e r.h5 ] && ok "pfile.refused.${f%%:*}" || fail "pfile.refused.${f%%:*}" "exit $rc: $(head -c 300 r.log)"
-done
-# under the file's material it runs, and so does particle_mass = file; from the text file the
-# two are the same run bit for bit (its m column is the scene's mass, printed exactly)
-shake_run s.log particles="$TMP/P.txt" "${RUN[@]}" intruder_density=2 output="$TMP/s.h5" &&
-	shake_run f.log particles="$TMP/P.txt" "${RUN[@]}" particle_mass=file output="$TMP/f.h5" &&
-	shake_run g.log particles="$TMP/P.data" "${RUN[@]}" particle_mass=file output="$TMP/g.h5"
-rc=$?
-if [ "$rc" -ne 0 ]; then
-	fail pfile.runs "exit $rc: $(head -c 300 s.log f.log g.log)"
-	finish
-fi
-same_output s.h5 f.h5 output particle_mass intruder_density && ok pfile.file_is_scene ||
-	fail pfile.file_is_scene "particle_mass = file differs from the scene's mass model with intruder_density = 2"
-# the LAMMPS density column gives the masses to rounding: the intruder's 2 pi 2 4 g
-awk -v a="$(mass g.h5 1)" -v b="$(mass s.h5 1)" 'BEGIN { pi = 3.141592653589793; exit !(b == 2 * pi * 8 && (a - b) ^ 2 < (1e-12 * b) ^ 2) }' &&
-	ok pfile.lammps_mass || fail pfile.lammps_mass "intruder mass $(mass g.h5 1) from the LAMMPS file, $(mass s.h5 1) from the text, expected 16 pi g"
-# particle_mass = file takes what the file says: an intruder of mass 100 g exactly
-awk -v l="$il" 'NR == l { $8 = 100 } { print }' P.txt >P100.txt
-shake_run h.log particles="$TMP/P100.txt" "${RUN[@]}" particle_mass=file duration=0 output="$TMP/h.h5"
-[ "$(mass h.h5 1)" = 100 ] && ok pfile.file_mass || fail pfile.file_mass "intruder mass '$(mass h.h5 1)', expected 100: $(head -c 300 h.log)"
-# a file without the column: the scene's masses (as before the column existed), but
-# particle_mass = file is refused at its first line, and without any particle file
-awk '!/^#/ { NF = 7 } { print }' P.txt >P7.txt
-first=$(grep -vn '^#' P7.txt | head -n 1 | cut -d: -f1)
-shake_run n.log particles="$TMP/P7.txt" "${RUN[@]}" duration=0 output=none && ok pfile.no_column_scene ||
-	fail pfile.no_column_scene "$(head -c 300 n.log)"
-shake_run n.log particles="$TMP/P7.txt" "${RUN[@]}" particle_mass=file duration=0 output="$TMP/n.h5"
-rc=$?
-[ "$rc" -eq 1 ] && contains n.log "P7.txt:$first:" && contains n.log "particle_mass = file (command line)" && contains n.log "no mass column" &&
-	ok pfile.refused.no_column || fail pfile.refused.no_column "exit $rc: $(head -c 300 n.log)"
-printf 'particle_mass = file\n' >pm.ini
-shake_run n.log pm.ini "${FAST[@]}" duration=0 output=none
-rc=$?
-[ "$rc" -eq 1 ] && contains n.log "pm.ini:1" && contains n.log "no particle file" && ok pfile.refused.no_file ||
-	fail pfile.refused.no_file "exit $rc: $(head -c 300 n.log)"
-finish
 fi
 # the tiny bed's intruder has R = 2 cm (radius_ratio 2, mean grain radius 1 cm): its mass is
 # mass_factor rho R^2 = 2 pi 3 4 g at intruder_density 3, 2 pi 4 g at the default
@@ -152,4 +102,10 @@ shake_run n.log pm.ini "${FAST[@]}" duration=0 output=none
 rc=$?
 [ "$rc" -eq 1 ] && contains n.log "pm.ini:1" && contains n.log "no particle file" && ok pfile.refused.no_file ||
 	fail pfile.refused.no_file "exit $rc: $(head -c 300 n.log)"
+# a second intruder would be shaken unrecorded: refused at its line, naming the first's
+awk -v l="$il" 'NR == l { print; $1 = $1 + 10 } { print }' P.txt | awk -v l="$il" 'NR == l + 1 { $4 = "intruder" } { print }' >P2.txt
+shake_run two.log particles="$TMP/P2.txt" "${RUN[@]}" intruder_density=2 duration=0 output="$TMP/two.h5"
+rc=$?
+[ "$rc" -eq 1 ] && contains two.log "P2.txt:$((il + 1)): a second intruder (the first on line $il)" && [ ! -e two.h5 ] &&
+	ok pfile.refused.second_intruder || fail pfile.refused.second_intruder "exit $rc: $(head -c 300 two.log)"
 finish
