@@ -15,6 +15,7 @@
 #include "periodic.h"
 #include "place.h"
 #include "textline.h"
+#include "units.h"
 
 /* What a particle file may hold. A line is at most PF_LINE_MAX characters (the
  * engine writes about 170); a longer one is refused rather than read in pieces, whose
@@ -29,8 +30,14 @@
 #define PF_R_MIN 1e-4
 #define PF_R_MAX 1e4
 
+/* What a file says of a disk's mass (docs/inputs.md, "Particle masses"): nothing, a text
+ * line's m column, or a LAMMPS Atoms line's density column. */
+enum { MCOL_NONE, MCOL_TEXT, MCOL_LAMMPS };
+
 typedef struct disk {
 	double x, y, r, vx, vy, w;
+	double m, col;    /* the mass the file gives (g) and the column it comes from, if mcol */
+	int mcol;
 	long line, vline; /* lines of the disk and of its velocity (LAMMPS), 0 if none */
 	long id;          /* LAMMPS atom id */
 	int kind;
@@ -194,11 +201,11 @@ static int field_int(const lreader *r, const field *f, const char *name, long lo
 		       (int)(f->n > 64 ? 64 : f->n), f->s);
 }
 
-/* Text lines "x y r kind [vx vy omega]": four or seven fields, every one read (a fifth
- * word is no velocity: the line would start at rest unasked). */
+/* Text lines "x y r kind [vx vy omega [m]]": four, seven or eight fields, every one read
+ * (a fifth word is no velocity: the line would start at rest unasked). */
 static int read_text(lreader *r, dlist *l, sb_err *e)
 {
-	static const char *const NAME[7] = {"x", "y", "r", "kind", "vx", "vy", "omega"};
+	static const char *const NAME[8] = {"x", "y", "r", "kind", "vx", "vy", "omega", "m"};
 	const char *path = r->path;
 	int k;
 	while ((k = lr_next(r, e)) > 0) {
@@ -209,17 +216,19 @@ static int read_text(lreader *r, dlist *l, sb_err *e)
 		if (hash)
 			*hash = 0;
 		disk d = {.line = r->line};
-		field f[7];
-		const int nf = split(line, f, 7);
-		if (nf != 4 && nf != 7)
-			return sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'x y r kind [vx vy omega]', got %d fields", path,
+		field f[8];
+		const int nf = split(line, f, 8);
+		if (nf != 4 && nf != 7 && nf != 8)
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: expected 'x y r kind [vx vy omega [m]]', got %d fields", path,
 				       r->line, nf);
-		double *v[7] = {&d.x, &d.y, &d.r, NULL, &d.vx, &d.vy, &d.w};
+		double *v[8] = {&d.x, &d.y, &d.r, NULL, &d.vx, &d.vy, &d.w, &d.col};
+		d.mcol = nf == 8 ? MCOL_TEXT : MCOL_NONE;
 		for (int i = 0; i < nf; i++)
 			if (v[i] && field_real(r, &f[i], NAME[i], v[i], e))
 				return e->code;
 		if (check_radius(path, r->line, d.r, e))
 			return e->code;
+		d.m = d.col;
 		const char *kind = f[3].s;
 		const size_t kl = f[3].n;
 		if (kl == 5 && !strncmp(kind, "grain", 5))
@@ -292,7 +301,8 @@ static int find_id(const idref *ref, int n, long id)
 
 /* LAMMPS data file, atom_style sphere: Atoms lines are
  * "id type diameter density x y z [ix iy iz]", Velocities "id vx vy vz wx wy wz".
- * The density column is ignored: masses follow the scene's mass model. As LAMMPS's
+ * The density column is the mass 4/3 pi R^3 density (LAMMPS's sphere, even in 2D),
+ * checked against the scene's mass model or used (pfile_read). As LAMMPS's
  * read_data does, an atom outside the box of the header is an error, and so are a
  * repeated atom id, Velocities before Atoms and an Atoms section of another style. */
 static int read_lammps(lreader *r, dlist *l, sb_err *e)
@@ -422,6 +432,9 @@ static int read_lammps(lreader *r, dlist *l, sb_err *e)
 							      box[a][1]);
 				}
 				d.r = 0.5 * dia;
+				d.col = rho;
+				d.m = rho * (4.0 * SB_PI * d.r * d.r * d.r) / 3.0;
+				d.mcol = MCOL_LAMMPS;
 				d.kind = type == 1 ? KIND_GRAIN : type == 2 ? KIND_INTRUDER : KIND_WALL;
 				d.id = (long)id;
 				if (!err)
@@ -697,6 +710,24 @@ static int check_overlaps(const sb_scene *sc, const dlist *l, const char *path, 
 	return err;
 }
 
+/* One intruder per run: the engine tracks one (its trajectory, waiting time and summaries),
+ * and a second one would be shaken untracked while the run's records speak of the first
+ * alone; refused at the second's line rather than run so (docs/inputs.md, "Particle
+ * masses", and the paragraph after it). */
+static int check_intruders(const dlist *l, const char *path, sb_err *e)
+{
+	long first = 0;
+	for (int i = 0; i < l->n; i++) {
+		if (l->d[i].kind != KIND_INTRUDER)
+			continue;
+		if (first)
+			return sb_errf(e, SB_EUSAGE, "%s:%ld: a second intruder (the first on line %ld): a run tracks one "
+				       "intruder, and the second would be shaken unrecorded", path, l->d[i].line, first);
+		first = l->d[i].line;
+	}
+	return 0;
+}
+
 static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 {
 	FILE *f = fs_open_input(path, "particle file", PF_MAX_BYTES, SB_EUSAGE, e);
@@ -716,12 +747,46 @@ static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 	if (!err && l->n == 0)
 		err = sb_errf(e, SB_EUSAGE, "%s: no particles", path);
 	if (!err)
+		err = check_intruders(l, path, e);
+	if (!err)
 		err = check_span(l, path, e);
 	if (!err)
 		err = check_far(sc, l, path, e);
 	if (!err)
 		err = check_overlaps(sc, l, path, e);
 	return err;
+}
+
+/* How much a file's mass may differ from the scene's and still be the scene's: the
+ * rounding of a printed number (a LAMMPS density column is 3 m / (4 pi R^3), read back
+ * to a few ulp) and no more; a density ratio of another material is far beyond it. */
+#define PF_MASS_REL 1e-9
+
+/* A disk's mass by particle_mass (docs/inputs.md, "Particle masses") is the scene's mass
+ * model, which a column of the file must then agree with (a file of a heavier intruder
+ * read under the default density is refused, never run with masses it did not ask
+ * for), or the file's column, which every line must then have. */
+static int check_mass(const sb_scene *sc, const disk *d, const char *path, sb_err *e)
+{
+	static const char *const COL[] = {"", "m", "density"};
+	if (sc->particle_mass == PMASS_FILE) {
+		if (d->mcol == MCOL_NONE)
+			return sb_errf(e, SB_EUSAGE,
+				       "%s:%ld: particle_mass = file (%s), but the line has no mass column "
+				       "(expected 'x y r kind vx vy omega m')",
+				       path, d->line, params_where(sc, "particle_mass"));
+		return 0;
+	}
+	const double m = place_mass(sc, d->r, d->kind);
+	if (d->mcol == MCOL_NONE || fabs(d->m - m) <= PF_MASS_REL * m)
+		return 0;
+	const char *key = place_density_key(sc, d->kind), *hint = d->kind == KIND_INTRUDER ? "intruder_density" : "density";
+	return sb_errf(e, SB_EUSAGE,
+		       "%s:%ld: %s of mass %.10g g (the file's %s column, %.17g), but the scene's mass model gives %.10g g "
+		       "(mass_factor %g, %s; %s %g, %s): set %s to the file's material, or particle_mass = file to take "
+		       "the file's masses",
+		       path, d->line, kind_name(d->kind), d->m, COL[d->mcol], d->col, m, sc->mass_factor,
+		       params_where(sc, "mass_factor"), key, place_density(sc, d->kind), params_where(sc, key), hint);
 }
 
 int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
@@ -740,8 +805,13 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
 			if ((d->kind == KIND_WALL) != pass)
 				continue;
 			sb_err pe = {0};
-			err = place_push(sc, st, d->x, d->y, d->r, d->kind, &pe);
-			if (err == SB_EUSAGE) /* the mass model: name the disk's line */
+			if (check_mass(sc, d, path, e))
+				return free(l.d), e->code;
+			if (sc->particle_mass == PMASS_FILE)
+				err = place_push_mass(sc, st, d->x, d->y, d->r, d->kind, d->m, &pe);
+			else
+				err = place_push(sc, st, d->x, d->y, d->r, d->kind, &pe);
+			if (err == SB_EUSAGE) /* the mass: name the disk's line */
 				sb_errf(e, err, "%s:%ld: %s", path, d->line, pe.msg);
 			else if (err)
 				sb_errf(e, err, "%s", pe.msg);
@@ -778,13 +848,13 @@ int pfile_write_text(const sb_state *st, const char *path, double inv_dt, double
 	if (fs_open_tmp(&out, path, e))
 		return e->code;
 	FILE *f = out.f;
-	fprintf(f, "# shakebox particle file: x y r kind vx vy omega (cgs, lab frame)\n");
+	fprintf(f, "# shakebox particle file: x y r kind vx vy omega m (cgs, lab frame)\n");
 	fprintf(f, "# %d disks, %d mobile\n", st->n, st->nm);
 	for (int i = 0; i < st->n; i++) {
 		double vx, vy, w;
 		lab_velocity(st, i, inv_dt, vshift, &vx, &vy, &w);
-		fprintf(f, "%.17g %.17g %.17g %s %.17g %.17g %.17g\n", st->q[C_X][0][i],
-			st->q[C_Y][0][i] + yshift, st->r[i], kind_name(st->kind[i]), vx, vy, w);
+		fprintf(f, "%.17g %.17g %.17g %s %.17g %.17g %.17g %.17g\n", st->q[C_X][0][i],
+			st->q[C_Y][0][i] + yshift, st->r[i], kind_name(st->kind[i]), vx, vy, w, st->m[i]);
 	}
 	return fs_commit(&out, e);
 }
@@ -823,7 +893,7 @@ int pfile_write_lammps(const sb_state *st, const char *path, double inv_dt, doub
 	for (int i = 0; i < st->n; i++) {
 		double r = st->r[i];
 		/* LAMMPS read_data computes 4/3 pi r^3 density even in 2D */
-		double rho = 3.0 * st->m[i] / (4.0 * 3.14159265358979323846 * r * r * r);
+		double rho = 3.0 * st->m[i] / (4.0 * SB_PI * r * r * r);
 		fprintf(f, "%d %d %.17g %.17g %.17g %.17g 0\n", i + 1, st->kind[i] + 1, 2 * r, rho,
 			periodic_wrap(st->q[C_X][0][i], period), st->q[C_Y][0][i] + yshift);
 	}

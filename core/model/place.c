@@ -6,26 +6,50 @@
 
 #include "guard.h"
 
-double place_mass(const sb_scene *sc, double r)
+const char *place_density_key(const sb_scene *sc, int kind)
 {
-	return sc->mass_factor * sc->density * r * r;
+	return kind == KIND_INTRUDER && sc->intruder_density > 0 ? "intruder_density" : "density";
+}
+
+double place_density(const sb_scene *sc, int kind)
+{
+	return kind == KIND_INTRUDER && sc->intruder_density > 0 ? sc->intruder_density : sc->density;
+}
+
+double place_mass(const sb_scene *sc, double r, int kind)
+{
+	return sc->mass_factor * place_density(sc, kind) * r * r;
+}
+
+/* A mass the dynamics can divide by: every key is in range and still the product can
+ * underflow (r = 1e-160) or the moment of inertia alone does. */
+static int mass_bad(double m, double r)
+{
+	return !(m > 0) || !isfinite(1.0 / m) || !isfinite(1.0 / (0.5 * m * r * r));
+}
+
+int place_push_mass(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, double m, sb_err *e)
+{
+	if (mass_bad(m, r))
+		return sb_errf(e, SB_EUSAGE, "a disk of radius %g cm with mass %g g has moment of inertia %g g cm^2: "
+			       "both must be positive and finite", r, m, 0.5 * m * r * r);
+	double inv_m = 1.0 / m, inv_i = 1.0 / (0.5 * m * r * r);
+	if (kind == KIND_WALL && sc->wall_mass == WALLMASS_INFINITE)
+		inv_m = 0;
+	return state_push(st, x, y, r, kind, m, inv_m, inv_i, e);
 }
 
 int place_push(const sb_scene *sc, sb_state *st, double x, double y, double r, int kind, sb_err *e)
 {
-	double m = place_mass(sc, r);
-	double inv_m = 1.0 / m, inv_i = 1.0 / (0.5 * m * r * r);
-	/* every key is in range and still the product can underflow (r = 1e-160) or the
-	 * moment of inertia alone does: the dynamics would divide by zero */
-	if (!(m > 0) || !isfinite(inv_m) || !isfinite(inv_i))
+	const double m = place_mass(sc, r, kind);
+	if (mass_bad(m, r))
 		return sb_errf(e, SB_EUSAGE,
 			       "a disk of radius %g cm gets mass %g g and moment of inertia %g g cm^2 from mass_factor %g (%s) "
-			       "and density %g (%s): both must be positive and finite",
-			       r, m, 0.5 * m * r * r, sc->mass_factor, params_where(sc, "mass_factor"), sc->density,
-			       params_where(sc, "density"));
-	if (kind == KIND_WALL && sc->wall_mass == WALLMASS_INFINITE)
-		inv_m = 0;
-	return state_push(st, x, y, r, kind, m, inv_m, inv_i, e);
+			       "and %s %g (%s): both must be positive and finite",
+			       r, m, 0.5 * m * r * r, sc->mass_factor, params_where(sc, "mass_factor"),
+			       place_density_key(sc, kind), place_density(sc, kind),
+			       params_where(sc, place_density_key(sc, kind)));
+	return place_push_mass(sc, st, x, y, r, kind, m, e);
 }
 
 /* How many evenly spaced points from a to b (both included) no farther apart than s:

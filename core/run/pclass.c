@@ -55,7 +55,9 @@ void pclass_of_state(const sb_law *law, const sb_scene *sc, const sb_state *st, 
 void pclass_of_scene(const sb_law *law, const sb_scene *sc, sb_pclass out[SB_NPCLASS])
 {
 	const double rg = 0.5 * (sc->r_min + sc->r_max);
-	classes(law, place_mass(sc, rg), sc->radius_ratio > 0 ? place_mass(sc, sc->radius_ratio * rg) : 0,
-		sc->wall_mass == WALLMASS_INFINITE ? INFINITY : place_mass(sc, sc->wall_radius),
-		place_mass(sc, sc->r_min), out);
+	const double mint = sc->radius_ratio > 0 ? place_mass(sc, sc->radius_ratio * rg, KIND_INTRUDER) : 0;
+	const double mlo = place_mass(sc, sc->r_min, KIND_GRAIN);
+	classes(law, place_mass(sc, rg, KIND_GRAIN), mint,
+		sc->wall_mass == WALLMASS_INFINITE ? INFINITY : place_mass(sc, sc->wall_radius, KIND_WALL),
+		mint > 0 && mint < mlo ? mint : mlo, out);
 }

@@ -26,7 +26,8 @@ typedef struct sb_pclass {
  * infinite, wall_mass = infinite), the lightest mobile disk's. */
 void pclass_of_state(const sb_law *law, const sb_scene *sc, const sb_state *st, sb_pclass out[SB_NPCLASS]);
 /* From the scene's keys alone (bin/shake --contacts): the masses of the mean grain
- * radius, the intruder's radius, the wall radius and r_min. */
+ * radius, the intruder's radius, the wall radius and r_min (or the intruder, when it
+ * is lighter), each with its kind's density (place.h). */
 void pclass_of_scene(const sb_law *law, const sb_scene *sc, sb_pclass out[SB_NPCLASS]);
 
 #endif

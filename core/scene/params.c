@@ -64,13 +64,20 @@ static const sb_param TABLE[] = {
 	 "x wraps with period width (disks interact across x = 0 / width by the minimum image; the bottom "
 	 "row tiles [0, width))"},
 	{"density", REAL(density), "g/cm^3", "1", 0, 1e6, NULL, PF_PREP | PF_MINX,
-	 "material density rho"},
+	 "material density rho of the grains and the walls"},
+	{"intruder_density", REAL(intruder_density), "g/cm^3", "0", 0, 1e6, NULL, PF_PREP,
+	 "material density of the intruder (0 = density: the grains' material); its mass and moment of "
+	 "inertia follow the mass model with it (docs/model.md, \"Units and the paper's values\")"},
 	{"mass_factor", REAL(mass_factor), "cm", "6.283185307179586", 0, 1e6, NULL, PF_PREP | PF_MINX,
 	  "m = mass_factor * rho * R^2 (the paper prints 2 pi)"},
 	{"seed", INT(seed), "", "1", 0, 9007199254740992.0, NULL, PF_PREP,
 	 "random seed of the preparation (radii, placement)"},
 	{"particles", STR(particles), "", "", 0, 0, NULL, PF_PREP,
-	 "start from this particle file (text 'x y r kind' or LAMMPS data) instead of placing"},
+	 "start from this particle file (text 'x y r kind [vx vy omega [m]]' or LAMMPS data) instead of placing"},
+	{"particle_mass", ENUM(particle_mass), "", "scene", 0, 0, "scene|file", PF_PREP,
+	 "masses of a particle file's disks: scene = the mass model (density, intruder_density), and a file's "
+	 "mass or density column that disagrees with it is refused with its line; file = the file's column "
+	 "(text: the eighth, m in g; LAMMPS: density, m = 4/3 pi R^3 density), required on every line"},
 	{"settle", ENUM(settle), "", "auto", 0, 0, "auto|yes|no", PF_PREP,
 	 "settle without vibration before shaking (auto: yes unless particles is set)"},
 	{"settle_ke", REAL(settle_ke), "erg", "0.01", 0, BIG, NULL, PF_PREP | PF_MINX,

@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 79  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 81  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
@@ -19,6 +19,8 @@ enum sb_sides { SIDES_WALLS, SIDES_PERIODIC };
 enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 /* where the ring observable is centred (docs/model.md, "Ring force") */
 enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
+/* where a particle file's disks get their masses (docs/inputs.md, "Particle masses") */
+enum sb_particle_mass { PMASS_SCENE, PMASS_FILE };
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
 struct sb_scene {
@@ -30,9 +32,10 @@ struct sb_scene {
 	double width;
 	double wall_radius, wall_spacing, wall_height;
 	int sides;           /* enum sb_sides */
-	double density, mass_factor;
+	double density, intruder_density, mass_factor;
 	long seed;
 	char particles[SB_STR_MAX];
+	int particle_mass;   /* enum sb_particle_mass */
 	int settle;          /* enum sb_tristate */
 	double settle_ke, settle_min, settle_max, settle_drag;
 	/* dynamics */

@@ -80,11 +80,20 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->ring && s->ring_until > 0 && s->ring_until <= s->ring_from)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_until (%g s) must be after ring_from (%g s, %s), or 0",
 			       W("ring_until"), s->ring_until, s->ring_from, W("ring_from"));
-	if (!s->particles[0]) { /* the lightest disk of a generated scene is a grain of r_min */
+	if (!s->particles[0]) {
+		/* the lightest disk of a generated scene is a grain of r_min, or the intruder
+		 * when it is of a light enough material (intruder_density) */
 		char warn[8];
-		if (dtguard_check(s, s->mass_factor * s->density * s->r_min * s->r_min, warn, sizeof warn, e))
+		double m_min = s->mass_factor * s->density * s->r_min * s->r_min;
+		const double R1 = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
+		if (R1 > 0 && s->intruder_density > 0)
+			m_min = fmin(m_min, s->mass_factor * s->intruder_density * R1 * R1);
+		if (dtguard_check(s, m_min, warn, sizeof warn, e))
 			return e->code;
 	}
+	if (s->particle_mass == PMASS_FILE && !s->particles[0])
+		return sb_errf(e, SB_EUSAGE, "%s: particle_mass = file, but there is no particle file (particles) to take "
+			       "masses from", W("particle_mass"));
 	if (s->settle_min > s->settle_max)
 		return sb_errf(e, SB_EUSAGE, "%s: settle_min (%g) must not exceed settle_max (%g, %s)", W("settle_min"),
 			       s->settle_min, s->settle_max, W("settle_max"));

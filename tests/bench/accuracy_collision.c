@@ -87,7 +87,7 @@ static cres run_once(const ccase *c, int integ, double dt, int timed)
 	sb_err e = {0};
 	const double ri = 1, rj = 1, rs = ri + rj;
 	const int wall = c->wall;
-	double mi = place_mass(&sc, ri), mj = place_mass(&sc, rj);
+	double mi = place_mass(&sc, ri, KIND_GRAIN), mj = place_mass(&sc, rj, KIND_GRAIN);
 	double w02, beta;
 	if (sim_init(s, &sc, &e))
 		goto out;

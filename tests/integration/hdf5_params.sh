@@ -66,7 +66,8 @@ ok run1
 compare_params run1.param out1.h5 "${RUN1[@]}"
 
 # --- run 2: from the particle file, other non-defaults (no recording) ---
-RUN2=(particles="$TMP/p1.txt" settle=no integrator=gear4 dt=5e-05 duration=0.05 wall_height=30.5
+# (p1.txt's disks weigh what run 1's density and mass_factor made them: the file's masses)
+RUN2=(particles="$TMP/p1.txt" particle_mass=file settle=no integrator=gear4 dt=5e-05 duration=0.05 wall_height=30.5
 	snapshots=no traj_rate=0 wall_mass=disk clip_attractive=no mu=0.6 frequency=2.7
 	amplitude=0.5 output="$TMP/out2.h5" progress=yes restart=auto)
 shake_run "$TMP/run2.log" "${RUN2[@]}"

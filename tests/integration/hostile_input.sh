@@ -243,7 +243,9 @@ refused particles.lammps_atom_count "many.data:|30000000 atoms|at most" particle
 { cat bed.txt; echo "5.5 30 1 grain garbage"; } >extra.txt
 refused particles.text_extra_field "extra.txt:$((nl + 1)):|5 fields" particles=extra.txt "${RUN[@]}"
 { cat bed.txt; echo "5.5 30 1 grain 0 0 0 garbage"; } >extra8.txt
-refused particles.text_extra_field_after_velocity "extra8.txt:$((nl + 1)):|8 fields" particles=extra8.txt "${RUN[@]}"
+refused particles.text_bad_mass "extra8.txt:$((nl + 1)):|m: expected a finite decimal number|garbage" particles=extra8.txt "${RUN[@]}"
+{ cat bed.txt; echo "5.5 30 1 grain 0 0 0 6.283185307179586 garbage"; } >extra9.txt
+refused particles.text_extra_field_after_mass "extra9.txt:$((nl + 1)):|9 fields" particles=extra9.txt "${RUN[@]}"
 { cat bed.txt; echo "0x10 30 1 grain"; } >hex.txt
 refused particles.text_hex "hex.txt:$((nl + 1)):|x|0x10" particles=hex.txt "${RUN[@]}"
 # an atom type 1.5 was read as 1, and ".5" as the diameter: every column shifted

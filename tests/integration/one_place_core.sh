@@ -59,7 +59,8 @@ sed 's/^\tlong bed_kinetic_samples, bed_height_samples;/\tREC_KEYS(SB_SCENE_FIEL
 check one_place_core.selftest.copy "the made-up params.h is the same as the real one" test -n "$(cmp "$TMP/params.h" core/scene/params.h 2>&1)"
 bad=$(keys "$TMP/params.h" core/scene/params.c | keys_bad)
 check one_place_core.selftest.keys "fields made by a second mechanism were not found" test -n "$bad"
-sed 's/^#define SB_NKEYS [0-9]*/#define SB_NKEYS 80/' core/scene/params.h >"$TMP/params.h"
+nk=$(sed -n 's/^#define SB_NKEYS \([0-9]*\).*/\1/p' core/scene/params.h)
+sed "s/^#define SB_NKEYS [0-9]*/#define SB_NKEYS $((nk + 1))/" core/scene/params.h >"$TMP/params.h"
 bad=$(keys "$TMP/params.h" core/scene/params.c | keys_bad)
 check one_place_core.selftest.nkeys "an SB_NKEYS above the number of keys was not found" test -n "$bad"
 

@@ -16,16 +16,16 @@ ok write
 nm=$(attr prep.h5 /n_mobile) nw=$(attr prep.h5 /n_walls)
 n=$((nm + nw))
 
-# --- text format: x y r kind vx vy omega, kinds grain/intruder/wall ---
+# --- text format: x y r kind vx vy omega m, kinds grain/intruder/wall ---
 awk '!/^[ \t]*(#|$)/' F.txt >F.rows
-awk -v n="$n" 'NF != 7 { bad = "line " NR " has " NF " fields" }
+awk -v n="$n" 'NF != 8 { bad = "line " NR " has " NF " fields" }
 	$4 !~ /^(grain|intruder|wall)$/ { bad = "line " NR " kind " $4 }
-	{ for (i = 1; i <= 7; i++) if (i != 4 && $i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) bad = "line " NR " field " i " = " $i }
+	{ for (i = 1; i <= 8; i++) if (i != 4 && $i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) bad = "line " NR " field " i " = " $i }
 	END { if (NR != n) bad = NR " rows, expected " n; if (bad) { print bad; exit 1 } }' F.rows >fmt.err &&
 	ok text.format || fail text.format "$(cat fmt.err)"
 counts=$(awk '{ c[$4]++ } END { printf "%d %d %d", c["grain"], c["intruder"], c["wall"] }' F.rows)
 [ "$counts" = "60 1 $nw" ] && ok text.kinds || fail text.kinds "grain/intruder/wall counts $counts, expected 60 1 $nw"
-grep -q '^#.*x y r kind vx vy omega' F.txt && ok text.header || fail text.header "no '# ... x y r kind vx vy omega' header line"
+grep -q '^#.*x y r kind vx vy omega m' F.txt && ok text.header || fail text.header "no '# ... x y r kind vx vy omega m' header line"
 
 # --- LAMMPS format ---
 grep -qx "$n atoms" G.data && ok lammps.natoms || fail lammps.natoms "no '$n atoms' line"
@@ -39,14 +39,17 @@ awk '/^Atoms/ { s = "A"; next } /^Velocities/ { s = "V"; next } /^[A-Za-z]/ { s 
 [ "$(wc -l <G.atoms)" = "$n" ] && [ "$(wc -l <G.vel)" = "$n" ] && ok lammps.rows ||
 	fail lammps.rows "$(wc -l <G.atoms) Atoms and $(wc -l <G.vel) Velocities rows, expected $n"
 # the two files hold the same state, in the same order: x, y exact, diameter = 2 r,
-# type = kind + 1, velocities and omega exact
+# type = kind + 1, velocities and omega exact, the density column 3 m / (4 pi r^3) of the
+# text file's mass m to rounding
 paste -d' ' F.rows G.atoms G.vel | awk '
+	function rel(a, b) { d = a - b; if (d < 0) d = -d; return d / b }
 	{ k = ($4 == "grain") ? 1 : ($4 == "intruder") ? 2 : 3
-	  if ($8 != NR || $15 != NR) bad = "row " NR ": ids " $8 ", " $15
-	  else if ($9 != k) bad = "row " NR ": type " $9 " for kind " $4
-	  else if ($12 != $1 || $13 != $2) bad = "row " NR ": position differs"
-	  else if ($10 + 0 != 2 * $3) bad = "row " NR ": diameter " $10 " radius " $3
-	  else if ($16 != $5 || $17 != $6 || $21 != $7) bad = "row " NR ": velocity differs" }
+	  if ($9 != NR || $16 != NR) bad = "row " NR ": ids " $9 ", " $16
+	  else if ($10 != k) bad = "row " NR ": type " $10 " for kind " $4
+	  else if ($13 != $1 || $14 != $2) bad = "row " NR ": position differs"
+	  else if ($11 + 0 != 2 * $3) bad = "row " NR ": diameter " $11 " radius " $3
+	  else if (rel($12 * 4 * 3.141592653589793 * $3 ^ 3 / 3, $8) > 1e-12) bad = "row " NR ": density " $12 " for mass " $8
+	  else if ($17 != $5 || $18 != $6 || $22 != $7) bad = "row " NR ": velocity differs" }
 	END { if (bad) { print bad; exit 1 } }' >same.err && ok formats.same_state || fail formats.same_state "$(cat same.err)"
 # and the writing run's state at t = 0: positions exactly, kinds and radii
 h5col() { h5vals "$@"; } # lib.sh
@@ -85,7 +88,7 @@ else
 	ok teeth
 fi
 
-# --- round trip: read F, write it again at once: positions, radii, kinds exact,
+# --- round trip: read F, write it again at once: positions, radii, kinds, masses exact,
 #     velocities to rounding (v -> v dt -> v) ---
 shake_run rt.log particles="$TMP/F.txt" settle=no duration=0 "${GENTLE[@]}" write_particles="$TMP/F2.txt" output="$TMP/rt.h5"
 rc=$?
@@ -94,8 +97,8 @@ if [ "$rc" -ne 0 ] || [ ! -s F2.txt ]; then
 else
 	awk '!/^[ \t]*(#|$)/' F2.txt | paste -d' ' F.rows - | awk '
 		function rel(a, b) { d = a - b; if (d < 0) d = -d; s = (a < 0 ? -a : a) + 1e-3; return d / s }
-		{ if ($1 != $8 || $2 != $9 || $3 != $10 || $4 != $11) { print "row " NR ": position/radius/kind differ"; exit 1 }
-		  if ($4 != "wall" && (rel($5, $12) > 1e-12 || rel($6, $13) > 1e-12 || rel($7, $14) > 1e-12)) { print "row " NR ": velocities " $5 " " $6 " " $7 " vs " $12 " " $13 " " $14; exit 1 } }
+		{ if ($1 != $9 || $2 != $10 || $3 != $11 || $4 != $12 || $8 != $16) { print "row " NR ": position/radius/kind/mass differ"; exit 1 }
+		  if ($4 != "wall" && (rel($5, $13) > 1e-12 || rel($6, $14) > 1e-12 || rel($7, $15) > 1e-12)) { print "row " NR ": velocities " $5 " " $6 " " $7 " vs " $13 " " $14 " " $15; exit 1 } }
 		END { if (NR != '"$n"') { print NR " rows"; exit 1 } }' >rt.err && ok roundtrip || fail roundtrip "$(cat rt.err)"
 fi
 # --- a run from its own prepared state equals the run that settled itself: the

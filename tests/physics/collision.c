@@ -76,7 +76,7 @@ static cres run(const ccase *c, int clip, double dt, double resti, double *beta_
 	sim_init(s, &sc, &e);
 	const double rs = c->ri + c->rj;
 	int wall = c->kj == KIND_WALL;
-	double mi = place_mass(&sc, c->ri), mj = place_mass(&sc, c->rj);
+	double mi = place_mass(&sc, c->ri, KIND_GRAIN), mj = place_mass(&sc, c->rj, KIND_GRAIN);
 	if (!wall) {
 		/* i at the origin moving +x, j touching on its right moving -x; zero momentum */
 		place_push(&sc, &s->st, 0, 0, c->ri, c->ki, &e);

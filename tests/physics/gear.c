@@ -39,7 +39,7 @@ static void osc_engine(int integ, long nsteps, double c0, double *yend, double *
 	sc.gamma_s = 0;
 	sc.wall_mass = WALLMASS_INFINITE;
 	sc.integrator = integ;
-	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0, KIND_GRAIN), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w;
 	double xeq = m * g / Y, a = 0.5 * xeq;
 	sc.dt = T / nsteps;
@@ -74,7 +74,7 @@ static double osc_error(int integ, long nsteps, double c0) /* c0 > 0: override *
 {
 	sb_scene sc;
 	params_defaults(&sc);
-	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0, KIND_GRAIN), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w;
 	double xeq = m * g / Y, a = 0.5 * xeq, y, v;
 	osc_engine(integ, nsteps, c0, &y, &v);
@@ -97,7 +97,7 @@ static void osc_reference(int integ, long nsteps, double *yend, double *vend)
 {
 	sb_scene sc;
 	params_defaults(&sc);
-	double m = place_mass(&sc, 1.0), Y = sc.stiffness, g = sc.gravity;
+	double m = place_mass(&sc, 1.0, KIND_GRAIN), Y = sc.stiffness, g = sc.gravity;
 	double w = sqrt(Y / m), T = 2.125 * SB_TWO_PI / w, h = T / nsteps;
 	double xeq = m * g / Y, a = 0.5 * xeq;
 #define ACC(y) (Y * (2 - (y)) / m - g)
@@ -277,7 +277,7 @@ int main(void)
 		for (long N = 64; N <= 256; N *= 4) {
 			sb_scene sc0;
 			params_defaults(&sc0);
-			double m0 = place_mass(&sc0, 1.0), a0 = 0.5 * m0 * sc0.gravity / sc0.stiffness;
+			double m0 = place_mass(&sc0, 1.0, KIND_GRAIN), a0 = 0.5 * m0 * sc0.gravity / sc0.stiffness;
 			double w0 = sqrt(sc0.stiffness / m0);
 			double ye, ve, yr, vr;
 			osc_engine(it, N, 0, &ye, &ve);

@@ -86,7 +86,7 @@ static void slide(void)
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	const double R = 1, RW = 1e6, g = sc.gravity, mu = sc.mu, gs = sc.gamma_s;
-	const double m = place_mass(&sc, R), xeq = m * g / sc.stiffness;
+	const double m = place_mass(&sc, R, KIND_GRAIN), xeq = m * g / sc.stiffness;
 	const double vx0 = 50;
 	place_push(&sc, &s->st, 0, R - xeq, R, KIND_GRAIN, &e);
 	place_push(&sc, &s->st, 0, -RW, RW, KIND_WALL, &e);
