@@ -23,9 +23,10 @@ double forces_gz(double Y, double e)
 	return 2 * dtguard_zeta(e) * sqrt(Y);
 }
 
-/* gn: gamma_N, or with resti gz (law.h); the damping gn m_eff or gz sqrt(m_eff) */
+/* gn: gamma_N, or with resti gz (forces.h); the damping gn m_eff or gz sqrt(m_eff);
+ * hertz: the normal force and the shear damping times sqrt(xi R_eff) */
 static inline __attribute__((always_inline)) void contact(
-	const double Y, const double gn, const int resti, const double gs, const double mu, const int clip,
+	const double Y, const double gn, const int resti, const int hertz, const double gs, const double mu, const int clip,
 	const double dx, const double dy, const double d, const double inv, const double ri,
 	const double rj, const double dvx, const double dvy, const double wi, const double wj,
 	const double meff, double *fx, double *fy, double *fs_out, double *xi_out)
@@ -34,11 +35,17 @@ static inline __attribute__((always_inline)) void contact(
 	const double xi = ri + rj - d;
 	const double xidot = -(dvx * nx + dvy * ny);
 	const double c = resti ? gn * sqrt(meff) : gn * meff;
+	const double ph = hertz ? sqrt(xi * (ri * rj / (ri + rj))) : 1;
 	double fn = Y * xi + c * xidot;
+	if (hertz)
+		fn = ph * fn;
 	if (clip)
 		fn = fn > 0 ? fn : 0;
 	const double vt = -dvx * ny + dvy * nx - (ri * wi + rj * wj);
-	const double fv = gs * meff * fabs(vt), fc = mu * fabs(fn);
+	double fv = gs * meff * fabs(vt);
+	if (hertz)
+		fv = ph * fv;
+	const double fc = mu * fabs(fn);
 	const double fs = copysign(fv < fc ? fv : fc, -vt);
 	*fx = fn * nx - fs * ny;
 	*fy = fn * ny + fs * nx;
@@ -56,7 +63,7 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		return;
 	}
 	double fs, xi, d = sqrt(d2);
-	contact(law->Y, law->resti ? law->gz : law->gn, law->resti, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
+	contact(law->Y, law->resti ? law->gz : law->gn, law->resti, law->hertz, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
 		wi, wj, meff, fx, fy, &fs, &xi);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
@@ -78,7 +85,7 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 			continue;
 		const double d = sqrt(d2), ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
-		contact(Y, gn, law->resti, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
+		contact(Y, gn, law->resti, law->hertz, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
 			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi);
 		bad |= xi > mo * (ri < rj ? ri : rj);
 		if (fsum) {
@@ -131,7 +138,8 @@ void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist
 		const double dy = y[i] - y[j], xi = r[i] + r[j] - sqrt(dx * dx + dy * dy);
 		if (xi <= 0)
 			continue;
-		el += 0.5 * law->Y * xi * xi;
+		/* the work of the normal spring: Y xi^2 / 2, Hertz's 2/5 Y sqrt(R_eff) xi^5/2 */
+		el += law->hertz ? 0.4 * law->Y * xi * xi * sqrt(xi * (r[i] * r[j] / (r[i] + r[j]))) : 0.5 * law->Y * xi * xi;
 		worst = fmax(worst, xi / fmin(r[i], r[j]));
 		n++;
 	}

@@ -17,6 +17,9 @@ typedef struct sb_law {
 	 * else gn m_eff */
 	int resti;
 	double gz;
+	/* normal = hertz: Y is hertz_stiffness and F_N, the shear damping too, carry the
+	 * factor sqrt(xi R_eff), R_eff = R_i R_j / (R_i + R_j) (docs/model.md, "Normal law") */
+	int hertz;
 } sb_law;
 
 /* The law's gz for restitution e at stiffness Y: 2 zeta sqrt(Y) (dtguard.h's zeta). */

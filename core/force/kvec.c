@@ -169,8 +169,8 @@ SB_INLINE sb_vd rec_pair(sb_vd a, sb_vd b, const int h, sb_vd wa, sb_vd wb)
 }
 
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
-		     const int clip, const int resti, double *restrict fsum, const int packed, const int keep,
-		     const int pf)
+		     const int clip, const int resti, const int hertz, double *restrict fsum, const int packed,
+		     const int keep, const int pf)
 {
 	const double *rec = kd->rec;
 	const int *pi = nl->pi, *pj = nl->pj;
@@ -239,10 +239,16 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			const sb_vd meff = one / ims; /* 1 / (1/m_i + 1/m_j) */
 			const sb_vd damp = resti ? gn * sb_sqrt(meff) : gn * meff; /* constant per instantiation */
 			sb_vd fn = Y * xi - damp * mxidot;
+			/* hertz: times sqrt(xi R_eff) (lanes not in contact: numbers never used) */
+			const sb_vd ph = hertz ? sb_sqrt(xi * (ri * rj / rs)) : one;
+			if (hertz) /* constant per instantiation */
+				fn = ph * fn;
 			if (clip) /* fn > 0 ? fn : 0 */
 				fn = sb_max(fn, zero);
 			const sb_vd vt = (dvy * nx - dvx * ny) - rw;
-			const sb_vd fv = gs * meff * sb_abs(vt);
+			sb_vd fv = gs * meff * sb_abs(vt);
+			if (hertz)
+				fv = ph * fv;
 			const sb_vd fc = mu * sb_abs(fn);
 			const sb_vd fs = sb_copysign_neg(sb_min(fv, fc), vt); /* copysign(fv < fc ? fv : fc, -vt) */
 			bad |= sb_lt(mo * sb_min(ri, rj), xi) & bits;
@@ -286,35 +292,44 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	return bad != 0;
 }
 
-/* one instantiation per clip_attractive, normal damping (gamma_N or restitution) and
- * prefetching: the law is chosen at set-up, not in the loop (docs/kernel.md) */
+/* one instantiation per normal law, clip_attractive, normal damping (gamma_N or
+ * restitution) and prefetching: the law is chosen at set-up, not in the loop
+ * (docs/kernel.md) */
 typedef int (*kernel_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist *, double, int, int);
-#define INSTANCE(name, clip, resti, pf)                                                                   \
+#define INSTANCE(name, hertz, clip, resti, pf)                                                            \
 	static int name(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,      \
 			int packed, int keep)                                                              \
 	{                                                                                                  \
-		return kernel(d, l, s, n, inv_dt, clip, resti, NULL, packed, keep, pf);                    \
+		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf);             \
 	}
-INSTANCE(kernel_plain, 0, 0, 0)
-INSTANCE(kernel_clip, 1, 0, 0)
-INSTANCE(kernel_plain_pf, 0, 0, 1)
-INSTANCE(kernel_clip_pf, 1, 0, 1)
-INSTANCE(kernel_plain_e, 0, 1, 0)
-INSTANCE(kernel_clip_e, 1, 1, 0)
-INSTANCE(kernel_plain_e_pf, 0, 1, 1)
-INSTANCE(kernel_clip_e_pf, 1, 1, 1)
+INSTANCE(kernel_plain, 0, 0, 0, 0)
+INSTANCE(kernel_clip, 0, 1, 0, 0)
+INSTANCE(kernel_plain_pf, 0, 0, 0, 1)
+INSTANCE(kernel_clip_pf, 0, 1, 0, 1)
+INSTANCE(kernel_plain_e, 0, 0, 1, 0)
+INSTANCE(kernel_clip_e, 0, 1, 1, 0)
+INSTANCE(kernel_plain_e_pf, 0, 0, 1, 1)
+INSTANCE(kernel_clip_e_pf, 0, 1, 1, 1)
+/* hertz with gamma_N only (restitution is for hooke: validate.c) */
+INSTANCE(kernel_hz, 1, 0, 0, 0)
+INSTANCE(kernel_hz_clip, 1, 1, 0, 0)
+INSTANCE(kernel_hz_pf, 1, 0, 0, 1)
+INSTANCE(kernel_hz_clip_pf, 1, 1, 0, 1)
 #undef INSTANCE
-/* [resti][prefetch][clip] */
-static const kernel_fn KERNELS[2][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
-					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}}};
+/* [hertz ? 2 : resti][prefetch][clip] */
+static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
+					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}},
+					   {{kernel_hz, kernel_hz_clip}, {kernel_hz_pf, kernel_hz_clip_pf}}};
 
 /* the ring's kernel, compiled apart so that it costs nothing when off */
 static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
+	if (l->hertz)
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0);
 	if (l->resti)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, fsum, 0, 0, 0);
-	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, fsum, 0, 0, 0);
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0);
+	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0);
 }
 
 static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
@@ -322,7 +337,8 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
-	return KERNELS[law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
+	return KERNELS[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,
+											       keep);
 }
 
 /* ---- the fused corrector ---- */

@@ -1040,10 +1040,13 @@ static void write_contact_law(h5w *h, const sb_sim *s)
 {
 	hid_t g = h5w_group(h, h->file, "contact_law", 0);
 	h5w_attr_str(h, g, "damping", s->law.resti ? "restitution" : "gamma_n");
+	h5w_attr_str(h, g, "normal", s->law.hertz ? "hertz" : "hooke");
+	if (s->law.hertz) /* its restitution and contact time depend on the impact speed */
+		h5w_attr_double(h, g, "impact_speed", PCLASS_HERTZ_V);
 	h5w_attr_str(h, g, "definition",
 		     "per class of pair: m_eff (g), gamma_n (1/s: the normal damping force is gamma_n m_eff xidot), "
-		     "restitution and contact_time (s) of an unclipped head-on contact, a wall disk immobile "
-		     "(docs/model.md, \"Restitution\")");
+		     "restitution and contact_time (s) of an unclipped head-on contact, a wall disk immobile; "
+		     "normal = hertz: at impact_speed (cm/s) (docs/model.md, \"Restitution\")");
 	sb_pclass c[SB_NPCLASS];
 	pclass_of_state(&s->law, &s->sc, &s->st, c);
 	for (int k = 0; k < SB_NPCLASS; k++) {

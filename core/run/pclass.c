@@ -10,7 +10,7 @@
 #include "dtguard.h"
 #include "place.h"
 
-static void one(const sb_law *law, sb_pclass *c, const char *name, double mi, double mj, int wall)
+static void one(const sb_law *law, sb_pclass *c, const char *name, double mi, double mj, double ri, double rj, int wall)
 {
 	/* a wall of infinite mass: mj = inf, m_eff = mi */
 	const double meff = isinf(mj) ? mi : mi * mj / (mi + mj), mmove = wall ? mi : meff;
@@ -20,44 +20,60 @@ static void one(const sb_law *law, sb_pclass *c, const char *name, double mi, do
 		return;
 	c->m_eff = meff;
 	c->gamma_n = law->resti ? law->gz / sqrt(meff) : law->gn;
-	dtguard_pair(law->Y, c->gamma_n * meff / mmove, mmove, &c->e, &c->tc);
+	if (law->hertz)
+		dtguard_hertz(law->Y, ri * rj / (ri + rj), c->gamma_n * meff, mmove, PCLASS_HERTZ_V, &c->e, &c->tc);
+	else
+		dtguard_pair(law->Y, c->gamma_n * meff / mmove, mmove, &c->e, &c->tc);
 }
 
-static void classes(const sb_law *law, double mg, double mint, double mwall, double mmin, sb_pclass out[SB_NPCLASS])
+/* masses m and radii r of a grain (g), the intruder (i), a wall disk (w), the lightest (l) */
+static void classes(const sb_law *law, const double m[4], const double r[4], sb_pclass out[SB_NPCLASS])
 {
-	one(law, &out[0], "grain_grain", mg, mg, 0);
-	one(law, &out[1], "grain_intruder", mg, mint, 0);
-	one(law, &out[2], "grain_wall", mg, mwall, 1);
-	one(law, &out[3], "lightest_pair", mmin, mmin, 0);
+	one(law, &out[0], "grain_grain", m[0], m[0], r[0], r[0], 0);
+	one(law, &out[1], "grain_intruder", m[0], m[1], r[0], r[1], 0);
+	one(law, &out[2], "grain_wall", m[0], m[2], r[0], r[2], 1);
+	one(law, &out[3], "lightest_pair", m[3], m[3], r[3], r[3], 0);
 }
 
 void pclass_of_state(const sb_law *law, const sb_scene *sc, const sb_state *st, sb_pclass out[SB_NPCLASS])
 {
-	double sum = 0, mint = 0, mwall = 0, mmin = INFINITY;
+	double m[4] = {0, 0, 0, INFINITY}, r[4] = {0, 0, 0, 0}, rsum = 0;
 	long ng = 0;
 	for (int i = 0; i < st->n; i++) {
 		if (st->kind[i] == KIND_GRAIN) {
-			sum += st->m[i];
+			m[0] += st->m[i];
+			rsum += st->r[i];
 			ng++;
-		} else if (st->kind[i] == KIND_INTRUDER && !(mint > 0)) {
-			mint = st->m[i];
-		} else if (st->kind[i] == KIND_WALL && !(mwall > 0)) {
-			mwall = st->m[i];
+		} else if (st->kind[i] == KIND_INTRUDER && !(m[1] > 0)) {
+			m[1] = st->m[i];
+			r[1] = st->r[i];
+		} else if (st->kind[i] == KIND_WALL && !(m[2] > 0)) {
+			m[2] = st->m[i];
+			r[2] = st->r[i];
 		}
-		if (i < st->nm)
-			mmin = fmin(mmin, st->m[i]);
+		if (i < st->nm && st->m[i] < m[3]) {
+			m[3] = st->m[i];
+			r[3] = st->r[i];
+		}
 	}
-	if (sc->wall_mass == WALLMASS_INFINITE && mwall > 0)
-		mwall = INFINITY;
-	classes(law, ng ? sum / (double)ng : 0, mint, mwall, isinf(mmin) ? 0 : mmin, out);
+	m[0] = ng ? m[0] / (double)ng : 0; /* the mean grain: its mean mass and radius */
+	r[0] = ng ? rsum / (double)ng : 0;
+	if (sc->wall_mass == WALLMASS_INFINITE && m[2] > 0)
+		m[2] = INFINITY;
+	if (isinf(m[3]))
+		m[3] = 0;
+	classes(law, m, r, out);
 }
 
 void pclass_of_scene(const sb_law *law, const sb_scene *sc, sb_pclass out[SB_NPCLASS])
 {
-	const double rg = 0.5 * (sc->r_min + sc->r_max);
-	const double mint = sc->radius_ratio > 0 ? place_mass(sc, sc->radius_ratio * rg, KIND_INTRUDER) : 0;
+	const double rg = 0.5 * (sc->r_min + sc->r_max), ri = sc->radius_ratio * rg;
+	const double mint = sc->radius_ratio > 0 ? place_mass(sc, ri, KIND_INTRUDER) : 0;
 	const double mlo = place_mass(sc, sc->r_min, KIND_GRAIN);
-	classes(law, place_mass(sc, rg, KIND_GRAIN), mint,
-		sc->wall_mass == WALLMASS_INFINITE ? INFINITY : place_mass(sc, sc->wall_radius, KIND_WALL),
-		mint > 0 && mint < mlo ? mint : mlo, out);
+	const int ilight = mint > 0 && mint < mlo;
+	const double m[4] = {place_mass(sc, rg, KIND_GRAIN), mint,
+			     sc->wall_mass == WALLMASS_INFINITE ? INFINITY : place_mass(sc, sc->wall_radius, KIND_WALL),
+			     ilight ? mint : mlo};
+	const double r[4] = {rg, ri, sc->wall_radius, ilight ? ri : sc->r_min};
+	classes(law, m, r, out);
 }

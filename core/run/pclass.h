@@ -12,6 +12,9 @@
 #include "state.h"
 
 enum { SB_NPCLASS = 4 };
+/* normal = hertz: the impact speed (cm/s) of the recorded restitution and contact
+ * time, which depend on it (the speed hertz_stiffness's default is set at) */
+#define PCLASS_HERTZ_V 20.0
 
 typedef struct sb_pclass {
 	const char *name;     /* grain_grain, grain_intruder, grain_wall, lightest_pair */
@@ -19,7 +22,8 @@ typedef struct sb_pclass {
 	double m_eff;         /* g: the law's m_eff (a wall of infinite mass: the grain's) */
 	double gamma_n;       /* 1/s: the normal damping rate, force gamma_N m_eff xidot */
 	double e, tc;         /* the normal restitution and the contact time (s) of an
-			       * unclipped head-on contact (e = 0, tc = inf: overdamped) */
+			       * unclipped head-on contact (e = 0, tc = inf: overdamped);
+			       * hertz: at PCLASS_HERTZ_V */
 } sb_pclass;
 
 /* From a prepared state: the grains' mean mass, the intruder's, a wall disk's (or

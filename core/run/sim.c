@@ -19,8 +19,9 @@ double sim_box_a(const sb_sim *s, double t) { return drive_a(&s->drive, t); }
 
 sb_law sim_law(const sb_scene *sc)
 {
-	sb_law l = {sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap, sc->clip_attractive,
-		    sc->restitution > 0, 0};
+	const int hertz = sc->normal == NORMAL_HERTZ;
+	sb_law l = {hertz ? sc->hertz_stiffness : sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
+		    sc->clip_attractive, sc->restitution > 0, 0, hertz};
 	if (l.resti)
 		l.gz = forces_gz(sc->stiffness, sc->restitution);
 	return l;

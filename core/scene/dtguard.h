@@ -24,6 +24,15 @@ double dtguard_zeta(double e);
 double dtguard_gamma(const sb_scene *sc, double meff);
 void dtguard_pair(double Y, double gamma_n, double meff, double *e, double *tc);
 
+/* The Hertz contact (normal = hertz): m xi'' = -sqrt(xi reff) (K xi + c xi') from
+ * xi = 0 at speed v, integrated (RK4, 20000 steps a contact): its restitution and
+ * contact time (e = 0, t_c = inf when it never parts). m is the mass that moves (m_eff
+ * of two mobile disks, the grain's on a wall), c = gamma_N m_eff. The dt guard takes
+ * the lightest pair of r_min grains at DTGUARD_HERTZ_V (cm/s), a fast impact: the
+ * contact is shorter the faster the impact. */
+#define DTGUARD_HERTZ_V 100.0
+void dtguard_hertz(double K, double reff, double c, double m, double v, double *e, double *tc);
+
 /* Apply the scene's dt_guard for the lightest mobile mass m_min: an error (SB_EUSAGE)
  * beyond the limit when dt_guard = refuse; a warning text in warn (empty if none)
  * beyond half the limit, or beyond it with dt_guard = warn. */

@@ -109,6 +109,13 @@ static const sb_param TABLE[] = {
 	  "normal spring constant Y"},
 	{"gamma_n", REAL(gamma_n), "1/s", "100", 0, 1e8, NULL, PF_PREP | PF_DYN,
 	 "normal damping gamma_N"},
+	{"normal", ENUM(normal), "", "hooke", 0, 0, "hooke|hertz", PF_PREP | PF_DYN,
+	 "normal contact law: hooke = the paper's linear spring, F_N = Y xi + gamma_N m_eff xidot; hertz = "
+	 "sqrt(xi R_eff) (hertz_stiffness xi + gamma_N m_eff xidot), R_eff = R_i R_j / (R_i + R_j), the shear "
+	 "damping scaled by sqrt(xi R_eff) too, as LAMMPS gran/hertz/history (docs/model.md, \"Normal law\")"},
+	{"hertz_stiffness", REAL(hertz_stiffness), "g/(cm^0.5 s^2)", "3.15e7", 0, 1e15, NULL, PF_PREP | PF_DYN | PF_MINX,
+	 "normal = hertz: the stiffness K of F_N = K sqrt(R_eff) xi^1.5; the default gives a mean grain pair "
+	 "(m_eff = pi g, R_eff = 0.5 cm) the hooke law's contact time 3.21 ms at an impact speed of 20 cm/s"},
 	{"restitution", REAL(restitution), "", "0", 0, 1, NULL, PF_PREP | PF_DYN,
 	 "normal coefficient of restitution e of every pair (grain, intruder, wall): the normal damping set per pair, "
 	 "gamma_N = 2 zeta sqrt(Y / m_eff), zeta = -ln e / sqrt(pi^2 + ln^2 e), as LAMMPS's damping "

@@ -9,9 +9,10 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 81  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 83  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
+enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
 /* the side boundaries (docs/model.md, "Periodic side boundaries") */
@@ -44,6 +45,8 @@ struct sb_scene {
 	int ramp;            /* enum sb_ramp (drive.h) */
 	double ramp_from, ramp_to, ramp_hold;
 	double stiffness, gamma_n, gamma_s, mu, restitution;
+	int normal;              /* NORMAL_HOOKE, NORMAL_HERTZ */
+	double hertz_stiffness;
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;

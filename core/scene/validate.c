@@ -32,6 +32,11 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->restitution > 0 && strcmp(W("gamma_n"), "default"))
 		return sb_errf(e, SB_EUSAGE, "%s: restitution = %g sets the normal damping of every pair; gamma_n (%s) "
 			       "cannot be set beside it: leave one out", W("restitution"), s->restitution, W("gamma_n"));
+	/* with hertz the damping's restitution depends on the impact speed: no e per pair */
+	if (s->restitution > 0 && s->normal == NORMAL_HERTZ)
+		return sb_errf(e, SB_EUSAGE, "%s: restitution is for normal = hooke (%s): with hertz the restitution of "
+			       "its damping depends on the impact speed; set gamma_n (shake --contacts shows the e it gives)",
+			       W("restitution"), W("normal"));
 	if (s->r_min > s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
 			       s->r_max, W("r_max"));

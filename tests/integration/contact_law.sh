@@ -57,6 +57,20 @@ rc=$?
 [ $? -eq 1 ] && grep -q "restitution: expected a number in \[0, 1\], got '1.2'" range.txt && ok restitution.range ||
 	fail restitution.range "$(cat range.txt)"
 
+# --- normal = hertz: undamped, the closed form t_c = 2 I dmax / v, dmax = (5 m v^2 / (4 K
+# sqrt(R_eff)))^(2/5), I = 1.47164 (the integral of 1 / sqrt(1 - x^5/2) on [0, 1]), at the
+# records' 20 cm/s, e = 1; the default hertz_stiffness gives a mean grain pair (m_eff = pi,
+# R_eff = 1/2) the hooke law's undamped 3.2149 ms ---
+"$SHAKE" --contacts r_min=1 r_max=1 normal=hertz gamma_n=0 >hz.txt 2>&1
+rc=$?
+want=$(awk -v p="$pi" 'BEGIN { m = p; d = (5 * m * 400 / (4 * 3.15e7 * sqrt(0.5))) ^ 0.4; printf "1 %.5g", 2 * 1.47164 * d / 20 }')
+[ "$rc" -eq 0 ] && [ "$(row hz.txt grain_grain)" = "$want" ] &&
+	awk '$1 == "grain_grain" { exit !($5 > 0.003213 && $5 < 0.003217) }' hz.txt && ok contacts.hertz_closed_form ||
+	fail contacts.hertz_closed_form "exit $rc; want $want: $(tr '\n' '|' <hz.txt)"
+"$SHAKE" --contacts normal=hertz restitution=0.8 >hze.txt 2>&1
+[ $? -eq 1 ] && grep -q "restitution is for normal = hooke (command line): with hertz the restitution" hze.txt &&
+	ok restitution.refused_with_hertz || fail restitution.refused_with_hertz "$(cat hze.txt)"
+
 # --- a run file's /contact_law: a bed of equal grains gives --contacts' numbers ---
 tiny_bed r_min=1 r_max=1 wall_radius=1 radius_ratio=4 width=24
 shake_run run.log "${BEDARGS[@]}" duration=0.05 snapshots=no output=r.h5 || fail run "exit $?: $(tail -n 2 run.log)"
@@ -74,4 +88,9 @@ rc=$?
 [ "$rc" -eq 0 ] && [ "$(attr e.h5 /contact_law/damping)" = restitution ] &&
 	[ "$(printf '%.6f' "$(attr e.h5 /contact_law/grain_intruder/restitution)")" = 0.800000 ] && ok runfile.restitution ||
 	fail runfile.restitution "exit $rc: $(tail -n 2 e.log)"
+# a hertz bed shakes, and its file says so
+shake_run h.log "${BEDARGS[@]}" normal=hertz frequency=4 amplitude=1 duration=0.3 snapshots=no output=h.h5
+rc=$?
+[ "$rc" -eq 0 ] && [ "$(attr h.h5 /contact_law/normal)" = hertz ] && [ "$(attr h.h5 /contact_law/impact_speed)" = 20 ] &&
+	ok runfile.hertz || fail runfile.hertz "exit $rc: $(tail -n 2 h.log)"
 finish

@@ -28,6 +28,8 @@
 #include <string.h>
 
 #include "collision_analytic.h"
+#include "dtguard.h"
+#include "forces.h"
 #include "place.h"
 #include "sim.h"
 #include "step.h"
@@ -60,7 +62,12 @@ static void analytic(double w02, double beta, int clip, double *tc, double *e)
 
 /* resti > 0: restitution = resti (the normal damping per pair, docs/model.md,
  * "Restitution"): c = 2 zeta sqrt(Y m_eff) in place of gN m_eff */
-static cres run(const ccase *c, int clip, double dt, double resti, double *beta_out)
+/* hertz: normal = hertz with damping gamma_n (the analytic solution then the RK4 one of
+ * dtguard_hertz, an independent integration of the same equation); *emax gets the
+ * largest |E - E0| / E0 of the relative motion's energy (kinetic + the engine's elastic
+ * energy) over the contact */
+static cres run_law(const ccase *c, int clip, double dt, double resti, int hertz, double gamma_n, double *beta_out,
+		    double *emax)
 {
 	cres res = {0};
 	sb_scene sc;
@@ -71,6 +78,9 @@ static cres run(const ccase *c, int clip, double dt, double resti, double *beta_
 	sc.dt = dt;
 	sc.wall_mass = c->wall_mass;
 	sc.restitution = resti;
+	sc.normal = hertz ? NORMAL_HERTZ : NORMAL_HOOKE;
+	if (hertz)
+		sc.gamma_n = gamma_n;
 	sb_sim *s = calloc(1, sizeof *s);
 	sb_err e = {0};
 	sim_init(s, &sc, &e);
@@ -109,6 +119,12 @@ static cres run(const ccase *c, int clip, double dt, double resti, double *beta_
 	}
 	*beta_out = beta;
 	analytic(w02, beta, clip, &res.tc0, &res.e0);
+	const double mi_ = mi, meff_ = wall ? (c->wall_mass == WALLMASS_INFINITE ? mi : mi * mj / (mi + mj)) : mi * mj / (mi + mj);
+	if (hertz)
+		dtguard_hertz(sc.hertz_stiffness, c->ri * c->rj / (c->ri + c->rj), sc.gamma_n * meff_, wall ? mi_ : meff_, V0,
+			      &res.e0, &res.tc0);
+	if (emax)
+		*emax = 0;
 	if (step_start(s, 0, &e)) {
 		printf("# start failed: %s\n", e.msg);
 		goto out;
@@ -128,6 +144,13 @@ static cres run(const ccase *c, int clip, double dt, double resti, double *beta_
 			goto out;
 		}
 		double xi1 = XI(), xid1 = XID();
+		if (emax && !wall && xi1 > 0) { /* two mobile disks: E of the relative motion */
+			double el, mo;
+			long nc;
+			forces_contact_energy(&s->law, st, &s->nl, &el, &mo, &nc);
+			const double E0 = 0.5 * meff_ * V0 * V0, E = 0.5 * meff_ * xid1 * xid1 + el;
+			*emax = fmax(*emax, fabs(E - E0) / E0);
+		}
 		if (k > 1 && xi0 > 0 && xi1 <= 0) {
 			res.tc = (k - 1) * dt + hermite_root(xi0, xid0, xi1, xid1, dt);
 			break;
@@ -148,6 +171,11 @@ out:
 	sim_free(s);
 	free(s);
 	return res;
+}
+
+static cres run(const ccase *c, int clip, double dt, double resti, double *beta_out)
+{
+	return run_law(c, clip, dt, resti, 0, 0, beta_out, NULL);
 }
 
 static const ccase CASES[] = {
@@ -256,6 +284,30 @@ int main(void)
 		CHECK(id, fine.ok && paper.ok && fabs(fine.e - fine.e0) <= 2 * beta * 5e-5 / 64 * fine.e0 &&
 			      fabs(paper.e - paper.e0) <= 2 * beta * 5e-5 * paper.e0,
 		      "e %.10f (dt/64), %.10f (paper dt) against %.10f", fine.e, paper.e, fine.e0);
+	}
+	/* normal = hertz: contact time and restitution against the same equation integrated
+	 * by RK4 (dtguard_hertz), undamped and at gamma_n = 100 and 1000 (e 0.99 and 0.89
+	 * for equal grains); undamped, the relative motion's energy (the engine's elastic
+	 * energy, 2/5 K sqrt(R_eff) xi^5/2) is conserved through the contact */
+	for (size_t ci = 0; ci < NCASES; ci++) {
+		const ccase *c = &CASES[ci];
+		const double gams[3] = {0, 100, 1000};
+		for (int g = 0; g < 3; g++) {
+			double beta = 0, emax = 0;
+			cres fine = run_law(c, 0, 5e-5 / 16, 0, 1, gams[g], &beta, &emax), paper = run_law(c, 0, 5e-5, 0, 1, gams[g], &beta, NULL);
+			printf("# hertz, gamma_n %g, %s: e %.8f t_c %.8e (RK4) | %.8f %.8e (dt/16) | %.8f %.8e (paper dt); energy %.2e\n",
+			       gams[g], c->name, fine.e0, fine.tc0, fine.e, fine.tc, paper.e, paper.tc, emax);
+			snprintf(id, sizeof id, "contact.hertz.%s.gamma%g", c->name, gams[g]);
+			CHECK(id, fine.ok && paper.ok && fabs(fine.tc - fine.tc0) <= 1e-4 * fine.tc0 &&
+				      fabs(fine.e - fine.e0) <= 1e-4 && fabs(paper.tc - paper.tc0) <= 1e-3 * paper.tc0 &&
+				      fabs(paper.e - paper.e0) <= 5e-3,
+			      "t_c %.8e / %.8e (dt/16, paper dt) against %.8e; e %.8f / %.8f against %.8f", fine.tc, paper.tc,
+			      fine.tc0, fine.e, paper.e, fine.e0);
+			if (g == 0 && c->kj != KIND_WALL) {
+				snprintf(id, sizeof id, "contact.hertz.%s.energy_conserved", c->name);
+				CHECK(id, fine.ok && emax > 0 && emax <= 1e-6, "largest |E - E0| / E0 %.3e over the contact", emax);
+			}
+		}
 	}
 	return tl_done();
 }

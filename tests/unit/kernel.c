@@ -78,9 +78,9 @@ static double max_rel(const double *a, const double *b, int n)
 /* what the first path gave, for the others to equal: per clip, the forces, the ring
  * sums, the fused step's state and the list */
 typedef struct firsts {
-	int have[4];
-	double *f[4][3], *fs[4], *q[4][3][6];
-	int *pi[4], *pj[4], np[4];
+	int have[6];
+	double *f[6][3], *fs[6], *q[6][3][6];
+	int *pi[6], *pj[6], np[6];
 } firsts;
 
 static int bits_equal(const void *a, const void *b, size_t bytes)
@@ -98,16 +98,17 @@ static void *dup_bytes(const void *p, size_t bytes)
 static void test_forces(const char *path, firsts *fi)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-	/* mode: clip_attractive (bit 0) and the damping per pair from restitution (bit 1) */
-	for (int mode = 0; mode < 4; mode++) {
-		const int clip = mode & 1, resti = mode >> 1;
-		const char *const rs = resti ? ".restitution" : "";
+	/* mode: clip_attractive (bit 0); the law (mode / 2): the paper's, the damping per
+	 * pair from restitution, Hertz */
+	for (int mode = 0; mode < 6; mode++) {
+		const int clip = mode & 1, resti = mode / 2 == 1, hertz = mode / 2 == 2;
+		const char *const rs = resti ? ".restitution" : hertz ? ".hertz" : "";
 		gsl_rng_set(rng, 7 + (unsigned long)clip);
 		sb_state st = {0};
 		const double dt = 5e-5, inv_dt = 1 / dt;
 		scene(&st, rng, 203, 30, 12, dt); /* 203: a partial last block of eight */
 		/* scattered: some overlaps are deep */
-		sb_law law = {3e6, 100, 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0};
+		sb_law law = {hertz ? 3.15e7 : 3e6, 100, 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0, hertz};
 		sb_nlist nl;
 		sb_kernel *k = NULL;
 		sb_err e = {0};
@@ -291,7 +292,7 @@ static void test_invariants(void)
 	gsl_rng_set(rng, 11);
 	sb_state st = {0};
 	scene(&st, rng, 41, 12, 8, 5e-5);
-	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0};
+	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0, 0};
 	sb_nlist nl;
 	sb_kernel *k = NULL;
 	sb_err e = {0};
@@ -371,7 +372,7 @@ int main(void)
 	}
 	test_refusals(p, n);
 	test_invariants();
-	for (int c = 0; c < 4; c++) {
+	for (int c = 0; c < 6; c++) {
 		for (int d = 0; d < 3; d++) {
 			free(fi.f[c][d]);
 			for (int o = 0; o < 6; o++)
