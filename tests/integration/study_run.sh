@@ -177,6 +177,13 @@ done
 	fail db.ingested_while_running "no finished run in the database while the driver ran: $(tail -c 300 slow1.log)"
 kill -TERM $pid 2>/dev/null
 wait $pid
+# every attempt records what its engine used (wait4), the one the TERM interrupted too
+# (its DONE line dropped by GNU parallel: from the worker's line in its log)
+use=$(q $DB "SELECT SUM(status = 'interrupted'), SUM(status = 'interrupted' AND cpu_seconds > 0 AND max_rss_kb > 0),
+	SUM(status = 'ok'), SUM(status = 'ok' AND cpu_seconds > 0 AND max_rss_kb > 0) FROM attempt WHERE campaign = 'slow'")
+IFS='|' read -r ni niu nk nku <<<"$use"
+[ "${ni:-0}" -ge 1 ] && [ "$ni" = "$niu" ] && [ "${nk:-0}" -ge 1 ] && [ "$nk" = "$nku" ] && ok attempt.usage_recorded ||
+	fail attempt.usage_recorded "interrupted, with usage, ok, with usage: $use: $(q $DB "SELECT status, cpu_seconds, max_rss_kb FROM attempt WHERE campaign = 'slow'")"
 # status of a half-done campaign: counts and an ETA from the finished runs
 "$STUDY" status slow --runs "$TMP/R" >slow_status.out 2>&1
 grep -Eq "runs 8: done [1-7], failed 0, pending [1-7]" slow_status.out && grep -q "ETA: about" slow_status.out &&
