@@ -30,16 +30,16 @@ E
 "$STUDY" run --dry-run c.campaign --runs R >dry.out 2>dry.err
 rc=$?
 [ "$rc" -eq 0 ] && grep -q '^  total: 2 runs, 24 s of simulated shaking, 2 packings to settle, CPU ' dry.err &&
-	grep -q 'verlet, measured now in' dry.err && ok dry.summary || fail dry.summary "exit $rc: $(cat dry.err)"
+	grep -q 'verlet, calibration measured now in [0-9.]* s on this machine' dry.err && ok dry.summary || fail dry.summary "exit $rc: $(cat dry.err)"
 # nothing run, nothing recorded: only the calibration in the runs directory
 [ ! -e R/study.db ] && [ ! -e R/c ] && [ "$(ls -A R)" = .calibration ] && [ ! -s dry.out ] &&
 	[ "$(ls R/.calibration)" = "$(ls R/.calibration | grep -E '^[0-9a-f]{16}\.verlet\.txt$')" ] &&
 	ok dry.nothing_run || fail dry.nothing_run "$(find R)"
 "$STUDY" run --dry-run c.campaign --runs R 2>dry2.err
-grep -q 'verlet, cached from 20' dry2.err && ok dry.cached || fail dry.cached "$(cat dry2.err)"
+grep -Eq 'verlet, calibration measured 20[0-9:TZ-]* \([0-9]+ s ago\) on this machine' dry2.err && ok dry.cached || fail dry.cached "$(cat dry2.err)"
 # how busy the machine was when it was measured: said, and a busy one named as such
-grep -Eq 'verlet, measured now in [0-9.]+ s at load [0-9.]+ on [0-9]+ cores' dry.err &&
-	grep -Eq 'verlet, cached from 20[^ ]* at load [0-9.]+ on [0-9]+ cores' dry2.err && ok dry.load_said ||
+grep -Eq 'verlet, calibration measured now in [0-9.]+ s on this machine, at load [0-9.]+ on [0-9]+ cores' dry.err &&
+	grep -Eq 'verlet, calibration measured 20[^ ]* \([^)]*\) on this machine, at load [0-9.]+ on [0-9]+ cores' dry2.err && ok dry.load_said ||
 	fail dry.load_said "$(grep rate: dry.err dry2.err)"
 cal=$(ls R/.calibration/*.verlet.txt)
 cp "$cal" cal.keep
@@ -116,6 +116,14 @@ sed 's/^frequency = 3$/frequency = 3, 3.5/' c.campaign >cx.campaign
 "$STUDY" run --dry-run cx.campaign --runs R 2>dx.err
 grep -q "^study: c: 2 of 4 runs are done already (their files are in R/c): the cost below is of the 2 that remain" dx.err &&
 	grep -q '^  total: 2 runs, 24 s of simulated shaking' dx.err && ok dry.what_remains || fail dry.what_remains "$(cat dx.err)"
+# ... at the rate its 2 finished runs measured (their CPU over their grains x steps, from
+# the database: each started from the shared packing, so none settled), not the calibration's
+want=$(q R/study.db "SELECT TOTAL(a.cpu_seconds) FROM attempt a WHERE a.campaign = 'c'")' '$(q R/study.db "SELECT
+	TOTAL((SELECT value FROM param WHERE campaign = 'c' AND run = s.run AND key = 'n_grains') * s.status_time /
+	(SELECT value FROM param WHERE campaign = 'c' AND run = s.run AND key = 'dt')) FROM result s WHERE s.campaign = 'c'")
+want=$(awk -v w="$want" 'BEGIN { split(w, a, " "); printf "%.3g", a[1] / a[2] }')
+grep -q "^  rate: $want CPU s per grain-step, [0-9.e+-]* CPU s per grain settled; verlet, rate from 2 finished runs of this campaign (their CPU per grain-step, in R/study.db); settling at the rate of the calibration measured 20" dx.err &&
+	ok dry.rate_from_runs || fail dry.rate_from_runs "want $want: $(grep rate: dx.err)"
 # study status's ETA over a made-up search (beside c, in the database its run made): one run done in 60 s, one pending; the chain
 # over [0, 1] to 0.25 takes at most 4 runs; replicate 1 has 2 (its pending one included),
 # and the group may get 2 more replicates: 1 + (4 - 2) + 2 x 4 = 11 runs, 11 min at most
