@@ -149,6 +149,35 @@ INSERT INTO attempt(campaign, run, n, status, finished) VALUES ('f', 'b', 1, 'in
 "$STUDY" status f --runs R >st2i.out 2>&1
 grep -q '^  ETA: about 60 s at the pace of the last runs' st2i.out && ok eta.interrupted_not_finished ||
 	fail eta.interrupted_not_finished "$(grep ETA st2i.out)"
+# the progress line's (status --watch) ETA of a made-up search covers the search, not the
+# round: one run of 30 s done at 1 simulated s per s (loop and span), one pending (this
+# round: 30 s); replicate 1's bracket [0, 1] to 0.25 needs ceil(log2(4)) - 1 = 1 bisection
+# after this round's run (30 s more, expected); at most (4 - 2) + 2 chains x 4 = 10 runs
+# in 10 rounds, one at a time: 30 + 10 x 30 s = 5.5 min
+sqlite3 R/study.db "INSERT INTO campaign(name, description) VALUES ('g', 'made up');
+INSERT INTO run(campaign, id, state, started, finished) VALUES ('g', 'a', 'done', '2026-01-01T00:00:00Z', '2026-01-01T00:00:30Z'),
+	('g', 'b', 'pending', NULL, NULL);
+INSERT INTO param(campaign, run, key, value) VALUES ('g', 'a', 'duration', 30.0), ('g', 'b', 'duration', 30.0);
+INSERT INTO result(campaign, run, status_time, wall_seconds) VALUES ('g', 'a', 30, 30);
+INSERT INTO onset_search(campaign, freq_from, freq_to, tolerance, replicates, max_replicates, state)
+	VALUES ('g', 0, 1, 0.25, 'auto', 4, 'searching');
+INSERT INTO onset_group(campaign, grp, point, replicates, runs, state) VALUES ('g', 'all', 0, 2, 3, 'searching');
+INSERT INTO onset_replicate(campaign, grp, replicate, state, runs) VALUES ('g', 'all', 1, 'searching', 2), ('g', 'all', 2, 'found', 1)" 2>sqlg.err
+"$STUDY" status g --runs R --watch --interval 0.1 >w.out 2>&1
+grep -q '^g: 1/2 finished (50%): .*; ETA this round: 30 s; search: about 60 s (1 more round expected, 1 more run, 1 at a time), at most 5.5 min (10 more runs) at 1 simulated s per s from the last runs to finish$' w.out &&
+	ok watch.eta_whole_search || fail watch.eta_whole_search "$(cat sqlg.err w.out)"
+# a bracket already at the tolerance after this round's run: no more rounds expected
+sqlite3 R/study.db "UPDATE onset_replicate SET lo = 0.5, hi = 0.75 WHERE campaign = 'g' AND replicate = 1"
+"$STUDY" status g --runs R --watch --interval 0.1 >w2.out 2>&1
+grep -q 'ETA this round: 30 s; search: about 30 s (0 more rounds expected, 0 more runs, 1 at a time), at most 5.5 min' w2.out &&
+	ok watch.eta_search_last_round || fail watch.eta_search_last_round "$(cat w2.out)"
+# replicates = auto: whether a batch more is needed the intervals say: only the bound
+# (2 of at most 4 replicates in batches of 3: up to 1 more round of 2 runs, one at a time: 30 + 2 x 30 s)
+sqlite3 R/study.db "DELETE FROM onset_search WHERE campaign = 'g'; INSERT INTO auto_point(campaign, point, grp, replicates,
+	max_replicates, batch, state) VALUES ('g', 0, 'all', 2, 4, 3, 'running')"
+"$STUDY" status g --runs R --watch --interval 0.1 >w3.out 2>&1
+grep -q 'ETA this round: 30 s; search: at most 90 s (up to 1 more round, 2 more runs, if the intervals need them; 1 at a time) at 1 simulated s per s' w3.out &&
+	ok watch.eta_auto_bound || fail watch.eta_auto_bound "$(cat w3.out)"
 # replicates = auto: a point with 2 of at most 5 replicates: 1 pending + 3 = 4 runs
 sqlite3 R/study.db "INSERT INTO auto_point(campaign, point, grp, replicates, max_replicates, state)
 	VALUES ('f', 0, 'all', 2, 5, 'running')"
