@@ -21,6 +21,7 @@
 #include "params.h"
 #include "provenance.h"
 #include "sql.h"
+#include "report/dtext.h"
 
 /* The two calibration runs' shaking: 0.5 s, and that plus CAL_STEPS steps (2 s of the
  * paper preset, 8 s of the fast one): the difference is the shaking alone, long enough
@@ -105,14 +106,12 @@ void calib_age(const char *date, char *out, size_t len)
 	tm.tm_year -= 1900;
 	tm.tm_mon -= 1;
 	const double age = difftime(time(NULL), timegm(&tm));
+	char d[32];
+	dtext_duration(age, d, sizeof d);
 	if (age < 0)
 		snprintf(out, len, "in the future: a clock set wrong");
-	else if (age < 120)
-		snprintf(out, len, "%.0f s ago", age);
-	else if (age < 7200)
-		snprintf(out, len, "%.0f min ago", age / 60);
 	else if (age < 2 * 86400)
-		snprintf(out, len, "%.1f h ago", age / 3600);
+		snprintf(out, len, "%s ago", d);
 	else
 		snprintf(out, len, "%.0f days ago", age / 86400);
 }

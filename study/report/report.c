@@ -58,16 +58,6 @@ static const char *col(sqlite3_stmt *q, int i)
 	return t ? (const char *)t : "";
 }
 
-static void fmt_dur(double s, char *buf, size_t len)
-{
-	if (s < 120)
-		snprintf(buf, len, "%.0f s", s);
-	else if (s < 7200)
-		snprintf(buf, len, "%.1f min", s / 60);
-	else
-		snprintf(buf, len, "%.1f h", s / 3600);
-}
-
 /* Runs finished per second by what actually ran: the last (at most 20) runs to finish,
  * over the time from the first of them starting to the last finishing (runs that ran
  * side by side count together, whatever --jobs or hosts did it); 0 when none has. */
@@ -318,13 +308,13 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 			if (rate > 0) {
 				/* what actually ran: the pace of the last runs to finish, whatever
 				 * the number of jobs or hosts that produced it */
-				fmt_dur((double)todo / rate, eta, sizeof eta);
+				dtext_duration((double)todo / rate, eta, sizeof eta);
 				fprintf(out, "  ETA: %s%s%s at the pace of the last runs (%.1f runs/h)\n", most, eta, whole,
 					3600 * rate);
 			} else if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
 				/* a single finished run: its time spread over what runs now */
 				int w = running > 0 ? (int)running : jobs;
-				fmt_dur(mean * (double)todo / (w > 0 ? w : 1), eta, sizeof eta);
+				dtext_duration(mean * (double)todo / (w > 0 ? w : 1), eta, sizeof eta);
 				fprintf(out, "  ETA: %s%s%s with %d run%s at a time (mean run %.1f s)\n", most, eta, whole, w,
 					w > 1 ? "s" : "", mean);
 			} else {

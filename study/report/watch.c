@@ -328,18 +328,6 @@ int watch_over(const watch *w)
 	return (w->pending == 0 && w->running == 0) || (w->driver == 0 && w->slurm == 0);
 }
 
-static void fmt_dur(double s, char *buf, size_t len)
-{
-	if (s < 0)
-		snprintf(buf, len, "unknown");
-	else if (s < 120)
-		snprintf(buf, len, "%.0f s", s);
-	else if (s < 7200)
-		snprintf(buf, len, "%.1f min", s / 60);
-	else
-		snprintf(buf, len, "%.1f h", s / 3600);
-}
-
 static void run_state(const watch_run *r, char *buf, size_t len)
 {
 	char T[32];
@@ -355,15 +343,15 @@ static void head(const watch *w, char *buf, size_t len)
 	/* (the whole search's estimate when there is one: its rounds to come, not only the
 	 * round in flight) */
 	char eta[32];
-	fmt_dur(w->eta, eta, sizeof eta);
+	dtext_duration(w->eta, eta, sizeof eta);
 	long fin = w->done + w->failed;
 	int n = snprintf(buf, len, "%s: %ld/%ld finished (%.0f%%): %ld done, %ld failed, %ld pending, %ld running", w->name,
 			 fin, w->total, w->total ? 100.0 * (double)fin / (double)w->total : 100.0, w->done, w->failed,
 			 w->pending, w->running);
 	if ((w->pending || w->running) && n > 0 && (size_t)n < len) {
 		char most[32], about[32];
-		fmt_dur(w->eta_search_max, most, sizeof most);
-		fmt_dur(w->eta_search, about, sizeof about);
+		dtext_duration(w->eta_search_max, most, sizeof most);
+		dtext_duration(w->eta_search, about, sizeof about);
 		const watch_search *s = &w->search;
 		if (w->rate > 0 && w->eta_search_max >= 0 && s->more >= 0)
 			/* an [onset] search: the bisections its brackets still need */
