@@ -134,7 +134,9 @@ int worker_done_parse(char *line, worker_done *w)
 		return 0;
 	for (char *s = line, *t; n < 8 && (t = strsep(&s, "\t"));)
 		f[n++] = t;
-	if (n < 8 || !f[1][0])
+	/* 6 fields: a worker of the version before the usage was reported (a Slurm task's
+	 * log written before an upgrade), its message the sixth */
+	if ((n != 6 && n < 8) || !f[1][0])
 		return 0;
 	char *end;
 	w->name = f[1];
@@ -143,6 +145,12 @@ int worker_done_parse(char *line, worker_done *w)
 		return 0;
 	w->host = f[3];
 	w->wall = strtod(f[4], NULL);
+	w->ran = 0;
+	w->u = (db_usage){0, 0};
+	if (n == 6) {
+		w->msg = f[5];
+		return 1;
+	}
 	/* "-": no engine ran (the job never started one) */
 	char *end2;
 	w->u.cpu_seconds = strtod(f[5], &end);

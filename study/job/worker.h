@@ -46,7 +46,8 @@ typedef struct worker_done {
 	db_usage u;
 } worker_done;
 
-/* Splits a DONE line in place into w; 0 when line is not one (or lacks a field). */
+/* Splits a DONE line in place into w; 0 when line is not one (or lacks a field). A
+ * line of the earlier form without the two usage fields is read, its usage unknown. */
 int worker_done_parse(char *line, worker_done *w);
 
 /* The line the worker appends to the run's log when its engine has ended:
