@@ -291,13 +291,34 @@ static int runs_view(sql_db *d, sb_err *e)
 	return e->code;
 }
 
+/* Columns added to the driver's tables since they were first created: an older
+ * database gets them by ALTER TABLE, and so does a new one where STUDY does not name
+ * them (the attempt's: declared here only). */
+static const struct {
+	const char *table, *column, *decl;
+} ADDED[] = {
+	{"run", "current", "INTEGER NOT NULL DEFAULT 1"},
+	{"campaign", "version", "INTEGER NOT NULL DEFAULT 1"},
+	/* a search's axis (Gamma, v) and why a group is blocked */
+	{"onset_search", "axis", "TEXT"},
+	{"onset_group", "reason", "TEXT"},
+	{"onset_run", "axis_value", "REAL"},
+	/* an attempt's start (db.c's attempt_row) */
+	{"attempt", "started", "TEXT"},
+	/* what its engine used, as its worker measured it (wait4; NULL: no worker said):
+	 * the cost model's rate from finished runs (study/report/calib.h) */
+	{"attempt", "cpu_seconds", "REAL"},
+	{"attempt", "max_rss_kb", "INTEGER"},
+};
+
 int schema_study(sql_db *d, sb_err *e)
 {
-	if (sql_script(d, STUDY, e) || sql_ensure_column(d, "run", "current", "INTEGER NOT NULL DEFAULT 1", e) ||
-	    sql_ensure_column(d, "campaign", "version", "INTEGER NOT NULL DEFAULT 1", e) ||
-	    /* a search's axis (Gamma, v) and why a group is blocked: absent from older files */
-	    sql_ensure_column(d, "onset_search", "axis", "TEXT", e) || sql_ensure_column(d, "onset_group", "reason", "TEXT", e) ||
-	    sql_ensure_column(d, "onset_run", "axis_value", "REAL", e) || result_table(d, e) ||
+	if (sql_script(d, STUDY, e))
+		return e->code;
+	for (size_t i = 0; i < sizeof ADDED / sizeof ADDED[0]; i++)
+		if (sql_ensure_column(d, ADDED[i].table, ADDED[i].column, ADDED[i].decl, e))
+			return e->code;
+	if (result_table(d, e) ||
 	    /* the runs view shows the tools' per-run observables */
 	    schema_analysis(d, e))
 		return e->code;

@@ -339,6 +339,15 @@ int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const ch
 				sqlite3_bind_null(st, k);
 			break;
 		}
+		case 'L': {
+			int okv = va_arg(ap, int);
+			long v = va_arg(ap, long);
+			if (okv)
+				sqlite3_bind_int64(st, k, v);
+			else
+				sqlite3_bind_null(st, k);
+			break;
+		}
 		default: sqlite3_bind_null(st, k); break;
 		}
 	}

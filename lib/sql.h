@@ -43,7 +43,8 @@ void sql_lock_holder(const sql_db *d, char *out, size_t len);
 void sql_close(sql_db *d);
 
 /* Prepared statement, bound from fmt: 't' text (NULL: null), 'l' long, 'd' double, 'n'
- * null (no argument), 'D' double or null when the paired int is 0 (int ok, double v).
+ * null (no argument), 'D' double or null when the paired int is 0 (int ok, double v), 'L'
+ * the same for a long (int ok, long v).
  * Runs it to completion when out is NULL; else returns the statement in *out. */
 int sql_exec(sql_db *d, sb_err *e, sqlite3_stmt **out, const char *sql, const char *fmt, ...);
 /* Statements separated by semicolons, no parameters (a schema, BEGIN, COMMIT). */

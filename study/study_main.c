@@ -88,8 +88,11 @@ static int own_path(char *self, size_t len);
 
 /* The campaign's cost on stderr (report/cost.h): the rates of the integrators it uses,
  * measured once per engine build and CPU into the runs directory (measure = 0: read
- * from there only, and said to be unknown when they are not there). */
-static int print_cost(const campaign *c, const grid *g, const char *runs, int use_cache, int measure, sb_err *e)
+ * from there only, and said to be unknown when they are not there), the shaking's
+ * learnt from the campaign's finished runs where the database (db: --db, NULL: the
+ * runs directory's) has some (calib_learn). */
+static int print_cost(const campaign *c, const grid *g, const char *runs, const char *db, int use_cache, int measure,
+		      sb_err *e)
 {
 	char self[PATH_MAX], shake[PATH_MAX + 8];
 	if (own_path(self, sizeof self))
@@ -102,9 +105,18 @@ static int print_cost(const campaign *c, const grid *g, const char *runs, int us
 		return sb_errf(e, SB_ENOMEM, "out of memory");
 	cost_count(c, g, use_cache, groups, &total);
 	calib rates[COST_NINTEG] = {0};
+	char dbp[PATH_MAX + 32];
+	driver_db_path(runs, db, dbp, sizeof dbp);
+	st_db d;
+	const int have_db = access(dbp, R_OK) == 0 && !db_open(&d, dbp, 0, e);
 	for (int i = 0; i < COST_NINTEG && !e->code; i++)
-		if (total.grain_steps[i] > 0 || total.settle_grains[i] > 0)
+		if (total.grain_steps[i] > 0 || total.settle_grains[i] > 0) {
 			(void)(measure ? calib_get(runs, shake, i, &rates[i], e) : calib_cached(runs, shake, i, &rates[i], e));
+			if (have_db && !e->code)
+				calib_learn(&d, c->name, i, &rates[i], e);
+		}
+	if (have_db)
+		db_close(&d);
 	if (!e->code)
 		cost_print(stderr, c, groups, g->points, &total, rates);
 	free(groups);
@@ -172,7 +184,7 @@ static int cmd_expand(const char *path, const char *runs, sb_err *e)
 		/* the table is the command's answer: a cost that cannot be measured is said, not fatal */
 		sb_err ce = {0};
 		/* expand measures nothing: the rate comes from the cache, or is said to be unknown */
-		if (print_cost(c, &g, runs, 1, 0, &ce))
+		if (print_cost(c, &g, runs, NULL, 1, 0, &ce))
 			fprintf(stderr, "study: cost: %s\n", ce.msg);
 	}
 	grid_free(&g);
@@ -225,7 +237,7 @@ static int cmd_dry_run(const study_args *o)
 			g.n = k;
 		}
 		if (g.n || !have)
-			print_cost(c, &g, o->runs, !o->no_cache, 1, &e);
+			print_cost(c, &g, o->runs, o->db, !o->no_cache, 1, &e);
 		else
 			fprintf(stderr, "study: %s: nothing remains to run\n", c->name);
 	}

@@ -1,4 +1,5 @@
 /* worker.c - one job: lock, run bin/shake from an argument file, report. */
+#define _GNU_SOURCE /* wait4 */
 #include "worker.h"
 
 #include <errno.h>
@@ -8,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -62,6 +64,8 @@ void worker_last_message(const char *log, long from, char *out, size_t len)
 	while (fgets(line, sizeof line, f)) {
 		line[strcspn(line, "\r\n")] = 0;
 		int mine = !strncmp(line, "shake: ", 7);
+		if (!strncmp(line, WORKER_USAGE, sizeof WORKER_USAGE - 1))
+			continue; /* the worker's own line after the engine's end (worker.h) */
 		if (line[strspn(line, " \t")] && (mine || !engine)) {
 			scopy(out, len, line);
 			engine |= mine;
@@ -78,13 +82,82 @@ int worker_crashed(long code)
 	return sig == SIGSEGV || sig == SIGBUS || sig == SIGILL || sig == SIGABRT || sig == SIGFPE;
 }
 
-static void report_done(const char *name, int code, const char *host, double secs, const char *msg)
+/* The DONE line (worker.h): u NULL when no engine ran (its CPU and memory "-"). */
+static void report_usage(const char *name, int code, const char *host, double secs, const db_usage *u,
+			 const char *msg)
 {
-	char m[1024];
+	char m[1024], cpu[32] = "-", rss[32] = "-";
 	snprintf(m, sizeof m, "%s", msg);
 	clean(m);
-	printf("%s\t%s\t%d\t%s\t%.3f\t%s\n", WORKER_DONE, name, code, host, secs, m);
+	if (u) {
+		snprintf(cpu, sizeof cpu, "%.3f", u->cpu_seconds);
+		snprintf(rss, sizeof rss, "%ld", u->max_rss_kb);
+	}
+	printf("%s\t%s\t%d\t%s\t%.3f\t%s\t%s\t%s\n", WORKER_DONE, name, code, host, secs, cpu, rss, m);
 	fflush(stdout);
+}
+
+static void report_done(const char *name, int code, const char *host, double secs, const char *msg)
+{
+	report_usage(name, code, host, secs, NULL, msg);
+}
+
+int worker_log_usage(const char *log, long from, db_usage *u)
+{
+	sb_err e = {0};
+	FILE *f = fs_open_input(log, "run log", 0, SB_EIO, &e); /* a regular file only (docs/inputs.md) */
+	if (!f)
+		return 0;
+	if (from > 0)
+		fseek(f, from, SEEK_SET);
+	char line[2048];
+	int got = 0;
+	while (fgets(line, sizeof line, f)) {
+		double cpu;
+		long rss;
+		if (!strncmp(line, WORKER_USAGE, sizeof WORKER_USAGE - 1) &&
+		    sscanf(line + sizeof WORKER_USAGE - 1, "%lf s of CPU, peak memory %ld KiB", &cpu, &rss) == 2 &&
+		    cpu >= 0 && rss >= 0) {
+			*u = (db_usage){cpu, rss};
+			got = 1;
+		}
+	}
+	fclose(f);
+	return got;
+}
+
+int worker_done_parse(char *line, worker_done *w)
+{
+	char *f[8] = {0};
+	int n = 0;
+	if (strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE))
+		return 0;
+	for (char *s = line, *t; n < 8 && (t = strsep(&s, "\t"));)
+		f[n++] = t;
+	/* 6 fields: a worker of the version before the usage was reported (a Slurm task's
+	 * log written before an upgrade), its message the sixth */
+	if ((n != 6 && n < 8) || !f[1][0])
+		return 0;
+	char *end;
+	w->name = f[1];
+	w->code = strtol(f[2], &end, 10);
+	if (end == f[2])
+		return 0;
+	w->host = f[3];
+	w->wall = strtod(f[4], NULL);
+	w->ran = 0;
+	w->u = (db_usage){0, 0};
+	if (n == 6) {
+		w->msg = f[5];
+		return 1;
+	}
+	/* "-": no engine ran (the job never started one) */
+	char *end2;
+	w->u.cpu_seconds = strtod(f[5], &end);
+	w->u.max_rss_kb = strtol(f[6], &end2, 10);
+	w->ran = end != f[5] && !*end && w->u.cpu_seconds >= 0 && end2 != f[6] && !*end2 && w->u.max_rss_kb >= 0;
+	w->msg = f[7];
+	return 1;
 }
 
 int worker_exec(const char *dir, const char *kind, const char *name, const char *self)
@@ -206,7 +279,11 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	}
 	g_child = pid;
 	int st = 0, code;
-	while (pid > 0 && waitpid(pid, &st, 0) < 0 && errno == EINTR)
+	/* the engine's own CPU and peak memory, whatever ended it (a signal too): every
+	 * attempt's cost is recorded (docs/database.md, table attempt) */
+	struct rusage ru;
+	memset(&ru, 0, sizeof ru);
+	while (pid > 0 && wait4(pid, &st, 0, &ru) < 0 && errno == EINTR)
 		;
 	if (pid < 0)
 		code = 2;
@@ -217,6 +294,14 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 	gettimeofday(&t1, NULL);
 	for (int i = 1; i < argc; i++)
 		free(argv[i]);
+	const db_usage usage = {(double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
+					(double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec,
+				(long)ru.ru_maxrss}; /* KiB on Linux (getrusage(2)) */
+	/* also in the run's log: a DONE line that never reaches the driver (GNU parallel
+	 * stopped with it drops a job's output) leaves the usage where ingest finds it */
+	if (lf >= 0 && pid > 0)
+		dprintf(lf, "%s%.3f s of CPU, peak memory %ld KiB (exit %d)\n", WORKER_USAGE, usage.cpu_seconds,
+			usage.max_rss_kb, code);
 	if (lf >= 0)
 		close(lf);
 	char msg[1024];
@@ -226,7 +311,8 @@ int worker_exec(const char *dir, const char *kind, const char *name, const char 
 		snprintf(msg, sizeof msg, "crashed by signal %d (%s)", code - 128, strsignal(code - 128));
 	else if (code >= 128)
 		snprintf(msg, sizeof msg, "killed by signal %d", code - 128);
-	report_done(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec), msg);
+	report_usage(name, code, host, (double)(t1.tv_sec - t0.tv_sec) + 1e-6 * (double)(t1.tv_usec - t0.tv_usec),
+		     pid > 0 ? &usage : NULL, msg);
 	close(lk);
 	return 0; /* reported: see worker.h */
 }

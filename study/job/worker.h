@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "ledger/db.h"
+
 /* kind "run": args jobs/NAME.args, log logs/NAME.log, output NAME.h5;
  * kind "cache": args cache/NAME.args, log cache/NAME.log, output cache/NAME.h5.
  * Paths are relative to dir. The outcome (the engine's exit code, 128 + signal if
@@ -30,5 +32,35 @@ int worker_crashed(long code);
 
 #define WORKER_START "STUDY-START"
 #define WORKER_DONE "STUDY-DONE"
+
+/* A DONE line's fields, in this order after WORKER_DONE, tab-separated (the one place
+ * that reads them; docs/driver.md): the job's name, the engine's exit code (128 + n
+ * for signal n), the host, the wall seconds, the engine's CPU seconds (user + system)
+ * and its peak resident memory in KiB (wait4: also when a signal ended it; "-" when no
+ * engine ran), and the engine's last word (never a tab). */
+typedef struct worker_done {
+	const char *name, *host, *msg; /* into the line */
+	long code;
+	double wall;
+	int ran;      /* an engine ran: its usage is known */
+	db_usage u;
+} worker_done;
+
+/* Splits a DONE line in place into w; 0 when line is not one (or lacks a field). A
+ * line of the earlier form without the two usage fields is read, its usage unknown. */
+int worker_done_parse(char *line, worker_done *w);
+
+/* The line the worker appends to the run's log when its engine has ended:
+ * WORKER_USAGE "1.234 s of CPU, peak memory 16556 KiB (exit 7)". worker_last_message
+ * skips it; worker_log_usage reads the last one from byte `from` on (1, into *u; 0:
+ * none: the worker died with its engine). */
+#define WORKER_USAGE "study exec: the engine used "
+int worker_log_usage(const char *log, long from, db_usage *u);
+
+/* The engine's usage for the attempt's row (db_attempt, db_ingest): NULL when none ran. */
+static inline const db_usage *worker_usage(const worker_done *w)
+{
+	return w && w->ran ? &w->u : NULL;
+}
 
 #endif

@@ -48,9 +48,7 @@ int db_open(st_db *d, const char *path, int writable, sb_err *e)
 	if (db_begin(d, e))
 		return e->code;
 	char lost[128];
-	/* an attempt's start (attempt_row): absent from files of earlier versions */
-	if (schema_lost(d, 1, lost, sizeof lost, e) || schema_study(d, e) ||
-	    sql_ensure_column(d, "attempt", "started", "TEXT", e) || (lost[0] && repair(d, lost, e))) {
+	if (schema_lost(d, 1, lost, sizeof lost, e) || schema_study(d, e) || (lost[0] && repair(d, lost, e))) {
 		db_rollback(d);
 		return e->code;
 	}
@@ -176,14 +174,16 @@ int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t
  * known. */
 static int attempt_row(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
 		       const char *message, const char *host, const char *started, const char *now, int has_wall,
-		       double wall, const char *state, sb_err *e)
+		       double wall, const db_usage *u, const char *state, sb_err *e)
 {
 	if (sql_exec(d, e, NULL,
-		    "INSERT INTO attempt(campaign, run, n, host, exit_code, status, message, started, finished, wall_seconds)"
+		    "INSERT INTO attempt(campaign, run, n, host, exit_code, status, message, started, finished, wall_seconds,"
+		    " cpu_seconds, max_rss_kb)"
 		    " VALUES (?1, ?2, (SELECT attempts + 1 FROM run WHERE campaign = ?1 AND id = ?2), ?3, ?4, ?5, ?6,"
 		    " COALESCE((SELECT started FROM run WHERE campaign = ?1 AND id = ?2 AND state = 'running'), ?7),"
-		    " ?8, ?9)",
-		    "tttlttttD", camp, id, host, exit_code, status, message, started, now, has_wall, wall))
+		    " ?8, ?9, ?10, ?11)",
+		    "tttlttttDDL", camp, id, host, exit_code, status, message, started, now, has_wall, wall, u != NULL,
+		    u ? u->cpu_seconds : 0, u != NULL, u ? u->max_rss_kb : 0))
 		return e->code;
 	return sql_exec(d, e, NULL,
 		       "UPDATE run SET attempts = attempts + 1, state = ?3, host = ?4, finished = ?5"
@@ -192,9 +192,9 @@ static int attempt_row(st_db *d, const char *camp, const char *id, long exit_cod
 }
 
 int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
-	       const char *message, const char *host, const char *now, const char *state, sb_err *e)
+	       const char *message, const char *host, const db_usage *u, const char *now, const char *state, sb_err *e)
 {
-	return attempt_row(d, camp, id, exit_code, status, message, host, NULL, now, 0, 0, state, e);
+	return attempt_row(d, camp, id, exit_code, status, message, host, NULL, now, 0, 0, u, state, e);
 }
 
 int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, const char *status,
@@ -204,7 +204,7 @@ int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, 
 	const char *start = s ? h5sum_text(s, "start_time") : "";
 	return attempt_row(d, camp, id, s ? h5sum_int(s, "exit_code") : SB_EIO, status, message,
 			   s ? h5sum_text(s, "host") : "", start[0] ? start : NULL, end[0] ? end : now, s != NULL,
-			   s ? h5sum_real(s, "wall_seconds") : 0, "pending", e);
+			   s ? h5sum_real(s, "wall_seconds") : 0, NULL, "pending", e);
 }
 
 /* The result row of a run from its file's summary: generated from the results table;
@@ -257,7 +257,8 @@ int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb
 	return e->code ? e->code : rowseal_put(d, camp, id, e);
 }
 
-int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e)
+int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const db_usage *u, const char *now,
+	      sb_err *e)
 {
 	const char *status = h5sum_text(s, "status");
 	/* the run finished when the engine wrote its file, not when the driver read it */
@@ -274,7 +275,7 @@ int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const 
 		return e->code;
 	if (attempt_row(d, camp, id, h5sum_int(s, "exit_code"), status, h5sum_text(s, "message"),
 			h5sum_text(s, "host"), start[0] ? start : NULL, end[0] ? end : now, 1,
-			h5sum_real(s, "wall_seconds"), strcmp(status, "ok") ? "failed" : "done", e))
+			h5sum_real(s, "wall_seconds"), u, strcmp(status, "ok") ? "failed" : "done", e))
 		return e->code;
 	if (start[0] && sql_exec(d, e, NULL, "UPDATE run SET started = ?3 WHERE campaign = ?1 AND id = ?2 AND started IS NULL",
 				"ttt", camp, id, start))

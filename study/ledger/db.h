@@ -32,8 +32,17 @@ int db_run_add(st_db *d, const campaign *c, const grid_run *r, const sb_scene *s
 int db_run_state(st_db *d, const char *camp, const char *id, char *state, size_t len, long *attempts,
 		 sb_err *e);
 
+/* What an attempt's engine used, as its worker measured it (wait4): CPU seconds (user
+ * + system) and peak resident memory in KiB. A NULL db_usage: not known (no worker
+ * reported it: an attempt recorded from the files alone, or whose worker died). */
+typedef struct db_usage {
+	double cpu_seconds;
+	long max_rss_kb;
+} db_usage;
+
 /* Record a finished attempt from its output file (state done/failed by its status). */
-int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const char *now, sb_err *e);
+int db_ingest(st_db *d, const char *camp, const char *id, const h5sum *s, const db_usage *u, const char *now,
+	      sb_err *e);
 /* Write (or rewrite) only the result row of a run from its file: a database rebuilt
  * or written by another version gets its results back from the files. */
 int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb_err *e);
@@ -43,7 +52,7 @@ int db_result_put(st_db *d, const char *camp, const char *id, const h5sum *s, sb
 int db_attempt_kept(st_db *d, const char *camp, const char *id, const h5sum *s, const char *status,
 		    const char *message, const char *now, sb_err *e);
 int db_attempt(st_db *d, const char *camp, const char *id, long exit_code, const char *status,
-	       const char *message, const char *host, const char *now, const char *state, sb_err *e);
+	       const char *message, const char *host, const db_usage *u, const char *now, const char *state, sb_err *e);
 
 void db_now(char *buf, size_t len);
 

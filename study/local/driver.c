@@ -468,7 +468,7 @@ static long retries_due(drv *d, char **names, long n, char **last, long nlast, i
 			if (db_begin(&d->db, e))
 				break;
 			if (db_attempt(&d->db, d->c.name, r->id, -1, "lost", "no outcome came back (host lost, output not returned)",
-				       "", now, "pending", e)) {
+				       "", NULL, now, "pending", e)) {
 				db_rollback(&d->db);
 				break;
 			}

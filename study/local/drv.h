@@ -113,7 +113,7 @@ void driver_search_summary(drv *d);
 /* ingest.c: a run's or a packing's outcome into the database (and into
  * d->runs.outcome, d->runs.transient for the retries); the workers' START and DONE
  * lines; the runs started whose DONE never came (after a pass) */
-int ingest_run(drv *d, const char *id, sb_err *e);
+int ingest_run(drv *d, const char *id, const db_usage *u, sb_err *e); /* u: NULL when no worker said */
 int ingest_cache(drv *d, const char *key, sb_err *e);
 void ingest_cache_state(drv *d, const char *key, char *st, size_t len);
 int ingest_on_start(drv *d, char *line, sb_err *e);

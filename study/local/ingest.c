@@ -76,12 +76,12 @@ static int recover_kept(drv *d, const char *id, sb_err *e)
 	}
 }
 
-static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep,
-		       int *gone, sb_err *e);
+static int ingest_file(drv *d, const char *id, const char *path, const db_usage *u, const char *now, h5sum *sp,
+		       sb_err *rep, int *gone, sb_err *e);
 static int attempt(drv *d, long ix, long code, const char *status, const char *msg, const char *host,
-		   const char *end, const char *state, sb_err *e);
+		   const db_usage *u, const char *end, const char *state, sb_err *e);
 
-int ingest_run(drv *d, const char *id, sb_err *e)
+int ingest_run(drv *d, const char *id, const db_usage *u, sb_err *e)
 {
 	char path[PATHX], now[32];
 	layout_file(d->dir, 0, id, LAY_OUTPUT, path, sizeof path);
@@ -91,7 +91,7 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 	if (db_begin(&d->db, e))
 		return e->code;
 	int gone = 0;
-	if (ingest_file(d, id, path, now, &s, &re, &gone, e)) {
+	if (ingest_file(d, id, path, u, now, &s, &re, &gone, e)) {
 		db_rollback(&d->db); /* a full disk: the final sweep tries again (ingest_owed_settle) */
 		return e->code;
 	}
@@ -105,7 +105,7 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 			return 0;
 		if (d->runs.outcome)
 			d->runs.outcome[gr - d->g.runs] = 'm';
-		return attempt(d, gr - d->g.runs, SB_EIO, "missing_input", re.msg, "", now, "pending", e);
+		return attempt(d, gr - d->g.runs, SB_EIO, "missing_input", re.msg, "", u, now, "pending", e);
 	}
 	d->n_ingested++;
 	if (gr && d->runs.outcome)
@@ -116,8 +116,8 @@ int ingest_run(drv *d, const char *id, sb_err *e)
 }
 
 /* A run's file into the database, within the caller's transaction (committed here). */
-static int ingest_file(drv *d, const char *id, const char *path, const char *now, h5sum *sp, sb_err *rep,
-		       int *gone, sb_err *e)
+static int ingest_file(drv *d, const char *id, const char *path, const db_usage *u, const char *now, h5sum *sp,
+		       sb_err *rep, int *gone, sb_err *e)
 {
 	h5sum s;
 	sb_err re = {0};
@@ -132,7 +132,7 @@ static int ingest_file(drv *d, const char *id, const char *path, const char *now
 		*gone = 1;
 		return 0;
 	} else if (re.code) {
-		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", now, "failed", e);
+		db_attempt(&d->db, d->c.name, id, SB_EIO, "io", re.msg, "", u, now, "failed", e);
 	} else {
 		/* the file says whether the run started from the packing cache: a database
 		 * rebuilt from the files gets from_cache and the cache's row back */
@@ -151,7 +151,7 @@ static int ingest_file(drv *d, const char *id, const char *path, const char *now
 					d->c.name, id);
 		}
 		if (!e->code)
-			db_ingest(&d->db, d->c.name, id, &s, now, e);
+			db_ingest(&d->db, d->c.name, id, &s, u, now, e);
 	}
 	*sp = s;
 	*rep = re;
@@ -194,6 +194,8 @@ struct owed {
 	struct owed *next;
 	long ix, code;
 	char status[24], msg[1024], host[256], end[32], state[16];
+	int has_usage;
+	db_usage u;
 };
 
 /* Records an attempt of grid run ix (its run's state becomes `state`). One the database
@@ -202,17 +204,17 @@ struct owed {
  * be taken for one whose driver was killed; and it stops the launching as an I/O fault
  * would, since every later run would end the same way. */
 static int attempt(drv *d, long ix, long code, const char *status, const char *msg, const char *host,
-		   const char *end, const char *state, sb_err *e)
+		   const db_usage *u, const char *end, const char *state, sb_err *e)
 {
 	const char *id = d->g.runs[ix].id;
 	if (!db_begin(&d->db, e)) {
-		if (!db_attempt(&d->db, d->c.name, id, code, status, msg, host, end, state, e) && !db_commit(&d->db, e))
+		if (!db_attempt(&d->db, d->c.name, id, code, status, msg, host, u, end, state, e) && !db_commit(&d->db, e))
 			return 0;
 		db_rollback(&d->db);
 	}
 	struct owed *o = calloc(1, sizeof *o);
 	if (o) {
-		*o = (struct owed){d->owed, ix, code, "", "", "", "", ""};
+		*o = (struct owed){d->owed, ix, code, "", "", "", "", "", u != NULL, u ? *u : (db_usage){0, 0}};
 		snprintf(o->status, sizeof o->status, "%s", status);
 		snprintf(o->msg, sizeof o->msg, "%s", msg);
 		snprintf(o->host, sizeof o->host, "%s", host);
@@ -248,7 +250,8 @@ int ingest_owed_settle(drv *d, sb_err *e)
 		const char *id = d->g.runs[o->ix].id;
 		sb_err le = {0};
 		int bad = db_begin(&d->db, &le) ||
-			  db_attempt(&d->db, d->c.name, id, o->code, o->status, o->msg, o->host, o->end, o->state, &le) ||
+			  db_attempt(&d->db, d->c.name, id, o->code, o->status, o->msg, o->host, o->has_usage ? &o->u : NULL,
+				     o->end, o->state, &le) ||
 			  db_commit(&d->db, &le);
 		if (bad) {
 			db_rollback(&d->db);
@@ -283,14 +286,13 @@ static int input_gone(drv *d, const char *id, char *why, size_t n)
 /* A DONE line from a worker: the output file decides; without one, the exit code. */
 int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 {
-	char *f[6] = {0};
-	int n = 0;
-	for (char *s = line, *t; n < 6 && (t = strsep(&s, "\t"));)
-		f[n++] = t;
-	if (n < 6 || !safe_name(f[1]))
+	worker_done w;
+	if (!worker_done_parse(line, &w) || !safe_name(w.name))
 		return 0;
-	const char *name = f[1], *host = f[3], *msg = f[5];
-	long code = strtol(f[2], NULL, 10);
+	const char *name = w.name, *host = w.host, *msg = w.msg;
+	const long code = w.code;
+	/* what the engine used (worker.h), recorded with the attempt whatever its outcome */
+	const db_usage *u = worker_usage(&w);
 	char path[PATHX];
 	if (is_cache) {
 		layout_file(d->dir, 1, name, LAY_OUTPUT, path, sizeof path);
@@ -317,7 +319,7 @@ int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 	d->runs.started[r - d->g.runs] = 2;
 	layout_file(d->dir, 0, name, LAY_OUTPUT, path, sizeof path);
 	if (exists(path))
-		return ingest_run(d, name, e);
+		return ingest_run(d, name, u, e);
 	if (code == 0)
 		return 0; /* output still on its way back from a remote host: the final sweep */
 	long ix = r - d->g.runs;
@@ -337,7 +339,7 @@ int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 			unlink(p);
 		d->runs.outcome[ix] = 'm';
 		db_now(now, sizeof now);
-		return attempt(d, ix, code, "missing_input", msg, host, now, "pending", e);
+		return attempt(d, ix, code, "missing_input", msg, host, u, now, "pending", e);
 	}
 	char gone[PATHX + 96];
 	if (code != SB_EINTR && code < 128 && input_gone(d, name, gone, sizeof gone)) {
@@ -347,7 +349,7 @@ int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 		 * may have said nothing (it found no file to run): the attempt says what went */
 		d->runs.outcome[ix] = 'm';
 		db_now(now, sizeof now);
-		return attempt(d, ix, code, "missing_input", msg[0] ? msg : gone, host, now, "pending", e);
+		return attempt(d, ix, code, "missing_input", msg[0] ? msg : gone, host, u, now, "pending", e);
 	}
 	/* interrupted (7) or killed by a signal: resumable, stays pending. An I/O fault
 	 * (2: a full disk, a read-only directory) is the machine's, not the run's: the run
@@ -383,7 +385,7 @@ int ingest_on_done(drv *d, int is_cache, char *line, sb_err *e)
 	db_now(now, sizeof now);
 	if (!resumable)
 		d->n_failed_now++;
-	return attempt(d, ix, code, status, msg, host, now, resumable ? "pending" : "failed", e);
+	return attempt(d, ix, code, status, msg, host, u, now, resumable ? "pending" : "failed", e);
 }
 
 int ingest_on_start(drv *d, char *line, sb_err *e)
@@ -444,13 +446,16 @@ void ingest_unreported(drv *d, sb_err *e)
 			intr = 0;
 		}
 		db_now(now, sizeof now);
+		/* what its engine used, from the line its worker left in the log (worker.h) */
+		db_usage lu;
+		const db_usage *u = worker_log_usage(path, d->runs.logfrom[i], &lu) ? &lu : NULL;
 		sb_err le = {0};
 		attempt(d, i, intr ? SB_EINTR : -1, lost ? "lost" : "interrupted",
 			msg[0] && !lost ? msg
 			: lost          ? "the job ended without its outcome (worker killed or host lost)"
 			: d->io_fault   ? "stopped by the driver after an I/O fault"
 					: "stopped with the driver",
-			"", now, "pending", &le);
+			"", u, now, "pending", &le);
 		if (le.code && !e->code)
 			*e = le;
 	}
@@ -545,7 +550,7 @@ int ingest_orphans(drv *d, sb_err *e)
 				 msg[0] ? "the engine's last word: " : "the engine left no word", msg);
 		if (db_begin(&d->db, e))
 			break;
-		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, "interrupted", why, "", end, "pending", e))
+		if (db_attempt(&d->db, d->c.name, id, intr ? SB_EINTR : -1, "interrupted", why, "", NULL, end, "pending", e))
 			db_rollback(&d->db);
 		else
 			db_commit(&d->db, e);

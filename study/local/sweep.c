@@ -71,7 +71,7 @@ static int requeue_damaged(drv *d, const char *id, long att, const char *why, sb
 	db_now(now, sizeof now);
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", now, "pending", e) ||
+	if (db_attempt(&d->db, d->c.name, id, SB_EIO, "damaged", why, "", NULL, now, "pending", e) ||
 	    sql_exec(&d->db, e, NULL, "DELETE FROM result WHERE campaign = ? AND run = ?", "tt", d->c.name, id)) {
 		db_rollback(&d->db);
 		return e->code;
@@ -150,7 +150,7 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
 		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
 		if (queued && exists(path)) {
-			if (ingest_run(d, r->id, e))
+			if (ingest_run(d, r->id, NULL, e)) /* finished while no driver listened */
 				return e->code;
 			continue;
 		}

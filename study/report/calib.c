@@ -20,6 +20,8 @@
 #include "layout.h"
 #include "params.h"
 #include "provenance.h"
+#include "sql.h"
+#include "report/dtext.h"
 
 /* The two calibration runs' shaking: 0.5 s, and that plus CAL_STEPS steps (2 s of the
  * paper preset, 8 s of the fast one): the difference is the shaking alone, long enough
@@ -91,6 +93,80 @@ static unsigned long long fnv(const char *s)
 	return h;
 }
 
+void calib_age(const char *date, char *out, size_t len)
+{
+	struct tm tm;
+	memset(&tm, 0, sizeof tm);
+	char z = 0;
+	if (sscanf(date, "%d-%d-%dT%d:%d:%d%c", &tm.tm_year, &tm.tm_mon, &tm.tm_mday, &tm.tm_hour, &tm.tm_min, &tm.tm_sec,
+		   &z) != 7 || z != 'Z') {
+		snprintf(out, len, "age unknown");
+		return;
+	}
+	tm.tm_year -= 1900;
+	tm.tm_mon -= 1;
+	const double age = difftime(time(NULL), timegm(&tm));
+	char d[32];
+	dtext_duration(age, d, sizeof d);
+	if (age < 0)
+		snprintf(out, len, "in the future: a clock set wrong");
+	else if (age < 2 * 86400)
+		snprintf(out, len, "%s ago", d);
+	else
+		snprintf(out, len, "%.0f days ago", age / 86400);
+}
+
+int calib_learn(sql_db *d, const char *campaign, int integrator, calib *k, sb_err *e)
+{
+	char cols[1024];
+	sql_columns(d, "attempt", cols, sizeof cols);
+	if (!strstr(cols, ",cpu_seconds,") && strncmp(cols, "cpu_seconds,", 12))
+		return 0; /* a database of an earlier version: no CPU recorded */
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.integrator = integrator;
+	char integ[64];
+	params_format(&sc, params_find("integrator"), integ, sizeof integ);
+	/* every done run of the campaign at this integrator whose every attempt has its CPU
+	 * (a resumed run's attempts together simulated its status_time) */
+	sqlite3_stmt *q;
+#define PARAM(key) "(SELECT p.value FROM param p WHERE p.campaign = r.campaign AND p.run = r.id AND p.key = '" key "')"
+	if (sql_exec(d, e, &q,
+		     "SELECT " PARAM("n_grains") ", " PARAM("dt") ", s.status_time, r.from_cache, " PARAM("particles") ", "
+		     PARAM("settle") ", (SELECT TOTAL(a.cpu_seconds) FROM attempt a WHERE a.campaign = r.campaign AND"
+		     " a.run = r.id) FROM run r JOIN result s ON s.campaign = r.campaign AND s.run = r.id WHERE"
+		     " r.campaign = ?1 AND r.state = 'done' AND " PARAM("integrator") " = ?2 AND s.status_time > 0 AND"
+		     " NOT EXISTS (SELECT 1 FROM attempt a WHERE a.campaign = r.campaign AND a.run = r.id AND"
+		     " a.cpu_seconds IS NULL)",
+		     "tt", campaign, integ))
+		return e->code;
+#undef PARAM
+	long n = 0;
+	double cpu = 0, grain_steps = 0;
+	while (sqlite3_step(q) == SQLITE_ROW) {
+		const double grains = sqlite3_column_double(q, 0), dt = sqlite3_column_double(q, 1),
+			     t = sqlite3_column_double(q, 2);
+		const char *particles = (const char *)sqlite3_column_text(q, 4), *settle = (const char *)sqlite3_column_text(q, 5);
+		if (!(grains > 0) || !(dt > 0))
+			continue;
+		/* a run that settled its own packing spent that first (cost.c counts it apart) */
+		const int settled = !sqlite3_column_int(q, 3) && (!particles || !particles[0]) && !(settle && !strcmp(settle, "no"));
+		cpu += sqlite3_column_double(q, 6) - (settled ? k->settle * grains : 0);
+		grain_steps += ceil(t / dt - 1e-9) * grains;
+		n++;
+	}
+	if (sql_done(d, q, e) || n == 0 || !(grain_steps > 0) || !(cpu > 0))
+		return e->code;
+	char was[sizeof k->source];
+	snprintf(was, sizeof was, "%s", k->source);
+	k->step = cpu / grain_steps;
+	snprintf(k->source, sizeof k->source, "%.60s, rate from %ld finished run%s of this campaign (their CPU per "
+		 "grain-step, in %.900s); %s%.3800s", integ, n, n == 1 ? "" : "s", d->path,
+		 k->settle > 0 ? "settling at the rate of the " : "the settling's rate not measured yet, not counted: ",
+		 strchr(was, ' ') ? strchr(was, ' ') + 1 : was);
+	return 0;
+}
+
 static int calib_read(const char *runs, const char *shake, int integrator, int measure, calib *k, sb_err *e);
 
 int calib_get(const char *runs, const char *shake, int integrator, calib *k, sb_err *e)
@@ -132,11 +208,14 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 			/* how busy the machine was then: a rate measured beside other work may be
 			 * slow (a file of an older build has no load: not said) */
 			if (got == 5 && isfinite(la) && ncpu > 0)
-				snprintf(load, sizeof load, " at load %.2f on %ld cores%s", la, ncpu,
+				snprintf(load, sizeof load, ", at load %.2f on %ld cores%s", la, ncpu,
 					 la > 0.5 * (double)ncpu ? ", a busy machine: the rate may be slow (remove the file to "
 								   "measure again)"
 								 : "");
-			snprintf(k->source, sizeof k->source, "%s, cached from %s%s (%.4200s)", integ, date, load, path);
+			char age[48];
+			calib_age(date, age, sizeof age);
+			snprintf(k->source, sizeof k->source, "%s, calibration measured %s (%s) on this machine%s (%.4200s)",
+				 integ, date, age, load, path);
 			return 0;
 		}
 	}
@@ -206,8 +285,8 @@ static int calib_read(const char *runs, const char *shake, int integrator, int m
 	if (fs_commit(&sf, e))
 		return e->code;
 	const double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-	snprintf(k->source, sizeof k->source, "%s, measured now in %.1f s at load %.2f on %ld cores%s (%.4200s)", integ,
-		 secs, la[0], ncpu,
+	snprintf(k->source, sizeof k->source, "%s, calibration measured now in %.1f s on this machine, at load %.2f on %ld "
+		 "cores%s (%.4200s)", integ, secs, la[0], ncpu,
 		 la[0] > 0.5 * (double)ncpu ? ", a busy machine: the rate may be slow (remove the file to measure again)"
 					    : "",
 		 path);

@@ -17,3 +17,15 @@ void dtext_shortest(double v, char *buf, size_t len)
 			return;
 	}
 }
+
+void dtext_duration(double s, char *buf, size_t len)
+{
+	if (s < 0)
+		snprintf(buf, len, "unknown");
+	else if (s < 120)
+		snprintf(buf, len, "%.0f s", s);
+	else if (s < 7200)
+		snprintf(buf, len, "%.1f min", s / 60);
+	else
+		snprintf(buf, len, "%.1f h", s / 3600);
+}

@@ -58,16 +58,6 @@ static const char *col(sqlite3_stmt *q, int i)
 	return t ? (const char *)t : "";
 }
 
-static void fmt_dur(double s, char *buf, size_t len)
-{
-	if (s < 120)
-		snprintf(buf, len, "%.0f s", s);
-	else if (s < 7200)
-		snprintf(buf, len, "%.1f min", s / 60);
-	else
-		snprintf(buf, len, "%.1f h", s / 3600);
-}
-
 /* Runs finished per second by what actually ran: the last (at most 20) runs to finish,
  * over the time from the first of them starting to the last finishing (runs that ran
  * side by side count together, whatever --jobs or hosts did it); 0 when none has. */
@@ -278,44 +268,6 @@ static int failure_summary(st_db *d, const char *name, FILE *out, sb_err *e)
 	return sql_done(d, q, e);
 }
 
-/* A search's or replicates = auto's runs still to come, at most: the runs pending or
- * running, what every searching replicate's chain may still add (its longest chain,
- * cost_chain_max, minus its runs so far) and the chains of the replicates a group not
- * yet answered may still get; for replicates = auto, the replicates a point may still
- * get. -1: neither (the runs in the database are all there will be). */
-static long runs_left_at_most(st_db *d, const char *name, long now, sb_err *e)
-{
-	sqlite3_stmt *q;
-	long more = -1;
-	if (sql_exec(d, e, &q, "SELECT freq_from, freq_to, tolerance FROM onset_search WHERE campaign = ?", "t", name))
-		return -1;
-	if (sqlite3_step(q) == SQLITE_ROW) {
-		const long chain = cost_chain_max(sqlite3_column_double(q, 0), sqlite3_column_double(q, 1),
-						  sqlite3_column_double(q, 2));
-		sql_done(d, q, e);
-		if (sql_exec(d, e, &q,
-			    "SELECT (SELECT COALESCE(SUM(MAX(0, ?2 - runs)), 0) FROM onset_replicate WHERE campaign = ?1"
-			    " AND state = 'searching'), (SELECT COALESCE(SUM(MAX(0, s.max_replicates - g.replicates)), 0)"
-			    " FROM onset_group g JOIN onset_search s ON s.campaign = g.campaign WHERE g.campaign = ?1"
-			    " AND g.state IN ('searching', 'more'))",
-			    "tl", name, chain))
-			return -1;
-		if (sqlite3_step(q) == SQLITE_ROW)
-			more = sqlite3_column_int64(q, 0) + chain * sqlite3_column_int64(q, 1);
-	} else {
-		sql_done(d, q, e);
-		if (sql_exec(d, e, &q,
-			    "SELECT COUNT(*), COALESCE(SUM(MAX(0, max_replicates - replicates)), 0) FROM auto_point"
-			    " WHERE campaign = ? AND state IN ('running', 'more')",
-			    "t", name))
-			return -1;
-		if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int64(q, 0) > 0)
-			more = sqlite3_column_int64(q, 1);
-	}
-	sql_done(d, q, e);
-	return more < 0 ? -1 : now + more;
-}
-
 static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e)
 {
 	sqlite3_stmt *q;
@@ -337,7 +289,10 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 			running);
 		fprintf(out, "  packing cache: %ld finished runs started from a shared packing\n", hits);
 		/* a search or replicates = auto: the whole campaign's work, at most */
-		const long left = pending + running > 0 ? runs_left_at_most(d, name, pending + running, e) : -1;
+		watch_search ws = {0};
+		const long left = pending + running > 0 && !watch_search_left(d, name, &ws, e) && ws.on
+					  ? pending + running + ws.more_max
+					  : -1;
 		if (e->code) {
 			sql_done(d, q, e);
 			return e->code;
@@ -353,13 +308,13 @@ static int status_one(st_db *d, const char *name, int jobs, FILE *out, sb_err *e
 			if (rate > 0) {
 				/* what actually ran: the pace of the last runs to finish, whatever
 				 * the number of jobs or hosts that produced it */
-				fmt_dur((double)todo / rate, eta, sizeof eta);
+				dtext_duration((double)todo / rate, eta, sizeof eta);
 				fprintf(out, "  ETA: %s%s%s at the pace of the last runs (%.1f runs/h)\n", most, eta, whole,
 					3600 * rate);
 			} else if (sqlite3_column_type(q, 6) != SQLITE_NULL) {
 				/* a single finished run: its time spread over what runs now */
 				int w = running > 0 ? (int)running : jobs;
-				fmt_dur(mean * (double)todo / (w > 0 ? w : 1), eta, sizeof eta);
+				dtext_duration(mean * (double)todo / (w > 0 ? w : 1), eta, sizeof eta);
 				fprintf(out, "  ETA: %s%s%s with %d run%s at a time (mean run %.1f s)\n", most, eta, whole, w,
 					w > 1 ? "s" : "", mean);
 			} else {

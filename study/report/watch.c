@@ -11,6 +11,7 @@
 #include "lock.h"
 #include "dtext.h"
 #include "jtail.h"
+#include "cost.h"
 
 /* a rate is measured over at least this much wall time (the engine's journal reaches
  * the disk in stdio buffers, so t advances in steps), and over the last this much at
@@ -131,6 +132,70 @@ static void sample(watch *w, watch_run *r, double now, double started, long atte
 	}
 }
 
+int watch_search_left(st_db *db, const char *name, watch_search *s, sb_err *e)
+{
+	sqlite3_stmt *q;
+	memset(s, 0, sizeof *s);
+	if (sql_exec(db, e, &q, "SELECT freq_from, freq_to, tolerance FROM onset_search WHERE campaign = ?", "t", name))
+		return e->code;
+	if (sqlite3_step(q) == SQLITE_ROW) {
+		const double from = sqlite3_column_double(q, 0), to = sqlite3_column_double(q, 1),
+			     tol = sqlite3_column_double(q, 2);
+		const long chain = cost_chain_max(from, to, tol);
+		if (sql_done(db, q, e))
+			return e->code;
+		s->on = 1;
+		/* the replicates still searching: their brackets (NULL: the range's end) */
+		if (sql_exec(db, e, &q,
+			     "SELECT runs, COALESCE(lo, ?2), COALESCE(hi, ?3) FROM onset_replicate WHERE campaign = ?1"
+			     " AND state = 'searching'",
+			     "tdd", name, from, to))
+			return e->code;
+		while (sqlite3_step(q) == SQLITE_ROW) {
+			const long runs = sqlite3_column_int64(q, 0);
+			const double width = sqlite3_column_double(q, 2) - sqlite3_column_double(q, 1);
+			/* runs counts the one of this round: the chain's at most, less what it ran */
+			s->more_max += chain > runs ? chain - runs : 0;
+			s->rounds_max = chain - runs > s->rounds_max ? chain - runs : s->rounds_max;
+			/* a bisection halves the bracket per run; this round's run is the first */
+			const long b = tol > 0 && width > tol ? (long)ceil(log2(width / tol) - 1e-9) - 1 : 0;
+			s->more += b > 0 ? b : 0;
+			s->rounds = b > s->rounds ? b : s->rounds;
+		}
+		if (sql_done(db, q, e))
+			return e->code;
+		/* the replicates a group not yet answered may still get, each a whole chain */
+		if (sql_exec(db, e, &q,
+			     "SELECT COALESCE(SUM(MAX(0, s.max_replicates - g.replicates)), 0), COALESCE(MAX(MAX(0,"
+			     " s.max_replicates - g.replicates)), 0), MAX(1, COALESCE(s.batch, 1)) FROM onset_group g JOIN"
+			     " onset_search s ON s.campaign = g.campaign WHERE g.campaign = ? AND g.state IN ('searching', 'more')",
+			     "t", name))
+			return e->code;
+		if (sqlite3_step(q) == SQLITE_ROW) {
+			const long extra = sqlite3_column_int64(q, 0), most = sqlite3_column_int64(q, 1),
+				   batch = sqlite3_column_int64(q, 2);
+			s->more_max += chain * extra;
+			s->rounds_max += chain * ((most + batch - 1) / batch);
+		}
+		return sql_done(db, q, e);
+	}
+	if (sql_done(db, q, e) ||
+	    sql_exec(db, e, &q,
+		     "SELECT COUNT(*), COALESCE(SUM(MAX(0, max_replicates - replicates)), 0), COALESCE(MAX((MAX(0,"
+		     " max_replicates - replicates) + MAX(1, batch) - 1) / MAX(1, batch)), 0) FROM auto_point"
+		     " WHERE campaign = ? AND state IN ('running', 'more')",
+		     "t", name))
+		return e->code;
+	if (sqlite3_step(q) == SQLITE_ROW && sqlite3_column_int64(q, 0) > 0) {
+		/* whether a point needs another batch depends on its interval: only bounds */
+		s->on = 1;
+		s->more_max = sqlite3_column_int64(q, 1);
+		s->rounds_max = sqlite3_column_int64(q, 2);
+		s->more = s->rounds = -1;
+	}
+	return sql_done(db, q, e);
+}
+
 int watch_poll(watch *w, st_db *db, sb_err *e)
 {
 	double now = now_s();
@@ -139,12 +204,14 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		    "SELECT COUNT(*), SUM(state = 'done'), SUM(state = 'failed'), SUM(state = 'pending'),"
 		    " SUM(state = 'running'), (SELECT axes FROM campaign WHERE name = ?1),"
 		    " (SELECT TOTAL(p.value) FROM run r2 JOIN param p ON p.campaign = r2.campaign AND p.run = r2.id"
-		    "  AND p.key = 'duration' WHERE r2.campaign = ?1 AND r2.current AND r2.state = 'pending')"
+		    "  AND p.key = 'duration' WHERE r2.campaign = ?1 AND r2.current AND r2.state = 'pending'),"
+		    " (SELECT AVG(p.value) FROM run r3 JOIN param p ON p.campaign = r3.campaign AND p.run = r3.id"
+		    "  AND p.key = 'duration' WHERE r3.campaign = ?1 AND r3.current)"
 		    " FROM run WHERE campaign = ?1 AND current",
 		    "t", w->name))
 		return e->code;
 	char axes[2048] = "";
-	double pending_T = 0;
+	double pending_T = 0, mean_T = 0;
 	if (sqlite3_step(q) == SQLITE_ROW) {
 		w->total = sqlite3_column_int64(q, 0);
 		w->done = sqlite3_column_int64(q, 1);
@@ -153,6 +220,7 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		w->running = sqlite3_column_int64(q, 4);
 		snprintf(axes, sizeof axes, "%s", col(q, 5));
 		pending_T = sqlite3_column_double(q, 6);
+		mean_T = sqlite3_column_double(q, 7);
 	}
 	if (sql_done(db, q, e))
 		return e->code;
@@ -234,6 +302,22 @@ int watch_poll(watch *w, st_db *db, sb_err *e)
 		}
 	}
 	w->eta = w->rate > 0 ? w->remaining / w->rate : -1;
+	/* a search: the rounds after this one too, each as long as one run at one run's
+	 * pace (the last runs' to finish, else this round's share), as many at a time as
+	 * run now (docs/driver.md, "A search's ETA covers the search") */
+	w->eta_search = w->eta_search_max = -1;
+	if (watch_search_left(db, w->name, &w->search, e))
+		return e->code;
+	w->jobs = w->running > 0 ? w->running : 1;
+	const double one = speed > 0 ? speed : w->rate / (double)w->jobs;
+	if (w->search.on && w->eta >= 0 && one > 0 && mean_T > 0) {
+		const double round = mean_T / one;
+		w->eta_search_max = w->eta + round * fmax((double)w->search.rounds_max,
+							  ceil((double)w->search.more_max / (double)w->jobs));
+		if (w->search.more >= 0)
+			w->eta_search = w->eta + round * fmax((double)w->search.rounds,
+							      ceil((double)w->search.more / (double)w->jobs));
+	}
 	w->driver = lock_campaign_held(w->dir);
 	return e->code;
 }
@@ -242,18 +326,6 @@ int watch_over(const watch *w)
 {
 	/* a campaign on Slurm has no driver: its tasks keep it going */
 	return (w->pending == 0 && w->running == 0) || (w->driver == 0 && w->slurm == 0);
-}
-
-static void fmt_dur(double s, char *buf, size_t len)
-{
-	if (s < 0)
-		snprintf(buf, len, "unknown");
-	else if (s < 120)
-		snprintf(buf, len, "%.0f s", s);
-	else if (s < 7200)
-		snprintf(buf, len, "%.1f min", s / 60);
-	else
-		snprintf(buf, len, "%.1f h", s / 3600);
 }
 
 static void run_state(const watch_run *r, char *buf, size_t len)
@@ -268,14 +340,31 @@ static void run_state(const watch_run *r, char *buf, size_t len)
 
 static void head(const watch *w, char *buf, size_t len)
 {
+	/* (the whole search's estimate when there is one: its rounds to come, not only the
+	 * round in flight) */
 	char eta[32];
-	fmt_dur(w->eta, eta, sizeof eta);
+	dtext_duration(w->eta, eta, sizeof eta);
 	long fin = w->done + w->failed;
 	int n = snprintf(buf, len, "%s: %ld/%ld finished (%.0f%%): %ld done, %ld failed, %ld pending, %ld running", w->name,
 			 fin, w->total, w->total ? 100.0 * (double)fin / (double)w->total : 100.0, w->done, w->failed,
 			 w->pending, w->running);
 	if ((w->pending || w->running) && n > 0 && (size_t)n < len) {
-		if (w->rate > 0)
+		char most[32], about[32];
+		dtext_duration(w->eta_search_max, most, sizeof most);
+		dtext_duration(w->eta_search, about, sizeof about);
+		const watch_search *s = &w->search;
+		if (w->rate > 0 && w->eta_search_max >= 0 && s->more >= 0)
+			/* an [onset] search: the bisections its brackets still need */
+			snprintf(buf + n, len - (size_t)n, "; ETA this round: %s; search: about %s (%ld more round%s expected, "
+				 "%ld more run%s, %ld at a time), at most %s (%ld more runs) at %.3g simulated s per s from %s", eta,
+				 about, s->rounds, s->rounds == 1 ? "" : "s", s->more, s->more == 1 ? "" : "s", w->jobs, most, s->more_max, w->rate,
+				 w->basis);
+		else if (w->rate > 0 && w->eta_search_max >= 0)
+			/* replicates = auto: whether a batch more is needed, the results say */
+			snprintf(buf + n, len - (size_t)n, "; ETA this round: %s; search: at most %s (up to %ld more round%s, "
+				 "%ld more runs, if the intervals need them; %ld at a time) at %.3g simulated s per s from %s", eta,
+				 most, s->rounds_max, s->rounds_max == 1 ? "" : "s", s->more_max, w->jobs, w->rate, w->basis);
+		else if (w->rate > 0)
 			snprintf(buf + n, len - (size_t)n, "; ETA %s at %.3g simulated s per s from %s", eta, w->rate, w->basis);
 		else
 			snprintf(buf + n, len - (size_t)n, "; ETA unknown until a run has advanced");
@@ -284,7 +373,7 @@ static void head(const watch *w, char *buf, size_t len)
 
 void watch_print(const watch *w, FILE *out)
 {
-	char h[512];
+	char h[1024];
 	head(w, h, sizeof h);
 	fprintf(out, "%s\n", h);
 	for (long i = 0; i < w->nruns; i++) {
@@ -306,7 +395,7 @@ void watch_print(const watch *w, FILE *out)
 
 void watch_line(const watch *w, char *buf, size_t len)
 {
-	char h[512];
+	char h[1024];
 	head(w, h, sizeof h);
 	size_t l = (size_t)snprintf(buf, len, "%s", h);
 	for (long i = 0; i < w->nruns && l < len; i++) {

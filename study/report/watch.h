@@ -26,6 +26,25 @@ typedef struct watch_run {
 	int seen;          /* 1 when still in flight at the last poll */
 } watch_run;
 
+/* What an [onset] search or replicates = auto may still run after the runs pending or
+ * running now (the round in flight), from the driver's last pass (the onset_* and
+ * auto_point tables; docs/driver.md). */
+typedef struct watch_search {
+	int on;           /* the campaign is a search or replicates = auto */
+	long more_max;    /* runs after this round, at most: each searching replicate's
+			   * longest chain (cost_chain_max) less its runs so far, the chains of the
+			   * replicates a group may still get; a point's replicates up to its maximum */
+	long rounds_max;  /* rounds after this one, at most */
+	long more;        /* expected: the bisections each searching replicate's bracket still
+			   * needs after its run of this round, ceil(log2(width / tolerance)) - 1;
+			   * -1 when the results decide (replicates = auto: whether a batch more
+			   * is needed) */
+	long rounds;      /* expected rounds after this one (the longest of those chains); -1 as more */
+} watch_search;
+
+/* s for campaign name; s->on = 0 (and the rest 0) for a plain grid. 0, or the error. */
+int watch_search_left(st_db *db, const char *name, watch_search *s, sb_err *e);
+
 typedef struct watch {
 	char name[128];
 	char dir[4200];    /* the campaign directory: where local runs' journals are */
@@ -35,7 +54,11 @@ typedef struct watch {
 	double rate;       /* simulated s per wall s over everything running; <= 0 unknown */
 	const char *basis; /* what rate was measured from */
 	double remaining;  /* simulated s still to run */
-	double eta;        /* wall s; < 0 unknown */
+	double eta;        /* wall s; < 0 unknown (a search's: of the round in flight) */
+	watch_search search; /* a search's rounds to come */
+	double eta_search; /* wall s of the whole search as expected (search.more; < 0 unknown) */
+	double eta_search_max; /* ... at most (search.more_max) */
+	long jobs;         /* runs at a time the estimate assumes (the runs in flight now) */
 	int driver;        /* a driver holds the campaign's lock */
 	long slurm;        /* runs whose Slurm tasks are queued or running (-1: squeue cannot say) */
 } watch;

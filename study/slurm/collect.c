@@ -194,19 +194,11 @@ static int set_task(drv *d, const trow *r, const char *state, int link, const ch
  * (ingest.c): interrupted (7), killed by a signal (128 + n) and I/O faults (2) are
  * resumable and leave the run pending; bad input (1) and a crash (worker_crashed)
  * fail it. */
-static int record_done(drv *d, const char *id, const char *text, sb_err *e)
+static int record_done(drv *d, const char *id, const worker_done *w, const db_usage *u, sb_err *e)
 {
-	char *copy = strdup(text), *f[6] = {0};
-	int n = 0;
-	if (!copy)
-		return sb_errf(e, SB_ENOMEM, "out of memory");
-	for (char *s = copy, *t; n < 6 && (t = strsep(&s, "\t"));)
-		f[n++] = t;
-	long code = n >= 3 ? strtol(f[2], NULL, 10) : -1;
-	if (n < 6 || code == 0) { /* 0 without an output: nothing happened to record */
-		free(copy);
+	const long code = w->code;
+	if (code == 0) /* 0 without an output: nothing happened to record */
 		return 0;
-	}
 	const int crashed = worker_crashed(code);
 	int resumable = code == SB_EINTR || (code >= 128 && !crashed) || code == SB_EIO;
 	const char *status = code == SB_EINTR ? "interrupted"
@@ -216,12 +208,11 @@ static int record_done(drv *d, const char *id, const char *text, sb_err *e)
 	char now[32];
 	db_now(now, sizeof now);
 	if (!db_begin(&d->db, e)) {
-		if (db_attempt(&d->db, d->c.name, id, code, status, f[5], f[3], now, resumable ? "pending" : "failed", e))
+		if (db_attempt(&d->db, d->c.name, id, code, status, w->msg, w->host, u, now, resumable ? "pending" : "failed", e))
 			db_rollback(&d->db);
 		else
 			db_commit(&d->db, e);
 	}
-	free(copy);
 	return e->code;
 }
 
@@ -244,14 +235,24 @@ static int one_task(drv *d, const trow *r, const tlog *t, const slurm_queue *q, 
 	if (done) {
 		/* what the worker said; a run recorded meanwhile (a study run swept its
 		 * output) keeps its attempts: the task's is that one */
-		if (open && (exists(path) ? ingest_run(d, r->run, e) : record_done(d, r->run, done->text, e)))
+		char *copy = strdup(done->text);
+		worker_done w;
+		if (!copy)
+			return sb_errf(e, SB_ENOMEM, "out of memory");
+		const int parsed = worker_done_parse(copy, &w);
+		/* what the engine used (worker.h), recorded with the attempt either way */
+		const db_usage *u = parsed ? worker_usage(&w) : NULL;
+		if (open && (exists(path) ? ingest_run(d, r->run, u, e) : parsed && record_done(d, r->run, &w, u, e))) {
+			free(copy);
 			return e->code;
+		}
+		free(copy);
 		long att2;
 		db_run_state(&d->db, d->c.name, r->run, st, sizeof st, &att2, e);
 		return set_task(d, r, "ended", att2 > att || !open, host, e);
 	}
 	if (open && exists(path)) { /* finished; its line lost */
-		if (ingest_run(d, r->run, e))
+		if (ingest_run(d, r->run, NULL, e))
 			return e->code;
 		return set_task(d, r, "ended", 1, host, e);
 	}
@@ -290,7 +291,7 @@ static int one_task(drv *d, const trow *r, const tlog *t, const slurm_queue *q, 
 			 r->job, r->index, SLURM_SUB, r->job, r->index);
 	if (db_begin(&d->db, e))
 		return e->code;
-	if (db_attempt(&d->db, d->c.name, r->run, -1, "killed", msg, host, now, "pending", e)) {
+	if (db_attempt(&d->db, d->c.name, r->run, -1, "killed", msg, host, NULL, now, "pending", e)) {
 		db_rollback(&d->db);
 		return e->code;
 	}

@@ -192,25 +192,25 @@ int slurm_plan_parse_squeue(const char *line, long *job, long *index, char *stat
 
 int slurm_plan_parse_worker(const char *line, char *name, size_t nlen, long *code)
 {
-	int kind = !strncmp(line, WORKER_START "\t", sizeof WORKER_START)  ? 1
-		   : !strncmp(line, WORKER_DONE "\t", sizeof WORKER_DONE) ? 2
-									  : 0;
-	if (!kind)
-		return 0;
-	const char *p = line + (kind == 1 ? sizeof WORKER_START : sizeof WORKER_DONE);
-	size_t l = strcspn(p, "\t\r\n");
-	if (!l || l >= nlen)
-		return 0;
-	memcpy(name, p, l);
-	name[l] = 0;
 	*code = 0;
-	if (kind == 2) {
-		if (p[l] != '\t')
+	if (!strncmp(line, WORKER_START "\t", sizeof WORKER_START)) {
+		const char *p = line + sizeof WORKER_START;
+		size_t l = strcspn(p, "\t\r\n");
+		if (!l || l >= nlen)
 			return 0;
-		char *end;
-		*code = strtol(p + l + 1, &end, 10);
-		if (end == p + l + 1)
-			return 0;
+		memcpy(name, p, l);
+		name[l] = 0;
+		return 1;
 	}
+	/* a DONE line as worker.h reads it (its one parser) */
+	char *copy = strdup(line);
+	worker_done w;
+	int kind = 0;
+	if (copy && worker_done_parse(copy, &w) && strlen(w.name) < nlen && !strpbrk(w.name, "\r\n")) {
+		snprintf(name, nlen, "%s", w.name);
+		*code = w.code;
+		kind = 2;
+	}
+	free(copy);
 	return kind;
 }

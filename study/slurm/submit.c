@@ -280,7 +280,9 @@ static long task_minutes(drv *d, char **lines, long ntasks, double *worst, char 
 	cost_count(&d->c, &d->g, 0, NULL, &all);
 	for (int i = 0; i < COST_NINTEG; i++) {
 		sb_err ce = {0};
-		if ((all.grain_steps[i] > 0 || all.settle_grains[i] > 0) && calib_get(d->o->runs_dir, shake, i, &rates[i], &ce)) {
+		/* the campaign's finished runs say better than the calibration (calib.h) */
+		if ((all.grain_steps[i] > 0 || all.settle_grains[i] > 0) &&
+		    (calib_get(d->o->runs_dir, shake, i, &rates[i], &ce) || calib_learn(&d->db, d->c.name, i, &rates[i], &ce))) {
 			snprintf(why, len, "%s", ce.msg);
 			return 0;
 		}

@@ -154,6 +154,6 @@ rc=$?
 # run failed)
 "$STUDY" exec "$TMP/gone" run 0123456789abcdef >gone.out 2>&1
 rc=$?
-[ "$rc" = 0 ] && grep -q "^STUDY-DONE	0123456789abcdef	2	[^	]*	0.000	exec: cannot enter the campaign's directory $TMP/gone: No such file or directory$" gone.out &&
+[ "$rc" = 0 ] && grep -q "^STUDY-DONE	0123456789abcdef	2	[^	]*	0.000	-	-	exec: cannot enter the campaign's directory $TMP/gone: No such file or directory$" gone.out &&
 	ok deleted_dir.worker_says_so || fail deleted_dir.worker_says_so "exit $rc: $(head -c 300 gone.out)"
 finish

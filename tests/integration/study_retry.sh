@@ -55,6 +55,10 @@ rows=$(q K/study.db "SELECT group_concat(status || ':' || exit_code, ' ') FROM (
 	WHERE campaign = 'r' AND run IN (SELECT run FROM attempt WHERE status = 'killed') ORDER BY n)")
 [ "$rc" -eq 0 ] && [ "$rows" = "killed:137 ok:0" ] && grep -q "running again 1 run" k.log && ok killed.retried ||
 	fail killed.retried "exit $rc, attempts '$rows': $(tail -n 3 k.log)"
+# the killed engine's CPU and peak memory are its attempt's (its worker's wait4), as the rerun's
+use=$(q K/study.db "SELECT group_concat(status || ':' || (cpu_seconds > 0) || (max_rss_kb > 0), ' ') FROM (SELECT * FROM attempt
+	WHERE campaign = 'r' AND run IN (SELECT run FROM attempt WHERE status = 'killed') ORDER BY n)")
+[ "$use" = "killed:11 ok:11" ] && ok killed.usage_recorded || fail killed.usage_recorded "'$use'"
 "$STUDY" export r --runs "$TMP/K" >k.csv
 cmp -s <(strip ref.csv) <(strip k.csv) && ok killed.export_equals_uninterrupted ||
 	fail killed.export_equals_uninterrupted "$(diff <(strip ref.csv) <(strip k.csv) | head -n 3 | cut -c1-300)"

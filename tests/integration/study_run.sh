@@ -88,6 +88,18 @@ rc=$?
 [ "$(q $DB "SELECT COUNT(*) || ' ' || SUM(hits) FROM caches")" = "3 9" ] && ok extend.cache_reused ||
 	fail extend.cache_reused "$(q $DB "SELECT key, hits FROM caches")"
 
+# --- every column of the run tables is in its row of docs/database.md's table (lib/schema.c
+# declares them; a column added without its documentation fails here) ---
+undoc=
+for t in campaign run param attempt cache; do
+	row=$(grep "^| \`$t\` |" "$REPO/docs/database.md")
+	for c in $(q $DB "SELECT name FROM pragma_table_info('$t')"); do
+		case $row in *"\`$c\`"*) ;; *) undoc+=" $t.$c" ;; esac
+	done
+done
+[ -z "$undoc" ] && [ -n "$(q $DB "SELECT name FROM pragma_table_info('attempt') WHERE name = 'cpu_seconds'")" ] &&
+	ok db.columns_documented || fail db.columns_documented "not in docs/database.md's table:$undoc"
+
 # --- the example queries of docs/database.md and docs/driver.md, pasted as a user
 # would (on campaign t) ---
 cat "$REPO/docs/database.md" "$REPO/docs/driver.md" | sed -n '/^```sql$/,/^```$/p' | grep -v '^```' |
@@ -175,8 +187,21 @@ for i in $(seq 400); do
 done
 [ -n "$live" ] && [ "$live" -lt 8 ] && ok db.ingested_while_running ||
 	fail db.ingested_while_running "no finished run in the database while the driver ran: $(tail -c 300 slow1.log)"
+# the TERM meets a run in flight (not the moment between two), a while after it started
+for i in $(seq 100); do
+	[ "$(q $DB "SELECT COUNT(*) FROM run WHERE campaign = 'slow' AND state = 'running'" 2>/dev/null)" = 1 ] && break
+	sleep 0.05
+done
+sleep 0.3
 kill -TERM $pid 2>/dev/null
 wait $pid
+# every attempt records what its engine used (wait4), the one the TERM interrupted too
+# (its DONE line dropped by GNU parallel: from the worker's line in its log)
+use=$(q $DB "SELECT SUM(status = 'interrupted'), SUM(status = 'interrupted' AND cpu_seconds > 0 AND max_rss_kb > 0),
+	SUM(status = 'ok'), SUM(status = 'ok' AND cpu_seconds > 0 AND max_rss_kb > 0) FROM attempt WHERE campaign = 'slow'")
+IFS='|' read -r ni niu nk nku <<<"$use"
+[ "${ni:-0}" -ge 1 ] && [ "$ni" = "$niu" ] && [ "${nk:-0}" -ge 1 ] && [ "$nk" = "$nku" ] && ok attempt.usage_recorded ||
+	fail attempt.usage_recorded "interrupted, with usage, ok, with usage: $use: $(q $DB "SELECT status, cpu_seconds, max_rss_kb FROM attempt WHERE campaign = 'slow'")"
 # status of a half-done campaign: counts and an ETA from the finished runs
 "$STUDY" status slow --runs "$TMP/R" >slow_status.out 2>&1
 grep -Eq "runs 8: done [1-7], failed 0, pending [1-7]" slow_status.out && grep -q "ETA: about" slow_status.out &&

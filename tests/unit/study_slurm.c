@@ -139,9 +139,24 @@ static void test_parse(void)
 	long code;
 	CHECK("study.slurm.worker.start", slurm_plan_parse_worker(WORKER_START "\tabc\tnode1", name, sizeof name, &code) == 1 &&
 		      !strcmp(name, "abc"), "%s", name);
-	CHECK("study.slurm.worker.done", slurm_plan_parse_worker(WORKER_DONE "\tabc\t7\tnode1\t1.5\tshake: interrupted", name,
+	CHECK("study.slurm.worker.done", slurm_plan_parse_worker(WORKER_DONE "\tabc\t7\tnode1\t1.5\t0.9\t16000\tshake: interrupted", name,
 							 sizeof name, &code) == 2 && !strcmp(name, "abc") && code == 7,
 	      "%s %ld", name, code);
+	/* the DONE line's one parser (worker.h): the engine's usage, none when no engine ran,
+	 * and a line of the earlier form without it */
+	char l1[] = WORKER_DONE "\tabc\t137\tnode1\t1.5\t0.875\t16044\tkilled by signal 9",
+	     l2[] = WORKER_DONE "\tabc\t2\tnode1\t0.000\t-\t-\texec: cannot lock the run",
+	     l3[] = WORKER_DONE "\tabc\t7\tnode1\t1.5\tshake: interrupted", l4[] = WORKER_DONE "\tabc\t7\tnode1\t1.5\t0.8\tx";
+	worker_done w1, w2, w3, w4;
+	CHECK("study.worker.done_usage", worker_done_parse(l1, &w1) && w1.code == 137 && worker_usage(&w1) &&
+		      w1.u.cpu_seconds == 0.875 && w1.u.max_rss_kb == 16044 && !strcmp(w1.msg, "killed by signal 9") &&
+		      !strcmp(w1.host, "node1"),
+	      "code %ld ran %d cpu %g rss %ld msg '%s'", w1.code, w1.ran, w1.u.cpu_seconds, w1.u.max_rss_kb, w1.msg);
+	CHECK("study.worker.done_no_engine", worker_done_parse(l2, &w2) && w2.code == 2 && !worker_usage(&w2) &&
+		      !strcmp(w2.msg, "exec: cannot lock the run"), "ran %d msg '%s'", w2.ran, w2.msg);
+	CHECK("study.worker.done_earlier_form", worker_done_parse(l3, &w3) && w3.code == 7 && !worker_usage(&w3) &&
+		      !strcmp(w3.msg, "shake: interrupted"), "ran %d msg '%s'", w3.ran, w3.msg);
+	CHECK("study.worker.done_seven_fields", !worker_done_parse(l4, &w4), "a line of 7 fields parsed");
 	CHECK("study.slurm.worker.other", !slurm_plan_parse_worker("slurmstepd: error: *** JOB 5 CANCELLED ***", name, sizeof name,
 							   &code) &&
 		      !slurm_plan_parse_worker(WORKER_DONE "\tabc", name, sizeof name, &code) &&
