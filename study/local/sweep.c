@@ -17,6 +17,7 @@
 #include "h5sum.h"
 #include "layout.h"
 #include "drv.h"
+#include "job/worker.h"
 
 /* Whatever stands at path (a link itself, not what it points to) moved to keep, only
  * over nothing or a regular file: a node planted at keep is neither replaced nor
@@ -150,7 +151,18 @@ int sweep(drv *d, long *pend, long *npend, sb_err *e)
 		layout_file(d->dir, 0, r->id, LAY_OUTPUT, path, sizeof path);
 		int queued = !strcmp(st, "pending") || !strcmp(st, "running");
 		if (queued && exists(path)) {
-			if (ingest_run(d, r->id, NULL, e)) /* finished while no driver listened */
+			/* finished while no driver listened, or its DONE line was dropped (GNU
+			 * parallel stopped): what its engine used, from its worker's last line in
+			 * the log when this driver saw the attempt start (else an earlier
+			 * attempt's line could be taken for it) */
+			db_usage lu;
+			const db_usage *u = NULL;
+			if (d->runs.started && d->runs.started[i]) {
+				char lp[PATHX];
+				layout_file(d->dir, 0, r->id, LAY_LOG, lp, sizeof lp);
+				u = worker_log_usage(lp, d->runs.logfrom[i], &lu) ? &lu : NULL;
+			}
+			if (ingest_run(d, r->id, u, e))
 				return e->code;
 			continue;
 		}

@@ -187,12 +187,18 @@ for i in $(seq 400); do
 done
 [ -n "$live" ] && [ "$live" -lt 8 ] && ok db.ingested_while_running ||
 	fail db.ingested_while_running "no finished run in the database while the driver ran: $(tail -c 300 slow1.log)"
-# the TERM meets a run in flight (not the moment between two), a while after it started
-for i in $(seq 100); do
-	[ "$(q $DB "SELECT COUNT(*) FROM run WHERE campaign = 'slow' AND state = 'running'" 2>/dev/null)" = 1 ] && break
-	sleep 0.05
+# the TERM meets a run in flight (not the moment between two): one that has written a
+# checkpoint (it shakes) and no output yet, whatever the machine's load
+shaking_run() {
+	local id
+	id=$(q $DB "SELECT id FROM run WHERE campaign = 'slow' AND state = 'running'" 2>/dev/null)
+	[ -n "$id" ] && [ -e "R/slow/$id.h5.ckpt" ] && [ ! -e "R/slow/$id.h5" ]
+}
+for i in $(seq 600); do
+	shaking_run && break
+	kill -0 $pid 2>/dev/null || break
+	sleep 0.02
 done
-sleep 0.3
 kill -TERM $pid 2>/dev/null
 wait $pid
 # every attempt records what its engine used (wait4), the one the TERM interrupted too
