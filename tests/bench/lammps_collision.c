@@ -39,7 +39,10 @@ int main(int argc, char **argv)
 	params_defaults(&sc);
 	sc.gravity = 0;
 	sc.integrator = INTEG_VERLET;
-	sc.dt = atof(argv[3]);
+	char *end;
+	sc.dt = strtod(argv[3], &end);
+	if (*end)
+		return fail("DT is not a number");
 	sc.max_overlap = 1.0;
 	sc.dt_guard = 2;
 	if (!(sc.dt > 0))
@@ -75,7 +78,9 @@ int main(int argc, char **argv)
 		}
 		if (!p)
 			return fail("unknown KEY=VALUE argument (keys: gamma_n gamma_s mu stiffness hertz_stiffness restitution)");
-		*p = atof(eq + 1);
+		*p = strtod(eq + 1, &end);
+		if (!eq[1] || *end)
+			return fail("a KEY=VALUE argument's value is not a number");
 	}
 	sb_sim *s = calloc(1, sizeof *s);
 	sb_err e = {0};
