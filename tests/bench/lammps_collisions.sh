@@ -56,7 +56,7 @@ TOL=1e-3 TOL_W_ABS=1e-6 TOL_CONV=1e-4
 # rows (column tol), for the spin and for what the shear force feeds back into e and t_c
 
 die() { echo "lammps_collisions.sh: $*" >&2; exit 2; }
-[ -x "$BIN" ] || die "no $BIN: build it with 'make $(realpath --relative-to="$REPO" "$BIN" 2>/dev/null || echo "$BIN")'"
+[ -x "$BIN" ] || die "no $BIN: build it with 'make build/rel/tests/bench/lammps_collision' (make validate-collisions does), or set COLL_BIN"
 command -v "$LMP" >/dev/null || die "no LAMMPS binary '$LMP' (Debian: apt-get install lammps; or set LMP)"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -207,8 +207,10 @@ for law in $LAWS; do
 		# the LAMMPS side from an engine header without ENGINE_ARGS
 		"$BIN" "$law" "$ecase" "$DT" >"$work/h.txt" || die "engine run $law $cs (header) failed"
 		deck "$law" "$cs" "$work/h.txt" "$work/l.dump" >"$work/l.in"
-		"$LMP" -in "$work/l.in" -log "$work/l.log" -screen none >/dev/null 2>&1 ||
-			die "LAMMPS failed on $law $cs (deck and log: keep them with a copy of $work): $(tail -3 "$work/l.log")"
+		if ! "$LMP" -in "$work/l.in" -log "$work/l.log" -screen none >/dev/null 2>&1; then
+			trap - EXIT # keep the deck and the log
+			die "LAMMPS failed on $law $cs (deck $work/l.in, log $work/l.log): $(tail -3 "$work/l.log")"
+		fi
 		dump2cols "$work/l.dump" >"$work/l.txt"
 		r0=$(hdr "$work/h.txt" r0) r1=$(hdr "$work/h.txt" r1)
 		read -r es ts ws xm < <(analyse "$work/s.txt" "$r0" "$r1" "$DT")
