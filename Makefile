@@ -114,6 +114,8 @@ help:
 	@echo "make validate-lammps  shakebox against LAMMPS gran/hooke on the same settled beds: A Phi(D) at 3.0 Hz,"
 	@echo "                B the onset of convection, C claim 5 (depth 0 vs 1 at 2.7 Hz), D claim 4 (R = 4 at 3.2 Hz)"
 	@echo "                (docs/validate_lammps.md; ~43 min on 2 idle cores; VALIDATE_QUICK=1, VALIDATE_PARTS='A B C D', JOBS=2)"
+	@echo "make validate-collisions  the contact laws (hooke, restitution, hertz) against LAMMPS on two-disk collisions:"
+	@echo "                e, contact time, rebound spin (docs/validate_lammps.md \"Two-disk collisions\"; seconds)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
 	@echo "                database (REPRODUCE_QUICK=1: a few-minute pipeline check under build/reproduce-quick)"

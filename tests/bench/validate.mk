@@ -32,3 +32,13 @@ JOBS           ?= 2
 .PHONY: validate-lammps
 validate-lammps: build/.deps-ok all
 	$(Q)VALIDATE_QUICK=$(VALIDATE_QUICK) VALIDATE_PARTS="$(VALIDATE_PARTS)" JOBS=$(JOBS) bash tests/bench/validate_lammps.sh
+
+# `make validate-collisions`: the three contact laws (hooke, restitution, hertz) against LAMMPS on
+# single two-disk collisions (tests/bench/lammps_collisions.sh: e, contact time, rebound spin;
+# exits 1 on a disagreement). Writes docs/validate_lammps_collisions.md, which
+# tests/bench/validate_lammps.sh appends to docs/validate_lammps.md. Seconds; not part of `make check`.
+COLL_BIN = $(BUILD)/tests/bench/lammps_collision
+
+.PHONY: validate-collisions
+validate-collisions: build/.deps-ok $(COLL_BIN)
+	$(Q)COLL_BIN=$(abspath $(COLL_BIN)) COLL_DOC=docs/validate_lammps_collisions.md bash tests/bench/lammps_collisions.sh

@@ -1010,6 +1010,14 @@ read -r PREP_S RUNS_S <"$WORK/times" || true
 			echo
 		fi
 	done
+	# the contact laws on two-disk collisions: `make validate-collisions` writes this section
+	if [ -s "$REPO/docs/validate_lammps_collisions.md" ]; then
+		cat "$REPO/docs/validate_lammps_collisions.md"
+	else
+		echo "## Two-disk collisions: the contact laws"
+		echo
+		echo "Not run: \`make validate-collisions\` writes this section."
+	fi
 } >"$FRAG.new"
 mv "$FRAG.new" "$FRAG"
 # the summary table on the terminal too
