@@ -5,14 +5,14 @@
 # expand`. One FAIL per distinct finding (crash, sanitizer report, hang, undocumented
 # exit code, an input the reader must refuse that was accepted), with the command that
 # reproduces it; the findings stay in build/fuzz/quick/ (run files: fuzz_runfile_quick.sh).
-# tier: slow: 350 mutated inputs, each run by the sanitizer build
+# tier: slow: 250 mutated inputs, each run by the sanitizer build
 . "$(dirname "$0")/lib.sh"
 STUDY="${STUDY:-$(dirname "$SHAKE")/study}"
 FUZZ="${FUZZ_BIN:-$REPO/build/fuzz/fuzz}"
 for b in "$STUDY" "$FUZZ"; do
 	[ -x "$b" ] || { fail setup "$b is not an executable (run make tests)"; finish; }
 done
-N="${FUZZ_QUICK_INPUTS:-350}"
+N="${FUZZ_QUICK_INPUTS:-250}"
 SEED="${FUZZ_QUICK_SEED:-11}"
 OUT="$REPO/build/fuzz/quick"
 # Findings that others are fixing: "kind<TAB>target<TAB>signature<TAB>why" lines; a

@@ -134,7 +134,7 @@ awk -v nx=400 -v ny=500 'BEGIN {
 	printf "\nVelocities\n\n"
 	for (k = id; k >= 1; k--) printf "%d 0 0 0 0 0 0\n", k
 }' >big.data
-if sigterm_within stop.sigterm.reading 1.5 4 particles="$TMP/big.data" settle=no duration=1000 snapshots=no \
+if sigterm_within stop.sigterm.reading 1.5 4 particles="$TMP/big.data" particle_mass=file settle=no duration=1000 snapshots=no \
 	traj_rate=0 output="$TMP/sig2.h5"; then
 	[ "$STOP_RC" -eq 7 ] && ok stop.sigterm.reading ||
 		fail stop.sigterm.reading "exit $STOP_RC, expected 7: $(head -c 300 stop.sigterm.reading.log)"
