@@ -225,15 +225,18 @@ counts() { # CAMPAIGN -> "N runs: D done, F failed (reasons)"
 		 WHERE campaign = '$1' AND state = 'failed' GROUP BY status)")
 	printf '%s runs: %s done, %s failed%s' "${n:-0}" "${d:-0}" "${f:-0}" "${why:+ ($why)}"
 }
-# integrator CAMPAIGN FILE : the preset, integrator and time step of the campaign's runs, and
-# why that preset (the campaign file's "# preset:" paragraph)
+# integrator CAMPAIGN FILE : the preset, integrator and time step of the campaign's runs, the
+# campaign file's word on its preset (its "# preset:" paragraph) and the measured evidence
+# it names ("# preset evidence:", the rows of docs/preset_evidence.tsv: scripts/preset_evidence.sh)
 integrator() {
-	local what why
+	local what why ev
 	what=$(q "SELECT GROUP_CONCAT(x, '; ') FROM (SELECT DISTINCT 'preset ' || COALESCE(preset, 'none') || ' ('
 		|| integrator || ', Δt = ' || printf('%g', dt) || ' s)' AS x FROM runs WHERE campaign = '$1' AND current)")
 	why=$(awk '/^# preset:/ { on = 1; sub(/^# preset: */, ""); printf "%s", $0; next }
 		on && /^#   / { sub(/^# */, " "); printf "%s", $0; next } { on = 0 }' "$2")
-	printf '*Integrator* (%s): %s. The campaign file on the preset: "%s"\n' "$1" "${what:-no runs yet}" "$why"
+	ev=$(bash "$root/scripts/preset_evidence.sh" line "$2")
+	printf '*Integrator* (%s): %s. The campaign file on the preset: "%s" Evidence (docs/preset_evidence.tsv): %s.\n' \
+		"$1" "${what:-no runs yet}" "$why" "$ev"
 }
 # lammps PART : make validate-lammps's row for a part (docs/validate_lammps.md's summary
 # table) as "*Cross-checked in LAMMPS* (part X): evidence: result."

@@ -17,11 +17,15 @@
 #      profile below its 95 % point); the cheapest accurate setting is the proposed
 #      `fast` preset;
 #  (d) the ring observables of claim 3 (contact forces around the intruder), preset fast
-#      against preset paper on the claim's own campaign: tests/bench/accuracy_ring.sh.
+#      against preset paper on the claim's own campaign: tests/bench/accuracy_ring.sh;
+#  (e) near the onset, preset fast against paper on the same beds: each bed's onset of
+#      convection by claim 1's search, and Phi(D) at 2.6 and 2.8 Hz with and without the
+#      intruder: tests/bench/accuracy_onset.sh.
 # Cost is CPU seconds (user + sys of the whole process, from /usr/bin/time) per
 # simulated second: robust when another job shares the machine, unlike wall time.
 # Knobs: ACC_QUICK=1 (a few minutes), ACC_SEEDS, JOBS (default 2), ACC_OUT, ACC_PARTS (the
-# parts to run, default "a b c d"; e.g. ACC_PARTS=d), ACC_RING_REPS (replicates of (d)).
+# parts to run, default "a b c d e"; e.g. ACC_PARTS=d), ACC_RING_REPS (replicates of (d)),
+# ACC_ONSET_BEDS and ACC_PHI_BEDS (beds of (e)).
 set -u
 cd "$(dirname "$0")/../.."
 REPO=$PWD
@@ -30,9 +34,9 @@ ACC_COLL=${ACC_COLL:-$REPO/build/rel/tests/bench/accuracy_collision}
 QUICK=${ACC_QUICK:-0}
 JOBS=${JOBS:-2}
 OUT=${ACC_OUT:-$REPO/build/bench/accuracy}
-PARTS=${ACC_PARTS:-a b c d}
+PARTS=${ACC_PARTS:-a b c d e}
 part() { case " $PARTS " in *" $1 "*) return 0 ;; esac; return 1; }
-for p in $PARTS; do case $p in a | b | c | d) ;; *) echo "ACC_PARTS: unknown part '$p' (a b c d)" >&2; exit 1 ;; esac; done
+for p in $PARTS; do case $p in a | b | c | d | e) ;; *) echo "ACC_PARTS: unknown part '$p' (a b c d e)" >&2; exit 1 ;; esac; done
 . "$REPO/tests/stress/lib.sh"
 mkdir -p "$OUT/runs" "$OUT/beds"
 cd "$OUT" || exit 2
@@ -227,6 +231,8 @@ awk -v rig="$REF_IG" -v rdt="$REF_DT" -v dw="$DUR_W" -v df="$DUR_F" -v pw="$OUT/
 			ok = (k != r) && nw[k] == nw[r] && nf[k] == nf[r] && !failw[k] && !failf[k] && zw < 2 && zw > -2 && zm < 2 && zm > -2 && chi < c95
 			verdict[k] = k == r ? "reference" : (ok ? "indistinguishable" : "DIFFERENT")
 			row[k] = sprintf("%-8s %-8s %4d %9.3f %8.3f +- %5.3f %6.2f %8.4f +- %7.4f %6.2f %9.2f", a[1], a[2], nw[k] + nf[k], cpu, w, sew, zw, m, sem, zm, chi / nl)
+			if (k == "verlet 2e-4") # the fast preset: its evidence rows (below)
+				printf "FAST %d %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.3f %.2f %.2f %.2f %d %d\n", nw[k], w, sew, rw, rsw, m, sem, rm, rsm, zw, zm, chi / nl, c95 / nl, failw[k] + failf[k] > (pw ".fast")
 			relw = rw ? (w - rw) / rw : 0; relm = rm ? (m - rm) / rm : 0
 			printf "%s %s %.5g %.5g %.5g %.5g %.5g %s\n", a[1], a[2], cpu, relw, sew / (rw ? rw : 1), relm, sem / (rm ? rm : 1), verdict[k] > pw
 		}
@@ -246,6 +252,18 @@ awk -v rig="$REF_IG" -v rdt="$REF_DT" -v dw="$DUR_W" -v df="$DUR_F" -v pw="$OUT/
 	grep -v '^BEST' ensemble.txt
 	echo
 } >>"$REPORT"
+# the fast preset's evidence rows (scripts/preset_evidence.sh): the waiting time and
+# Phi(D), each indistinguishable when |z| < 2 (and, for Phi, chi^2 below its 95 % point)
+if [ "$QUICK" != 1 ] && [ -s "$OUT/ensemble_wp.tsv.fast" ]; then
+	read -r _ nb w sew rw rsw m sem rm rsm zw zm chil c95l nfail <"$OUT/ensemble_wp.tsv.fast"
+	src="make bench-accuracy (c), $(date +%Y-%m-%d), $(git rev-parse --short HEAD 2>/dev/null)"
+	vw=$(awk -v z="$zw" -v f="$nfail" 'BEGIN { print (z < 2 && z > -2 && !f) ? "indistinguishable" : "differ" }')
+	vm=$(awk -v z="$zm" -v c="$chil" -v c95="$c95l" -v f="$nfail" 'BEGIN { print (z < 2 && z > -2 && c < c95 && !f) ? "indistinguishable" : "differ" }')
+	bash "$REPO/scripts/preset_evidence.sh" set acc-c-wait32 "$vw" "$src" \
+		"the waiting time of 𝓡 = 4 at 3.2 Hz over $nb beds against a $REF_C ensemble on the same beds: $w ± $sew s against $rw ± $rsw s (z = $zw; resolves about two standard errors of $nb beds)"
+	bash "$REPO/scripts/preset_evidence.sh" set acc-c-phi30 "$vm" "$src" \
+		"Φ(D) at 3.0 Hz over $nb beds against a $REF_C ensemble on the same beds: mean Φ $m ± $sem against $rm ± $rsm particles/period (z = $zm), χ²/line of the profile $chil against its 95 % point $c95l; resolves about two standard errors of $nb beds"
+fi
 fi
 
 # ---------------------------------------------------------------- plot + conclusion
@@ -296,5 +314,12 @@ if part d; then
 	echo "(d) ring force: preset fast against paper (tests/bench/accuracy_ring.sh)" >&2
 	ACC_QUICK=$QUICK JOBS=$JOBS ACC_OUT=$PWD ACC_REPORT=$REPORT bash "$REPO/tests/bench/accuracy_ring.sh" ||
 		{ cat "$REPORT"; echo "accuracy: (d) ring force failed" >&2; exit 1; }
+fi
+
+# ---------------------------------------------------------------- (e) near the onset
+if part e; then
+	echo "(e) near the onset: preset fast against paper on the same beds (tests/bench/accuracy_onset.sh)" >&2
+	ACC_QUICK=$QUICK JOBS=$JOBS ACC_OUT=$OUT ACC_REPORT=$REPORT bash "$REPO/tests/bench/accuracy_onset.sh" ||
+		{ cat "$REPORT"; echo "accuracy: (e) near the onset failed" >&2; exit 1; }
 fi
 cat "$REPORT"

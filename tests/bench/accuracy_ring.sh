@@ -327,6 +327,13 @@ while read -r _ o v _; do [ "$v" = indistinguishable ] || ALL_OK=0; done < <(gre
 	echo
 } >>"$REPORT"
 [ -n "${ACC_REPORT:-}" ] || cat "$REPORT"
+# claim 3's evidence row (scripts/preset_evidence.sh); a quick run's numbers are not evidence
+if [ "$QUICK" != 1 ] && [ "$np_bad" = 0 ]; then
+	bash "$REPO/scripts/preset_evidence.sh" set acc-d-ring "$([ "$ALL_OK" = 1 ] && echo indistinguishable || echo differ)" \
+		"make bench-accuracy (d), $(date +%Y-%m-%d), $(git -C "$REPO" rev-parse --short HEAD 2>/dev/null)" \
+		"claim 3's campaign with each preset ($basis): $vs; the with/without-intruder force ratio fast vs paper: $rat" ||
+		die "cannot write docs/preset_evidence.tsv"
+fi
 if [ "$np_bad" != 0 ] || [ "$nf_bad" != 0 ]; then
 	die "runs failed or were not usable (paper: $np_use; fast: $nf_use): see $REPORT"
 fi
