@@ -8,6 +8,7 @@
 
 #include "drive.h"
 #include "params.h"
+#include "ratio.h"
 #include "results.h"
 
 /* The runs view's columns of the drive's derived axes (docs/database.md), by axis. */
@@ -217,9 +218,17 @@ static int runs_view(sql_db *d, sb_err *e)
 			       * reports onsets in both (at a ramp's start frequency) */
 			      "  b.amplitude * (6.283185307179586 * b.frequency) * (6.283185307179586 * b.frequency)"
 			      " / b.gravity AS %s,\n"
-			      "  6.283185307179586 * b.frequency * b.amplitude AS %s\nFROM (SELECT r.campaign, r.id, r.state,"
-			      " r.attempts, r.replicate, r.current",
+			      "  6.283185307179586 * b.frequency * b.amplitude AS %s",
 			      VIEW_AXES[AXIS_GAMMA], VIEW_AXES[AXIS_VELOCITY]);
+	/* the campaigns' ratio keys (ratio.h): what each run's parameters make of them */
+	size_t nra;
+	const sb_ratio *ra = ratio_table(&nra);
+	for (size_t i = 0; i < nra; i++) {
+		char col[256];
+		ratio_view_column(&ra[i], col, sizeof col);
+		l += (size_t)snprintf(sql + l, cap - l, ",\n  %s", col);
+	}
+	l += (size_t)snprintf(sql + l, cap - l, "\nFROM (SELECT r.campaign, r.id, r.state, r.attempts, r.replicate, r.current");
 	for (size_t i = 0; i < n; i++) {
 		if (t[i].flags & PF_OUT)
 			continue; /* paths and recording switches: in the param table */

@@ -11,6 +11,7 @@
 
 #include "num.h"
 #include "axes.h"
+#include "ratio.h"
 #include "inifile.h"
 #include "layout.h"
 #include "words.h"
@@ -43,7 +44,7 @@ int campaign_key_reserved(const char *key)
 
 int campaign_key_derived(const char *key)
 {
-	return drive_axis_kind(key) > AXIS_FREQUENCY;
+	return drive_axis_kind(key) > AXIS_FREQUENCY || ratio_find(key);
 }
 
 static void trim(char *s)
@@ -124,6 +125,17 @@ static int parse_num(const char *t, double *x);
 
 static int value_add(cp_axis *a, sb_scene *scratch, const char *v, const char *where, sb_err *e)
 {
+	const sb_ratio *ra = ratio_find(a->key);
+	if (ra) {
+		/* a ratio (ratio.h): a positive number, printed as a range's values are */
+		double x;
+		char buf[40];
+		if (!parse_num(v, &x) || !(x > 0 && x <= ra->max))
+			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in (0, %g] (%s over %s), got '%s'", where, a->key,
+				       ra->max, ra->sets, ra->base, v);
+		snprintf(buf, sizeof buf, "%.12g", x);
+		return axis_add(a, buf, e);
+	}
 	if (campaign_key_derived(a->key)) {
 		/* Gamma or v: a positive number, printed as a range's values are */
 		double x;
@@ -920,6 +932,21 @@ static int derived_finish(campaign *c, sb_err *e)
 	return 0;
 }
 
+/* A ratio key (ratio.h) and the scene key it sets, both given: one would undo the other. */
+static int ratio_finish(const campaign *c, sb_err *e)
+{
+	size_t n;
+	const sb_ratio *t = ratio_table(&n);
+	for (size_t i = 0; i < n; i++) {
+		int lr = seen_key(c, t[i].key), ls = seen_key(c, t[i].sets);
+		if (lr && ls)
+			return sb_errf(e, SB_EUSAGE, "%s:%d: %s: %s (line %d) sets %s = %s x %s, and %s is given too (line %d); "
+				       "remove one of the two", c->path, lr, t[i].key, t[i].key, lr, t[i].sets, t[i].key,
+				       t[i].base, t[i].sets, ls);
+	}
+	return 0;
+}
+
 static int cp_handler(void *user, const char *section, const char *name, const char *value)
 {
 	struct rd *r = user;
@@ -946,14 +973,18 @@ static int cp_handler(void *user, const char *section, const char *name, const c
 		if (!params_find(name) && !campaign_key_derived(name)) {
 			const char *near = params_nearest(name);
 			/* the drive's other axes, the campaign's own keys: "gamma and velocity" */
-			const char *derived[AXIS_N];
-			char dym[96], names[64] = "";
+			size_t nr;
+			const sb_ratio *rt = ratio_table(&nr);
+			const char *derived[AXIS_N + 8];
+			char dym[96], names[96] = "";
 			int nd = 0;
-			for (int k = AXIS_FREQUENCY + 1; k < AXIS_N; k++) {
+			for (int k = AXIS_FREQUENCY + 1; k < AXIS_N; k++)
 				derived[nd++] = drive_axis_name(k);
+			for (size_t k = 0; k < nr && nd < AXIS_N + 8; k++)
+				derived[nd++] = rt[k].key;
+			for (int k = 0; k < nd; k++) {
 				size_t l = strlen(names);
-				snprintf(names + l, sizeof names - l, "%s%s", k == AXIS_FREQUENCY + 1 ? "" : k == AXIS_N - 1 ? " and " : ", ",
-					 drive_axis_name(k));
+				snprintf(names + l, sizeof names - l, "%s%s", !k ? "" : k == nd - 1 ? " and " : ", ", derived[k]);
 			}
 			if (near)
 				snprintf(dym, sizeof dym, "; did you mean %s?", near);
@@ -1054,7 +1085,7 @@ int campaign_load(campaign *c, const char *path, sb_err *e)
 		return e->code;
 	if (c->zip_line && zip_finish(c, e))
 		return e->code;
-	if (derived_finish(c, e))
+	if (derived_finish(c, e) || ratio_finish(c, e))
 		return e->code;
 	int sl = seen_key(c, "seed");
 	if (c->replicates && sl)

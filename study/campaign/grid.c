@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "axes.h"
+#include "ratio.h"
 #include "validate.h"
 
 /* SplitMix64 finaliser: a bijective mix, so distinct inputs stay distinct. */
@@ -158,7 +159,22 @@ static int scene_point_at(const campaign *c, long point, sb_scene *s, long *digi
 		snprintf(where, sizeof where, "%s:%d", c->path, c->axes[a].line);
 		params_set(s, c->axes[a].key, c->axes[a].values[k], where, &pe);
 	}
-	return c->derive ? scene_derive(c, digit, s, e) : 0;
+	if (c->derive && scene_derive(c, digit, s, e))
+		return e->code;
+	/* the ratios (ratio.h) over the point's own base values, the drive's already set */
+	size_t nr;
+	const sb_ratio *rt = ratio_table(&nr);
+	for (size_t i = 0; i < nr; i++) {
+		int line = 0;
+		const double x = derived_at(c, digit, rt[i].key, &line);
+		if (!line)
+			continue;
+		char where[SB_STR_MAX + 32];
+		snprintf(where, sizeof where, "%s:%d", c->path, line);
+		if (ratio_apply(&rt[i], x, s, where, e))
+			return e->code;
+	}
+	return 0;
 }
 
 static void scene_point(const campaign *c, long point, sb_scene *s)

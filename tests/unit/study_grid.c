@@ -487,7 +487,74 @@ static void test_derived(void)
 		{"study.grid.gamma_velocity.frequency_range", "[scene]\ngamma = 2\nvelocity = 0.001\n",
 		 ".campaign:5: gamma: gamma = 2 and velocity = 0.001 cm/s needs frequency = "},
 		{"study.grid.derived.unknown_key", "[grid]\nzzqq = 1\n",
-		 ".campaign:5: unknown key 'zzqq' (shake --help lists the keys; gamma and velocity are the campaign's)"},
+		 ".campaign:5: unknown key 'zzqq' (shake --help lists the keys; gamma, velocity and density_ratio are the campaign's)"},
+	};
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
+		rc = sf_expand(text, &c, &g, &e);
+		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word), "rc %d '%s' (want '%s')", rc, e.msg, bad[i].word);
+		if (!rc)
+			sf_free(&c, &g);
+	}
+}
+
+/* density_ratio (docs/campaigns.md, "Ratios"): each point's intruder_density is the ratio
+ * times its own density, the runs those of intruder_density written out (same ids), the
+ * label the ratio as written; what cannot be is refused with the line. */
+static void test_ratio(void)
+{
+	campaign c, c2;
+	grid g, g2;
+	sb_err e;
+	const char *head = "[campaign]\nname = r\nseed = 1\n";
+	char text[1024];
+	snprintf(text, sizeof text, "%s[grid]\ndensity = 1, 2.5\ndensity_ratio = 0.25, 4\n", head);
+	int rc = sf_expand(text, &c, &g, &e);
+	int ok = !rc && g.n == 4;
+	char got[256] = "", l3[256] = "";
+	for (long p = 0; ok && p < 4; p++) {
+		const grid_run *r = run_at(&g, p);
+		ok = r != NULL;
+		if (ok) {
+			sb_scene s;
+			grid_scene(&g, r, &s);
+			size_t l = strlen(got);
+			snprintf(got + l, sizeof got - l, "%s%g/%g", p ? " " : "", s.density, s.intruder_density);
+		}
+	}
+	if (!rc)
+		grid_point_label(&c, 3, l3, sizeof l3);
+	/* first axis fastest: (1, 0.25) (2.5, 0.25) (1, 4) (2.5, 4) */
+	CHECK("study.grid.density_ratio.sets", ok && !strcmp(got, "1/0.25 2.5/0.625 1/4 2.5/10") &&
+	      !strcmp(l3, "density=2.5 density_ratio=4"), "%s: %s, label '%s'", rc ? e.msg : "ok", got, l3);
+	/* the same runs as intruder_density written out, point by point */
+	static const char *const pt[4][2] = {{"1", "0.25"}, {"2.5", "0.625"}, {"1", "4"}, {"2.5", "10"}};
+	int same = !rc && g.n == 4, rc2 = 0;
+	for (long i = 0; same && i < 4; i++) {
+		snprintf(text, sizeof text, "%s[scene]\ndensity = %s\nintruder_density = %s\n", head, pt[i][0], pt[i][1]);
+		rc2 = sf_expand(text, &c2, &g2, &e);
+		const grid_run *a = run_at(&g, i);
+		same = !rc2 && g2.n == 1 && a && !strcmp(a->id, g2.runs[0].id);
+		if (!rc2)
+			sf_free(&c2, &g2);
+	}
+	CHECK("study.grid.density_ratio.same_runs", same, "ids differ (%s)", rc2 ? e.msg : "");
+	if (!rc)
+		sf_free(&c, &g);
+
+	static const struct {
+		const char *id, *body, *word;
+	} bad[] = {
+		{"study.grid.density_ratio.not_positive", "[grid]\ndensity_ratio = 0, 1\n",
+		 ".campaign:5: density_ratio: expected a number in (0, 1000] (intruder_density over density), got '0'"},
+		{"study.grid.density_ratio.too_large", "[scene]\ndensity_ratio = 2000\n",
+		 ".campaign:5: density_ratio: expected a number in (0, 1000]"},
+		{"study.grid.density_ratio.both", "[scene]\nintruder_density = 2\n[grid]\ndensity_ratio = 1, 2\n",
+		 ".campaign:7: density_ratio: density_ratio (line 7) sets intruder_density = density_ratio x density, and "
+		 "intruder_density is given too (line 5)"},
+		{"study.grid.density_ratio.range", "[scene]\ndensity = 5000\n[grid]\ndensity_ratio = 1, 500\n",
+		 ".campaign:7: density_ratio: density_ratio = 500 at density = 5000 g/cm^3 gives intruder_density = 2500000, "
+		 "outside (0, 1e+06]"},
 	};
 	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
 		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
@@ -512,6 +579,7 @@ int main(void)
 	test_bounds();
 	test_zip();
 	test_derived();
+	test_ratio();
 	sf_cleanup();
 	return tl_done();
 }
