@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "schema.h"
+#include "ratio.h"
 #include "rowseal.h"
 
 /* A study database that lacks some of the driver's run tables (schema_lost) is
@@ -87,8 +88,27 @@ int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
 {
 	char axes[2048] = "", seed[32];
 	size_t l = 0;
-	for (int i = 0; i < c->naxes && l < sizeof axes; i++)
-		l += (size_t)snprintf(axes + l, sizeof axes - l, "%s%s", i ? " " : "", c->axes[i].key);
+	/* the scene keys the axes set: a derived axis (gamma, velocity, a ratio) by the keys
+	 * it sets, which the runs record in the param table and the tools group by */
+	for (int i = 0; i < c->naxes && l < sizeof axes; i++) {
+		const char *k = c->axes[i].key, *k2 = NULL;
+		const sb_ratio *ra = ratio_find(k);
+		if (ra)
+			k = ra->sets;
+		else if (campaign_key_derived(k)) {
+			k = c->derive == CP_DERIVE_AMPLITUDE ? "amplitude" : "frequency";
+			k2 = c->derive == CP_DERIVE_BOTH ? "amplitude" : NULL;
+		}
+		for (const char *w = k; w && l < sizeof axes; w = w == k ? k2 : NULL) {
+			/* once: gamma and velocity both set frequency and amplitude */
+			char pad[2100];
+			snprintf(pad, sizeof pad, " %s ", axes);
+			char want[64];
+			snprintf(want, sizeof want, " %s ", w);
+			if (!strstr(pad, want))
+				l += (size_t)snprintf(axes + l, sizeof axes - l, "%s%s", l ? " " : "", w);
+		}
+	}
 	/* an [onset] search varies both too: the analysis tools group by the swept keys */
 	if (c->onset.line && l < sizeof axes)
 		snprintf(axes + l, sizeof axes - l, "%sfrequency seed", l ? " " : "");
