@@ -327,12 +327,42 @@ answer_q5() {
 	printf 'answer\t%s\t%s of the %s runs whose intruder rose dived at least twice after it; %s, and %s.\n' "$word" "${np:-?}" "${nr:-?}" \
 		"$(trend depth "dives' depth")" "$(trend period "period")"
 }
+# answer_q6 ONSET_CAMPAIGN RISE_CAMPAIGN: the referee's question (a realistic contact law).
+# The onset: the [onset] search's one group, in Gamma (axis = gamma), its interval against
+# 1: below1 (upper bound < 1), above1 (lower bound > 1), at1 (the interval holds 1). The
+# rise at the paper's Gamma: bin/waiting's fraction risen with its Clopper-Pearson
+# interval against 1/2: rises (lower bound > 1/2), stays (upper bound < 1/2), undecided.
+# The word is ONSET_RISE (e.g. below1_rises); running while the search is not done or the
+# fraction not computed.
+answer_q6() {
+	local n=$1 r=$2 st g glo ghi f flo fhi fn risen ow rw
+	read -r st g glo ghi <<<"$(vq "SELECT state, $(num estimate), $(num ci_lo), $(num ci_hi) FROM onset_group
+		WHERE campaign = '$n' ORDER BY point LIMIT 1" | tr '\t' ' ')"
+	read -r f flo fhi fn <<<"$(val "$r" waiting fraction_risen | tr '\t' ' ')"
+	risen=$(vq "SELECT CAST(value AS INTEGER) FROM analysis WHERE campaign = '$r' AND tool = 'waiting' AND key = 'risen' LIMIT 1")
+	if [ "${st:-}" != done ] || ! isnum "${f:-x}"; then
+		printf 'answer\trunning\tThe onset search is %s and the fraction risen %s; `make reproduce` resumes them.\n' \
+			"${st:-not started}" "$(isnum "${f:-x}" && echo computed || echo "not computed yet")"
+		return
+	fi
+	case $(iv_state "${glo:-x}" "${ghi:-x}" 1) in below) ow=below1 ;; above) ow=above1 ;; *) ow=at1 ;; esac
+	case $(iv_state "${flo:-x}" "${fhi:-x}" 0.5) in above) rw=rises ;; below) rw=stays ;; *) rw=undecided ;; esac
+	printf 'answer\t%s_%s\tWith Hertz contacts, a shear spring with history, e = 0.9 for a mean grain pair and μ = 0.5, the onset of convection lies at Γ = %s [%s, %s]: %s. At the paper'"'"'s Γ = 0.82 the intruder rose in %s of %s beds (fraction %s [%s, %s]): %s.\n' \
+		"$ow" "$rw" "$g" "$glo" "$ghi" \
+		"$(case $ow in below1) echo "below Γ = 1, as with the paper's soft contacts: the convection below Γ = 1 survives a realistic law" ;;
+			above1) echo "above Γ = 1, as experiments find: the convection below Γ = 1 is the paper's law's" ;;
+			*) echo "its interval holds Γ = 1: whether the bed convects below Γ = 1 is not decided by these replicates" ;; esac)" \
+		"${risen:-?}" "${fn:-?}" "$f" "$flo" "$fhi" \
+		"$(case $rw in rises) echo "it still rises in most beds" ;; stays) echo "it no longer rises in most beds" ;;
+			*) echo "the interval holds one half, so whether most beds still see it rise is not decided" ;; esac)"
+}
 # the bold label of an answer word, for the report
 answer_label() {
 	case $1 in
 	yes) echo "yes." ;; part) echo "in part." ;; no) echo "no." ;; running) echo "not yet." ;; none) echo "none." ;;
 	depends) echo "it depends on the width." ;; none_critical) echo "no critical size ratio in this range." ;;
-	some_stay) echo "not every intruder rose." ;; decreases | increases | no_trend | open) echo "" ;; *) echo "$1" ;;
+	some_stay) echo "not every intruder rose." ;;
+	below1_* | above1_* | at1_*) echo "" ;; decreases | increases | no_trend | open) echo "" ;; *) echo "$1" ;;
 	esac
 }
 # answer_md: an answer line as the report's "**Answer: ...** text"

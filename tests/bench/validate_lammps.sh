@@ -59,6 +59,9 @@
 #   D: VALIDATE_D_BEDS (12), VALIDATE_D_DURATION (30 s); frequency and depth from
 #      campaigns/reproduce/claim4_waiting.campaign and its scene (VALIDATE_D_FREQ,
 #      VALIDATE_D_DEPTH override)
+#   E: part D with shear history on in both codes (not in the default parts: the
+#      engine's `tangential = spring`, LAMMPS `gran/hooke/history`, both k_t = 2/7 of
+#      the normal stiffness), on D's beds (the same seeds) and settings
 #   VALIDATE_CHEAP_FIRST=1 (the runs cheapest first, not longest first: for a validation
 #   spread over sessions), JOBS (parallel runs, default 2), VALIDATE_WORK (run directory, default
 #   build/validate[-quick]), VALIDATE_OUT (where the .md and the figures go: docs for the
@@ -119,7 +122,7 @@ command -v gnuplot >/dev/null || die "gnuplot not found: make deps"
 command -v h5dump >/dev/null || die "h5dump not found: make deps (hdf5-tools)"
 if [ ! -x "$SHAKE" ] || [ ! -x "$DUMPFLUX" ]; then die "build first: $SHAKE, $DUMPFLUX"; fi
 for p in $PARTS; do
-	case $p in A | B | C | D) ;; *) die "VALIDATE_PARTS: '$p' is not a part (A B C D)" ;; esac
+	case $p in A | B | C | D | E) ;; *) die "VALIDATE_PARTS: '$p' is not a part (A B C D E)" ;; esac
 done
 
 # a key of an INI file: the first `key = value` in [section] (or at the top when the
@@ -168,13 +171,13 @@ seeds() { # PART [DEPTH]
 	A) seq 101 $((100 + A_BEDS)) ;;
 	B) seq 201 $((200 + B_BEDS)) ;;
 	C) seq $((301 + 100 * $2)) $((300 + 100 * $2 + C_BEDS)) ;;
-	D) seq 501 $((500 + D_BEDS)) ;;
+	D | E) seq 501 $((500 + D_BEDS)) ;; # E: D's beds, with shear history
 	esac
 }
 tags() { # PART: the runs of a part, one name each
 	local s f d
 	case $1 in
-	A | D) seeds "$1" ;;
+	A | D | E) seeds "$1" ;;
 	B) for s in $(seeds B); do for f in $B_FREQS; do echo "${s}_$f"; done; done ;;
 	C) for d in 0 1; do for s in $(seeds C $d); do echo "d${d}_$s"; done; done ;;
 	esac
@@ -202,7 +205,15 @@ elif [ "$REPORT" != 1 ]; then
 	echo "$settings" >"$WORK/settings"
 fi
 [ -x "$WORK/bin/dumpflux" ] || die "no $WORK/bin/dumpflux"
+VSHAKE=$SHAKE # the engine this invocation was given (a part's own copy: part_bin)
 SHAKE=$WORK/bin/shake DUMPFLUX=$WORK/bin/dumpflux
+# A part whose runs began with another engine than the first start's (part E needs the
+# shear spring, which an older validation's binary lacks) keeps its own in WORK/P/bin:
+# copied when the part starts with no run finished, used for all its runs after that
+part_bin() { # PART NAME
+	if [ -x "$WORK/$1/bin/$2" ]; then echo "$WORK/$1/bin/$2"; else echo "$WORK/bin/$2"; fi
+}
+export -f part_bin
 
 # the LAMMPS inputs: the deck with a fragment's lines before its one `run ${steps}` line
 # (those after a `#@after run` line of the fragment just after it)
@@ -214,6 +225,11 @@ insert() { # FRAGMENT OUT
 }
 insert "$STROBE" "$WORK/strobe.in"
 insert "$RISE" "$WORK/rise.in"
+# part E: the same deck with shear history (Kt NULL: 2/7 Kn, the engine's default
+# shear_stiffness); its one pair_style line changed, or no part E
+sed 's|^pair_style  gran/hooke 3.0e6 0.0 |pair_style  gran/hooke/history 3.0e6 NULL |' "$WORK/rise.in" >"$WORK/rise_history.in"
+[ "$(grep -c '^pair_style  gran/hooke/history 3.0e6 NULL ' "$WORK/rise_history.in")" = 1 ] ||
+	die "$DECK: its pair_style line is not 'pair_style  gran/hooke 3.0e6 0.0 ...': part E cannot switch history on"
 
 # (the readers read to the end: a writer killed by SIGPIPE would fail the pipeline)
 CPU_MODEL=$(lscpu 2>/dev/null | awk -F: '/^Model name/ && !m { m = $2; sub(/^[ \t]+/, "", m) } END { print m }') || CPU_MODEL="?"
@@ -235,7 +251,7 @@ job() {
 	A) freq=$A_FREQ dur=$A_DUR seed=$tag ;;
 	B) freq=${tag#*_} dur=$B_DUR seed=${tag%_*} ;;
 	C) freq=$C_FREQ dur=$C_DUR seed=${tag#*_} depth=${tag%%_*} depth=${depth#d} rr=$C_R ;;
-	D) freq=$D_FREQ dur=$D_DUR seed=$tag depth=$D_DEPTH rr=$C_R ;;
+	D | E) freq=$D_FREQ dur=$D_DUR seed=$tag depth=$D_DEPTH rr=$C_R ;;
 	esac
 	[ -z "${depth:-}" ] || where=(depth="$depth") # the beds without intruder as they always were
 	local steps
@@ -245,7 +261,7 @@ job() {
 	rm -f "$out".* # what an interrupted attempt left
 	case $kind in
 	prep)
-		{ time nice -n 5 "$SHAKE" radius_ratio=$rr "${where[@]}" seed="$seed" frequency="$freq" amplitude=$AMP duration=0 \
+		{ time nice -n 5 "$(part_bin "$part" shake)" radius_ratio=$rr "${where[@]}" seed="$seed" frequency="$freq" amplitude=$AMP duration=0 \
 			progress=no write_lammps="$data" output="$dir/prep_$tag.h5" >"$out.log" 2>&1; } 2>"$out.sec" || rc=$? ;;
 	shake | paper | fast)
 		local how=()
@@ -254,8 +270,9 @@ job() {
 		A/*) how=(radius_ratio=0 flux=yes) ;; # the paper preset
 		B/*) how=(radius_ratio=0 flux=yes integrator=verlet dt="$DT") ;;
 		C/* | D/*) how=(radius_ratio="$rr" integrator=verlet dt="$DT" stop=risen stop_after=0) ;;
+		E/*) how=(radius_ratio="$rr" integrator=verlet dt="$DT" stop=risen stop_after=0 tangential=spring) ;;
 		esac
-		{ time nice -n 5 "$SHAKE" particles="$data" settle=no "${how[@]}" frequency="$freq" amplitude=$AMP \
+		{ time nice -n 5 "$(part_bin "$part" shake)" particles="$data" settle=no "${how[@]}" frequency="$freq" amplitude=$AMP \
 			duration="$dur" snapshots=no traj_rate=0 progress=no output="$out.h5" >"$out.log" 2>&1; } 2>"$out.sec" || rc=$? ;;
 	lmp)
 		if [ "$part" = A ] || [ "$part" = B ]; then
@@ -266,7 +283,9 @@ job() {
 			# the intruder (type 2): its settled height and diameter as the data file has them
 			local y0 h
 			read -r h y0 < <(awk '/^Atoms/ { on = 1; next } /^Velocities/ { exit } on && NF >= 6 && $2 == 2 { print $3, $6; exit }' "$data")
-			{ time OMP_NUM_THREADS=1 nice -n 5 "$LMP" -in "$WORK/rise.in" -log "$out.lammps" -screen none -nocite \
+			local deck=$WORK/rise.in
+			[ "$part" != E ] || deck=$WORK/rise_history.in
+			{ time OMP_NUM_THREADS=1 nice -n 5 "$LMP" -in "$deck" -log "$out.lammps" -screen none -nocite \
 				-var data "$data" -var steps "$steps" -var freq "$freq" -var amp $AMP \
 				-var rise_y0 "$y0" -var rise_h "$h" -var rise_out "$out.rise" >"$out.log" 2>&1; } 2>"$out.sec" || rc=$?
 		fi ;;
@@ -285,9 +304,12 @@ if [ "$REPORT" != 1 ]; then
 	for p in $PARTS; do
 		[ "$FRESH" != 1 ] || rm -rf "${WORK:?}/$p"
 		mkdir -p "$WORK/$p"
+		if [ "$p" = E ] && [ -z "$(find "$WORK/$p" -maxdepth 1 -name '*.ok' -print -quit)" ]; then
+			mkdir -p "$WORK/$p/bin" && cp "$VSHAKE" "$WORK/$p/bin/shake" || die "cannot copy $VSHAKE to $WORK/$p/bin"
+		fi
 		for t in $(tags "$p"); do
 			echo "$p prep $t" >>"$WORK/prep.jobs"
-			case $p in A) d=$A_DUR ;; B) d=$B_DUR ;; C) d=$C_DUR ;; D) d=$D_DUR ;; esac
+			case $p in A) d=$A_DUR ;; B) d=$B_DUR ;; C) d=$C_DUR ;; D | E) d=$D_DUR ;; esac
 			# longest first (LAMMPS costs about 6 times the engine's CPU per simulated second)
 			echo "$((6 * d)) $p lmp $t" >>"$WORK/run.jobs.est"
 			echo "$d $p shake $t" >>"$WORK/run.jobs.est"
@@ -914,10 +936,13 @@ report_C() {
 	presets_C
 }
 
-report_D() {
-	local d=$WORK/D n=$D_BEDS
+# report_rise PART: claim 4's waiting times in both codes, part D (the deck's law) or E
+# (the same beds with shear history on in both codes)
+report_rise() {
+	local P=$1 d=$WORK/$1 n=$D_BEDS hist="" title="Claim 4: 𝓡 = $C_R rises at once"
+	[ "$P" != E ] || { hist=" with shear history"; title="Claim 4 with shear history on in both codes"; }
 	# shellcheck disable=SC2046
-	rise_table D "$D_DUR" $(seeds D) >"$d/rise.tsv"
+	rise_table "$P" "$D_DUR" $(seeds "$P") >"$d/rise.tsv"
 	awk -F'\t' '{ print $3, $5 }' "$d/rise.tsv" >"$d/wait.pairs"
 	"$DUMPFLUX" stats paired "$d/wait.pairs" >"$d/wait.stats" || die "dumpflux stats paired (waiting times) failed"
 	local st=$d/wait.stats
@@ -937,20 +962,23 @@ report_D() {
 	local verdict word
 	verdict=$(awk -v a="$ps" -v b="$pw" -v c="$m5" 'BEGIN { print (a < 0.05 || b < 0.05 || c < 0.05) ? "differ" : "agree" }')
 	[ "$verdict" = agree ] && word="the codes **agree**" || word="the codes **differ**"
-	printf '%s\t%s\t%s\n' "claim 4: 𝓡 = $C_R at $D_FREQ Hz (depth $D_DEPTH) \"rises at once\": the waiting time per bed" \
+	printf '%s\t%s\t%s\n' "claim 4$hist: 𝓡 = $C_R at $D_FREQ Hz (depth $D_DEPTH) \"rises at once\": the waiting time per bed" \
 		"$n beds × up to $D_DUR s; median shakebox $(med "$meds" "$cens_s"), LAMMPS $(med "$medl" "$cens_l"); within $D_FAST s: $ks and $kl of $n; paired: sign test p = $(fmtp "$ps"), Wilcoxon p = $(fmtp "$pw")" "$word" >"$d/summary"
 	{
-		echo "## D. Claim 4: 𝓡 = $C_R rises at once"
+		echo "## $P. $title"
 		echo
-		part_header D
-		part_times D
+		part_header "$P"
+		part_times "$P"
 		echo
 		echo "**Setup.** The claim-4 campaign's setting (\`$D_CAMPAIGN\` on its scene \`$D_SCENE\`): 𝓡 = $C_R at $D_FREQ Hz,"
-		echo "depth $D_DEPTH, A = $AMP cm; $n settled beds (seeds $(seeds D | awk "NR == 1")…$(seeds D | awk "END { print }")), each shaken in both codes from the same data"
+		echo "depth $D_DEPTH, A = $AMP cm; $n settled beds (seeds $(seeds "$P" | awk "NR == 1")…$(seeds "$P" | awk "END { print }")), each shaken in both codes from the same data"
 		echo "file until the intruder rises or for $D_DUR s, shakebox with the deck's integrator and step (\`integrator ="
 		echo "verlet\`, Δt = $DT s; the campaign runs the fast preset). The waiting time by the engine's rule in both codes,"
 		echo "as in part C (shakebox's \`waiting_time\`; LAMMPS: \`validate_rise.in\`, the step at which \`fix halt\` ended"
 		echo "the run × Δt). A run without a rise is censored at $D_DUR s."
+		[ "$P" != E ] || { echo; echo "**Shear history.** Part D's beds and settings with Cundall–Strack's shear spring on in both codes: shakebox"
+			echo "\`tangential = spring\` (docs/model.md, \"Tangential law\"), LAMMPS \`pair_style gran/hooke/history\` (\`rise_history.in\`: the"
+			echo "deck's one \`pair_style\` line with Kt = NULL), both with k_t = 2/7 of the normal stiffness, the same γ_S and μ."; }
 		echo
 		echo "**Statistics.** Medians per code (a median on a censored run is only a lower bound); the paired"
 		echo "difference LAMMPS − shakebox per bed: the sign test (valid with censoring: a censored run's difference"
@@ -972,8 +1000,11 @@ report_D() {
 		awk -F'\t' -v D="$D_DUR" '{ d = sprintf("%+.2f", $5 - $3); if (!$2 && !$4) d = "— (both censored)"; else if (!$2) d = "≤ " d; else if (!$4) d = "≥ " d
 			printf "| %s | %s | %s | %s |\n", $1, $2 ? sprintf("%.2f", $3) : "> " D, $4 ? sprintf("%.2f", $5) : "> " D, d }' "$d/rise.tsv"
 	} >"$d/section.md"
-	echo "validate_lammps: D: $verdict (medians $meds / $medl s; sign p $ps, Wilcoxon p $pw; within $D_FAST s $ks / $kl of $n)" >&2
+	echo "validate_lammps: $P: $verdict (medians $meds / $medl s; sign p $ps, Wilcoxon p $pw; within $D_FAST s $ks / $kl of $n)" >&2
 }
+
+report_D() { report_rise D; }
+report_E() { report_rise E; }
 
 for p in $PARTS; do
 	"report_$p"
@@ -1004,7 +1035,7 @@ read -r PREP_S RUNS_S <"$WORK/times" || true
 	echo
 	echo "| part | question | evidence | result | CPU s | runs started |"
 	echo "|---|---|---|---|---:|---|"
-	for p in A B C D; do
+	for p in A B C D E; do
 		if [ -s "$WORK/$p/summary" ] && [ -s "$WORK/$p/section.md" ]; then
 			IFS=$'\t' read -r q ev res <"$WORK/$p/summary"
 			echo "| $p | $q | $ev | $res | $(part_cpu "$p") | $(stamp "$p" 1)$([ "$(stamp "$p" 5)" = 1 ] && echo ' (quick)') |"
@@ -1013,7 +1044,7 @@ read -r PREP_S RUNS_S <"$WORK/times" || true
 		fi
 	done
 	echo
-	for p in A B C D; do
+	for p in A B C D E; do
 		if [ -s "$WORK/$p/section.md" ]; then
 			cat "$WORK/$p/section.md"
 			echo

@@ -185,6 +185,20 @@ newdb q5d; tr5 -0.6 0.001; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.d
 newdb q5i; tr5 0.6 0.001; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.increases increases
 newdb q5n; tr5 -0.1 0.6; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.no_trend no_trend
 newdb q5o; answer_q5 q5 >"$TMP/out"; expect_answer verdicts.q5.open open
+# q6: the onset in Gamma against 1, the fraction risen against 1/2
+q6() { # STATE EST LO HI FRAC FLO FHI
+	sqlite3 "$VDB" "INSERT INTO onset_group(campaign, grp, point, estimate, ci_lo, ci_hi, state) VALUES ('q6o', 'all', 0, $2, $3, $4, '$1')"
+	[ -z "$5" ] || { row q6r waiting fraction_risen "$5" "$6" "$7"; row q6r waiting risen "$(awk -v f="$5" 'BEGIN { print int(16 * f + 0.5) }')"; }
+}
+newdb q6a; q6 done 0.62 0.6 0.65 0.81 0.54 0.96; answer_q6 q6o q6r >"$TMP/out"; expect_answer verdicts.q6.below1_rises below1_rises
+newdb q6b; q6 done 1.2 1.1 1.3 0.12 0.02 0.38; answer_q6 q6o q6r >"$TMP/out"; expect_answer verdicts.q6.above1_stays above1_stays
+newdb q6c; q6 done 0.98 0.9 1.05 0.5 0.25 0.75; answer_q6 q6o q6r >"$TMP/out"; expect_answer verdicts.q6.at1_undecided at1_undecided
+newdb q6d; q6 searching 0.98 0.9 1.05 0.5 0.25 0.75; answer_q6 q6o q6r >"$TMP/out"; expect_answer verdicts.q6.running_search running
+newdb q6e; q6 done 0.62 0.6 0.65 "" "" ""; answer_q6 q6o q6r >"$TMP/out"; expect_answer verdicts.q6.running_rise running
+# the sentence carries the numbers it rests on
+newdb q6f; q6 done 0.62 0.6 0.65 0.81 0.54 0.96; answer_q6 q6o q6r >"$TMP/out"
+grep -q 'Γ = 0.62 \[0.6, 0.65\]: below Γ = 1.* rose in 13 of 16 beds (fraction 0.81 \[0.54, 0.96\]): it still rises' "$TMP/out" &&
+	ok verdicts.q6.sentence || fail verdicts.q6.sentence "$(cat "$TMP/out")"
 
 # ---- one list of parts: docs/model.md's table names exactly the parts the rules judge ----------
 doc=$(grep -oE '^\| [0-9][a-z] \|' "$REPO/docs/model.md" | tr -d '| ' | sort | tr '\n' ' ')
