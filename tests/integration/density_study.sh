@@ -28,37 +28,23 @@ tiny >campaigns/examples/density.campaign
 	ok density.tiny_campaign || fail density.tiny_campaign "the shipped campaign changed: a line tiny() edits is gone"
 
 # the page's commands, in order
-mapfile -t CMDS < <(awk '/^```sh$/ { on = 1; next } /^```$/ { on = 0 } on && /^\$ / { sub(/^\$ /, ""); print }' "$DOC")
-[ "${#CMDS[@]}" = 4 ] && ok density.commands ||
-	fail density.commands "docs/density.md has ${#CMDS[@]} commands, this test checks 4: add the new one's check"
-
-# expect I PATTERN... : command I's output (stdout and stderr) matches every extended regex
-expect() {
-	local i=$1 p
-	shift
-	for p in "$@"; do
-		grep -qE -- "$p" "out$i" || { fail "density.cmd$i" "'${CMDS[i]}' printed no line matching '$p': $(tail -c 600 "out$i")"; return; }
-	done
-	ok "density.cmd$i"
-}
+page_commands "$DOC" 4 density
 for i in "${!CMDS[@]}"; do
-	bash -c "${CMDS[i]}" >"out$i" 2>&1
-	rc=$?
-	[ "$rc" -eq 0 ] || { fail "density.cmd$i.exit" "'${CMDS[i]}' exited $rc: $(tail -c 600 "out$i")"; continue; }
+	page_run density "$i" || continue
 	case "${CMDS[i]}" in
 	*"--dry-run"*)
-		expect "$i" '^  total: 10 runs, at most 30 s of simulated shaking' ;;
+		page_expect density "$i" '^  total: 10 runs, at most 30 s of simulated shaking' ;;
 	"bin/study run "*)
-		expect "$i" '^study: density: 10 done, 0 failed, 0 pending' ;;
+		page_expect density "$i" '^study: density: 10 done, 0 failed, 0 pending' ;;
 	"bin/waiting "*)
 		# one group per density ratio, as intruder_density (density = 1), each with its runs;
 		# the differences against the smallest
-		expect "$i" 'intruder_density=0\.25 ' 'intruder_density=0\.5 ' 'intruder_density=1 ' 'intruder_density=2 ' \
+		page_expect density "$i" 'intruder_density=0\.25 ' 'intruder_density=0\.5 ' 'intruder_density=1 ' 'intruder_density=2 ' \
 			'intruder_density=4 ' 'diff'
 		[ -s runs/density/analysis/waiting_summary.csv ] && ok density.summary_csv ||
 			fail density.summary_csv "no runs/density/analysis/waiting_summary.csv" ;;
 	"sqlite3 "*)
-		expect "$i" '^density_ratio +intruder_density +runs +risen' '^0\.25 +0\.25 +2 +[0-2] *$' '^4\.0 +4\.0 +2 +[0-2] *$' ;;
+		page_expect density "$i" '^density_ratio +intruder_density +runs +risen' '^0\.25 +0\.25 +2 +[0-2] *$' '^4\.0 +4\.0 +2 +[0-2] *$' ;;
 	*) fail "density.cmd$i" "no check for '${CMDS[i]}'" ;;
 	esac
 done

@@ -42,6 +42,34 @@ if [ ! -x "$SHAKE" ]; then
 	finish
 fi
 
+# A documentation page as a reader follows it (tutorial.sh, density_study.sh): the "$ "
+# lines of its ```sh blocks, run in order and as written, each output checked.
+# page_commands DOC N ID : CMDS, the page's commands, and the check ID.commands that there
+# are N (a command added to the page without a check here fails)
+page_commands() {
+	mapfile -t CMDS < <(awk '/^```sh$/ { on = 1; next } /^```$/ { on = 0 } on && /^\$ / { sub(/^\$ /, ""); print }' "$1")
+	[ "${#CMDS[@]}" = "$2" ] && ok "$3.commands" ||
+		fail "$3.commands" "${1##*/} has ${#CMDS[@]} commands, this test checks $2: add the new one's check"
+}
+# page_run ID I : command I, its output (stdout and stderr) in outI; fails ID.cmdI.exit and
+# returns 1 when it exits non-zero
+page_run() {
+	bash -c "${CMDS[$2]}" >"out$2" 2>&1
+	local rc=$?
+	[ "$rc" -eq 0 ] && return 0
+	fail "$1.cmd$2.exit" "'${CMDS[$2]}' exited $rc: $(tail -c 600 "out$2")"
+	return 1
+}
+# page_expect ID I PATTERN... : command I's output matches every extended regex (ID.cmdI)
+page_expect() {
+	local id=$1 i=$2 p
+	shift 2
+	for p in "$@"; do
+		grep -qE -- "$p" "out$i" || { fail "$id.cmd$i" "'${CMDS[i]}' printed no line matching '$p': $(tail -c 600 "out$i")"; return; }
+	done
+	ok "$id.cmd$i"
+}
+
 # q DB SQL : the rows of one query of the SQLite database DB, columns joined by '|'. The
 # scripts' one query helper (fixtures.sh fails on a script that defines its own).
 q() { sqlite3 -batch -noheader -separator '|' "$1" "$2"; }

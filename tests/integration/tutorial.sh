@@ -31,39 +31,25 @@ tiny >campaigns/examples/amplitude.campaign
 	ok tutorial.tiny_campaign || fail tutorial.tiny_campaign "the shipped campaign changed: a line tiny() edits is gone"
 
 # the page's commands, in order
-mapfile -t CMDS < <(awk '/^```sh$/ { on = 1; next } /^```$/ { on = 0 } on && /^\$ / { sub(/^\$ /, ""); print }' "$DOC")
-[ "${#CMDS[@]}" = 6 ] && ok tutorial.commands ||
-	fail tutorial.commands "docs/tutorial.md has ${#CMDS[@]} commands, this test checks 6: add the new one's check"
-
-# expect I PATTERN... : command I's output (stdout and stderr) matches every extended regex
-expect() {
-	local i=$1 p
-	shift
-	for p in "$@"; do
-		grep -qE -- "$p" "out$i" || { fail "tutorial.cmd$i" "'${CMDS[i]}' printed no line matching '$p': $(tail -c 600 "out$i")"; return; }
-	done
-	ok "tutorial.cmd$i"
-}
+page_commands "$DOC" 6 tutorial
 for i in "${!CMDS[@]}"; do
-	bash -c "${CMDS[i]}" >"out$i" 2>&1
-	rc=$?
-	[ "$rc" -eq 0 ] || { fail "tutorial.cmd$i.exit" "'${CMDS[i]}' exited $rc: $(tail -c 600 "out$i")"; continue; }
+	page_run tutorial "$i" || continue
 	case "${CMDS[i]}" in
 	"bin/study expand "*)
-		expect "$i" '^group amplitude=1 \(amplitude 1 cm\): first point [0-9.]+ Hz \(Gamma [0-9.]+, v [0-9.]+ cm/s\)' \
+		page_expect tutorial "$i" '^group amplitude=1 \(amplitude 1 cm\): first point [0-9.]+ Hz \(Gamma [0-9.]+, v [0-9.]+ cm/s\)' \
 			'^group amplitude=3 \(amplitude 3 cm\)' ;;
 	*"--dry-run"*)
-		expect "$i" '^  total: at most [0-9]+ runs, .*CPU at most ' '^ +\(at least [0-9]+ runs, .*, CPU .*, if no run fails\)$' ;;
+		page_expect tutorial "$i" '^  total: at most [0-9]+ runs, .*CPU at most ' '^ +\(at least [0-9]+ runs, .*, CPU .*, if no run fails\)$' ;;
 	"bin/study run "*)
-		expect "$i" 'amplitude=1: onset Gamma [0-9.]+, 75% interval .*: done$' \
+		page_expect tutorial "$i" 'amplitude=1: onset Gamma [0-9.]+, 75% interval .*: done$' \
 			'amplitude=2: onset Gamma .*: done$' 'amplitude=3: onset Gamma .*: done$' ;;
 	"bin/study status "*)
-		expect "$i" '^  onset search \(done' '^  runs [0-9]+: done [0-9]+, failed 0' ;;
+		page_expect tutorial "$i" '^  onset search \(done' '^  runs [0-9]+: done [0-9]+, failed 0' ;;
 	"sqlite3 "*)
-		expect "$i" '^amplitude +f +gamma +v +phi +class +ran_s' '^1\.0 +[0-9.]+ +[0-9.]+ +[0-9.]+ +-?[0-9.]+ +off ' \
+		page_expect tutorial "$i" '^amplitude +f +gamma +v +phi +class +ran_s' '^1\.0 +[0-9.]+ +[0-9.]+ +[0-9.]+ +-?[0-9.]+ +off ' \
 			'^3\.0 +[0-9.]+ +[0-9.]+ +[0-9.]+ +-?[0-9.]+ +on ' ;;
 	"bin/onset "*)
-		expect "$i" "^# onset: first f with mean Φ ≥ 0.5 in band 0.4–0.6, skip 0.2 \(the \[onset\] search's definition\)" \
+		page_expect tutorial "$i" "^# onset: first f with mean Φ ≥ 0.5 in band 0.4–0.6, skip 0.2 \(the \[onset\] search's definition\)" \
 			'^radius_ratio=0 depth=1 amplitude=2 +[0-9.]+ \[' \
 			'threshold_f +3 +-?[0-9.]+ \[-?[0-9.]+, -?[0-9.]+\] .*Γ const \(p = -1/2\) (inside|excluded), v const \(p = -1\) (inside|excluded)'
 		[ -s runs/amplitude_onset/analysis/onset.png ] && ok tutorial.figure ||

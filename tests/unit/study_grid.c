@@ -407,6 +407,26 @@ static const grid_run *run_at(const grid *g, long point)
 	return NULL;
 }
 
+/* A campaign the driver must refuse: head + body, and a word of the message. */
+typedef struct refusal {
+	const char *id, *body, *word;
+} refusal;
+
+static void refusals(const char *head, const refusal *bad, size_t n)
+{
+	for (size_t i = 0; i < n; i++) {
+		char text[1024];
+		campaign c;
+		grid g;
+		sb_err e;
+		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
+		int rc = sf_expand(text, &c, &g, &e);
+		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word), "rc %d '%s' (want '%s')", rc, e.msg, bad[i].word);
+		if (!rc)
+			sf_free(&c, &g);
+	}
+}
+
 /* gamma and velocity axes (docs/campaigns.md, "Axes in Gamma and v"): the frequency
  * from the amplitude, the amplitude from a set frequency, both from both; the runs are
  * the frequency grid's (same ids); what cannot make a drive is refused with the line. */
@@ -469,9 +489,7 @@ static void test_derived(void)
 	if (!rc)
 		sf_free(&c, &g);
 
-	static const struct {
-		const char *id, *body, *word;
-	} bad[] = {
+	static const refusal bad[] = {
 		{"study.grid.gamma.overdetermined", "[scene]\namplitude = 1\nfrequency = 3\n[grid]\ngamma = 1, 2\n",
 		 ".campaign:8: gamma: amplitude (line 5) and frequency (line 6) are both set"},
 		{"study.grid.gamma.not_positive", "[grid]\ngamma = 0, 1\n", ".campaign:5: gamma: expected a number in (0, 1000], got '0'"},
@@ -489,13 +507,7 @@ static void test_derived(void)
 		{"study.grid.derived.unknown_key", "[grid]\nzzqq = 1\n",
 		 ".campaign:5: unknown key 'zzqq' (shake --help lists the keys; gamma, velocity and density_ratio are the campaign's)"},
 	};
-	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
-		rc = sf_expand(text, &c, &g, &e);
-		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word), "rc %d '%s' (want '%s')", rc, e.msg, bad[i].word);
-		if (!rc)
-			sf_free(&c, &g);
-	}
+	refusals(head, bad, sizeof bad / sizeof *bad);
 }
 
 /* density_ratio (docs/campaigns.md, "Ratios"): each point's intruder_density is the ratio
@@ -542,9 +554,7 @@ static void test_ratio(void)
 	if (!rc)
 		sf_free(&c, &g);
 
-	static const struct {
-		const char *id, *body, *word;
-	} bad[] = {
+	static const refusal bad[] = {
 		{"study.grid.density_ratio.not_positive", "[grid]\ndensity_ratio = 0, 1\n",
 		 ".campaign:5: density_ratio: expected a number in (0, 1000] (intruder_density over density), got '0'"},
 		{"study.grid.density_ratio.too_large", "[scene]\ndensity_ratio = 2000\n",
@@ -556,13 +566,7 @@ static void test_ratio(void)
 		 ".campaign:7: density_ratio: density_ratio = 500 at density = 5000 g/cm^3 gives intruder_density = 2500000, "
 		 "outside (0, 1e+06]"},
 	};
-	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-		snprintf(text, sizeof text, "%s%s", head, bad[i].body);
-		rc = sf_expand(text, &c, &g, &e);
-		CHECK(bad[i].id, rc == SB_EUSAGE && strstr(e.msg, bad[i].word), "rc %d '%s' (want '%s')", rc, e.msg, bad[i].word);
-		if (!rc)
-			sf_free(&c, &g);
-	}
+	refusals(head, bad, sizeof bad / sizeof *bad);
 }
 
 int main(void)
