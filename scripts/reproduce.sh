@@ -13,7 +13,7 @@
 #   REPRODUCE_RUNS=DIR  where the runs and study.db go (default runs/reproduce)
 #   REPRODUCE_WORK=DIR  QUICK only: the work directory (default build/reproduce-quick)
 #   REPRODUCE_CLAIMS="1 2 3 4 5"   which claims to run and report
-#   REPRODUCE_QUESTIONS="1 2 3 4 5"   which open questions to run and report (default all;
+#   REPRODUCE_QUESTIONS="1 2 3 4 5 6"   which open questions to run and report (default all;
 #                       none with REPRODUCE_QUICK unless given)
 #   REPRODUCE_REPORT_ONLY=1   write REPRODUCTION.md from what the database and the tools'
 #                       last outputs hold, running no campaign and no tool
@@ -28,7 +28,7 @@ CLAIMS=${REPRODUCE_CLAIMS:-1 2 3 4 5}
 REPORT_ONLY=${REPRODUCE_REPORT_ONLY:-0}
 # the questions the paper left open (scripts/reproduce_questions.sh); none in QUICK mode
 # unless asked for
-if [ "$QUICK" = 1 ]; then QUESTIONS=${REPRODUCE_QUESTIONS:-}; else QUESTIONS=${REPRODUCE_QUESTIONS-1 2 3 4 5}; fi
+if [ "$QUICK" = 1 ]; then QUESTIONS=${REPRODUCE_QUESTIONS:-}; else QUESTIONS=${REPRODUCE_QUESTIONS-1 2 3 4 5 6}; fi
 if [ "$QUICK" = 1 ]; then
 	W=${REPRODUCE_WORK:-build/reproduce-quick}
 	RUNS=${REPRODUCE_RUNS:-$W/runs}

@@ -9,7 +9,7 @@
 # Every number is computed here from the database or the tools' outputs.
 
 declare -A QFILE QNAME
-for c in q1_stiffness q2_width_onset q2_width_rise q3_periodic q4_large q5_long; do
+for c in q1_stiffness q2_width_onset q2_width_rise q3_periodic q4_large q5_long q6_law_onset q6_law_rise; do
 	QFILE[$c]=$(campaign "$c.campaign")
 	QNAME[$c]=$(cname "${QFILE[$c]}")
 done
@@ -17,7 +17,7 @@ qwant() { case " $QUESTIONS " in *" $1 "*) return 0 ;; esac; return 1; }
 campaigns_of_question() {
 	case $1 in
 	1) echo q1_stiffness ;; 2) echo q2_width_onset q2_width_rise ;; 3) echo q3_periodic ;;
-	4) echo q4_large ;; 5) echo q5_long ;;
+	4) echo q4_large ;; 5) echo q5_long ;; 6) echo q6_law_onset q6_law_rise ;;
 	esac
 }
 
@@ -33,6 +33,7 @@ questions_tools() {
 	qwant 3 && { tool onset "${QNAME[q3_periodic]}" --by sides; tool convect "${QNAME[q3_periodic]}"; }
 	qwant 4 && tool waiting "${QNAME[q4_large]}"
 	qwant 5 && { tool waiting "${QNAME[q5_long]}"; tool whale "${QNAME[q5_long]}"; }
+	qwant 6 && { tool onset "${QNAME[q6_law_onset]}" --axis gamma; tool waiting "${QNAME[q6_law_rise]}"; }
 	return 0
 }
 
@@ -267,11 +268,45 @@ q_long() {
 	echo
 }
 
+q_law() {
+	local n=${QNAME[q6_law_onset]} r=${QNAME[q6_law_rise]} row
+	echo "## Open question 6: a realistic contact law (the referee's question)"
+	echo
+	integrator "$n" "${QFILE[q6_law_onset]}"
+	integrator "$r" "${QFILE[q6_law_rise]}"
+	echo
+	echo "The paper's contacts are soft linear springs without shear history (open question 1). With"
+	echo "Hertz's normal force (\`normal = hertz\`), Cundall–Strack's shear spring with history"
+	echo "(\`tangential = spring\`), a restitution of 0.9 for a mean grain pair at 20 cm/s and μ = 0.5"
+	echo "(docs/model.md, \"Normal law\", \"Tangential law\"; the damping that gives it in the campaign"
+	echo "file): where is the onset of convection in Γ (claim 1's definition, searched in Γ), and does"
+	echo "the intruder (𝓡 = 4, one row deep) still rise at the paper's Γ = 0.82 (3.2 Hz) within 60 s?"
+	echo "The rule: the onset is below (above) Γ = 1 when its interval lies below (above) 1; the"
+	echo "intruder still rises when the Clopper–Pearson interval of the fraction risen lies above 1/2,"
+	echo "no longer when it lies below; else undecided."
+	echo
+	row=$(q "SELECT $(num estimate) || ' [' || $(num ci_lo) || ', ' || $(num ci_hi) || '], ' || replicates || ' replicates, '
+		|| runs || ' runs (' || state || ')' FROM onset_group WHERE campaign = '$n' ORDER BY point LIMIT 1")
+	echo "| | value |"
+	echo "|---|---|"
+	echo "| onset of convection (Γ, the search's median of the replicates' onsets) | ${row:-not run yet} |"
+	echo "| fraction risen at Γ = 0.82 within 60 s | $(iv "$(val "$r" waiting fraction_risen)") ($(val "$r" waiting risen | cut -f1) of $(val "$r" waiting runs | cut -f1) beds) |"
+	echo "| median waiting time (one diameter) | $(iv "$(val "$r" waiting median)") s |"
+	echo
+	echo "Runs: onset $(counts "$n"); rise $(counts "$r")."
+	echo
+	answer_q6 "$n" "$r" | answer_md
+	echo
+	echo "$(fig "$ANA/$n/onset.png" q6_law_onset.png) $(fig "$ANA/$r/waiting_km.png" q6_law_km.png)"
+	echo
+}
+
 questions_report() {
 	qwant 1 && q_stiffness
 	qwant 2 && q_width
 	qwant 3 && q_periodic
 	qwant 4 && q_large
 	qwant 5 && q_long
+	qwant 6 && q_law
 	return 0
 }
