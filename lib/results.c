@@ -11,7 +11,7 @@
 #include "runfile.h"
 
 /* A summary attribute of the run file's root is a column of its name. */
-#define SUMMARY_COLUMN(row, attr, unit, def) {#attr, RT_REAL, "@" #attr, unit, def, 0},
+#define SUMMARY_COLUMN(row, attr, how, unit, def) {#attr, RT_REAL, "@" #attr, unit, def, 0},
 
 static const rcol TABLE[] = {
 	{"status", RT_TEXT, "@status", "",

@@ -370,3 +370,67 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 		io(ctx, &o->ring_y, sizeof o->ring_y);
 	}
 }
+
+int obs_segregation_split(const double *r, const unsigned char *kind, int n, double *split)
+{
+	double lo = INFINITY, hi = -INFINITY;
+	for (int i = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			lo = fmin(lo, r[i]);
+			hi = fmax(hi, r[i]);
+		}
+	*split = 0.5 * (lo + hi);
+	return lo < hi;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+double obs_segregation(const double *y, const double *r, const unsigned char *kind, int n, double split, double *work)
+{
+	int nl = 0, ng = 0;
+	double y0 = INFINITY;
+	for (int i = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			y0 = fmin(y0, y[i]);
+			nl += r[i] > split;
+			ng++;
+		}
+	const int ns = ng - nl;
+	if (nl == 0 || ns == 0)
+		return 0;
+	/* heights above the lowest grain: the sums below stay small beside a bed far above
+	 * its floor, and S does not depend on the origin */
+	double sl = 0, ss = 0;
+	for (int i = 0, k = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			work[k++] = y[i] - y0;
+			if (r[i] > split)
+				sl += y[i] - y0;
+			else
+				ss += y[i] - y0;
+		}
+	/* the same heights sorted: the large grains all on top hold the highest nl, all
+	 * at the bottom the lowest nl */
+	qsort(work, (size_t)ng, sizeof *work, cmp_double);
+	double low = 0, above_low = 0, high = 0, below_high = 0;
+	for (int k = 0; k < ng; k++) {
+		if (k < nl)
+			low += work[k];
+		else
+			above_low += work[k];
+		if (k >= ns)
+			high += work[k];
+		else
+			below_high += work[k];
+	}
+	const double d = sl / nl - ss / ns;
+	const double dmax = high / nl - below_high / ns, dmin = low / nl - above_low / ns;
+	/* a sum in another order can put S a rounding beyond +-1 */
+	if (d >= 0)
+		return dmax > 0 ? fmin(1, d / dmax) : 0;
+	return dmin < 0 ? fmax(-1, d / -dmin) : 0;
+}

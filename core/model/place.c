@@ -79,20 +79,25 @@ static int check_walls(const sb_scene *sc, double nb, double H, double ns, sb_er
 		       height, GUARD_MAX_WALLS);
 }
 
+/* the key of the largest grain radius, for errors */
+#define RHI_KEY(sc) ((sc)->size_dist == SIZE_BINARY ? "r_large" : "r_max")
+
 static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 {
 	const double W = sc->width, rw = sc->wall_radius;
-	const double rmean = 0.5 * (sc->r_min + sc->r_max);
+	double rlo, rhi, rmean;
+	params_grain_radii(sc, &rlo, &rhi, &rmean);
 	const double R1 = sc->radius_ratio * rmean;
 	/* Loose square lattice 10 % wider than the largest grain: nobody overlaps and the
 	 * bed compacts by only a few percent while settling. */
-	const double pitch = 2.2 * sc->r_max;
+	const double pitch = 2.2 * rhi;
 	const double cols = floor(W / pitch);
 	if (!(cols <= GUARD_MAX_COLUMNS))
 		return sb_errf(e, SB_EUSAGE,
-			       "%s: width %g cm holds %.3g lattice sites of 2.2 r_max = %g cm in a row (r_max %g cm, %s); "
+			       "%s: width %g cm holds %.3g lattice sites of 2.2 %s = %g cm in a row (%s %g cm, %s); "
 			       "the placement takes at most %d: larger grains or a narrower box",
-			       params_where(sc, "width"), W, cols, pitch, sc->r_max, params_where(sc, "r_max"),
+			       params_where(sc, "width"), W, cols, RHI_KEY(sc), pitch, RHI_KEY(sc), rhi,
+			       params_where(sc, RHI_KEY(sc)),
 			       GUARD_MAX_COLUMNS);
 	const int ncol = (int)cols;
 	/* depth rows of grains beneath the intruder: more rows than n_grains fill leave the
@@ -118,8 +123,8 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 	if (check_walls(sc, nb, H0, H0 > 0 && !periodic ? n_span(-rw, H0, sc->wall_spacing) : 1, e))
 		return e->code;
 	const double xoff = 0.5 * (W - ncol * pitch) + 0.5 * pitch;
-	const double jit = 0.5 * pitch - sc->r_max; /* free play of a grain in its site */
-	const double gap = 0.05 * sc->r_max;
+	const double jit = 0.5 * pitch - rhi; /* free play of a grain in its site */
+	const double gap = 0.05 * rhi;
 	const double ix = 0.5 * W, iy = sc->depth * pitch + R1 + gap;
 
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
@@ -139,8 +144,11 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 				err = sb_errf(e, SB_EINTR, "interrupted while placing the grains");
 				break;
 			}
-			/* draw first so that a skipped site still advances the stream alike */
-			const double r = sc->r_min + (sc->r_max - sc->r_min) * gsl_rng_uniform(rng);
+			/* draw first so that a skipped site still advances the stream alike; one
+			 * number per radius whatever size_dist, so both draw the same jitters */
+			const double u = gsl_rng_uniform(rng);
+			const double r = sc->size_dist == SIZE_BINARY ? (u < sc->large_fraction ? rhi : rlo)
+								      : sc->r_min + (sc->r_max - sc->r_min) * u;
 			const double dx = jit * (2 * gsl_rng_uniform(rng) - 1);
 			const double x = xoff + c * pitch + dx;
 			if (R1 > 0 && hypot(x - ix, y - iy) < R1 + r + gap)

@@ -652,7 +652,7 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
  * to one row per drive period: the mean of its N samples (time and step: the last
  * one's, the period's end), with the drive frequency there as one more element; a
  * period whose samples the run did not finish is left out. The row's summaries
- * (record.h): the mean of its first value column over the rows written. */
+ * (record.h): the mean of its first value column over the rows written, or its last. */
 static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b, long n)
 {
 	const sb_record *r = &rec_table()[id];
@@ -699,11 +699,13 @@ static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b
 	if (r->def)
 		h5w_attr_str(h, g, "definition", r->def);
 	for (int k = 0; k < RSUM_N && T > 0; k++)
-		if (rec_summary_row(k) == id) {
+		if (rec_summary_row(k) == id && rec_summary_how(k) == RR_MEAN) {
 			double sum = 0;
 			for (long p = 0; p < T; p++)
 				sum += d[p * len + 1];
 			h5w_attr_double(h, h->file, rec_summary_attr(k), sum / (double)T);
+		} else if (rec_summary_row(k) == id && rec_summary_how(k) == RR_LAST) {
+			h5w_attr_double(h, h->file, rec_summary_attr(k), d[(T - 1) * len + 1]);
 		}
 out:
 	free(d);

@@ -182,6 +182,24 @@ static int sample_height(sb_sim *s, double t, sb_err *e)
 	return PUT(s, REC_HEIGHT, row, e);
 }
 
+/* The grains' segregation index (docs/model.md, "Segregation index"; observe.h), from
+ * their heights in the box frame (S is the same in any frame: differences of heights
+ * over differences); large and small divided at the midpoint of the grains' radii,
+ * which sim_derive has checked are of two sizes. h5out averages a period's samples. */
+static int sample_segregation(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	double split;
+	obs_segregation_split(st->r, st->kind, st->nm, &split);
+	double *work = malloc(sizeof(double) * (size_t)(st->nm ? st->nm : 1));
+	if (!work)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the segregation index");
+	const double row[REC_NCOLS(REC_COLS_SEGREG)] = {
+		t, obs_segregation(st->q[C_Y][0], st->r, st->kind, st->nm, split, work)};
+	free(work);
+	return PUT(s, REC_SEGREG, row, e);
+}
+
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
 static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
@@ -203,6 +221,7 @@ static const sb_sampler TABLE[REC_N] = {
 	[REC_RING] = {sample_ring, NULL},
 	[REC_KINETIC] = {sample_kinetic, NULL},
 	[REC_HEIGHT] = {sample_height, NULL},
+	[REC_SEGREG] = {sample_segregation, NULL},
 };
 
 const sb_sampler *sample_table(void) { return TABLE; }
