@@ -7,7 +7,7 @@
 # two default radii in about the default fraction, differs from the uniform bed of the
 # same seed, and its index reaches the run file and the campaign's `runs`; the new keys'
 # errors name file, line, key and range; a bed of one size asking for the index is
-# refused.
+# refused; scripts/segregation.sh prints and plots the series.
 . "$(dirname "$0")/lib.sh"
 study_setup
 cd "$TMP" || exit 1
@@ -49,6 +49,15 @@ awk -v a="$(attr mixed.h5 /segregation_index_mean)" -v w="$want" 'BEGIN { d = a 
 	[ "$(attr mixed.h5 /segregation_index_final)" = "$(h5vals mixed.h5 $G/segregation_index/value | tail -n 1)" ] &&
 	[ "$(attr mixed.h5 $G/samples_per_period)" = 2 ] && ok summary.mean ||
 	fail summary.mean "mean $(attr mixed.h5 /segregation_index_mean), want $want"
+
+# scripts/segregation.sh: the series as TSV (three periods each), a figure, and a file
+# without the series refused
+"$REPO/scripts/segregation.sh" --png fig.png top.h5 bottom.h5 >tool.tsv 2>tool.err &&
+	[ "$(grep -c "top.h5" tool.tsv)" = 3 ] && [ "$(awk -F'\t' '$1 ~ /bottom.h5$/ { print $3 + 0 }' tool.tsv | sort -u)" = -1 ] &&
+	[ "$(head -c 4 fig.png | tail -c 3)" = PNG ] && ok tool.plot || fail tool.plot "$(head -c 300 tool.err) $(head -n 3 tool.tsv)"
+shake_run none.log particles=top.txt settle=no amplitude=0 duration=0.2 snapshots=no traj_rate=0 output=none.h5
+"$REPO/scripts/segregation.sh" none.h5 >/dev/null 2>none.err
+[ $? = 1 ] && contains none.err "segregation_samples" && ok tool.without_series || fail tool.without_series "$(cat none.err)"
 
 # size_dist = binary alone: radii 1 and 2 only (0.7 s at 3.2 Hz: two periods), about a fifth large (60 grains: 12 expected,
 # 4 to 22 is beyond 3 standard deviations), the uniform bed's run differs
