@@ -57,6 +57,12 @@ typedef struct sb_obs {
 	/* waiting time */
 	int risen;
 	double wait_time, rise_height;
+	/* several intruders (docs/model.md, "Several intruders"): every intruder's index
+	 * (the first the one above), settled height, rise and waiting time; nint = 0 or 1:
+	 * none of these arrays (a run of one intruder keeps its checkpoint's bytes) */
+	int nint;
+	int *iidx, *irisen;
+	double *iy0, *irise_h, *iwait;
 	/* the largest overlap of the shaking, a result of every run: the fraction of the
 	 * smaller radius, when, which disks (ids), and where (midpoint of the centres,
 	 * box frame); ov_max = 0 while no two disks have touched */
@@ -128,6 +134,10 @@ double obs_segregation(const double *y, const double *r, const unsigned char *ki
  * smallest and largest grain radius among the first n disks; 0 when the grains are of
  * one size (or there are none), for which no index is defined. */
 int obs_segregation_split(const double *r, const unsigned char *kind, int n, double *split);
+
+/* Intruder k's rise (0 or 1) and its waiting time (NAN while it has not risen), k <
+ * max(nint, 1): the first's the scalars above, the others' the arrays. */
+int obs_intruder_risen(const sb_obs *o, int k, double *wait);
 
 /* Serialise the accumulators for a checkpoint: io(ctx, pointer, bytes) per field. */
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t));

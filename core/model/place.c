@@ -126,6 +126,12 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 	const double jit = 0.5 * pitch - rhi; /* free play of a grain in its site */
 	const double gap = 0.05 * rhi;
 	const double ix = 0.5 * W, iy = sc->depth * pitch + R1 + gap;
+	/* the intruders (docs/model.md, "Several intruders"): the first where the paper's
+	 * one stands when alone, the others side by side (row) or above it (column) */
+	const long ni = R1 > 0 ? sc->n_intruders : 0;
+	const int row_of = sc->intruder_place == IPLACE_ROW && ni > 1;
+#define IX(k) (row_of ? W * (double)((k) + 1) / (double)(ni + 1) : ix)
+#define IY(k) (row_of ? iy : iy + (double)(k) * (2 * R1 + gap))
 
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	if (!rng)
@@ -133,10 +139,10 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 	gsl_rng_set(rng, (unsigned long)sc->seed);
 
 	int err = 0;
-	if (R1 > 0)
-		err = place_push(sc, st, ix, iy, R1, KIND_INTRUDER, e);
+	for (long k = 0; k < ni && !err; k++)
+		err = place_push(sc, st, IX(k), IY(k), R1, KIND_INTRUDER, e);
 	long placed = 0, sites = 0;
-	double top = R1 > 0 ? iy + R1 : 0;
+	double top = ni > 0 ? IY(ni - 1) + R1 : 0;
 	for (long row = 0; placed < sc->n_grains && !err; row++) {
 		const double y = (row + 0.5) * pitch;
 		for (int c = 0; c < ncol && placed < sc->n_grains && !err; c++) {
@@ -151,7 +157,10 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 								      : sc->r_min + (sc->r_max - sc->r_min) * u;
 			const double dx = jit * (2 * gsl_rng_uniform(rng) - 1);
 			const double x = xoff + c * pitch + dx;
-			if (R1 > 0 && hypot(x - ix, y - iy) < R1 + r + gap)
+			int taken = 0;
+			for (long k = 0; k < ni && !taken; k++)
+				taken = hypot(x - IX(k), y - IY(k)) < R1 + r + gap;
+			if (taken)
 				continue;
 			err = place_push(sc, st, x, y, r, KIND_GRAIN, e);
 			placed++;
@@ -161,6 +170,8 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 			break;
 	}
 	gsl_rng_free(rng);
+#undef IX
+#undef IY
 	if (err)
 		return err;
 

@@ -990,6 +990,69 @@ static void write_h5md(h5w *h)
 	h5w_close_obj(h, g);
 }
 
+static int cmp_wait(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* Several intruders (docs/model.md, "Several intruders"; nothing for one, whose file
+ * keeps its bits): /intruders, each one's id, settled height, rise and waiting time (the
+ * censoring time t when it has not risen), and the summaries of the root: how many and
+ * how many rose, the first, median and last waiting time (the median once more than
+ * half rose: the unrisen are later than any; the others once one rose). */
+static void write_intruders(h5w *h, const sb_sim *s, double t)
+{
+	const sb_obs *o = &s->obs;
+	const int n = o->nint;
+	if (n < 2)
+		return;
+	int *id = malloc(sizeof(int) * (size_t)n), *risen = malloc(sizeof(int) * (size_t)n);
+	double *y0 = malloc(sizeof(double) * (size_t)n), *w = malloc(sizeof(double) * (size_t)n);
+	double *up = malloc(sizeof(double) * (size_t)n);
+	if (!id || !risen || !y0 || !w || !up) {
+		h5w_fail(h);
+		goto out;
+	}
+	int nr = 0;
+	for (int k = 0; k < n; k++) {
+		double wt;
+		id[k] = s->st.id[o->iidx[k]];
+		risen[k] = obs_intruder_risen(o, k, &wt);
+		y0[k] = k == 0 ? s->intruder_y0 : o->iy0[k];
+		w[k] = risen[k] ? wt : t;
+		if (risen[k])
+			up[nr++] = wt;
+	}
+	hid_t g = h5w_group(h, h->file, "intruders", 0);
+	const hsize_t dn = (hsize_t)n;
+	h5w_dset_int(h, g, "id", dn, id, NULL);
+	h5w_dset(h, g, "settled_y", 1, &dn, y0, "cm");
+	h5w_dset_int(h, g, "risen", dn, risen, NULL);
+	h5w_dset(h, g, "waiting_time", 1, &dn, w, "s");
+	h5w_attr_str(h, g, "description",
+		     "every intruder: id, settled_y (its centre's height after settling), risen (1: one diameter "
+		     "above it), waiting_time (the first time it was, or the time observed when risen = 0; "
+		     "docs/model.md, \"Several intruders\")");
+	h5w_close_obj(h, g);
+	qsort(up, (size_t)nr, sizeof *up, cmp_wait);
+	h5w_attr_long(h, h->file, "intruders", n);
+	h5w_attr_long(h, h->file, "intruders_risen", nr);
+	if (nr > 0) {
+		h5w_attr_double(h, h->file, "rise_first", up[0]);
+		h5w_attr_double(h, h->file, "rise_last", up[nr - 1]);
+	}
+	if (2 * nr > n) /* the median of n, the unrisen last: element (n - 1) / 2, or the mean of two */
+		h5w_attr_double(h, h->file, "rise_median",
+				n % 2 ? up[(n - 1) / 2] : 0.5 * (up[n / 2 - 1] + up[n / 2]));
+out:
+	free(id);
+	free(risen);
+	free(y0);
+	free(w);
+	free(up);
+}
+
 /* The run's status and results: attributes of the root. */
 static void write_results(h5w *h, const sb_sim *s, double t)
 {
@@ -1034,6 +1097,7 @@ static void write_results(h5w *h, const sb_sim *s, double t)
 		h5w_attr_long(h, r, "risen", s->obs.risen);
 		h5w_attr_double(h, r, "waiting_time", s->obs.risen ? s->obs.wait_time : t);
 	}
+	write_intruders(h, s, t);
 }
 
 /* /contact_law: what the contact law gives each class of pair (pclass.h), so that a

@@ -59,6 +59,12 @@ static const sb_param TABLE[] = {
 	 "(0.2 at the default radii: the two sizes fill equal areas)"},
 	{"radius_ratio", REAL(radius_ratio), "", "4", 0, 100, NULL, PF_PREP,
 	 "intruder radius / mean grain radius (0 = no intruder)"},
+	{"n_intruders", INT(n_intruders), "", "1", 1, 1000, NULL, PF_PREP,
+	 "number of intruders of a generated bed (radius_ratio > 0), each tracked: its rise and waiting time "
+	 "(docs/model.md, \"Several intruders\")"},
+	{"intruder_place", ENUM(intruder_place), "", "row", 0, 0, "row|column", PF_PREP,
+	 "n_intruders > 1: row = side by side at one depth, evenly across the width (x = width k / (n + 1)); "
+	 "column = one above the other at the box's centre, the lowest at depth"},
 	{"depth", INT(depth), "", "1", 0, 100000, NULL, PF_PREP,
 	 "rows of small grains placed beneath the intruder (0 = on the bottom wall)"},
 	{"width", REAL(width), "cm", "60", 0, 1e7, NULL, PF_PREP | PF_MINX,

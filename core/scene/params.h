@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 88  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 90  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
@@ -24,6 +24,8 @@ enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
 enum sb_particle_mass { PMASS_SCENE, PMASS_FILE };
 /* how a generated bed's grain radii are drawn (docs/model.md, "Binary beds") */
 enum sb_size_dist { SIZE_UNIFORM, SIZE_BINARY };
+/* where a generated bed's intruders stand (docs/model.md, "Several intruders") */
+enum sb_intruder_place { IPLACE_ROW, IPLACE_COLUMN };
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
 struct sb_scene {
@@ -33,6 +35,8 @@ struct sb_scene {
 	double r_min, r_max;
 	double r_small, r_large, large_fraction;
 	double radius_ratio;
+	long n_intruders;
+	int intruder_place;  /* enum sb_intruder_place */
 	long depth;
 	double width;
 	double wall_radius, wall_spacing, wall_height;

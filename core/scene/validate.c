@@ -81,6 +81,16 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (!s->particles[0] && 2 * r1 > s->width - 2 * rhi)
 		return sb_errf(e, SB_EUSAGE, "%s: radius_ratio %g gives an intruder of diameter %g cm that does not fit width %g (%s)",
 			       W("radius_ratio"), s->radius_ratio, 2 * r1, s->width, W("width"));
+	/* several intruders side by side: each its own slot of the width, with a grain's
+	 * room beside it (docs/model.md, "Several intruders") */
+	if (!s->particles[0] && r1 > 0 && s->n_intruders > 1 && s->intruder_place == IPLACE_ROW &&
+	    s->width / (double)(s->n_intruders + 1) < 2 * r1 + 2 * rhi)
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: n_intruders %ld side by side (intruder_place = row, %s) stand width / (n + 1) = %g cm "
+			       "apart, less than an intruder's diameter %g cm and a grain's %g: fewer intruders, a "
+			       "wider box (width, %s) or intruder_place = column",
+			       W("n_intruders"), s->n_intruders, W("intruder_place"), s->width / (double)(s->n_intruders + 1),
+			       2 * r1, 2 * rhi, W("width"));
 	if (!s->output[0])
 		return sb_errf(e, SB_EUSAGE, "%s: output: must not be empty", W("output"));
 	if (s->ramp != 0 && !(s->duration > s->ramp_hold)) {
