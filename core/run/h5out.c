@@ -380,6 +380,41 @@ static hid_t plain_box(h5w *h, const sb_sim *s, hid_t g, int edges)
 
 /* /particles/intruder: the intruder alone at traj_rate, as an H5MD particle group of
  * one particle (lab frame). */
+/* /particles/intruders (several intruders: docs/model.md, "Several intruders"): their
+ * positions at the trajectory's rate as one H5MD element [T x n x 2] (lab frame), and
+ * their ids in the element's order. */
+static void write_intruders_pos(h5w *h, const sb_sim *s, hid_t parts, const double *rec, long T)
+{
+	const int n = s->n_intruders;
+	const size_t len = (size_t)(1 + 2 * n), nt = (size_t)T;
+	double *p = malloc(sizeof(double) * 2 * (size_t)n * (nt ? nt : 1)), *t = malloc(sizeof(double) * (nt ? nt : 1));
+	long *st = malloc(sizeof(long) * (nt ? nt : 1));
+	int *id = malloc(sizeof(int) * (size_t)n);
+	if (!p || !t || !st || !id) {
+		h5w_fail(h);
+	} else {
+		for (size_t k = 0; k < nt; k++) {
+			t[k] = rec[k * len];
+			st[k] = step_of(s, t[k]);
+			memcpy(p + k * 2 * (size_t)n, rec + k * len + 1, sizeof(double) * 2 * (size_t)n);
+		}
+		for (int k = 0; k < n; k++)
+			id[k] = s->st.id[s->obs.iidx[k]];
+		hid_t g = h5w_group(h, parts, "intruders", 0);
+		const hsize_t tail[2] = {(hsize_t)n, 2};
+		h5elem e0;
+		h5w_elem_create(h, &e0, g, "position", nt, 2, tail, "cm", NULL);
+		h5w_elem_all(h, &e0, st, t, p);
+		h5w_elem_close(h, &e0);
+		h5w_dset_int(h, g, "id", (hsize_t)n, id, "1");
+		h5w_close_obj(h, g);
+	}
+	free(p);
+	free(t);
+	free(st);
+	free(id);
+}
+
 static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *traj, long T)
 {
 	hid_t g = h5w_group(h, parts, "intruder", 0);
@@ -801,6 +836,8 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		if (whole && T > 0)
 			intruder_summary(h, s, rec[REC_TRAJ].d, (long)T);
 	}
+	if (sample_on(s, REC_INTRUDERS))
+		write_intruders_pos(h, s, parts, rec[REC_INTRUDERS].d, whole ? got[REC_INTRUDERS] : 0);
 	int obs_on = 0;
 	for (int k = 0; k < REC_N; k++)
 		obs_on |= (R[k].flags & RECF_OBS) && sample_on(s, k);

@@ -141,6 +141,9 @@ int sim_derive(sb_sim *s, sb_err *e)
 			       "the bed's %d grains are all of radius %g cm (size_dist = binary, or a particle file of "
 			       "two sizes)", params_where(&s->sc, "segregation_samples"), ng, ng ? rs / ng : 0.0);
 	s->intruder = state_find_intruder(&s->st);
+	s->n_intruders = 0;
+	for (int i = 0; i < s->st.nm; i++)
+		s->n_intruders += s->st.kind[i] == KIND_INTRUDER;
 	if (kernel_init(&s->kern, &s->st, e))
 		return e->code;
 	if (nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e))

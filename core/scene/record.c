@@ -12,6 +12,7 @@ static const rec_col RING[] = {REC_COLS_RING(REC_COL_)};
 static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
 static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
 static const rec_col SEGREG[] = {REC_COLS_SEGREG(REC_COL_)};
+static const rec_col INTRUDERS[] = {REC_COLS_INTRUDERS(REC_COL_)}; /* per intruder, after the time */
 
 /* a fixed-length row: its length and columns from one list */
 #define FIXED(a) .len = (int)(sizeof a / sizeof *a), .cols = a, .ncols = (int)(sizeof a / sizeof *a)
@@ -47,6 +48,8 @@ static const sb_record TABLE[REC_N] = {
 			       "small (large: radius above the midpoint of the grains' smallest and largest), D_max and "
 			       "D_min the same for these heights with the large grains all on top and all at the bottom "
 			       "(docs/model.md, \"Segregation index\"); frequency = the drive's at the period's end"},
+	[REC_INTRUDERS] = {"intruders", "traj_rate", RC_RATE, .cols = INTRUDERS, .ncols = REC_NCOLS(REC_COLS_INTRUDERS),
+			   .h5 = REC_H5_INTRUDERS, .flags = RECF_INTRUDERS},
 };
 
 const sb_record *rec_table(void) { return TABLE; }
@@ -107,10 +110,10 @@ static double key_value(const sb_scene *sc, const char *key)
 									 : *(const int *)base;
 }
 
-int rec_on(const sb_scene *sc, int has_intruder, int id)
+int rec_on(const sb_scene *sc, int n_intruders, int id)
 {
 	const sb_record *r = &TABLE[id];
-	if ((r->flags & RECF_INTRUDER) && !has_intruder)
+	if (((r->flags & RECF_INTRUDER) && n_intruders < 1) || ((r->flags & RECF_INTRUDERS) && n_intruders < 2))
 		return 0;
 	return key_value(sc, r->key) > 0;
 }

@@ -19,7 +19,7 @@
  * by the build that wrote it (a checkpoint of another table, another REC_N, is not
  * resumed: checkpoint.c). A new row goes at the end. */
 enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_HEIGHT,
-	      REC_SEGREG, REC_N };
+	      REC_SEGREG, REC_INTRUDERS, REC_N };
 #define REC_TAG(id) ((id) + 1)
 
 /* When a quantity is sampled (the clock a new row picks; run.c keeps them all):
@@ -37,12 +37,14 @@ enum rec_clock { RC_RATE, RC_STROBE, RC_RING, RC_PHASE };
 enum {
 	RECF_INTRUDER = 1, /* recorded only when the scene has an intruder */
 	RECF_OBS = 2,      /* a group of /observables, written by h5out's observables loop */
+	RECF_INTRUDERS = 4, /* recorded only when the scene has several intruders */
 };
 
 /* Where the quantities live in the run file: spelled here once, for the engine's
  * writer and for the readers (lib/runfile.h). */
 #define REC_H5_INTRUDER "/particles/intruder"
 #define REC_H5_BED "/particles/bed"
+#define REC_H5_INTRUDERS "/particles/intruders"
 #define REC_H5_OBS "/observables"
 #define REC_H5_ENERGY REC_H5_OBS "/energy"
 #define REC_H5_CONTACTS REC_H5_OBS "/contacts"
@@ -67,6 +69,8 @@ enum {
 #define REC_COLS_KINETIC(X) X("time", "s") X("kinetic_energy", "erg")
 #define REC_COLS_HEIGHT(X) X("time", "s") X("com_height_box", "cm")
 #define REC_COLS_SEGREG(X) X("time", "s") X("segregation_index", "1")
+/* several intruders' positions: time, then of each intruder (lab frame, as the trajectory) */
+#define REC_COLS_INTRUDERS(X) X("x", "cm") X("y", "cm")
 
 #define REC_COL_COUNT_(name, unit) +1
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
@@ -107,9 +111,9 @@ int rec_by_tag(int tag);
 /* The table as TSV for tools (shake --records): name, key, clock (rate, strobe, ring,
  * phase), journal tag, run-file group, columns as name[unit] joined by commas. */
 void rec_print_table(FILE *f);
-/* Does the scene ask for it (its key on; an intruder, has_intruder, where the row
- * needs one)? */
-int rec_on(const sb_scene *sc, int has_intruder, int id);
+/* Does the scene ask for it (its key on; an intruder, or several, where the row needs
+ * them: n_intruders, the run's number)? */
+int rec_on(const sb_scene *sc, int n_intruders, int id);
 /* A rate row's rate (Hz), a phase row's samples per period: its key's value. */
 double rec_rate(const sb_scene *sc, int id);
 

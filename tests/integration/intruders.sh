@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # intruders.sh - several intruders (docs/model.md, "Several intruders"). Known answers: a
-# particle file's intruders thrown upward in free flight (no contact, no drive) rise one
+# particle file's intruders thrown upward in free flight (no contact, no drive) follow
+# y0 + v t - g t^2 / 2 in their height series (/particles/intruders), rise one
 # diameter 2R at t = (v - sqrt(v^2 - 4 g R)) / g, each found within a step or two of it, one
 # too slow never rises (censored at the end), and the summaries (number risen, first,
 # median, last) follow; the first in the file keeps the single intruder's records. A
@@ -14,8 +15,15 @@ cd "$TMP" || exit 1
 # four intruders of R 1 at 200 cm, thrown up at 150, 0, 100 and 120 cm/s; four wall disks
 printf '%s\n' '10 200 1 intruder 0 150 0' '30 200 1 intruder 0 0 0' '50 200 1 intruder 0 100 0' \
 	'70 200 1 intruder 0 120 0' '0 0 1 wall' '80 0 1 wall' '0 400 1 wall' '80 400 1 wall' >fly.txt
-shake_run fly.log particles=fly.txt settle=no amplitude=0 duration=0.5 snapshots=no traj_rate=0 progress=no \
+shake_run fly.log particles=fly.txt settle=no amplitude=0 duration=0.5 snapshots=no traj_rate=100 progress=no \
 	output=fly.h5 || fail fly.run "exit $?: $(tail -n 2 fly.log)"
+# every intruder's height series (/particles/intruders, 100 Hz): y = 200 + v t - g t^2 / 2
+paste <(h5vals fly.h5 /particles/intruders/position/time) <(h5vals fly.h5 /particles/intruders/position/value | paste - - - - - - - -) |
+	awk 'BEGIN { split("150 0 100 120", v, " ") }
+		{ for (k = 1; k <= 4; k++) { w = 200 + v[k] * $1 - 981 * $1 * $1 / 2; d = ($(2 * k + 1) - w) / w
+			d = d < 0 ? -d : d; m = d > m ? d : m; if ($(2 * k) != 20 * k - 10) bad = 1 } n++ }
+		END { exit !(n == 51 && m < 1e-9 && !bad) }' && [ "$(h5vals fly.h5 /particles/intruders/id | tr '\n' ' ')" = "0 1 2 3 " ] &&
+	ok free_flight.heights || fail free_flight.heights "$(h5vals fly.h5 /particles/intruders/position/value | head -n 16 | tr '\n' ' ')"
 rise() { awk -v v="$1" 'BEGIN { printf "%.17g", (v - sqrt(v * v - 4 * 981)) / 981 }'; }
 t150=$(rise 150) t100=$(rise 100) t120=$(rise 120)
 # near A B : within two steps (1e-4 s) of each other
@@ -41,8 +49,9 @@ shake_run slow.log particles=slow.txt settle=no amplitude=0 duration=0.5 snapsho
 
 # one intruder: none of the new records
 awk 'NR != 2 && NR != 3 && NR != 4' fly.txt >one.txt
-shake_run one.log particles=one.txt settle=no amplitude=0 duration=0.2 snapshots=no traj_rate=0 progress=no output=one.h5
+shake_run one.log particles=one.txt settle=no amplitude=0 duration=0.2 snapshots=no traj_rate=100 progress=no output=one.h5
 [ $? = 0 ] && [ -z "$(attr one.h5 /intruders)" ] && [ -z "$(dims one.h5 /intruders/risen)" ] && [ "$(attr one.h5 /risen)" = 1 ] &&
+	[ -z "$(dims one.h5 /particles/intruders/position/value)" ] &&
 	ok one_intruder.as_before || fail one_intruder.as_before "intruders '$(attr one.h5 /intruders)', risen '$(attr one.h5 /risen)'"
 
 # a generated bed: three intruders in a row at one height, x = W/4, W/2, 3W/4; in a column at W/2
