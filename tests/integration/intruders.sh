@@ -8,6 +8,7 @@
 # generated bed's n_intruders stand in a row at one height or in a column at the centre;
 # a row too crowded is refused naming its keys; one intruder's run file has none of the
 # new records; a checkpoint resumes them; a campaign's runs hold the summaries.
+# tier: slow: a run of several intruders stopped and resumed, and a campaign
 . "$(dirname "$0")/lib.sh"
 study_setup
 cd "$TMP" || exit 1

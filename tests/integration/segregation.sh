@@ -8,6 +8,7 @@
 # same seed, and its index reaches the run file and the campaign's `runs`; the new keys'
 # errors name file, line, key and range; a bed of one size asking for the index is
 # refused; scripts/segregation.sh prints and plots the series.
+# tier: slow: a campaign of binary beds, besides the free-falling beds
 . "$(dirname "$0")/lib.sh"
 study_setup
 cd "$TMP" || exit 1
