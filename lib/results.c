@@ -11,7 +11,7 @@
 #include "runfile.h"
 
 /* A summary attribute of the run file's root is a column of its name. */
-#define SUMMARY_COLUMN(row, attr, unit, def) {#attr, RT_REAL, "@" #attr, unit, def, 0},
+#define SUMMARY_COLUMN(row, attr, how, unit, def) {#attr, RT_REAL, "@" #attr, unit, def, 0},
 
 static const rcol TABLE[] = {
 	{"status", RT_TEXT, "@status", "",
@@ -43,6 +43,14 @@ static const rcol TABLE[] = {
 	{"waiting_time", RT_REAL, "@waiting_time", "s",
 	 "when risen = 1 the first time it did (the waiting time), else the time observed "
 	 "(the censoring time, also for a run that failed before its intruder rose)", 0},
+	/* several intruders (docs/model.md, "Several intruders"); NULL for one */
+	{"intruders", RT_INT, "@intruders", "", "the number of intruders when there are several, each tracked; NULL for one", 0},
+	{"intruders_risen", RT_INT, "@intruders_risen", "", "how many of several intruders rose (each as risen says)", 0},
+	{"rise_first", RT_REAL, "@rise_first", "s", "the first waiting time of several intruders; NULL when none rose", 0},
+	{"rise_median", RT_REAL, "@rise_median", "s",
+	 "the median waiting time of several intruders, the unrisen later than any; NULL unless more than half rose", 0},
+	{"rise_last", RT_REAL, "@rise_last", "s", "the last waiting time of the intruders that rose; NULL when none rose",
+	 0},
 	{"overlap_max", RT_REAL, "@overlap_max", "",
 	 "largest overlap of two disks while shaking, as a fraction of the smaller radius, to 1 % "
 	 "(the max_overlap stop is at 1 by default)", 0},

@@ -216,12 +216,12 @@ same_set campaigns "campaigns/README.md's tables" "$TMP/camp.code" "$TMP/camp.do
 
 # --- the run file's layout ---
 # every recorded quantity on, from the engine's table of them (shake --records: a rate
-# key at 20 Hz, a count per period at 4, a switch yes)
+# key at 20 Hz, a count per period at 4, a switch yes), two intruders (/intruders)
 write_run_file() {
 	local all_on
 	[ -s "$TMP/all.h5" ] && return
 	all_on=$("$SHAKE" --records | awk -F'\t' 'NR > 1 { print $2 "=" ($3 == "rate" ? 20 : $3 == "phase" ? 4 : "yes") }')
-	[ -n "$all_on" ] && (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 duration=0.6 frequency=5 amplitude=1 \
+	[ -n "$all_on" ] && (cd "$TMP" && "$SHAKE" n_grains=40 width=15 radius_ratio=2 n_intruders=2 intruder_place=column duration=0.6 frequency=5 amplitude=1 \
 		settle_min=0.1 settle_ke=1 field_periods=1 $all_on output=all.h5 >run.log 2>&1) && [ -s "$TMP/all.h5" ]
 }
 # its groups, one a line

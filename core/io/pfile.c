@@ -710,24 +710,6 @@ static int check_overlaps(const sb_scene *sc, const dlist *l, const char *path, 
 	return err;
 }
 
-/* One intruder per run: the engine tracks one (its trajectory, waiting time and summaries),
- * and a second one would be shaken untracked while the run's records speak of the first
- * alone; refused at the second's line rather than run so (docs/inputs.md, "Particle
- * masses", and the paragraph after it). */
-static int check_intruders(const dlist *l, const char *path, sb_err *e)
-{
-	long first = 0;
-	for (int i = 0; i < l->n; i++) {
-		if (l->d[i].kind != KIND_INTRUDER)
-			continue;
-		if (first)
-			return sb_errf(e, SB_EUSAGE, "%s:%ld: a second intruder (the first on line %ld): a run tracks one "
-				       "intruder, and the second would be shaken unrecorded", path, l->d[i].line, first);
-		first = l->d[i].line;
-	}
-	return 0;
-}
-
 static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 {
 	FILE *f = fs_open_input(path, "particle file", PF_MAX_BYTES, SB_EUSAGE, e);
@@ -746,8 +728,6 @@ static int read_file(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 	fclose(f);
 	if (!err && l->n == 0)
 		err = sb_errf(e, SB_EUSAGE, "%s: no particles", path);
-	if (!err)
-		err = check_intruders(l, path, e);
 	if (!err)
 		err = check_span(l, path, e);
 	if (!err)

@@ -31,6 +31,23 @@ int obs_init(sb_obs *o, const sb_scene *sc, const sb_state *st, int intruder, do
 	o->wait_time = NAN;
 	o->rise_height = intruder >= 0 ? 2 * st->r[intruder] : NAN;
 	int bad = 0;
+	for (int i = 0; i < st->nm; i++)
+		o->nint += st->kind[i] == KIND_INTRUDER;
+	if (o->nint > 1) {
+		o->iidx = calloc((size_t)o->nint, sizeof *o->iidx);
+		o->irisen = calloc((size_t)o->nint, sizeof *o->irisen);
+		o->iy0 = zalloc((size_t)o->nint, &bad);
+		o->irise_h = zalloc((size_t)o->nint, &bad);
+		o->iwait = zalloc((size_t)o->nint, &bad);
+		bad |= !o->iidx || !o->irisen;
+		for (int i = 0, k = 0; i < st->nm && !bad; i++)
+			if (st->kind[i] == KIND_INTRUDER) { /* the rise as the first's: one diameter */
+				o->iidx[k] = i;
+				o->iy0[k] = st->q[C_Y][0][i];
+				o->irise_h[k] = 2 * st->r[i];
+				o->iwait[k++] = NAN;
+			}
+	}
 	if (o->flux_on || o->field_on) {
 		o->xp = zalloc((size_t)st->nm, &bad);
 		o->yp = zalloc((size_t)st->nm, &bad);
@@ -127,6 +144,11 @@ void obs_free(sb_obs *o)
 	free(o->sy);
 	free(o->cnt);
 	free(o->fabs_sum);
+	free(o->iidx);
+	free(o->irisen);
+	free(o->iy0);
+	free(o->irise_h);
+	free(o->iwait);
 	memset(o, 0, sizeof *o);
 }
 
@@ -334,6 +356,11 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 	io(ctx, &o->have_prev, sizeof o->have_prev);
 	io(ctx, &o->risen, sizeof o->risen);
 	io(ctx, &o->wait_time, sizeof o->wait_time);
+	if (o->nint > 1) { /* the other intruders: their settled heights are t = 0's, not a restart's */
+		io(ctx, o->iy0, sizeof *o->iy0 * (size_t)o->nint);
+		io(ctx, o->irisen, sizeof *o->irisen * (size_t)o->nint);
+		io(ctx, o->iwait, sizeof *o->iwait * (size_t)o->nint);
+	}
 	io(ctx, &o->ov_max, sizeof o->ov_max);
 	io(ctx, &o->ov_t, sizeof o->ov_t);
 	io(ctx, &o->ov_x, sizeof o->ov_x);
@@ -369,4 +396,75 @@ void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t))
 		io(ctx, &o->ring_x, sizeof o->ring_x); /* a settled centre is the t = 0 state's */
 		io(ctx, &o->ring_y, sizeof o->ring_y);
 	}
+}
+
+int obs_intruder_risen(const sb_obs *o, int k, double *wait)
+{
+	const int risen = k == 0 ? o->risen : o->irisen[k];
+	*wait = !risen ? NAN : k == 0 ? o->wait_time : o->iwait[k];
+	return risen;
+}
+
+int obs_segregation_split(const double *r, const unsigned char *kind, int n, double *split)
+{
+	double lo = INFINITY, hi = -INFINITY;
+	for (int i = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			lo = fmin(lo, r[i]);
+			hi = fmax(hi, r[i]);
+		}
+	*split = 0.5 * (lo + hi);
+	return lo < hi;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+double obs_segregation(const double *y, const double *r, const unsigned char *kind, int n, double split, double *work)
+{
+	int nl = 0, ng = 0;
+	double y0 = INFINITY;
+	for (int i = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			y0 = fmin(y0, y[i]);
+			nl += r[i] > split;
+			ng++;
+		}
+	const int ns = ng - nl;
+	if (nl == 0 || ns == 0)
+		return 0;
+	/* heights above the lowest grain: the sums below stay small beside a bed far above
+	 * its floor, and S does not depend on the origin */
+	double sl = 0, ss = 0;
+	for (int i = 0, k = 0; i < n; i++)
+		if (kind[i] == KIND_GRAIN) {
+			work[k++] = y[i] - y0;
+			if (r[i] > split)
+				sl += y[i] - y0;
+			else
+				ss += y[i] - y0;
+		}
+	/* the same heights sorted: the large grains all on top hold the highest nl, all
+	 * at the bottom the lowest nl */
+	qsort(work, (size_t)ng, sizeof *work, cmp_double);
+	double low = 0, above_low = 0, high = 0, below_high = 0;
+	for (int k = 0; k < ng; k++) {
+		if (k < nl)
+			low += work[k];
+		else
+			above_low += work[k];
+		if (k >= ns)
+			high += work[k];
+		else
+			below_high += work[k];
+	}
+	const double d = sl / nl - ss / ns;
+	const double dmax = high / nl - below_high / ns, dmin = low / nl - above_low / ns;
+	/* a sum in another order can put S a rounding beyond +-1 */
+	if (d >= 0)
+		return dmax > 0 ? fmin(1, d / dmax) : 0;
+	return dmin < 0 ? fmax(-1, d / -dmin) : 0;
 }

@@ -57,6 +57,12 @@ typedef struct sb_obs {
 	/* waiting time */
 	int risen;
 	double wait_time, rise_height;
+	/* several intruders (docs/model.md, "Several intruders"): every intruder's index
+	 * (the first the one above), settled height, rise and waiting time; nint = 0 or 1:
+	 * none of these arrays (a run of one intruder keeps its checkpoint's bytes) */
+	int nint;
+	int *iidx, *irisen;
+	double *iy0, *irise_h, *iwait;
 	/* the largest overlap of the shaking, a result of every run: the fraction of the
 	 * smaller radius, when, which disks (ids), and where (midpoint of the centres,
 	 * box frame); ov_max = 0 while no two disks have touched */
@@ -115,6 +121,23 @@ int obs_ring_due(const sb_obs *o, long n);
  * their contact forces in st->f (the step's, unfused): added to the averages, its
  * series row in row[OBS_RING_COLS] (the ring's record, journaled by core/run/sample.c). */
 void obs_ring_sample(sb_obs *o, const sb_state *st, int intruder, double t, double inv_dt, double *row);
+
+/* The grains' segregation index S (docs/model.md, "Segregation index"): the grains are
+ * the disks of kind KIND_GRAIN among the first n, large when their radius is above
+ * split, their heights y; D = mean height of the large minus that of the small, and
+ * S = D / D_max for D >= 0, D / |D_min| for D < 0, where D_max (D_min) is D for the same
+ * heights with the large grains all on top (all at the bottom): +1 and -1 exactly there,
+ * 0 at equal mean heights, in [-1, 1] always. work holds n doubles. 0 when either size
+ * is missing or the heights are all equal (D_max = D_min = 0). */
+double obs_segregation(const double *y, const double *r, const unsigned char *kind, int n, double split, double *work);
+/* The radius that divides a bed's large grains from its small: the midpoint of the
+ * smallest and largest grain radius among the first n disks; 0 when the grains are of
+ * one size (or there are none), for which no index is defined. */
+int obs_segregation_split(const double *r, const unsigned char *kind, int n, double *split);
+
+/* Intruder k's rise (0 or 1) and its waiting time (NAN while it has not risen), k <
+ * max(nint, 1): the first's the scalars above, the others' the arrays. */
+int obs_intruder_risen(const sb_obs *o, int k, double *wait);
 
 /* Serialise the accumulators for a checkpoint: io(ctx, pointer, bytes) per field. */
 void obs_fields(sb_obs *o, void *ctx, void (*io)(void *, void *, size_t));

@@ -79,20 +79,25 @@ static int check_walls(const sb_scene *sc, double nb, double H, double ns, sb_er
 		       height, GUARD_MAX_WALLS);
 }
 
+/* the key of the largest grain radius, for errors */
+#define RHI_KEY(sc) ((sc)->size_dist == SIZE_BINARY ? "r_large" : "r_max")
+
 static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 {
 	const double W = sc->width, rw = sc->wall_radius;
-	const double rmean = 0.5 * (sc->r_min + sc->r_max);
+	double rlo, rhi, rmean;
+	params_grain_radii(sc, &rlo, &rhi, &rmean);
 	const double R1 = sc->radius_ratio * rmean;
 	/* Loose square lattice 10 % wider than the largest grain: nobody overlaps and the
 	 * bed compacts by only a few percent while settling. */
-	const double pitch = 2.2 * sc->r_max;
+	const double pitch = 2.2 * rhi;
 	const double cols = floor(W / pitch);
 	if (!(cols <= GUARD_MAX_COLUMNS))
 		return sb_errf(e, SB_EUSAGE,
-			       "%s: width %g cm holds %.3g lattice sites of 2.2 r_max = %g cm in a row (r_max %g cm, %s); "
+			       "%s: width %g cm holds %.3g lattice sites of 2.2 %s = %g cm in a row (%s %g cm, %s); "
 			       "the placement takes at most %d: larger grains or a narrower box",
-			       params_where(sc, "width"), W, cols, pitch, sc->r_max, params_where(sc, "r_max"),
+			       params_where(sc, "width"), W, cols, RHI_KEY(sc), pitch, RHI_KEY(sc), rhi,
+			       params_where(sc, RHI_KEY(sc)),
 			       GUARD_MAX_COLUMNS);
 	const int ncol = (int)cols;
 	/* depth rows of grains beneath the intruder: more rows than n_grains fill leave the
@@ -118,9 +123,15 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 	if (check_walls(sc, nb, H0, H0 > 0 && !periodic ? n_span(-rw, H0, sc->wall_spacing) : 1, e))
 		return e->code;
 	const double xoff = 0.5 * (W - ncol * pitch) + 0.5 * pitch;
-	const double jit = 0.5 * pitch - sc->r_max; /* free play of a grain in its site */
-	const double gap = 0.05 * sc->r_max;
+	const double jit = 0.5 * pitch - rhi; /* free play of a grain in its site */
+	const double gap = 0.05 * rhi;
 	const double ix = 0.5 * W, iy = sc->depth * pitch + R1 + gap;
+	/* the intruders (docs/model.md, "Several intruders"): the first where the paper's
+	 * one stands when alone, the others side by side (row) or above it (column) */
+	const long ni = R1 > 0 ? sc->n_intruders : 0;
+	const int row_of = sc->intruder_place == IPLACE_ROW && ni > 1;
+#define IX(k) (row_of ? W * (double)((k) + 1) / (double)(ni + 1) : ix)
+#define IY(k) (row_of ? iy : iy + (double)(k) * (2 * R1 + gap))
 
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	if (!rng)
@@ -128,10 +139,10 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 	gsl_rng_set(rng, (unsigned long)sc->seed);
 
 	int err = 0;
-	if (R1 > 0)
-		err = place_push(sc, st, ix, iy, R1, KIND_INTRUDER, e);
+	for (long k = 0; k < ni && !err; k++)
+		err = place_push(sc, st, IX(k), IY(k), R1, KIND_INTRUDER, e);
 	long placed = 0, sites = 0;
-	double top = R1 > 0 ? iy + R1 : 0;
+	double top = ni > 0 ? IY(ni - 1) + R1 : 0;
 	for (long row = 0; placed < sc->n_grains && !err; row++) {
 		const double y = (row + 0.5) * pitch;
 		for (int c = 0; c < ncol && placed < sc->n_grains && !err; c++) {
@@ -139,11 +150,17 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 				err = sb_errf(e, SB_EINTR, "interrupted while placing the grains");
 				break;
 			}
-			/* draw first so that a skipped site still advances the stream alike */
-			const double r = sc->r_min + (sc->r_max - sc->r_min) * gsl_rng_uniform(rng);
+			/* draw first so that a skipped site still advances the stream alike; one
+			 * number per radius whatever size_dist, so both draw the same jitters */
+			const double u = gsl_rng_uniform(rng);
+			const double r = sc->size_dist == SIZE_BINARY ? (u < sc->large_fraction ? rhi : rlo)
+								      : sc->r_min + (sc->r_max - sc->r_min) * u;
 			const double dx = jit * (2 * gsl_rng_uniform(rng) - 1);
 			const double x = xoff + c * pitch + dx;
-			if (R1 > 0 && hypot(x - ix, y - iy) < R1 + r + gap)
+			int taken = 0;
+			for (long k = 0; k < ni && !taken; k++)
+				taken = hypot(x - IX(k), y - IY(k)) < R1 + r + gap;
+			if (taken)
 				continue;
 			err = place_push(sc, st, x, y, r, KIND_GRAIN, e);
 			placed++;
@@ -153,6 +170,8 @@ static int place(const sb_scene *sc, sb_state *st, sb_err *e)
 			break;
 	}
 	gsl_rng_free(rng);
+#undef IX
+#undef IY
 	if (err)
 		return err;
 

@@ -380,6 +380,41 @@ static hid_t plain_box(h5w *h, const sb_sim *s, hid_t g, int edges)
 
 /* /particles/intruder: the intruder alone at traj_rate, as an H5MD particle group of
  * one particle (lab frame). */
+/* /particles/intruders (several intruders: docs/model.md, "Several intruders"): their
+ * positions at the trajectory's rate as one H5MD element [T x n x 2] (lab frame), and
+ * their ids in the element's order. */
+static void write_intruders_pos(h5w *h, const sb_sim *s, hid_t parts, const double *rec, long T)
+{
+	const int n = s->n_intruders;
+	const size_t len = (size_t)(1 + 2 * n), nt = (size_t)T;
+	double *p = malloc(sizeof(double) * 2 * (size_t)n * (nt ? nt : 1)), *t = malloc(sizeof(double) * (nt ? nt : 1));
+	long *st = malloc(sizeof(long) * (nt ? nt : 1));
+	int *id = malloc(sizeof(int) * (size_t)n);
+	if (!p || !t || !st || !id) {
+		h5w_fail(h);
+	} else {
+		for (size_t k = 0; k < nt; k++) {
+			t[k] = rec[k * len];
+			st[k] = step_of(s, t[k]);
+			memcpy(p + k * 2 * (size_t)n, rec + k * len + 1, sizeof(double) * 2 * (size_t)n);
+		}
+		for (int k = 0; k < n; k++)
+			id[k] = s->st.id[s->obs.iidx[k]];
+		hid_t g = h5w_group(h, parts, "intruders", 0);
+		const hsize_t tail[2] = {(hsize_t)n, 2};
+		h5elem e0;
+		h5w_elem_create(h, &e0, g, "position", nt, 2, tail, "cm", NULL);
+		h5w_elem_all(h, &e0, st, t, p);
+		h5w_elem_close(h, &e0);
+		h5w_dset_int(h, g, "id", (hsize_t)n, id, "1");
+		h5w_close_obj(h, g);
+	}
+	free(p);
+	free(t);
+	free(st);
+	free(id);
+}
+
 static void write_intruder(h5w *h, const sb_sim *s, hid_t parts, const double *traj, long T)
 {
 	hid_t g = h5w_group(h, parts, "intruder", 0);
@@ -652,7 +687,7 @@ static void write_walls(h5w *h, const sb_sim *s, hid_t parts)
  * to one row per drive period: the mean of its N samples (time and step: the last
  * one's, the period's end), with the drive frequency there as one more element; a
  * period whose samples the run did not finish is left out. The row's summaries
- * (record.h): the mean of its first value column over the rows written. */
+ * (record.h): the mean of its first value column over the rows written, or its last. */
 static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b, long n)
 {
 	const sb_record *r = &rec_table()[id];
@@ -699,11 +734,13 @@ static void write_series(h5w *h, const sb_sim *s, int id, hid_t g, const dbuf *b
 	if (r->def)
 		h5w_attr_str(h, g, "definition", r->def);
 	for (int k = 0; k < RSUM_N && T > 0; k++)
-		if (rec_summary_row(k) == id) {
+		if (rec_summary_row(k) == id && rec_summary_how(k) == RR_MEAN) {
 			double sum = 0;
 			for (long p = 0; p < T; p++)
 				sum += d[p * len + 1];
 			h5w_attr_double(h, h->file, rec_summary_attr(k), sum / (double)T);
+		} else if (rec_summary_row(k) == id && rec_summary_how(k) == RR_LAST) {
+			h5w_attr_double(h, h->file, rec_summary_attr(k), d[(T - 1) * len + 1]);
 		}
 out:
 	free(d);
@@ -799,6 +836,8 @@ static int copy_journal(h5w *h, const sb_sim *s, hid_t parts, hid_t bed, hid_t b
 		if (whole && T > 0)
 			intruder_summary(h, s, rec[REC_TRAJ].d, (long)T);
 	}
+	if (sample_on(s, REC_INTRUDERS))
+		write_intruders_pos(h, s, parts, rec[REC_INTRUDERS].d, whole ? got[REC_INTRUDERS] : 0);
 	int obs_on = 0;
 	for (int k = 0; k < REC_N; k++)
 		obs_on |= (R[k].flags & RECF_OBS) && sample_on(s, k);
@@ -988,6 +1027,69 @@ static void write_h5md(h5w *h)
 	h5w_close_obj(h, g);
 }
 
+static int cmp_wait(const void *a, const void *b)
+{
+	const double x = *(const double *)a, y = *(const double *)b;
+	return (x > y) - (x < y);
+}
+
+/* Several intruders (docs/model.md, "Several intruders"; nothing for one, whose file
+ * keeps its bits): /intruders, each one's id, settled height, rise and waiting time (the
+ * censoring time t when it has not risen), and the summaries of the root: how many and
+ * how many rose, the first, median and last waiting time (the median once more than
+ * half rose: the unrisen are later than any; the others once one rose). */
+static void write_intruders(h5w *h, const sb_sim *s, double t)
+{
+	const sb_obs *o = &s->obs;
+	const int n = o->nint;
+	if (n < 2)
+		return;
+	int *id = malloc(sizeof(int) * (size_t)n), *risen = malloc(sizeof(int) * (size_t)n);
+	double *y0 = malloc(sizeof(double) * (size_t)n), *w = malloc(sizeof(double) * (size_t)n);
+	double *up = malloc(sizeof(double) * (size_t)n);
+	if (!id || !risen || !y0 || !w || !up) {
+		h5w_fail(h);
+		goto out;
+	}
+	int nr = 0;
+	for (int k = 0; k < n; k++) {
+		double wt;
+		id[k] = s->st.id[o->iidx[k]];
+		risen[k] = obs_intruder_risen(o, k, &wt);
+		y0[k] = k == 0 ? s->intruder_y0 : o->iy0[k];
+		w[k] = risen[k] ? wt : t;
+		if (risen[k])
+			up[nr++] = wt;
+	}
+	hid_t g = h5w_group(h, h->file, "intruders", 0);
+	const hsize_t dn = (hsize_t)n;
+	h5w_dset_int(h, g, "id", dn, id, NULL);
+	h5w_dset(h, g, "settled_y", 1, &dn, y0, "cm");
+	h5w_dset_int(h, g, "risen", dn, risen, NULL);
+	h5w_dset(h, g, "waiting_time", 1, &dn, w, "s");
+	h5w_attr_str(h, g, "description",
+		     "every intruder: id, settled_y (its centre's height after settling), risen (1: one diameter "
+		     "above it), waiting_time (the first time it was, or the time observed when risen = 0; "
+		     "docs/model.md, \"Several intruders\")");
+	h5w_close_obj(h, g);
+	qsort(up, (size_t)nr, sizeof *up, cmp_wait);
+	h5w_attr_long(h, h->file, "intruders", n);
+	h5w_attr_long(h, h->file, "intruders_risen", nr);
+	if (nr > 0) {
+		h5w_attr_double(h, h->file, "rise_first", up[0]);
+		h5w_attr_double(h, h->file, "rise_last", up[nr - 1]);
+	}
+	if (2 * nr > n) /* the median of n, the unrisen last: element (n - 1) / 2, or the mean of two */
+		h5w_attr_double(h, h->file, "rise_median",
+				n % 2 ? up[(n - 1) / 2] : 0.5 * (up[n / 2 - 1] + up[n / 2]));
+out:
+	free(id);
+	free(risen);
+	free(y0);
+	free(w);
+	free(up);
+}
+
 /* The run's status and results: attributes of the root. */
 static void write_results(h5w *h, const sb_sim *s, double t)
 {
@@ -1032,6 +1134,7 @@ static void write_results(h5w *h, const sb_sim *s, double t)
 		h5w_attr_long(h, r, "risen", s->obs.risen);
 		h5w_attr_double(h, r, "waiting_time", s->obs.risen ? s->obs.wait_time : t);
 	}
+	write_intruders(h, s, t);
 }
 
 /* /contact_law: what the contact law gives each class of pair (pclass.h), so that a

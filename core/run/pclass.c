@@ -67,13 +67,15 @@ void pclass_of_state(const sb_law *law, const sb_scene *sc, const sb_state *st, 
 
 void pclass_of_scene(const sb_law *law, const sb_scene *sc, sb_pclass out[SB_NPCLASS])
 {
-	const double rg = 0.5 * (sc->r_min + sc->r_max), ri = sc->radius_ratio * rg;
+	double rlo, rhi, rg;
+	params_grain_radii(sc, &rlo, &rhi, &rg);
+	const double ri = sc->radius_ratio * rg;
 	const double mint = sc->radius_ratio > 0 ? place_mass(sc, ri, KIND_INTRUDER) : 0;
-	const double mlo = place_mass(sc, sc->r_min, KIND_GRAIN);
+	const double mlo = place_mass(sc, rlo, KIND_GRAIN);
 	const int ilight = mint > 0 && mint < mlo;
 	const double m[4] = {place_mass(sc, rg, KIND_GRAIN), mint,
 			     sc->wall_mass == WALLMASS_INFINITE ? INFINITY : place_mass(sc, sc->wall_radius, KIND_WALL),
 			     ilight ? mint : mlo};
-	const double r[4] = {rg, ri, sc->wall_radius, ilight ? ri : sc->r_min};
+	const double r[4] = {rg, ri, sc->wall_radius, ilight ? ri : rlo};
 	classes(law, m, r, out);
 }

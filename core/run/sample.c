@@ -182,10 +182,48 @@ static int sample_height(sb_sim *s, double t, sb_err *e)
 	return PUT(s, REC_HEIGHT, row, e);
 }
 
+/* Several intruders' positions (lab frame, as the trajectory's), in the state's order:
+ * time, then x, y of each (docs/model.md, "Several intruders"). */
+static int sample_intruders(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	const int n = s->obs.nint;
+	double *row = malloc(sizeof(double) * (size_t)(1 + 2 * n));
+	if (!row)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the intruders' positions");
+	row[0] = t;
+	for (int k = 0; k < n; k++) {
+		row[1 + 2 * k] = st->q[C_X][0][s->obs.iidx[k]];
+		row[2 + 2 * k] = st->q[C_Y][0][s->obs.iidx[k]] + sim_box_y(s, t);
+	}
+	const int rc = put(s, REC_INTRUDERS, row, 1 + 2 * n, e);
+	free(row);
+	return rc;
+}
+
+/* The grains' segregation index (docs/model.md, "Segregation index"; observe.h), from
+ * their heights in the box frame (S is the same in any frame: differences of heights
+ * over differences); large and small divided at the midpoint of the grains' radii,
+ * which sim_derive has checked are of two sizes. h5out averages a period's samples. */
+static int sample_segregation(sb_sim *s, double t, sb_err *e)
+{
+	const sb_state *st = &s->st;
+	double split;
+	obs_segregation_split(st->r, st->kind, st->nm, &split);
+	double *work = malloc(sizeof(double) * (size_t)(st->nm ? st->nm : 1));
+	if (!work)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the segregation index");
+	const double row[REC_NCOLS(REC_COLS_SEGREG)] = {
+		t, obs_segregation(st->q[C_Y][0], st->r, st->kind, st->nm, split, work)};
+	free(work);
+	return PUT(s, REC_SEGREG, row, e);
+}
+
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
 static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
 static long field_len(const sb_sim *s, const double *rec) { (void)rec; return obs_field_len(&s->obs); }
+static long intruders_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 2L * s->n_intruders; }
 /* a contact frame: time, count, count contacts */
 static long contact_len(const sb_sim *s, const double *rec)
 {
@@ -203,6 +241,8 @@ static const sb_sampler TABLE[REC_N] = {
 	[REC_RING] = {sample_ring, NULL},
 	[REC_KINETIC] = {sample_kinetic, NULL},
 	[REC_HEIGHT] = {sample_height, NULL},
+	[REC_SEGREG] = {sample_segregation, NULL},
+	[REC_INTRUDERS] = {sample_intruders, intruders_len},
 };
 
 const sb_sampler *sample_table(void) { return TABLE; }
@@ -223,7 +263,7 @@ const char *sample_table_check(void) { return sample_rows_check(TABLE, REC_N); }
 
 int sample_take(sb_sim *s, int id, double t, sb_err *e) { return TABLE[id].take(s, t, e); }
 
-int sample_on(const sb_sim *s, int id) { return rec_on(&s->sc, s->intruder >= 0, id); }
+int sample_on(const sb_sim *s, int id) { return rec_on(&s->sc, s->n_intruders, id); }
 
 long sample_len(const sb_sim *s, int id, const double *rec)
 {

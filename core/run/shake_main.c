@@ -111,10 +111,12 @@ static void print_contacts(const sb_scene *sc)
 	pclass_of_scene(&law, sc, c);
 	char hz[64];
 	snprintf(hz, sizeof hz, "hertz: e and t_c at an impact speed of %g cm/s", PCLASS_HERTZ_V);
+	double rlo, rhi, rmean;
+	params_grain_radii(sc, &rlo, &rhi, &rmean);
 	printf("# the contact law (%s, %s) for the scene's mean grain radius %g cm%s; docs/model.md, \"Restitution\"\n",
 	       law.hertz ? hz : "hooke",
 	       law.resti ? "restitution given: the damping per pair" : "gamma_n given: the restitution per pair",
-	       0.5 * (sc->r_min + sc->r_max), sc->particles[0] ? " (not the particle file's disks)" : "");
+	       rmean, sc->particles[0] ? " (not the particle file's disks)" : "");
 	printf("%-15s %10s %10s %11s %12s\n", "pair", "m_eff_g", "gamma_n_1/s", "restitution", "contact_time_s");
 	for (int k = 0; k < SB_NPCLASS; k++)
 		if (c[k].present)

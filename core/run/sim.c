@@ -131,8 +131,19 @@ int sim_derive(sb_sim *s, sb_err *e)
 			rs += s->st.r[i];
 			ng++;
 		}
-	s->rmean = ng ? rs / ng : 0.5 * (s->sc.r_min + s->sc.r_max);
+	double rlo, rhi, rscene;
+	params_grain_radii(&s->sc, &rlo, &rhi, &rscene);
+	s->rmean = ng ? rs / ng : rscene;
+	double split;
+	if (rec_on(&s->sc, 1, REC_SEGREG) && !obs_segregation_split(s->st.r, s->st.kind, s->st.nm, &split))
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: segregation_samples: the segregation index compares large grains with small, and "
+			       "the bed's %d grains are all of radius %g cm (size_dist = binary, or a particle file of "
+			       "two sizes)", params_where(&s->sc, "segregation_samples"), ng, ng ? rs / ng : 0.0);
 	s->intruder = state_find_intruder(&s->st);
+	s->n_intruders = 0;
+	for (int i = 0; i < s->st.nm; i++)
+		s->n_intruders += s->st.kind[i] == KIND_INTRUDER;
 	if (kernel_init(&s->kern, &s->st, e))
 		return e->code;
 	if (nlist_init(&s->nl, &s->st, s->sc.skin, kernel_pair_shift(), e))

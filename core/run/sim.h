@@ -45,6 +45,7 @@ typedef struct sb_sim {
 	sb_prov prov;
 	sb_drive drive;
 	int intruder;            /* index of the recorded intruder, -1 if none */
+	int n_intruders;         /* how many the state holds (docs/model.md, "Several intruders") */
 	double xlo, xhi, ylo;    /* a mobile centre outside these has left the box */
 	double rmean;            /* mean grain radius (surface columns) */
 

@@ -122,7 +122,7 @@ static int check(sb_sim *s, double t, long step, int *rebuild, sb_err *e)
 
 /* The waiting time (docs/model.md, "Waiting time"): the first time the intruder's
  * centre is one diameter above its settled height, on the positions the forces are
- * evaluated at. */
+ * evaluated at; every intruder's when there are several ("Several intruders"). */
 static void watch_rise(sb_sim *s, double t, long step)
 {
 	if (s->intruder >= 0 && !s->obs.risen && step > 0 && s->obs.rise_height > 0 &&
@@ -130,6 +130,12 @@ static void watch_rise(sb_sim *s, double t, long step)
 		s->obs.risen = 1;
 		s->obs.wait_time = t;
 	}
+	sb_obs *o = &s->obs; /* the other intruders, each by the same rule (nint > 1 only) */
+	for (int k = 1; k < o->nint && step > 0; k++)
+		if (!o->irisen[k] && kernel_y(s->kern, &s->st, o->iidx[k]) - o->iy0[k] > o->irise_h[k]) {
+			o->irisen[k] = 1;
+			o->iwait[k] = t;
+		}
 }
 
 /* With periodic sides the mobile disks are wrapped back into [0, W) here, at a

@@ -91,7 +91,9 @@ int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_e
 	if (sc->normal == NORMAL_HERTZ) {
 		/* the lightest pair of the smallest grains at DTGUARD_HERTZ_V: Hertz's contact
 		 * shortens as the impact speeds up (t_c ~ v^-1/5) */
-		dtguard_hertz(sc->hertz_stiffness, 0.5 * sc->r_min, sc->gamma_n * 0.5 * m_min, 0.5 * m_min, DTGUARD_HERTZ_V, &eh,
+		double rlo, rhi, rmean;
+		params_grain_radii(sc, &rlo, &rhi, &rmean);
+		dtguard_hertz(sc->hertz_stiffness, 0.5 * rlo, sc->gamma_n * 0.5 * m_min, 0.5 * m_min, DTGUARD_HERTZ_V, &eh,
 			      &tc);
 		lim = limit_of(sc->integrator, tc);
 	} else {

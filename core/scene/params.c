@@ -43,12 +43,28 @@ static const sb_param TABLE[] = {
 	/* --- preparation --- */
 	{"n_grains", INT(n_grains), "", "950", 0, 10000000, NULL, PF_PREP,
 	 "number of small grains"},
+	{"size_dist", ENUM(size_dist), "", "uniform", 0, 0, "uniform|binary", PF_PREP,
+	 "grain radii of a generated bed: uniform = uniform in [r_min, r_max] (the paper's); binary = two "
+	 "sizes, r_large with probability large_fraction, else r_small (docs/model.md, \"Binary beds\")"},
 	{"r_min", REAL(r_min), "cm", "0.85", 0, 1000, NULL, PF_PREP | PF_MINX,
-	 "smallest grain radius (radii uniform in [r_min, r_max])"},
+	 "smallest grain radius (size_dist = uniform: radii uniform in [r_min, r_max])"},
 	{"r_max", REAL(r_max), "cm", "1.15", 0, 1000, NULL, PF_PREP | PF_MINX,
-	 "largest grain radius"},
+	 "largest grain radius (size_dist = uniform)"},
+	{"r_small", REAL(r_small), "cm", "1", 0, 1000, NULL, PF_PREP | PF_MINX,
+	 "size_dist = binary: radius of the small grains"},
+	{"r_large", REAL(r_large), "cm", "2", 0, 1000, NULL, PF_PREP | PF_MINX,
+	 "size_dist = binary: radius of the large grains (above r_small)"},
+	{"large_fraction", REAL(large_fraction), "", "0.2", 0, 1, NULL, PF_PREP,
+	 "size_dist = binary: the number fraction of large grains, each grain large with this probability "
+	 "(0.2 at the default radii: the two sizes fill equal areas)"},
 	{"radius_ratio", REAL(radius_ratio), "", "4", 0, 100, NULL, PF_PREP,
 	 "intruder radius / mean grain radius (0 = no intruder)"},
+	{"n_intruders", INT(n_intruders), "", "1", 1, 1000, NULL, PF_PREP,
+	 "number of intruders of a generated bed (radius_ratio > 0), each tracked: its rise and waiting time "
+	 "(docs/model.md, \"Several intruders\")"},
+	{"intruder_place", ENUM(intruder_place), "", "row", 0, 0, "row|column", PF_PREP,
+	 "n_intruders > 1: row = side by side at one depth, evenly across the width (x = width k / (n + 1)); "
+	 "column = one above the other at the box's centre, the lowest at depth"},
 	{"depth", INT(depth), "", "1", 0, 100000, NULL, PF_PREP,
 	 "rows of small grains placed beneath the intruder (0 = on the bottom wall)"},
 	{"width", REAL(width), "cm", "60", 0, 1e7, NULL, PF_PREP | PF_MINX,
@@ -189,6 +205,10 @@ static const sb_param TABLE[] = {
 	{"bed_height_samples", INT(bed_height_samples), "", "0", 0, 100000, NULL, PF_OUT,
 	 "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "
 	 "(/observables/bed_height) and over the run (bed_height_mean); 0 = none"},
+	{"segregation_samples", INT(segregation_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the grains' segregation index (docs/model.md, \"Segregation index\": +1 "
+	 "large grains all above the small, -1 all below), averaged per period (/observables/segregation) and "
+	 "summarised over the run (segregation_index_mean, segregation_index_final); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0 (snapshots_per_period: more often)"},
 	{"snapshots_per_period", INT(snapshots_per_period), "", "1", 1, 1000, NULL, PF_OUT,
@@ -443,6 +463,19 @@ void params_defaults(sb_scene *s)
 	for (size_t i = 0; i < NTABLE; i++)
 		params_set(s, TABLE[i].name, TABLE[i].def, "default", &e);
 	/* A bad default is a programming error: the table test checks e stays clear. */
+}
+
+void params_grain_radii(const sb_scene *s, double *lo, double *hi, double *mean)
+{
+	if (s->size_dist == SIZE_BINARY) {
+		*lo = s->r_small;
+		*hi = s->r_large;
+		*mean = (1 - s->large_fraction) * s->r_small + s->large_fraction * s->r_large;
+	} else { /* the paper's: the expressions the references were made with */
+		*lo = s->r_min;
+		*hi = s->r_max;
+		*mean = 0.5 * (s->r_min + s->r_max);
+	}
 }
 
 /* A scene is a few dozen keys; the bound keeps the line counter far from overflowing

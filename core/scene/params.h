@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 83  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 90  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
@@ -22,13 +22,21 @@ enum sb_tristate { TRI_AUTO, TRI_YES, TRI_NO };
 enum sb_ring_centre { RING_AUTO, RING_INTRUDER, RING_SETTLED, RING_FIXED };
 /* where a particle file's disks get their masses (docs/inputs.md, "Particle masses") */
 enum sb_particle_mass { PMASS_SCENE, PMASS_FILE };
+/* how a generated bed's grain radii are drawn (docs/model.md, "Binary beds") */
+enum sb_size_dist { SIZE_UNIFORM, SIZE_BINARY };
+/* where a generated bed's intruders stand (docs/model.md, "Several intruders") */
+enum sb_intruder_place { IPLACE_ROW, IPLACE_COLUMN };
 
 /* The full parameter set of one run. Field names equal the keys of the table. */
 struct sb_scene {
 	/* preparation */
 	long n_grains;
+	int size_dist;       /* enum sb_size_dist */
 	double r_min, r_max;
+	double r_small, r_large, large_fraction;
 	double radius_ratio;
+	long n_intruders;
+	int intruder_place;  /* enum sb_intruder_place */
 	long depth;
 	double width;
 	double wall_radius, wall_spacing, wall_height;
@@ -62,6 +70,7 @@ struct sb_scene {
 	char output[SB_STR_MAX];
 	double traj_rate, energy_rate, contact_rate; /* the recorded quantities' own keys (record.c) */
 	long bed_kinetic_samples, bed_height_samples;
+	long segregation_samples;
 	int snapshots;
 	long snapshots_per_period; /* N: snapshots at phases k/N (1: the strobe's, phase 0) */
 	int snapshot_precision; /* 0 double, 1 single (the default) */
@@ -143,6 +152,12 @@ extern const sb_preset PRESETS[]; /* ends with a NULL name */
 const sb_param *params_find(const char *name);
 
 void params_defaults(sb_scene *s);
+
+/* A generated bed's grain radii by size_dist: the smallest, the largest and the mean
+ * (uniform: r_min, r_max and their midpoint; binary: r_small, r_large and the number-
+ * weighted mean by large_fraction). The placement's lattice, the intruder's radius
+ * (radius_ratio times the mean), the dt guard and the pair classes read them here. */
+void params_grain_radii(const sb_scene *s, double *lo, double *hi, double *mean);
 
 /* Parse and range-check one value; `where` prefixes the message ("file:12", "command line"). */
 int params_set(sb_scene *s, const char *key, const char *value, const char *where, sb_err *e);

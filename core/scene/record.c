@@ -11,6 +11,8 @@ static const rec_col CONTACT[] = {REC_COLS_CONTACT(REC_COL_)}; /* per contact, a
 static const rec_col RING[] = {REC_COLS_RING(REC_COL_)};
 static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
 static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
+static const rec_col SEGREG[] = {REC_COLS_SEGREG(REC_COL_)};
+static const rec_col INTRUDERS[] = {REC_COLS_INTRUDERS(REC_COL_)}; /* per intruder, after the time */
 
 /* a fixed-length row: its length and columns from one list */
 #define FIXED(a) .len = (int)(sizeof a / sizeof *a), .cols = a, .ncols = (int)(sizeof a / sizeof *a)
@@ -38,6 +40,16 @@ static const sb_record TABLE[REC_N] = {
 			       "disks' centre-of-mass height sum m y / sum m (box frame: above the box floor's rest "
 			       "position) at phases k/N, k = 1..N (N = samples_per_period); frequency = the drive's at "
 			       "the period's end"},
+	[REC_SEGREG] = {"segregation", "segregation_samples", RC_PHASE, FIXED(SEGREG),
+			.h5 = REC_H5_OBS "/segregation", .flags = RECF_OBS,
+			.def = "per drive period (time and step: its end): segregation_index = the mean of the grains' "
+			       "segregation index S at phases k/N, k = 1..N (N = samples_per_period): S = D / D_max "
+			       "(D >= 0) or D / |D_min| (D < 0), D the mean height of the large grains minus that of the "
+			       "small (large: radius above the midpoint of the grains' smallest and largest), D_max and "
+			       "D_min the same for these heights with the large grains all on top and all at the bottom "
+			       "(docs/model.md, \"Segregation index\"); frequency = the drive's at the period's end"},
+	[REC_INTRUDERS] = {"intruders", "traj_rate", RC_RATE, .cols = INTRUDERS, .ncols = REC_NCOLS(REC_COLS_INTRUDERS),
+			   .h5 = REC_H5_INTRUDERS, .flags = RECF_INTRUDERS},
 };
 
 const sb_record *rec_table(void) { return TABLE; }
@@ -98,20 +110,27 @@ static double key_value(const sb_scene *sc, const char *key)
 									 : *(const int *)base;
 }
 
-int rec_on(const sb_scene *sc, int has_intruder, int id)
+int rec_on(const sb_scene *sc, int n_intruders, int id)
 {
 	const sb_record *r = &TABLE[id];
-	if ((r->flags & RECF_INTRUDER) && !has_intruder)
+	if (((r->flags & RECF_INTRUDER) && n_intruders < 1) || ((r->flags & RECF_INTRUDERS) && n_intruders < 2))
 		return 0;
 	return key_value(sc, r->key) > 0;
 }
 
 double rec_rate(const sb_scene *sc, int id) { return key_value(sc, TABLE[id].key); }
 
-#define SUM_ATTR_(row, attr, unit, def) #attr,
-#define SUM_ROW_(row, attr, unit, def) row,
+#define SUM_ATTR_(row, attr, how, unit, def) #attr,
+#define SUM_ROW_(row, attr, how, unit, def) row,
+#define SUM_HOW_(row, attr, how, unit, def) how,
 static const char *const SUM_ATTR[RSUM_N] = {REC_SUMMARIES(SUM_ATTR_)};
 static const int SUM_ROW[RSUM_N] = {REC_SUMMARIES(SUM_ROW_)};
+static const int SUM_HOW[RSUM_N] = {REC_SUMMARIES(SUM_HOW_)};
+/* h5out's intruder summary writes the trajectory's, its generic writer every other */
+#define SUM_OWN_(row, attr, how, unit, def)                                                                  \
+	_Static_assert(((row) == REC_TRAJ) == ((how) == RR_OWN), #attr ": RR_OWN is the trajectory's, only");
+REC_SUMMARIES(SUM_OWN_)
 
 const char *rec_summary_attr(int k) { return SUM_ATTR[k]; }
 int rec_summary_row(int k) { return SUM_ROW[k]; }
+int rec_summary_how(int k) { return SUM_HOW[k]; }

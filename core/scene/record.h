@@ -19,7 +19,7 @@
  * by the build that wrote it (a checkpoint of another table, another REC_N, is not
  * resumed: checkpoint.c). A new row goes at the end. */
 enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_HEIGHT,
-	      REC_N };
+	      REC_SEGREG, REC_INTRUDERS, REC_N };
 #define REC_TAG(id) ((id) + 1)
 
 /* When a quantity is sampled (the clock a new row picks; run.c keeps them all):
@@ -37,12 +37,14 @@ enum rec_clock { RC_RATE, RC_STROBE, RC_RING, RC_PHASE };
 enum {
 	RECF_INTRUDER = 1, /* recorded only when the scene has an intruder */
 	RECF_OBS = 2,      /* a group of /observables, written by h5out's observables loop */
+	RECF_INTRUDERS = 4, /* recorded only when the scene has several intruders */
 };
 
 /* Where the quantities live in the run file: spelled here once, for the engine's
  * writer and for the readers (lib/runfile.h). */
 #define REC_H5_INTRUDER "/particles/intruder"
 #define REC_H5_BED "/particles/bed"
+#define REC_H5_INTRUDERS "/particles/intruders"
 #define REC_H5_OBS "/observables"
 #define REC_H5_ENERGY REC_H5_OBS "/energy"
 #define REC_H5_CONTACTS REC_H5_OBS "/contacts"
@@ -66,6 +68,9 @@ enum {
 	X("centre_x", "cm") X("centre_y", "cm")
 #define REC_COLS_KINETIC(X) X("time", "s") X("kinetic_energy", "erg")
 #define REC_COLS_HEIGHT(X) X("time", "s") X("com_height_box", "cm")
+#define REC_COLS_SEGREG(X) X("time", "s") X("segregation_index", "1")
+/* several intruders' positions: time, then of each intruder (lab frame, as the trajectory) */
+#define REC_COLS_INTRUDERS(X) X("x", "cm") X("y", "cm")
 
 #define REC_COL_COUNT_(name, unit) +1
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
@@ -106,36 +111,47 @@ int rec_by_tag(int tag);
 /* The table as TSV for tools (shake --records): name, key, clock (rate, strobe, ring,
  * phase), journal tag, run-file group, columns as name[unit] joined by commas. */
 void rec_print_table(FILE *f);
-/* Does the scene ask for it (its key on; an intruder, has_intruder, where the row
- * needs one)? */
-int rec_on(const sb_scene *sc, int has_intruder, int id);
+/* Does the scene ask for it (its key on; an intruder, or several, where the row needs
+ * them: n_intruders, the run's number)? */
+int rec_on(const sb_scene *sc, int n_intruders, int id);
 /* A rate row's rate (Hz), a phase row's samples per period: its key's value. */
 double rec_rate(const sb_scene *sc, int id);
 
 /* The per-run summaries: attributes of the run file's root, one value per run, written
  * from a recorded quantity when the run ends; lib/results.c makes each a result
- * column (REAL, same name). X(row, attribute, unit, definition). The trajectory's are
- * h5out's intruder summary; any other row's is the mean of its first value column over
- * the rows the run file holds (h5out's writer of fixed-length observables). */
+ * column (REAL, same name). X(row, attribute, reduction, unit, definition). The
+ * trajectory's (RR_OWN) are h5out's intruder summary; any other row's is, over the
+ * rows the run file holds (h5out's writer of fixed-length observables), the mean
+ * (RR_MEAN) or the last row's value (RR_LAST) of its first value column. */
+enum rec_reduce { RR_OWN, RR_MEAN, RR_LAST };
 #define REC_SUMMARIES(X)                                                                                       \
-	X(REC_TRAJ, intruder_final_y_box, "cm",                                                                \
+	X(REC_TRAJ, intruder_final_y_box, RR_OWN, "cm",                                                        \
 	  "the intruder centre's height at the last trajectory row, box frame; NULL without a trajectory")     \
-	X(REC_TRAJ, intruder_max_y_box, "cm", "highest intruder centre over the trajectory rows, box frame")   \
-	X(REC_TRAJ, intruder_min_y_box, "cm", "lowest intruder centre over the trajectory rows, box frame")    \
-	X(REC_TRAJ, intruder_mean_y_box, "cm", "mean intruder centre height over the trajectory rows, box frame") \
-	X(REC_KINETIC, bed_kinetic_mean, "erg",                                                                \
+	X(REC_TRAJ, intruder_max_y_box, RR_OWN, "cm", "highest intruder centre over the trajectory rows, box frame") \
+	X(REC_TRAJ, intruder_min_y_box, RR_OWN, "cm", "lowest intruder centre over the trajectory rows, box frame") \
+	X(REC_TRAJ, intruder_mean_y_box, RR_OWN, "cm",                                                         \
+	  "mean intruder centre height over the trajectory rows, box frame")                                   \
+	X(REC_KINETIC, bed_kinetic_mean, RR_MEAN, "erg",                                                       \
 	  "the mobile disks' kinetic energy (translation and rotation, box frame) averaged over the drive "     \
 	  "periods of the run, bed_kinetic_samples samples each; NULL when not recorded or no period ended")    \
-	X(REC_HEIGHT, bed_height_mean, "cm",                                                                   \
+	X(REC_HEIGHT, bed_height_mean, RR_MEAN, "cm",                                                          \
 	  "the mobile disks' centre-of-mass height (box frame) averaged over the drive periods of the run, "   \
-	  "bed_height_samples samples each; NULL when not recorded or no period ended")
+	  "bed_height_samples samples each; NULL when not recorded or no period ended")                        \
+	X(REC_SEGREG, segregation_index_mean, RR_MEAN, "",                                                     \
+	  "the grains' segregation index (docs/model.md, \"Segregation index\": +1 large all above small, -1 " \
+	  "all below, 0 equal mean heights) averaged over the drive periods of the run, segregation_samples "  \
+	  "samples each; NULL when not recorded or no period ended")                                          \
+	X(REC_SEGREG, segregation_index_final, RR_LAST, "",                                                    \
+	  "the grains' segregation index of the run's last drive period; NULL when not recorded or no period " \
+	  "ended")
 
-#define REC_SUM_ENUM_(row, attr, unit, def) RSUM_##attr,
+#define REC_SUM_ENUM_(row, attr, how, unit, def) RSUM_##attr,
 enum rec_summary { REC_SUMMARIES(REC_SUM_ENUM_) RSUM_N };
 #undef REC_SUM_ENUM_
 
-/* A summary's attribute name and its row. */
+/* A summary's attribute name, its row and its reduction (enum rec_reduce). */
 const char *rec_summary_attr(int k);
 int rec_summary_row(int k);
+int rec_summary_how(int k);
 
 #endif

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "dtguard.h"
@@ -40,29 +41,56 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->r_min > s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
 			       s->r_max, W("r_max"));
+	/* size_dist picks one set of radius keys; the other set, given a value of its own,
+	 * would be ignored (at its default it may be given: the study driver passes every key) */
+	static const char *const uni[] = {"r_min", "r_max"}, *const bin[] = {"r_small", "r_large", "large_fraction"};
+	const int binary = s->size_dist == SIZE_BINARY;
+	for (int k = 0; k < (binary ? 2 : 3); k++) {
+		const char *key = binary ? uni[k] : bin[k];
+		const sb_param *p = params_find(key);
+		if (*(const double *)((const char *)s + p->offset) != strtod(p->def, NULL))
+			return sb_errf(e, SB_EUSAGE, "%s: %s is for size_dist = %s, and size_dist is %s (%s): leave it out",
+				       W(key), key, binary ? "uniform" : "binary", binary ? "binary" : "uniform",
+				       W("size_dist"));
+	}
+	if (binary && !(s->r_small < s->r_large))
+		return sb_errf(e, SB_EUSAGE, "%s: size_dist = binary: r_small (%g) must be below r_large (%g, %s)",
+			       W("r_small"), s->r_small, s->r_large, W("r_large"));
+	double rlo, rhi, rmean;
+	params_grain_radii(s, &rlo, &rhi, &rmean);
+	const char *hikey = binary ? "r_large" : "r_max";
 	if (s->wall_spacing > 2 * s->wall_radius)
 		return sb_errf(e, SB_EUSAGE, "%s: wall_spacing (%g) must be at most 2 wall_radius (%g, %s): grains would fall through",
 			       W("wall_spacing"), s->wall_spacing, 2 * s->wall_radius, W("wall_radius"));
 	/* Periodic sides: the period must hold more than a grain's reach, so that no disk
 	 * touches its own image and the images of a pair never meet both ways round
 	 * (docs/model.md, "Periodic side boundaries"). */
-	if (s->sides == SIDES_PERIODIC && s->width < 4 * s->r_max)
+	if (s->sides == SIDES_PERIODIC && s->width < 4 * rhi)
 		return sb_errf(e, SB_EUSAGE,
-			       "%s: sides = periodic (%s) needs a period of at least two grains: width %g < 4 r_max = %g (r_max %s)",
-			       W("width"), W("sides"), s->width, 4 * s->r_max, W("r_max"));
-	const double r1 = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
-	if (s->sides == SIDES_PERIODIC && !s->particles[0] && 2 * r1 > s->width - 2 * s->r_max)
+			       "%s: sides = periodic (%s) needs a period of at least two grains: width %g < 4 %s = %g (%s %s)",
+			       W("width"), W("sides"), s->width, hikey, 4 * rhi, hikey, W(hikey));
+	const double r1 = s->radius_ratio * rmean;
+	if (s->sides == SIDES_PERIODIC && !s->particles[0] && 2 * r1 > s->width - 2 * rhi)
 		return sb_errf(e, SB_EUSAGE,
 			       "%s: sides = periodic (%s): radius_ratio %g gives an intruder of diameter %g cm, wider than the "
 			       "period width %g (%s) less a grain diameter: it would meet its own image",
 			       W("radius_ratio"), W("sides"), s->radius_ratio, 2 * r1, s->width, W("width"));
-	if (!s->particles[0] && s->width < 4 * s->r_max)
-		return sb_errf(e, SB_EUSAGE, "%s: width (%g) must hold at least two grains (4 r_max = %g, r_max %s)",
-			       W("width"), s->width, 4 * s->r_max, W("r_max"));
-	double ri = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
-	if (!s->particles[0] && 2 * ri > s->width - 2 * s->r_max)
+	if (!s->particles[0] && s->width < 4 * rhi)
+		return sb_errf(e, SB_EUSAGE, "%s: width (%g) must hold at least two grains (4 %s = %g, %s %s)",
+			       W("width"), s->width, hikey, 4 * rhi, hikey, W(hikey));
+	if (!s->particles[0] && 2 * r1 > s->width - 2 * rhi)
 		return sb_errf(e, SB_EUSAGE, "%s: radius_ratio %g gives an intruder of diameter %g cm that does not fit width %g (%s)",
-			       W("radius_ratio"), s->radius_ratio, 2 * ri, s->width, W("width"));
+			       W("radius_ratio"), s->radius_ratio, 2 * r1, s->width, W("width"));
+	/* several intruders side by side: each its own slot of the width, with a grain's
+	 * room beside it (docs/model.md, "Several intruders") */
+	if (!s->particles[0] && r1 > 0 && s->n_intruders > 1 && s->intruder_place == IPLACE_ROW &&
+	    s->width / (double)(s->n_intruders + 1) < 2 * r1 + 2 * rhi)
+		return sb_errf(e, SB_EUSAGE,
+			       "%s: n_intruders %ld side by side (intruder_place = row, %s) stand width / (n + 1) = %g cm "
+			       "apart, less than an intruder's diameter %g cm and a grain's %g: fewer intruders, a "
+			       "wider box (width, %s) or intruder_place = column",
+			       W("n_intruders"), s->n_intruders, W("intruder_place"), s->width / (double)(s->n_intruders + 1),
+			       2 * r1, 2 * rhi, W("width"));
 	if (!s->output[0])
 		return sb_errf(e, SB_EUSAGE, "%s: output: must not be empty", W("output"));
 	if (s->ramp != 0 && !(s->duration > s->ramp_hold)) {
@@ -86,13 +114,12 @@ int params_validate(const sb_scene *s, sb_err *e)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_until (%g s) must be after ring_from (%g s, %s), or 0",
 			       W("ring_until"), s->ring_until, s->ring_from, W("ring_from"));
 	if (!s->particles[0]) {
-		/* the lightest disk of a generated scene is a grain of r_min, or the intruder
-		 * when it is of a light enough material (intruder_density) */
+		/* the lightest disk of a generated scene is a grain of the smallest radius, or
+		 * the intruder when it is of a light enough material (intruder_density) */
 		char warn[8];
-		double m_min = s->mass_factor * s->density * s->r_min * s->r_min;
-		const double R1 = s->radius_ratio * 0.5 * (s->r_min + s->r_max);
-		if (R1 > 0 && s->intruder_density > 0)
-			m_min = fmin(m_min, s->mass_factor * s->intruder_density * R1 * R1);
+		double m_min = s->mass_factor * s->density * rlo * rlo;
+		if (r1 > 0 && s->intruder_density > 0)
+			m_min = fmin(m_min, s->mass_factor * s->intruder_density * r1 * r1);
 		if (dtguard_check(s, m_min, warn, sizeof warn, e))
 			return e->code;
 	}

@@ -5,7 +5,7 @@
 # its file, line, key and range. A particle file's masses (docs/inputs.md, "Particle
 # masses"): its mass or density column agrees with the scene's mass model or is refused
 # with its line (particle_mass = scene), or is used (particle_mass = file); never
-# ignored. A second intruder in a particle file is refused.
+# ignored. (A particle file's several intruders: intruders.sh.)
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
@@ -102,10 +102,4 @@ shake_run n.log pm.ini "${FAST[@]}" duration=0 output=none
 rc=$?
 [ "$rc" -eq 1 ] && contains n.log "pm.ini:1" && contains n.log "no particle file" && ok pfile.refused.no_file ||
 	fail pfile.refused.no_file "exit $rc: $(head -c 300 n.log)"
-# a second intruder would be shaken unrecorded: refused at its line, naming the first's
-awk -v l="$il" 'NR == l { print; $1 = $1 + 10 } { print }' P.txt | awk -v l="$il" 'NR == l + 1 { $4 = "intruder" } { print }' >P2.txt
-shake_run two.log particles="$TMP/P2.txt" "${RUN[@]}" intruder_density=2 duration=0 output="$TMP/two.h5"
-rc=$?
-[ "$rc" -eq 1 ] && contains two.log "P2.txt:$((il + 1)): a second intruder (the first on line $il)" && [ ! -e two.h5 ] &&
-	ok pfile.refused.second_intruder || fail pfile.refused.second_intruder "exit $rc: $(head -c 300 two.log)"
 finish

@@ -329,6 +329,76 @@ static void test_band_rule(void)
 	}
 }
 
+/* The segregation index (docs/model.md, "Segregation index") on beds whose answer is
+ * known: a bed of 12 columns and 10 rows, heights 2 row (plus a constant that must not
+ * matter), large disks (r 2) in chosen places among small ones (r 1). */
+enum { SEG_COLS = 12, SEG_ROWS = 10, SEG_N = SEG_COLS * SEG_ROWS + 1 };
+static double seg_of(int (*large)(int row, int col), int intruder_on_top)
+{
+	static double y[SEG_N], r[SEG_N], work[SEG_N];
+	static unsigned char kind[SEG_N];
+	for (int row = 0; row < SEG_ROWS; row++)
+		for (int col = 0; col < SEG_COLS; col++) {
+			const int i = row * SEG_COLS + col;
+			y[i] = 7.5 + 2.0 * row;
+			r[i] = large(row, col) ? 2 : 1;
+			kind[i] = KIND_GRAIN;
+		}
+	/* an intruder is no grain: above every grain, or below, it changes nothing */
+	y[SEG_N - 1] = intruder_on_top ? 1e3 : -1e3;
+	r[SEG_N - 1] = 4;
+	kind[SEG_N - 1] = KIND_INTRUDER;
+	double split;
+	if (!obs_segregation_split(r, kind, SEG_N, &split) || split != 1.5)
+		return NAN;
+	return obs_segregation(y, r, kind, SEG_N, split, work);
+}
+static int top3(int row, int col) { return (void)col, row >= SEG_ROWS - 3; }
+static int bottom3(int row, int col) { return (void)col, row < 3; }
+static int every4th(int row, int col) { return (void)row, col % 4 == 1; }
+static int top3_but_one(int row, int col) { return row == 0 && col == 0 ? 1 : row == SEG_ROWS - 1 && col == 5 ? 0 : top3(row, col); }
+static int upper_half(int row, int col) { return (void)col, row >= SEG_ROWS / 2; }
+/* a checkerboard of the bed's lower half and the upper half large: half the way */
+static int half_way(int row, int col) { return row >= SEG_ROWS / 2 ? ((row + col) % 2 == 0) : 0; }
+
+static void test_segregation(void)
+{
+	double s = seg_of(top3, 1);
+	CHECK("observe.segregation.large_all_on_top", fabs(s - 1) < 1e-12, "S = %.17g, want 1", s);
+	s = seg_of(bottom3, 0);
+	CHECK("observe.segregation.large_all_at_bottom", fabs(s + 1) < 1e-12, "S = %.17g, want -1", s);
+	s = seg_of(every4th, 1);
+	CHECK("observe.segregation.mixed", fabs(s) < 1e-12, "S = %.17g, want 0 (a quarter of every row large)", s);
+	/* one large grain of the top row swapped with a small one of the bottom row: below
+	 * +1, by the definition's closed form (heights 2 row; the constant cancels) */
+	s = seg_of(top3_but_one, 1);
+	{ /* large: rows 7-9 less one of row 9, plus one of row 0; small: the rest */
+		const double hl = (2.0 * (12 * 7 + 12 * 8 + 11 * 9) + 0) / 36, hs = (2.0 * (12 * 21 + 11 * 0) + 18) / 84;
+		const double hl_max = 2.0 * (12 * 7 + 12 * 8 + 12 * 9) / 36, hs_max = 2.0 * 12 * 21 / 84;
+		const double want = (hl - hs) / (hl_max - hs_max);
+		CHECK("observe.segregation.one_swapped", fabs(s - want) < 1e-12 && s < 1, "S = %.17g, want %.17g", s,
+		      want);
+	}
+	/* equal numbers (60 large, 60 small): the upper half large is +1; half of the upper
+	 * half large (a checkerboard, 30), by the closed form again */
+	s = seg_of(upper_half, 0);
+	CHECK("observe.segregation.upper_half", fabs(s - 1) < 1e-12, "S = %.17g, want 1", s);
+	s = seg_of(half_way, 1);
+	{
+		/* large: 6 of each of rows 5-9 (mean 14); small: the other 30 there and rows 0-4 (mean 4) */
+		const double hl = 14, hs = (30.0 * 14 + 60 * 4) / 90;
+		/* all on top: the 30 large take rows 8-9 (24 grains, mean height 17) and 6 of row 7 (14) */
+		const double top = (24.0 * 17 + 6 * 14) / 30, rest = (2.0 * 12 * (0 + 1 + 2 + 3 + 4 + 5 + 6) + 6 * 14) / 90;
+		const double want = (hl - hs) / (top - rest);
+		CHECK("observe.segregation.half_way", fabs(s - want) < 1e-12 && s > 0.2 && s < 0.8, "S = %.17g, want %.17g",
+		      s, want);
+	}
+	double split;
+	const double r1[3] = {1, 1, 3};
+	const unsigned char k1[3] = {KIND_GRAIN, KIND_GRAIN, KIND_INTRUDER};
+	CHECK("observe.segregation.one_size_has_none", !obs_segregation_split(r1, k1, 3, &split), "split %g", split);
+}
+
 int main(void)
 {
 	int fd = mkstemp(jpath);
@@ -340,6 +410,7 @@ int main(void)
 	test_field();
 	test_ring();
 	test_band_rule();
+	test_segregation();
 	unlink(jpath);
 	return tl_done();
 }

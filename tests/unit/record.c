@@ -91,7 +91,7 @@ int main(void)
 	      "a tag no row has");
 
 	/* rec_on reads the key: a rate of 0 is off, any other on; a switch likewise; the
-	 * trajectory needs an intruder */
+	 * trajectory needs an intruder, the intruders' positions two */
 	static sb_sim s;
 	params_defaults(&s.sc);
 	s.intruder = -1;
@@ -101,6 +101,7 @@ int main(void)
 	      "on");
 	CHECK("record.on.trajectory_needs_an_intruder", !sample_on(&s, REC_TRAJ), "on without an intruder");
 	s.intruder = 0;
+	s.n_intruders = 1;
 	s.sc.energy_rate = 50;
 	s.sc.flux = 1;
 	CHECK("record.on.by_key", sample_on(&s, REC_TRAJ) && sample_on(&s, REC_ENERGY) && sample_on(&s, REC_FLUX),
@@ -111,6 +112,11 @@ int main(void)
 	s.sc.bed_height_samples = 3;
 	CHECK("record.on.bed_height",
 	      sample_on(&s, REC_HEIGHT) && rec_rate(&s.sc, REC_HEIGHT) == 3 && R[REC_HEIGHT].clock == RC_PHASE, "%d %g", sample_on(&s, REC_HEIGHT), rec_rate(&s.sc, REC_HEIGHT));
+	/* several intruders' positions: at the trajectory's rate, with two intruders or more */
+	CHECK("record.on.intruders_need_two", !sample_on(&s, REC_INTRUDERS), "on with one intruder");
+	s.n_intruders = 2;
+	CHECK("record.on.intruders", sample_on(&s, REC_INTRUDERS) && sample_len(&s, REC_INTRUDERS, NULL) == 5, "%d %ld",
+	      sample_on(&s, REC_INTRUDERS), sample_len(&s, REC_INTRUDERS, NULL));
 	CHECK("record.rate.is_the_key", rec_rate(&s.sc, REC_ENERGY) == 50 && rec_rate(&s.sc, REC_TRAJ) == 100, "%g %g",
 	      rec_rate(&s.sc, REC_ENERGY), rec_rate(&s.sc, REC_TRAJ));
 
