@@ -65,7 +65,7 @@ static int sample_energy(sb_sim *s, double t, sb_err *e)
 		my += st->m[i] * st->q[C_Y][0][i];
 		m += st->m[i];
 	}
-	forces_contact_energy(&s->law, st, &s->nl, &el, &ov, &nc);
+	forces_contact_energy(&s->law, st, &s->nl, kernel_shear(s->kern), &el, &ov, &nc);
 	const double row[REC_NCOLS(REC_COLS_ENERGY)] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
 	return PUT(s, REC_ENERGY, row, e);
 }
@@ -79,7 +79,7 @@ static int sample_contacts(sb_sim *s, double t, sb_err *e)
 	double *rec = malloc(sizeof(double) * (size_t)(2 + REC_NCOLS(REC_COLS_CONTACT) * (cap > 0 ? cap : 1)));
 	if (!rec)
 		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");
-	const long n = forces_contacts(&s->law, st, &s->nl, 1.0 / s->sc.dt, rec + 2, cap);
+	const long n = forces_contacts(&s->law, st, &s->nl, kernel_shear(s->kern), 1.0 / s->sc.dt, rec + 2, cap);
 	rec[0] = t;
 	rec[1] = (double)n;
 	for (long k = 0; k < n; k++) { /* list indices -> the disks' ids */

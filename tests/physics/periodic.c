@@ -261,7 +261,7 @@ static double energy(sb_sim *s)
 {
 	double el, ov;
 	long nc;
-	forces_contact_energy(&s->law, &s->st, &s->nl, &el, &ov, &nc);
+	forces_contact_energy(&s->law, &s->st, &s->nl, kernel_shear(s->kern), &el, &ov, &nc);
 	return sim_kinetic(s) + el;
 }
 
