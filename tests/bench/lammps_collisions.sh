@@ -5,7 +5,10 @@
 #
 # Laws: hooke (LAMMPS gran/hooke, dampflag 1, Kt 0), restitution (gran/hooke with the
 # pair's damping 2 zeta sqrt(Y m_eff) from e, and both codes' e of two mobile disks checked
-# against the input e), hertz (LAMMPS gran/hertz/history, Kt ~ 0, see deck()). Cases, gravity off, relative approach speed 50 cm/s:
+# against the input e), hertz (LAMMPS gran/hertz/history, Kt ~ 0, see deck()), and the shear
+# spring with history, tangential = spring (docs/model.md "Tangential law"): spring (LAMMPS
+# gran/hooke/history with the engine's k_t, 2/7 Y) and hertz_spring (gran/hertz/history, k_t
+# 2/7 K), every case against the same style. Cases, gravity off, relative approach speed 50 cm/s:
 #   equal     two unit disks head-on
 #   intruder  a unit grain head-on against the intruder of radius 4
 #   oblique   two unit disks without spin, impact parameter (R_i + R_j)/2: the rebound spin
@@ -47,7 +50,7 @@ BIN=${COLL_BIN:-$REPO/build/rel/tests/bench/lammps_collision}
 LMP=${LMP:-lmp}
 DT=${COLL_DT:-1e-6}
 ENGINE_ARGS=${COLL_ENGINE_ARGS:-}
-LAWS=${COLL_LAWS:-hooke restitution hertz}
+LAWS=${COLL_LAWS:-hooke restitution hertz spring hertz_spring}
 CASES=${COLL_CASES:-equal intruder oblique sticking sliding wall}
 TOL=1e-3 TOL_W_ABS=1e-6 TOL_CONV=1e-4
 # hertz sticking and sliding against pair_style granular (see deck()): its lever R_i - xi/2
@@ -98,8 +101,8 @@ hdr() { sed -n '1s/.* '"$2"'=\([^ ]*\).*/\1/p' "$1"; }
 # the LAMMPS deck of one case, from the engine's header (law values before any override)
 deck() { # LAW CASE HEADER DUMP
 	local law=$1 cs=$2 h=$3 dump=$4
-	local Y gn gs mu K e r0 r1 m0 m1 wall gap v
-	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu)
+	local Y gn gs mu K e r0 r1 m0 m1 wall gap v kt
+	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu) kt=$(hdr "$h" shear_stiffness)
 	K=$(hdr "$h" hertz_stiffness) e=$(hdr "$h" restitution) r0=$(hdr "$h" r0) r1=$(hdr "$h" r1)
 	m0=$(hdr "$h" m0) m1=$(hdr "$h" m1) wall=$(hdr "$h" wall) gap=$(hdr "$h" gap) v=$(hdr "$h" v)
 	# the case's tangential values: also in the main loop (the engine's arguments)
@@ -109,6 +112,13 @@ deck() { # LAW CASE HEADER DUMP
 	local pair
 	case $law in
 	hooke) pair="pair_style gran/hooke $Y 0.0 $gn $gs $mu 1
+pair_coeff * *" ;;
+	# the shear spring: LAMMPS's history styles are its definition (docs/model.md "Tangential
+	# law"); the one difference, the 2D spring turning with the contact where LAMMPS projects
+	# its 3-vector, is O(delta^2) per step
+	spring) pair="pair_style gran/hooke/history $Y $kt $gn $gs $mu 1
+pair_coeff * *" ;;
+	hertz_spring) pair="pair_style gran/hertz/history $K $kt $gn $gs $mu 1
 pair_coeff * *" ;;
 	hertz)
 		# Kt: LAMMPS's history styles divide by Kt when a contact slides (Kt = 0 gives NaN),
