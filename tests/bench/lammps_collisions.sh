@@ -269,7 +269,7 @@ if [ -n "${COLL_DOC:-}" ]; then
 		echo "$("$LMP" -h 2>/dev/null | sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simulator - \(.*\)/LAMMPS \1/p' | head -1 || true); Δt = $DT s in both codes${ENGINE_ARGS:+, engine only: $ENGINE_ARGS}."
 		echo
 		cat <<'EOD'
-Each law (docs/model.md "Contact law", "Normal law", "Restitution") on single collisions, gravity
+Each law (docs/model.md "Contact law", "Normal law", "Restitution", "Tangential law") on single collisions, gravity
 off, relative approach speed 50 cm/s: two unit disks head-on (*equal*), a unit grain and the
 intruder of radius 4 head-on (*intruder*), two unit disks without spin at impact parameter
 (R_i + R_j)/2 (*oblique*; γ_S = 1 s⁻¹, a weak viscous shear force), the same with γ_S = 10⁴ s⁻¹
@@ -301,6 +301,13 @@ How LAMMPS is driven, and where the two codes' definitions differ:
   the shear force at the contact point, R_i − ξ/2 from the centre, not at R_i (and takes the
   surface velocity there): with the same normal damping (`damping velocity`) it gave the
   oblique case's spin −0.0797 rad/s against the engine's −0.0807 (1.3 %, e and t_c to 10⁻⁹).
+- **spring**, **hertz_spring** (`tangential = spring`, docs/model.md "Tangential law"):
+  `gran/hooke/history Y k_t γ_N γ_S μ 1` and `gran/hertz/history K k_t γ_N γ_S μ 1` with the
+  engine's k_t (2/7 of the normal stiffness, LAMMPS's default too), in every case: the
+  history styles are the definition the engine follows, so the same tolerance holds. The
+  one difference, the engine's scalar 2D spring turning with the contact where LAMMPS
+  projects its 3-vector onto the new tangent plane, is O(δ²) per step (δ the normal's turn
+  in a step); it shows nowhere above 10⁻⁷.
 - **hertz**: `gran/hertz/history K Kt γ_N γ_S μ 1` has our form exactly: F_N = √(ξR_eff)(Kξ +
   γ_N m_eff ξ̇), shear damping times √(ξR_eff); K in force/area, γ_N in 1/(time·length) in both.
   Two differences: (a) it keeps a shear history; with Kt = 0 it divides by Kt once a contact
