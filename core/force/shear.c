@@ -39,21 +39,31 @@ static uint64_t key(const sb_nlist *nl, int p)
 	return (uint64_t)1 << 63 | i << 32 | j;
 }
 
+/* Room for n entries in two arrays of sa and sb bytes an entry (*cap of them so far). */
+static int grow2(void **a, size_t sa, void **b, size_t sb, int n, int *cap, sb_err *e)
+{
+	if (n <= *cap)
+		return 0;
+	const int c = n + n / 2 + 64;
+	void *x = realloc(*a, sa * (size_t)c);
+	if (x)
+		*a = x;
+	void *y = realloc(*b, sb * (size_t)c);
+	if (y)
+		*b = y;
+	if (!x || !y)
+		return sb_errf(e, SB_ENOMEM, "out of memory for the contacts' shear displacements");
+	*cap = c;
+	return 0;
+}
+
 static int grow(sb_shear *sh, int n, sb_err *e)
 {
-	if (n <= sh->cap)
-		return 0;
-	const int cap = n + n / 2 + 64;
-	uint64_t *k = realloc(sh->key, sizeof *k * (size_t)cap);
-	if (k)
-		sh->key = k;
-	double *x = realloc(sh->xi, sizeof *x * (size_t)cap);
-	if (x)
-		sh->xi = x;
-	if (!k || !x)
-		return sb_errf(e, SB_ENOMEM, "out of memory for the contacts' shear displacements");
-	sh->cap = cap;
-	return 0;
+	void *k = sh->key, *x = sh->xi;
+	const int rc = grow2(&k, sizeof *sh->key, &x, sizeof *sh->xi, n, &sh->cap, e);
+	sh->key = k;
+	sh->xi = x;
+	return rc;
 }
 
 static int cmp_key(const void *a, const void *b)
@@ -71,18 +81,12 @@ int shear_follow(sb_shear *sh, const sb_nlist *nl, sb_err *e)
 	int nold = 0;
 	for (int p = 0; p < sh->n; p++)
 		nold += sh->xi[p] != 0;
-	if (nold > sh->ocap) {
-		const int cap = nold + nold / 2 + 64;
-		uint64_t *k = realloc(sh->okey, sizeof *k * 2 * (size_t)cap);
-		if (k)
-			sh->okey = k;
-		double *x = realloc(sh->oxi, sizeof *x * (size_t)cap);
-		if (x)
-			sh->oxi = x;
-		if (!k || !x)
-			return sb_errf(e, SB_ENOMEM, "out of memory for the contacts' shear displacements");
-		sh->ocap = cap;
-	}
+	void *ok = sh->okey, *ox = sh->oxi;
+	const int rc = grow2(&ok, 2 * sizeof *sh->okey, &ox, sizeof *sh->oxi, nold, &sh->ocap, e);
+	sh->okey = ok;
+	sh->oxi = ox;
+	if (rc)
+		return rc;
 	/* okey holds pairs (key, slot): sorted by key (keys are unique) */
 	int c = 0;
 	for (int p = 0; p < sh->n; p++)
