@@ -48,7 +48,7 @@ static inline __attribute__((always_inline)) void contact(
 	const double Y, const double gn, const int resti, const int hertz, const double gs, const double mu, const int clip,
 	const double dx, const double dy, const double d, const double inv, const double ri,
 	const double rj, const double dvx, const double dvy, const double wi, const double wj,
-	const double meff, double *fx, double *fy, double *fs_out, double *xi_out)
+	const double meff, double *fx, double *fy, double *fs_out, double *xi_out, int *capped)
 {
 	const double nx = dx * inv, ny = dy * inv;
 	const double xi = ri + rj - d;
@@ -60,6 +60,7 @@ static inline __attribute__((always_inline)) void contact(
 		fv = ph * fv;
 	const double fc = mu * fabs(fn);
 	const double fs = copysign(fv < fc ? fv : fc, -vt);
+	*capped = !(fv < fc);
 	*fx = fn * nx - fs * ny;
 	*fy = fn * ny + fs * nx;
 	*fs_out = fs;
@@ -72,7 +73,7 @@ static inline __attribute__((always_inline)) void contact(
 static inline void contact_spring(const sb_law *law, const double gn, const double gs, const double dx,
 				  const double dy, const double d, const double ri, const double rj, const double dvx,
 				  const double dvy, const double wi, const double wj, const double meff, double *h,
-				  const int update, double *fx, double *fy, double *fs_out, double *xi_out)
+				  const int update, double *fx, double *fy, double *fs_out, double *xi_out, int *capped)
 {
 	const double inv = 1.0 / d, nx = dx * inv, ny = dy * inv;
 	const double xi = ri + rj - d;
@@ -87,6 +88,7 @@ static inline void contact_spring(const sb_law *law, const double gn, const doub
 		fs = ph * fs;
 	const double fc = law->mu * fabs(fn), fa = fabs(fs);
 	double snew = s;
+	*capped = fa > fc;
 	if (fa > fc) { /* sliding: the spring stretched only as far as Coulomb allows */
 		if (s != 0) {
 			const double q = damp / law->kt, r = fc / fa;
@@ -114,8 +116,9 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 		return;
 	}
 	double fs, xi;
+	int capped;
 	contact_spring(law, (law->resti ? law->gz : law->gn) * inv_dt, law->gs * inv_dt, dx, dy, sqrt(d2), ri, rj, dvx,
-		       dvy, wi, wj, meff, h, update, fx, fy, &fs, &xi);
+		       dvy, wi, wj, meff, h, update, fx, fy, &fs, &xi, &capped);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
 }
@@ -130,10 +133,32 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		return;
 	}
 	double fs, xi, d = sqrt(d2);
+	int capped;
 	contact(law->Y, law->resti ? law->gz : law->gn, law->resti, law->hertz, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
-		wi, wj, meff, fx, fy, &fs, &xi);
+		wi, wj, meff, fx, fy, &fs, &xi, &capped);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
+}
+
+/* A contact's force on i and -force on j, its torques, into io (and |F| into fsum when
+ * not NULL), in the order the kernel adds them; returns whether its overlap exceeds mo
+ * of the smaller radius. */
+static inline int add_contact(const sb_seam_io *io, double *fsum, int i, int j, double ri, double rj, double fx,
+			      double fy, double f_s, double xi, double mo)
+{
+	const int fs = io->fs;
+	if (fsum) {
+		const double fa = sqrt(fx * fx + fy * fy);
+		fsum[i] += fa;
+		fsum[j] += fa;
+	}
+	io->fx[i * fs] += fx;
+	io->fy[i * fs] += fy;
+	io->t[i * fs] -= ri * f_s;
+	io->fx[j * fs] -= fx;
+	io->fy[j * fs] -= fy;
+	io->t[j * fs] -= rj * f_s;
+	return xi > mo * (ri < rj ? ri : rj);
 }
 
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
@@ -142,7 +167,7 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 	const double Y = law->Y, gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
 		     mo = law->max_overlap, W = nl->period;
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
-	const int ps = io->ps, fs = io->fs;
+	const int ps = io->ps;
 	int bad = 0;
 	for (int k = 0; k < nl->nseam; k++) {
 		const int i = nl->si[k], j = nl->sj[k];
@@ -152,20 +177,10 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 			continue;
 		const double d = sqrt(d2), ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
+		int capped;
 		contact(Y, gn, law->resti, law->hertz, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
-			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi);
-		bad |= xi > mo * (ri < rj ? ri : rj);
-		if (fsum) {
-			const double fa = sqrt(fx * fx + fy * fy);
-			fsum[i] += fa;
-			fsum[j] += fa;
-		}
-		io->fx[i * fs] += fx;
-		io->fy[i * fs] += fy;
-		io->t[i * fs] -= ri * f_s;
-		io->fx[j * fs] -= fx;
-		io->fy[j * fs] -= fy;
-		io->t[j * fs] -= rj * f_s;
+			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
+		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
 	}
 	return bad;
 }
@@ -196,7 +211,7 @@ int forces_spring(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_
 {
 	const double gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mo = law->max_overlap;
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
-	const int ps = io->ps, fs = io->fs;
+	const int ps = io->ps;
 	int bad = 0;
 	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
 		int i, j;
@@ -212,21 +227,11 @@ int forces_spring(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_
 		}
 		const double ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
+		int capped;
 		contact_spring(law, gn, gs, dx, dy, sqrt(d2), ri, rj, io->vx[i * ps] - io->vx[j * ps],
 			       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &sh->xi[p], 1, &fx, &fy,
-			       &f_s, &xi);
-		bad |= xi > mo * (ri < rj ? ri : rj);
-		if (fsum) {
-			const double fa = sqrt(fx * fx + fy * fy);
-			fsum[i] += fa;
-			fsum[j] += fa;
-		}
-		io->fx[i * fs] += fx;
-		io->fy[i * fs] += fy;
-		io->t[i * fs] -= ri * f_s;
-		io->fx[j * fs] -= fx;
-		io->fy[j * fs] -= fy;
-		io->t[j * fs] -= rj * f_s;
+			       &f_s, &xi, &capped);
+		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
 	}
 	return bad;
 }
@@ -303,6 +308,36 @@ long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, 
 		n++;
 	}
 	return n;
+}
+
+long forces_sliding(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh, double inv_dt,
+		    long *contacts)
+{
+	const double *y = st->q[C_Y][0], *r = st->r, *vx = st->q[C_X][1], *vy = st->q[C_Y][1], *w = st->q[C_TH][1];
+	const double gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt;
+	const int hs = law->spring && sh && shear_current(sh, nl);
+	long n = 0, slid = 0;
+	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
+		int i, j;
+		double dx;
+		const int real = pair_at(st, nl, p, &i, &j, &dx);
+		const double dy = y[i] - y[j], d2 = dx * dx + dy * dy, rs = r[i] + r[j];
+		if (!real || !(d2 < rs * rs))
+			continue;
+		const double d = sqrt(d2), meff = 1.0 / (st->inv_m[i] + st->inv_m[j]);
+		double fx, fy, fs, xi, h = hs ? sh->xi[p] : 0;
+		int capped;
+		if (law->spring) /* a step's evaluation, on a copy of the displacement */
+			contact_spring(law, gn, gs, dx, dy, d, r[i], r[j], vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], meff, &h, 1,
+				       &fx, &fy, &fs, &xi, &capped);
+		else
+			contact(law->Y, gn, law->resti, law->hertz, gs, law->mu, law->clip, dx, dy, d, 1.0 / d, r[i], r[j],
+				vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], meff, &fx, &fy, &fs, &xi, &capped);
+		slid += capped;
+		n++;
+	}
+	*contacts = n;
+	return slid;
 }
 
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj)

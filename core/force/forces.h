@@ -92,6 +92,14 @@ void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist
 long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh, double inv_dt,
 		     double *out, long cap);
 
+/* The contacts at the Coulomb limit (docs/model.md, "Sliding contacts"): how many of
+ * the current contacts (*contacts of them) have their shear force capped at mu |F_N| by
+ * the law evaluated at the state (velocities q1 * inv_dt), as a force evaluation would
+ * (the spring's displacements from sh advanced by a step on a copy; NULL, or not in
+ * nl's order: from zero). */
+long forces_sliding(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh, double inv_dt,
+		    long *contacts);
+
 /* Largest overlap / smaller radius over all current contacts, and which disks (a scan
  * of the list: for the overlap record and the stop's message). */
 double forces_max_overlap(const sb_state *st, const sb_nlist *nl, int *wi, int *wj);

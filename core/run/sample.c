@@ -182,6 +182,16 @@ static int sample_height(sb_sim *s, double t, sb_err *e)
 	return PUT(s, REC_HEIGHT, row, e);
 }
 
+/* The fraction of contacts at the Coulomb limit (forces_sliding: the law evaluated at
+ * the sample); h5out averages a period's samples. */
+static int sample_sliding(sb_sim *s, double t, sb_err *e)
+{
+	long contacts = 0;
+	const long n = forces_sliding(&s->law, &s->st, &s->nl, kernel_shear(s->kern), 1.0 / s->sc.dt, &contacts);
+	const double row[REC_NCOLS(REC_COLS_SLIDING)] = {t, contacts ? (double)n / (double)contacts : 0};
+	return PUT(s, REC_SLIDING, row, e);
+}
+
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
 static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
@@ -203,6 +213,7 @@ static const sb_sampler TABLE[REC_N] = {
 	[REC_RING] = {sample_ring, NULL},
 	[REC_KINETIC] = {sample_kinetic, NULL},
 	[REC_HEIGHT] = {sample_height, NULL},
+	[REC_SLIDING] = {sample_sliding, NULL},
 };
 
 const sb_sampler *sample_table(void) { return TABLE; }

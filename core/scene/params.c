@@ -197,6 +197,9 @@ static const sb_param TABLE[] = {
 	{"bed_height_samples", INT(bed_height_samples), "", "0", 0, 100000, NULL, PF_OUT,
 	 "samples per drive period of the bed's centre-of-mass height (box frame), averaged per period "
 	 "(/observables/bed_height) and over the run (bed_height_mean); 0 = none"},
+	{"sliding_samples", INT(sliding_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the fraction of contacts at the Coulomb limit (sliding), averaged per "
+	 "period (/observables/sliding) and over the run (sliding_mean); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0 (snapshots_per_period: more often)"},
 	{"snapshots_per_period", INT(snapshots_per_period), "", "1", 1, 1000, NULL, PF_OUT,

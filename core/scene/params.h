@@ -9,7 +9,7 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 85  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 86  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
@@ -64,7 +64,7 @@ struct sb_scene {
 	/* recording and files */
 	char output[SB_STR_MAX];
 	double traj_rate, energy_rate, contact_rate; /* the recorded quantities' own keys (record.c) */
-	long bed_kinetic_samples, bed_height_samples;
+	long bed_kinetic_samples, bed_height_samples, sliding_samples;
 	int snapshots;
 	long snapshots_per_period; /* N: snapshots at phases k/N (1: the strobe's, phase 0) */
 	int snapshot_precision; /* 0 double, 1 single (the default) */

@@ -19,7 +19,7 @@
  * by the build that wrote it (a checkpoint of another table, another REC_N, is not
  * resumed: checkpoint.c). A new row goes at the end. */
 enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_HEIGHT,
-	      REC_N };
+	      REC_SLIDING, REC_N };
 #define REC_TAG(id) ((id) + 1)
 
 /* When a quantity is sampled (the clock a new row picks; run.c keeps them all):
@@ -66,6 +66,7 @@ enum {
 	X("centre_x", "cm") X("centre_y", "cm")
 #define REC_COLS_KINETIC(X) X("time", "s") X("kinetic_energy", "erg")
 #define REC_COLS_HEIGHT(X) X("time", "s") X("com_height_box", "cm")
+#define REC_COLS_SLIDING(X) X("time", "s") X("sliding_fraction", "1")
 
 #define REC_COL_COUNT_(name, unit) +1
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
@@ -128,7 +129,10 @@ double rec_rate(const sb_scene *sc, int id);
 	  "periods of the run, bed_kinetic_samples samples each; NULL when not recorded or no period ended")    \
 	X(REC_HEIGHT, bed_height_mean, "cm",                                                                   \
 	  "the mobile disks' centre-of-mass height (box frame) averaged over the drive periods of the run, "   \
-	  "bed_height_samples samples each; NULL when not recorded or no period ended")
+	  "bed_height_samples samples each; NULL when not recorded or no period ended")                         \
+	X(REC_SLIDING, sliding_mean, "1",                                                                      \
+	  "the fraction of contacts at the Coulomb limit (sliding) averaged over the drive periods of the run, " \
+	  "sliding_samples samples each; NULL when not recorded or no period ended")
 
 #define REC_SUM_ENUM_(row, attr, unit, def) RSUM_##attr,
 enum rec_summary { REC_SUMMARIES(REC_SUM_ENUM_) RSUM_N };

@@ -14,13 +14,17 @@
  * (c) Stick: a block (no rotation) on a slope of tan = 0.3 < mu. Static friction holds
  *     it: its displacement stays at the spring's m g sin / k_t, while the viscous law
  *     lets it creep at g sin / gamma_S. A far disk in free fall rebuilds the list
- *     every few steps; a history lost at a build would let the block slip. */
+ *     every few steps; a history lost at a build would let the block slip.
+ * (d) The contacts at the Coulomb limit (forces_sliding, the recorded quantity
+ *     sliding_samples): the block at rest has none under either law, the block on a
+ *     slope steeper than mu slides, its one contact at the limit. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "place.h"
 #include "sim.h"
+#include "simtest.h"
 #include "step.h"
 #include "testlib.h"
 
@@ -46,20 +50,6 @@ static void cap(void)
 	/* a scan (update = 0) leaves the displacement as it is */
 	forces_pair_spring(&law, 1.99, 0, 1, 1, 0, vt, 0, 0, 1, inv_dt, &h, 0, &fx, &fy, &ti, &tj);
 	CHECK_REL("spring.scan.untouched", h, 0.011, 0);
-}
-
-static sb_sim *new_sim(const sb_scene *sc)
-{
-	sb_sim *s = calloc(1, sizeof *s);
-	sb_err e = {0};
-	sim_init(s, sc, &e);
-	return s;
-}
-
-static void del_sim(sb_sim *s)
-{
-	sim_free(s);
-	free(s);
 }
 
 /* (b): the largest |E - E0| / E0 while the disks touch, with (emax) and without (enos)
@@ -107,8 +97,9 @@ static int oblique(double dt, double *emax, double *enos, double *spin)
 }
 
 /* (c): the block's largest displacement from where it sits at t_from, over [t_from,
- * t_end], and the list builds over the run */
-static int slope(int spring, double *drift, long *builds)
+ * t_end], the list builds over the run, and at its end the contacts at the Coulomb
+ * limit and all of them (forces_sliding); tn: the slope's tangent */
+static int slope(int spring, double tn, double *drift, long *builds, long *slid, long *contacts)
 {
 	sb_scene sc;
 	params_defaults(&sc);
@@ -118,7 +109,7 @@ static int slope(int spring, double *drift, long *builds)
 	sc.tangential = spring ? TANGENTIAL_SPRING : TANGENTIAL_VISCOUS;
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
-	const double R = 1, RW = 1e6, g = sc.gravity, tn = 0.3, sn = tn / sqrt(1 + tn * tn), cs = 1 / sqrt(1 + tn * tn);
+	const double R = 1, RW = 1e6, g = sc.gravity, sn = tn / sqrt(1 + tn * tn), cs = 1 / sqrt(1 + tn * tn);
 	const double m = place_mass(&sc, R, KIND_GRAIN), xeq = m * g * cs / sc.stiffness;
 	/* the floor's outward normal n = (-sin, cos) at the block */
 	place_push(&sc, &s->st, 0, 0, R, KIND_GRAIN, &e);
@@ -143,6 +134,7 @@ static int slope(int spring, double *drift, long *builds)
 			*drift = fmax(*drift, hypot(x - x0, y - y0));
 	}
 	*builds = s->nl.builds;
+	*slid = forces_sliding(&s->law, st, &s->nl, kernel_shear(s->kern), 1 / dt, contacts);
 	if (!ok)
 		printf("# slope: %s\n", e.msg);
 	del_sim(s);
@@ -174,8 +166,8 @@ int main(void)
 	CHECK("spring.oblique.spins", fabs(w1) > 1, "disk 0 spins at %.4g rad/s after an oblique hit", w1);
 
 	double ds, dv;
-	long bs, bv;
-	ok = slope(1, &ds, &bs) && slope(0, &dv, &bv);
+	long bs, bv, ss, cs, sv, cv;
+	ok = slope(1, 0.3, &ds, &bs, &ss, &cs) && slope(0, 0.3, &dv, &bv, &sv, &cv);
 	CHECK("spring.slope.runs", ok, "the slope runs failed");
 	printf("# block on a slope of tan 0.3, mu 0.5: spring moves %.3e cm, viscous %.3e cm over [0.15, 0.4] s; %ld list "
 	       "builds\n", ds, dv, bs);
@@ -189,5 +181,15 @@ int main(void)
 	 * of 2.6 cm/s. */
 	CHECK("spring.slope.viscous_creeps", dv > 0.3, "viscous moved only %.3e cm", dv);
 	CHECK("spring.slope.spring_sticks", ds < 1e-5, "the block moved %.3e cm under static friction", ds);
+	/* The contacts at the Coulomb limit (docs/model.md, "Sliding contacts"): at rest, and
+	 * creeping under the viscous law below mu |F_N| (m g sin = 0.6 mu m g cos), none;
+	 * on a slope of tan 0.8 > mu the block slides under either law: its one contact is. */
+	CHECK("sliding.rest.none", cs == 1 && ss == 0 && cv == 1 && sv == 0,
+	      "spring %ld of %ld contacts at the limit, viscous %ld of %ld: want 0 of 1", ss, cs, sv, cv);
+	double d8;
+	long b8, s8, c8, v8, n8;
+	ok = slope(1, 0.8, &d8, &b8, &s8, &c8) && slope(0, 0.8, &d8, &b8, &v8, &n8);
+	CHECK("sliding.beyond_mu.all", ok && c8 == 1 && s8 == 1 && n8 == 1 && v8 == 1,
+	      "tan 0.8 > mu: spring %ld of %ld contacts at the limit, viscous %ld of %ld: want 1 of 1", s8, c8, v8, n8);
 	return tl_done();
 }
