@@ -10,6 +10,7 @@
  *        intruder a unit grain head-on against the intruder of radius 4
  *        oblique  two unit disks, impact parameter (R_i + R_j)/2, no spin before
  *        wall     a unit grain onto a fixed wall disk of radius 1 (wall_mass = disk)
+ *        glancing the same with a tangential speed V/2 along x: the rebound spin
  *   KEY  gamma_n, gamma_s, mu, stiffness, hertz_stiffness, restitution, shear_stiffness: override the law's
  *        value (the script's check that a change on one side is caught).
  * Gravity is off; the relative approach speed is V = 50 cm/s along x (along -y onto the
@@ -36,8 +37,8 @@ static int fail(const char *m)
 int main(int argc, char **argv)
 {
 	if (argc < 4)
-		return fail("usage: lammps_collision hooke|restitution|hertz|spring|hertz_spring equal|intruder|oblique|wall DT "
-			    "[KEY=VALUE...]");
+		return fail("usage: lammps_collision hooke|restitution|hertz|spring|hertz_spring "
+			    "equal|intruder|oblique|wall|glancing DT [KEY=VALUE...]");
 	sb_scene sc;
 	params_defaults(&sc);
 	sc.gravity = 0;
@@ -59,17 +60,19 @@ int main(int argc, char **argv)
 	if (strstr(argv[1], "spring"))
 		sc.tangential = TANGENTIAL_SPRING;
 	const char *cs = argv[2];
-	int wall = !strcmp(cs, "wall"), intr = !strcmp(cs, "intruder"), obl = !strcmp(cs, "oblique");
+	const int glance = !strcmp(cs, "glancing"), wall = glance || !strcmp(cs, "wall"), intr = !strcmp(cs, "intruder"),
+		  obl = !strcmp(cs, "oblique");
 	if (!wall && !intr && !obl && strcmp(cs, "equal"))
-		return fail("CASE must be equal, intruder, oblique or wall");
+		return fail("CASE must be equal, intruder, oblique, wall or glancing");
+	const double vx_wall = glance ? 0.5 * V : 0; /* the grain's speed along the wall */
 	double r0 = 1, r1 = intr ? 4 : 1, rs = r0 + r1;
 	int k1 = intr ? KIND_INTRUDER : wall ? KIND_WALL : KIND_GRAIN;
 	double m0 = place_mass(&sc, r0, KIND_GRAIN), m1 = place_mass(&sc, r1, k1);
 	/* the law and the disks before any override: what the LAMMPS side is given */
 	printf("# stiffness=%.17g gamma_n=%.17g gamma_s=%.17g mu=%.17g hertz_stiffness=%.17g restitution=%.17g"
-	       " shear_stiffness=%.17g r0=%.17g r1=%.17g m0=%.17g m1=%.17g wall=%d gap=%.17g v=%.17g\n",
+	       " shear_stiffness=%.17g r0=%.17g r1=%.17g m0=%.17g m1=%.17g wall=%d gap=%.17g v=%.17g vx_wall=%.17g\n",
 	       sc.stiffness, sc.gamma_n, sc.gamma_s, sc.mu, sc.hertz_stiffness, sc.restitution, dtguard_kt(&sc), r0, r1,
-	       m0, m1, wall, GAP, V);
+	       m0, m1, wall, GAP, V, vx_wall);
 	for (int a = 4; a < argc; a++) {
 		const char *eq = strchr(argv[a], '=');
 		double *p = NULL;
@@ -111,9 +114,10 @@ int main(int argc, char **argv)
 		return fail("placing the disks failed");
 	sb_state *st = &s->st;
 	double dt = sc.dt;
-	if (wall)
+	if (wall) {
 		st->q[C_Y][1][0] = -V * dt;
-	else {
+		st->q[C_X][1][0] = vx_wall * dt;
+	} else {
 		/* zero total momentum */
 		st->q[C_X][1][0] = V * m1 / (m0 + m1) * dt;
 		st->q[C_X][1][1] = -V * m0 / (m0 + m1) * dt;

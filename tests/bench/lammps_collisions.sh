@@ -19,6 +19,7 @@
 #   see deck())
 #   wall      a unit grain onto a wall disk of radius 1 (LAMMPS: an atom that is not
 #             integrated; its mass enters m_eff as the engine's wall_mass = disk)
+#   glancing  the same with a speed of 25 cm/s along the wall: the disk on a wall's rebound spin
 # The engine's side is tests/bench/lammps_collision.c (its own force and verlet code);
 # LAMMPS gets the law's values and the masses that program prints (m = mass_factor rho R^2,
 # docs/model.md "Units", given to LAMMPS with `set atom N mass`). Both sides' trajectories,
@@ -51,7 +52,7 @@ LMP=${LMP:-lmp}
 DT=${COLL_DT:-1e-6}
 ENGINE_ARGS=${COLL_ENGINE_ARGS:-}
 LAWS=${COLL_LAWS:-hooke restitution hertz spring hertz_spring}
-CASES=${COLL_CASES:-equal intruder oblique sticking sliding wall}
+CASES=${COLL_CASES:-equal intruder oblique sticking sliding wall glancing}
 TOL=1e-3 TOL_W_ABS=1e-6 TOL_CONV=1e-4
 # hertz sticking and sliding against pair_style granular (see deck()): its lever R_i - xi/2
 # is shorter than the engine's R_i by at most xi_max / 2R_i (xi_max: the engine's largest
@@ -105,6 +106,7 @@ deck() { # LAW CASE HEADER DUMP
 	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu) kt=$(hdr "$h" shear_stiffness)
 	K=$(hdr "$h" hertz_stiffness) e=$(hdr "$h" restitution) r0=$(hdr "$h" r0) r1=$(hdr "$h" r1)
 	m0=$(hdr "$h" m0) m1=$(hdr "$h" m1) wall=$(hdr "$h" wall) gap=$(hdr "$h" gap) v=$(hdr "$h" v)
+	local vxw; vxw=$(hdr "$h" vx_wall)
 	# the case's tangential values: also in the main loop (the engine's arguments)
 	case $cs in sticking) gs=1e4 ;; sliding) gs=1e4 mu=0.05 ;; esac
 	local b=0 x1 y1 vx0 vy0 vx1
@@ -149,7 +151,7 @@ pair_coeff * * hertz $K $gn damping viscoelastic tangential linear_nohistory $(a
 pair_coeff * *" ;;
 	esac
 	if [ "$wall" = 1 ]; then
-		x1=0 y1=0 vx0=0 vy0=-$v vx1=0
+		x1=0 y1=0 vx0=$vxw vy0=-$v vx1=0
 		local y0; y0=$(awk -v a="$r0" -v c="$r1" -v g="$gap" 'BEGIN{printf "%.17g", a+c+g}')
 		local x0=0
 	else
@@ -275,7 +277,8 @@ intruder of radius 4 head-on (*intruder*), two unit disks without spin at impact
 (R_i + R_j)/2 (*oblique*; γ_S = 1 s⁻¹, a weak viscous shear force), the same with γ_S = 10⁴ s⁻¹
 (*sticking*: the slip stops within the contact) and with γ_S = 10⁴ s⁻¹, μ = 0.05 (*sliding*: at
 μ|F_N| throughout), a unit grain onto a wall disk of radius 1 (*wall*; LAMMPS: an atom that is not
-integrated, its mass in m_eff as the engine's `wall_mass = disk`). The engine runs its own force
+integrated, its mass in m_eff as the engine's `wall_mass = disk`), the same with 25 cm/s along
+the wall (*glancing*: the rebound spin of a disk on a wall). The engine runs its own force
 and `verlet` code (`tests/bench/lammps_collision.c`), LAMMPS `nve/sphere disc`; the masses
 m = 2πρR² are given to LAMMPS with `set atom N mass`. One analysis reads both codes'
 trajectories: the contact from where ξ = R_i + R_j − d turns positive to where it turns
