@@ -64,7 +64,8 @@ struct sb_scene {
 	/* recording and files */
 	char output[SB_STR_MAX];
 	double traj_rate, energy_rate, contact_rate; /* the recorded quantities' own keys (record.c) */
-	long bed_kinetic_samples, bed_height_samples, sliding_samples;
+	long bed_kinetic_samples, bed_height_samples;
+	long sliding_samples;
 	int snapshots;
 	long snapshots_per_period; /* N: snapshots at phases k/N (1: the strobe's, phase 0) */
 	int snapshot_precision; /* 0 double, 1 single (the default) */
