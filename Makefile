@@ -114,7 +114,7 @@ help:
 	@echo "make validate-lammps  shakebox against LAMMPS gran/hooke on the same settled beds: A Phi(D) at 3.0 Hz,"
 	@echo "                B the onset of convection, C claim 5 (depth 0 vs 1 at 2.7 Hz), D claim 4 (R = 4 at 3.2 Hz)"
 	@echo "                (docs/validate_lammps.md; ~43 min on 2 idle cores; VALIDATE_QUICK=1, VALIDATE_PARTS='A B C D', JOBS=2)"
-	@echo "make validate-collisions  the contact laws (hooke, restitution, hertz) against LAMMPS on two-disk collisions:"
+	@echo "make validate-collisions  the contact laws (hooke, restitution, hertz, spring, hertz_spring) against LAMMPS on two-disk collisions:"
 	@echo "                e, contact time, rebound spin (docs/validate_lammps.md \"Two-disk collisions\"; seconds)"
 	@echo "make demo       install what is missing, build, run a small campaign end to end"
 	@echo "make reproduce  the paper's claims: campaigns/reproduce/ run (resumable), REPRODUCTION.md written from the"
@@ -212,7 +212,8 @@ $(FAULT_SHIM): tests/faults/iofail.c
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) -std=c11 -Wall -Wextra -Werror -O1 -shared -fPIC -o $@ $< -ldl
 
-tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM)
+# the engine's side of the two-disk LAMMPS comparison (tests/integration/lammps_collisions.sh)
+tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/tests/bench/lammps_collision
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
 # the integration scripts; the release programs (make all) run the regression test on

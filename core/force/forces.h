@@ -1,11 +1,13 @@
-/* forces.h - the contact forces (docs/model.md, "Contact law": a linear spring-dashpot
- * normal force and a viscous tangential force capped by Coulomb friction; no shear
- * spring) over the Verlet list: the law in plain C (the reference of the vector
- * kernel, kernel.h), the seam pairs, and the scans of the contacts. */
+/* forces.h - the contact forces (docs/model.md, "Contact law": a spring-dashpot normal
+ * force, hooke or hertz, and a tangential force capped by Coulomb friction, the
+ * paper's viscous one or a shear spring with history) over the Verlet list: the law in
+ * plain C (the reference of the vector kernel, kernel.h), the seam pairs, the spring
+ * law's pass over the whole list, and the scans of the contacts. */
 #ifndef SB_FORCES_H
 #define SB_FORCES_H
 
 #include "nlist.h"
+#include "shear.h"
 #include "state.h"
 
 typedef struct sb_law {
@@ -20,6 +22,11 @@ typedef struct sb_law {
 	/* normal = hertz: Y is hertz_stiffness and F_N, the shear damping too, carry the
 	 * factor sqrt(xi R_eff), R_eff = R_i R_j / (R_i + R_j) (docs/model.md, "Normal law") */
 	int hertz;
+	/* tangential = spring: the shear spring k_t with history (docs/model.md,
+	 * "Tangential law"); gs is its damping. The vector kernel has no instance of it:
+	 * forces_spring runs it, the same code on every path. */
+	int spring;
+	double kt;
 } sb_law;
 
 /* The law's gz for restitution e at stiffness Y: 2 zeta sqrt(Y) (dtguard.h's zeta). */
@@ -48,21 +55,50 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 		 double dvx, double dvy, double wi, double wj, double meff,
 		 double *fx, double *fy, double *ti, double *tj);
 
+/* tangential = spring: the force on disk i from disk j with the contact's shear
+ * displacement *h (cm), velocities scaled as the kernel's (q1 = v dt, so that the
+ * step's increment v_t dt is the scaled v_t itself; the damping gets inv_dt);
+ * update: advance *h by the step and rescale it at the Coulomb cap, as a force
+ * evaluation of a step does. Not in contact: all zero, *h untouched. */
+void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, double rj, double dvx, double dvy,
+			double wi, double wj, double meff, double inv_dt, double *h, int update, double *fx, double *fy,
+			double *ti, double *tj);
+
+/* tangential = spring: the law over the flat list and the seam pairs in that order,
+ * positions and scaled velocities at io's x, y, vx, vy, the state's spins; forces
+ * added at io's fx, fy, t; each contact's shear displacement in sh (in nl's order:
+ * shear_follow first) advanced, every pair not in contact reset to zero. fabs_sum
+ * and the return as forces_seam's. */
+int forces_spring(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
+		  double inv_dt, double *fabs_sum);
+
 /* The scans below cover the seam pairs too (their normal and midpoint through the
  * minimum image, the midpoint wrapped into the period).
  *
- * The elastic energy of the contacts, sum of Y xi^2 / 2, the largest overlap as a
- * fraction of the smaller radius, and the number of contacts (a scan of the list, for
- * the energy series). */
-void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, double *elastic,
-			   double *max_overlap, long *contacts);
+ * The elastic energy of the contacts, sum of Y xi^2 / 2 (hertz: 2/5 Y sqrt(R_eff)
+ * xi^5/2) and, with the spring law, of k_t xi_t^2 / 2 (hertz: times sqrt(xi R_eff)) from
+ * sh (NULL, or not in nl's order: none), the largest overlap as a fraction of the
+ * smaller radius, and the number of contacts (a scan of the list, for the energy
+ * series). */
+void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh,
+			   double *elastic, double *max_overlap, long *contacts);
 
 /* Every current contact as (i, j, F_N, F_S, n_x, n_y, x, y): the list's indices, the
  * normal force along n = (r_i - r_j)/d and the tangential one along t (the force on i
  * is F_N n + F_S t), and the midpoint of the centres; velocities q1 * inv_dt. Writes at
- * most cap contacts into out (8 doubles each) and returns how many there are. */
-long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, double inv_dt, double *out,
-		     long cap);
+ * most cap contacts into out (8 doubles each) and returns how many there are. The
+ * spring law's F_S is that of the shear displacements in sh as they are (NULL, or not
+ * in nl's order: zero). */
+long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh, double inv_dt,
+		     double *out, long cap);
+
+/* The contacts at the Coulomb limit (docs/model.md, "Sliding contacts"): how many of
+ * the current contacts (*contacts of them) have their shear force capped at mu |F_N| by
+ * the law evaluated at the state (velocities q1 * inv_dt), as a force evaluation would
+ * (the spring's displacements from sh advanced by a step on a copy; NULL, or not in
+ * nl's order: from zero). */
+long forces_sliding(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_shear *sh, double inv_dt,
+		    long *contacts);
 
 /* Largest overlap / smaller radius over all current contacts, and which disks (a scan
  * of the list: for the overlap record and the stop's message). */

@@ -16,6 +16,7 @@ struct sb_kernel {
 	sb_kdata d;
 	int stale;  /* x, y, vx, vy of the mobile disks are in the records only */
 	int packed; /* the records hold the current state, the accumulators are clear */
+	sb_shear shear; /* tangential = spring: the contacts' history */
 };
 
 /* The instances of this build, widest first, with what the CPU must have for each. */
@@ -92,6 +93,7 @@ int kernel_init_path(sb_kernel **out, const sb_state *st, const char *name, sb_e
 	*out = k;
 	if (!k)
 		return sb_errf(e, SB_ENOMEM, "out of memory for the force kernel");
+	shear_init(&k->shear);
 	if (choose(name, &k->v, e))
 		return e->code;
 	/* whole 64-byte lines, so that a record is one aligned vector load; the
@@ -121,6 +123,7 @@ void kernel_free(sb_kernel *k)
 	free(k->d.rec);
 	free(k->d.facc);
 	free(k->d.kb);
+	shear_free(&k->shear);
 	free(k);
 }
 
@@ -152,10 +155,47 @@ double kernel_y(const sb_kernel *k, const sb_state *st, int i)
 	return k->stale ? k->d.rec[8 * (size_t)i + 1] : st->q[C_Y][0][i];
 }
 
+sb_shear *kernel_shear(sb_kernel *k)
+{
+	return &k->shear;
+}
+
+/* tangential = spring: the whole list through forces_spring, scalar and in list order
+ * (one code for every path: the same bits); with keep, into the records and
+ * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
+ * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
+static int spring_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
+			 double *fabs_sum, sb_err *e)
+{
+	kernel_sync(k, st);
+	if (shear_follow(&k->shear, nl, e))
+		return -1;
+	double *rec = k->d.rec, *facc = k->d.facc;
+	const size_t n = (size_t)st->n;
+	for (size_t i = 0; i < n; i++) {
+		double *q = rec + 8 * i;
+		q[0] = st->q[C_X][0][i];
+		q[1] = st->q[C_Y][0][i];
+		q[2] = st->q[C_X][1][i];
+		q[3] = st->q[C_Y][1][i];
+		q[4] = st->r[i] * st->q[C_TH][1][i];
+		q[5] = st->inv_m[i];
+		q[6] = q[7] = st->r[i];
+	}
+	k->d.walls_packed = nl->builds;
+	memset(facc, 0, sizeof(double) * 4 * n);
+	for (int c = 0; c < 3 && !keep; c++)
+		memset(st->f[c], 0, sizeof(double) * n);
+	const sb_seam_io io = keep ? (sb_seam_io){st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1], facc,
+						  facc + 1, facc + 2, 1, 4}
+				   : (sb_seam_io){st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1], st->f[C_X],
+						  st->f[C_Y], st->f[C_TH], 1, 1};
+	return forces_spring(law, st, nl, &k->shear, &io, inv_dt, fabs_sum);
+}
+
 int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		  int keep, double *fabs_sum, sb_err *e)
 {
-	(void)e; /* the records were sized at kernel_init */
 	/* packed: the last fused corrector wrote this state's records and cleared the
 	 * accumulators; anything else packs the records from st, which must be current */
 	const int packed = keep && !fabs_sum && k->packed;
@@ -163,6 +203,8 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
+	if (law->spring)
+		return spring_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	if (!packed)
 		kernel_sync(k, st);
 	int bad = k->v->forces(&k->d, law, st, nl, inv_dt, keep, packed, fabs_sum);

@@ -4,7 +4,9 @@
  * interface is what a step needs: forces (into the state, or kept for the fused
  * corrector), the fused corrector, the sync of the state, the height of a disk
  * wherever it lives. The seam pairs of periodic sides (nlist.h) go through the scalar
- * law (forces_seam) after the flat list. Every path gives the scalar law's numbers to
+ * law (forces_seam) after the flat list; the shear-spring law (tangential = spring)
+ * has no vector instance: it runs through forces_spring, the same code on every path,
+ * over the records the fused corrector reads. Every path gives the scalar law's numbers to
  * the bit (tests/unit/kernel.c, tests/integration/regression.sh).
  *
  * Every disk's contact data sit in a 64-byte record (kvec.h) that the kernel reads two
@@ -81,6 +83,10 @@ const char *kernel_check(const sb_kernel *k, const sb_state *st);
  * a list build, periodic.h), after a kernel_sync: the next force evaluation packs its
  * records from st instead of trusting the fused corrector's. */
 void kernel_state_changed(sb_kernel *k);
+
+/* tangential = spring: the contacts' shear displacements (shear.h), which each
+ * kernel_forces advances by one step; for the scans, the checkpoint and the tests. */
+sb_shear *kernel_shear(sb_kernel *k);
 
 /* y of disk i, wherever it lives now (no sync needed). */
 double kernel_y(const sb_kernel *k, const sb_state *st, int i);

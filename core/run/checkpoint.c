@@ -1,6 +1,7 @@
 /* checkpoint.c - the full state of a shaking run, enough to continue bit-identically:
  * every Nordsieck array, the neighbour-list reference positions (so the list is
  * rebuilt exactly as it was, with the same pair order and so the same force sums),
+ * the contacts' shear displacements in that order (tangential = spring),
  * the recording schedule and the journal length. Written crash-safe; a checksum
  * rejects a damaged file. */
 #include <errno.h>
@@ -15,13 +16,14 @@
 #include "fsutil.h"
 #include "checkpoint.h"
 
-/* 11: a journal record is laid out by the table's columns (record.h), and a per-period
+/* 12: the shear displacements of tangential = spring follow the observables (a count,
+ * 0 without them, and one double per pair of the list). 11: a journal record is laid out by the table's columns (record.h), and a per-period
  * row's holds no drive frequency (the writer takes it from the drive), so a journal
  * an older engine wrote is not continued. 10: the recording counters are the table's
  * (core/scene/record.h), one array each, and the header holds REC_N: a row added to the
  * table changes the layout, and the format (version/REC_N) says so. 09: the scene hash
  * covers the key sides; the seam pairs are rebuilt from xref like the list. */
-static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '1'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'K', 'P', 'T', '1', '2'};
 
 typedef struct hw {
 	FILE *f;
@@ -113,6 +115,11 @@ int ckpt_write(sb_sim *s, sb_err *e)
 	extra x = {joff, s->nl.builds, s->nl.xref, s->nl.yref};
 	fields(&w, s, s->in.nval, &x, put_v);
 	obs_fields(&s->obs, &w, put_obs);
+	const sb_shear *sh = kernel_shear(s->kern);
+	int64_t nsh = s->law.spring ? sh->n : 0;
+	hw_put(&w, &nsh, sizeof nsh);
+	if (nsh)
+		hw_put(&w, sh->xi, sizeof(double) * (size_t)nsh);
 	uint64_t sum = w.h;
 	if (fwrite(&sum, sizeof sum, 1, out.f) != 1)
 		w.bad = 1;
@@ -188,6 +195,26 @@ int ckpt_load(sb_sim *s, sb_err *e)
 			s->nl.builds = x.builds;
 		if (!e->code && !sim_obs_init(s, e))
 			obs_fields(&s->obs, &r, get_obs);
+	}
+	/* the shear displacements, in the order of the list just rebuilt */
+	if (!err && !e->code && !r.bad) {
+		int64_t nsh = 0;
+		hw_get(&r, &nsh, sizeof nsh);
+		const long np = (long)s->nl.nflat + s->nl.nseam;
+		if (!r.bad && nsh != 0 && (!s->law.spring || nsh != np))
+			err = sb_errf(e, SB_EIO, "%s: inconsistent checkpoint (%lld shear displacements, %ld pairs)", path,
+				      (long long)nsh, s->law.spring ? np : 0L);
+		else if (!r.bad && nsh) {
+			double *xi = malloc(sizeof(double) * (size_t)nsh);
+			if (!xi)
+				err = sb_errf(e, SB_ENOMEM, "out of memory loading the checkpoint");
+			else {
+				hw_get(&r, xi, sizeof(double) * (size_t)nsh);
+				if (!r.bad)
+					err = shear_restore(kernel_shear(s->kern), &s->nl, xi, (long)nsh, e);
+				free(xi);
+			}
+		}
 	}
 	err = err ? err : e->code;
 	if (!err) {

@@ -1146,10 +1146,14 @@ static void write_contact_law(h5w *h, const sb_sim *s)
 	h5w_attr_str(h, g, "normal", s->law.hertz ? "hertz" : "hooke");
 	if (s->law.hertz) /* its restitution and contact time depend on the impact speed */
 		h5w_attr_double(h, g, "impact_speed", PCLASS_HERTZ_V);
+	h5w_attr_str(h, g, "tangential", s->law.spring ? "spring" : "viscous");
+	if (s->law.spring) /* k_t, given or LAMMPS's default 2/7 of the normal stiffness */
+		h5w_attr_double(h, g, "shear_stiffness", s->law.kt);
 	h5w_attr_str(h, g, "definition",
 		     "per class of pair: m_eff (g), gamma_n (1/s: the normal damping force is gamma_n m_eff xidot), "
 		     "restitution and contact_time (s) of an unclipped head-on contact, a wall disk immobile; "
-		     "normal = hertz: at impact_speed (cm/s) (docs/model.md, \"Restitution\")");
+		     "normal = hertz: at impact_speed (cm/s) (docs/model.md, \"Restitution\"); tangential = spring: "
+		     "shear_stiffness k_t (docs/model.md, \"Tangential law\")");
 	sb_pclass c[SB_NPCLASS];
 	pclass_of_state(&s->law, &s->sc, &s->st, c);
 	for (int k = 0; k < SB_NPCLASS; k++) {

@@ -65,7 +65,7 @@ static int sample_energy(sb_sim *s, double t, sb_err *e)
 		my += st->m[i] * st->q[C_Y][0][i];
 		m += st->m[i];
 	}
-	forces_contact_energy(&s->law, st, &s->nl, &el, &ov, &nc);
+	forces_contact_energy(&s->law, st, &s->nl, kernel_shear(s->kern), &el, &ov, &nc);
 	const double row[REC_NCOLS(REC_COLS_ENERGY)] = {t, kt, kr, el, m > 0 ? my / m : 0, ov, (double)nc};
 	return PUT(s, REC_ENERGY, row, e);
 }
@@ -79,7 +79,7 @@ static int sample_contacts(sb_sim *s, double t, sb_err *e)
 	double *rec = malloc(sizeof(double) * (size_t)(2 + REC_NCOLS(REC_COLS_CONTACT) * (cap > 0 ? cap : 1)));
 	if (!rec)
 		return sb_errf(e, SB_ENOMEM, "out of memory for the contact dump");
-	const long n = forces_contacts(&s->law, st, &s->nl, 1.0 / s->sc.dt, rec + 2, cap);
+	const long n = forces_contacts(&s->law, st, &s->nl, kernel_shear(s->kern), 1.0 / s->sc.dt, rec + 2, cap);
 	rec[0] = t;
 	rec[1] = (double)n;
 	for (long k = 0; k < n; k++) { /* list indices -> the disks' ids */
@@ -219,6 +219,16 @@ static int sample_segregation(sb_sim *s, double t, sb_err *e)
 	return PUT(s, REC_SEGREG, row, e);
 }
 
+/* The fraction of contacts at the Coulomb limit (forces_sliding: the law evaluated at
+ * the sample); h5out averages a period's samples. */
+static int sample_sliding(sb_sim *s, double t, sb_err *e)
+{
+	long contacts = 0;
+	const long n = forces_sliding(&s->law, &s->st, &s->nl, kernel_shear(s->kern), 1.0 / s->sc.dt, &contacts);
+	const double row[REC_NCOLS(REC_COLS_SLIDING)] = {t, contacts ? (double)n / (double)contacts : 0};
+	return PUT(s, REC_SLIDING, row, e);
+}
+
 /* a snapshot: time, then x, y, theta, vx, vy of every mobile disk (journal_snap) */
 static long snap_len(const sb_sim *s, const double *rec) { (void)rec; return 1 + 5L * s->st.nm; }
 static long flux_len(const sb_sim *s, const double *rec) { (void)rec; return obs_flux_len(&s->obs); }
@@ -243,6 +253,7 @@ static const sb_sampler TABLE[REC_N] = {
 	[REC_HEIGHT] = {sample_height, NULL},
 	[REC_SEGREG] = {sample_segregation, NULL},
 	[REC_INTRUDERS] = {sample_intruders, intruders_len},
+	[REC_SLIDING] = {sample_sliding, NULL},
 };
 
 const sb_sampler *sample_table(void) { return TABLE; }

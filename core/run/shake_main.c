@@ -90,7 +90,8 @@ static void usage(FILE *f)
 		"  --profile   time per phase of the step on stderr at the end\n"
 		"  --contacts  what the contact law gives a mean grain pair, a grain and the\n"
 		"              intruder, a grain on a wall disk and the lightest pair (m_eff,\n"
-		"              gamma_N, restitution, contact time) for the scene given, and exit\n"
+		"              gamma_N, restitution, contact time) and the tangential law (its\n"
+		"              shear stiffness) for the scene given, and exit\n"
 		"  --version   git hash of the build, the CPU and the force kernel's paths\n"
 		"  --kernel-paths  the force kernel's paths, one a line: name, runs here (yes/no),\n"
 		"              for tests only (test/-), what the CPU needs (for scripts)\n\n"
@@ -117,6 +118,10 @@ static void print_contacts(const sb_scene *sc)
 	       law.hertz ? hz : "hooke",
 	       law.resti ? "restitution given: the damping per pair" : "gamma_n given: the restitution per pair",
 	       rmean, sc->particles[0] ? " (not the particle file's disks)" : "");
+	if (law.spring)
+		printf("# tangential = spring: shear_stiffness k_t = %.6g (docs/model.md, \"Tangential law\")\n", law.kt);
+	else
+		printf("# tangential = viscous: no shear spring\n");
 	printf("%-15s %10s %10s %11s %12s\n", "pair", "m_eff_g", "gamma_n_1/s", "restitution", "contact_time_s");
 	for (int k = 0; k < SB_NPCLASS; k++)
 		if (c[k].present)

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "dtguard.h"
 #include "fsutil.h"
 
 double sim_box_y(const sb_sim *s, double t) { return drive_y(&s->drive, t); }
@@ -20,8 +21,9 @@ double sim_box_a(const sb_sim *s, double t) { return drive_a(&s->drive, t); }
 sb_law sim_law(const sb_scene *sc)
 {
 	const int hertz = sc->normal == NORMAL_HERTZ;
-	sb_law l = {hertz ? sc->hertz_stiffness : sc->stiffness, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap,
-		    sc->clip_attractive, sc->restitution > 0, 0, hertz};
+	const double Y = hertz ? sc->hertz_stiffness : sc->stiffness;
+	sb_law l = {Y, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap, sc->clip_attractive, sc->restitution > 0, 0, hertz,
+		    sc->tangential == TANGENTIAL_SPRING, dtguard_kt(sc)};
 	if (l.resti)
 		l.gz = forces_gz(sc->stiffness, sc->restitution);
 	return l;

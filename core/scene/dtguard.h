@@ -33,9 +33,14 @@ void dtguard_pair(double Y, double gamma_n, double meff, double *e, double *tc);
 #define DTGUARD_HERTZ_V 100.0
 void dtguard_hertz(double K, double reff, double c, double m, double v, double *e, double *tc);
 
+/* tangential = spring: the shear stiffness k_t, shear_stiffness or by default 2/7 of
+ * the normal stiffness (stiffness, or hertz_stiffness with normal = hertz). */
+double dtguard_kt(const sb_scene *sc);
+
 /* Apply the scene's dt_guard for the lightest mobile mass m_min: an error (SB_EUSAGE)
  * beyond the limit when dt_guard = refuse; a warning text in warn (empty if none)
- * beyond half the limit, or beyond it with dt_guard = warn. */
+ * beyond half the limit, or beyond it with dt_guard = warn. With tangential = spring
+ * the contact's tangential oscillation counts too (docs/model.md, "Tangential law"). */
 int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_err *e);
 
 #endif

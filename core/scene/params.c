@@ -136,6 +136,14 @@ static const sb_param TABLE[] = {
 	 "normal coefficient of restitution e of every pair (grain, intruder, wall): the normal damping set per pair, "
 	 "gamma_N = 2 zeta sqrt(Y / m_eff), zeta = -ln e / sqrt(pi^2 + ln^2 e), as LAMMPS's damping "
 	 "coeff_restitution; 0 = off: gamma_n for every pair (docs/model.md, \"Restitution\")"},
+	{"tangential", ENUM(tangential), "", "viscous", 0, 0, "viscous|spring", PF_PREP | PF_DYN,
+	 "tangential contact law: viscous = the paper's, F_S = -sign(v_t) min(gamma_S m_eff |v_t|, mu |F_N|), no "
+	 "memory; spring = Cundall-Strack as LAMMPS gran/hooke/history: a shear displacement xi_t per contact, "
+	 "accumulated while it lasts, F_S = -(k_t xi_t + gamma_S m_eff v_t) capped at mu |F_N| with the spring "
+	 "rescaled on sliding, reset when the contact ends (docs/model.md, \"Tangential law\")"},
+	{"shear_stiffness", REAL(shear_stiffness), "g/s^2", "0", 0, 1e15, NULL, PF_PREP | PF_DYN,
+	 "tangential = spring: k_t, in the normal stiffness's unit (hertz: times sqrt(xi R_eff), as "
+	 "hertz_stiffness); 0 = 2/7 of the normal stiffness (stiffness or hertz_stiffness), LAMMPS's default"},
 	{"gamma_s", REAL(gamma_s), "1/s", "1", 0, 1e8, NULL, PF_PREP | PF_DYN,
 	 "shear damping gamma_S"},
 	{"mu", REAL(mu), "", "0.5", 0, 100, NULL, PF_PREP | PF_DYN,
@@ -209,6 +217,9 @@ static const sb_param TABLE[] = {
 	 "samples per drive period of the grains' segregation index (docs/model.md, \"Segregation index\": +1 "
 	 "large grains all above the small, -1 all below), averaged per period (/observables/segregation) and "
 	 "summarised over the run (segregation_index_mean, segregation_index_final); 0 = none"},
+	{"sliding_samples", INT(sliding_samples), "", "0", 0, 100000, NULL, PF_OUT,
+	 "samples per drive period of the fraction of contacts at the Coulomb limit (sliding), averaged per "
+	 "period (/observables/sliding) and over the run (sliding_mean); 0 = none"},
 	{"snapshots", BOOL(snapshots), "", "yes", 0, 0, NULL, PF_OUT,
 	 "record all disks once per period at phase 0 (snapshots_per_period: more often)"},
 	{"snapshots_per_period", INT(snapshots_per_period), "", "1", 1, 1000, NULL, PF_OUT,

@@ -9,10 +9,11 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 90  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 93  /* the number of keys: params.c's table has exactly this many rows (checked there) */
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
+enum sb_tangential { TANGENTIAL_VISCOUS, TANGENTIAL_SPRING };
 enum sb_stop { STOP_NONE, STOP_RISEN, STOP_FLUX };
 enum sb_wall_mass { WALLMASS_DISK, WALLMASS_INFINITE };
 /* the side boundaries (docs/model.md, "Periodic side boundaries") */
@@ -55,6 +56,8 @@ struct sb_scene {
 	double stiffness, gamma_n, gamma_s, mu, restitution;
 	int normal;              /* NORMAL_HOOKE, NORMAL_HERTZ */
 	double hertz_stiffness;
+	int tangential;          /* TANGENTIAL_VISCOUS, TANGENTIAL_SPRING */
+	double shear_stiffness;  /* k_t; 0: 2/7 of the normal stiffness */
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;
@@ -70,7 +73,7 @@ struct sb_scene {
 	char output[SB_STR_MAX];
 	double traj_rate, energy_rate, contact_rate; /* the recorded quantities' own keys (record.c) */
 	long bed_kinetic_samples, bed_height_samples;
-	long segregation_samples;
+	long segregation_samples, sliding_samples;
 	int snapshots;
 	long snapshots_per_period; /* N: snapshots at phases k/N (1: the strobe's, phase 0) */
 	int snapshot_precision; /* 0 double, 1 single (the default) */

@@ -13,6 +13,7 @@ static const rec_col KINETIC[] = {REC_COLS_KINETIC(REC_COL_)};
 static const rec_col HEIGHT[] = {REC_COLS_HEIGHT(REC_COL_)};
 static const rec_col SEGREG[] = {REC_COLS_SEGREG(REC_COL_)};
 static const rec_col INTRUDERS[] = {REC_COLS_INTRUDERS(REC_COL_)}; /* per intruder, after the time */
+static const rec_col SLIDING[] = {REC_COLS_SLIDING(REC_COL_)};
 
 /* a fixed-length row: its length and columns from one list */
 #define FIXED(a) .len = (int)(sizeof a / sizeof *a), .cols = a, .ncols = (int)(sizeof a / sizeof *a)
@@ -24,7 +25,8 @@ static const sb_record TABLE[REC_N] = {
 	[REC_FIELD] = {"field", "field", RC_STROBE, .h5 = REC_H5_FIELD, .flags = RECF_OBS},
 	[REC_ENERGY] = {"energy", "energy_rate", RC_RATE, FIXED(ENERGY), .h5 = REC_H5_ENERGY, .flags = RECF_OBS,
 			.def = "box frame: kinetic = sum m v^2 / 2 and I w^2 / 2 of the mobile disks; elastic = sum Y "
-			       "xi^2 / 2 over the contacts; com_height_box = mass-weighted mean y of the mobile disks; "
+			       "xi^2 / 2 over the contacts (hertz: 2/5 Y sqrt(R_eff) xi^5/2; tangential = spring: plus "
+			       "k_t xi_t^2 / 2); com_height_box = mass-weighted mean y of the mobile disks; "
 			       "max_overlap = largest xi / min(R_i, R_j) at the sample (docs/model.md, \"Observables\")"},
 	[REC_CONTACT] = {"contact", "contact_rate", RC_RATE, .cols = CONTACT, .ncols = REC_NCOLS(REC_COLS_CONTACT),
 			 .h5 = REC_H5_CONTACTS, .flags = RECF_OBS},
@@ -50,6 +52,12 @@ static const sb_record TABLE[REC_N] = {
 			       "(docs/model.md, \"Segregation index\"); frequency = the drive's at the period's end"},
 	[REC_INTRUDERS] = {"intruders", "traj_rate", RC_RATE, .cols = INTRUDERS, .ncols = REC_NCOLS(REC_COLS_INTRUDERS),
 			   .h5 = REC_H5_INTRUDERS, .flags = RECF_INTRUDERS},
+	[REC_SLIDING] = {"sliding contacts", "sliding_samples", RC_PHASE, FIXED(SLIDING), .h5 = REC_H5_OBS "/sliding",
+			 .flags = RECF_OBS,
+			 .def = "per drive period (time and step: its end): sliding_fraction = the mean, over phases "
+				"k/N, k = 1..N (N = samples_per_period), of the fraction of contacts whose shear force "
+				"the Coulomb limit mu |F_N| caps in the contact law evaluated at the sample (0 without "
+				"contacts; docs/model.md, \"Sliding contacts\"); frequency = the drive's at the period's end"},
 };
 
 const sb_record *rec_table(void) { return TABLE; }

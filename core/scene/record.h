@@ -19,7 +19,7 @@
  * by the build that wrote it (a checkpoint of another table, another REC_N, is not
  * resumed: checkpoint.c). A new row goes at the end. */
 enum rec_id { REC_TRAJ, REC_SNAP, REC_FLUX, REC_FIELD, REC_ENERGY, REC_CONTACT, REC_RING, REC_KINETIC, REC_HEIGHT,
-	      REC_SEGREG, REC_INTRUDERS, REC_N };
+	      REC_SEGREG, REC_INTRUDERS, REC_SLIDING, REC_N };
 #define REC_TAG(id) ((id) + 1)
 
 /* When a quantity is sampled (the clock a new row picks; run.c keeps them all):
@@ -71,6 +71,7 @@ enum {
 #define REC_COLS_SEGREG(X) X("time", "s") X("segregation_index", "1")
 /* several intruders' positions: time, then of each intruder (lab frame, as the trajectory) */
 #define REC_COLS_INTRUDERS(X) X("x", "cm") X("y", "cm")
+#define REC_COLS_SLIDING(X) X("time", "s") X("sliding_fraction", "1")
 
 #define REC_COL_COUNT_(name, unit) +1
 /* A column list's length, a constant expression: REC_NCOLS(REC_COLS_TRAJ) = 6. */
@@ -143,7 +144,10 @@ enum rec_reduce { RR_OWN, RR_MEAN, RR_LAST };
 	  "samples each; NULL when not recorded or no period ended")                                          \
 	X(REC_SEGREG, segregation_index_final, RR_LAST, "",                                                    \
 	  "the grains' segregation index of the run's last drive period; NULL when not recorded or no period " \
-	  "ended")
+	  "ended")                                                                                            \
+	X(REC_SLIDING, sliding_mean, RR_MEAN, "1",                                                                      \
+	  "the fraction of contacts at the Coulomb limit (sliding) averaged over the drive periods of the run, " \
+	  "sliding_samples samples each; NULL when not recorded or no period ended")
 
 #define REC_SUM_ENUM_(row, attr, how, unit, def) RSUM_##attr,
 enum rec_summary { REC_SUMMARIES(REC_SUM_ENUM_) RSUM_N };

@@ -38,6 +38,11 @@ int params_validate(const sb_scene *s, sb_err *e)
 		return sb_errf(e, SB_EUSAGE, "%s: restitution is for normal = hooke (%s): with hertz the restitution of "
 			       "its damping depends on the impact speed; set gamma_n (shake --contacts shows the e it gives)",
 			       W("restitution"), W("normal"));
+	/* a shear stiffness beside the viscous law would be ignored */
+	if (s->shear_stiffness > 0 && s->tangential != TANGENTIAL_SPRING)
+		return sb_errf(e, SB_EUSAGE, "%s: shear_stiffness = %g is for tangential = spring (%s: viscous has no shear "
+			       "spring): leave it out or set tangential = spring", W("shear_stiffness"), s->shear_stiffness,
+			       W("tangential"));
 	if (s->r_min > s->r_max)
 		return sb_errf(e, SB_EUSAGE, "%s: r_min (%g) must not exceed r_max (%g, %s)", W("r_min"), s->r_min,
 			       s->r_max, W("r_max"));

@@ -5,7 +5,10 @@
 #
 # Laws: hooke (LAMMPS gran/hooke, dampflag 1, Kt 0), restitution (gran/hooke with the
 # pair's damping 2 zeta sqrt(Y m_eff) from e, and both codes' e of two mobile disks checked
-# against the input e), hertz (LAMMPS gran/hertz/history, Kt ~ 0, see deck()). Cases, gravity off, relative approach speed 50 cm/s:
+# against the input e), hertz (LAMMPS gran/hertz/history, Kt ~ 0, see deck()), and the shear
+# spring with history, tangential = spring (docs/model.md "Tangential law"): spring (LAMMPS
+# gran/hooke/history with the engine's k_t, 2/7 Y) and hertz_spring (gran/hertz/history, k_t
+# 2/7 K), every case against the same style. Cases, gravity off, relative approach speed 50 cm/s:
 #   equal     two unit disks head-on
 #   intruder  a unit grain head-on against the intruder of radius 4
 #   oblique   two unit disks without spin, impact parameter (R_i + R_j)/2: the rebound spin
@@ -16,6 +19,7 @@
 #   see deck())
 #   wall      a unit grain onto a wall disk of radius 1 (LAMMPS: an atom that is not
 #             integrated; its mass enters m_eff as the engine's wall_mass = disk)
+#   glancing  the same with a speed of 25 cm/s along the wall: the disk on a wall's rebound spin
 # The engine's side is tests/bench/lammps_collision.c (its own force and verlet code);
 # LAMMPS gets the law's values and the masses that program prints (m = mass_factor rho R^2,
 # docs/model.md "Units", given to LAMMPS with `set atom N mass`). Both sides' trajectories,
@@ -47,8 +51,8 @@ BIN=${COLL_BIN:-$REPO/build/rel/tests/bench/lammps_collision}
 LMP=${LMP:-lmp}
 DT=${COLL_DT:-1e-6}
 ENGINE_ARGS=${COLL_ENGINE_ARGS:-}
-LAWS=${COLL_LAWS:-hooke restitution hertz}
-CASES=${COLL_CASES:-equal intruder oblique sticking sliding wall}
+LAWS=${COLL_LAWS:-hooke restitution hertz spring hertz_spring}
+CASES=${COLL_CASES:-equal intruder oblique sticking sliding wall glancing}
 TOL=1e-3 TOL_W_ABS=1e-6 TOL_CONV=1e-4
 # hertz sticking and sliding against pair_style granular (see deck()): its lever R_i - xi/2
 # is shorter than the engine's R_i by at most xi_max / 2R_i (xi_max: the engine's largest
@@ -98,10 +102,11 @@ hdr() { sed -n '1s/.* '"$2"'=\([^ ]*\).*/\1/p' "$1"; }
 # the LAMMPS deck of one case, from the engine's header (law values before any override)
 deck() { # LAW CASE HEADER DUMP
 	local law=$1 cs=$2 h=$3 dump=$4
-	local Y gn gs mu K e r0 r1 m0 m1 wall gap v
-	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu)
+	local Y gn gs mu K e r0 r1 m0 m1 wall gap v kt
+	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu) kt=$(hdr "$h" shear_stiffness)
 	K=$(hdr "$h" hertz_stiffness) e=$(hdr "$h" restitution) r0=$(hdr "$h" r0) r1=$(hdr "$h" r1)
 	m0=$(hdr "$h" m0) m1=$(hdr "$h" m1) wall=$(hdr "$h" wall) gap=$(hdr "$h" gap) v=$(hdr "$h" v)
+	local vxw; vxw=$(hdr "$h" vx_wall)
 	# the case's tangential values: also in the main loop (the engine's arguments)
 	case $cs in sticking) gs=1e4 ;; sliding) gs=1e4 mu=0.05 ;; esac
 	local b=0 x1 y1 vx0 vy0 vx1
@@ -109,6 +114,13 @@ deck() { # LAW CASE HEADER DUMP
 	local pair
 	case $law in
 	hooke) pair="pair_style gran/hooke $Y 0.0 $gn $gs $mu 1
+pair_coeff * *" ;;
+	# the shear spring: LAMMPS's history styles are its definition (docs/model.md "Tangential
+	# law"); the one difference, the 2D spring turning with the contact where LAMMPS projects
+	# its 3-vector, is O(delta^2) per step
+	spring) pair="pair_style gran/hooke/history $Y $kt $gn $gs $mu 1
+pair_coeff * *" ;;
+	hertz_spring) pair="pair_style gran/hertz/history $K $kt $gn $gs $mu 1
 pair_coeff * *" ;;
 	hertz)
 		# Kt: LAMMPS's history styles divide by Kt when a contact slides (Kt = 0 gives NaN),
@@ -139,7 +151,7 @@ pair_coeff * * hertz $K $gn damping viscoelastic tangential linear_nohistory $(a
 pair_coeff * *" ;;
 	esac
 	if [ "$wall" = 1 ]; then
-		x1=0 y1=0 vx0=0 vy0=-$v vx1=0
+		x1=0 y1=0 vx0=$vxw vy0=-$v vx1=0
 		local y0; y0=$(awk -v a="$r0" -v c="$r1" -v g="$gap" 'BEGIN{printf "%.17g", a+c+g}')
 		local x0=0
 	else
@@ -259,13 +271,14 @@ if [ -n "${COLL_DOC:-}" ]; then
 		echo "$("$LMP" -h 2>/dev/null | sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simulator - \(.*\)/LAMMPS \1/p' | head -1 || true); Δt = $DT s in both codes${ENGINE_ARGS:+, engine only: $ENGINE_ARGS}."
 		echo
 		cat <<'EOD'
-Each law (docs/model.md "Contact law", "Normal law", "Restitution") on single collisions, gravity
+Each law (docs/model.md "Contact law", "Normal law", "Restitution", "Tangential law") on single collisions, gravity
 off, relative approach speed 50 cm/s: two unit disks head-on (*equal*), a unit grain and the
 intruder of radius 4 head-on (*intruder*), two unit disks without spin at impact parameter
 (R_i + R_j)/2 (*oblique*; γ_S = 1 s⁻¹, a weak viscous shear force), the same with γ_S = 10⁴ s⁻¹
 (*sticking*: the slip stops within the contact) and with γ_S = 10⁴ s⁻¹, μ = 0.05 (*sliding*: at
 μ|F_N| throughout), a unit grain onto a wall disk of radius 1 (*wall*; LAMMPS: an atom that is not
-integrated, its mass in m_eff as the engine's `wall_mass = disk`). The engine runs its own force
+integrated, its mass in m_eff as the engine's `wall_mass = disk`), the same with 25 cm/s along
+the wall (*glancing*: the rebound spin of a disk on a wall). The engine runs its own force
 and `verlet` code (`tests/bench/lammps_collision.c`), LAMMPS `nve/sphere disc`; the masses
 m = 2πρR² are given to LAMMPS with `set atom N mass`. One analysis reads both codes'
 trajectories: the contact from where ξ = R_i + R_j − d turns positive to where it turns
@@ -291,6 +304,13 @@ How LAMMPS is driven, and where the two codes' definitions differ:
   the shear force at the contact point, R_i − ξ/2 from the centre, not at R_i (and takes the
   surface velocity there): with the same normal damping (`damping velocity`) it gave the
   oblique case's spin −0.0797 rad/s against the engine's −0.0807 (1.3 %, e and t_c to 10⁻⁹).
+- **spring**, **hertz_spring** (`tangential = spring`, docs/model.md "Tangential law"):
+  `gran/hooke/history Y k_t γ_N γ_S μ 1` and `gran/hertz/history K k_t γ_N γ_S μ 1` with the
+  engine's k_t (2/7 of the normal stiffness, LAMMPS's default too), in every case: the
+  history styles are the definition the engine follows, so the same tolerance holds. The
+  one difference, the engine's scalar 2D spring turning with the contact where LAMMPS
+  projects its 3-vector onto the new tangent plane, is O(δ²) per step (δ the normal's turn
+  in a step); it shows nowhere above 10⁻⁷.
 - **hertz**: `gran/hertz/history K Kt γ_N γ_S μ 1` has our form exactly: F_N = √(ξR_eff)(Kξ +
   γ_N m_eff ξ̇), shear damping times √(ξR_eff); K in force/area, γ_N in 1/(time·length) in both.
   Two differences: (a) it keeps a shear history; with Kt = 0 it divides by Kt once a contact

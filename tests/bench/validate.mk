@@ -33,10 +33,12 @@ JOBS           ?= 2
 validate-lammps: build/.deps-ok all
 	$(Q)VALIDATE_QUICK=$(VALIDATE_QUICK) VALIDATE_PARTS="$(VALIDATE_PARTS)" JOBS=$(JOBS) bash tests/bench/validate_lammps.sh
 
-# `make validate-collisions`: the three contact laws (hooke, restitution, hertz) against LAMMPS on
-# single two-disk collisions (tests/bench/lammps_collisions.sh: e, contact time, rebound spin;
-# exits 1 on a disagreement). Writes docs/validate_lammps_collisions.md, which
-# tests/bench/validate_lammps.sh appends to docs/validate_lammps.md. Seconds; not part of `make check`.
+# `make validate-collisions`: the contact laws (hooke, restitution, hertz, and the shear spring
+# with history: spring, hertz_spring) against LAMMPS on single two-disk collisions
+# (tests/bench/lammps_collisions.sh: e, contact time, rebound spin; exits 1 on a
+# disagreement). Writes docs/validate_lammps_collisions.md, which tests/bench/validate_lammps.sh
+# appends to docs/validate_lammps.md. A minute; `make check` runs the same comparison
+# (tests/integration/lammps_collisions.sh) without writing the document.
 COLL_BIN = $(BUILD)/tests/bench/lammps_collision
 
 .PHONY: validate-collisions

@@ -4,7 +4,8 @@
 # paper's law (the restitution varies with the pair's masses) and with restitution = 0.8
 # (every pair of mobile disks 0.8, a grain on a wall 0.8 only with wall_mass = infinite);
 # a run file's /contact_law holds the same numbers for a bed of equal grains; restitution
-# beside gamma_n is refused naming both; a shaken bed with restitution runs.
+# beside gamma_n is refused naming both; a shaken bed with restitution runs. The tangential
+# law and its k_t are shown and recorded, a shear stiffness beside the viscous law refused.
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
@@ -93,4 +94,26 @@ shake_run h.log "${BEDARGS[@]}" normal=hertz frequency=4 amplitude=1 duration=0.
 rc=$?
 [ "$rc" -eq 0 ] && [ "$(attr h.h5 /contact_law/normal)" = hertz ] && [ "$(attr h.h5 /contact_law/impact_speed)" = 20 ] &&
 	ok runfile.hertz || fail runfile.hertz "exit $rc: $(tail -n 2 h.log)"
+
+# --- the tangential law (docs/model.md, "Tangential law"): k_t's default is 2/7 of the
+# normal stiffness, shown by --contacts and recorded in /contact_law; a shear stiffness
+# beside the viscous law, or out of its range, is refused naming the key ---
+"$SHAKE" --contacts tangential=spring >sp.txt 2>&1
+grep -q '^# tangential = spring: shear_stiffness k_t = 857143 ' sp.txt &&
+	"$SHAKE" --contacts tangential=spring normal=hertz | grep -q 'k_t = 9e+06 ' && ok tangential.contacts_kt ||
+	fail tangential.contacts_kt "$(head -3 sp.txt)"
+"$SHAKE" --contacts shear_stiffness=1e6 >sv.txt 2>&1
+rc=$?
+[ "$rc" = 1 ] && grep -q 'command line: shear_stiffness = 1e+06 is for tangential = spring (default' sv.txt &&
+	ok tangential.kt_refused_with_viscous || fail tangential.kt_refused_with_viscous "exit $rc: $(cat sv.txt)"
+printf 'tangential = spring\nshear_stiffness = 2e15\n' >kt.ini
+"$SHAKE" kt.ini --contacts >sr.txt 2>&1
+rc=$?
+[ "$rc" = 1 ] && grep -q 'kt.ini:2: shear_stiffness: expected a number in \[0, 1e+15\]' sr.txt &&
+	ok tangential.kt_range || fail tangential.kt_range "exit $rc: $(cat sr.txt)"
+shake_run t.log "${BEDARGS[@]}" tangential=spring shear_stiffness=5e5 frequency=4 amplitude=1 duration=0.3 snapshots=no output=t.h5
+rc=$?
+[ "$rc" -eq 0 ] && [ "$(attr t.h5 /contact_law/tangential)" = spring ] && [ "$(attr t.h5 /contact_law/shear_stiffness)" = 500000 ] &&
+	[ "$(attr r.h5 /contact_law/tangential)" = viscous ] && [ -z "$(attr r.h5 /contact_law/shear_stiffness)" ] &&
+	ok runfile.tangential || fail runfile.tangential "exit $rc: $(tail -n 2 t.log)"
 finish

@@ -8,7 +8,8 @@
 # A checkpoint whose journal is missing or shorter than it says (a run directory deleted
 # while the run wrote), or a journal without its checkpoint, starts the run over: exit 0
 # with a note, the same file as an uninterrupted run; restart = yes refuses the former.
-# tier: slow: five runs of 2.5 s, each killed and resumed
+# The shear spring's history (tangential = spring, periodic sides) resumes the same way.
+# tier: slow: six runs of 2.5 s, each killed and resumed
 . "$(dirname "$0")/lib.sh"
 cd "$TMP" || exit 1
 
@@ -214,6 +215,14 @@ orphan() {
 orphan ckpt_without_journal nojournal
 orphan ckpt_with_short_journal short
 orphan journal_without_ckpt nockpt
+
+# --- the shear spring (tangential = spring): its per-contact history lives in the
+#     checkpoint; periodic sides put seam pairs in it too, the energy series its energy ---
+SPRING=(tangential=spring sides=periodic energy_rate=200)
+if reference spring_ref "${SPRING[@]}"; then
+	moment
+	killed_and_resumed spring_kill spring_ref KILL "$MOMENT" "${SPRING[@]}"
+fi
 
 # --- verlet ---
 SCENE+=(integrator=verlet)

@@ -147,7 +147,7 @@ static cres run_law(const ccase *c, int clip, double dt, double resti, int hertz
 		if (emax && !wall && xi1 > 0) { /* two mobile disks: E of the relative motion */
 			double el, mo;
 			long nc;
-			forces_contact_energy(&s->law, st, &s->nl, &el, &mo, &nc);
+			forces_contact_energy(&s->law, st, &s->nl, kernel_shear(s->kern), &el, &mo, &nc);
 			const double E0 = 0.5 * meff_ * V0 * V0, E = 0.5 * meff_ * xid1 * xid1 + el;
 			*emax = fmax(*emax, fabs(E - E0) / E0);
 		}

@@ -24,6 +24,7 @@
 #include "place.h"
 #include "sample.h"
 #include "sim.h"
+#include "simtest.h"
 #include "step.h"
 #include "testlib.h"
 
@@ -34,20 +35,6 @@ static sb_scene periodic_scene(double W)
 	sc.sides = SIDES_PERIODIC;
 	sc.width = W;
 	return sc;
-}
-
-static sb_sim *new_sim(const sb_scene *sc)
-{
-	sb_sim *s = calloc(1, sizeof *s);
-	sb_err e = {0};
-	sim_init(s, sc, &e);
-	return s;
-}
-
-static void del_sim(sb_sim *s)
-{
-	sim_free(s);
-	free(s);
 }
 
 /* A pair of grains at x0 and x1 (y = 5), with velocities and spins, and the forces of
@@ -261,7 +248,7 @@ static double energy(sb_sim *s)
 {
 	double el, ov;
 	long nc;
-	forces_contact_energy(&s->law, &s->st, &s->nl, &el, &ov, &nc);
+	forces_contact_energy(&s->law, &s->st, &s->nl, kernel_shear(s->kern), &el, &ov, &nc);
 	return sim_kinetic(s) + el;
 }
 

@@ -24,23 +24,10 @@
 
 #include "place.h"
 #include "sim.h"
+#include "simtest.h"
 #include "step.h"
 #include "testlib.h"
 #include "units.h"
-
-static sb_sim *new_sim(const sb_scene *sc)
-{
-	sb_sim *s = calloc(1, sizeof *s);
-	sb_err e = {0};
-	sim_init(s, sc, &e);
-	return s;
-}
-
-static void del_sim(sb_sim *s)
-{
-	sim_free(s);
-	free(s);
-}
 
 /* (a) */
 static void spin_drop(void)

@@ -49,5 +49,21 @@ int main(void)
 	sc.dt = 0.07 * pi / 2000;
 	CHECK("dtguard.check.silent_below_half", dtguard_check(&sc, 0.5, warn, sizeof warn, &e) == 0 && !warn[0],
 	      "warn '%s'", warn);
+
+	/* the shear spring (docs/model.md, "Tangential law"): its oscillation, 3 k_t / m_eff,
+	 * is the faster one only for k_t > Y / 3; the default 2/7 Y and Y / 3 leave the limit
+	 * 0.15 pi / 2000 alone, k_t = Y shortens it by sqrt(3), to 0.0866 pi / 2000 */
+	sc.tangential = TANGENTIAL_SPRING;
+	sc.dt = 0.14 * pi / 2000;
+	e = (sb_err){0};
+	CHECK("dtguard.spring.default_kt_as_viscous", dtguard_check(&sc, 0.5, warn, sizeof warn, &e) == 0, "%s", e.msg);
+	sc.shear_stiffness = sc.stiffness / 3;
+	CHECK("dtguard.spring.third_of_y_as_viscous", dtguard_check(&sc, 0.5, warn, sizeof warn, &e) == 0, "%s", e.msg);
+	sc.shear_stiffness = sc.stiffness;
+	sc.dt = 0.09 * pi / 2000;
+	CHECK("dtguard.spring.stiff_refused", dtguard_check(&sc, 0.5, warn, sizeof warn, &e) == SB_EUSAGE, "rc %d", e.code);
+	e = (sb_err){0};
+	sc.dt = 0.085 * pi / 2000;
+	CHECK("dtguard.spring.stiff_below_its_limit", dtguard_check(&sc, 0.5, warn, sizeof warn, &e) == 0, "%s", e.msg);
 	return tl_done();
 }

@@ -3,7 +3,9 @@
  * the contact law applied pair by pair in list order with m_eff = 1 / (1/m_i + 1/m_j)
  * (forces_pair), in st->f and through the fused corrector's path; the ring's |F| sums
  * are those of the same pairs; every path gives the first path's bits (forces, ring
- * sums, fused step, neighbour list); an unknown or unrunnable path is refused. */
+ * sums, fused step, neighbour list); an unknown or unrunnable path is refused. The
+ * shear-spring law (tangential = spring) too: its forces are forces_pair_spring's pair
+ * by pair from zero shear, the same on every path. */
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <signal.h>
@@ -44,8 +46,14 @@ static void reference(const sb_law *law, const sb_state *st, const sb_nlist *nl,
 		memset(f[c], 0, sizeof(double) * (size_t)st->n);
 	for (int p = 0; p < nl->nflat; p++) {
 		const int i = nl->pi[p] >> nl->pshift, j = nl->pj[p] >> nl->pshift;
-		double fx, fy, ti, tj;
-		forces_pair(law, st->q[C_X][0][i] - st->q[C_X][0][j], st->q[C_Y][0][i] - st->q[C_Y][0][j], st->r[i],
+		double fx, fy, ti, tj, h = 0; /* the spring's: a fresh contact */
+		if (law->spring)
+			forces_pair_spring(law, st->q[C_X][0][i] - st->q[C_X][0][j], st->q[C_Y][0][i] - st->q[C_Y][0][j],
+					   st->r[i], st->r[j], st->q[C_X][1][i] - st->q[C_X][1][j],
+					   st->q[C_Y][1][i] - st->q[C_Y][1][j], st->q[C_TH][1][i], st->q[C_TH][1][j],
+					   1.0 / (st->inv_m[i] + st->inv_m[j]), inv_dt, &h, 1, &fx, &fy, &ti, &tj);
+		else
+			forces_pair(law, st->q[C_X][0][i] - st->q[C_X][0][j], st->q[C_Y][0][i] - st->q[C_Y][0][j], st->r[i],
 			    st->r[j], (st->q[C_X][1][i] - st->q[C_X][1][j]) * inv_dt,
 			    (st->q[C_Y][1][i] - st->q[C_Y][1][j]) * inv_dt, st->q[C_TH][1][i] * inv_dt,
 			    st->q[C_TH][1][j] * inv_dt, 1.0 / (st->inv_m[i] + st->inv_m[j]), &fx, &fy, &ti, &tj);
@@ -75,12 +83,14 @@ static double max_rel(const double *a, const double *b, int n)
 	return scale > 0 ? worst / scale : worst;
 }
 
+enum { NMODE = 10 };
+
 /* what the first path gave, for the others to equal: per clip, the forces, the ring
  * sums, the fused step's state and the list */
 typedef struct firsts {
-	int have[6];
-	double *f[6][3], *fs[6], *q[6][3][6];
-	int *pi[6], *pj[6], np[6];
+	int have[NMODE];
+	double *f[NMODE][3], *fs[NMODE], *q[NMODE][3][6];
+	int *pi[NMODE], *pj[NMODE], np[NMODE];
 } firsts;
 
 static int bits_equal(const void *a, const void *b, size_t bytes)
@@ -99,16 +109,19 @@ static void test_forces(const char *path, firsts *fi)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	/* mode: clip_attractive (bit 0); the law (mode / 2): the paper's, the damping per
-	 * pair from restitution, Hertz */
-	for (int mode = 0; mode < 6; mode++) {
-		const int clip = mode & 1, resti = mode / 2 == 1, hertz = mode / 2 == 2;
-		const char *const rs = resti ? ".restitution" : hertz ? ".hertz" : "";
+	 * pair from restitution, Hertz, the shear spring, Hertz with the shear spring */
+	for (int mode = 0; mode < NMODE; mode++) {
+		const int clip = mode & 1, resti = mode / 2 == 1, hertz = mode / 2 == 2 || mode / 2 == 4,
+			  spring = mode / 2 >= 3;
+		const char *const rs = resti ? ".restitution" : mode / 2 == 2 ? ".hertz" : mode / 2 == 3 ? ".spring" : mode / 2 == 4 ? ".hertz_spring" : "";
 		gsl_rng_set(rng, 7 + (unsigned long)clip);
 		sb_state st = {0};
 		const double dt = 5e-5, inv_dt = 1 / dt;
 		scene(&st, rng, 203, 30, 12, dt); /* 203: a partial last block of eight */
 		/* scattered: some overlaps are deep */
-		sb_law law = {hertz ? 3.15e7 : 3e6, 100, 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0, hertz};
+		/* the spring's shear damping large enough that some contacts reach the Coulomb cap */
+		sb_law law = {hertz ? 3.15e7 : 3e6, 100, spring ? 2000 : 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0, hertz,
+			      spring, 2.0 / 7.0 * (hertz ? 3.15e7 : 3e6)};
 		sb_nlist nl;
 		sb_kernel *k = NULL;
 		sb_err e = {0};
@@ -134,7 +147,8 @@ static void test_forces(const char *path, firsts *fi)
 			ncontact += fs_ref[i] > 0;
 		snprintf(id, sizeof id, "kernel.%s.clip%d%s.scene_has_contacts", path, clip, rs);
 		CHECK(id, ncontact > 100, "only %d disks touch", ncontact);
-		/* into st->f */
+		/* into st->f; each evaluation below from zero shear, as the reference */
+		sb_shear *sh = kernel_shear(k);
 		int bad = kernel_forces(k, &law, &st, &nl, inv_dt, 0, NULL, &e);
 		double w = 0;
 		for (int c = 0; c < 3; c++) {
@@ -147,6 +161,7 @@ static void test_forces(const char *path, firsts *fi)
 		/* the ring's sums */
 		for (int c = 0; c < 3; c++)
 			memcpy(got[c], st.f[c], sizeof(double) * (size_t)st.n);
+		shear_clear(sh);
 		kernel_forces(k, &law, &st, &nl, inv_dt, 0, fs_got, &e);
 		snprintf(id, sizeof id, "kernel.%s.clip%d%s.ring_sums_equal_pair_sums", path, clip, rs);
 		CHECK(id, max_rel(fs_got, fs_ref, st.n) < 1e-12, "largest relative difference %.3g",
@@ -156,6 +171,23 @@ static void test_forces(const char *path, firsts *fi)
 		tight.max_overlap = 1e-6;
 		snprintf(id, sizeof id, "kernel.%s.clip%d%s.overlap_flag", path, clip, rs);
 		CHECK(id, kernel_forces(k, &tight, &st, &nl, inv_dt, 0, NULL, &e) == 1, "no overlap beyond 1e-6 R reported");
+		if (spring) { /* some contacts slid: the cap's rescaling is on every path */
+			int capped = 0;
+			for (int p = 0; p < nl.nflat; p++)
+				if (sh->xi[p] != 0) {
+					const int i = nl.pi[p] >> nl.pshift, j = nl.pj[p] >> nl.pshift;
+					double h = 0, fx, fy, ti, tj;
+					forces_pair_spring(&law, st.q[C_X][0][i] - st.q[C_X][0][j],
+							   st.q[C_Y][0][i] - st.q[C_Y][0][j], st.r[i], st.r[j],
+							   st.q[C_X][1][i] - st.q[C_X][1][j], st.q[C_Y][1][i] - st.q[C_Y][1][j],
+							   st.q[C_TH][1][i], st.q[C_TH][1][j], 1.0 / (st.inv_m[i] + st.inv_m[j]),
+							   inv_dt, &h, 1, &fx, &fy, &ti, &tj);
+					/* advanced once from zero, twice now: 2 v_t dt unless rescaled */
+					capped += fabs(sh->xi[p] - 2 * h) > 1e-9 * fabs(h);
+				}
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.some_contacts_slide", path, clip, rs);
+			CHECK(id, capped > 5, "only %d contacts at the Coulomb cap: the rescaling is not exercised", capped);
+		}
 		/* the fused path: forces kept, corrected and predicted in one pass, then
 		 * synced, equal the reference step (forces into st->f, correct, predict) */
 		sb_integ in;
@@ -163,6 +195,7 @@ static void test_forces(const char *path, firsts *fi)
 		sb_state st2 = {0};
 		gsl_rng_set(rng, 7 + (unsigned long)clip);
 		scene(&st2, rng, 203, 30, 12, dt);
+		shear_clear(sh);
 		kernel_forces(k, &law, &st, &nl, inv_dt, 0, NULL, &e);
 		integ_correct_predict(&in, &st, -981);
 		sb_kernel *k2 = NULL;
@@ -292,7 +325,7 @@ static void test_invariants(void)
 	gsl_rng_set(rng, 11);
 	sb_state st = {0};
 	scene(&st, rng, 41, 12, 8, 5e-5);
-	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0, 0};
+	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0, 0, 0, 0};
 	sb_nlist nl;
 	sb_kernel *k = NULL;
 	sb_err e = {0};
@@ -372,7 +405,7 @@ int main(void)
 	}
 	test_refusals(p, n);
 	test_invariants();
-	for (int c = 0; c < 6; c++) {
+	for (int c = 0; c < NMODE; c++) {
 		for (int d = 0; d < 3; d++) {
 			free(fi.f[c][d]);
 			for (int o = 0; o < 6; o++)
