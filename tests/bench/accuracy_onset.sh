@@ -261,7 +261,7 @@ commit=$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo unknown)
 	echo "the surface height ≥ $THRESH particles/period, $FROM–$TO Hz, tolerance $TOL Hz, \`stop = flux\`), no intruder, one"
 	echo "search per bed and preset; a bed's onset is the midpoint of its final bracket, known to ±$(awk -v t="$TOL" 'BEGIN { print t / 2 }') Hz. $N1 beds"
 	[ "$MISS1" = 0 ] || echo "($MISS1 without an onset with both presets: $(grep '^#' "$DIR/e1_pairs.txt" | sed 's/^# //' | paste -sd';'))"
-	echo "($NRUN1 runs, $SIM1 simulated s, $CPU1 CPU s: paper $CPU1P, fast $CPU1F; $WALL1 s wall): $V1"
+	echo "($NRUN1 runs, $SIM1 simulated s, $CPU1 CPU s: paper $CPU1P, fast $CPU1F): $V1"
 	echo
 	echo "| bed | paper onset (Hz) | fast onset (Hz) | fast − paper |"
 	echo "|---:|---:|---:|---:|"
@@ -269,7 +269,7 @@ commit=$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo unknown)
 	echo "| mean | $(kv "$DIR/e1_paired.txt" mean_a | xargs printf '%.3f') | $(kv "$DIR/e1_paired.txt" mean_b | xargs printf '%.3f') | $(kv "$DIR/e1_paired.txt" mean_d | xargs printf '%+.3f') |"
 	echo
 	echo "(e2) **Φ(D) at $(echo $FREQS | sed 's/ / and /') Hz** with and without the intruder (𝓡 = 4, depth 1), $NP beds each, $DUR s per run,"
-	echo "the periods after the first 20 % averaged ($((8 * NP)) runs, $CPU2 CPU s, $WALL2 s wall). Mid-bed |Φ|: the mean over the"
+	echo "the periods after the first 20 % averaged ($((8 * NP)) runs, $CPU2 CPU s). Mid-bed |Φ|: the mean over the"
 	echo "lines in 0.4–0.6 of the surface height (\`bin/onset\`'s Φ of a run); profile: the paired differences line"
 	echo "by line (\`bin/dumpflux compare\`), lines whose 95 % interval excludes 0, χ² per line and its exact"
 	echo "sign-flip p over the beds."
