@@ -812,7 +812,7 @@ presets_C() {
 	ev=$(awk -v w="$word" -v a="$fp" -v b="$ff" 'BEGIN { if (w == "differ") print "differ"
 		else if ((a < 0.05) != (b < 0.05)) print "answer_differs"; else print "indistinguishable" }')
 	[ "$QUICK" = 1 ] || bash "$REPO/scripts/preset_evidence.sh" set val-C-presets "$ev" \
-		"make validate-lammps, part C, $(date +%Y-%m-%d), $(git -C "$REPO" rev-parse --short HEAD 2>/dev/null)" \
+		"make validate-lammps, part C, runs of $(stamp C 1 | cut -c1-10) at $(stamp C 2 | cut -c1-7)" \
 		"claim 5 at $C_FREQ Hz on the same $n beds per depth: risen with fast $kf0/$n and $kf1/$n against paper's $kp0/$n and $kp1/$n at depth 0 and 1 (McNemar p = $(fmtp "$m0"), $(fmtp "$m1"); detectable with 80 % power $pw0, $pw1); the depth effect: Fisher p = $(fmtp "$fp") with paper, $(fmtp "$ff") with fast" ||
 		die "C: cannot write docs/preset_evidence.tsv"
 }
