@@ -84,6 +84,16 @@ void db_now(char *buf, size_t len)
 	strftime(buf, len, "%Y-%m-%dT%H:%M:%SZ", &tm);
 }
 
+/* is w one of the blank-separated words of list? */
+static int has_word(const char *list, const char *w)
+{
+	const size_t n = strlen(w);
+	for (const char *p = list; (p = strstr(p, w)); p += n)
+		if ((p == list || p[-1] == ' ') && (p[n] == ' ' || !p[n]))
+			return 1;
+	return 0;
+}
+
 int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
 {
 	char axes[2048] = "", seed[32];
@@ -99,15 +109,10 @@ int db_campaign_put(st_db *d, const campaign *c, const char *now, sb_err *e)
 			k = c->derive == CP_DERIVE_AMPLITUDE ? "amplitude" : "frequency";
 			k2 = c->derive == CP_DERIVE_BOTH ? "amplitude" : NULL;
 		}
-		for (const char *w = k; w && l < sizeof axes; w = w == k ? k2 : NULL) {
-			/* once: gamma and velocity both set frequency and amplitude */
-			char pad[2100];
-			snprintf(pad, sizeof pad, " %s ", axes);
-			char want[64];
-			snprintf(want, sizeof want, " %s ", w);
-			if (!strstr(pad, want))
+		/* once: gamma and velocity both set frequency and amplitude */
+		for (const char *w = k; w && l < sizeof axes; w = w == k ? k2 : NULL)
+			if (!has_word(axes, w))
 				l += (size_t)snprintf(axes + l, sizeof axes - l, "%s%s", l ? " " : "", w);
-		}
 	}
 	/* an [onset] search varies both too: the analysis tools group by the swept keys */
 	if (c->onset.line && l < sizeof axes)
