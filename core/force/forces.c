@@ -15,11 +15,13 @@
  *   |F_S| > mu |F_N|: xi_t rescaled so that |F_S| = mu |F_N| (LAMMPS gran/hooke/history). */
 #include "forces.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
-#include "periodic.h"
 #include "dtguard.h"
+#include "paircoef.h"
+#include "periodic.h"
 
 double forces_gz(double Y, double e)
 {
@@ -70,7 +72,7 @@ static inline __attribute__((always_inline)) void contact(
 /* tangential = spring (forces.h, forces_pair_spring): contact()'s normal force, then
  * the shear spring in LAMMPS gran/hooke/history's order of operations (its 3-vector
  * shear is the scalar h along t here); gn, gs carry inv_dt */
-static inline void contact_spring(const sb_law *law, const double gn, const double gs, const double dx,
+static inline void contact_spring(const sb_law *law, const sb_kc *c, const double gn, const double gs, const double dx,
 				  const double dy, const double d, const double ri, const double rj, const double dvx,
 				  const double dvy, const double wi, const double wj, const double meff, double *h,
 				  const int update, double *fx, double *fy, double *fs_out, double *xi_out, int *capped)
@@ -78,20 +80,20 @@ static inline void contact_spring(const sb_law *law, const double gn, const doub
 	const double inv = 1.0 / d, nx = dx * inv, ny = dy * inv;
 	const double xi = ri + rj - d;
 	double ph;
-	const double fn = normal_force(law->Y, gn, law->resti, law->hertz, law->clip, xi, -(dvx * nx + dvy * ny), ri, rj,
+	const double fn = normal_force(c->Y, gn, law->resti, law->hertz, law->clip, xi, -(dvx * nx + dvy * ny), ri, rj,
 				       meff, &ph);
 	const double vt = -dvx * ny + dvy * nx - (ri * wi + rj * wj);
 	const double s = update ? *h + vt : *h; /* v_t dt: the velocities are scaled */
 	const double damp = gs * meff * vt;
-	double fs = -(law->kt * s + damp);
+	double fs = -(c->kt * s + damp);
 	if (law->hertz)
 		fs = ph * fs;
-	const double fc = law->mu * fabs(fn), fa = fabs(fs);
+	const double fc = c->mu * fabs(fn), fa = fabs(fs);
 	double snew = s;
 	*capped = fa > fc;
 	if (fa > fc) { /* sliding: the spring stretched only as far as Coulomb allows */
 		if (s != 0) {
-			const double q = damp / law->kt, r = fc / fa;
+			const double q = damp / c->kt, r = fc / fa;
 			snew = r * (s + q) - q;
 			fs *= r;
 		} else {
@@ -106,9 +108,19 @@ static inline void contact_spring(const sb_law *law, const double gn, const doub
 	*xi_out = xi;
 }
 
-void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, double rj, double dvx, double dvy,
-			double wi, double wj, double meff, double inv_dt, double *h, int update, double *fx, double *fy,
-			double *ti, double *tj)
+int forces_pairclass(int ki, int kj)
+{
+	const int lo = ki < kj ? ki : kj, hi = ki < kj ? kj : ki;
+	if (hi == KIND_WALL)
+		return lo == KIND_GRAIN ? PC_GRAIN_WALL : lo == KIND_INTRUDER ? PC_INTRUDER_WALL : -1;
+	if (hi == KIND_INTRUDER)
+		return lo == KIND_GRAIN ? PC_GRAIN_INTRUDER : PC_INTRUDER_INTRUDER;
+	return -1;
+}
+
+static void pair_spring(const sb_law *law, const sb_kc *c, double dx, double dy, double ri, double rj, double dvx,
+			double dvy, double wi, double wj, double meff, double inv_dt, double *h, int update, double *fx,
+			double *fy, double *ti, double *tj)
 {
 	const double d2 = dx * dx + dy * dy, rs = ri + rj;
 	if (!(d2 < rs * rs)) {
@@ -117,15 +129,22 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 	}
 	double fs, xi;
 	int capped;
-	contact_spring(law, (law->resti ? law->gz : law->gn) * inv_dt, law->gs * inv_dt, dx, dy, sqrt(d2), ri, rj, dvx,
-		       dvy, wi, wj, meff, h, update, fx, fy, &fs, &xi, &capped);
+	contact_spring(law, c, c->gn * inv_dt, c->gs * inv_dt, dx, dy, sqrt(d2), ri, rj, dvx, dvy, wi, wj, meff, h,
+		       update, fx, fy, &fs, &xi, &capped);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
 }
 
-void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
-		 double dvx, double dvy, double wi, double wj, double meff,
-		 double *fx, double *fy, double *ti, double *tj)
+void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, double rj, double dvx, double dvy,
+			double wi, double wj, double meff, double inv_dt, double *h, int update, double *fx, double *fy,
+			double *ti, double *tj)
+{
+	const sb_kc c = forces_kc(law, KIND_GRAIN, KIND_GRAIN);
+	pair_spring(law, &c, dx, dy, ri, rj, dvx, dvy, wi, wj, meff, inv_dt, h, update, fx, fy, ti, tj);
+}
+
+static void pair_viscous(const sb_law *law, const sb_kc *c, double dx, double dy, double ri, double rj, double dvx,
+			 double dvy, double wi, double wj, double meff, double *fx, double *fy, double *ti, double *tj)
 {
 	double d2 = dx * dx + dy * dy, rs = ri + rj;
 	if (d2 >= rs * rs) {
@@ -134,10 +153,18 @@ void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
 	}
 	double fs, xi, d = sqrt(d2);
 	int capped;
-	contact(law->Y, law->resti ? law->gz : law->gn, law->resti, law->hertz, law->gs, law->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy,
-		wi, wj, meff, fx, fy, &fs, &xi, &capped);
+	contact(c->Y, c->gn, law->resti, law->hertz, c->gs, c->mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, dvx, dvy, wi,
+		wj, meff, fx, fy, &fs, &xi, &capped);
 	*ti = -ri * fs;
 	*tj = -rj * fs;
+}
+
+void forces_pair(const sb_law *law, double dx, double dy, double ri, double rj,
+		 double dvx, double dvy, double wi, double wj, double meff,
+		 double *fx, double *fy, double *ti, double *tj)
+{
+	const sb_kc c = forces_kc(law, KIND_GRAIN, KIND_GRAIN);
+	pair_viscous(law, &c, dx, dy, ri, rj, dvx, dvy, wi, wj, meff, fx, fy, ti, tj);
 }
 
 /* A contact's force on i and -force on j, its torques, into io (and |F| into fsum when
@@ -166,6 +193,7 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 {
 	const double Y = law->Y, gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
 		     mo = law->max_overlap, W = nl->period;
+	assert(!law->table); /* a table's law runs through forces_scalar */
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
 	const int ps = io->ps;
 	int bad = 0;
@@ -206,31 +234,43 @@ static inline int pair_at(const sb_state *st, const sb_nlist *nl, int p, int *i,
 	return pair_at_x(st->q[C_X][0], 1, nl, p, i, j, dx);
 }
 
-int forces_spring(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
+int forces_scalar(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
 		  double inv_dt, double *fsum)
 {
-	const double gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mo = law->max_overlap;
+	const double mo = law->max_overlap;
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
-	const int ps = io->ps;
+	const unsigned char *kind = st->kind;
+	const int ps = io->ps, spring = law->spring;
 	int bad = 0;
 	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
 		int i, j;
 		double dx;
 		if (!pair_at_x(io->x, ps, nl, p, &i, &j, &dx)) { /* the list's padding */
-			sh->xi[p] = 0;
+			if (spring)
+				sh->xi[p] = 0;
 			continue;
 		}
 		const double dy = io->y[i * ps] - io->y[j * ps], rs = r[i] + r[j], d2 = dx * dx + dy * dy;
 		if (!(d2 < rs * rs)) { /* no contact: its history ends (docs/model.md, "Tangential law") */
-			sh->xi[p] = 0;
+			if (spring)
+				sh->xi[p] = 0;
 			continue;
 		}
 		const double ri = r[i], rj = r[j];
+		const sb_kc c = forces_kc(law, kind[i], kind[j]);
+		const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
 		double fx, fy, f_s, xi;
 		int capped;
-		contact_spring(law, gn, gs, dx, dy, sqrt(d2), ri, rj, io->vx[i * ps] - io->vx[j * ps],
-			       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &sh->xi[p], 1, &fx, &fy,
-			       &f_s, &xi, &capped);
+		if (spring)
+			contact_spring(law, &c, gn, gs, dx, dy, sqrt(d2), ri, rj, io->vx[i * ps] - io->vx[j * ps],
+				       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &sh->xi[p], 1,
+				       &fx, &fy, &f_s, &xi, &capped);
+		else {
+			const double d = sqrt(d2);
+			contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
+				io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j],
+				1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
+		}
 		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
 	}
 	return bad;
@@ -256,11 +296,12 @@ void forces_contact_energy(const sb_law *law, const sb_state *st, const sb_nlist
 		if (xi <= 0)
 			continue;
 		/* the work of the normal spring: Y xi^2 / 2, Hertz's 2/5 Y sqrt(R_eff) xi^5/2 */
+		const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
 		const double ph = law->hertz ? sqrt(xi * (r[i] * r[j] / (r[i] + r[j]))) : 1;
-		el += law->hertz ? 0.4 * law->Y * xi * xi * ph : 0.5 * law->Y * xi * xi;
+		el += law->hertz ? 0.4 * c.Y * xi * xi * ph : 0.5 * c.Y * xi * xi;
 		/* the shear spring's, k_t xi_t^2 / 2 (hertz: its stiffness k_t sqrt(xi R_eff)) */
 		if (hs)
-			el += 0.5 * ph * law->kt * hs[p] * hs[p];
+			el += 0.5 * ph * c.kt * hs[p] * hs[p];
 		worst = fmax(worst, xi / fmin(r[i], r[j]));
 		n++;
 	}
@@ -283,15 +324,16 @@ long forces_contacts(const sb_law *law, const sb_state *st, const sb_nlist *nl, 
 		if (!real || !(d < r[i] + r[j]))
 			continue;
 		double fx, fy, ti, tj;
+		const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
 		if (law->spring) { /* the shear displacement as it is, not advanced */
 			double h = hs ? sh->xi[p] : 0;
-			forces_pair_spring(law, dx, dy, r[i], r[j], st->q[C_X][1][i] - st->q[C_X][1][j],
-					   st->q[C_Y][1][i] - st->q[C_Y][1][j], st->q[C_TH][1][i], st->q[C_TH][1][j],
-					   1.0 / (st->inv_m[i] + st->inv_m[j]), inv_dt, &h, 0, &fx, &fy, &ti, &tj);
+			pair_spring(law, &c, dx, dy, r[i], r[j], st->q[C_X][1][i] - st->q[C_X][1][j],
+				    st->q[C_Y][1][i] - st->q[C_Y][1][j], st->q[C_TH][1][i], st->q[C_TH][1][j],
+				    1.0 / (st->inv_m[i] + st->inv_m[j]), inv_dt, &h, 0, &fx, &fy, &ti, &tj);
 		} else {
-			forces_pair(law, dx, dy, r[i], r[j], (st->q[C_X][1][i] - st->q[C_X][1][j]) * inv_dt,
-				    (st->q[C_Y][1][i] - st->q[C_Y][1][j]) * inv_dt, st->q[C_TH][1][i] * inv_dt,
-				    st->q[C_TH][1][j] * inv_dt, 1.0 / (st->inv_m[i] + st->inv_m[j]), &fx, &fy, &ti, &tj);
+			pair_viscous(law, &c, dx, dy, r[i], r[j], (st->q[C_X][1][i] - st->q[C_X][1][j]) * inv_dt,
+				     (st->q[C_Y][1][i] - st->q[C_Y][1][j]) * inv_dt, st->q[C_TH][1][i] * inv_dt,
+				     st->q[C_TH][1][j] * inv_dt, 1.0 / (st->inv_m[i] + st->inv_m[j]), &fx, &fy, &ti, &tj);
 		}
 		const double nx = dx / d, ny = dy / d;
 		if (n < cap) {
@@ -314,7 +356,6 @@ long forces_sliding(const sb_law *law, const sb_state *st, const sb_nlist *nl, c
 		    long *contacts)
 {
 	const double *y = st->q[C_Y][0], *r = st->r, *vx = st->q[C_X][1], *vy = st->q[C_Y][1], *w = st->q[C_TH][1];
-	const double gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt;
 	const int hs = law->spring && sh && shear_current(sh, nl);
 	long n = 0, slid = 0;
 	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
@@ -327,11 +368,13 @@ long forces_sliding(const sb_law *law, const sb_state *st, const sb_nlist *nl, c
 		const double d = sqrt(d2), meff = 1.0 / (st->inv_m[i] + st->inv_m[j]);
 		double fx, fy, fs, xi, h = hs ? sh->xi[p] : 0;
 		int capped;
+		const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
+		const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
 		if (law->spring) /* a step's evaluation, on a copy of the displacement */
-			contact_spring(law, gn, gs, dx, dy, d, r[i], r[j], vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], meff, &h, 1,
-				       &fx, &fy, &fs, &xi, &capped);
+			contact_spring(law, &c, gn, gs, dx, dy, d, r[i], r[j], vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], meff,
+				       &h, 1, &fx, &fy, &fs, &xi, &capped);
 		else
-			contact(law->Y, gn, law->resti, law->hertz, gs, law->mu, law->clip, dx, dy, d, 1.0 / d, r[i], r[j],
+			contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, r[i], r[j],
 				vx[i] - vx[j], vy[i] - vy[j], w[i], w[j], meff, &fx, &fy, &fs, &xi, &capped);
 		slid += capped;
 		n++;

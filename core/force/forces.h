@@ -24,10 +24,31 @@ typedef struct sb_law {
 	int hertz;
 	/* tangential = spring: the shear spring k_t with history (docs/model.md,
 	 * "Tangential law"); gs is its damping. The vector kernel has no instance of it:
-	 * forces_spring runs it, the same code on every path. */
+	 * forces_scalar runs it, the same code on every path. */
 	int spring;
 	double kt;
+	/* materials per pair of kinds (docs/model.md, "Materials per pair of kinds";
+	 * paircoef.h): table = 1 when some class's coefficients differ from the fields
+	 * above; kc[kind_i][kind_j] then holds each pair's, and the whole list runs through
+	 * forces_scalar, the same code on every path. table = 0: kc is not read. */
+	int table;
+	struct sb_kc {
+		double Y, gn, gs, mu, kt; /* gn: gamma_N, or gz with resti */
+	} kc[3][3];
 } sb_law;
+typedef struct sb_kc sb_kc;
+
+/* The pair class of two disk kinds (state.h's KIND_*, either order; paircoef.h's
+ * classes): -1 for grain-grain, which the scene's own keys set, and for two walls. */
+int forces_pairclass(int ki, int kj);
+
+/* A pair's coefficients: kc[ki][kj] with a table, else the law's own. */
+static inline sb_kc forces_kc(const sb_law *l, int ki, int kj)
+{
+	if (l->table)
+		return l->kc[ki][kj];
+	return (sb_kc){l->Y, l->resti ? l->gz : l->gn, l->gs, l->mu, l->kt};
+}
 
 /* The law's gz for restitution e at stiffness Y: 2 zeta sqrt(Y) (dtguard.h's zeta). */
 double forces_gz(double Y, double e);
@@ -64,12 +85,14 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 			double wi, double wj, double meff, double inv_dt, double *h, int update, double *fx, double *fy,
 			double *ti, double *tj);
 
-/* tangential = spring: the law over the flat list and the seam pairs in that order,
- * positions and scaled velocities at io's x, y, vx, vy, the state's spins; forces
- * added at io's fx, fy, t; each contact's shear displacement in sh (in nl's order:
- * shear_follow first) advanced, every pair not in contact reset to zero. fabs_sum
- * and the return as forces_seam's. */
-int forces_spring(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
+/* The law over the flat list and the seam pairs in that order, scalar, each pair with
+ * its class's coefficients (forces_kc): tangential = spring, and any law with a table
+ * of materials. Positions and scaled velocities at io's x, y, vx, vy, the state's
+ * spins; forces added at io's fx, fy, t. With the spring law each contact's shear
+ * displacement in sh (in nl's order: shear_follow first) is advanced and every pair
+ * not in contact reset to zero (sh is not read otherwise). fabs_sum and the return as
+ * forces_seam's. */
+int forces_scalar(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
 		  double inv_dt, double *fabs_sum);
 
 /* The scans below cover the seam pairs too (their normal and midpoint through the

@@ -160,15 +160,15 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring: the whole list through forces_spring, scalar and in list order
- * (one code for every path: the same bits); with keep, into the records and
+/* tangential = spring, or a table of materials: the whole list through forces_scalar,
+ * scalar and in list order (one code for every path: the same bits); with keep, into the records and
  * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
  * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
-static int spring_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
+static int scalar_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
 			 double *fabs_sum, sb_err *e)
 {
 	kernel_sync(k, st);
-	if (shear_follow(&k->shear, nl, e))
+	if (law->spring && shear_follow(&k->shear, nl, e))
 		return -1;
 	double *rec = k->d.rec, *facc = k->d.facc;
 	const size_t n = (size_t)st->n;
@@ -190,7 +190,7 @@ static int spring_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb
 						  facc + 1, facc + 2, 1, 4}
 				   : (sb_seam_io){st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1], st->f[C_X],
 						  st->f[C_Y], st->f[C_TH], 1, 1};
-	return forces_spring(law, st, nl, &k->shear, &io, inv_dt, fabs_sum);
+	return forces_scalar(law, st, nl, law->spring ? &k->shear : NULL, &io, inv_dt, fabs_sum);
 }
 
 int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
@@ -203,8 +203,8 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	if (law->spring)
-		return spring_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
+	if (law->spring || law->table)
+		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	if (!packed)
 		kernel_sync(k, st);
 	int bad = k->v->forces(&k->d, law, st, nl, inv_dt, keep, packed, fabs_sum);

@@ -1147,13 +1147,16 @@ static void write_contact_law(h5w *h, const sb_sim *s)
 	if (s->law.hertz) /* its restitution and contact time depend on the impact speed */
 		h5w_attr_double(h, g, "impact_speed", PCLASS_HERTZ_V);
 	h5w_attr_str(h, g, "tangential", s->law.spring ? "spring" : "viscous");
+	h5w_attr_str(h, g, "materials", s->law.table ? "per_pair_class" : "one");
 	if (s->law.spring) /* k_t, given or LAMMPS's default 2/7 of the normal stiffness */
 		h5w_attr_double(h, g, "shear_stiffness", s->law.kt);
 	h5w_attr_str(h, g, "definition",
 		     "per class of pair: m_eff (g), gamma_n (1/s: the normal damping force is gamma_n m_eff xidot), "
 		     "restitution and contact_time (s) of an unclipped head-on contact, a wall disk immobile; "
 		     "normal = hertz: at impact_speed (cm/s) (docs/model.md, \"Restitution\"); tangential = spring: "
-		     "shear_stiffness k_t (docs/model.md, \"Tangential law\")");
+		     "shear_stiffness k_t (docs/model.md, \"Tangential law\"); each class's stiffness (the normal law's), mu "
+		     "and gamma_s; materials: one, or per_pair_class when a class has coefficients of its own "
+		     "(docs/model.md, \"Materials per pair of kinds\")");
 	sb_pclass c[SB_NPCLASS];
 	pclass_of_state(&s->law, &s->sc, &s->st, c);
 	for (int k = 0; k < SB_NPCLASS; k++) {
@@ -1164,6 +1167,9 @@ static void write_contact_law(h5w *h, const sb_sim *s)
 		h5w_attr_double(h, p, "gamma_n", c[k].gamma_n);
 		h5w_attr_double(h, p, "restitution", c[k].e);
 		h5w_attr_double(h, p, "contact_time", c[k].tc);
+		h5w_attr_double(h, p, "stiffness", c[k].Y);
+		h5w_attr_double(h, p, "mu", c[k].mu);
+		h5w_attr_double(h, p, "gamma_s", c[k].gamma_s);
 		h5w_close_obj(h, p);
 	}
 	h5w_close_obj(h, g);

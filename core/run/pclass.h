@@ -21,6 +21,7 @@ typedef struct sb_pclass {
 	int present;          /* 0: the bed has no such pair (no intruder, no wall) */
 	double m_eff;         /* g: the law's m_eff (a wall of infinite mass: the grain's) */
 	double gamma_n;       /* 1/s: the normal damping rate, force gamma_N m_eff xidot */
+	double Y, mu, gamma_s; /* the class's stiffness, friction and shear damping (paircoef.h) */
 	double e, tc;         /* the normal restitution and the contact time (s) of an
 			       * unclipped head-on contact (e = 0, tc = inf: overdamped);
 			       * hertz: at PCLASS_HERTZ_V */

@@ -12,6 +12,7 @@
 #include "clock.h"
 #include "h5out.h"
 #include "kernel.h"
+#include "paircoef.h"
 #include "provenance.h"
 #include "prepare.h"
 #include "run.h"
@@ -122,6 +123,13 @@ static void print_contacts(const sb_scene *sc)
 		printf("# tangential = spring: shear_stiffness k_t = %.6g (docs/model.md, \"Tangential law\")\n", law.kt);
 	else
 		printf("# tangential = viscous: no shear spring\n");
+	if (law.table) { /* docs/model.md, "Materials per pair of kinds" */
+		printf("# materials per pair of kinds: class stiffness mu gamma_s (the law's units)\n");
+		for (int k = -1; k < SB_NPAIRC; k++) {
+			const sb_paircoef pc = paircoef_of(sc, k);
+			printf("#   %-17s %10.5g %6.4g %10.5g\n", paircoef_name(k), pc.Y, pc.mu, pc.gs);
+		}
+	}
 	printf("%-15s %10s %10s %11s %12s\n", "pair", "m_eff_g", "gamma_n_1/s", "restitution", "contact_time_s");
 	for (int k = 0; k < SB_NPCLASS; k++)
 		if (c[k].present)

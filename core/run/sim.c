@@ -13,6 +13,7 @@
 
 #include "dtguard.h"
 #include "fsutil.h"
+#include "paircoef.h"
 
 double sim_box_y(const sb_sim *s, double t) { return drive_y(&s->drive, t); }
 double sim_box_v(const sb_sim *s, double t) { return drive_v(&s->drive, t); }
@@ -22,10 +23,19 @@ sb_law sim_law(const sb_scene *sc)
 {
 	const int hertz = sc->normal == NORMAL_HERTZ;
 	const double Y = hertz ? sc->hertz_stiffness : sc->stiffness;
-	sb_law l = {Y, sc->gamma_n, sc->gamma_s, sc->mu, sc->max_overlap, sc->clip_attractive, sc->restitution > 0, 0, hertz,
-		    sc->tangential == TANGENTIAL_SPRING, dtguard_kt(sc)};
+	sb_law l = {.Y = Y, .gn = sc->gamma_n, .gs = sc->gamma_s, .mu = sc->mu, .max_overlap = sc->max_overlap,
+		    .clip = sc->clip_attractive, .resti = sc->restitution > 0, .hertz = hertz,
+		    .spring = sc->tangential == TANGENTIAL_SPRING, .kt = dtguard_kt(sc)};
 	if (l.resti)
 		l.gz = forces_gz(sc->stiffness, sc->restitution);
+	/* materials per pair of kinds (paircoef.h): each pair of kinds its class's
+	 * coefficients; the paper's one material keeps the vector kernel (table = 0) */
+	l.table = !paircoef_uniform(sc);
+	for (int a = 0; a < 3; a++)
+		for (int b = 0; b < 3; b++) {
+			const sb_paircoef c = paircoef_of(sc, forces_pairclass(a, b));
+			l.kc[a][b] = (sb_kc){c.Y, l.resti ? forces_gz(c.Y, sc->restitution) : c.gn, c.gs, c.mu, c.kt};
+		}
 	return l;
 }
 

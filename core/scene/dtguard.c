@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "paircoef.h"
 #include "units.h"
 
 double dtguard_zeta(double e)
@@ -82,8 +83,39 @@ double dtguard_limit(int kind, double Y, double gamma_n, double m_min, double *t
 
 double dtguard_kt(const sb_scene *sc)
 {
-	return sc->shear_stiffness > 0 ? sc->shear_stiffness
-				       : 2.0 / 7.0 * (sc->normal == NORMAL_HERTZ ? sc->hertz_stiffness : sc->stiffness);
+	return paircoef_of(sc, -1).kt;
+}
+
+/* The limit for one pair class's coefficients c (paircoef.h), the lightest pair m_min / 2;
+ * *tc gets its contact time. */
+static double class_limit(const sb_scene *sc, const sb_paircoef *c, double m_min, double *tc)
+{
+	double lim, eh;
+	if (sc->normal == NORMAL_HERTZ) {
+		/* the lightest pair of the smallest grains at DTGUARD_HERTZ_V: Hertz's contact
+		 * shortens as the impact speeds up (t_c ~ v^-1/5) */
+		double rlo, rhi, rmean;
+		params_grain_radii(sc, &rlo, &rhi, &rmean);
+		dtguard_hertz(c->Y, 0.5 * rlo, c->gn * 0.5 * m_min, 0.5 * m_min, DTGUARD_HERTZ_V, &eh, tc);
+		lim = limit_of(sc->integrator, *tc);
+	} else {
+		const double g = sc->restitution > 0 ? 2 * dtguard_zeta(sc->restitution) * sqrt(c->Y / (0.5 * m_min)) : c->gn;
+		lim = dtguard_limit(sc->integrator, c->Y, g, m_min, tc);
+	}
+	/* The shear spring's oscillation: a contact slides against the inertia m_t of
+	 * 1/m_t = 1/m_i + 1/m_j + R_i^2/I_i + R_j^2/I_j = 3 / m_eff (disks, I = m R^2 / 2), so
+	 * its frequency^2 is 3 k_t / m_eff against the normal Y / m_eff (hertz: the normal
+	 * stiffness at an overlap is 1.5 K sqrt(xi R_eff), the shear's k_t sqrt(xi R_eff)).
+	 * It is the faster one only for k_t above Y / 3 (hertz: K / 2); the default 2/7
+	 * never is. Then the contact time shrinks by the ratio of the frequencies. */
+	if (sc->tangential == TANGENTIAL_SPRING) {
+		const double kn = sc->normal == NORMAL_HERTZ ? 1.5 * c->Y : c->Y, k3 = 3 * c->kt;
+		if (k3 > kn) {
+			*tc *= sqrt(kn / k3);
+			lim = limit_of(sc->integrator, *tc);
+		}
+	}
+	return lim;
 }
 
 int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_err *e)
@@ -93,30 +125,16 @@ int dtguard_check(const sb_scene *sc, double m_min, char *warn, size_t len, sb_e
 	warn[0] = 0;
 	if (sc->dt_guard == 2 || !(m_min > 0))
 		return 0;
-	double tc, lim, eh;
-	if (sc->normal == NORMAL_HERTZ) {
-		/* the lightest pair of the smallest grains at DTGUARD_HERTZ_V: Hertz's contact
-		 * shortens as the impact speeds up (t_c ~ v^-1/5) */
-		double rlo, rhi, rmean;
-		params_grain_radii(sc, &rlo, &rhi, &rmean);
-		dtguard_hertz(sc->hertz_stiffness, 0.5 * rlo, sc->gamma_n * 0.5 * m_min, 0.5 * m_min, DTGUARD_HERTZ_V, &eh,
-			      &tc);
-		lim = limit_of(sc->integrator, tc);
-	} else {
-		lim = dtguard_limit(sc->integrator, sc->stiffness, dtguard_gamma(sc, 0.5 * m_min), m_min, &tc);
-	}
-	/* The shear spring's oscillation: a contact slides against the inertia m_t of
-	 * 1/m_t = 1/m_i + 1/m_j + R_i^2/I_i + R_j^2/I_j = 3 / m_eff (disks, I = m R^2 / 2), so
-	 * its frequency^2 is 3 k_t / m_eff against the normal Y / m_eff (hertz: the normal
-	 * stiffness at an overlap is 1.5 K sqrt(xi R_eff), the shear's k_t sqrt(xi R_eff)).
-	 * It is the faster one only for k_t above Y / 3 (hertz: K / 2); the default 2/7
-	 * never is. Then the contact time shrinks by the ratio of the frequencies. */
-	if (sc->tangential == TANGENTIAL_SPRING) {
-		const double kn = sc->normal == NORMAL_HERTZ ? 1.5 * sc->hertz_stiffness : sc->stiffness,
-			     k3 = 3 * dtguard_kt(sc);
-		if (k3 > kn) {
-			tc *= sqrt(kn / k3);
-			lim = limit_of(sc->integrator, tc);
+	/* every pair class at the lightest mass (a bound: the stiffest class need not hold
+	 * the lightest disk); the paper's one material has one class */
+	double tc = 0, lim = INFINITY;
+	for (int cls = -1; cls < SB_NPAIRC; cls++) {
+		const sb_paircoef c = paircoef_of(sc, cls);
+		double t;
+		const double l = class_limit(sc, &c, m_min, &t);
+		if (l < lim) {
+			lim = l;
+			tc = t;
 		}
 	}
 	if (sc->dt > lim && sc->dt_guard == 0)

@@ -29,6 +29,21 @@
 #define STR(f) PT_STR, TYPED(f, char *)
 #define BIG 1e300
 
+/* The four coefficient rows of pair class `cls` (paircoef.h's index k); their default
+ * -1 (`same`) is the grain-grain key's value, so that a scene without them is the
+ * paper's single material to the bit. */
+#define PAIR_ROWS(cls, k, what)                                                                                   \
+	{"mu_" cls, REAL(pc_mu[k]), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,                          \
+	 "Coulomb friction coefficient of " what " (same = mu)"},                                                  \
+	{"gamma_n_" cls, REAL(pc_gamma_n[k]), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,             \
+	 "normal damping gamma_N of " what " (same = gamma_n; not beside restitution)"},                           \
+	{"gamma_s_" cls, REAL(pc_gamma_s[k]), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,             \
+	 "shear damping gamma_S of " what " (same = gamma_s)"},                                                    \
+	{"stiffness_" cls, REAL(pc_stiffness[k]), "g/s^2", "same", 0, 1e15, NULL,                                 \
+	 PF_PREP | PF_DYN | PF_MINX | PF_SAME,                                                                     \
+	 "normal stiffness of " what " (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "      \
+	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"}
+
 /* The presets, in the order of the preset row's choices: each a list of key, value
  * pairs (the paper preset's values are also the table's defaults; tests/unit/params.c
  * holds the two to each other and the names to the row's choices). */
@@ -148,6 +163,12 @@ static const sb_param TABLE[] = {
 	 "shear damping gamma_S"},
 	{"mu", REAL(mu), "", "0.5", 0, 100, NULL, PF_PREP | PF_DYN,
 	 "Coulomb friction coefficient"},
+	/* the pair classes' own coefficients (docs/model.md, "Materials per pair of kinds"),
+	 * like LAMMPS's pair_coeff I J: four rows per class, in paircoef.h's order */
+	PAIR_ROWS("grain_intruder", 0, "a grain and an intruder"),
+	PAIR_ROWS("intruder_intruder", 1, "two intruders"),
+	PAIR_ROWS("grain_wall", 2, "a grain and a wall disk"),
+	PAIR_ROWS("intruder_wall", 3, "an intruder and a wall disk"),
 	{"clip_attractive", BOOL(clip_attractive), "", "no", 0, 0, NULL, PF_PREP | PF_DYN,
 	 "clip the normal force at zero (no attraction at the end of a contact)"},
 	{"preset", ENUM(preset), "", "paper", 0, 0, "paper|fast", PF_PREP | PF_DYN,
@@ -348,6 +369,10 @@ static void range_text(const sb_param *p, char *buf, size_t len)
 		snprintf(buf, len, "%s%g, inf)", lo, p->min);
 	else
 		snprintf(buf, len, "%s%g, %g]", lo, p->min, p->max);
+	if (p->flags & PF_SAME) {
+		const size_t l = strlen(buf);
+		snprintf(buf + l, len - l, " or same");
+	}
 }
 
 /* Trim leading/trailing blanks into a local copy. */
@@ -430,6 +455,11 @@ static int set_value(sb_scene *s, const char *key, const char *value, const char
 	}
 	case PT_REAL: {
 		double x;
+		const int same = (p->flags & PF_SAME) && (!strcmp(v, "same") || (!num_real(v, &x) && x == -1));
+		if (same) {
+			*(double *)base = -1;
+			return 0;
+		}
 		int bad = num_real(v, &x) || x > p->max || ((p->flags & PF_MINX) ? x <= p->min : x < p->min);
 		if (bad)
 			return sb_errf(e, SB_EUSAGE, "%s: %s: expected a number in %s, got '%s'",
@@ -556,7 +586,12 @@ void params_format(const sb_scene *s, const sb_param *p, char *buf, size_t len)
 	const char *base = (const char *)s + p->offset;
 	switch (p->type) {
 	case PT_INT: snprintf(buf, len, "%ld", *(const long *)base); break;
-	case PT_REAL: snprintf(buf, len, "%.17g", *(const double *)base); break;
+	case PT_REAL:
+		if ((p->flags & PF_SAME) && *(const double *)base == -1)
+			snprintf(buf, len, "same");
+		else
+			snprintf(buf, len, "%.17g", *(const double *)base);
+		break;
 	case PT_BOOL: snprintf(buf, len, "%s", *(const int *)base ? "yes" : "no"); break;
 	case PT_ENUM: {
 		int k = *(const int *)base;

@@ -9,7 +9,10 @@
 #include "err.h"
 
 #define SB_STR_MAX 512
-#define SB_NKEYS 93  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+#define SB_NKEYS 109  /* the number of keys: params.c's table has exactly this many rows (checked there) */
+
+/* the pair classes with coefficients of their own (paircoef.h names and orders them) */
+#define SB_NPAIRC 4
 
 enum sb_integrator { INTEG_GEAR5, INTEG_GEAR4, INTEG_VERLET };
 enum sb_normal { NORMAL_HOOKE, NORMAL_HERTZ };
@@ -58,6 +61,9 @@ struct sb_scene {
 	double hertz_stiffness;
 	int tangential;          /* TANGENTIAL_VISCOUS, TANGENTIAL_SPRING */
 	double shear_stiffness;  /* k_t; 0: 2/7 of the normal stiffness */
+	/* the coefficients of the pair classes other than grain-grain (paircoef.h: the
+	 * classes' order); -1 = the grain-grain key's value */
+	double pc_mu[SB_NPAIRC], pc_gamma_n[SB_NPAIRC], pc_gamma_s[SB_NPAIRC], pc_stiffness[SB_NPAIRC];
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;
@@ -128,6 +134,8 @@ enum sb_pflag {
 			 * progress): refused in a campaign file, never in a run's id */
 	PF_NOID = 64,  /* a campaign may set it, but it is not in a run's id (when the
 			* state is saved, not what a run computes) */
+	PF_SAME = 128, /* a REAL that may also be -1 (written `same` or -1): "the value of
+			* the key it refines" (the pair classes' coefficients, paircoef.h) */
 };
 
 typedef struct sb_param {

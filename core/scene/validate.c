@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "dtguard.h"
+#include "paircoef.h"
 
 int params_validate(const sb_scene *s, sb_err *e)
 {
@@ -33,6 +34,14 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->restitution > 0 && strcmp(W("gamma_n"), "default"))
 		return sb_errf(e, SB_EUSAGE, "%s: restitution = %g sets the normal damping of every pair; gamma_n (%s) "
 			       "cannot be set beside it: leave one out", W("restitution"), s->restitution, W("gamma_n"));
+	/* nor would a pair class's (paircoef.h): restitution gives every class e */
+	for (int c = 0; c < SB_NPAIRC; c++) {
+		char key[48];
+		snprintf(key, sizeof key, "gamma_n_%s", paircoef_name(c));
+		if (s->restitution > 0 && s->pc_gamma_n[c] != -1)
+			return sb_errf(e, SB_EUSAGE, "%s: restitution = %g sets the normal damping of every pair; %s (%s) "
+				       "cannot be set beside it: leave one out", W("restitution"), s->restitution, key, W(key));
+	}
 	/* with hertz the damping's restitution depends on the impact speed: no e per pair */
 	if (s->restitution > 0 && s->normal == NORMAL_HERTZ)
 		return sb_errf(e, SB_EUSAGE, "%s: restitution is for normal = hooke (%s): with hertz the restitution of "

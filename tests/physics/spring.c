@@ -32,7 +32,7 @@
 static void cap(void)
 {
 	/* Y xi = 3e4 dyn, mu F_N = 1.5e4; k_t = 1e6, h = 0.02 cm: 2e4 > 1.5e4 */
-	const sb_law law = {3e6, 0, 100, 0.5, 1, 0, 0, 0, 0, 1, 1e6};
+	const sb_law law = {.Y = 3e6, .gn = 0, .gs = 100, .mu = 0.5, .max_overlap = 1, .spring = 1, .kt = 1e6};
 	const double inv_dt = 1e3, vt = 1e-3; /* scaled: v_t dt = 1e-3 cm; damping 100 dyn */
 	double h = 0.02, fx, fy, ti, tj;
 	/* n = (1, 0), t = (0, 1): v_t = dvy - (R_i w_i + R_j w_j) */

@@ -120,8 +120,9 @@ static void test_forces(const char *path, firsts *fi)
 		scene(&st, rng, 203, 30, 12, dt); /* 203: a partial last block of eight */
 		/* scattered: some overlaps are deep */
 		/* the spring's shear damping large enough that some contacts reach the Coulomb cap */
-		sb_law law = {hertz ? 3.15e7 : 3e6, 100, spring ? 2000 : 1, 0.5, 100, clip, resti, resti ? forces_gz(3e6, 0.7) : 0, hertz,
-			      spring, 2.0 / 7.0 * (hertz ? 3.15e7 : 3e6)};
+		sb_law law = {.Y = hertz ? 3.15e7 : 3e6, .gn = 100, .gs = spring ? 2000 : 1, .mu = 0.5, .max_overlap = 100,
+			      .clip = clip, .resti = resti, .gz = resti ? forces_gz(3e6, 0.7) : 0, .hertz = hertz,
+			      .spring = spring, .kt = 2.0 / 7.0 * (hertz ? 3.15e7 : 3e6)};
 		sb_nlist nl;
 		sb_kernel *k = NULL;
 		sb_err e = {0};
@@ -161,6 +162,43 @@ static void test_forces(const char *path, firsts *fi)
 		/* the ring's sums */
 		for (int c = 0; c < 3; c++)
 			memcpy(got[c], st.f[c], sizeof(double) * (size_t)st.n);
+		/* a table of materials whose classes all hold the law's own coefficients runs
+		 * forces_scalar, the table's path, on every path: the same bits as the vector
+		 * kernel (or the spring's pass), so that a table changes only the pairs it names */
+		{
+			sb_law tab = law;
+			tab.table = 1;
+			for (int a = 0; a < 3; a++)
+				for (int b = 0; b < 3; b++)
+					tab.kc[a][b] = (sb_kc){law.Y, resti ? law.gz : law.gn, law.gs, law.mu, law.kt};
+			shear_clear(sh);
+			const int bad2 = kernel_forces(k, &tab, &st, &nl, inv_dt, 0, NULL, &e);
+			int same = bad2 == bad;
+			for (int c = 0; c < 3; c++)
+				same &= bits_equal(st.f[c], got[c], sizeof(double) * (size_t)st.n);
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.uniform_table_same_bits", path, clip, rs);
+			CHECK(id, same, "a table of the law's own coefficients changed the forces");
+			/* and a class of its own changes the forces of the disks in that class only */
+			tab.kc[KIND_GRAIN][KIND_WALL].mu = tab.kc[KIND_WALL][KIND_GRAIN].mu = 0;
+			tab.kc[KIND_GRAIN][KIND_WALL].Y = tab.kc[KIND_WALL][KIND_GRAIN].Y = 2 * law.Y;
+			shear_clear(sh);
+			kernel_forces(k, &tab, &st, &nl, inv_dt, 0, NULL, &e);
+			int moved = 0, leaked = 0;
+			for (int i = 0; i < st.nm; i++) {
+				int walltouch = 0;
+				for (int j = st.nm; j < st.n; j++) {
+					const double dx = st.q[C_X][0][i] - st.q[C_X][0][j], dy = st.q[C_Y][0][i] - st.q[C_Y][0][j];
+					walltouch |= dx * dx + dy * dy < (st.r[i] + st.r[j]) * (st.r[i] + st.r[j]);
+				}
+				const int diff = st.f[C_X][i] != got[C_X][i] || st.f[C_Y][i] != got[C_Y][i];
+				moved += walltouch && diff;
+				leaked += !walltouch && diff;
+			}
+			snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_class_changes_its_pairs_only", path, clip, rs);
+			CHECK(id, moved > 0 && leaked == 0, "%d disks on a wall changed, %d elsewhere changed", moved, leaked);
+			for (int c = 0; c < 3; c++)
+				memcpy(st.f[c], got[c], sizeof(double) * (size_t)st.n);
+		}
 		shear_clear(sh);
 		kernel_forces(k, &law, &st, &nl, inv_dt, 0, fs_got, &e);
 		snprintf(id, sizeof id, "kernel.%s.clip%d%s.ring_sums_equal_pair_sums", path, clip, rs);
@@ -325,7 +363,7 @@ static void test_invariants(void)
 	gsl_rng_set(rng, 11);
 	sb_state st = {0};
 	scene(&st, rng, 41, 12, 8, 5e-5);
-	sb_law law = {3e6, 100, 1, 0.5, 100, 0, 0, 0, 0, 0, 0};
+	sb_law law = {.Y = 3e6, .gn = 100, .gs = 1, .mu = 0.5, .max_overlap = 100};
 	sb_nlist nl;
 	sb_kernel *k = NULL;
 	sb_err e = {0};
