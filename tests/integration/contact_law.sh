@@ -116,4 +116,22 @@ rc=$?
 [ "$rc" -eq 0 ] && [ "$(attr t.h5 /contact_law/tangential)" = spring ] && [ "$(attr t.h5 /contact_law/shear_stiffness)" = 500000 ] &&
 	[ "$(attr r.h5 /contact_law/tangential)" = viscous ] && [ -z "$(attr r.h5 /contact_law/shear_stiffness)" ] &&
 	ok runfile.tangential || fail runfile.tangential "exit $rc: $(tail -n 2 t.log)"
+
+# --- open question 6's law (campaigns/reproduce/q6_*): its gamma_n was found by hand for
+# e = 0.900 of a mean grain pair under Hertz at the recorded impact speed; both campaigns
+# share it, and --contacts gives the restitutions their header states ---
+q6=("$REPO"/campaigns/reproduce/q6_law_onset.campaign "$REPO"/campaigns/reproduce/q6_law_rise.campaign)
+key() { awk -F'=' -v k="$1" '$1 ~ "^"k"[ \t]*$" { gsub(/[ \t]/, "", $2); print $2; exit }' "$2"; }
+gn=$(key gamma_n "${q6[0]}")
+if [ -n "$gn" ] && [ "$gn" = "$(key gamma_n "${q6[1]}")" ] &&
+	"$SHAKE" --contacts normal="$(key normal "${q6[0]}")" tangential="$(key tangential "${q6[0]}")" gamma_n="$gn" >q6.txt 2>&1; then
+	# the header's "grain-grain 0.900, grain-intruder 0.845, grain-wall 0.923"
+	said=$(sed -n 's/^# *//p' "${q6[0]}" | tr '\n' ' ' | grep -o 'grain-grain [0-9.]*, grain-intruder [0-9.]*, grain-wall [0-9.]*' |
+		tr -dc '0-9. ' | xargs)
+	got=$(awk '$1 == "grain_grain" || $1 == "grain_intruder" || $1 == "grain_wall" { printf "%s%.3f", n++ ? " " : "", $4 }' q6.txt)
+	[ "$(awk '$1 == "grain_grain" { print ($4 > 0.8995 && $4 < 0.9005) }' q6.txt)" = 1 ] && [ "$got" = "$said" ] &&
+		ok q6.restitution_0.900 || fail q6.restitution_0.900 "gamma_n $gn gives $got, the header says '$said', want grain_grain 0.900"
+else
+	fail q6.restitution_0.900 "the q6 campaigns' gamma_n '$gn' differ or --contacts failed: $(tail -n 2 q6.txt 2>/dev/null)"
+fi
 finish
