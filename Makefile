@@ -302,4 +302,6 @@ print-%:
 -include tests/fuzz/fuzz.mk
 -include tests/cross/cross.mk
 
--include $(shell find build -name '*.d' 2>/dev/null)
+# the header dependencies of every build: those under build/ and those of a BUILD elsewhere
+# (BUILD=/tmp/o0: without its own .d files a changed header would leave its objects stale)
+-include $(sort $(shell find build $(BUILD) -name '*.d' 2>/dev/null))
