@@ -34,6 +34,7 @@
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
+#include "two_disks.h"
 #include "units.h"
 
 typedef struct ccase {
@@ -87,19 +88,9 @@ static cres run_law(const ccase *c, int clip, double dt, double resti, int hertz
 	const double rs = c->ri + c->rj;
 	int wall = c->kj == KIND_WALL;
 	double mi = place_mass(&sc, c->ri, KIND_GRAIN), mj = place_mass(&sc, c->rj, KIND_GRAIN);
-	if (!wall) {
-		/* i at the origin moving +x, j touching on its right moving -x; zero momentum */
-		place_push(&sc, &s->st, 0, 0, c->ri, c->ki, &e);
-		place_push(&sc, &s->st, rs, 0, c->rj, c->kj, &e);
-	} else {
-		/* i falls onto the wall disk j at the origin; two far wall disks make the box
-		 * (hull in x of the walls, above their lowest centre) contain i */
-		place_push(&sc, &s->st, 0, rs, c->ri, c->ki, &e);
-		place_push(&sc, &s->st, 0, 0, c->rj, KIND_WALL, &e);
-		place_push(&sc, &s->st, -60, 0, c->rj, KIND_WALL, &e);
-		place_push(&sc, &s->st, 60, 0, c->rj, KIND_WALL, &e);
-	}
-	if (sim_derive(s, &e)) {
+	/* i at the origin moving +x, j touching on its right moving -x (zero momentum), or
+	 * i falling onto the wall disk j */
+	if (two_disks(&sc, s, c->ri, c->rj, c->ki, c->kj, &e)) {
 		printf("# setup failed: %s\n", e.msg);
 		goto out;
 	}

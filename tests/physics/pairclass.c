@@ -23,6 +23,7 @@
 #include "sim.h"
 #include "step.h"
 #include "testlib.h"
+#include "two_disks.h"
 
 static const double V0 = 50.0, DT = 5e-5 / 4;
 
@@ -85,16 +86,7 @@ static res collide(const pcase *c, const char *const *kv, int oblique)
 	const double rs = c->ri + c->rj;
 	const int wall = c->kj == KIND_WALL;
 	const double mi = place_mass(&sc, c->ri, c->ki), mj = place_mass(&sc, c->rj, c->kj);
-	if (!wall) {
-		place_push(&sc, &s->st, 0, 0, c->ri, c->ki, &e);
-		place_push(&sc, &s->st, rs, 0, c->rj, c->kj, &e);
-	} else {
-		place_push(&sc, &s->st, 0, rs, c->ri, c->ki, &e);
-		place_push(&sc, &s->st, 0, 0, c->rj, KIND_WALL, &e);
-		place_push(&sc, &s->st, -60, 0, c->rj, KIND_WALL, &e);
-		place_push(&sc, &s->st, 60, 0, c->rj, KIND_WALL, &e);
-	}
-	if (sim_derive(s, &e)) {
+	if (two_disks(&sc, s, c->ri, c->rj, c->ki, c->kj, &e)) {
 		printf("# derive: %s\n", e.msg);
 		goto out;
 	}
