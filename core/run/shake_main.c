@@ -16,6 +16,7 @@
 #include "prepare.h"
 #include "run.h"
 #include "pclass.h"
+#include "pfile.h"
 #include "sim.h"
 #include "validate.h"
 
@@ -103,8 +104,9 @@ static void usage(FILE *f)
 	params_print_help(f);
 }
 
-/* --contacts: the pair classes from the scene's keys (pclass.h); a particle file's
- * own disks are in its run file's /contact_law */
+/* --contacts: the pair classes from the scene's keys (pclass.h), the intruder's from
+ * radius_ratio, which a particle file's first intruder sets (pfile_scene_ratio); a
+ * particle file's own disks are in its run file's /contact_law */
 static void print_contacts(const sb_scene *sc)
 {
 	const sb_law law = sim_law(sc);
@@ -117,7 +119,7 @@ static void print_contacts(const sb_scene *sc)
 	printf("# the contact law (%s, %s) for the scene's mean grain radius %g cm%s; docs/model.md, \"Restitution\"\n",
 	       law.hertz ? hz : "hooke",
 	       law.resti ? "restitution given: the damping per pair" : "gamma_n given: the restitution per pair",
-	       rmean, sc->particles[0] ? " (not the particle file's disks)" : "");
+	       rmean, sc->particles[0] ? " (not the particle file's grains; the intruder of its radius_ratio, the file's)" : "");
 	if (law.spring)
 		printf("# tangential = spring: shear_stiffness k_t = %.6g (docs/model.md, \"Tangential law\")\n", law.kt);
 	else
@@ -177,6 +179,13 @@ int main(int argc, char **argv)
 			fprintf(stderr, "shake: %s\n", e.msg);
 			return SB_EUSAGE;
 		}
+	}
+	/* a particle file's intruder decides radius_ratio (docs/model.md, "Units and the
+	 * paper's values"): known before the checks, the checkpoint's identity and the run
+	 * file's /parameters */
+	if (sc.particles[0] && pfile_scene_ratio(&sc, &e)) {
+		fprintf(stderr, "shake: %s\n", e.msg);
+		return e.code;
 	}
 	if (params_validate(&sc, &e)) {
 		fprintf(stderr, "shake: %s\n", e.msg);
