@@ -180,6 +180,13 @@ int main(int argc, char **argv)
 			return SB_EUSAGE;
 		}
 	}
+	/* from here a SIGINT or SIGTERM ends the run as one (exit code 7): reading a large
+	 * particle file below takes seconds and polls for them (guard.h) */
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
 	/* a particle file's intruder decides radius_ratio (docs/model.md, "Units and the
 	 * paper's values"): known before the checks, the checkpoint's identity and the run
 	 * file's /parameters */
@@ -208,12 +215,6 @@ int main(int argc, char **argv)
 			strerror(errno));
 		return SB_EIO;
 	}
-
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
 
 	sb_sim *s = malloc(sizeof *s);
 	if (!s) {

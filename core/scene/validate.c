@@ -109,12 +109,14 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->ring && s->ring_inner >= s->ring_outer)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_inner (%g) must be smaller than ring_outer (%g, %s)",
 			       W("ring_inner"), s->ring_inner, s->ring_outer, W("ring_outer"));
-	if (s->ring && s->radius_ratio == 0 && s->ring_centre == RING_INTRUDER)
-		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = intruder, but there is no intruder (radius_ratio = 0, %s)",
-			       W("ring_centre"), W("radius_ratio"));
-	if (s->ring && s->radius_ratio == 0 && s->ring_y < 0)
-		return sb_errf(e, SB_EUSAGE, "%s: ring: without an intruder (radius_ratio = 0, %s) set the ring centre height ring_y",
-			       W("ring"), W("radius_ratio"));
+	/* a particle file without intruder meets these in obs_init (core/model/observe.c),
+	 * once the file is known to hold mobile disks at all */
+	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_centre == RING_INTRUDER)
+		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = intruder, but there is no intruder (radius_ratio = 0)",
+			       W("ring_centre"));
+	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_y < 0)
+		return sb_errf(e, SB_EUSAGE, "%s: ring: without an intruder (radius_ratio = 0) set the ring centre height ring_y",
+			       W("ring"));
 	if (s->ring && s->ring_centre == RING_FIXED && s->ring_y < 0)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = fixed needs the centre's height ring_y", W("ring_centre"));
 	if (s->ring && s->ring_until > 0 && s->ring_until <= s->ring_from)
