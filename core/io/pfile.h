@@ -11,8 +11,9 @@
  * Disks get the masses particle_mass says (docs/inputs.md, "Particle masses"); velocities
  * (if present) are lab-frame and are stored as given. Errors name file and line: a file
  * that is not a regular one, a line too long or with a NUL byte, a radius that is no
- * grain's (pfile.c), coincident disks or an overlap beyond max_overlap, a mass or density column that disagrees with the scene's mass model
- * (particle_mass = scene) or is missing (particle_mass = file), a mobile disk far outside
+ * grain's (pfile.c), coincident disks or an overlap beyond max_overlap, a mass or
+ * density column that disagrees with the scene's mass model (particle_mass = scene) or
+ * is missing (particle_mass = file), a mobile disk far outside
  * the box of the walls (or, in a LAMMPS file, outside the box of its header), a repeated
  * atom id, an atom style other than sphere. SIGINT and SIGTERM end a long read (SB_EINTR). */
 int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e);

@@ -125,10 +125,14 @@ static void driver_owned(sb_scene *s, const char *output)
 
 /* ---- a particle file's radius_ratio ---- */
 
-/* The file a run's particles names, read once per distinct path within a pass over
- * the runs (a campaign of 10^4 runs over one file reads it once). */
+/* The file a run's particles names, read once while the runs in a row share it and
+ * what its reading depends on (a campaign of 10^4 runs over one file reads it once):
+ * the ratio is over the scene's mean grain radius, and the reading's checks take
+ * max_overlap and sides. */
 typedef struct pratio {
 	char path[PATHX + SB_STR_MAX];
+	double mean, max_overlap;
+	int sides;
 	int known;   /* 1: read; -1: could not be read (the engine says why, per run) */
 	double ratio;
 	long line;
@@ -153,9 +157,15 @@ static int run_scene(drv *d, const grid_run *r, sb_scene *s, pratio *m, sb_err *
 		snprintf(path, sizeof path, "%s", s->particles);
 	else
 		snprintf(path, sizeof path, "%s/%s", d->dir, s->particles);
-	if (!m->known || strcmp(m->path, path)) {
+	double lo, hi, mean;
+	params_grain_radii(s, &lo, &hi, &mean);
+	if (!m->known || strcmp(m->path, path) || m->mean != mean || m->max_overlap != s->max_overlap ||
+	    m->sides != s->sides) {
 		sb_err pe = {0};
 		snprintf(m->path, sizeof m->path, "%s", path);
+		m->mean = mean;
+		m->max_overlap = s->max_overlap;
+		m->sides = s->sides;
 		m->known = pfile_intruder_ratio(s, path, &m->ratio, &m->line, &pe) ? -1 : 1;
 	}
 	if (m->known < 0)
