@@ -806,6 +806,85 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
 	return err;
 }
 
+/* The recorded radius_ratio of a particle file (docs/model.md, "Units and the paper's
+ * values"): the first intruder's, the one of the trajectory, risen and waiting_time,
+ * over the scene's mean grain radius, never the file's grains' own mean: a packing a
+ * run wrote (write_particles, the study driver's packing cache) reads back the ratio of
+ * that run, where its grains' sample mean lies a few tenths of a percent off the
+ * scene's. Rounded to the 12 digits a campaign prints its values with, so that a
+ * radius of 2 over a mean of 1 is 2 and not 2 less an ulp. */
+int pfile_intruder_ratio(const sb_scene *sc, const char *path, double *ratio, long *line, sb_err *e)
+{
+	const sb_param *ng = params_find("n_grains");
+	dlist l = {.max = (int)ng->max + 1 + GUARD_MAX_WALLS};
+	guard_sig g;
+	guard_hold(&g);
+	int err = read_file(sc, path, &l, e);
+	guard_release(&g);
+	*ratio = 0;
+	*line = 0;
+	double lo, hi, mean;
+	params_grain_radii(sc, &lo, &hi, &mean);
+	for (int i = 0; i < l.n && !err; i++) {
+		const disk *d = &l.d[i];
+		if (d->kind != KIND_INTRUDER)
+			continue;
+		char num[40];
+		snprintf(num, sizeof num, "%.12g", d->r / mean);
+		*ratio = strtod(num, NULL);
+		*line = d->line;
+		const double max = params_find("radius_ratio")->max;
+		if (!(*ratio <= max))
+			err = sb_errf(e, SB_EUSAGE,
+				      "%s:%ld: intruder of radius %g cm is radius_ratio %g over the scene's mean grain radius %g cm "
+				      "(%s), beyond the key's range [0, %g]: set the grains' radii to the file's",
+				      path, d->line, d->r, *ratio, mean,
+				      sc->size_dist == SIZE_BINARY ? "r_small, r_large, large_fraction" : "r_min, r_max", max);
+		break;
+	}
+	free(l.d);
+	return err;
+}
+
+int pfile_ratio_apply(sb_scene *sc, const char *path, double ratio, long line, sb_err *e)
+{
+	const char *set = params_where(sc, "radius_ratio");
+	if (strcmp(set, "default")) {
+		/* given: it must be the file's, to the rounding of a printed radius */
+		const double key = sc->radius_ratio;
+		if (fabs(key - ratio) <= PFILE_RATIO_REL * fmax(fabs(key), fabs(ratio)))
+			return 0;
+		double lo, hi, mean;
+		params_grain_radii(sc, &lo, &hi, &mean);
+		if (!line)
+			return sb_errf(e, SB_EUSAGE,
+				       "%s: no intruder, so the file's radius_ratio is 0, but radius_ratio = %g is set at %s: a "
+				       "particle file's intruder decides radius_ratio; leave the key out, or set it to 0",
+				       path, key, set);
+		return sb_errf(e, SB_EUSAGE,
+			       "%s:%ld: the file's first intruder makes radius_ratio %.12g (its radius over the scene's mean "
+			       "grain radius %g cm), but radius_ratio = %g is set at %s: a particle file's first intruder "
+			       "decides radius_ratio; leave the key out, or set it to the file's",
+			       path, line, ratio, mean, key, set);
+	}
+	sb_err pe = {0};
+	char num[40];
+	snprintf(num, sizeof num, "%.17g", ratio);
+	/* where it came from, for the cross-key checks' messages (validate.c) */
+	return params_set(sc, "radius_ratio", num, line ? "particle file" : "particle file without intruder", &pe)
+		       ? sb_errf(e, pe.code, "%s: %s", path, pe.msg)
+		       : 0;
+}
+
+int pfile_scene_ratio(sb_scene *sc, sb_err *e)
+{
+	double ratio;
+	long line;
+	if (pfile_intruder_ratio(sc, sc->particles, &ratio, &line, e))
+		return e->code;
+	return pfile_ratio_apply(sc, sc->particles, ratio, line, e);
+}
+
 /* Lab frame: y + yshift; mobile velocities are taken as lab-frame already (the file
  * is written while the box is at rest), walls move with the box at vshift. Numbers use %.17g so that the file round-trips exactly. */
 static void lab_velocity(const sb_state *st, int i, double inv_dt, double vshift, double *vx,

@@ -17,6 +17,7 @@
 #include "prepare.h"
 #include "run.h"
 #include "pclass.h"
+#include "pfile.h"
 #include "sim.h"
 #include "validate.h"
 
@@ -104,8 +105,9 @@ static void usage(FILE *f)
 	params_print_help(f);
 }
 
-/* --contacts: the pair classes from the scene's keys (pclass.h); a particle file's
- * own disks are in its run file's /contact_law */
+/* --contacts: the pair classes from the scene's keys (pclass.h), the intruder's from
+ * radius_ratio, which a particle file's first intruder sets (pfile_scene_ratio); a
+ * particle file's own disks are in its run file's /contact_law */
 static void print_contacts(const sb_scene *sc)
 {
 	const sb_law law = sim_law(sc);
@@ -118,7 +120,7 @@ static void print_contacts(const sb_scene *sc)
 	printf("# the contact law (%s, %s) for the scene's mean grain radius %g cm%s; docs/model.md, \"Restitution\"\n",
 	       law.hertz ? hz : "hooke",
 	       law.resti ? "restitution given: the damping per pair" : "gamma_n given: the restitution per pair",
-	       rmean, sc->particles[0] ? " (not the particle file's disks)" : "");
+	       rmean, sc->particles[0] ? " (not the particle file's grains; the intruder of its radius_ratio, the file's)" : "");
 	if (law.spring)
 		printf("# tangential = spring: shear_stiffness k_t = %.6g (docs/model.md, \"Tangential law\")\n", law.kt);
 	else
@@ -186,6 +188,20 @@ int main(int argc, char **argv)
 			return SB_EUSAGE;
 		}
 	}
+	/* from here a SIGINT or SIGTERM ends the run as one (exit code 7): reading a large
+	 * particle file below takes seconds and polls for them (guard.h) */
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	/* a particle file's intruder decides radius_ratio (docs/model.md, "Units and the
+	 * paper's values"): known before the checks, the checkpoint's identity and the run
+	 * file's /parameters */
+	if (sc.particles[0] && pfile_scene_ratio(&sc, &e)) {
+		fprintf(stderr, "shake: %s\n", e.msg);
+		return e.code;
+	}
 	if (params_validate(&sc, &e)) {
 		fprintf(stderr, "shake: %s\n", e.msg);
 		return SB_EUSAGE;
@@ -207,12 +223,6 @@ int main(int argc, char **argv)
 			strerror(errno));
 		return SB_EIO;
 	}
-
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
 
 	sb_sim *s = malloc(sizeof *s);
 	if (!s) {

@@ -73,7 +73,9 @@ static const sb_param TABLE[] = {
 	 "size_dist = binary: the number fraction of large grains, each grain large with this probability "
 	 "(0.2 at the default radii: the two sizes fill equal areas)"},
 	{"radius_ratio", REAL(radius_ratio), "", "4", 0, 100, NULL, PF_PREP,
-	 "intruder radius / mean grain radius (0 = no intruder)"},
+	 "intruder radius / mean grain radius (0 = no intruder); with particles the file's: its first intruder's "
+	 "radius over the scene's mean grain radius, 0 without one, and a value given beside it that disagrees is "
+	 "refused (docs/model.md, \"Units and the paper's values\")"},
 	{"n_intruders", INT(n_intruders), "", "1", 1, 1000, NULL, PF_PREP,
 	 "number of intruders of a generated bed (radius_ratio > 0), each tracked: its rise and waiting time "
 	 "(docs/model.md, \"Several intruders\")"},

@@ -27,7 +27,9 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->stop == STOP_FLUX && !(s->stop_flux_lo < s->stop_flux_hi))
 		return sb_errf(e, SB_EUSAGE, "%s: stop_flux_lo (%g) must be below stop_flux_hi (%g, %s)", W("stop_flux_lo"),
 			       s->stop_flux_lo, s->stop_flux_hi, W("stop_flux_hi"));
-	if (s->stop == STOP_RISEN && s->radius_ratio == 0 && !s->particles[0])
+	/* with particles, radius_ratio is the file's (bin/shake sets it before these checks:
+	 * core/io/pfile.h, pfile_scene_ratio), 0 for a file without intruder */
+	if (s->stop == STOP_RISEN && s->radius_ratio == 0)
 		return sb_errf(e, SB_EUSAGE, "%s: stop = risen needs an intruder (radius_ratio is 0, %s)", W("stop"),
 			       W("radius_ratio"));
 	/* restitution sets every pair's normal damping: a gamma_n beside it would be ignored */
@@ -116,6 +118,8 @@ int params_validate(const sb_scene *s, sb_err *e)
 	if (s->ring && s->ring_inner >= s->ring_outer)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_inner (%g) must be smaller than ring_outer (%g, %s)",
 			       W("ring_inner"), s->ring_inner, s->ring_outer, W("ring_outer"));
+	/* a particle file without intruder meets these in obs_init (core/model/observe.c),
+	 * once the file is known to hold mobile disks at all */
 	if (s->ring && s->radius_ratio == 0 && !s->particles[0] && s->ring_centre == RING_INTRUDER)
 		return sb_errf(e, SB_EUSAGE, "%s: ring_centre = intruder, but there is no intruder (radius_ratio = 0)",
 			       W("ring_centre"));

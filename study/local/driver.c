@@ -19,8 +19,10 @@
 #include "h5sum.h"
 #include "layout.h"
 #include "lock.h"
+#include "pfile.h"
 #include "rowseal.h"
 #include "schema.h"
+#include "validate.h"
 #include "adaptive/search.h"
 #include "adaptive/sharpen.h"
 #include "campaign/axes.h"
@@ -121,6 +123,69 @@ static void driver_owned(sb_scene *s, const char *output)
 	}
 }
 
+/* ---- a particle file's radius_ratio ---- */
+
+/* The file a run's particles names, read once while the runs in a row share it and
+ * what its reading depends on (a campaign of 10^4 runs over one file reads it once):
+ * the ratio is over the scene's mean grain radius, and the reading's checks take
+ * max_overlap and sides. */
+typedef struct pratio {
+	char path[PATHX + SB_STR_MAX];
+	double mean, max_overlap;
+	int sides;
+	int known;   /* 1: read; -1: could not be read (the engine says why, per run) */
+	double ratio;
+	long line;
+} pratio;
+
+/* A run's scene as the driver records it (param rows) and hands it to the engine (its
+ * argument file): the grid's, with a particle file's radius_ratio (docs/model.md,
+ * "Units and the paper's values"), which the engine would set from the file itself,
+ * and which its argument file then gives explicitly. A file the driver cannot read
+ * leaves the campaign's value: the engine fails the run with the file's error, as it
+ * fails every run of a bad input. A radius_ratio the campaign sets that disagrees with
+ * the file, and a file without intruder where the campaign needs one, refuse the
+ * campaign before anything runs. A relative path is the run directory's, where the
+ * engine runs (worker.c). */
+static int run_scene(drv *d, const grid_run *r, sb_scene *s, pratio *m, sb_err *e)
+{
+	grid_scene(&d->g, r, s);
+	if (!s->particles[0])
+		return 0;
+	char path[PATHX + SB_STR_MAX];
+	if (s->particles[0] == '/')
+		snprintf(path, sizeof path, "%s", s->particles);
+	else
+		snprintf(path, sizeof path, "%s/%s", d->dir, s->particles);
+	double lo, hi, mean;
+	params_grain_radii(s, &lo, &hi, &mean);
+	if (!m->known || strcmp(m->path, path) || m->mean != mean || m->max_overlap != s->max_overlap ||
+	    m->sides != s->sides) {
+		sb_err pe = {0};
+		snprintf(m->path, sizeof m->path, "%s", path);
+		m->mean = mean;
+		m->max_overlap = s->max_overlap;
+		m->sides = s->sides;
+		m->known = pfile_intruder_ratio(s, path, &m->ratio, &m->line, &pe) ? -1 : 1;
+	}
+	if (m->known < 0)
+		return 0;
+	sb_err ae = {0};
+	if (pfile_ratio_apply(s, s->particles, m->ratio, m->line, &ae))
+		return sb_errf(e, ae.code, "%s: run %s: %s", d->c.path, r->id, ae.msg);
+	const campaign *c = &d->c;
+	const char *need = c->onset.line && c->onset.observable == CP_OBS_RISE ? "the search's observable rise"
+			   : c->autorep.on && c->autorep.result != CP_RES_MEAN_FLUX ? "replicates = auto's result"
+										  : NULL;
+	if (need && !(s->radius_ratio > 0))
+		return sb_errf(e, SB_EUSAGE, "%s: run %s: %s needs an intruder, but particles = %s holds none", c->path,
+			       r->id, need, s->particles);
+	sb_err ve = {0};
+	if (params_validate(s, &ve))
+		return sb_errf(e, SB_EUSAGE, "%s: run %s (particles = %s): %s", c->path, r->id, s->particles, ve.msg);
+	return 0;
+}
+
 /* ---- the campaign ---- */
 
 int driver_record(drv *d, sb_err *e)
@@ -172,10 +237,11 @@ int driver_record(drv *d, sb_err *e)
 	}
 	if (!e->code)
 		db_campaign_put(&d->db, &d->c, now, e);
+	pratio pr = {.known = 0};
 	for (long i = 0; i < d->g.n && !e->code; i++) {
 		sb_scene s;
-		grid_scene(&d->g, &d->g.runs[i], &s);
-		db_run_add(&d->db, &d->c, &d->g.runs[i], &s, now, e);
+		if (!run_scene(d, &d->g.runs[i], &s, &pr, e))
+			db_run_add(&d->db, &d->c, &d->g.runs[i], &s, now, e);
 	}
 	/* nothing runs while this driver holds the campaign lock: a 'running' row is
 	 * left from a driver that was killed */
@@ -328,6 +394,7 @@ static int caches(drv *d, const long *pend, long npend, char ***basefiles, long 
 
 int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_err *e)
 {
+	pratio pr = {.known = 0};
 	for (long i = 0; i < npend && !e->code; i++) {
 		const grid_run *r = &d->g.runs[pend[i]];
 		char args[PATHX], out[64];
@@ -357,7 +424,8 @@ int driver_prepare_jobs(drv *d, const long *pend, long npend, char **names, sb_e
 			}
 		}
 		sb_scene s;
-		grid_scene(&d->g, r, &s);
+		if (run_scene(d, r, &s, &pr, e))
+			break;
 		driver_owned(&s, out);
 		int fc = d->runs.cache_ok[pend[i]];
 		if (fc) {
