@@ -49,6 +49,10 @@ set -euo pipefail
 REPO=$(cd "$(dirname "$0")/../.." && pwd)
 BIN=${COLL_BIN:-$REPO/build/rel/tests/bench/lammps_collision}
 LMP=${LMP:-lmp}
+# LAMMPS runs here as one process without mpirun: Open MPI then starts an orted daemon
+# beside it, unless told the process is alone (a third of a second of every run's wall
+# time, 35 runs); other MPI libraries ignore the variable
+export OMPI_MCA_ess_singleton_isolated=${OMPI_MCA_ess_singleton_isolated:-1}
 DT=${COLL_DT:-1e-6}
 ENGINE_ARGS=${COLL_ENGINE_ARGS:-}
 LAWS=${COLL_LAWS:-hooke restitution hertz spring hertz_spring}
@@ -96,21 +100,43 @@ analyse() { # FILE R0 R1 DT
 	}' "$1"
 }
 
-# one key of the engine's header line
-hdr() { sed -n '1s/.* '"$2"'=\([^ ]*\).*/\1/p' "$1"; }
+# the engine's header line, "# KEY=VALUE ...", into HDR[KEY]: read by builtins, not a
+# process per key (this runs for every case, and a start is dear on a loaded machine)
+declare -A HDR=()
+hdr_read() { # FILE
+	local line kv
+	HDR=()
+	read -r line <"$1"
+	read -ra line <<<"$line"
+	for kv in "${line[@]}"; do [[ $kv == *=* ]] && HDR[${kv%%=*}]=${kv#*=}; done
+	return 0
+}
 
 # the LAMMPS deck of one case, from the engine's header (law values before any override)
 deck() { # LAW CASE HEADER DUMP
 	local law=$1 cs=$2 h=$3 dump=$4
 	local Y gn gs mu K e r0 r1 m0 m1 wall gap v kt
-	Y=$(hdr "$h" stiffness) gn=$(hdr "$h" gamma_n) gs=$(hdr "$h" gamma_s) mu=$(hdr "$h" mu) kt=$(hdr "$h" shear_stiffness)
-	K=$(hdr "$h" hertz_stiffness) e=$(hdr "$h" restitution) r0=$(hdr "$h" r0) r1=$(hdr "$h" r1)
-	m0=$(hdr "$h" m0) m1=$(hdr "$h" m1) wall=$(hdr "$h" wall) gap=$(hdr "$h" gap) v=$(hdr "$h" v)
-	local vxw; vxw=$(hdr "$h" vx_wall)
+	hdr_read "$h"
+	Y=${HDR[stiffness]} gn=${HDR[gamma_n]} gs=${HDR[gamma_s]} mu=${HDR[mu]} kt=${HDR[shear_stiffness]}
+	K=${HDR[hertz_stiffness]} e=${HDR[restitution]} r0=${HDR[r0]} r1=${HDR[r1]}
+	m0=${HDR[m0]} m1=${HDR[m1]} wall=${HDR[wall]} gap=${HDR[gap]} v=${HDR[v]}
+	local vxw=${HDR[vx_wall]}
 	# the case's tangential values: also in the main loop (the engine's arguments)
 	case $cs in sticking) gs=1e4 ;; sliding) gs=1e4 mu=0.05 ;; esac
-	local b=0 x1 y1 vx0 vy0 vx1
-	[ "$cs" = oblique ] || [ "$cs" = sticking ] || [ "$cs" = sliding ] && b=$(awk -v a="$r0" -v c="$r1" 'BEGIN{print 0.5*(a+c)}')
+	local b=0 x1 y1 vx0 vy0 vx1 y0 steps d0 d1 g ratio off=0
+	[ "$cs" = oblique ] || [ "$cs" = sticking ] || [ "$cs" = sliding ] && off=1
+	# every number of the deck by one awk: the impact parameter b (as awk prints it), the
+	# second disk's x, the wall case's y, the velocities, the steps, the diameters, the
+	# restitution law's gamma_n for this pair (see below) and granular's x_gamma,t
+	read -r b x1 y0 vx0 vx1 steps d0 d1 g ratio < <(awk -v off="$off" -v r0="$r0" -v r1="$r1" -v gap="$gap" \
+		-v v="$v" -v m0="$m0" -v m1="$m1" -v dt="$DT" -v Y="$Y" -v e="$e" -v gs="$gs" -v gn="$gn" '
+		function n(x) { return x == int(x) ? sprintf("%d", x) : sprintf("%.6g", x) }
+		BEGIN {
+			b = off ? n(0.5 * (r0 + r1)) : 0; d = r0 + r1 + gap
+			m = m0 * m1 / (m0 + m1); l = e > 0 ? -log(e) : 0; z = l / sqrt(3.141592653589793^2 + l * l)
+			printf "%s %.17g %.17g %.17g %.17g %d %s %s %.17g %.17g\n", b, sqrt(d * d - b * b), d,
+				v * m1 / (m0 + m1), -v * m0 / (m0 + m1), 0.012 / dt + 0.5, n(2 * r0), n(2 * r1),
+				2 * z * sqrt(Y / m), gs / gn }')
 	local pair
 	case $law in
 	hooke) pair="pair_style gran/hooke $Y 0.0 $gn $gs $mu 1
@@ -135,7 +161,7 @@ pair_coeff * *"
 		# linear_nohistory: x_gamma,t times that, x_gamma,t = gamma_s / gamma_n), but applies
 		# the shear force at the contact point, R_i - xi/2 from the centre (the rows' tolerance).
 		[ "$cs" = sticking ] || [ "$cs" = sliding ] && pair="pair_style granular
-pair_coeff * * hertz $K $gn damping viscoelastic tangential linear_nohistory $(awk -v a="$gs" -v b="$gn" 'BEGIN{printf "%.17g", a/b}') $mu" ;;
+pair_coeff * * hertz $K $gn damping viscoelastic tangential linear_nohistory $ratio $mu" ;;
 	restitution)
 		# the law's damping for this pair, gamma_N m_eff = 2 zeta sqrt(Y m_eff), given to
 		# gran/hooke as gamma_n = 2 zeta sqrt(Y / m_eff): LAMMPS then computes the engine's
@@ -143,24 +169,16 @@ pair_coeff * * hertz $K $gn damping viscoelastic tangential linear_nohistory $(a
 		# pair_style granular's `damping coeff_restitution` is the same normal law, but its
 		# tangential force acts at the contact point, R_i - xi/2 from the centre, not at R_i:
 		# docs/validate_lammps.md "Two-disk collisions"; the Debian LAMMPS of 29 Sep 2021 lacks it.)
-		local g
-		g=$(awk -v Y="$Y" -v e="$e" -v a="$m0" -v c="$m1" 'BEGIN {
-			m = a * c / (a + c); l = -log(e); z = l / sqrt(3.141592653589793^2 + l * l)
-			printf "%.17g", 2 * z * sqrt(Y / m) }')
+		# (g, computed above: m = m_eff, l = -ln e, zeta = l / sqrt(pi^2 + l^2), 2 zeta sqrt(Y / m))
 		pair="pair_style gran/hooke $Y 0.0 $g $gs $mu 1
 pair_coeff * *" ;;
 	esac
 	if [ "$wall" = 1 ]; then
 		x1=0 y1=0 vx0=$vxw vy0=-$v vx1=0
-		local y0; y0=$(awk -v a="$r0" -v c="$r1" -v g="$gap" 'BEGIN{printf "%.17g", a+c+g}')
 		local x0=0
 	else
-		x1=$(awk -v s="$r0" -v t="$r1" -v g="$gap" -v b="$b" 'BEGIN{d=s+t+g; printf "%.17g", sqrt(d*d-b*b)}')
 		y1=-$b x0=0 y0=0 vy0=0
-		vx0=$(awk -v v="$v" -v a="$m0" -v c="$m1" 'BEGIN{printf "%.17g", v*c/(a+c)}')
-		vx1=$(awk -v v="$v" -v a="$m0" -v c="$m1" 'BEGIN{printf "%.17g", -v*a/(a+c)}')
 	fi
-	local steps; steps=$(awk -v dt="$DT" 'BEGIN{printf "%d", 0.012/dt+0.5}')
 	cat <<EOD
 units cgs
 dimension 2
@@ -171,8 +189,8 @@ region box block -20 20 -20 20 -0.5 0.5
 create_box 2 box
 create_atoms 1 single $x0 $y0 0
 create_atoms 2 single $x1 $y1 0
-set atom 1 diameter $(awk -v r="$r0" 'BEGIN{print 2*r}')
-set atom 2 diameter $(awk -v r="$r1" 'BEGIN{print 2*r}')
+set atom 1 diameter $d0
+set atom 2 diameter $d1
 set atom 1 mass $m0
 set atom 2 mass $m1
 velocity all set 0 0 0
@@ -216,15 +234,21 @@ for law in $LAWS; do
 		"$BIN" "$law" "$ecase" "$DT" $extra $ENGINE_ARGS >"$work/s.txt" || die "engine run $law $cs failed"
 		# shellcheck disable=SC2086
 		"$BIN" "$law" "$ecase" "$half" $extra $ENGINE_ARGS >"$work/s2.txt" || die "engine run $law $cs (dt/2) failed"
-		# the LAMMPS side from an engine header without ENGINE_ARGS
-		"$BIN" "$law" "$ecase" "$DT" >"$work/h.txt" || die "engine run $law $cs (header) failed"
-		deck "$law" "$cs" "$work/h.txt" "$work/l.dump" >"$work/l.in"
+		# the LAMMPS side from an engine header without ENGINE_ARGS (the first run's, when
+		# it had no arguments: the same command)
+		h=$work/s.txt
+		if [ -n "$extra$ENGINE_ARGS" ]; then
+			h=$work/h.txt
+			"$BIN" "$law" "$ecase" "$DT" >"$h" || die "engine run $law $cs (header) failed"
+		fi
+		deck "$law" "$cs" "$h" "$work/l.dump" >"$work/l.in"
 		if ! "$LMP" -in "$work/l.in" -log "$work/l.log" -screen none >/dev/null 2>&1; then
 			trap - EXIT # keep the deck and the log
 			die "LAMMPS failed on $law $cs (deck $work/l.in, log $work/l.log): $(tail -3 "$work/l.log")"
 		fi
 		dump2cols "$work/l.dump" >"$work/l.txt"
-		r0=$(hdr "$work/h.txt" r0) r1=$(hdr "$work/h.txt" r1)
+		hdr_read "$h"
+		r0=${HDR[r0]} r1=${HDR[r1]}
 		read -r es ts ws xm < <(analyse "$work/s.txt" "$r0" "$r1" "$DT")
 		read -r e2 t2 w2 _ < <(analyse "$work/s2.txt" "$r0" "$r1" "$half")
 		read -r el tl wl _ < <(analyse "$work/l.txt" "$r0" "$r1" "$DT")
@@ -236,7 +260,7 @@ for law in $LAWS; do
 		done
 		# restitution law, two mobile disks: e must be the input e (docs/model.md "Restitution")
 		ein=0
-		[ "$law" = restitution ] && { [ "$cs" = equal ] || [ "$cs" = intruder ]; } && ein=$(hdr "$work/h.txt" restitution)
+		[ "$law" = restitution ] && { [ "$cs" = equal ] || [ "$cs" = intruder ]; } && ein=${HDR[restitution]}
 		tolw=$TOL
 		[ "$law $cs" = "hertz sticking" ] || [ "$law $cs" = "hertz sliding" ] &&
 			tolw=$(awk -v x="$xm" -v r="$r0" -v t="$TOL" 'BEGIN{printf "%.3g", x / (2 * r) + t}')
