@@ -173,34 +173,6 @@ static int walk_isolated(const char *path, sb_err *e)
 		       "structure is damaged", path, how);
 }
 
-/* The walks that passed in this process: the path and the seal of the bytes walked. A
- * reader opens a run file more than once (each figure, each definition of a waiting
- * time); the seal just computed shows the bytes are those walked, whose verdict stands:
- * one child process a file, not one an open (docs/inputs.md, "Run files"). A failed
- * walk is never kept, and an unsealed file (an older format) is walked at every open. */
-#define WALKED_MAX 4096
-static struct {
-	char *path;
-	char seal[17];
-} walked[WALKED_MAX];
-static size_t n_walked;
-
-static int walked_before(const char *path, const char *seal)
-{
-	for (size_t i = 0; i < n_walked; i++)
-		if (!strcmp(walked[i].seal, seal) && !strcmp(walked[i].path, path))
-			return 1;
-	return 0;
-}
-
-static void walked_keep(const char *path, const char *seal)
-{
-	if (n_walked == WALKED_MAX || !(walked[n_walked].path = strdup(path)))
-		return;
-	memcpy(walked[n_walked].seal, seal, sizeof walked[n_walked].seal);
-	n_walked++;
-}
-
 int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal[17], sb_err *e)
 {
 	*f = -1;
@@ -218,12 +190,8 @@ int h5r_open_sealed(const char *path, const char *want_seal, hid_t *f, char seal
 			       seal[0] ? seal : "not at all (an older format)", want_seal);
 	/* bytes that match the seal the driver recorded are the engine's own: no need to
 	 * prove HDF5 can walk them */
-	if (!(want_seal && want_seal[0]) && !(seal[0] && walked_before(path, seal))) {
-		if (walk_isolated(path, e))
-			return e->code;
-		if (seal[0])
-			walked_keep(path, seal);
-	}
+	if (!(want_seal && want_seal[0]) && walk_isolated(path, e))
+		return e->code;
 	*f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
 	if (*f < 0) {
 		char why[256] = "";
