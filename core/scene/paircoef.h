@@ -25,6 +25,10 @@ typedef struct sb_paircoef {
 } sb_paircoef;
 sb_paircoef paircoef_of(const sb_scene *sc, int cls);
 
+/* A class's (0 .. SB_NPAIRC - 1) coefficient coef as given; -1 for `same`. */
+enum sb_paircoef_key { PCK_MU, PCK_GAMMA_N, PCK_GAMMA_S, PCK_STIFFNESS };
+double paircoef_given(const sb_scene *sc, int cls, int coef);
+
 /* 1 when every class resolves to the grain-grain coefficients (the paper's one material:
  * the vector kernel's laws run), else 0. */
 int paircoef_uniform(const sb_scene *sc);

@@ -29,20 +29,6 @@
 #define STR(f) PT_STR, TYPED(f, char *)
 #define BIG 1e300
 
-/* The four coefficient rows of pair class `cls` (paircoef.h's index k); their default
- * -1 (`same`) is the grain-grain key's value, so that a scene without them is the
- * paper's single material to the bit. */
-#define PAIR_ROWS(cls, k, what)                                                                                   \
-	{"mu_" cls, REAL(pc_mu[k]), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,                          \
-	 "Coulomb friction coefficient of " what " (same = mu)"},                                                  \
-	{"gamma_n_" cls, REAL(pc_gamma_n[k]), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,             \
-	 "normal damping gamma_N of " what " (same = gamma_n; not beside restitution)"},                           \
-	{"gamma_s_" cls, REAL(pc_gamma_s[k]), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,             \
-	 "shear damping gamma_S of " what " (same = gamma_s)"},                                                    \
-	{"stiffness_" cls, REAL(pc_stiffness[k]), "g/s^2", "same", 0, 1e15, NULL,                                 \
-	 PF_PREP | PF_DYN | PF_MINX | PF_SAME,                                                                     \
-	 "normal stiffness of " what " (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "      \
-	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"}
 
 /* The presets, in the order of the preset row's choices: each a list of key, value
  * pairs (the paper preset's values are also the table's defaults; tests/unit/params.c
@@ -166,11 +152,45 @@ static const sb_param TABLE[] = {
 	{"mu", REAL(mu), "", "0.5", 0, 100, NULL, PF_PREP | PF_DYN,
 	 "Coulomb friction coefficient"},
 	/* the pair classes' own coefficients (docs/model.md, "Materials per pair of kinds"),
-	 * like LAMMPS's pair_coeff I J: four rows per class, in paircoef.h's order */
-	PAIR_ROWS("grain_intruder", 0, "a grain and an intruder"),
-	PAIR_ROWS("intruder_intruder", 1, "two intruders"),
-	PAIR_ROWS("grain_wall", 2, "a grain and a wall disk"),
-	PAIR_ROWS("intruder_wall", 3, "an intruder and a wall disk"),
+	 * like LAMMPS's pair_coeff I J: four rows per class, in paircoef.h's order; their
+	 * default -1 (`same`) is the grain-grain key's value, so that a scene without them
+	 * is the paper's single material to the bit */
+	{"mu_grain_intruder", REAL(mu_grain_intruder), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "Coulomb friction coefficient of a grain and an intruder (same = mu)"},
+	{"gamma_n_grain_intruder", REAL(gamma_n_grain_intruder), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "normal damping gamma_N of a grain and an intruder (same = gamma_n; not beside restitution)"},
+	{"gamma_s_grain_intruder", REAL(gamma_s_grain_intruder), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "shear damping gamma_S of a grain and an intruder (same = gamma_s)"},
+	{"stiffness_grain_intruder", REAL(stiffness_grain_intruder), "g/s^2", "same", 0, 1e15, NULL, PF_PREP | PF_DYN | PF_MINX | PF_SAME,
+	 "normal stiffness of a grain and an intruder (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "
+	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"},
+	{"mu_intruder_intruder", REAL(mu_intruder_intruder), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "Coulomb friction coefficient of two intruders (same = mu)"},
+	{"gamma_n_intruder_intruder", REAL(gamma_n_intruder_intruder), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "normal damping gamma_N of two intruders (same = gamma_n; not beside restitution)"},
+	{"gamma_s_intruder_intruder", REAL(gamma_s_intruder_intruder), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "shear damping gamma_S of two intruders (same = gamma_s)"},
+	{"stiffness_intruder_intruder", REAL(stiffness_intruder_intruder), "g/s^2", "same", 0, 1e15, NULL, PF_PREP | PF_DYN | PF_MINX | PF_SAME,
+	 "normal stiffness of two intruders (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "
+	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"},
+	{"mu_grain_wall", REAL(mu_grain_wall), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "Coulomb friction coefficient of a grain and a wall disk (same = mu)"},
+	{"gamma_n_grain_wall", REAL(gamma_n_grain_wall), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "normal damping gamma_N of a grain and a wall disk (same = gamma_n; not beside restitution)"},
+	{"gamma_s_grain_wall", REAL(gamma_s_grain_wall), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "shear damping gamma_S of a grain and a wall disk (same = gamma_s)"},
+	{"stiffness_grain_wall", REAL(stiffness_grain_wall), "g/s^2", "same", 0, 1e15, NULL, PF_PREP | PF_DYN | PF_MINX | PF_SAME,
+	 "normal stiffness of a grain and a wall disk (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "
+	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"},
+	{"mu_intruder_wall", REAL(mu_intruder_wall), "", "same", 0, 100, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "Coulomb friction coefficient of an intruder and a wall disk (same = mu)"},
+	{"gamma_n_intruder_wall", REAL(gamma_n_intruder_wall), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "normal damping gamma_N of an intruder and a wall disk (same = gamma_n; not beside restitution)"},
+	{"gamma_s_intruder_wall", REAL(gamma_s_intruder_wall), "1/s", "same", 0, 1e8, NULL, PF_PREP | PF_DYN | PF_SAME,
+	 "shear damping gamma_S of an intruder and a wall disk (same = gamma_s)"},
+	{"stiffness_intruder_wall", REAL(stiffness_intruder_wall), "g/s^2", "same", 0, 1e15, NULL, PF_PREP | PF_DYN | PF_MINX | PF_SAME,
+	 "normal stiffness of an intruder and a wall disk (same = stiffness; normal = hertz: hertz_stiffness's unit and value; "
+	 "tangential = spring with shear_stiffness 0: k_t is 2/7 of it)"},
 	{"clip_attractive", BOOL(clip_attractive), "", "no", 0, 0, NULL, PF_PREP | PF_DYN,
 	 "clip the normal force at zero (no attraction at the end of a contact)"},
 	{"preset", ENUM(preset), "", "paper", 0, 0, "paper|fast", PF_PREP | PF_DYN,

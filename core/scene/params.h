@@ -61,9 +61,12 @@ struct sb_scene {
 	double hertz_stiffness;
 	int tangential;          /* TANGENTIAL_VISCOUS, TANGENTIAL_SPRING */
 	double shear_stiffness;  /* k_t; 0: 2/7 of the normal stiffness */
-	/* the coefficients of the pair classes other than grain-grain (paircoef.h: the
-	 * classes' order); -1 = the grain-grain key's value */
-	double pc_mu[SB_NPAIRC], pc_gamma_n[SB_NPAIRC], pc_gamma_s[SB_NPAIRC], pc_stiffness[SB_NPAIRC];
+	/* the coefficients of the pair classes other than grain-grain (paircoef.h);
+	 * -1 = the grain-grain key's value */
+	double mu_grain_intruder, gamma_n_grain_intruder, gamma_s_grain_intruder, stiffness_grain_intruder;
+	double mu_intruder_intruder, gamma_n_intruder_intruder, gamma_s_intruder_intruder, stiffness_intruder_intruder;
+	double mu_grain_wall, gamma_n_grain_wall, gamma_s_grain_wall, stiffness_grain_wall;
+	double mu_intruder_wall, gamma_n_intruder_wall, gamma_s_intruder_wall, stiffness_intruder_wall;
 	int clip_attractive;
 	int integrator;      /* enum sb_integrator */
 	double dt;

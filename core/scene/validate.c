@@ -40,7 +40,7 @@ int params_validate(const sb_scene *s, sb_err *e)
 	for (int c = 0; c < SB_NPAIRC; c++) {
 		char key[48];
 		snprintf(key, sizeof key, "gamma_n_%s", paircoef_name(c));
-		if (s->restitution > 0 && s->pc_gamma_n[c] != -1)
+		if (s->restitution > 0 && paircoef_given(s, c, PCK_GAMMA_N) != -1)
 			return sb_errf(e, SB_EUSAGE, "%s: restitution = %g sets the normal damping of every pair; %s (%s) "
 				       "cannot be set beside it: leave one out", W("restitution"), s->restitution, key, W(key));
 	}
