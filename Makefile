@@ -76,7 +76,18 @@ DIR_CFLAGS = $(foreach d,$(HDF5_DIR) $(GSL_DIR) $(INIH_DIR) $(SQLITE_DIR),-I$(d)
 DIR_LIBS   = $(call lib_from,$(HDF5_DIR),-lhdf5) $(call lib_from,$(GSL_DIR),-lgsl -lgslcblas) \
              $(call lib_from,$(INIH_DIR),-linih) $(call lib_from,$(SQLITE_DIR),-lsqlite3)
 PKG_CFLAGS = $(if $(strip $(PKGS)),$(shell pkg-config --cflags $(PKGS) 2>/dev/null)) $(DIR_CFLAGS)
-PKG_LIBS   = $(if $(strip $(PKGS)),$(shell pkg-config --libs $(PKGS) 2>/dev/null)) $(DIR_LIBS) -lm
+# HDF5 from its static library where the package ships one beside the shared one (Debian's
+# libhdf5-dev does): the shared library loads about 35 others for reading over the network
+# (libcurl, TLS, Kerberos) that nothing here uses, and loading them took 28 of the 36 ms a
+# bin/shake --version took on the development VM; a campaign and the suite start thousands
+# of processes (docs/install.md). Only Debian's package (hdf5-serial) is known to need no
+# more than libsz and libz then; HDF5_STATIC=0 links the shared one, and another package,
+# a module or HDF5_DIR always does.
+HDF5_STATIC ?= 1
+HDF5_A    := $(if $(and $(filter 1,$(HDF5_STATIC)),$(filter hdf5-serial,$(HDF5_PC))),$(firstword $(wildcard $(patsubst -L%,%/libhdf5.a,$(filter -L%,$(shell pkg-config --libs-only-L $(HDF5_PC) 2>/dev/null))))))
+PKG_LIBS_PC := $(if $(strip $(PKGS)),$(shell pkg-config --libs $(PKGS) 2>/dev/null))
+PKG_LIBS   = $(patsubst -lhdf5,$(if $(HDF5_A),$(HDF5_A) -lsz -lz -ldl,-lhdf5),$(PKG_LIBS_PC)) $(DIR_LIBS) -lm
+PKG_LIBS_SHARED = $(PKG_LIBS_PC) $(DIR_LIBS) -lm
 ALLCFLAGS  = $(BASEFLAGS) $(CFLAGS) $(MARCH) $(XFLAGS) $(DBGFLAGS) $(PKG_CFLAGS) $(CORE_INC)
 LDFLAGS   += $(XFLAGS) $(SANLDFLAGS)
 
@@ -216,8 +227,17 @@ $(FAULT_SHIM): tests/faults/iofail.c
 	@$(if $(filter 0,$(V)),echo "  CC    $<")
 	$(Q)$(CC) -std=c11 -Wall -Wextra -Werror -O1 -shared -fPIC -o $@ $< -ldl
 
+# The shim also hooks HDF5's own functions (H5Dclose, H5Lvisit), which it can only where
+# HDF5 is a shared library: the fault tests that need it run these links of the same
+# objects with the shared HDF5, $(BIN)/h5shared/ (tests/integration/lib.sh, h5shared).
+H5SHARED = $(BIN)/h5shared
+$(H5SHARED)/shake: $(BUILD)/core/run/shake_main.o $(LIB)
+	@mkdir -p $(dir $@)
+	@$(if $(filter 0,$(V)),echo "  LD    $@")
+	$(Q)$(CC) $(LDFLAGS) -o $@ $^ $(PKG_LIBS_SHARED)
+
 # the engine's side of the two-disk LAMMPS comparison (tests/integration/lammps_collisions.sh)
-tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM) $(BUILD)/tests/bench/lammps_collision
+tests: $(SHAKE) $(TEST_BIN) $(FAULT_SHIM) $(H5SHARED)/shake $(BUILD)/tests/bench/lammps_collision
 
 # The suite runs the sanitizer build (ASan/UBSan) of every unit and physics test and
 # the integration scripts; the release programs (make all) run the regression test on

@@ -8,7 +8,9 @@
  * contains it fails with ENOSPC, the other writes go through. A dataset's last chunks
  * are written when it closes, and the file's metadata after them, so a writer that
  * ignores the close's failure goes on to seal and rename a file that holds zeros in
- * place of those chunks (docs/testing.md, "Hostile input and faults"). */
+ * place of those chunks (docs/testing.md, "Hostile input and faults"). The hooks of
+ * HDF5's own functions (here and H5Lvisit below) reach only a program linked with the
+ * shared HDF5: the tests preload the shim into those links, $(BIN)/h5shared/ (Makefile). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>

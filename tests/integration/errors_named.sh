@@ -74,8 +74,9 @@ fi
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
 if [ -f "$SHIM" ]; then
 	mkdir closing
+	h5shared_setup shake
 	LD_PRELOAD="$SHIM" IOFAIL_CLOSE=.h5.tmp. ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
-		"$SHAKE" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing.log 2>&1
+		"$H5SHARED/shake" "${FAST[@]}" "${GENTLE[@]}" duration=0.5 checkpoint_every=0.25 output="$TMP/closing/r.h5" >closing.log 2>&1
 	rc=$?
 	left=$(cd closing && ls -A | tr '\n' ' ')
 	[ "$rc" = 2 ] && [ "$left" = "r.h5.ckpt r.h5.journal " ] &&

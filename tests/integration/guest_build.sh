@@ -38,6 +38,15 @@ done
 check guest.make_builds_every_tool "only $n programs built" test "$n" -ge 8
 quiet() { "$@" >/dev/null 2>&1; }
 check guest.shake_runs "$(src/bin/shake --version 2>&1 | head -n 2)" quiet src/bin/shake --version
+# Debian's HDF5 linked from its static library (the Makefile's HDF5_STATIC says why), and
+# only where the package ships one: then no libhdf5*.so is needed, nor libcurl
+needed() { readelf -d "$1" 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' '; }
+if pkg-config --exists hdf5-serial && [ -f "$(pkg-config --libs-only-L hdf5-serial | sed 's/^-L//; s/ *$//')/libhdf5.a" ]; then
+	check guest.hdf5_static "src/bin/shake needs: $(needed src/bin/shake)" \
+		eval '! needed src/bin/shake | grep -q "libhdf5\|libcurl"'
+else
+	skip guest.hdf5_static "no Debian libhdf5.a here (pkg-config hdf5-serial)"
+fi
 
 # the libraries hidden: stops naming each, with its packages; nothing built or installed
 PATH="$TMP/stubs:$PATH" PKG_CONFIG_LIBDIR=/nonexistent make -C src BUILD=build/hidden BIN=build/hidden/bin \
@@ -66,6 +75,8 @@ rc=$?
 check guest.hdf5_dir_builds "exit $rc: $(tail -n 3 prefix.log)" test "$rc" = 0
 check guest.hdf5_dir_used "the compiler was not pointed at the prefix: $(grep -m1 -- '-I' src/build/prefix/flags)" \
 	grep -qF -- "-I$TMP/h5prefix/include" src/build/prefix/flags
+check guest.hdf5_dir_links_shared "src/build/prefix/bin/shake needs: $(needed src/build/prefix/bin/shake)" \
+	eval 'needed src/build/prefix/bin/shake | grep -q libhdf5'
 check guest.hdf5_dir_runs "$(src/build/prefix/bin/shake --version 2>&1 | head -n 2)" quiet src/build/prefix/bin/shake --version
 PATH="$TMP/stubs:$PATH" make -C src HDF5_DIR="$TMP/nowhere" BUILD=build/nowhere BIN=build/nowhere/bin \
 	build/nowhere/bin/shake >nowhere.log 2>&1

@@ -227,9 +227,10 @@ planted V6 "$ID0" --attr-str / format shakebox-run-2 && tail -c +513 V6/fz/"$ID0
 # the readers walk a file first in a child process. The shim makes H5Lvisit crash so on
 # the run's file (the crash, not the one file's layout, is what is tested).
 SHIM="${IOFAIL:-$REPO/build/faults/iofail.so}"
+h5shared_setup waiting whale
 planted W1 && q W1/study.db "UPDATE result SET file_seal = NULL" && reseal_rows W1/study.db
 for t in waiting whale; do
-	LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+	BINDIR=$H5SHARED LD_PRELOAD="$SHIM" IOFAIL_H5WALK="$ID.h5" ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 		counted h5walk_crash.$t $t W1 "$ID" unreadable "the HDF5 library failed while walking the file's links and objects"
 done
 # ... and one that loops forever there is refused at the walk's time limit
@@ -237,7 +238,7 @@ done
 # 4 s, not less: the healthy run beside it must walk within the limit on a loaded machine
 # (the sanitizer build at load 15-20 took over 1 s)
 t0=$(date +%s)
-LD_PRELOAD="$SHIM" IOFAIL_H5WALK_HANG="$ID.h5" SHAKEBOX_H5_WALK_SECONDS=4 ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
+BINDIR=$H5SHARED LD_PRELOAD="$SHIM" IOFAIL_H5WALK_HANG="$ID.h5" SHAKEBOX_H5_WALK_SECONDS=4 ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0" \
 	counted h5walk_hang.waiting waiting W1 "$ID" unreadable "did not finish walking the file's links and objects within 4 s"
 check h5walk_hang.within_limit "the tool took $(($(date +%s) - t0)) s" test $(($(date +%s) - t0)) -lt 20
 # a limit that is no number is refused at the start, by every program that reads run files

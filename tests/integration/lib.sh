@@ -333,6 +333,17 @@ same_output() {
 	[ -z "$out" ] || { printf "%s\n" "$out" | head -n 6 >&2; return 1; }
 }
 
+# h5shared_setup : H5SHARED, the directory of the links with the shared HDF5 beside $SHAKE
+# (the Makefile's H5SHARED: the fault shim's hooks of HDF5's functions work only there), with
+# each TOOL given there, or a failed setup
+h5shared_setup() {
+	H5SHARED="$(dirname "$SHAKE")/h5shared"
+	local t
+	for t in "$@"; do
+		[ -x "$H5SHARED/$t" ] || { fail setup "$H5SHARED/$t is not an executable (run make tests)"; finish; }
+	done
+}
+
 # analysis_tools_setup : BINDIR (the directory of $SHAKE) and STUDY, with the analysis
 # tools beside them, or a failed setup
 analysis_tools_setup() {
