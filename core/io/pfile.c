@@ -769,15 +769,22 @@ static int check_mass(const sb_scene *sc, const disk *d, const char *path, sb_er
 		       params_where(sc, "mass_factor"), key, place_density(sc, d->kind), params_where(sc, key), hint);
 }
 
-int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
+/* read_file with room for the most disks a scene may have; a file of 10^7 disks takes
+ * seconds to read and check, so SIGINT and SIGTERM end it */
+static int read_guarded(const sb_scene *sc, const char *path, dlist *l, sb_err *e)
 {
-	const sb_param *ng = params_find("n_grains");
-	dlist l = {.max = (int)ng->max + 1 + GUARD_MAX_WALLS};
-	/* a file of 10^7 disks takes seconds to read and check: SIGINT and SIGTERM end it */
+	*l = (dlist){.max = (int)params_find("n_grains")->max + 1 + GUARD_MAX_WALLS};
 	guard_sig g;
 	guard_hold(&g);
-	int err = read_file(sc, path, &l, e);
+	const int err = read_file(sc, path, l, e);
 	guard_release(&g);
+	return err;
+}
+
+int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
+{
+	dlist l;
+	int err = read_guarded(sc, path, &l, e);
 	/* mobile disks first, in file order, then the walls */
 	for (int pass = 0; pass < 2 && !err; pass++)
 		for (int i = 0; i < l.n && !err; i++) {
@@ -815,12 +822,8 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
  * radius of 2 over a mean of 1 is 2 and not 2 less an ulp. */
 int pfile_intruder_ratio(const sb_scene *sc, const char *path, double *ratio, long *line, sb_err *e)
 {
-	const sb_param *ng = params_find("n_grains");
-	dlist l = {.max = (int)ng->max + 1 + GUARD_MAX_WALLS};
-	guard_sig g;
-	guard_hold(&g);
-	int err = read_file(sc, path, &l, e);
-	guard_release(&g);
+	dlist l;
+	int err = read_guarded(sc, path, &l, e);
 	*ratio = 0;
 	*line = 0;
 	double lo, hi, mean;

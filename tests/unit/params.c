@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "paircoef.h"
 #include "params.h"
 #include "validate.h"
 #include "testlib.h"
@@ -148,6 +149,31 @@ static void test_nearest(void)
 	CHECK("params.nearest.in_the_message", e.code == SB_EUSAGE && strstr(e.msg, "x.scene:4") &&
 						 strstr(e.msg, "did you mean frequency?"),
 	      "'%s'", e.msg);
+}
+
+/* paircoef's class names are the key rows' suffixes: setting mu_NAME, gamma_n_NAME, ...
+ * by the name paircoef_name gives reaches that class's own coefficient and no other */
+static void test_paircoef_names(const sb_scene *d)
+{
+	static const char *const COEF[] = {"mu", "gamma_n", "gamma_s", "stiffness"};
+	const int KEYS[] = {PCK_MU, PCK_GAMMA_N, PCK_GAMMA_S, PCK_STIFFNESS};
+	for (int c = 0; c < SB_NPAIRC; c++)
+		for (int k = 0; k < 4; k++) {
+			char key[64], id[100];
+			snprintf(key, sizeof key, "%s_%s", COEF[k], paircoef_name(c));
+			sb_err e = {0};
+			sb_scene s = *d;
+			const int rc = params_set(&s, key, "0.375", "x", &e);
+			int others = 1;
+			for (int c2 = 0; c2 < SB_NPAIRC; c2++)
+				for (int k2 = 0; k2 < 4; k2++)
+					if ((c2 != c || k2 != k) && paircoef_given(&s, c2, KEYS[k2]) != -1)
+						others = 0;
+			snprintf(id, sizeof id, "params.paircoef.%s", key);
+			CHECK(id, rc == 0 && paircoef_given(&s, c, KEYS[k]) == 0.375 && others,
+			      "rc %d (%s): the class's value %g, every other class's still same: %d", rc, e.msg,
+			      paircoef_given(&s, c, KEYS[k]), others);
+		}
 }
 
 int main(void)
@@ -397,5 +423,6 @@ int main(void)
 	test_hash_nondefault();
 	test_presets();
 	test_nearest();
+	test_paircoef_names(&d);
 	return tl_done();
 }
