@@ -123,6 +123,8 @@ void kernel_free(sb_kernel *k)
 	free(k->d.rec);
 	free(k->d.facc);
 	free(k->d.kb);
+	free(k->d.pm);
+	free(k->d.prs);
 	shear_free(&k->shear);
 	free(k);
 }
@@ -193,6 +195,60 @@ static int scalar_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb
 	return forces_scalar(law, st, nl, law->spring ? &k->shear : NULL, &io, inv_dt, fabs_sum);
 }
 
+/* The vector kernel's per-pair numbers (kvec.h, sb_kdata), once per list build: m_eff
+ * and R_i + R_j of each listed pair, by the operations the lanes did on the records'
+ * numbers (1/m_i + 1/m_j, its inverse, R_i + R_j: the same bits), so that no step
+ * divides for them. */
+static int pair_consts(sb_kdata *d, const sb_state *st, const sb_nlist *nl, sb_err *e)
+{
+	if (d->pfor == nl && d->pbuilt == nl->builds && d->pn == nl->nflat)
+		return 0;
+	const int n = nl->nflat;
+	if (n + 8 > d->pcap) {
+		free(d->pm);
+		free(d->prs);
+		d->pcap = n + n / 4 + 64;
+		d->pm = bigmem_alloc(sizeof(double) * (size_t)d->pcap);
+		d->prs = bigmem_alloc(sizeof(double) * (size_t)d->pcap);
+		if (!d->pm || !d->prs) {
+			d->pcap = 0;
+			d->pfor = NULL;
+			return sb_errf(e, SB_ENOMEM, "out of memory for the force kernel's pair list (%d pairs)", n);
+		}
+	}
+	const int sh = nl->pshift;
+	const double *im = st->inv_m, *r = st->r;
+	for (int p = 0; p < n; p++) {
+		const int i = nl->pi[p] >> sh, j = nl->pj[p] >> sh;
+		d->pm[p] = 1.0 / (im[i] + im[j]);
+		d->prs[p] = r[i] + r[j];
+	}
+	for (int p = n; p < n + 8; p++) {
+		d->pm[p] = 1;
+		d->prs[p] = 0;
+	}
+	d->pfor = nl;
+	d->pbuilt = nl->builds;
+	d->pn = n;
+	return 0;
+}
+
+#ifndef NDEBUG
+/* the per-pair numbers are this list's (the test build asserts it at every call, on the
+ * first, a middle and the last pair: a list rebuilt in place with the same count of
+ * builds and pairs would otherwise go unseen) */
+static int pair_consts_hold(const sb_kdata *d, const sb_state *st, const sb_nlist *nl)
+{
+	const int n = nl->nflat, sh = nl->pshift, at[3] = {0, n / 2, n - 1};
+	for (int a = 0; a < 3 && n > 0; a++) {
+		const int p = at[a], i = nl->pi[p] >> sh, j = nl->pj[p] >> sh;
+		if (d->pm[p] != 1.0 / (st->inv_m[i] + st->inv_m[j]) || d->prs[p] != st->r[i] + st->r[j])
+			return 0;
+	}
+	return 1;
+}
+#endif
+
 int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		  int keep, double *fabs_sum, sb_err *e)
 {
@@ -207,6 +263,9 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	if (!packed)
 		kernel_sync(k, st);
+	if (pair_consts(&k->d, st, nl, e))
+		return -1;
+	assert(pair_consts_hold(&k->d, st, nl));
 	int bad = k->v->forces(&k->d, law, st, nl, inv_dt, keep, packed, fabs_sum);
 	if (nl->nseam) { /* periodic sides only: the records hold this state either way */
 		const double *rec = k->d.rec;

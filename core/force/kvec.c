@@ -1,14 +1,15 @@
 /* kvec.c - the force kernel, the fused corrector and the candidate scan, written once
  * over the vector layer (simd.h) and compiled once per instruction set (kvec.h; the
  * Makefile passes -march and SB_KV_NAME). docs/kernel.md tells the design; in short.
- * The kernel takes W candidate pairs a vector (the native width: simd.h). Every disk's
- * contact data are one 64-byte record (kvec.h), so a pair's data are two record loads
- * combined lane-wise (differences, sums, R_i, R_j); W pairs are transposed into
- * lanes and m_eff = 1 / (1/m_i + 1/m_j) formed there. Each lane performs the scalar
+ * The kernel takes W pairs a vector (the native width: simd.h), first the listed pairs
+ * to find those that touch, then the contacts. Every disk's
+ * contact data are one 64-byte record (kvec.h), so a contact's data are two record loads
+ * combined lane-wise (differences, sums, R_i, R_j); W contacts are transposed into
+ * lanes, with the m_eff = 1 / (1/m_i + 1/m_j) of the list build. Each lane performs the scalar
  * law's operations in its order (forces.c, contact(): no FMA, min and max with the
  * ternaries' operand order, the sign copy exact), so the forces are the scalar law's
- * to the bit. The contacts are compressed out of the lanes into a chunk buffer; a
- * second pass adds their forces to per-disk accumulators in list order, one 4-double
+ * to the bit. The contacts are compressed out of the list into a chunk buffer; a
+ * last pass adds their forces to per-disk accumulators in list order, one 4-double
  * vector per disk and contact - the order of the scalar sums, so the totals are bit-
  * identical too. Gathers are not used: on the AMD cores this was tuned on they cost
  * more than the loads and shuffles they would replace. */
@@ -168,11 +169,58 @@ SB_INLINE sb_vd rec_pair(sb_vd a, sb_vd b, const int h, sb_vd wa, sb_vd wb)
 #endif
 }
 
+/* x and y of W listed pairs' first disks minus their second disks', from the first two
+ * doubles of their records (one 16-byte load each): the even pairs' differences into a,
+ * the odd pairs' into b, (dx, dy) side by side, then one in-lane interleave each
+ * (unpcklpd, unpckhpd) */
+typedef double sb_v2 __attribute__((vector_size(16)));
+SB_INLINE sb_v2 rec_xy(const double *r)
+{
+	sb_v2 v;
+	memcpy(&v, r, sizeof v);
+	return v;
+}
+
+/* the (x, y) of the records at rec + o[0], rec + o[2], ... (every second offset) side by side */
+SB_INLINE sb_vd xy_every2(const double *rec, const int *o)
+{
+#if SB_W == 8
+	const sb_v4 lo = __builtin_shufflevector(rec_xy(rec + o[0]), rec_xy(rec + o[2]), 0, 1, 2, 3),
+		    hi = __builtin_shufflevector(rec_xy(rec + o[4]), rec_xy(rec + o[6]), 0, 1, 2, 3);
+	return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#elif SB_W == 4
+	return __builtin_shufflevector(rec_xy(rec + o[0]), rec_xy(rec + o[2]), 0, 1, 2, 3);
+#else
+	return rec_xy(rec + o[0]);
+#endif
+}
+
+SB_INLINE void pair_dxy(const double *rec, const int *pi, const int *pj, sb_vd *dx, sb_vd *dy)
+{
+	const sb_vd a = xy_every2(rec, pi) - xy_every2(rec, pj), b = xy_every2(rec, pi + 1) - xy_every2(rec, pj + 1);
+#if SB_W == 8
+	*dx = __builtin_shuffle(a, b, (sb_vl){0, 8, 2, 10, 4, 12, 6, 14});
+	*dy = __builtin_shuffle(a, b, (sb_vl){1, 9, 3, 11, 5, 13, 7, 15});
+#elif SB_W == 4
+	*dx = __builtin_shuffle(a, b, (sb_vl){0, 4, 2, 6});
+	*dy = __builtin_shuffle(a, b, (sb_vl){1, 5, 3, 7});
+#else
+	*dx = __builtin_shuffle(a, b, (sb_vl){0, 2});
+	*dy = __builtin_shuffle(a, b, (sb_vl){1, 3});
+#endif
+}
+
+/* Two passes per chunk of the list. The first keeps the pairs that touch: x and y of
+ * the two records and R_i + R_j of the pair (sb_kdata), the law's own test in its
+ * order, and compresses the touching pairs' disks and m_eff into the chunk buffer, in
+ * list order. About half the listed pairs touch (a dense bed at the paper's skin), so
+ * the second pass runs the law with every lane a contact, and none of the square roots
+ * and divisions of pairs that do not touch. (docs/kernel.md, "Speed") */
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		     const int clip, const int resti, const int hertz, double *restrict fsum, const int packed,
 		     const int keep, const int pf)
 {
-	const double *rec = kd->rec;
+	const double *rec = kd->rec, *pm = kd->pm, *prs = kd->prs;
 	const int *pi = nl->pi, *pj = nl->pj;
 	sb_kbuf *restrict kb = kd->kb;
 	const int np = nl->nflat;
@@ -200,6 +248,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	for (int p0 = 0; p0 < np; p0 += SB_KCHUNK) {
 		const int p1 = p0 + SB_KCHUNK < np ? p0 + SB_KCHUNK : np;
 		int nc = 0;
+		/* pass 1: the pairs that touch (the list is padded with pairs (0, 0) to whole
+		 * vectors: nlist.h) */
 		for (int p = p0; p < p1; p += SB_W) {
 			if (pf) /* constant per instantiation */
 				for (int l = 0; l < SB_W; l++) {
@@ -208,38 +258,56 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 					const int q = p + 64 + l < np ? p + 64 + l : p;
 					__builtin_prefetch(rec + pj[q]);
 				}
+			sb_vd dx, dy;
+			pair_dxy(rec, pi + p, pj + p, &dx, &dy);
+			const sb_vd rs = sb_load(prs + p);
+			/* masks become bits at once: combining them as vectors costs a
+			 * conversion per operation where the ISA has no 64-bit compares */
+			const unsigned live = p1 - p >= SB_W ? (1u << SB_W) - 1 : (1u << (p1 - p)) - 1;
+			const unsigned bits = sb_lt(dx * dx + dy * dy, rs * rs) & live;
+			if (!bits)
+				continue;
+			/* whole-vector stores: the slots past the contacts are overwritten by the
+			 * next block */
+			const sb_cmask cm = sb_cmask_of(bits);
+			sb_compressi(kb->i + nc, sb_loadi(pi + p), cm);
+			sb_compressi(kb->j + nc, sb_loadi(pj + p), cm);
+			sb_compressd(kb->m + nc, sb_load(pm + p), cm);
+			nc += sb_count(bits);
+		}
+		/* the lanes past the last contact read disk 0's record; their numbers are
+		 * never used */
+		for (int l = 0; l < SB_W; l++) {
+			kb->i[nc + l] = kb->j[nc + l] = 0;
+			kb->m[nc + l] = 1;
+		}
+		/* pass 2: contact(), operation by operation, W contacts a vector */
+		for (int k = 0; k < nc; k += SB_W) {
 			/* per pair, lane-wise from the two records: x, y, vx, vy of i minus j;
 			 * R w and 1/m of i plus j; R_i; R_j. Then, W fields at a time, pairs ->
-			 * lanes. (The list is padded with pairs (0, 0) to whole vectors:
-			 * nlist.h.) */
+			 * lanes. */
 			sb_vd t[8];
 			for (int h = 0; h < 8; h += SB_W) {
 				const sb_vd ka = sb_load(wa + h), kb_ = sb_load(wb + h);
 				for (int l = 0; l < SB_W; l++)
-					t[h + l] = rec_pair(sb_load(rec + pi[p + l] + h), sb_load(rec + pj[p + l] + h), h, ka, kb_);
+					t[h + l] = rec_pair(sb_load(rec + kb->i[k + l] + h), sb_load(rec + kb->j[k + l] + h), h, ka,
+							    kb_);
 				sb_transpose(t + h);
 			}
-			const sb_vd dx = t[0], dy = t[1], dvx = t[2], dvy = t[3], rw = t[4], ims = t[5], ri = t[6],
-				    rj = t[7], rs = ri + rj;
+			const sb_vd dx = t[0], dy = t[1], dvx = t[2], dvy = t[3], rw = t[4], ri = t[6], rj = t[7],
+				    rs = ri + rj;
+			const unsigned live = nc - k >= SB_W ? (1u << SB_W) - 1 : (1u << (nc - k)) - 1;
 			const sb_vd d2 = dx * dx + dy * dy;
-			/* masks become bits at once: combining them as vectors costs a
-			 * conversion per operation where the ISA has no 64-bit compares */
-			const unsigned live = p1 - p >= SB_W ? (1u << SB_W) - 1 : (1u << (p1 - p)) - 1;
-			const unsigned bits = sb_lt(d2, rs * rs) & live;
-			if (!bits)
-				continue;
-			/* contact(), operation by operation; the lanes not in contact compute
-			 * numbers that are never used (their d may be 0) */
 			const sb_vd d = sb_sqrt(d2);
 			const sb_vd inv = one / d;
 			const sb_vd nx = dx * inv, ny = dy * inv;
 			const sb_vd xi = rs - d;
 			/* -xidot; a + k (-s) is a - k s to the bit */
 			const sb_vd mxidot = dvx * nx + dvy * ny;
-			const sb_vd meff = one / ims; /* 1 / (1/m_i + 1/m_j) */
+			const sb_vd meff = sb_load(kb->m + k); /* 1 / (1/m_i + 1/m_j) */
 			const sb_vd damp = resti ? gn * sb_sqrt(meff) : gn * meff; /* constant per instantiation */
 			sb_vd fn = Y * xi - damp * mxidot;
-			/* hertz: times sqrt(xi R_eff) (lanes not in contact: numbers never used) */
+			/* hertz: times sqrt(xi R_eff) */
 			const sb_vd ph = hertz ? sb_sqrt(xi * (ri * rj / rs)) : one;
 			if (hertz) /* constant per instantiation */
 				fn = ph * fn;
@@ -251,17 +319,11 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 				fv = ph * fv;
 			const sb_vd fc = mu * sb_abs(fn);
 			const sb_vd fs = sb_copysign_neg(sb_min(fv, fc), vt); /* copysign(fv < fc ? fv : fc, -vt) */
-			bad |= sb_lt(mo * sb_min(ri, rj), xi) & bits;
-			/* the contacts compressed out of the lanes; whole-vector stores, the
-			 * slots past the contacts are overwritten by the next block */
-			const sb_cmask cm = sb_cmask_of(bits);
-			sb_compressi(kb->i + nc, sb_loadi(pi + p), cm);
-			sb_compressi(kb->j + nc, sb_loadi(pj + p), cm);
-			sb_compressd(kb->fx + nc, fn * nx - fs * ny, cm);
-			sb_compressd(kb->fy + nc, fn * ny + fs * nx, cm);
-			sb_compressd(kb->ti + nc, sb_neg(ri * fs), cm);
-			sb_compressd(kb->tj + nc, rj * fs, cm);
-			nc += sb_count(bits);
+			bad |= sb_lt(mo * sb_min(ri, rj), xi) & live;
+			sb_store(kb->fx + k, fn * nx - fs * ny);
+			sb_store(kb->fy + k, fn * ny + fs * nx);
+			sb_store(kb->ti + k, sb_neg(ri * fs));
+			sb_store(kb->tj + k, rj * fs);
 		}
 		/* the chunk's forces added to the disks in list order, as 4-double vectors:
 		 * (Fx, Fy, -R_i F_S, 0) added to i's, (Fx, Fy, R_j F_S, 0) subtracted from j's

@@ -8,8 +8,8 @@
  * one vector per contact. The fused corrector consumes the accumulators and writes the
  * next step's records in the same pass over the disks. Velocities are the scaled
  * Nordsieck ones (v dt), as everywhere in the kernel. The record's sixth lane is 1/m
- * (0 only for a wall of infinite mass, docs/model.md "Walls"); the kernel forms
- * m_eff = 1 / (1/m_i + 1/m_j) of a pair from its two records. */
+ * (0 only for a wall of infinite mass, docs/model.md "Walls"); m_eff = 1 / (1/m_i + 1/m_j)
+ * of a pair is formed once per list build, per listed pair (sb_kdata). */
 #ifndef SB_KVEC_H
 #define SB_KVEC_H
 
@@ -21,11 +21,12 @@
 /* the pair list stores 8 i for disk i: the offset in doubles of its record */
 enum { SB_KSHIFT = 3, SB_KCHUNK = 256 };
 
-/* one chunk of the list's contacts, compressed out of the lanes: the disks (8 i, 8 j),
- * the force on i and the torques -R_i F_S, R_j F_S (8 spare slots: whole vectors are
- * stored) */
+/* one chunk of the list's contacts, compressed out of the list by the kernel's first
+ * pass: the disks (8 i, 8 j) and the pair's m_eff; the second pass writes the force on i
+ * and the torques -R_i F_S, R_j F_S (8 spare slots: whole vectors are stored) */
 typedef struct sb_kbuf {
 	_Alignas(64) double fx[SB_KCHUNK + 8], fy[SB_KCHUNK + 8], ti[SB_KCHUNK + 8], tj[SB_KCHUNK + 8];
+	double m[SB_KCHUNK + 8];
 	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
 } sb_kbuf;
 
@@ -34,6 +35,14 @@ typedef struct sb_kdata {
 	double *facc;     /* 4 doubles a disk */
 	sb_kbuf *kb;
 	long walls_packed; /* the list build whose wall records rec holds */
+	/* per listed pair, in list order, formed once per list build (kernel.c,
+	 * pair_consts): m_eff = 1 / (1/m_i + 1/m_j) and R_i + R_j, the lanes' own operations
+	 * on the records' numbers, so the same bits; 8 spare slots (m_eff 1, R_i + R_j 0) */
+	double *pm, *prs;
+	int pcap;
+	const sb_nlist *pfor; /* the list and build they were formed for */
+	long pbuilt;
+	int pn;
 	/* prefetch the far ends of the pairs: set when the per-disk data a step sweeps
 	 * outgrow half the last-level cache, where those loads come from memory */
 	int prefetch;

@@ -276,6 +276,45 @@ SB_INLINE int sb_count(unsigned bits)
  * to dst[0..] (whole vectors are stored: dst has room for SB_W). sb_cmask holds what
  * one mask's compressions share (AVX2: the permutation; AVX-512: nothing, the
  * instruction takes the mask). */
+#if SB_X86_NATIVE && SB_W == 4
+/* the permutations of sb_cmask_of on AVX2, by mask: the positions of its set bits, in
+ * order, as ints (pi) and as pairs of floats of doubles (pd); the rest 0 */
+static const int SB_CPERM_PD[16][8] __attribute__((aligned(32))) = {
+	{0, 1, 0, 1, 0, 1, 0, 1},
+	{0, 1, 0, 1, 0, 1, 0, 1},
+	{2, 3, 0, 1, 0, 1, 0, 1},
+	{0, 1, 2, 3, 0, 1, 0, 1},
+	{4, 5, 0, 1, 0, 1, 0, 1},
+	{0, 1, 4, 5, 0, 1, 0, 1},
+	{2, 3, 4, 5, 0, 1, 0, 1},
+	{0, 1, 2, 3, 4, 5, 0, 1},
+	{6, 7, 0, 1, 0, 1, 0, 1},
+	{0, 1, 6, 7, 0, 1, 0, 1},
+	{2, 3, 6, 7, 0, 1, 0, 1},
+	{0, 1, 2, 3, 6, 7, 0, 1},
+	{4, 5, 6, 7, 0, 1, 0, 1},
+	{0, 1, 4, 5, 6, 7, 0, 1},
+	{2, 3, 4, 5, 6, 7, 0, 1},
+	{0, 1, 2, 3, 4, 5, 6, 7}};
+static const int SB_CPERM_PI[16][8] __attribute__((aligned(32))) = {
+	{0, 0, 0, 0, 0, 0, 0, 0},
+	{0, 0, 0, 0, 0, 0, 0, 0},
+	{1, 0, 0, 0, 0, 0, 0, 0},
+	{0, 1, 0, 0, 0, 0, 0, 0},
+	{2, 0, 0, 0, 0, 0, 0, 0},
+	{0, 2, 0, 0, 0, 0, 0, 0},
+	{1, 2, 0, 0, 0, 0, 0, 0},
+	{0, 1, 2, 0, 0, 0, 0, 0},
+	{3, 0, 0, 0, 0, 0, 0, 0},
+	{0, 3, 0, 0, 0, 0, 0, 0},
+	{1, 3, 0, 0, 0, 0, 0, 0},
+	{0, 1, 3, 0, 0, 0, 0, 0},
+	{2, 3, 0, 0, 0, 0, 0, 0},
+	{0, 2, 3, 0, 0, 0, 0, 0},
+	{1, 2, 3, 0, 0, 0, 0, 0},
+	{0, 1, 2, 3, 0, 0, 0, 0}};
+#endif
+
 typedef struct sb_cmask {
 	unsigned bits;
 #if SB_X86_NATIVE && SB_W == 4
@@ -288,10 +327,8 @@ SB_INLINE sb_cmask sb_cmask_of(unsigned bits)
 	sb_cmask c;
 	c.bits = bits;
 #if SB_X86_NATIVE && SB_W == 4
-	/* positions p0..p3 (bytes) -> ints (p0 .. p3) and, for doubles, (2 p0, 2 p0 + 1, ...) */
-	const uint64_t pos = sb_positions(bits), pairs = _pdep_u64(pos, 0x00FF00FF00FF00FFULL) * 2;
-	c.pi = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)pos));
-	c.pd = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)(pairs | pairs << 8 | 0x0100010001000100ULL)));
+	c.pi = _mm256_load_si256((const __m256i *)SB_CPERM_PI[bits & 15]);
+	c.pd = _mm256_load_si256((const __m256i *)SB_CPERM_PD[bits & 15]);
 #endif
 	return c;
 }

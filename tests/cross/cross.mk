@@ -21,7 +21,7 @@ CROSS_QEMU    ?= qemu-aarch64 -L /usr/$(CROSS_TRIPLET)
 CROSS_TSRC    ?= $(wildcard tests/unit/*.c tests/physics/*.c tests/analysis/*.c)
 CROSS_TBIN     = $(CROSS_TSRC:%.c=$(CROSS_BUILD)/%)
 CROSS_SHAKE    = $(CROSS_BUILD)/bin/shake
-CROSS_VARS     = CC=$(CROSS_CC) BUILD=$(CROSS_BUILD) BIN=$(CROSS_BUILD)/bin SAN=0 MARCH=
+CROSS_VARS     = CC=$(CROSS_CC) BUILD=$(CROSS_BUILD) BIN=$(CROSS_BUILD)/bin SAN=0 MARCH= HDF5_STATIC=0
 
 .PHONY: deps-cross cross-aarch64 cross-aarch64-build cross-aarch64-products cross-aarch64-regression
 
