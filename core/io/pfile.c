@@ -820,37 +820,64 @@ int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e)
  * that run, where its grains' sample mean lies a few tenths of a percent off the
  * scene's. Rounded to the 12 digits a campaign prints its values with, so that a
  * radius of 2 over a mean of 1 is 2 and not 2 less an ulp. */
-int pfile_intruder_ratio(const sb_scene *sc, const char *path, double *ratio, long *line, sb_err *e)
+int pfile_intruders(const sb_scene *sc, const char *path, sb_pintr *out, sb_err *e)
 {
 	dlist l;
 	int err = read_guarded(sc, path, &l, e);
-	*ratio = 0;
-	*line = 0;
+	*out = (sb_pintr){0, 0, 0};
 	double lo, hi, mean;
 	params_grain_radii(sc, &lo, &hi, &mean);
 	for (int i = 0; i < l.n && !err; i++) {
 		const disk *d = &l.d[i];
 		if (d->kind != KIND_INTRUDER)
 			continue;
+		if (out->count++)
+			continue;
 		char num[40];
 		snprintf(num, sizeof num, "%.12g", d->r / mean);
-		*ratio = strtod(num, NULL);
-		*line = d->line;
+		out->ratio = strtod(num, NULL);
+		out->line = d->line;
 		const double max = params_find("radius_ratio")->max;
-		if (!(*ratio <= max))
+		if (!(out->ratio <= max))
 			err = sb_errf(e, SB_EUSAGE,
 				      "%s:%ld: intruder of radius %g cm is radius_ratio %g over the scene's mean grain radius %g cm "
 				      "(%s), beyond the key's range [0, %g]: set the grains' radii to the file's",
-				      path, d->line, d->r, *ratio, mean,
+				      path, d->line, d->r, out->ratio, mean,
 				      sc->size_dist == SIZE_BINARY ? "r_small, r_large, large_fraction" : "r_min, r_max", max);
-		break;
 	}
+	const sb_param *ni = params_find("n_intruders");
+	if (!err && out->count > (long)ni->max)
+		err = sb_errf(e, SB_EUSAGE, "%s: %ld intruders, beyond n_intruders' range [%g, %g]", path, out->count,
+			      ni->min, ni->max);
 	free(l.d);
 	return err;
 }
 
-int pfile_ratio_apply(sb_scene *sc, const char *path, double ratio, long line, sb_err *e)
+static int apply_count(sb_scene *sc, const char *path, const sb_pintr *in, sb_err *e)
 {
+	if (in->count < 1)
+		return 0;
+	const char *set = params_where(sc, "n_intruders");
+	if (strcmp(set, "default")) {
+		if (sc->n_intruders == in->count)
+			return 0;
+		return sb_errf(e, SB_EUSAGE,
+			       "%s:%ld: the file holds %ld intruder%s (the first on this line), but n_intruders = %ld is set at "
+			       "%s: a particle file's intruders decide n_intruders; leave the key out, or set it to the file's",
+			       path, in->line, in->count, in->count == 1 ? "" : "s", sc->n_intruders, set);
+	}
+	sb_err pe = {0};
+	char num[32];
+	snprintf(num, sizeof num, "%ld", in->count);
+	return params_set(sc, "n_intruders", num, "particle file", &pe) ? sb_errf(e, pe.code, "%s: %s", path, pe.msg) : 0;
+}
+
+int pfile_intruders_apply(sb_scene *sc, const char *path, const sb_pintr *in, sb_err *e)
+{
+	if (apply_count(sc, path, in, e))
+		return e->code;
+	const double ratio = in->ratio;
+	const long line = in->line;
 	const char *set = params_where(sc, "radius_ratio");
 	if (strcmp(set, "default")) {
 		/* given: it must be the file's, to the rounding of a printed radius */
@@ -879,13 +906,12 @@ int pfile_ratio_apply(sb_scene *sc, const char *path, double ratio, long line, s
 		       : 0;
 }
 
-int pfile_scene_ratio(sb_scene *sc, sb_err *e)
+int pfile_scene_intruders(sb_scene *sc, sb_err *e)
 {
-	double ratio;
-	long line;
-	if (pfile_intruder_ratio(sc, sc->particles, &ratio, &line, e))
+	sb_pintr in;
+	if (pfile_intruders(sc, sc->particles, &in, e))
 		return e->code;
-	return pfile_ratio_apply(sc, sc->particles, ratio, line, e);
+	return pfile_intruders_apply(sc, sc->particles, &in, e);
 }
 
 /* Lab frame: y + yshift; mobile velocities are taken as lab-frame already (the file

@@ -18,24 +18,33 @@
  * atom id, an atom style other than sphere. SIGINT and SIGTERM end a long read (SB_EINTR). */
 int pfile_read(const sb_scene *sc, const char *path, sb_state *st, sb_err *e);
 
-/* The radius_ratio a particle file gives (docs/model.md, "Units and the paper's
- * values"): its first intruder's radius over the scene's mean grain radius
- * (params_grain_radii), rounded to 12 significant digits, and that intruder's line; 0
- * and line 0 when it holds none. The file is read and checked as pfile_read reads it,
- * with its errors; a ratio beyond the key's range is refused. */
-int pfile_intruder_ratio(const sb_scene *sc, const char *path, double *ratio, long *line, sb_err *e);
+/* What a particle file's intruders make of the scene's keys (docs/model.md, "Units and
+ * the paper's values"): radius_ratio, its first intruder's radius over the scene's mean
+ * grain radius (params_grain_radii), rounded to 12 significant digits, with that
+ * intruder's line (0 and line 0 when it holds none), and n_intruders, how many it holds. */
+typedef struct sb_pintr {
+	double ratio;
+	long line;
+	long count;
+} sb_pintr;
 
-/* A scene's radius_ratio made the file's (ratio and line from pfile_intruder_ratio of
- * path, the file sc->particles names): a radius_ratio set explicitly (params_where) that
- * disagrees beyond PFILE_RATIO_REL is refused, naming the file, the intruder's line, the
- * key, where it was set and both values; one that agrees is kept as given (a packing
- * the study driver settled reads back its own run's value, bit for bit); else the
- * file's value is set, and params_where names the particle file. */
+/* Reads and checks the file as pfile_read does, with its errors; a ratio or a count
+ * beyond its key's range is refused. */
+int pfile_intruders(const sb_scene *sc, const char *path, sb_pintr *out, sb_err *e);
+
+/* A scene's radius_ratio and n_intruders made the file's (from pfile_intruders of path,
+ * the file sc->particles names): a key set explicitly (params_where) that disagrees - a
+ * radius_ratio beyond PFILE_RATIO_REL, an n_intruders other than a file's count of one or
+ * more intruders - is refused, naming the file, the first intruder's line, the key, where
+ * it was set and both values; one that agrees is kept as given (a packing the study
+ * driver settled reads back its own run's value, bit for bit); else the file's value is
+ * set, and params_where names the particle file. A file without intruder leaves
+ * n_intruders as it is: with radius_ratio 0 it counts nothing. */
 #define PFILE_RATIO_REL 1e-6
-int pfile_ratio_apply(sb_scene *sc, const char *path, double ratio, long line, sb_err *e);
+int pfile_intruders_apply(sb_scene *sc, const char *path, const sb_pintr *in, sb_err *e);
 
 /* Both, for a scene whose particles is set (bin/shake, before its cross-key checks). */
-int pfile_scene_ratio(sb_scene *sc, sb_err *e);
+int pfile_scene_intruders(sb_scene *sc, sb_err *e);
 
 /* Write the state at the start of shaking, lab frame: positions plus (0, yshift),
  * mobile velocities q1 * inv_dt, wall velocities (0, vshift) (the box's). Written

@@ -106,7 +106,7 @@ static void usage(FILE *f)
 }
 
 /* --contacts: the pair classes from the scene's keys (pclass.h), the intruder's from
- * radius_ratio, which a particle file's first intruder sets (pfile_scene_ratio); a
+ * radius_ratio, which a particle file's first intruder sets (pfile_scene_intruders); a
  * particle file's own disks are in its run file's /contact_law */
 static void print_contacts(const sb_scene *sc)
 {
@@ -198,7 +198,7 @@ int main(int argc, char **argv)
 	/* a particle file's intruder decides radius_ratio (docs/model.md, "Units and the
 	 * paper's values"): known before the checks, the checkpoint's identity and the run
 	 * file's /parameters */
-	if (sc.particles[0] && pfile_scene_ratio(&sc, &e)) {
+	if (sc.particles[0] && pfile_scene_intruders(&sc, &e)) {
 		fprintf(stderr, "shake: %s\n", e.msg);
 		return e.code;
 	}

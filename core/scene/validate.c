@@ -28,7 +28,7 @@ int params_validate(const sb_scene *s, sb_err *e)
 		return sb_errf(e, SB_EUSAGE, "%s: stop_flux_lo (%g) must be below stop_flux_hi (%g, %s)", W("stop_flux_lo"),
 			       s->stop_flux_lo, s->stop_flux_hi, W("stop_flux_hi"));
 	/* with particles, radius_ratio is the file's (bin/shake sets it before these checks:
-	 * core/io/pfile.h, pfile_scene_ratio), 0 for a file without intruder */
+	 * core/io/pfile.h, pfile_scene_intruders), 0 for a file without intruder */
 	if (s->stop == STOP_RISEN && s->radius_ratio == 0)
 		return sb_errf(e, SB_EUSAGE, "%s: stop = risen needs an intruder (radius_ratio is 0, %s)", W("stop"),
 			       W("radius_ratio"));

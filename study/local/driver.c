@@ -123,7 +123,7 @@ static void driver_owned(sb_scene *s, const char *output)
 	}
 }
 
-/* ---- a particle file's radius_ratio ---- */
+/* ---- a particle file's radius_ratio and n_intruders ---- */
 
 /* The file a run's particles names, read once while the runs in a row share it and
  * what its reading depends on (a campaign of 10^4 runs over one file reads it once):
@@ -134,8 +134,7 @@ typedef struct pratio {
 	double mean, max_overlap;
 	int sides;
 	int known;   /* 1: read; -1: could not be read (the engine says why, per run) */
-	double ratio;
-	long line;
+	sb_pintr in; /* what its intruders make of radius_ratio and n_intruders */
 } pratio;
 
 /* A run's scene as the driver records it (param rows) and hands it to the engine (its
@@ -166,12 +165,12 @@ static int run_scene(drv *d, const grid_run *r, sb_scene *s, pratio *m, sb_err *
 		m->mean = mean;
 		m->max_overlap = s->max_overlap;
 		m->sides = s->sides;
-		m->known = pfile_intruder_ratio(s, path, &m->ratio, &m->line, &pe) ? -1 : 1;
+		m->known = pfile_intruders(s, path, &m->in, &pe) ? -1 : 1;
 	}
 	if (m->known < 0)
 		return 0;
 	sb_err ae = {0};
-	if (pfile_ratio_apply(s, s->particles, m->ratio, m->line, &ae))
+	if (pfile_intruders_apply(s, s->particles, &m->in, &ae))
 		return sb_errf(e, ae.code, "%s: run %s: %s", d->c.path, r->id, ae.msg);
 	const campaign *c = &d->c;
 	const char *need = c->onset.line && c->onset.observable == CP_OBS_RISE ? "the search's observable rise"

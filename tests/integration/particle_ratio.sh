@@ -8,7 +8,8 @@
 # counts. A radius_ratio given beside the file that disagrees is refused naming the
 # file, the intruder's line, the key, where it was set and both values; one that agrees
 # is kept. A campaign's runs record the file's; a campaign whose radius_ratio disagrees
-# with its file is refused before anything runs.
+# with its file is refused before anything runs. n_intruders is the file's count of
+# intruders (two.txt: 2) in the run file and the param rows; given otherwise, refused.
 . "$(dirname "$0")/lib.sh"
 study_setup
 cd "$TMP" || exit 1
@@ -69,6 +70,21 @@ rc=$?
 recorded a.txt 2.0000000999999998 accepted.rounding radius_ratio=2.0000001
 shake_run bad4.log particles=a.txt "${RUN[@]}" radius_ratio=2.00001 output=bad4.h5
 [ $? -eq 1 ] && contains bad4.log "a.txt:13:" && ok refused.beyond_rounding || fail refused.beyond_rounding "$(head -c 300 bad4.log)"
+# n_intruders is the file's count: 2 from two.txt, 1 from a.txt; a file without intruder
+# leaves the key's default; given beside the file it must be the count
+nint() { h5param "$1" n_intruders; }
+for c in "two.txt 2 first_of_two" "a.txt 1 intruder_2" "none.txt 1 no_intruder"; do
+	set -- $c
+	[ "$(nint "recorded.$3.h5")" = "$2" ] && ok "n_intruders.$3" ||
+		fail "n_intruders.$3" "n_intruders '$(nint "recorded.$3.h5" 2>/dev/null)', want $2 (from $1)"
+done
+shake_run n2.log particles=two.txt "${RUN[@]}" n_intruders=2 output=n2.h5
+[ $? -eq 0 ] && [ "$(nint n2.h5)" = 2 ] && ok n_intruders.agreeing || fail n_intruders.agreeing "$(head -c 300 n2.log)"
+shake_run n3.log particles=two.txt "${RUN[@]}" n_intruders=3 output=n3.h5
+rc=$?
+[ "$rc" -eq 1 ] && contains n3.log "two.txt:15: the file holds 2 intruders" &&
+	contains n3.log "n_intruders = 3 is set at command line" && [ ! -e n3.h5 ] && ok n_intruders.refused ||
+	fail n_intruders.refused "exit $rc: $(head -c 400 n3.log)"
 # the checks that need an intruder see the file's: stop = risen over a file without one
 shake_run risen.log particles=none.txt "${RUN[@]}" stop=risen output=risen.h5
 [ $? -eq 1 ] && contains risen.log "stop = risen needs an intruder" && ok refused.stop_risen ||
@@ -90,6 +106,13 @@ n=$(q R/study.db "SELECT COUNT(*) FROM runs WHERE campaign = 'p' AND state = 'do
 f=$(ls R/p/*.h5 2>/dev/null | head -n 1)
 [ "$rc" -eq 0 ] && [ "$v" = 2.0 ] && [ "$n" = 2 ] && [ -n "$f" ] && [ "$(ratio_of "$f")" = 2 ] && ok campaign.recorded ||
 	fail campaign.recorded "exit $rc, runs view '$v', done $n, run file '$(ratio_of "$f" 2>/dev/null)': $(tail -n 5 p.log)"
+# two intruders: the campaign's param rows count them
+sed "s|$TMP/a.txt|$TMP/two.txt|; s/^name = p$/name = p2/" p.campaign >p2.campaign
+"$STUDY" run p2.campaign --runs "$TMP/R" >p2.log 2>&1
+rc=$?
+v=$(q R/study.db "SELECT DISTINCT value FROM param WHERE campaign = 'p2' AND key = 'n_intruders'")
+[ "$rc" -eq 0 ] && [ "$v" = 2 ] && ok campaign.n_intruders ||
+	fail campaign.n_intruders "exit $rc, param rows' n_intruders '$v' (want 2): $(tail -n 3 p2.log)"
 # a radius_ratio the campaign sets against the file: refused, nothing run
 camp q 'radius_ratio = 4' >q.campaign
 "$STUDY" run q.campaign --runs "$TMP/R" >q.log 2>&1
