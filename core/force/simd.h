@@ -278,41 +278,22 @@ SB_INLINE int sb_count(unsigned bits)
  * instruction takes the mask). */
 #if SB_X86_NATIVE && SB_W == 4
 /* the permutations of sb_cmask_of on AVX2, by mask: the positions of its set bits, in
- * order, as ints (pi) and as pairs of floats of doubles (pd); the rest 0 */
-static const int SB_CPERM_PD[16][8] __attribute__((aligned(32))) = {
-	{0, 1, 0, 1, 0, 1, 0, 1},
-	{0, 1, 0, 1, 0, 1, 0, 1},
-	{2, 3, 0, 1, 0, 1, 0, 1},
-	{0, 1, 2, 3, 0, 1, 0, 1},
-	{4, 5, 0, 1, 0, 1, 0, 1},
-	{0, 1, 4, 5, 0, 1, 0, 1},
-	{2, 3, 4, 5, 0, 1, 0, 1},
-	{0, 1, 2, 3, 4, 5, 0, 1},
-	{6, 7, 0, 1, 0, 1, 0, 1},
-	{0, 1, 6, 7, 0, 1, 0, 1},
-	{2, 3, 6, 7, 0, 1, 0, 1},
-	{0, 1, 2, 3, 6, 7, 0, 1},
-	{4, 5, 6, 7, 0, 1, 0, 1},
-	{0, 1, 4, 5, 6, 7, 0, 1},
-	{2, 3, 4, 5, 6, 7, 0, 1},
-	{0, 1, 2, 3, 4, 5, 6, 7}};
-static const int SB_CPERM_PI[16][8] __attribute__((aligned(32))) = {
-	{0, 0, 0, 0, 0, 0, 0, 0},
-	{0, 0, 0, 0, 0, 0, 0, 0},
-	{1, 0, 0, 0, 0, 0, 0, 0},
-	{0, 1, 0, 0, 0, 0, 0, 0},
-	{2, 0, 0, 0, 0, 0, 0, 0},
-	{0, 2, 0, 0, 0, 0, 0, 0},
-	{1, 2, 0, 0, 0, 0, 0, 0},
-	{0, 1, 2, 0, 0, 0, 0, 0},
-	{3, 0, 0, 0, 0, 0, 0, 0},
-	{0, 3, 0, 0, 0, 0, 0, 0},
-	{1, 3, 0, 0, 0, 0, 0, 0},
-	{0, 1, 3, 0, 0, 0, 0, 0},
-	{2, 3, 0, 0, 0, 0, 0, 0},
-	{0, 2, 3, 0, 0, 0, 0, 0},
-	{1, 2, 3, 0, 0, 0, 0, 0},
-	{0, 1, 2, 3, 0, 0, 0, 0}};
+ * order, as ints (pi) and as the int pairs of doubles (pd); the rest 0. SB_NTH(b, k): the
+ * position of the k-th set bit of the 4-bit mask b (0 past the last) */
+#define SB_POP3(x) (((x) & 1) + ((x) >> 1 & 1) + ((x) >> 2 & 1))
+#define SB_NTH(b, k)                                                                                \
+	(((b) & 1) && (k) == 0                          ? 0                                        \
+	 : ((b) >> 1 & 1) && SB_POP3((b) & 1) == (k) ? 1                                        \
+	 : ((b) >> 2 & 1) && SB_POP3((b) & 3) == (k) ? 2                                        \
+	 : ((b) >> 3 & 1) && SB_POP3((b) & 7) == (k) ? 3                                        \
+						       : 0)
+#define SB_PI_ROW(b) {SB_NTH(b, 0), SB_NTH(b, 1), SB_NTH(b, 2), SB_NTH(b, 3), 0, 0, 0, 0}
+#define SB_PD_ROW(b)                                                                                \
+	{2 * SB_NTH(b, 0), 2 * SB_NTH(b, 0) + 1, 2 * SB_NTH(b, 1), 2 * SB_NTH(b, 1) + 1,            \
+	 2 * SB_NTH(b, 2), 2 * SB_NTH(b, 2) + 1, 2 * SB_NTH(b, 3), 2 * SB_NTH(b, 3) + 1}
+#define SB_ROWS16(R) {R(0), R(1), R(2), R(3), R(4), R(5), R(6), R(7), R(8), R(9), R(10), R(11), R(12), R(13), R(14), R(15)}
+static const int SB_CPERM_PI[16][8] __attribute__((aligned(32))) = SB_ROWS16(SB_PI_ROW);
+static const int SB_CPERM_PD[16][8] __attribute__((aligned(32))) = SB_ROWS16(SB_PD_ROW);
 #endif
 
 typedef struct sb_cmask {
