@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "clock.h"
+#include "fpmode.h"
 #include "periodic.h"
 
 typedef struct scan {
@@ -254,7 +255,11 @@ static int step_fused(sb_sim *s, double gy, double drag, double t, long step, sb
 int step_once(sb_sim *s, long step, double gy, double drag, int fuse, double *track, sb_err *e)
 {
 	const double t = step * s->sc.dt; /* the new time, as the callers' schedules count it */
-	return fuse && !track ? step_fused(s, gy, drag, t, step, e) : step_reference(s, gy, drag, t, step, track, e);
+	const sb_fpmode fp = fpmode_enter(); /* subnormals flushed: fpmode.h says why */
+	const int rc = fuse && !track ? step_fused(s, gy, drag, t, step, e)
+				      : step_reference(s, gy, drag, t, step, track, e);
+	fpmode_leave(fp);
+	return rc;
 }
 
 int step_advance(sb_sim *s, double gy, sb_err *e)
@@ -268,9 +273,11 @@ int step_start(sb_sim *s, double gy, sb_err *e)
 {
 	if (neighbours(s, e))
 		return e->code;
-	if (kernel_forces(s->kern, &s->law, &s->st, &s->nl, 1.0 / s->sc.dt, 0, NULL, e) < 0)
-		return e->code;
-	integ_start(&s->in, &s->st, gy);
-	return 0;
+	const sb_fpmode fp = fpmode_enter(); /* as in step_once */
+	const int bad = kernel_forces(s->kern, &s->law, &s->st, &s->nl, 1.0 / s->sc.dt, 0, NULL, e) < 0;
+	if (!bad)
+		integ_start(&s->in, &s->st, gy);
+	fpmode_leave(fp);
+	return bad ? e->code : 0;
 }
 
