@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fpmode.h"
 #include "place.h"
 #include "sim.h"
 #include "step.h"
@@ -242,6 +243,54 @@ out:
  *   scheme that lost an order does: dt = 1e-4 already gives 2.3e-3), and the
  *   deviation at dt/2 is at least 2x smaller (measured 4.0 and 9.4 on two builds
  *   that differ only in round-off; 2 = first order at least). */
+/* Subnormals (core/base/fpmode.h): a disk in free flight whose higher derivatives
+ * start non-zero (as after a collision). With no force the corrector pulls them
+ * towards zero geometrically; unflushed they pass through the subnormal range (and
+ * on Intel CPUs each operation on them costs a microcode assist), flushed they jump
+ * from normal to zero. Checked after every step, fused (the run loop's) and
+ * reference, with the caller's floating-point mode back after each step. */
+static volatile double tiny_a = 0x1p-1000, tiny_b = 0x1p-40; /* volatile: computed at run time */
+static void subnormals(int fuse, int *ok, long *first_sub, long *all_zero, int *mode_kept)
+{
+	sb_scene sc;
+	params_defaults(&sc);
+	sc.gravity = 0;
+	sb_sim *s = calloc(1, sizeof *s);
+	sb_err e = {0};
+	sim_init(s, &sc, &e);
+	place_push(&sc, &s->st, 0, 20, 1, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, -30, 0, 1, KIND_WALL, &e);
+	place_push(&sc, &s->st, 30, 0, 1, KIND_WALL, &e);
+	*ok = !e.code && !sim_derive(s, &e) && !step_start(s, 0, &e);
+	*first_sub = *all_zero = -1;
+	*mode_kept = 1;
+	const long n = 20000;
+	for (int c = 0; c < 3 && *ok; c++)
+		for (int k = 3; k < s->in.nval; k++)
+			s->st.q[c][k][0] = 1e-3 / k; /* after step_start, which clears them */
+	for (long k = 1; k <= n && *ok; k++) {
+		*ok = !step_once(s, k, 0, 0, fuse && k < n, NULL, &e);
+		if (fuse && k < n)
+			kernel_sync(s->kern, &s->st);
+		/* the caller's mode (IEEE: subnormals kept) is back after the step */
+		*mode_kept &= fpclassify(tiny_a * tiny_b) == FP_SUBNORMAL;
+		int nz = 0;
+		for (int c = 0; c < 3; c++)
+			for (int j = 2; j < s->in.nval; j++) {
+				const double q = s->st.q[c][j][0];
+				if (fpclassify(q) == FP_SUBNORMAL && *first_sub < 0)
+					*first_sub = k;
+				nz += q != 0;
+			}
+		if (!nz && *all_zero < 0)
+			*all_zero = k;
+	}
+	if (e.code)
+		printf("# subnormals: %s\n", e.msg);
+	sim_free(s);
+	free(s);
+}
+
 int main(void)
 {
 	char id[128];
@@ -300,6 +349,23 @@ int main(void)
 		printf("# gear5 exact start: N=256 %.3e N=512 %.3e N=1024 %.3e, slopes %.3f %.3f\n", e1, e2,
 		       e3, log2(e1 / e2), log2(e2 / e3));
 		CHECK("integrator.gear5.order.exact_start", sl >= 4.7, "slope %.3f < 4.7", sl);
+	}
+
+	for (int fuse = 0; fuse < 2; fuse++) {
+		int sok, kept;
+		long first_sub, all_zero;
+		const char *how = fuse ? "fused" : "reference";
+		subnormals(fuse, &sok, &first_sub, &all_zero, &kept);
+		printf("# subnormals, %s steps: first subnormal at step %ld, derivatives all zero from step %ld\n", how,
+		       first_sub, all_zero);
+		snprintf(id, sizeof id, "integrator.gear5.subnormals.%s.runs", how);
+		CHECK(id, sok, "the free-flight run stopped (see the # line above)");
+		snprintf(id, sizeof id, "integrator.gear5.subnormals.%s.decays_to_zero", how);
+		CHECK(id, all_zero > 0, "the derivatives never reached zero (still subnormal, or no decay: then the check below tests nothing)");
+		snprintf(id, sizeof id, "integrator.gear5.subnormals.%s.flushed", how);
+		CHECK(id, first_sub < 0 || !fpmode_flushes(), "a subnormal derivative at step %ld (core/base/fpmode.h)", first_sub);
+		snprintf(id, sizeof id, "integrator.gear5.subnormals.%s.caller_mode_restored", how);
+		CHECK(id, kept, "after step_once the caller's floating-point mode flushes subnormals");
 	}
 
 	double drift, maxdev, drift2, maxdev2;
