@@ -17,6 +17,12 @@
 #                       none with REPRODUCE_QUICK unless given)
 #   REPRODUCE_REPORT_ONLY=1   write REPRODUCTION.md from what the database and the tools'
 #                       last outputs hold, running no campaign and no tool
+#   REPRODUCE_CROSSCODE=1   rewrite only what REPRODUCTION.md takes from
+#                       docs/validate_lammps.md (each claim's "Cross-checked in LAMMPS" lines,
+#                       claim 5's sentence across the codes, the validation section), by the
+#                       same code as a full report, in the REPRODUCTION.md there is: after
+#                       `make validate-lammps` on a machine that does not hold the runs
+#   REPRODUCE_VALIDATION=FILE   the validation fragment to read (default docs/validate_lammps.md)
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root" || exit 1
@@ -26,6 +32,8 @@ JOBS=${JOBS:-2}
 NICE=${REPRODUCE_NICE:-5}
 CLAIMS=${REPRODUCE_CLAIMS:-1 2 3 4 5}
 REPORT_ONLY=${REPRODUCE_REPORT_ONLY:-0}
+CROSSCODE=${REPRODUCE_CROSSCODE:-0}
+[ "$CROSSCODE" = 1 ] && REPORT_ONLY=1 # runs nothing
 # the questions the paper left open (scripts/reproduce_questions.sh); none in QUICK mode
 # unless asked for
 if [ "$QUICK" = 1 ]; then QUESTIONS=${REPRODUCE_QUESTIONS:-}; else QUESTIONS=${REPRODUCE_QUESTIONS-1 2 3 4 5 6}; fi
@@ -240,11 +248,61 @@ integrator() {
 }
 # lammps PART : make validate-lammps's row for a part (docs/validate_lammps.md's summary
 # table) as "*Cross-checked in LAMMPS* (part X): evidence: result."
-VAL=docs/validate_lammps.md
+VAL=${REPRODUCE_VALIDATION:-docs/validate_lammps.md}
 lammps() {
 	[ -f "$VAL" ] || { echo "*Cross-checked in LAMMPS:* not run (\`make validate-lammps\`)."; return; }
 	awk -F' [|] ' -v p="$1" '$1 == "| " p { printf "*Cross-checked in LAMMPS* (make validate-lammps, part %s, same beds in both codes): %s — %s.\n", p, $3, $4; f = 1 }
 		END { if (!f) printf "*Cross-checked in LAMMPS:* not yet: `make validate-lammps` part %s has not been run (docs/validate_lammps.md holds no part %s).\n", p, p }' "$VAL"
+}
+# crosscode_c : claim 5's lines across the codes (part C of docs/validate_lammps.md): its
+# row, each code's own depth comparison, and the one sentence across the codes
+crosscode_c() {
+	local both across pfs pfl pm
+	lammps C
+	# each code's own depth comparison: does the claim's verdict differ between the codes?
+	both=""
+	[ -f "$VAL" ] && both=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 '^shakebox: .*LAMMPS: ')
+	if [ -n "$both" ]; then
+		echo "Each code alone, depth 1 against one row lower: $both"
+		# the one sentence across the codes, generated from the numbers
+		# (bin/dumpflux stats verdict; tests/analysis/twocode.c holds each wording):
+		# the fragment's own, or from an older fragment's p-values
+		across=$(sed -n '/^## C\./,/^## D\./s/^Across the codes: //p' "$VAL" | head -n 1)
+		if [ -z "$across" ]; then
+			pfs=$(sed -n 's/^shakebox: .*Fisher p = \([0-9.e+-]*\) (.*LAMMPS: .*/\1/p' <<<"$both")
+			pfl=$(sed -n 's/.*LAMMPS: .*Fisher p = \([0-9.e+-]*\) (.*/\1/p' <<<"$both")
+			pm=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 -A2 '^\*\*Result:\*\*' | tr '\n' ' ' |
+				grep -o 'McNemar p = [0-9.e+-]*\|, p = [0-9.e+-]* at depth 1' | grep -o '[0-9][0-9.e+-]*' | head -n 2 |
+				sort -g | head -n 1)
+			[ -n "$pfs" ] && [ -n "$pfl" ] && [ -n "$pm" ] &&
+				across=$("$root/bin/dumpflux" stats verdict "$pfs" "$pfl" "$pm" "the depth effect" 2>/dev/null)
+		fi
+		[ -z "$across" ] || echo "Across the codes: $across"
+	fi
+}
+# validation_section : the section on make validate-lammps, from docs/validate_lammps.md
+validation_section() {
+	echo "## Validation against LAMMPS"
+	echo
+	if [ -f "$VAL" ]; then
+		# the result as make validate-lammps wrote it (its own run, about 45 minutes)
+		echo "From \`make validate-lammps\` ($(sed -n 's/^Generated \([0-9-]* [0-9:]* UTC\).*/\1/p' "$VAL")): the same settled beds shaken"
+		echo "by shakebox and by LAMMPS \`gran/hooke\`, a code nobody here wrote, with the engine's own definitions applied"
+		echo "to LAMMPS's output (its crossing code for the flux, its rise rule for the waiting time). The setup,"
+		echo "statistics and per-bed tables are in [docs/validate_lammps.md](docs/validate_lammps.md)."
+		echo
+		if grep -q '^| part | question' "$VAL"; then
+			awk '/^\| part \| question/ { on = 1 } on && !/^\|/ { exit } on' "$VAL"
+		else # a fragment from before the parts: Phi(D) at 3.0 Hz alone
+			echo "Φ(D) at 3.0 Hz without intruder (the onset and claims 4 and 5 are not in this fragment):"
+			echo
+			awk '/^\*\*Result/ { on = 1 } on && /^!\[/ { exit } on' "$VAL"
+		fi
+		echo
+		echo "![Φ(D), shakebox and LAMMPS](docs/validate_lammps.png)$([ -f docs/validate_lammps_onset.png ] && echo " ![the onset in both codes](docs/validate_lammps_onset.png)")"
+	else
+		echo "*Not run: \`make validate-lammps\` writes docs/validate_lammps.md.*"
+	fi
 }
 # render : the verdict lines of scripts/verdicts.sh as a table of parts and the verdict
 render() {
@@ -261,6 +319,35 @@ runs_phi() {
 	set -- $(csv_mean "$ANA/$1/onset_runs.csv" phi "frequency=$2 radius_ratio=$3")
 	[ "${4:-0}" -ge 2 ] && printf '%s [%s, %s] (%s runs)' "$1" "$2" "$3" "$4" || printf '%s run(s)' "${4:-0}"
 }
+
+# REPRODUCE_CROSSCODE=1: the cross-code pieces put in place in the existing report, each
+# exactly once (a report without one of the places is refused, not patched)
+if [ "$CROSSCODE" = 1 ]; then
+	[ -s "$OUT" ] || { echo "reproduce: REPRODUCE_CROSSCODE=1 needs $OUT (make reproduce writes it)" >&2; exit 1; }
+	[ -f "$VAL" ] || { echo "reproduce: REPRODUCE_CROSSCODE=1 needs $VAL (make validate-lammps writes it)" >&2; exit 1; }
+	cc=$W/crosscode
+	mkdir -p "$cc" || exit 1
+	lammps B >"$cc/B" && lammps D >"$cc/D" && crosscode_c >"$cc/C" && validation_section >"$cc/V" || exit 1
+	when=$(sed -n 's/^Written by `make reproduce` (scripts\/reproduce.sh) on \([0-9-]*\).*/\1/p' "$OUT" | head -n 1)
+	awk -v dir="$cc" -v when="${when:-an earlier day}" -v now="$(date -u +%Y-%m-%d)" '
+		function put(f,   l) { while ((getline l < (dir "/" f)) > 0) print l; close(dir "/" f); done[f]++ }
+		skip && /^(Each code alone|Across the codes:)/ { next }
+		skipsec && /^## / { skipsec = 0 }
+		skipsec { next }
+		{ skip = 0 }
+		/^\| cross-code lines \|/ { next }
+		/^\| this invocation \|/ { print; printf "| cross-code lines | refreshed on %s from docs/validate_lammps.md (REPRODUCE_CROSSCODE=1); the rest as written on %s |\n", now, when; next }
+		/^\*Cross-checked in LAMMPS[*:]/ && /part B[ ,]/ { put("B"); next }
+		/^\*Cross-checked in LAMMPS[*:]/ && /part D[ ,]/ { put("D"); next }
+		/^\*Cross-checked in LAMMPS[*:]/ && /part C[ ,]/ { put("C"); skip = 1; next }
+		/^## Validation against LAMMPS$/ { put("V"); print ""; skipsec = 1; next }
+		{ print }
+		END { for (f in want) if (done[f] != 1) { printf "reproduce: %d places for the cross-code piece %s in the report, want 1\n", done[f], f > "/dev/stderr"; bad = 1 }
+			exit bad }
+		BEGIN { want["B"]; want["C"]; want["D"]; want["V"] }' "$OUT" >"$OUT.tmp" || { rm -f "$OUT.tmp"; exit 1; }
+	mv "$OUT.tmp" "$OUT" && log "wrote $OUT: the cross-code lines from $VAL, the rest unchanged"
+	exit 0
+fi
 
 {
 	echo "# Reproduction of Pöschel & Herrmann, \"Size segregation and convection\" (1995)"
@@ -482,27 +569,7 @@ runs_phi() {
 		claim5_table "$n"
 		verdict_claim5 "$n" | verdict_combine | render
 		echo
-		lammps C
-		# each code's own depth comparison: does the claim's verdict differ between the codes?
-		both=""
-		[ -f "$VAL" ] && both=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 '^shakebox: .*LAMMPS: ')
-		if [ -n "$both" ]; then
-			echo "Each code alone, depth 1 against one row lower: $both"
-			# the one sentence across the codes, generated from the numbers
-			# (bin/dumpflux stats verdict; tests/analysis/twocode.c holds each wording):
-			# the fragment's own, or from an older fragment's p-values
-			across=$(sed -n '/^## C\./,/^## D\./s/^Across the codes: //p' "$VAL" | head -n 1)
-			if [ -z "$across" ]; then
-				pfs=$(sed -n 's/^shakebox: .*Fisher p = \([0-9.e+-]*\) (.*LAMMPS: .*/\1/p' <<<"$both")
-				pfl=$(sed -n 's/.*LAMMPS: .*Fisher p = \([0-9.e+-]*\) (.*/\1/p' <<<"$both")
-				pm=$(sed -n '/^## C\./,/^## D\./p' "$VAL" | grep -m1 -A2 '^\*\*Result:\*\*' | tr '\n' ' ' |
-					grep -o 'McNemar p = [0-9.e+-]*\|, p = [0-9.e+-]* at depth 1' | grep -o '[0-9][0-9.e+-]*' | head -n 2 |
-					sort -g | head -n 1)
-				[ -n "$pfs" ] && [ -n "$pfl" ] && [ -n "$pm" ] &&
-					across=$("$root/bin/dumpflux" stats verdict "$pfs" "$pfl" "$pm" "the depth effect" 2>/dev/null)
-			fi
-			[ -z "$across" ] || echo "Across the codes: $across"
-		fi
+		crosscode_c
 		echo
 		if at_onset claim5_depth; then
 			claim5_table "${NAME[claim5_depth_on]}"
@@ -512,27 +579,7 @@ runs_phi() {
 		echo "$(fig "$ANA/$n/waiting_km.png" claim5_km.png)"
 		echo
 	fi
-	echo "## Validation against LAMMPS"
-	echo
-	if [ -f "$VAL" ]; then
-		# the result as make validate-lammps wrote it (its own run, about 45 minutes)
-		echo "From \`make validate-lammps\` ($(sed -n 's/^Generated \([0-9-]* [0-9:]* UTC\).*/\1/p' "$VAL")): the same settled beds shaken"
-		echo "by shakebox and by LAMMPS \`gran/hooke\`, a code nobody here wrote, with the engine's own definitions applied"
-		echo "to LAMMPS's output (its crossing code for the flux, its rise rule for the waiting time). The setup,"
-		echo "statistics and per-bed tables are in [docs/validate_lammps.md](docs/validate_lammps.md)."
-		echo
-		if grep -q '^| part | question' "$VAL"; then
-			awk '/^\| part \| question/ { on = 1 } on && !/^\|/ { exit } on' "$VAL"
-		else # a fragment from before the parts: Phi(D) at 3.0 Hz alone
-			echo "Φ(D) at 3.0 Hz without intruder (the onset and claims 4 and 5 are not in this fragment):"
-			echo
-			awk '/^\*\*Result/ { on = 1 } on && /^!\[/ { exit } on' "$VAL"
-		fi
-		echo
-		echo "![Φ(D), shakebox and LAMMPS](docs/validate_lammps.png)$([ -f docs/validate_lammps_onset.png ] && echo " ![the onset in both codes](docs/validate_lammps_onset.png)")"
-	else
-		echo "*Not run: \`make validate-lammps\` writes docs/validate_lammps.md.*"
-	fi
+	validation_section
 	echo
 	questions_report
 	echo "## What this run cost"
