@@ -42,4 +42,10 @@ run >r2.out 2>r2.err || fail second.exit "exit $?: $(tail -n 3 r2.err)"
 grep -q '| this invocation | .* 0 runs simulated |' "$R" && ok second.simulates_nothing || fail second.simulates_nothing "$(grep invocation "$R")"
 sed -n '/^## Claim 4/,/^## What/p' "$R" >claim4.2
 cmp -s claim4.1 claim4.2 && ok second.same_numbers || fail second.same_numbers "$(diff claim4.1 claim4.2 | head -n 4)"
+# the rates still measured when every campaign is finished (the dry run that reads them is
+# of a copy whose runs are all to do), and the campaign's cost a number, not '?'
+grep -qE 'fast preset [0-9.e+-]+ s, paper preset [0-9.e+-]+ s per step of 950 grains' "$R" && ok second.rates ||
+	fail second.rates "$(grep 'per step' "$R")"
+grep -qE '^\| qr4_waiting \| 10 \| [0-9]+ \| [0-9]+ \|' "$R" && ! grep -q 'marked ?' "$R" && ok second.cost_known ||
+	fail second.cost_known "$(grep -E '^\| qr4_waiting|marked' "$R")"
 finish
