@@ -29,8 +29,8 @@ typedef struct sb_law {
 	double kt;
 	/* materials per pair of kinds (docs/model.md, "Materials per pair of kinds";
 	 * paircoef.h): table = 1 when some class's coefficients differ from the fields
-	 * above; kc[kind_i][kind_j] then holds each pair's, and the whole list runs through
-	 * forces_scalar, the same code on every path. table = 0: kc is not read. */
+	 * above; kc[kind_i][kind_j] then holds each pair's, which the vector kernel's table
+	 * instances take per listed pair (forces_scalar's bits). table = 0: kc is not read. */
 	int table;
 	struct sb_kc {
 		double Y, gn, gs, mu, kt; /* gn: gamma_N, or gz with resti */

@@ -125,6 +125,7 @@ void kernel_free(sb_kernel *k)
 	free(k->d.kb);
 	free(k->d.pm);
 	free(k->d.prs);
+	free(k->d.pc[0]);
 	shear_free(&k->shear);
 	free(k);
 }
@@ -162,7 +163,7 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring, or a table of materials: the whole list through forces_scalar,
+/* tangential = spring, or the ring's sums with a table of materials: the whole list through forces_scalar,
  * scalar and in list order (one code for every path: the same bits); with keep, into the records and
  * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
  * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
@@ -198,23 +199,39 @@ static int scalar_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb
 /* The vector kernel's per-pair numbers (kvec.h, sb_kdata), once per list build: m_eff
  * and R_i + R_j of each listed pair, by the operations the lanes did on the records'
  * numbers (1/m_i + 1/m_j, its inverse, R_i + R_j: the same bits), so that no step
- * divides for them. */
-static int pair_consts(sb_kdata *d, const sb_state *st, const sb_nlist *nl, sb_err *e)
+ * divides for them; with a table of materials also each pair's coefficients, as
+ * forces_scalar forms them (forces_kc, the dampings times 1/dt: the same bits). */
+static int pair_table_same(const sb_kdata *d, const sb_law *law, double inv_dt)
 {
-	if (d->pfor == nl && d->pbuilt == nl->builds && d->pn == nl->nflat)
+	if (!law->table)
+		return !d->ptable;
+	return d->ptable && d->pinv == inv_dt && !memcmp(d->pkc, law->kc, sizeof d->pkc);
+}
+
+static int pair_consts(sb_kdata *d, const sb_law *law, const sb_state *st, const sb_nlist *nl, double inv_dt,
+		       sb_err *e)
+{
+	if (d->pfor == nl && d->pbuilt == nl->builds && d->pn == nl->nflat && pair_table_same(d, law, inv_dt))
 		return 0;
 	const int n = nl->nflat;
-	if (n + 8 > d->pcap) {
+	if (n + 8 > d->pcap || (law->table && !d->pc[0])) {
 		free(d->pm);
 		free(d->prs);
+		free(d->pc[0]);
+		d->pc[0] = NULL;
 		d->pcap = n + n / 4 + 64;
 		d->pm = bigmem_alloc(sizeof(double) * (size_t)d->pcap);
 		d->prs = bigmem_alloc(sizeof(double) * (size_t)d->pcap);
-		if (!d->pm || !d->prs) {
+		/* the coefficients only for a table: the paper's law needs none */
+		if (law->table)
+			d->pc[0] = bigmem_alloc(4 * sizeof(double) * (size_t)d->pcap);
+		if (!d->pm || !d->prs || (law->table && !d->pc[0])) {
 			d->pcap = 0;
 			d->pfor = NULL;
 			return sb_errf(e, SB_ENOMEM, "out of memory for the force kernel's pair list (%d pairs)", n);
 		}
+		for (int c = 1; c < 4; c++)
+			d->pc[c] = d->pc[0] ? d->pc[0] + (size_t)c * (size_t)d->pcap : NULL;
 	}
 	const int sh = nl->pshift;
 	const double *im = st->inv_m, *r = st->r;
@@ -227,6 +244,22 @@ static int pair_consts(sb_kdata *d, const sb_state *st, const sb_nlist *nl, sb_e
 		d->pm[p] = 1;
 		d->prs[p] = 0;
 	}
+	if (law->table) {
+		for (int p = 0; p < n; p++) {
+			const int i = nl->pi[p] >> sh, j = nl->pj[p] >> sh;
+			const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
+			d->pc[0][p] = c.Y;
+			d->pc[1][p] = c.gn * inv_dt;
+			d->pc[2][p] = c.gs * inv_dt;
+			d->pc[3][p] = c.mu;
+		}
+		for (int p = n; p < n + 8; p++)
+			for (int c = 0; c < 4; c++)
+				d->pc[c][p] = 0;
+		memcpy(d->pkc, law->kc, sizeof d->pkc);
+		d->pinv = inv_dt;
+	}
+	d->ptable = law->table;
 	d->pfor = nl;
 	d->pbuilt = nl->builds;
 	d->pn = n;
@@ -244,6 +277,8 @@ static int pair_consts_hold(const sb_kdata *d, const sb_state *st, const sb_nlis
 		const int p = at[a], i = nl->pi[p] >> sh, j = nl->pj[p] >> sh;
 		if (d->pm[p] != 1.0 / (st->inv_m[i] + st->inv_m[j]) || d->prs[p] != st->r[i] + st->r[j])
 			return 0;
+		if (d->ptable && d->pc[3][p] != d->pkc[st->kind[i]][st->kind[j]].mu)
+			return 0;
 	}
 	return 1;
 }
@@ -259,11 +294,13 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	if (law->spring || law->table)
+	/* the shear spring, and the ring's sums with a table (rare: not worth an instance),
+	 * run the scalar pass */
+	if (law->spring || (law->table && fabs_sum))
 		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	if (!packed)
 		kernel_sync(k, st);
-	if (pair_consts(&k->d, st, nl, e))
+	if (pair_consts(&k->d, law, st, nl, inv_dt, e))
 		return -1;
 	assert(pair_consts_hold(&k->d, st, nl));
 	int bad = k->v->forces(&k->d, law, st, nl, inv_dt, keep, packed, fabs_sum);

@@ -218,16 +218,17 @@ SB_INLINE void pair_dxy(const double *rec, const int *pi, const int *pj, sb_vd *
  * and divisions of pairs that do not touch. (docs/kernel.md, "Speed") */
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		     const int clip, const int resti, const int hertz, double *restrict fsum, const int packed,
-		     const int keep, const int pf)
+		     const int keep, const int pf, const int table)
 {
 	const double *rec = kd->rec, *pm = kd->pm, *prs = kd->prs;
 	const int *pi = nl->pi, *pj = nl->pj;
 	sb_kbuf *restrict kb = kd->kb;
 	const int np = nl->nflat;
 	/* resti: the normal damping gz sqrt(m_eff) (forces.h), else gamma_N m_eff */
-	const sb_vd Y = sb_splat(law->Y), gn = sb_splat((resti ? law->gz : law->gn) * inv_dt), gs = sb_splat(law->gs * inv_dt),
-		    mu = sb_splat(law->mu), mo = sb_splat(law->max_overlap), one = sb_splat(1.0),
-		    zero = sb_splat(0.0);
+	/* table: each contact's own, from the list build (sb_kdata's pc) */
+	const sb_vd Y0 = sb_splat(law->Y), gn0 = sb_splat((resti ? law->gz : law->gn) * inv_dt),
+		    gs0 = sb_splat(law->gs * inv_dt), mu0 = sb_splat(law->mu), mo = sb_splat(law->max_overlap),
+		    one = sb_splat(1.0), zero = sb_splat(0.0);
 	/* the weights of rec_pair's general form */
 	const double wa[8] = {1, 1, 1, 1, 1, 1, 1, 0}, wb[8] = {-1, -1, -1, -1, 1, 1, 0, 1};
 	double *restrict facc = kd->facc;
@@ -273,6 +274,9 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			sb_compressi(kb->i + nc, sb_loadi(pi + p), cm);
 			sb_compressi(kb->j + nc, sb_loadi(pj + p), cm);
 			sb_compressd(kb->m + nc, sb_load(pm + p), cm);
+			if (table) /* constant per instantiation */
+				for (int c = 0; c < 4; c++)
+					sb_compressd(kb->c[c] + nc, sb_load(kd->pc[c] + p), cm);
 			nc += sb_count(bits);
 		}
 		/* the lanes past the last contact read disk 0's record; their numbers are
@@ -280,6 +284,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 		for (int l = 0; l < SB_W; l++) {
 			kb->i[nc + l] = kb->j[nc + l] = 0;
 			kb->m[nc + l] = 1;
+			for (int c = 0; c < 4 && table; c++)
+				kb->c[c][nc + l] = 0;
 		}
 		/* pass 2: contact(), operation by operation, W contacts a vector */
 		for (int k = 0; k < nc; k += SB_W) {
@@ -297,6 +303,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			const sb_vd dx = t[0], dy = t[1], dvx = t[2], dvy = t[3], rw = t[4], ri = t[6], rj = t[7],
 				    rs = ri + rj;
 			const unsigned live = nc - k >= SB_W ? (1u << SB_W) - 1 : (1u << (nc - k)) - 1;
+			const sb_vd Y = table ? sb_load(kb->c[0] + k) : Y0, gn = table ? sb_load(kb->c[1] + k) : gn0,
+				    gs = table ? sb_load(kb->c[2] + k) : gs0, mu = table ? sb_load(kb->c[3] + k) : mu0;
 			const sb_vd d2 = dx * dx + dy * dy;
 			const sb_vd d = sb_sqrt(d2);
 			const sb_vd inv = one / d;
@@ -358,12 +366,13 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
  * restitution) and prefetching: the law is chosen at set-up, not in the loop
  * (docs/kernel.md) */
 typedef int (*kernel_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist *, double, int, int);
-#define INSTANCE(name, hertz, clip, resti, pf)                                                            \
+#define INSTANCE_T(name, hertz, clip, resti, pf, table)                                                    \
 	static int name(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,      \
 			int packed, int keep)                                                              \
 	{                                                                                                  \
-		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf);             \
+		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf, table);      \
 	}
+#define INSTANCE(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0)
 INSTANCE(kernel_plain, 0, 0, 0, 0)
 INSTANCE(kernel_clip, 0, 1, 0, 0)
 INSTANCE(kernel_plain_pf, 0, 0, 0, 1)
@@ -377,21 +386,33 @@ INSTANCE(kernel_hz, 1, 0, 0, 0)
 INSTANCE(kernel_hz_clip, 1, 1, 0, 0)
 INSTANCE(kernel_hz_pf, 1, 0, 0, 1)
 INSTANCE(kernel_hz_clip_pf, 1, 1, 0, 1)
+/* a table of materials: the coefficients per contact; without prefetching (a mixture's
+ * bed large enough to want it runs these at the cost of the far ends' loads) */
+INSTANCE_T(kernel_tab, 0, 0, 0, 0, 1)
+INSTANCE_T(kernel_tab_clip, 0, 1, 0, 0, 1)
+INSTANCE_T(kernel_tab_e, 0, 0, 1, 0, 1)
+INSTANCE_T(kernel_tab_clip_e, 0, 1, 1, 0, 1)
+INSTANCE_T(kernel_tab_hz, 1, 0, 0, 0, 1)
+INSTANCE_T(kernel_tab_hz_clip, 1, 1, 0, 0, 1)
 #undef INSTANCE
+#undef INSTANCE_T
 /* [hertz ? 2 : resti][prefetch][clip] */
 static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
 					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}},
 					   {{kernel_hz, kernel_hz_clip}, {kernel_hz_pf, kernel_hz_clip_pf}}};
+/* [hertz ? 2 : resti][clip], a table's */
+static const kernel_fn KERNELS_TAB[3][2] = {
+	{kernel_tab, kernel_tab_clip}, {kernel_tab_e, kernel_tab_clip_e}, {kernel_tab_hz, kernel_tab_hz_clip}};
 
 /* the ring's kernel, compiled apart so that it costs nothing when off */
 static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
 	if (l->hertz)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0);
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0, 0);
 	if (l->resti)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0);
-	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0);
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0, 0);
+	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0, 0);
 }
 
 static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
@@ -399,6 +420,8 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
+	if (law->table) /* kernel.c runs the ring's sums with a table through forces_scalar */
+		return KERNELS_TAB[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
 	return KERNELS[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,
 											       keep);
 }

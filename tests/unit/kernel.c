@@ -196,6 +196,34 @@ static void test_forces(const char *path, firsts *fi)
 			}
 			snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_class_changes_its_pairs_only", path, clip, rs);
 			CHECK(id, moved > 0 && leaked == 0, "%d disks on a wall changed, %d elsewhere changed", moved, leaked);
+			/* the vector kernel's table instance gives forces_scalar's bits (the scalar
+			 * pass every path ran before it), in the accumulators' order too; and the
+			 * coefficients of the pairs are formed again when the table changes */
+			if (!spring) {
+				double *sc[3];
+				for (int c = 0; c < 3; c++)
+					sc[c] = calloc((size_t)st.n, sizeof(double));
+				const sb_seam_io io = {st.q[C_X][0], st.q[C_Y][0], st.q[C_X][1], st.q[C_Y][1], sc[C_X], sc[C_Y],
+						       sc[C_TH], 1, 1};
+				const int bads = forces_scalar(&tab, &st, &nl, NULL, &io, inv_dt, NULL);
+				int eq = bads == 0;
+				for (int c = 0; c < 3; c++)
+					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
+				snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_equals_scalar_bits", path, clip, rs);
+				CHECK(id, eq, "the table's forces differ from forces_scalar's in some bit");
+				tab.kc[KIND_GRAIN][KIND_WALL].mu = tab.kc[KIND_WALL][KIND_GRAIN].mu = 0.25;
+				kernel_forces(k, &tab, &st, &nl, inv_dt, 0, NULL, &e);
+				for (int c = 0; c < 3; c++)
+					memset(sc[c], 0, sizeof(double) * (size_t)st.n);
+				forces_scalar(&tab, &st, &nl, NULL, &io, inv_dt, NULL);
+				eq = 1;
+				for (int c = 0; c < 3; c++)
+					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
+				snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_change_reaches_pairs", path, clip, rs);
+				CHECK(id, eq, "after a change of the table the kernel used the old pairs' coefficients");
+				for (int c = 0; c < 3; c++)
+					free(sc[c]);
+			}
 			for (int c = 0; c < 3; c++)
 				memcpy(st.f[c], got[c], sizeof(double) * (size_t)st.n);
 		}
