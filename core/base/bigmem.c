@@ -38,7 +38,8 @@ int bigmem_slab(void **base, void **arr, int k, size_t n, size_t elem)
 	return 0;
 }
 
-size_t bigmem_llc_bytes(void)
+/* the size of cpu0's cache of that level (0: the highest), 0 when sysfs does not say */
+static size_t cache_bytes(int want)
 {
 	size_t best = 0;
 	int best_level = 0;
@@ -58,11 +59,23 @@ size_t bigmem_llc_bytes(void)
 			continue;
 		unsigned long v = 0;
 		char unit = 0;
-		if (fgets(buf, sizeof buf, f) && sscanf(buf, "%lu%c", &v, &unit) >= 1 && level > best_level) {
+		if (fgets(buf, sizeof buf, f) && sscanf(buf, "%lu%c", &v, &unit) >= 1 &&
+		    (want ? level == want : level > best_level)) {
 			best_level = level;
 			best = v * (unit == 'K' ? 1024UL : unit == 'M' ? 1024UL * 1024 : 1);
 		}
 		fclose(f);
 	}
-	return best ? best : (size_t)32 << 20;
+	return best;
+}
+
+size_t bigmem_llc_bytes(void)
+{
+	const size_t b = cache_bytes(0);
+	return b ? b : (size_t)32 << 20;
+}
+
+size_t bigmem_l2_bytes(void)
+{
+	return cache_bytes(2);
 }

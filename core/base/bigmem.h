@@ -20,5 +20,7 @@ int bigmem_slab(void **base, void **arr, int k, size_t n, size_t elem);
 /* The size of CPU 0's last-level cache from sysfs (sysconf's figure is the host's in
  * some virtual machines: 384 MiB where the guest has 32), or 32 MiB if unknown. */
 size_t bigmem_llc_bytes(void);
+/* The size of CPU 0's level-2 cache from sysfs, 0 if unknown. */
+size_t bigmem_l2_bytes(void);
 
 #endif

@@ -59,6 +59,19 @@ static void test_slab(void)
 	size_t llc = bigmem_llc_bytes();
 	CHECK("bigmem.llc_bytes.plausible", llc >= ((size_t)256 << 10) && llc <= ((size_t)4 << 30),
 	      "%zu bytes", llc);
+	/* level 2: 0 where sysfs does not say, else no larger than the last level (and
+	 * matching sysfs's own figure where it has one) */
+	size_t l2 = bigmem_l2_bytes();
+	FILE *f = fopen("/sys/devices/system/cpu/cpu0/cache/index2/level", "r");
+	int lv = 0;
+	if (f) {
+		if (fscanf(f, "%d", &lv) != 1)
+			lv = 0;
+		fclose(f);
+	}
+	CHECK("bigmem.l2_bytes.plausible", l2 == 0 || (l2 >= ((size_t)64 << 10) && l2 <= llc), "%zu bytes (last level %zu)",
+	      l2, llc);
+	CHECK("bigmem.l2_bytes.read_where_sysfs_has_it", lv != 2 || l2 > 0, "sysfs has a level-2 cache, read as %zu", l2);
 }
 
 int main(void)
