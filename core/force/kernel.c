@@ -166,7 +166,7 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring, or the ring's sums with a table of materials: the whole list through forces_scalar,
+/* tangential = spring: the whole list through forces_scalar,
  * scalar and in list order (one code for every path: the same bits); with keep, into the records and
  * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
  * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
@@ -297,9 +297,8 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	/* the shear spring, and the ring's sums with a table (rare: not worth an instance),
-	 * run the scalar pass */
-	if (law->spring || (law->table && fabs_sum))
+	/* the shear spring runs the scalar pass */
+	if (law->spring)
 		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	if (!packed)
 		kernel_sync(k, st);

@@ -5,8 +5,7 @@
  * corrector), the fused corrector, the sync of the state, the height of a disk
  * wherever it lives. The seam pairs of periodic sides (nlist.h) go through the scalar
  * law (forces_seam) after the flat list; the shear-spring law (tangential = spring)
- * has no vector instance, nor have the ring's sums with a table of materials: they run
- * through forces_scalar, the same code on every path,
+ * has no vector instance: it runs through forces_scalar, the same code on every path,
  * over the records the fused corrector reads. Every path gives the scalar law's numbers to
  * the bit (tests/unit/kernel.c, tests/integration/regression.sh).
  *

@@ -404,15 +404,22 @@ static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel
 static const kernel_fn KERNELS_TAB[3][2] = {
 	{kernel_tab, kernel_tab_clip}, {kernel_tab_e, kernel_tab_clip_e}, {kernel_tab_hz, kernel_tab_hz_clip}};
 
-/* the ring's kernel, compiled apart so that it costs nothing when off */
+/* the ring's kernel, compiled apart so that it costs nothing when off; table: a
+ * table of materials' instance (tb is constant in each call below) */
+SB_INLINE int kernel_track_law(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,
+				double *fsum, const int tb)
+{
+	if (l->hertz)
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0, tb);
+	if (l->resti)
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0, tb);
+	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0, tb);
+}
+
 static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n,
 						  double inv_dt, double *fsum)
 {
-	if (l->hertz)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0, 0);
-	if (l->resti)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0, 0);
-	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0, 0);
+	return l->table ? kernel_track_law(d, l, s, n, inv_dt, fsum, 1) : kernel_track_law(d, l, s, n, inv_dt, fsum, 0);
 }
 
 static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
@@ -420,7 +427,7 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
-	if (law->table) /* kernel.c runs the ring's sums with a table through forces_scalar */
+	if (law->table)
 		return KERNELS_TAB[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
 	return KERNELS[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,
 											       keep);

@@ -221,6 +221,19 @@ static void test_forces(const char *path, firsts *fi)
 					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
 				snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_change_reaches_pairs", path, clip, rs);
 				CHECK(id, eq, "after a change of the table the kernel used the old pairs' coefficients");
+				/* the ring's sums with a table: the vector kernel's, forces_scalar's bits */
+				double *fr = calloc((size_t)st.n, sizeof(double)), *fk = calloc((size_t)st.n, sizeof(double));
+				for (int c = 0; c < 3; c++)
+					memset(sc[c], 0, sizeof(double) * (size_t)st.n);
+				forces_scalar(&tab, &st, &nl, NULL, &io, inv_dt, fr);
+				kernel_forces(k, &tab, &st, &nl, inv_dt, 0, fk, &e);
+				eq = bits_equal(fr, fk, sizeof(double) * (size_t)st.n);
+				for (int c = 0; c < 3; c++)
+					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
+				snprintf(id, sizeof id, "kernel.%s.clip%d%s.table_ring_sums_equal_scalar_bits", path, clip, rs);
+				CHECK(id, eq, "the ring's sums or forces with a table differ from forces_scalar's in some bit");
+				free(fr);
+				free(fk);
 				for (int c = 0; c < 3; c++)
 					free(sc[c]);
 			}
