@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
+#include <time.h>
 
 #include "report/watch.h"
 
@@ -41,8 +42,18 @@ void progress_show(drv_progress *p, st_db *db, int final)
 	if (!p)
 		return;
 	sb_err e = {0};
-	if (watch_poll(&p->w, db, &e))
+	/* a look that fails is skipped (the next one comes in a second), but the last one is
+	 * the campaign's summary: tried again, and its failure said, never dropped unseen */
+	for (int tries = final ? 3 : 1; watch_poll(&p->w, db, &e); e = (sb_err){0}) {
+		if (--tries > 0) {
+			nanosleep(&(struct timespec){0, 100000000}, NULL);
+			continue;
+		}
+		if (final)
+			fprintf(stderr, "%sstudy: the last progress line could not be read from the database: %s\n",
+				p->tty ? "\r\033[K" : "", e.msg);
 		return;
+	}
 	char line[4096];
 	size_t width = sizeof line;
 	struct winsize ws;
