@@ -19,7 +19,8 @@
 #                       last outputs hold, running no campaign and no tool
 #   REPRODUCE_CROSSCODE=1   rewrite only what REPRODUCTION.md takes from
 #                       docs/validate_lammps.md (each claim's "Cross-checked in LAMMPS" lines,
-#                       claim 5's sentence across the codes, the validation section), by the
+#                       claim 5's sentence across the codes, the validation section, and the
+#                       integrator lines' evidence from docs/preset_evidence.tsv), by the
 #                       same code as a full report, in the REPRODUCTION.md there is: after
 #                       `make validate-lammps` on a machine that does not hold the runs
 #   REPRODUCE_VALIDATION=FILE   the validation fragment to read (default docs/validate_lammps.md)
@@ -338,9 +339,21 @@ if [ "$CROSSCODE" = 1 ]; then
 	cc=$W/crosscode
 	mkdir -p "$cc" || exit 1
 	lammps B >"$cc/B" && lammps D >"$cc/D" && crosscode_c >"$cc/C" && validation_section >"$cc/V" || exit 1
+	# the integrator lines' evidence: docs/preset_evidence.tsv's rows as they are now (the
+	# validation may have written one), per campaign name, and per NAME_on (rel_setup's
+	# copies at the onset's offsets carry their campaign's preset lines)
+	for f in campaigns/reproduce/*.campaign; do
+		ev=$(bash "$root/scripts/preset_evidence.sh" line "$f") || exit 1
+		printf '%s\t%s\n%s_on\t%s\n' "$(cname "$f")" "$ev" "$(cname "$f")" "$ev"
+	done >"$cc/E" || exit 1
 	when=$(sed -n 's/^Written by `make reproduce` (scripts\/reproduce.sh) on \([0-9-]*\).*/\1/p' "$OUT" | head -n 1)
-	awk -v dir="$cc" -v when="${when:-an earlier day}" -v now="$(date -u +%Y-%m-%d)" '
+	awk -v dir="$cc" -v when="${when:-an earlier day}" -v now="$(date -u +%Y-%m-%d)" -v mark="Evidence (docs/preset_evidence.tsv): " '
 		function put(f,   l) { while ((getline l < (dir "/" f)) > 0) print l; close(dir "/" f); done[f]++ }
+		BEGIN { while ((getline l < (dir "/E")) > 0) { t = index(l, "\t"); ev[substr(l, 1, t - 1)] = substr(l, t + 1) } }
+		/^\*Integrator\* \(/ && index($0, mark) {
+			nm = substr($0, 15); nm = substr(nm, 1, index(nm, ")") - 1)
+			if (ev[nm] != "") { print substr($0, 1, index($0, mark) + length(mark) - 1) ev[nm] "."; next }
+		}
 		skip && /^(Each code alone|Across the codes:)/ { next }
 		skipsec && /^## / { skipsec = 0 }
 		skipsec { next }
