@@ -68,6 +68,9 @@ q() { sqlite3 -batch -noheader -separator $'\t' "$DB" "$@" 2>/dev/null; }
 VDB=$DB
 
 # --- the campaigns ------------------------------------------------------------------------
+# a campaign file copied out of campaigns/reproduce/ keeps its scene: the sed expression
+# that turns the scene's ../../ into the repository's path (every copy below uses it)
+SCENE_ABS='s|^scene *= *\.\./\.\./|scene = '"$root"'/|'
 # campaign FILE : the file to run - the shipped one, or for QUICK its cut-down copy
 campaign() {
 	local src=campaigns/reproduce/$1
@@ -81,7 +84,7 @@ campaign() {
 		-e 's/^(duration *= *)[0-9]+([^,0-9]|$)/\18\2/' \
 		-e 's/^(name *= *)(.*)/\1q\2/' -e 's/^(tolerance *= *).*/\10.2/' -e 's/^(stop_skip *= *).*/\12/' \
 		-e 's/^(stop_after *= *).*/\11/' -e 's/^(field_periods *= *).*/\15/' \
-		-e 's/@SLOW@/16/' -e 's|^scene *= *\.\./\.\./|scene = '"$root"'/|' "$src" >"$dst"
+		-e 's/@SLOW@/16/' -e "$SCENE_ABS" "$src" >"$dst"
 	printf '%s\n' "$dst"
 }
 cname() { awk -F'=' '/^name[ \t]*=/ { gsub(/[ \t]|#.*/, "", $2); print $2; exit }' "$1"; }
@@ -164,7 +167,7 @@ rel_setup() {
 		sed -E -e 's/^(name *= *)([^ #]*)(.*)/\1\2_on\3/' \
 			-e 's/^(description *= *)(.*)/\1\2, at f_on offsets/' \
 			-e "s/^(replicates *= *)16/\18/" \
-			-e 's|^scene *= *\.\./\.\./|scene = '"$root"'/|' \
+			-e "$SCENE_ABS" \
 			-e "/^\[grid\]/,/^\[/ s/^frequency *=.*/frequency = $fs/" "${FILE[$c]}" >"${FILE[${c}_on]}.tmp" &&
 			mv "${FILE[${c}_on]}.tmp" "${FILE[${c}_on]}"
 		NAME[${c}_on]=$(cname "${FILE[${c}_on]}")
@@ -214,7 +217,7 @@ calibrate() { # CAMPAIGN (its preset's integrator) -> CPU seconds per step of th
 	local f d=$W/calibrate c
 	c=$d/$(basename "$1")
 	mkdir -p "$d/runs" "$RUNS/.calibration" && ln -sfn "$(realpath "$RUNS/.calibration")" "$d/runs/.calibration" &&
-		sed -E -e 's/^(name *= *)(.*)/\1calibrate_\2/' -e 's|^scene *= *\.\./\.\./|scene = '"$root"'/|' "$1" >"$c" || return 1
+		sed -E -e 's/^(name *= *)(.*)/\1calibrate_\2/' -e "$SCENE_ABS" "$1" >"$c" || return 1
 	f=$("$STUDY" run "$c" --dry-run --runs "$d/runs" 2>&1 |
 		sed -n 's/^  rate: .*(\(.*\.calibration\/[0-9a-f]*\.[a-z0-9]*\.txt\))$/\1/p' | head -n 1)
 	[ -s "$f" ] && awk 'NR == 1 { printf "%.4g\n", $1 * 950 }' "$f"
