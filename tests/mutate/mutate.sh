@@ -49,7 +49,11 @@ while IFS=$'\t' read -r id file script tests what; do
 		bash tests/run.sh "$tests" >"$id.log" 2>&1
 		rc=$?
 		failed=$(grep -E '^ +FAIL ' "$id.log" | head -n 1 | sed 's/^ *//' | cut -c1-110)
-		if [ "$rc" -ne 0 ]; then
+		if [ -z "$failed" ] && grep -q 'no test matches' "$id.log"; then
+			# a test the scratch copy lacks (not yet added to git?) catches nothing
+			printf '%-34s BROKEN    %s\n' "$id" "$(grep -m1 'no test matches' "$id.log")"
+			broken=$((broken + 1))
+		elif [ "$rc" -ne 0 ]; then
 			printf '%-34s caught    in %ss by %s\n' "$id" "$(($(date +%s) - t0))" "$failed"
 			caught=$((caught + 1))
 		else
