@@ -189,7 +189,7 @@ static inline int add_contact(const sb_seam_io *io, double *fsum, int i, int j, 
 }
 
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
-		double *fsum)
+		double *hs, double *fsum)
 {
 	const double Y = law->Y, gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
 		     mo = law->max_overlap, W = nl->period;
@@ -201,13 +201,23 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 		const int i = nl->si[k], j = nl->sj[k];
 		const double dx = (io->x[i * ps] + W) - io->x[j * ps], dy = io->y[i * ps] - io->y[j * ps],
 			     rs = r[i] + r[j], d2 = dx * dx + dy * dy;
-		if (!(d2 < rs * rs))
+		if (!(d2 < rs * rs)) {
+			if (hs) /* no contact: its history ends */
+				hs[k] = 0;
 			continue;
+		}
 		const double d = sqrt(d2), ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
 		int capped;
-		contact(Y, gn, law->resti, law->hertz, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
-			io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
+		if (hs) {
+			const sb_kc c = forces_kc(law, KIND_GRAIN, KIND_GRAIN);
+			contact_spring(law, &c, gn, gs, dx, dy, d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
+				       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &hs[k], 1, &fx, &fy,
+				       &f_s, &xi, &capped);
+		} else
+			contact(Y, gn, law->resti, law->hertz, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
+				io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j],
+				1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
 		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
 	}
 	return bad;

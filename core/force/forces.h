@@ -65,10 +65,11 @@ typedef struct sb_seam_io {
 /* The contact law over the seam pairs of periodic sides (nlist.h; none with walls):
  * disk i's image at x_i + period against disk j, the vector kernel's arithmetic to the bit
  * (scaled velocities, 1/dt in the damping), forces added after those of the flat
- * list in the list's order. fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1 if some overlap
+ * list in the list's order. hs: tangential = spring, the seam pairs' shear displacements
+ * (a build's entries nflat on, shear.h), advanced as forces_scalar does; else NULL. fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1 if some overlap
  * exceeded max_overlap, else 0. */
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
-		double *fabs_sum);
+		double *hs, double *fabs_sum);
 
 /* The force on disk i from disk j for given relative geometry; the unit of every
  * collision test. Outputs the force on i (fx, fy) and torques on i and j. */
@@ -86,8 +87,9 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 			double *ti, double *tj);
 
 /* The law over the flat list and the seam pairs in that order, scalar, each pair with
- * its class's coefficients (forces_kc): tangential = spring, and any law with a table
- * of materials. Positions and scaled velocities at io's x, y, vx, vy, the state's
+ * its class's coefficients (forces_kc): the reference of the vector kernel's instances
+ * (kvec.c), and the pass that runs a table of materials with the ring's sums or the
+ * shear spring. Positions and scaled velocities at io's x, y, vx, vy, the state's
  * spins; forces added at io's fx, fy, t. With the spring law each contact's shear
  * displacement in sh (in nl's order: shear_follow first) is advanced and every pair
  * not in contact reset to zero (sh is not read otherwise). fabs_sum and the return as

@@ -166,7 +166,7 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring: the whole list through forces_scalar,
+/* tangential = spring with a table of materials or the ring's sums: the whole list through forces_scalar,
  * scalar and in list order (one code for every path: the same bits); with keep, into the records and
  * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
  * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
@@ -297,9 +297,13 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	/* the shear spring runs the scalar pass */
-	if (law->spring)
+	/* the shear spring with a table or the ring's sums runs the scalar pass */
+	if (law->spring && (law->table || fabs_sum))
 		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
+	/* its history in the order of this build */
+	if (law->spring && shear_follow(&k->shear, nl, e))
+		return -1;
+	k->d.shx = law->spring ? k->shear.xi : NULL;
 	if (!packed)
 		kernel_sync(k, st);
 	if (pair_consts(&k->d, law, st, nl, inv_dt, e))
@@ -312,7 +316,7 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 		const sb_seam_io io = keep ? (sb_seam_io){rec, rec + 1, rec + 2, rec + 3, facc, facc + 1, facc + 2, 8, 4}
 					   : (sb_seam_io){rec, rec + 1, rec + 2, rec + 3, st->f[C_X], st->f[C_Y],
 							  st->f[C_TH], 8, 1};
-		bad |= forces_seam(law, st, nl, &io, inv_dt, fabs_sum);
+		bad |= forces_seam(law, st, nl, &io, inv_dt, law->spring ? k->shear.xi + nl->nflat : NULL, fabs_sum);
 	}
 	return bad;
 }

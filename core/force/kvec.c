@@ -218,7 +218,7 @@ SB_INLINE void pair_dxy(const double *rec, const int *pi, const int *pj, sb_vd *
  * and divisions of pairs that do not touch. (docs/kernel.md, "Speed") */
 SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt,
 		     const int clip, const int resti, const int hertz, double *restrict fsum, const int packed,
-		     const int keep, const int pf, const int table)
+		     const int keep, const int pf, const int table, const int spring)
 {
 	const double *rec = kd->rec, *pm = kd->pm, *prs = kd->prs;
 	const int *pi = nl->pi, *pj = nl->pj;
@@ -228,7 +228,12 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	/* table: each contact's own, from the list build (sb_kdata's pc) */
 	const sb_vd Y0 = sb_splat(law->Y), gn0 = sb_splat((resti ? law->gz : law->gn) * inv_dt),
 		    gs0 = sb_splat(law->gs * inv_dt), mu0 = sb_splat(law->mu), mo = sb_splat(law->max_overlap),
-		    one = sb_splat(1.0), zero = sb_splat(0.0);
+		    kt = sb_splat(law->kt), one = sb_splat(1.0), zero = sb_splat(0.0);
+	/* spring: the shear displacements of this build's pairs, and lane l's offset l */
+	double *restrict shx = kd->shx;
+	sb_vi iota;
+	for (int l = 0; l < SB_W; l++)
+		iota[l] = l;
 	/* the weights of rec_pair's general form */
 	const double wa[8] = {1, 1, 1, 1, 1, 1, 1, 0}, wb[8] = {-1, -1, -1, -1, 1, 1, 0, 1};
 	double *restrict facc = kd->facc;
@@ -277,13 +282,23 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			if (table) /* constant per instantiation */
 				for (int c = 0; c < 4; c++)
 					sb_compressd(kb->c[c] + nc, sb_load(kd->pc[c] + p), cm);
+			if (spring) { /* constant per instantiation */
+				sb_compressd(kb->h + nc, sb_loadn(shx + p, p1 - p < SB_W ? p1 - p : SB_W), cm);
+				sb_compressi(kb->p + nc, p + iota, cm);
+			}
 			nc += sb_count(bits);
 		}
+		/* a pair not in contact loses its history (docs/model.md, "Tangential law");
+		 * the contacts get theirs back from the second pass */
+		if (spring)
+			memset(shx + p0, 0, sizeof(double) * (size_t)(p1 - p0));
 		/* the lanes past the last contact read disk 0's record; their numbers are
 		 * never used */
 		for (int l = 0; l < SB_W; l++) {
 			kb->i[nc + l] = kb->j[nc + l] = 0;
 			kb->m[nc + l] = 1;
+			if (spring)
+				kb->h[nc + l] = 0;
 			for (int c = 0; c < 4 && table; c++)
 				kb->c[c][nc + l] = 0;
 		}
@@ -322,11 +337,29 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			if (clip) /* fn > 0 ? fn : 0 */
 				fn = sb_max(fn, zero);
 			const sb_vd vt = (dvy * nx - dvx * ny) - rw;
-			sb_vd fv = gs * meff * sb_abs(vt);
-			if (hertz)
-				fv = ph * fv;
-			const sb_vd fc = mu * sb_abs(fn);
-			const sb_vd fs = sb_copysign_neg(sb_min(fv, fc), vt); /* copysign(fv < fc ? fv : fc, -vt) */
+			sb_vd fs;
+			if (spring) { /* constant per instantiation: forces.c, contact_spring, lane by lane */
+				const sb_vd s = sb_load(kb->h + k) + vt, damps = gs * meff * vt;
+				fs = sb_neg(kt * s + damps);
+				if (hertz)
+					fs = ph * fs;
+				const sb_vd fc = mu * sb_abs(fn);
+				const sb_vl cap = fc < sb_abs(fs);
+				sb_vd sn = s;
+				if (sb_bits(cap) & live) { /* sliding: the spring stretched only as far as Coulomb allows */
+					const sb_vd q = damps / kt, r = fc / sb_abs(fs);
+					const sb_vl nz = s != zero;
+					sn = sb_sel(cap & nz, r * (s + q) - q, s);
+					fs = sb_sel(cap & nz, fs * r, sb_sel(cap, zero, fs));
+				}
+				sb_store(kb->h + k, sn);
+			} else {
+				sb_vd fv = gs * meff * sb_abs(vt);
+				if (hertz)
+					fv = ph * fv;
+				const sb_vd fc = mu * sb_abs(fn);
+				fs = sb_copysign_neg(sb_min(fv, fc), vt); /* copysign(fv < fc ? fv : fc, -vt) */
+			}
 			bad |= sb_lt(mo * sb_min(ri, rj), xi) & live;
 			sb_store(kb->fx + k, fn * nx - fs * ny);
 			sb_store(kb->fy + k, fn * ny + fs * nx);
@@ -347,6 +380,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 				fsum[i8 / 8] += fa;
 				fsum[j8 / 8] += fa;
 			}
+			if (spring) /* constant per instantiation */
+				shx[kb->p[k]] = kb->h[k];
 			const sb_v4 vi = {fx, fy, kb->ti[k], 0}, vj = {fx, fy, kb->tj[k], 0};
 			sb_v4 a, b;
 			memcpy(&a, ai, sizeof a);
@@ -366,13 +401,14 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
  * restitution) and prefetching: the law is chosen at set-up, not in the loop
  * (docs/kernel.md) */
 typedef int (*kernel_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist *, double, int, int);
-#define INSTANCE_T(name, hertz, clip, resti, pf, table)                                                    \
+#define INSTANCE_T(name, hertz, clip, resti, pf, table, spring)                                            \
 	static int name(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,      \
 			int packed, int keep)                                                              \
 	{                                                                                                  \
-		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf, table);      \
+		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf, table, spring); \
 	}
-#define INSTANCE(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0)
+#define INSTANCE(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0, 0)
+#define INSTANCE_S(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0, 1)
 INSTANCE(kernel_plain, 0, 0, 0, 0)
 INSTANCE(kernel_clip, 0, 1, 0, 0)
 INSTANCE(kernel_plain_pf, 0, 0, 0, 1)
@@ -388,18 +424,37 @@ INSTANCE(kernel_hz_pf, 1, 0, 0, 1)
 INSTANCE(kernel_hz_clip_pf, 1, 1, 0, 1)
 /* a table of materials: the coefficients per contact; without prefetching (a mixture's
  * bed large enough to want it runs these at the cost of the far ends' loads) */
-INSTANCE_T(kernel_tab, 0, 0, 0, 0, 1)
-INSTANCE_T(kernel_tab_clip, 0, 1, 0, 0, 1)
-INSTANCE_T(kernel_tab_e, 0, 0, 1, 0, 1)
-INSTANCE_T(kernel_tab_clip_e, 0, 1, 1, 0, 1)
-INSTANCE_T(kernel_tab_hz, 1, 0, 0, 0, 1)
-INSTANCE_T(kernel_tab_hz_clip, 1, 1, 0, 0, 1)
+INSTANCE_T(kernel_tab, 0, 0, 0, 0, 1, 0)
+INSTANCE_T(kernel_tab_clip, 0, 1, 0, 0, 1, 0)
+INSTANCE_T(kernel_tab_e, 0, 0, 1, 0, 1, 0)
+INSTANCE_T(kernel_tab_clip_e, 0, 1, 1, 0, 1, 0)
+INSTANCE_T(kernel_tab_hz, 1, 0, 0, 0, 1, 0)
+INSTANCE_T(kernel_tab_hz_clip, 1, 1, 0, 0, 1, 0)
+/* tangential = spring (the shear displacement per contact in sb_kdata's shx) */
+INSTANCE_S(kernel_spr, 0, 0, 0, 0)
+INSTANCE_S(kernel_spr_clip, 0, 1, 0, 0)
+INSTANCE_S(kernel_spr_pf, 0, 0, 0, 1)
+INSTANCE_S(kernel_spr_clip_pf, 0, 1, 0, 1)
+INSTANCE_S(kernel_spr_e, 0, 0, 1, 0)
+INSTANCE_S(kernel_spr_clip_e, 0, 1, 1, 0)
+INSTANCE_S(kernel_spr_e_pf, 0, 0, 1, 1)
+INSTANCE_S(kernel_spr_clip_e_pf, 0, 1, 1, 1)
+INSTANCE_S(kernel_spr_hz, 1, 0, 0, 0)
+INSTANCE_S(kernel_spr_hz_clip, 1, 1, 0, 0)
+INSTANCE_S(kernel_spr_hz_pf, 1, 0, 0, 1)
+INSTANCE_S(kernel_spr_hz_clip_pf, 1, 1, 0, 1)
 #undef INSTANCE
+#undef INSTANCE_S
 #undef INSTANCE_T
 /* [hertz ? 2 : resti][prefetch][clip] */
 static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
 					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}},
 					   {{kernel_hz, kernel_hz_clip}, {kernel_hz_pf, kernel_hz_clip_pf}}};
+/* the same, the shear spring's */
+static const kernel_fn KERNELS_SPR[3][2][2] = {
+	{{kernel_spr, kernel_spr_clip}, {kernel_spr_pf, kernel_spr_clip_pf}},
+	{{kernel_spr_e, kernel_spr_clip_e}, {kernel_spr_e_pf, kernel_spr_clip_e_pf}},
+	{{kernel_spr_hz, kernel_spr_hz_clip}, {kernel_spr_hz_pf, kernel_spr_hz_clip_pf}}};
 /* [hertz ? 2 : resti][clip], a table's */
 static const kernel_fn KERNELS_TAB[3][2] = {
 	{kernel_tab, kernel_tab_clip}, {kernel_tab_e, kernel_tab_clip_e}, {kernel_tab_hz, kernel_tab_hz_clip}};
@@ -410,10 +465,10 @@ SB_INLINE int kernel_track_law(sb_kdata *d, const sb_law *l, sb_state *s, const 
 				double *fsum, const int tb)
 {
 	if (l->hertz)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0, tb);
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 1, fsum, 0, 0, 0, tb, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 1, fsum, 0, 0, 0, tb, 0);
 	if (l->resti)
-		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0, tb);
-	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0, tb) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0, tb);
+		return l->clip ? kernel(d, l, s, n, inv_dt, 1, 1, 0, fsum, 0, 0, 0, tb, 0) : kernel(d, l, s, n, inv_dt, 0, 1, 0, fsum, 0, 0, 0, tb, 0);
+	return l->clip ? kernel(d, l, s, n, inv_dt, 1, 0, 0, fsum, 0, 0, 0, tb, 0) : kernel(d, l, s, n, inv_dt, 0, 0, 0, fsum, 0, 0, 0, tb, 0);
 }
 
 static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n,
@@ -427,6 +482,9 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
+	if (law->spring) /* kernel.c sends a table's spring and the ring's sums with it to the scalar pass */
+		return KERNELS_SPR[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt,
+												  packed, keep);
 	if (law->table)
 		return KERNELS_TAB[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
 	return KERNELS[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,

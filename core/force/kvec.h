@@ -30,6 +30,10 @@ typedef struct sb_kbuf {
 	/* a table of materials only: each contact's Y, gamma_N / dt (or gz / dt), gamma_S / dt, mu */
 	double c[4][SB_KCHUNK + 8];
 	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
+	/* tangential = spring only: each contact's shear displacement (the list's, then the
+	 * second pass's new one) and its place p in the list */
+	double h[SB_KCHUNK + 8];
+	int p[SB_KCHUNK + 8];
 } sb_kbuf;
 
 typedef struct sb_kdata {
@@ -56,6 +60,9 @@ typedef struct sb_kdata {
 	/* prefetch the far ends of the pairs: set when the per-disk data a step sweeps
 	 * outgrow half the last-level cache, where those loads come from memory */
 	int prefetch;
+	/* tangential = spring: the shear displacements in the order of the current build
+	 * (shear.h; kernel.c points it at the kernel's sb_shear before each call) */
+	double *shx;
 } sb_kdata;
 
 /* One instance: the same functions for one instruction set. */

@@ -66,39 +66,42 @@ static int grow(sb_shear *sh, int n, sb_err *e)
 	return rc;
 }
 
-static int cmp_key(const void *a, const void *b)
+/* the slot of a key in a table of 1 << b slots (Fibonacci hashing) */
+static inline size_t slot(uint64_t k, int b)
 {
-	const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-	return (x > y) - (x < y);
+	return (size_t)((k * 0x9E3779B97F4A7C15ull) >> (64 - b));
 }
 
 int shear_follow(sb_shear *sh, const sb_nlist *nl, sb_err *e)
 {
 	if (sh->builds == nl->builds)
 		return 0;
-	/* the old contacts (nonzero entries), sorted by key; their values ride along in
-	 * the key's slot order through an index sort of (key, slot) */
+	/* the old contacts (nonzero entries) in an open-addressing table at most half
+	 * full, keyed by the pair: each pair of the new list finds its history in a probe
+	 * or two (a sort and a binary search per pair cost 12 % of a spring run). Key 0,
+	 * the padding's, is the empty slot: the padding is never in contact. */
 	int nold = 0;
 	for (int p = 0; p < sh->n; p++)
 		nold += sh->xi[p] != 0;
+	int b = 4;
+	while ((1 << b) < 2 * nold)
+		b++;
+	const size_t mask = ((size_t)1 << b) - 1;
 	void *ok = sh->okey, *ox = sh->oxi;
-	const int rc = grow2(&ok, 2 * sizeof *sh->okey, &ox, sizeof *sh->oxi, nold, &sh->ocap, e);
+	const int rc = grow2(&ok, sizeof *sh->okey, &ox, sizeof *sh->oxi, 1 << b, &sh->ocap, e);
 	sh->okey = ok;
 	sh->oxi = ox;
 	if (rc)
 		return rc;
-	/* okey holds pairs (key, slot): sorted by key (keys are unique) */
-	int c = 0;
+	memset(sh->okey, 0, sizeof *sh->okey * (mask + 1));
 	for (int p = 0; p < sh->n; p++)
 		if (sh->xi[p] != 0) {
-			sh->okey[2 * c] = sh->key[p];
-			sh->okey[2 * c + 1] = (uint64_t)p;
-			c++;
+			size_t h = slot(sh->key[p], b);
+			while (sh->okey[h]) /* keys are unique: no match to look for */
+				h = (h + 1) & mask;
+			sh->okey[h] = sh->key[p];
+			sh->oxi[h] = sh->xi[p];
 		}
-	if (nold)
-		qsort(sh->okey, (size_t)nold, 2 * sizeof(uint64_t), cmp_key);
-	for (int k = 0; k < nold; k++)
-		sh->oxi[k] = sh->xi[sh->okey[2 * k + 1]];
 	const int n = nl->nflat + nl->nseam;
 	if (grow(sh, n, e))
 		return e->code;
@@ -106,18 +109,13 @@ int shear_follow(sb_shear *sh, const sb_nlist *nl, sb_err *e)
 		const uint64_t kp = key(nl, p);
 		sh->key[p] = kp;
 		sh->xi[p] = 0;
-		if (p < nl->nflat && nl->pi[p] == nl->pj[p])
-			continue; /* padding */
-		int lo = 0, hi = nold; /* the first old key >= kp */
-		while (lo < hi) {
-			const int mid = lo + (hi - lo) / 2;
-			if (sh->okey[2 * mid] < kp)
-				lo = mid + 1;
-			else
-				hi = mid;
-		}
-		if (lo < nold && sh->okey[2 * lo] == kp)
-			sh->xi[p] = sh->oxi[lo];
+		if (!nold || (p < nl->nflat && nl->pi[p] == nl->pj[p]))
+			continue; /* no history, or the padding */
+		for (size_t h = slot(kp, b); sh->okey[h]; h = (h + 1) & mask)
+			if (sh->okey[h] == kp) {
+				sh->xi[p] = sh->oxi[h];
+				break;
+			}
 	}
 	sh->n = n;
 	sh->builds = nl->builds;

@@ -17,7 +17,7 @@ typedef struct sb_shear {
 	int n, cap;      /* n = nflat + nseam of that build */
 	uint64_t *key;   /* each entry's pair (shear.c, key) */
 	double *xi;      /* its shear displacement, cm */
-	uint64_t *okey;  /* scratch of the carry-over: the old nonzero entries, sorted */
+	uint64_t *okey;  /* scratch of the carry-over: the old nonzero entries, a hash table */
 	double *oxi;
 	int ocap;
 } sb_shear;
