@@ -5,6 +5,8 @@
 #     1 simulated second (20000 steps) of shakebox and of LAMMPS gran/hooke (lammps_time.sh) on
 #     the same settled state, BENCH_REPS times each, interleaved (shake, lammps, shake, ...).
 #     Target: LAMMPS / shakebox >= 6 on one core, on every path (1b).
+#     1c: the same scene with shear history, shakebox tangential = spring against LAMMPS
+#     gran/hooke/history (the deck's history variable), BENCH_PATH_REPS times each, interleaved.
 #  2. scaling: N = 1e3, 1e4, 1e5 grains, box width 60 cm * N/950 (same bed height), settled once
 #     each, then a short run timed BENCH_SCALE_REPS times, the sizes taking turns.  Target: ns
 #     per particle-step within 1.5x of the N = 1e3 figure.
@@ -141,9 +143,10 @@ run_shake() {
 }
 
 # run_lammps TAG DATA STEPS : sets L_LOOP L_STEPS L_ATOMS
-run_lammps() {
+run_lammps() { # TAG DATAFILE STEPS [lmp args...]
 	local tag=$1 data=$2 steps=$3 out rc
-	out=$(pin bash "$here/lammps_time.sh" "$data" "$steps" "$FREQ" 2>"$W/log/$tag.err")
+	shift 3
+	out=$(pin bash "$here/lammps_time.sh" "$data" "$steps" "$FREQ" "$@" 2>"$W/log/$tag.err")
 	rc=$?
 	if [ $rc -ne 0 ]; then
 		cat "$W/log/$tag.err" >&2
@@ -362,6 +365,36 @@ if [ -n "${NATIVE:-}" ]; then
 	tsv paths "$P_MOBILE" dispatched_over_native "$(calc "$dm / $nm")" x
 else
 	rep "    (the dispatched binary against a native build: skipped, NATIVE unset; make bench sets it)"
+fi
+rm -f "$W/run.h5" "$W/run.xmf"
+rep ""
+
+# --- 1c. shear history: tangential = spring against gran/hooke/history --------------
+rep "1c. The paper scene with shear history: shakebox tangential = spring (dispatched path) against"
+rep "    LAMMPS gran/hooke/history (vibrated_box.in -var history yes; both k_t = 2/7 Y); $PREPS runs each,"
+rep "    interleaved; loop wall time, median [min .. max]"
+spr_t=() hist_t=()
+for ((i = 1; i <= PREPS; i++)); do
+	run_shake "spring_$i" particles="$PAPER" duration=1 tangential=spring output="$W/run.h5" "${RUN_FLAGS[@]}"
+	spr_t+=("$R_LOOP")
+	msg="spring rep $i/$PREPS: shakebox ${R_LOOP}s"
+	if [ "$NO_LAMMPS" != 1 ]; then
+		run_lammps "history_lammps_$i" "$PAPER" "$PAPER_STEPS" -var history yes
+		hist_t+=("$L_LOOP")
+		msg="$msg, LAMMPS ${L_LOOP}s"
+	fi
+	log "$msg"
+done
+read -r m lo hi < <(stats "${spr_t[@]}")
+repf '    %-10s %9.4f s  [%.4f .. %.4f]   %.2fx the default law'"'"'s time (section 1)\n' spring "$m" "$lo" "$hi" \
+	"$(calc "$m / $s_med")"
+tsv history "$P_MOBILE" spring_loop_median "$m" s
+if [ "$NO_LAMMPS" != 1 ]; then
+	read -r hm hlo hhi < <(stats "${hist_t[@]}")
+	repf '    %-10s %9.4f s  [%.4f .. %.4f]   LAMMPS/shakebox = %.2fx (gran/hooke: %.2fx)\n' history "$hm" "$hlo" \
+		"$hhi" "$(calc "$hm / $m")" "$speedup"
+	tsv history "$P_MOBILE" lammps_history_loop_median "$hm" s
+	tsv history "$P_MOBILE" speedup_history "$(calc "$hm / $m")" x
 fi
 rm -f "$W/run.h5" "$W/run.xmf"
 rep ""

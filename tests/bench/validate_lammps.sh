@@ -225,11 +225,12 @@ insert() { # FRAGMENT OUT
 }
 insert "$STROBE" "$WORK/strobe.in"
 insert "$RISE" "$WORK/rise.in"
-# part E: the same deck with shear history (Kt NULL: 2/7 Kn, the engine's default
-# shear_stiffness); its one pair_style line changed, or no part E
-sed 's|^pair_style  gran/hooke 3.0e6 0.0 |pair_style  gran/hooke/history 3.0e6 NULL |' "$WORK/rise.in" >"$WORK/rise_history.in"
-[ "$(grep -c '^pair_style  gran/hooke/history 3.0e6 NULL ' "$WORK/rise_history.in")" = 1 ] ||
-	die "$DECK: its pair_style line is not 'pair_style  gran/hooke 3.0e6 0.0 ...': part E cannot switch history on"
+# part E: the same deck with shear history (its `history` variable: Kt NULL, 2/7 Kn, the
+# engine's default shear_stiffness), set to yes by a first line (an index variable keeps its
+# first value), or no part E
+grep -q '^variable history index no' "$WORK/rise.in" ||
+	die "$DECK: no 'variable history index no' line: part E cannot switch history on"
+{ echo 'variable history index yes'; cat "$WORK/rise.in"; } >"$WORK/rise_history.in"
 
 # (the readers read to the end: a writer killed by SIGPIPE would fail the pipeline)
 CPU_MODEL=$(lscpu 2>/dev/null | awk -F: '/^Model name/ && !m { m = $2; sub(/^[ \t]+/, "", m) } END { print m }') || CPU_MODEL="?"
@@ -978,7 +979,7 @@ report_rise() {
 		echo "the run × Δt). A run without a rise is censored at $D_DUR s."
 		[ "$P" != E ] || { echo; echo "**Shear history.** Part D's beds and settings with Cundall–Strack's shear spring on in both codes: shakebox"
 			echo "\`tangential = spring\` (docs/model.md, \"Tangential law\"), LAMMPS \`pair_style gran/hooke/history\` (\`rise_history.in\`: the"
-			echo "deck's one \`pair_style\` line with Kt = NULL), both with k_t = 2/7 of the normal stiffness, the same γ_S and μ."; }
+			echo "deck with its \`history\` variable yes: Kt = NULL), both with k_t = 2/7 of the normal stiffness, the same γ_S and μ."; }
 		echo
 		echo "**Statistics.** Medians per code (a median on a censored run is only a lower bound); the paired"
 		echo "difference LAMMPS − shakebox per bed: the sign test (valid with censoring: a censored run's difference"
