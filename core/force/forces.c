@@ -191,9 +191,7 @@ static inline int add_contact(const sb_seam_io *io, double *fsum, int i, int j, 
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
 		double *hs, double *fsum)
 {
-	const double Y = law->Y, gn = (law->resti ? law->gz : law->gn) * inv_dt, gs = law->gs * inv_dt, mu = law->mu,
-		     mo = law->max_overlap, W = nl->period;
-	assert(!law->table); /* a table's law runs through forces_scalar */
+	const double mo = law->max_overlap, W = nl->period;
 	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
 	const int ps = io->ps;
 	int bad = 0;
@@ -209,13 +207,15 @@ int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const
 		const double d = sqrt(d2), ri = r[i], rj = r[j];
 		double fx, fy, f_s, xi;
 		int capped;
+		/* the pair's coefficients (a table of materials'), formed as forces_scalar does */
+		const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
+		const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
 		if (hs) {
-			const sb_kc c = forces_kc(law, KIND_GRAIN, KIND_GRAIN);
 			contact_spring(law, &c, gn, gs, dx, dy, d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
 				       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &hs[k], 1, &fx, &fy,
 				       &f_s, &xi, &capped);
 		} else
-			contact(Y, gn, law->resti, law->hertz, gs, mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
+			contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
 				io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j],
 				1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
 		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);

@@ -64,7 +64,8 @@ typedef struct sb_seam_io {
 
 /* The contact law over the seam pairs of periodic sides (nlist.h; none with walls):
  * disk i's image at x_i + period against disk j, the vector kernel's arithmetic to the bit
- * (scaled velocities, 1/dt in the damping), forces added after those of the flat
+ * (scaled velocities, 1/dt in the damping), each pair with its class's coefficients
+ * (forces_kc: a table of materials'), forces added after those of the flat
  * list in the list's order. hs: tangential = spring, the seam pairs' shear displacements
  * (a build's entries nflat on, shear.h), advanced as forces_scalar does; else NULL. fabs_sum (NULL: off) gets each contact's |F| added to both of its disks. Returns 1 if some overlap
  * exceeded max_overlap, else 0. */

@@ -37,15 +37,23 @@ static sb_scene periodic_scene(double W)
 	return sc;
 }
 
-/* A pair of grains at x0 and x1 (y = 5), with velocities and spins, and the forces of
- * step_start into f[6] (fx, fy, torque of disk 0, then of disk 1). */
-static int pair_forces(double W, double x0, double x1, double f[6])
+/* A pair of disks at x0 and x1 (y = 5), with velocities and spins, and the forces of
+ * step_start into f[6] (fx, fy, torque of disk 0, then of disk 1). law: bit 0, the
+ * second disk an intruder with a grain-intruder material of its own (a table of
+ * materials); bit 1, tangential = spring. */
+static int pair_forces_law(double W, double x0, double x1, double f[6], int law)
 {
 	sb_scene sc = periodic_scene(W);
+	if (law & 1) {
+		sc.mu_grain_intruder = 0.2;
+		sc.stiffness_grain_intruder = 2 * sc.stiffness;
+	}
+	if (law & 2)
+		sc.tangential = TANGENTIAL_SPRING;
 	sb_sim *s = new_sim(&sc);
 	sb_err e = {0};
 	place_push(&sc, &s->st, x0, 5, 1, KIND_GRAIN, &e);
-	place_push(&sc, &s->st, x1, 5.25, 0.75, KIND_GRAIN, &e);
+	place_push(&sc, &s->st, x1, 5.25, 0.75, law & 1 ? KIND_INTRUDER : KIND_GRAIN, &e);
 	int ok = !e.code && !sim_derive(s, &e);
 	if (ok) {
 		sb_state *st = &s->st;
@@ -66,6 +74,36 @@ static int pair_forces(double W, double x0, double x1, double f[6])
 		printf("# pair setup failed: %s\n", e.msg);
 	del_sim(s);
 	return ok;
+}
+
+static int pair_forces(double W, double x0, double x1, double f[6])
+{
+	return pair_forces_law(W, x0, x1, f, 0);
+}
+
+/* The same with a table of materials and with the shear spring: the seam pair's law
+ * (forces_seam) is the flat list's (the vector kernel's instances), the pair's own
+ * coefficients included */
+static void seam_pair_laws(void)
+{
+	const double W = 20;
+	double plain[6];
+	int ok = pair_forces_law(W, 10.5, 9.25, plain, 0);
+	const char *const name[4] = {"", "table", "spring", "table_spring"};
+	for (int law = 1; law < 4; law++) {
+		double mid[6], seam[6];
+		ok = ok && pair_forces_law(W, 0.5, W - 0.75, seam, law) && pair_forces_law(W, 10.5, 9.25, mid, law);
+		char id[80];
+		snprintf(id, sizeof id, "periodic.seam_pair.%s.setup", name[law]);
+		CHECK(id, ok, "see above");
+		if (!ok)
+			return;
+		snprintf(id, sizeof id, "periodic.seam_pair.%s.law_changes_forces", name[law]);
+		CHECK(id, memcmp(mid, plain, sizeof mid) != 0, "the %s law gave the plain law's forces", name[law]);
+		snprintf(id, sizeof id, "periodic.seam_pair.%s.same_as_middle", name[law]);
+		CHECK(id, !memcmp(mid, seam, sizeof mid), "seam F0 (%.17g, %.17g, %.17g) vs middle (%.17g, %.17g, %.17g)",
+		      seam[0], seam[1], seam[2], mid[0], mid[1], mid[2]);
+	}
 }
 
 static void seam_pair(void)
@@ -404,6 +442,7 @@ static void refused(void)
 int main(void)
 {
 	seam_pair();
+	seam_pair_laws();
 	seam_list();
 	crossing();
 	conservation();
