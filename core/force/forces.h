@@ -89,8 +89,7 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 
 /* The law over the flat list and the seam pairs in that order, scalar, each pair with
  * its class's coefficients (forces_kc): the reference of the vector kernel's instances
- * (kvec.c), and the pass that runs a table of materials with the ring's sums or the
- * shear spring. Positions and scaled velocities at io's x, y, vx, vy, the state's
+ * (kvec.c), and the pass that runs the shear spring with the ring's sums. Positions and scaled velocities at io's x, y, vx, vy, the state's
  * spins; forces added at io's fx, fy, t. With the spring law each contact's shear
  * displacement in sh (in nl's order: shear_follow first) is advanced and every pair
  * not in contact reset to zero (sh is not read otherwise). fabs_sum and the return as

@@ -166,7 +166,7 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring with a table of materials or the ring's sums: the whole list through forces_scalar,
+/* tangential = spring with the ring's sums: the whole list through forces_scalar,
  * scalar and in list order (one code for every path: the same bits); with keep, into the records and
  * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
  * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
@@ -227,13 +227,13 @@ static int pair_consts(sb_kdata *d, const sb_law *law, const sb_state *st, const
 		d->prs = bigmem_alloc(sizeof(double) * (size_t)d->pcap);
 		/* the coefficients only for a table: the paper's law needs none */
 		if (law->table)
-			d->pc[0] = bigmem_alloc(4 * sizeof(double) * (size_t)d->pcap);
+			d->pc[0] = bigmem_alloc(5 * sizeof(double) * (size_t)d->pcap);
 		if (!d->pm || !d->prs || (law->table && !d->pc[0])) {
 			d->pcap = 0;
 			d->pfor = NULL;
 			return sb_errf(e, SB_ENOMEM, "out of memory for the force kernel's pair list (%d pairs)", n);
 		}
-		for (int c = 1; c < 4; c++)
+		for (int c = 1; c < 5; c++)
 			d->pc[c] = d->pc[0] ? d->pc[0] + (size_t)c * (size_t)d->pcap : NULL;
 	}
 	const int sh = nl->pshift;
@@ -255,9 +255,10 @@ static int pair_consts(sb_kdata *d, const sb_law *law, const sb_state *st, const
 			d->pc[1][p] = c.gn * inv_dt;
 			d->pc[2][p] = c.gs * inv_dt;
 			d->pc[3][p] = c.mu;
+			d->pc[4][p] = c.kt;
 		}
 		for (int p = n; p < n + 8; p++)
-			for (int c = 0; c < 4; c++)
+			for (int c = 0; c < 5; c++)
 				d->pc[c][p] = 0;
 		memcpy(d->pkc, law->kc, sizeof d->pkc);
 		d->pinv = inv_dt;
@@ -297,8 +298,8 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	/* the shear spring with a table or the ring's sums runs the scalar pass */
-	if (law->spring && (law->table || fabs_sum))
+	/* the shear spring with the ring's sums runs the scalar pass */
+	if (law->spring && fabs_sum)
 		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
 	/* its history in the order of this build */
 	if (law->spring && shear_follow(&k->shear, nl, e))

@@ -228,7 +228,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 	/* table: each contact's own, from the list build (sb_kdata's pc) */
 	const sb_vd Y0 = sb_splat(law->Y), gn0 = sb_splat((resti ? law->gz : law->gn) * inv_dt),
 		    gs0 = sb_splat(law->gs * inv_dt), mu0 = sb_splat(law->mu), mo = sb_splat(law->max_overlap),
-		    kt = sb_splat(law->kt), one = sb_splat(1.0), zero = sb_splat(0.0);
+		    kt0 = sb_splat(law->kt), one = sb_splat(1.0), zero = sb_splat(0.0);
 	/* spring: the shear displacements of this build's pairs, and lane l's offset l */
 	double *restrict shx = kd->shx;
 	sb_vi iota;
@@ -279,8 +279,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			sb_compressi(kb->i + nc, sb_loadi(pi + p), cm);
 			sb_compressi(kb->j + nc, sb_loadi(pj + p), cm);
 			sb_compressd(kb->m + nc, sb_load(pm + p), cm);
-			if (table) /* constant per instantiation */
-				for (int c = 0; c < 4; c++)
+			if (table) /* constant per instantiation; k_t only for the spring */
+				for (int c = 0; c < 4 + spring; c++)
 					sb_compressd(kb->c[c] + nc, sb_load(kd->pc[c] + p), cm);
 			if (spring) { /* constant per instantiation */
 				sb_compressd(kb->h + nc, sb_loadn(shx + p, p1 - p < SB_W ? p1 - p : SB_W), cm);
@@ -299,7 +299,7 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			kb->m[nc + l] = 1;
 			if (spring)
 				kb->h[nc + l] = 0;
-			for (int c = 0; c < 4 && table; c++)
+			for (int c = 0; c < 4 + spring && table; c++)
 				kb->c[c][nc + l] = 0;
 		}
 		/* pass 2: contact(), operation by operation, W contacts a vector */
@@ -339,7 +339,8 @@ SB_INLINE int kernel(sb_kdata *kd, const sb_law *law, sb_state *st, const sb_nli
 			const sb_vd vt = (dvy * nx - dvx * ny) - rw;
 			sb_vd fs;
 			if (spring) { /* constant per instantiation: forces.c, contact_spring, lane by lane */
-				const sb_vd s = sb_load(kb->h + k) + vt, damps = gs * meff * vt;
+				const sb_vd s = sb_load(kb->h + k) + vt, damps = gs * meff * vt,
+					    kt = table ? sb_load(kb->c[4] + k) : kt0;
 				fs = sb_neg(kt * s + damps);
 				if (hertz)
 					fs = ph * fs;
@@ -443,6 +444,12 @@ INSTANCE_S(kernel_spr_hz, 1, 0, 0, 0)
 INSTANCE_S(kernel_spr_hz_clip, 1, 1, 0, 0)
 INSTANCE_S(kernel_spr_hz_pf, 1, 0, 0, 1)
 INSTANCE_S(kernel_spr_hz_clip_pf, 1, 1, 0, 1)
+INSTANCE_T(kernel_tab_spr, 0, 0, 0, 0, 1, 1)
+INSTANCE_T(kernel_tab_spr_clip, 0, 1, 0, 0, 1, 1)
+INSTANCE_T(kernel_tab_spr_e, 0, 0, 1, 0, 1, 1)
+INSTANCE_T(kernel_tab_spr_clip_e, 0, 1, 1, 0, 1, 1)
+INSTANCE_T(kernel_tab_spr_hz, 1, 0, 0, 0, 1, 1)
+INSTANCE_T(kernel_tab_spr_hz_clip, 1, 1, 0, 0, 1, 1)
 #undef INSTANCE
 #undef INSTANCE_S
 #undef INSTANCE_T
@@ -450,7 +457,10 @@ INSTANCE_S(kernel_spr_hz_clip_pf, 1, 1, 0, 1)
 static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
 					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}},
 					   {{kernel_hz, kernel_hz_clip}, {kernel_hz_pf, kernel_hz_clip_pf}}};
-/* the same, the shear spring's */
+/* the same, the shear spring's, and a table's with it ([hertz ? 2 : resti][clip]) */
+static const kernel_fn KERNELS_TAB_SPR[3][2] = {{kernel_tab_spr, kernel_tab_spr_clip},
+						{kernel_tab_spr_e, kernel_tab_spr_clip_e},
+						{kernel_tab_spr_hz, kernel_tab_spr_hz_clip}};
 static const kernel_fn KERNELS_SPR[3][2][2] = {
 	{{kernel_spr, kernel_spr_clip}, {kernel_spr_pf, kernel_spr_clip_pf}},
 	{{kernel_spr_e, kernel_spr_clip_e}, {kernel_spr_e_pf, kernel_spr_clip_e_pf}},
@@ -482,7 +492,9 @@ static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *
 {
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
-	if (law->spring) /* kernel.c sends a table's spring and the ring's sums with it to the scalar pass */
+	if (law->spring && law->table)
+		return KERNELS_TAB_SPR[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
+	if (law->spring) /* kernel.c sends the ring's sums with the spring to the scalar pass */
 		return KERNELS_SPR[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt,
 												  packed, keep);
 	if (law->table)

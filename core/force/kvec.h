@@ -27,8 +27,9 @@ enum { SB_KSHIFT = 3, SB_KCHUNK = 256 };
 typedef struct sb_kbuf {
 	_Alignas(64) double fx[SB_KCHUNK + 8], fy[SB_KCHUNK + 8], ti[SB_KCHUNK + 8], tj[SB_KCHUNK + 8];
 	double m[SB_KCHUNK + 8];
-	/* a table of materials only: each contact's Y, gamma_N / dt (or gz / dt), gamma_S / dt, mu */
-	double c[4][SB_KCHUNK + 8];
+	/* a table of materials only: each contact's Y, gamma_N / dt (or gz / dt), gamma_S / dt, mu,
+	 * and with the shear spring k_t */
+	double c[5][SB_KCHUNK + 8];
 	int i[SB_KCHUNK + 8], j[SB_KCHUNK + 8];
 	/* tangential = spring only: each contact's shear displacement (the list's, then the
 	 * second pass's new one) and its place p in the list */
@@ -51,9 +52,9 @@ typedef struct sb_kdata {
 	int pn;
 	/* a table of materials (forces.h, sb_law.table): each listed pair's coefficients,
 	 * forces_kc() of its kinds, the dampings times 1/dt as the scalar law forms them
-	 * (pc[0] Y, pc[1] gamma_N / dt or gz / dt, pc[2] gamma_S / dt, pc[3] mu; pcap each),
+	 * (pc[0] Y, pc[1] gamma_N / dt or gz / dt, pc[2] gamma_S / dt, pc[3] mu, pc[4] k_t; pcap each),
 	 * formed with pm for the table and 1/dt in pkc, pinv */
-	double *pc[4];
+	double *pc[5];
 	int ptable;
 	sb_kc pkc[3][3];
 	double pinv;

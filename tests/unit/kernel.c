@@ -266,35 +266,49 @@ static void test_forces(const char *path, firsts *fi)
 				}
 			snprintf(id, sizeof id, "kernel.%s.clip%d%s.some_contacts_slide", path, clip, rs);
 			CHECK(id, capped > 5, "only %d contacts at the Coulomb cap: the rescaling is not exercised", capped);
-			/* the vector instance against forces_scalar (the pass every path ran before
-			 * it): three evaluations from no history, each advancing it, the forces
-			 * and the displacements (capped ones rescaled) to the bit */
-			sb_shear rsh;
-			shear_init(&rsh);
-			shear_follow(&rsh, &nl, &e);
-			shear_clear(sh);
-			double *sc[3];
-			for (int c = 0; c < 3; c++)
-				sc[c] = calloc((size_t)st.n, sizeof(double));
-			const sb_seam_io io = {st.q[C_X][0], st.q[C_Y][0], st.q[C_X][1], st.q[C_Y][1], sc[C_X], sc[C_Y],
-					       sc[C_TH], 1, 1};
-			int eq = 1, nz = 0;
-			for (int it = 0; it < 3; it++) {
-				const int bk = kernel_forces(k, &law, &st, &nl, inv_dt, 0, NULL, &e);
+			/* the vector instances against forces_scalar (the pass every path ran before
+			 * them), the law's and a table's whose grain-wall class has a stiffness,
+			 * friction and shear stiffness of its own: three evaluations from no history,
+			 * each advancing it, the forces and the displacements (capped ones rescaled)
+			 * to the bit */
+			sb_law tsp = law;
+			tsp.table = 1;
+			for (int a = 0; a < 3; a++)
+				for (int b = 0; b < 3; b++)
+					tsp.kc[a][b] = (sb_kc){law.Y, law.gn, law.gs, law.mu, law.kt};
+			tsp.kc[KIND_GRAIN][KIND_WALL] = tsp.kc[KIND_WALL][KIND_GRAIN] =
+				(sb_kc){2 * law.Y, law.gn, law.gs, 0.3, 1.5 * law.kt};
+			for (int tb = 0; tb < 2; tb++) {
+				const sb_law *lw = tb ? &tsp : &law;
+				sb_shear rsh;
+				shear_init(&rsh);
+				shear_follow(&rsh, &nl, &e);
+				shear_clear(sh);
+				double *sc[3];
 				for (int c = 0; c < 3; c++)
-					memset(sc[c], 0, sizeof(double) * (size_t)st.n);
-				eq &= bk == forces_scalar(&law, &st, &nl, &rsh, &io, inv_dt, NULL);
+					sc[c] = calloc((size_t)st.n, sizeof(double));
+				const sb_seam_io io = {st.q[C_X][0], st.q[C_Y][0], st.q[C_X][1], st.q[C_Y][1],
+						       sc[C_X],      sc[C_Y],      sc[C_TH],     1, 1};
+				int eq = 1, nz = 0;
+				for (int it = 0; it < 3; it++) {
+					const int bk = kernel_forces(k, lw, &st, &nl, inv_dt, 0, NULL, &e);
+					for (int c = 0; c < 3; c++)
+						memset(sc[c], 0, sizeof(double) * (size_t)st.n);
+					eq &= bk == forces_scalar(lw, &st, &nl, &rsh, &io, inv_dt, NULL);
+					for (int c = 0; c < 3; c++)
+						eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
+					eq &= sh->n == rsh.n && bits_equal(sh->xi, rsh.xi, sizeof(double) * (size_t)rsh.n);
+				}
+				for (int p = 0; p < rsh.n; p++)
+					nz += rsh.xi[p] != 0;
+				snprintf(id, sizeof id, "kernel.%s.clip%d%s.%sspring_equals_scalar_bits", path, clip, rs,
+					 tb ? "table_" : "");
+				CHECK(id, eq && nz > 100, "forces or shear displacements differ from forces_scalar's (%d contacts)",
+				      nz);
 				for (int c = 0; c < 3; c++)
-					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
-				eq &= sh->n == rsh.n && bits_equal(sh->xi, rsh.xi, sizeof(double) * (size_t)rsh.n);
+					free(sc[c]);
+				shear_free(&rsh);
 			}
-			for (int p = 0; p < rsh.n; p++)
-				nz += rsh.xi[p] != 0;
-			snprintf(id, sizeof id, "kernel.%s.clip%d%s.spring_equals_scalar_bits", path, clip, rs);
-			CHECK(id, eq && nz > 100, "forces or shear displacements differ from forces_scalar's (%d contacts)", nz);
-			for (int c = 0; c < 3; c++)
-				free(sc[c]);
-			shear_free(&rsh);
 		}
 		/* the fused path: forces kept, corrected and predicted in one pass, then
 		 * synced, equal the reference step (forces into st->f, correct, predict) */
