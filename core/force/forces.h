@@ -23,8 +23,8 @@ typedef struct sb_law {
 	 * factor sqrt(xi R_eff), R_eff = R_i R_j / (R_i + R_j) (docs/model.md, "Normal law") */
 	int hertz;
 	/* tangential = spring: the shear spring k_t with history (docs/model.md,
-	 * "Tangential law"); gs is its damping. The vector kernel has no instance of it:
-	 * forces_scalar runs it, the same code on every path. */
+	 * "Tangential law"); gs is its damping. The vector kernel's spring instances give
+	 * forces_scalar's bits. */
 	int spring;
 	double kt;
 	/* materials per pair of kinds (docs/model.md, "Materials per pair of kinds";
@@ -89,7 +89,7 @@ void forces_pair_spring(const sb_law *law, double dx, double dy, double ri, doub
 
 /* The law over the flat list and the seam pairs in that order, scalar, each pair with
  * its class's coefficients (forces_kc): the reference of the vector kernel's instances
- * (kvec.c), and the pass that runs the shear spring with the ring's sums. Positions and scaled velocities at io's x, y, vx, vy, the state's
+ * (kvec.c: every instance gives its bits; the tests compare them). Positions and scaled velocities at io's x, y, vx, vy, the state's
  * spins; forces added at io's fx, fy, t. With the spring law each contact's shear
  * displacement in sh (in nl's order: shear_follow first) is advanced and every pair
  * not in contact reset to zero (sh is not read otherwise). fabs_sum and the return as

@@ -166,39 +166,6 @@ sb_shear *kernel_shear(sb_kernel *k)
 	return &k->shear;
 }
 
-/* tangential = spring with the ring's sums: the whole list through forces_scalar,
- * scalar and in list order (one code for every path: the same bits); with keep, into the records and
- * accumulators as the vector kernel leaves them for the fused corrector (kvec.h's
- * layout: x, y, vx, vy, R w, 1/m, R, R; accumulators Fx, Fy, torque, 0) */
-static int scalar_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
-			 double *fabs_sum, sb_err *e)
-{
-	kernel_sync(k, st);
-	if (law->spring && shear_follow(&k->shear, nl, e))
-		return -1;
-	double *rec = k->d.rec, *facc = k->d.facc;
-	const size_t n = (size_t)st->n;
-	for (size_t i = 0; i < n; i++) {
-		double *q = rec + 8 * i;
-		q[0] = st->q[C_X][0][i];
-		q[1] = st->q[C_Y][0][i];
-		q[2] = st->q[C_X][1][i];
-		q[3] = st->q[C_Y][1][i];
-		q[4] = st->r[i] * st->q[C_TH][1][i];
-		q[5] = st->inv_m[i];
-		q[6] = q[7] = st->r[i];
-	}
-	k->d.walls_packed = nl->builds;
-	memset(facc, 0, sizeof(double) * 4 * n);
-	for (int c = 0; c < 3 && !keep; c++)
-		memset(st->f[c], 0, sizeof(double) * n);
-	const sb_seam_io io = keep ? (sb_seam_io){st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1], facc,
-						  facc + 1, facc + 2, 1, 4}
-				   : (sb_seam_io){st->q[C_X][0], st->q[C_Y][0], st->q[C_X][1], st->q[C_Y][1], st->f[C_X],
-						  st->f[C_Y], st->f[C_TH], 1, 1};
-	return forces_scalar(law, st, nl, law->spring ? &k->shear : NULL, &io, inv_dt, fabs_sum);
-}
-
 /* The vector kernel's per-pair numbers (kvec.h, sb_kdata), once per list build: m_eff
  * and R_i + R_j of each listed pair, by the operations the lanes did on the records'
  * numbers (1/m_i + 1/m_j, its inverse, R_i + R_j: the same bits), so that no step
@@ -298,10 +265,7 @@ int kernel_forces(sb_kernel *k, const sb_law *law, sb_state *st, const sb_nlist 
 	 * vector loads trust (checked once per list build) */
 	assert(k->d.walls_packed == nl->builds || !nlist_check(nl, st->n, st->nm));
 	k->packed = 0;
-	/* the shear spring with the ring's sums runs the scalar pass */
-	if (law->spring && fabs_sum)
-		return scalar_forces(k, law, st, nl, inv_dt, keep, fabs_sum, e);
-	/* its history in the order of this build */
+	/* the shear spring: its history in the order of this build */
 	if (law->spring && shear_follow(&k->shear, nl, e))
 		return -1;
 	k->d.shx = law->spring ? k->shear.xi : NULL;

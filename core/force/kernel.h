@@ -6,8 +6,7 @@
  * wherever it lives. The seam pairs of periodic sides (nlist.h) go through the scalar
  * law (forces_seam) after the flat list. The shear-spring law (tangential = spring) has
  * vector instances of its own (with a table of materials too), its history per listed pair in
- * the kernel's sb_shear; with the ring's sums it runs through forces_scalar, the same code
- * on every path, over the records the fused corrector reads. Every path gives the scalar law's numbers to
+ * the kernel's sb_shear. Every path gives the scalar law's numbers to
  * the bit (tests/unit/kernel.c, tests/integration/regression.sh).
  *
  * Every disk's contact data sit in a 64-byte record (kvec.h) that the kernel reads two

@@ -409,7 +409,16 @@ typedef int (*kernel_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist 
 		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, NULL, packed, keep, pf, table, spring); \
 	}
 #define INSTANCE(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0, 0)
-#define INSTANCE_S(name, hertz, clip, resti, pf) INSTANCE_T(name, hertz, clip, resti, pf, 0, 1)
+/* the shear spring's take the ring's sums at run time (a branch per contact, taken the same
+ * way all along): one instance for both, where the others have kernel_track's */
+typedef int (*kernel_fs_fn)(sb_kdata *, const sb_law *, sb_state *, const sb_nlist *, double, int, int, double *);
+#define INSTANCE_ST(name, hertz, clip, resti, pf, table)                                                   \
+	static int name(sb_kdata *d, const sb_law *l, sb_state *s, const sb_nlist *n, double inv_dt,      \
+			int packed, int keep, double *fsum)                                                \
+	{                                                                                                  \
+		return kernel(d, l, s, n, inv_dt, clip, resti, hertz, fsum, packed, keep, pf, table, 1);   \
+	}
+#define INSTANCE_S(name, hertz, clip, resti, pf) INSTANCE_ST(name, hertz, clip, resti, pf, 0)
 INSTANCE(kernel_plain, 0, 0, 0, 0)
 INSTANCE(kernel_clip, 0, 1, 0, 0)
 INSTANCE(kernel_plain_pf, 0, 0, 0, 1)
@@ -444,24 +453,25 @@ INSTANCE_S(kernel_spr_hz, 1, 0, 0, 0)
 INSTANCE_S(kernel_spr_hz_clip, 1, 1, 0, 0)
 INSTANCE_S(kernel_spr_hz_pf, 1, 0, 0, 1)
 INSTANCE_S(kernel_spr_hz_clip_pf, 1, 1, 0, 1)
-INSTANCE_T(kernel_tab_spr, 0, 0, 0, 0, 1, 1)
-INSTANCE_T(kernel_tab_spr_clip, 0, 1, 0, 0, 1, 1)
-INSTANCE_T(kernel_tab_spr_e, 0, 0, 1, 0, 1, 1)
-INSTANCE_T(kernel_tab_spr_clip_e, 0, 1, 1, 0, 1, 1)
-INSTANCE_T(kernel_tab_spr_hz, 1, 0, 0, 0, 1, 1)
-INSTANCE_T(kernel_tab_spr_hz_clip, 1, 1, 0, 0, 1, 1)
+INSTANCE_ST(kernel_tab_spr, 0, 0, 0, 0, 1)
+INSTANCE_ST(kernel_tab_spr_clip, 0, 1, 0, 0, 1)
+INSTANCE_ST(kernel_tab_spr_e, 0, 0, 1, 0, 1)
+INSTANCE_ST(kernel_tab_spr_clip_e, 0, 1, 1, 0, 1)
+INSTANCE_ST(kernel_tab_spr_hz, 1, 0, 0, 0, 1)
+INSTANCE_ST(kernel_tab_spr_hz_clip, 1, 1, 0, 0, 1)
 #undef INSTANCE
 #undef INSTANCE_S
+#undef INSTANCE_ST
 #undef INSTANCE_T
 /* [hertz ? 2 : resti][prefetch][clip] */
 static const kernel_fn KERNELS[3][2][2] = {{{kernel_plain, kernel_clip}, {kernel_plain_pf, kernel_clip_pf}},
 					   {{kernel_plain_e, kernel_clip_e}, {kernel_plain_e_pf, kernel_clip_e_pf}},
 					   {{kernel_hz, kernel_hz_clip}, {kernel_hz_pf, kernel_hz_clip_pf}}};
 /* the same, the shear spring's, and a table's with it ([hertz ? 2 : resti][clip]) */
-static const kernel_fn KERNELS_TAB_SPR[3][2] = {{kernel_tab_spr, kernel_tab_spr_clip},
+static const kernel_fs_fn KERNELS_TAB_SPR[3][2] = {{kernel_tab_spr, kernel_tab_spr_clip},
 						{kernel_tab_spr_e, kernel_tab_spr_clip_e},
 						{kernel_tab_spr_hz, kernel_tab_spr_hz_clip}};
-static const kernel_fn KERNELS_SPR[3][2][2] = {
+static const kernel_fs_fn KERNELS_SPR[3][2][2] = {
 	{{kernel_spr, kernel_spr_clip}, {kernel_spr_pf, kernel_spr_clip_pf}},
 	{{kernel_spr_e, kernel_spr_clip_e}, {kernel_spr_e_pf, kernel_spr_clip_e_pf}},
 	{{kernel_spr_hz, kernel_spr_hz_clip}, {kernel_spr_hz_pf, kernel_spr_hz_clip_pf}}};
@@ -490,13 +500,17 @@ static __attribute__((noinline)) int kernel_track(sb_kdata *d, const sb_law *l, 
 static int forces(sb_kdata *d, const sb_law *law, sb_state *st, const sb_nlist *nl, double inv_dt, int keep,
 		  int packed, double *fsum)
 {
+	if (law->spring) { /* the ring's sums, as kernel_track's: from st, into st->f */
+		if (fsum)
+			packed = keep = 0;
+		if (law->table)
+			return KERNELS_TAB_SPR[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,
+												   keep, fsum);
+		return KERNELS_SPR[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt,
+												  packed, keep, fsum);
+	}
 	if (fsum)
 		return kernel_track(d, law, st, nl, inv_dt, fsum);
-	if (law->spring && law->table)
-		return KERNELS_TAB_SPR[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
-	if (law->spring) /* kernel.c sends the ring's sums with the spring to the scalar pass */
-		return KERNELS_SPR[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt,
-												  packed, keep);
 	if (law->table)
 		return KERNELS_TAB[law->hertz ? 2 : law->resti != 0][law->clip != 0](d, law, st, nl, inv_dt, packed, keep);
 	return KERNELS[law->hertz ? 2 : law->resti != 0][d->prefetch != 0][law->clip != 0](d, law, st, nl, inv_dt, packed,

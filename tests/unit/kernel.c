@@ -270,7 +270,7 @@ static void test_forces(const char *path, firsts *fi)
 			 * them), the law's and a table's whose grain-wall class has a stiffness,
 			 * friction and shear stiffness of its own: three evaluations from no history,
 			 * each advancing it, the forces and the displacements (capped ones rescaled)
-			 * to the bit */
+			 * to the bit, then one with the ring's sums */
 			sb_law tsp = law;
 			tsp.table = 1;
 			for (int a = 0; a < 3; a++)
@@ -299,6 +299,19 @@ static void test_forces(const char *path, firsts *fi)
 						eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
 					eq &= sh->n == rsh.n && bits_equal(sh->xi, rsh.xi, sizeof(double) * (size_t)rsh.n);
 				}
+				/* and a fourth with the ring's sums (the spring's instances take them
+				 * at run time) */
+				double *fr = calloc((size_t)st.n, sizeof(double)), *fk = calloc((size_t)st.n, sizeof(double));
+				const int bk = kernel_forces(k, lw, &st, &nl, inv_dt, 0, fk, &e);
+				for (int c = 0; c < 3; c++)
+					memset(sc[c], 0, sizeof(double) * (size_t)st.n);
+				eq &= bk == forces_scalar(lw, &st, &nl, &rsh, &io, inv_dt, fr);
+				eq &= bits_equal(fr, fk, sizeof(double) * (size_t)st.n);
+				for (int c = 0; c < 3; c++)
+					eq &= bits_equal(st.f[c], sc[c], sizeof(double) * (size_t)st.n);
+				eq &= sh->n == rsh.n && bits_equal(sh->xi, rsh.xi, sizeof(double) * (size_t)rsh.n);
+				free(fr);
+				free(fk);
 				for (int p = 0; p < rsh.n; p++)
 					nz += rsh.xi[p] != 0;
 				snprintf(id, sizeof id, "kernel.%s.clip%d%s.%sspring_equals_scalar_bits", path, clip, rs,
