@@ -23,6 +23,7 @@
 #include <xmmintrin.h>
 typedef unsigned sb_fpmode;
 #define SB_FPMODE_FLUSH 0x8040u /* FTZ | DAZ */
+#define SB_FPMODE_FLUSHES 1
 static inline sb_fpmode fpmode_enter(void)
 {
 	const sb_fpmode old = _mm_getcsr();
@@ -38,6 +39,7 @@ static inline void fpmode_leave(sb_fpmode old)
 #elif defined(__aarch64__)
 typedef unsigned long sb_fpmode;
 #define SB_FPMODE_FLUSH (1ul << 24) /* FZ */
+#define SB_FPMODE_FLUSHES 1
 static inline sb_fpmode fpmode_enter(void)
 {
 	sb_fpmode old;
@@ -53,6 +55,7 @@ static inline void fpmode_leave(sb_fpmode old)
 }
 #else
 typedef int sb_fpmode;
+#define SB_FPMODE_FLUSHES 0
 static inline sb_fpmode fpmode_enter(void)
 {
 	return 0;
@@ -66,11 +69,7 @@ static inline void fpmode_leave(sb_fpmode old)
 /* 1 when the mode flushes subnormals on this build's CPU family */
 static inline int fpmode_flushes(void)
 {
-#if defined(__x86_64__) || defined(__i386__) || defined(__aarch64__)
-	return 1;
-#else
-	return 0;
-#endif
+	return SB_FPMODE_FLUSHES;
 }
 
 #endif

@@ -188,37 +188,46 @@ static inline int add_contact(const sb_seam_io *io, double *fsum, int i, int j, 
 	return xi > mo * (ri < rj ? ri : rj);
 }
 
+/* One pair of the list, disk i's centre (or image) dx from j's in x: nothing when it does
+ * not touch (its shear displacement *h, when the spring's, reset: its history ends, docs/model.md
+ * "Tangential law"), else its class's law added into io. Returns add_contact's flag. */
+static inline int one_pair(const sb_law *law, const sb_state *st, const sb_seam_io *io, double inv_dt, int i, int j,
+			   double dx, double *h, double *fsum)
+{
+	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
+	const int ps = io->ps;
+	const double dy = io->y[i * ps] - io->y[j * ps], rs = r[i] + r[j], d2 = dx * dx + dy * dy;
+	if (!(d2 < rs * rs)) {
+		if (h)
+			*h = 0;
+		return 0;
+	}
+	const double d = sqrt(d2), ri = r[i], rj = r[j];
+	double fx, fy, f_s, xi;
+	int capped;
+	/* the pair's coefficients (a table of materials') */
+	const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
+	const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
+	if (h)
+		contact_spring(law, &c, gn, gs, dx, dy, d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
+			       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), h, 1, &fx, &fy, &f_s,
+			       &xi, &capped);
+	else
+		contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
+			io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]),
+			&fx, &fy, &f_s, &xi, &capped);
+	return add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, law->max_overlap);
+}
+
 int forces_seam(const sb_law *law, const sb_state *st, const sb_nlist *nl, const sb_seam_io *io, double inv_dt,
 		double *hs, double *fsum)
 {
-	const double mo = law->max_overlap, W = nl->period;
-	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
 	const int ps = io->ps;
 	int bad = 0;
 	for (int k = 0; k < nl->nseam; k++) {
 		const int i = nl->si[k], j = nl->sj[k];
-		const double dx = (io->x[i * ps] + W) - io->x[j * ps], dy = io->y[i * ps] - io->y[j * ps],
-			     rs = r[i] + r[j], d2 = dx * dx + dy * dy;
-		if (!(d2 < rs * rs)) {
-			if (hs) /* no contact: its history ends */
-				hs[k] = 0;
-			continue;
-		}
-		const double d = sqrt(d2), ri = r[i], rj = r[j];
-		double fx, fy, f_s, xi;
-		int capped;
-		/* the pair's coefficients (a table of materials'), formed as forces_scalar does */
-		const sb_kc c = forces_kc(law, st->kind[i], st->kind[j]);
-		const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
-		if (hs) {
-			contact_spring(law, &c, gn, gs, dx, dy, d, ri, rj, io->vx[i * ps] - io->vx[j * ps],
-				       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &hs[k], 1, &fx, &fy,
-				       &f_s, &xi, &capped);
-		} else
-			contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
-				io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j],
-				1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
-		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
+		bad |= one_pair(law, st, io, inv_dt, i, j, (io->x[i * ps] + nl->period) - io->x[j * ps], hs ? &hs[k] : NULL,
+				fsum);
 	}
 	return bad;
 }
@@ -247,43 +256,14 @@ static inline int pair_at(const sb_state *st, const sb_nlist *nl, int p, int *i,
 int forces_scalar(const sb_law *law, const sb_state *st, const sb_nlist *nl, sb_shear *sh, const sb_seam_io *io,
 		  double inv_dt, double *fsum)
 {
-	const double mo = law->max_overlap;
-	const double *r = st->r, *w = st->q[C_TH][1], *im = st->inv_m;
-	const unsigned char *kind = st->kind;
-	const int ps = io->ps, spring = law->spring;
+	const int ps = io->ps, sh_of = nl->pshift;
+	double *const hs = law->spring ? sh->xi : NULL;
 	int bad = 0;
-	for (int p = 0; p < nl->nflat + nl->nseam; p++) {
-		int i, j;
-		double dx;
-		if (!pair_at_x(io->x, ps, nl, p, &i, &j, &dx)) { /* the list's padding */
-			if (spring)
-				sh->xi[p] = 0;
-			continue;
-		}
-		const double dy = io->y[i * ps] - io->y[j * ps], rs = r[i] + r[j], d2 = dx * dx + dy * dy;
-		if (!(d2 < rs * rs)) { /* no contact: its history ends (docs/model.md, "Tangential law") */
-			if (spring)
-				sh->xi[p] = 0;
-			continue;
-		}
-		const double ri = r[i], rj = r[j];
-		const sb_kc c = forces_kc(law, kind[i], kind[j]);
-		const double gn = c.gn * inv_dt, gs = c.gs * inv_dt;
-		double fx, fy, f_s, xi;
-		int capped;
-		if (spring)
-			contact_spring(law, &c, gn, gs, dx, dy, sqrt(d2), ri, rj, io->vx[i * ps] - io->vx[j * ps],
-				       io->vy[i * ps] - io->vy[j * ps], w[i], w[j], 1.0 / (im[i] + im[j]), &sh->xi[p], 1,
-				       &fx, &fy, &f_s, &xi, &capped);
-		else {
-			const double d = sqrt(d2);
-			contact(c.Y, gn, law->resti, law->hertz, gs, c.mu, law->clip, dx, dy, d, 1.0 / d, ri, rj,
-				io->vx[i * ps] - io->vx[j * ps], io->vy[i * ps] - io->vy[j * ps], w[i], w[j],
-				1.0 / (im[i] + im[j]), &fx, &fy, &f_s, &xi, &capped);
-		}
-		bad |= add_contact(io, fsum, i, j, ri, rj, fx, fy, f_s, xi, mo);
+	for (int p = 0; p < nl->nflat; p++) {
+		const int i = nl->pi[p] >> sh_of, j = nl->pj[p] >> sh_of;
+		bad |= one_pair(law, st, io, inv_dt, i, j, io->x[i * ps] - io->x[j * ps], hs ? &hs[p] : NULL, fsum);
 	}
-	return bad;
+	return bad | forces_seam(law, st, nl, io, inv_dt, hs ? hs + nl->nflat : NULL, fsum);
 }
 
 /* The scans below take a contact's distance as sqrt(dx^2 + dy^2), as the kernel does:

@@ -106,9 +106,9 @@ int kernel_init_path(sb_kernel **out, const sb_state *st, const char *name, sb_e
 	k->d.walls_packed = -1;
 	/* ~300 bytes a disk are swept every step (the state's arrays, record,
 	 * accumulator, pairs); below half the last-level cache prefetches only cost
-	 * (measured on the Zen 5: -6 % at 10^5 disks, +2 % at 10^4, +4.5 % at 10^3). Nor
-	 * beyond eight level-2 caches where the last level is huge and slow: an Intel Xeon
-	 * reporting 480 MiB of it ran 10^5 disks 5 % faster with them (docs/benchmarks.md) */
+	 * (measured on the Zen 5: -6 % at 10^5 disks, +2 % at 10^4, +4.5 % at 10^3). They
+	 * are on too beyond eight level-2 caches, where a VM reports a huge last level: an
+	 * Intel Xeon reporting 480 MiB ran 10^5 disks 5 % faster with them (docs/benchmarks.md) */
 	const double sweep = 300.0 * st->n, l2 = (double)bigmem_l2_bytes();
 	k->d.prefetch = sweep > 0.5 * (double)bigmem_llc_bytes() || (l2 > 0 && sweep > 8 * l2);
 	return 0;
